@@ -1,0 +1,38 @@
+# betvdesign: two commands do all set-up (see README).
+#   make demo  -> .venv, install, check + report for a shipped device under reports/
+#   make test  -> .venv with test extras, system packages (when root), whole suite
+PYTHON ?= python3
+VENV   := .venv
+BIN    := $(VENV)/bin
+
+.PHONY: demo test lint sysdeps sysdeps-runtime clean
+
+$(VENV)/.stamp-run: pyproject.toml
+	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
+	$(BIN)/python -m pip install -q --upgrade pip
+	$(BIN)/python -m pip install -q -e .
+	touch $@
+
+$(VENV)/.stamp-test: pyproject.toml $(VENV)/.stamp-run
+	$(BIN)/python -m pip install -q -e '.[test]'
+	touch $@
+
+sysdeps-runtime:
+	@bash scripts/sysdeps.sh runtime
+
+sysdeps:
+	@bash scripts/sysdeps.sh test
+
+demo: sysdeps-runtime $(VENV)/.stamp-run
+	$(BIN)/betv demo -o reports/
+
+test: sysdeps $(VENV)/.stamp-test
+	$(BIN)/ruff check betvdesign tests benchmarks
+	$(BIN)/python -m pytest
+
+lint: $(VENV)/.stamp-test
+	$(BIN)/ruff check betvdesign tests benchmarks
+	$(BIN)/ruff format --check betvdesign tests benchmarks
+
+clean:
+	rm -rf $(VENV) build *.egg-info .pytest_cache

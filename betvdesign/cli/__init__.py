@@ -1,0 +1,41 @@
+"""The ``betv`` command line: a thin layer over the Python API.
+
+Each sub-command lives in its own module of this package and registers itself on
+:data:`app` when imported; add the module's name to ``_COMMANDS``.
+
+Exit codes: 0 success (and every error-severity rule passes), 1 a design rule
+fails, 2 bad input or usage.
+"""
+
+from __future__ import annotations
+
+import importlib
+
+import typer
+
+app = typer.Typer(
+    name="betv",
+    help="BETV design toolkit: check a layout, simulate, sweep, report, benchmark.",
+    no_args_is_help=True,
+    add_completion=False,
+    pretty_exceptions_enable=False,
+)
+
+# Sub-command modules, imported for their side effect of registering on ``app``.
+_COMMANDS: tuple[str, ...] = ()
+
+for _name in _COMMANDS:
+    importlib.import_module(f"{__name__}.{_name}")
+
+
+@app.command("version")
+def version_cmd() -> None:
+    """Print the betvdesign version."""
+    from betvdesign import __version__
+
+    typer.echo(__version__)
+
+
+def main() -> None:
+    """Console-script entry point."""
+    app()
