@@ -21,6 +21,12 @@ app = typer.Typer(
     pretty_exceptions_enable=False,
 )
 
+
+@app.callback()
+def _root() -> None:
+    """BETV design toolkit: check a layout, simulate, sweep, report, benchmark."""
+
+
 # Sub-command modules, imported for their side effect of registering on ``app``.
 _COMMANDS: tuple[str, ...] = ()
 
