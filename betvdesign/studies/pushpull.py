@@ -1,0 +1,220 @@
+"""Push/pull map: every (ϖ, α, β, κ) grid point solved to its periodic state.
+
+Two rungs (docs/MODEL.md, "Push/pull criterion" and "Slider"):
+
+* ``periodic`` (default, the reference): ``dynamics.periodic_orbit`` per point,
+  giving Δs, the simulated mode, period in cycles, fixed-point residual,
+  Floquet radius and a converged flag.
+* ``lambda``: the closed-form fit λ = (κ/ϖ²)(1/(ακ) − (1/β − β)/(22(κ+1)))
+  only. It costs microseconds, but it is a fit: near λ = 1 it can name the
+  wrong mode, so a map made with it says so.
+
+The summary compares the λ < 1 rule with the simulated mode at every converged
+point and lists every disagreement and every point that did not converge
+(including unbounded tangential motion), so nothing is dropped silently.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from typing import Any, Literal
+
+import numpy as np
+
+from betvdesign.errors import UsageError
+from betvdesign.params import ModelParams
+from betvdesign.studies.executors import Executor
+from betvdesign.studies.grid import Grid, require_positive
+from betvdesign.studies.runner import Progress, Study, StudyRun, run_study
+
+Fidelity = Literal["periodic", "lambda"]
+AXES = ("kappa", "beta", "alpha", "varpi")
+
+#: Result columns of the map (types for the CSV store).
+COLUMNS: dict[str, type] = {
+    "key": int,
+    "varpi": float,
+    "alpha": float,
+    "beta": float,
+    "kappa": float,
+    "lam": float,
+    "mode_predicted": str,
+    "status": str,
+    "converged": bool,
+    "mode": str,
+    "delta_s": float,
+    "period_cycles": int,
+    "residual": float,
+    "floquet_radius": float,
+    "impacts_per_cycle": float,
+    "contact_fraction": float,
+    "cycles": int,
+    "message": str,
+}
+
+
+def _base_row(task: Mapping[str, Any]) -> dict[str, Any]:
+    p = ModelParams(task["varpi"], task["alpha"], task["beta"], task["kappa"])
+    row: dict[str, Any] = dict.fromkeys(COLUMNS)
+    row.update(key=task["key"], **p.as_dict(), lam=p.lam, mode_predicted=p.mode_predicted)
+    return row
+
+
+def lambda_point(task: Mapping[str, Any]) -> dict[str, Any]:
+    """Worker of the ``lambda`` rung: λ and the mode it predicts, nothing simulated."""
+    row = _base_row(task)
+    row.update(status="lambda-only", converged=False, message="closed-form λ fit only")
+    return row
+
+
+def periodic_point(task: Mapping[str, Any]) -> dict[str, Any]:
+    """Worker of the ``periodic`` rung: one periodic-orbit solve (plain data in and out)."""
+    from betvdesign.dynamics import periodic_orbit
+
+    row = _base_row(task)
+    p = ModelParams(task["varpi"], task["alpha"], task["beta"], task["kappa"])
+    kwargs: dict[str, Any] = {"tol": task["tol"]}
+    if task.get("max_cycles") is not None:
+        kwargs["max_cycles"] = task["max_cycles"]
+    res = periodic_orbit(p, **kwargs)
+    floquet = getattr(res, "floquet", None)
+    radius = None
+    if floquet is not None and len(floquet):
+        radius = float(np.max(np.abs(np.asarray(floquet))))
+    delta_s = _finite_or_none(getattr(res, "delta_s", None))
+    row.update(
+        status=str(res.status),
+        converged=bool(res.success),
+        mode=getattr(res, "mode", None) if res.success else None,
+        delta_s=delta_s,
+        period_cycles=_int_or_none(getattr(res, "period_cycles", None)),
+        residual=_finite_or_none(getattr(res, "residual", None)),
+        floquet_radius=radius,
+        impacts_per_cycle=_finite_or_none(getattr(res, "impacts_per_cycle", None)),
+        contact_fraction=_finite_or_none(getattr(res, "contact_fraction", None)),
+        cycles=_int_or_none(getattr(res, "n_cycles", None)),
+        message=str(getattr(res, "message", "")),
+    )
+    return row
+
+
+def _finite_or_none(x: Any) -> float | None:
+    if x is None:
+        return None
+    x = float(x)
+    return x if np.isfinite(x) else None
+
+
+def _int_or_none(x: Any) -> int | None:
+    return None if x is None else int(x)
+
+
+def pushpull_study(
+    varpi: Sequence[float],
+    alpha: Sequence[float],
+    beta: Sequence[float],
+    kappa: Sequence[float],
+    *,
+    fidelity: Fidelity = "periodic",
+    tol: float = 1e-10,
+    max_cycles: int | None = None,
+) -> tuple[Study, Grid]:
+    """Build the map study; grid order κ, β, α, ϖ (ϖ fastest)."""
+    axes = {
+        "kappa": require_positive(np.asarray(kappa, float), "kappa"),
+        "beta": require_positive(np.asarray(beta, float), "beta"),
+        "alpha": require_positive(np.asarray(alpha, float), "alpha"),
+        "varpi": require_positive(np.asarray(varpi, float), "varpi"),
+    }
+    grid = Grid(axes)
+    tasks = [{"key": pt.key, **pt.values, "tol": tol, "max_cycles": max_cycles} for pt in grid]
+    if fidelity not in ("periodic", "lambda"):
+        raise UsageError(f"unknown fidelity {fidelity!r} (periodic or lambda)")
+    worker = periodic_point if fidelity == "periodic" else lambda_point
+    params = {"grid": grid.as_dict(), "fidelity": fidelity, "tol": tol, "max_cycles": max_cycles}
+    return Study("pushpull", COLUMNS, params, tasks, worker), grid
+
+
+@dataclass
+class PushPullSummary:
+    """Agreement of the λ < 1 rule with the simulated modes, and every exception."""
+
+    fidelity: str
+    n_points: int
+    n_converged: int
+    n_push: int
+    n_pull: int
+    n_agree: int
+    disagreements: list[dict[str, Any]]
+    not_converged: list[dict[str, Any]]
+
+    @property
+    def agreement(self) -> float | None:
+        """Fraction of converged points where λ names the simulated mode."""
+        return self.n_agree / self.n_converged if self.n_converged else None
+
+    def as_dict(self) -> dict[str, Any]:
+        return {
+            "fidelity": self.fidelity,
+            "points": self.n_points,
+            "converged": self.n_converged,
+            "push": self.n_push,
+            "pull": self.n_pull,
+            "lambda_agrees": self.n_agree,
+            "lambda_agreement": self.agreement,
+            "disagreements": self.disagreements,
+            "not_converged": self.not_converged,
+        }
+
+
+def _brief(row: Mapping[str, Any], keys: Sequence[str]) -> dict[str, Any]:
+    return {k: row[k] for k in keys}
+
+
+def summarise(rows: Sequence[Mapping[str, Any]], fidelity: str = "periodic") -> PushPullSummary:
+    """Compare λ with the simulations; list disagreements and non-converged points."""
+    point = ("key", "varpi", "alpha", "beta", "kappa", "lam")
+    conv = [r for r in rows if r["converged"]]
+    disagree = [
+        _brief(r, (*point, "mode_predicted", "mode", "delta_s"))
+        for r in conv
+        if r["mode"] != r["mode_predicted"]
+    ]
+    failed = (
+        [_brief(r, (*point, "status", "message")) for r in rows if not r["converged"]]
+        if fidelity == "periodic"
+        else []
+    )
+    return PushPullSummary(
+        fidelity=fidelity,
+        n_points=len(rows),
+        n_converged=len(conv),
+        n_push=sum(r["mode"] == "push" for r in conv),
+        n_pull=sum(r["mode"] == "pull" for r in conv),
+        n_agree=len(conv) - len(disagree),
+        disagreements=disagree,
+        not_converged=failed,
+    )
+
+
+def run_pushpull(
+    varpi: Sequence[float],
+    alpha: Sequence[float],
+    beta: Sequence[float],
+    kappa: Sequence[float],
+    *,
+    fidelity: Fidelity = "periodic",
+    tol: float = 1e-10,
+    max_cycles: int | None = None,
+    executor: Executor | None = None,
+    out: str | None = None,
+    overwrite: bool = False,
+    progress: Progress | None = None,
+) -> tuple[StudyRun, PushPullSummary]:
+    """Build, run (streamed/resumable when ``out`` is given) and summarise a map."""
+    study, _ = pushpull_study(
+        varpi, alpha, beta, kappa, fidelity=fidelity, tol=tol, max_cycles=max_cycles
+    )
+    run = run_study(study, executor, out=out, overwrite=overwrite, progress=progress)
+    return run, summarise(run.rows, fidelity)

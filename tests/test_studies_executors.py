@@ -1,0 +1,54 @@
+"""Executors give identical results (source: the serial executor as reference;
+dask against an in-test distributed.LocalCluster with 2 worker processes)."""
+
+import pytest
+
+from betvdesign.errors import UsageError
+from betvdesign.studies.executors import (
+    DaskExecutor,
+    ProcessExecutor,
+    SerialExecutor,
+    chunked,
+    default_chunksize,
+    make_executor,
+)
+from betvdesign.studies.pushpull import pushpull_study
+from betvdesign.studies.runner import run_study
+
+
+@pytest.fixture(scope="module")
+def cluster():
+    distributed = pytest.importorskip("distributed")
+    with distributed.LocalCluster(
+        n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
+    ) as cl:
+        yield cl
+
+
+def test_chunking_covers_every_task_once():
+    tasks = list(range(10))
+    chunks = chunked(tasks, 3)
+    assert [len(c) for c in chunks] == [3, 3, 3, 1]
+    assert [t for c in chunks for t in c] == tasks
+    assert 1 <= default_chunksize(1152, 2) <= 64
+
+
+def test_lambda_rung_identical_on_all_backends(cluster):
+    study, _ = pushpull_study([0.5, 1.0, 1.5], [0.1, 2.0], [0.1, 1.5], [0.4], fidelity="lambda")
+    ref = run_study(study, SerialExecutor()).rows
+    proc = run_study(study, ProcessExecutor(workers=2, chunksize=2)).rows
+    dask = run_study(study, DaskExecutor(cluster.scheduler_address, chunksize=2)).rows
+    assert ref == proc == dask
+    assert len(ref) == 12
+
+
+def test_make_executor_choices_and_errors():
+    assert make_executor("serial").info().backend == "serial"
+    assert make_executor("process", workers=3).info().workers == 3
+    assert make_executor(scheduler="tcp://127.0.0.1:1").info().backend == "dask"
+    with pytest.raises(UsageError, match="unknown executor"):
+        make_executor("gpu")
+    with pytest.raises(UsageError, match="--scheduler"):
+        make_executor("dask")
+    with pytest.raises(UsageError, match=">= 1"):
+        make_executor("process", workers=0)
