@@ -1,0 +1,236 @@
+"""YAML device files -> :class:`~betvdesign.spec.DeviceSpec`, with errors a user can act on.
+
+Every problem found in a file is collected and raised together as one
+:class:`~betvdesign.errors.SpecError` whose issues print as
+``file:line:col: field.path: message``. YAML 1.2 semantics (ruamel.yaml round-trip
+loader: ``yes``/``no`` stay strings, ``0.4`` is a float); duplicate keys are errors.
+"""
+
+from __future__ import annotations
+
+import difflib
+import functools
+from pathlib import Path
+from typing import Any
+
+from pydantic import ValidationError
+from ruamel.yaml import YAML
+from ruamel.yaml.comments import CommentedMap, CommentedSeq
+from ruamel.yaml.error import MarkedYAMLError, YAMLError
+from ruamel.yaml.nodes import MappingNode, Node, SequenceNode
+
+from betvdesign.errors import Location, SpecError, SpecIssue
+from betvdesign.spec import DeviceSpec
+
+
+def load_device(path: str | Path) -> DeviceSpec:
+    """Read and validate one device file. Raises :class:`SpecError` listing every issue."""
+    path = Path(path)
+    fname = str(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise _one(fname, "file not found") from None
+    except IsADirectoryError:
+        raise _one(fname, "is a directory, expected a YAML device file") from None
+    except UnicodeDecodeError as exc:
+        raise _one(fname, f"not UTF-8 text ({exc.reason} at byte {exc.start})") from None
+    except OSError as exc:
+        raise _one(fname, f"cannot read file: {exc.strerror}") from None
+    return load_device_text(text, fname)
+
+
+def load_device_text(text: str, filename: str = "<string>") -> DeviceSpec:
+    """Validate device YAML given as text; ``filename`` is used in messages."""
+    issues: list[SpecIssue] = []
+    yaml = YAML(typ="rt")
+    yaml.allow_duplicate_keys = True  # duplicates are found on the node tree, all at once
+    try:
+        root_node = yaml.compose(text)
+        issues.extend(_duplicate_keys(root_node, filename))
+        data = yaml.load(text)
+    except MarkedYAMLError as exc:
+        mark = exc.problem_mark or exc.context_mark
+        loc = Location(filename, mark.line + 1, mark.column + 1) if mark else Location(filename)
+        problem = exc.problem or exc.context or "malformed YAML"
+        raise SpecError([*issues, SpecIssue(loc, "", f"invalid YAML: {problem}")]) from None
+    except YAMLError as exc:
+        raise SpecError(
+            [*issues, SpecIssue(Location(filename), "", f"invalid YAML: {exc}")]
+        ) from None
+
+    if data is None:
+        raise _one(
+            filename, "empty file: expected a mapping with 'name', 'slider', 'actuator_sets'"
+        )
+    if not isinstance(data, CommentedMap):
+        raise SpecError(
+            [
+                SpecIssue(
+                    Location(filename, 1, 1),
+                    "",
+                    f"expected a mapping at the top level, got {type(data).__name__}",
+                )
+            ]
+        )
+    try:
+        spec = DeviceSpec.model_validate(_plain(data))
+    except ValidationError as exc:
+        issues.extend(_validation_issues(exc, data, filename))
+        raise SpecError(issues) from None
+    if issues:
+        raise SpecError(issues)
+    return spec
+
+
+# --- helpers ---------------------------------------------------------------------------
+
+
+def _one(filename: str, message: str) -> SpecError:
+    return SpecError([SpecIssue(Location(filename), "", message)])
+
+
+def _duplicate_keys(node: Node | None, filename: str) -> list[SpecIssue]:
+    """Every repeated key of every mapping in the composed node tree."""
+    out: list[SpecIssue] = []
+    stack: list[tuple[Node | None, str]] = [(node, "")]
+    while stack:
+        n, path = stack.pop()
+        if isinstance(n, MappingNode):
+            seen: dict[Any, int] = {}
+            for knode, vnode in n.value:
+                key = getattr(knode, "value", None)
+                if isinstance(key, str) and key in seen:
+                    m = knode.start_mark
+                    out.append(
+                        SpecIssue(
+                            Location(filename, m.line + 1, m.column + 1),
+                            _join(path, key),
+                            f"duplicate key (first given on line {seen[key]})",
+                        )
+                    )
+                elif isinstance(key, str):
+                    seen[key] = knode.start_mark.line + 1
+                stack.append((vnode, _join(path, key)))
+        elif isinstance(n, SequenceNode):
+            for i, item in enumerate(n.value):
+                stack.append((item, f"{path}[{i}]"))
+    return sorted(out, key=lambda i: (i.location.line or 0, i.location.col or 0))
+
+
+def _join(path: str, key: Any) -> str:
+    if isinstance(key, int):
+        return f"{path}[{key}]"
+    return f"{path}.{key}" if path else str(key)
+
+
+def _plain(x: Any) -> Any:
+    """ruamel round-trip objects -> plain Python (dict, list, str, int, float, bool)."""
+    if isinstance(x, dict):
+        return {_plain(k): _plain(v) for k, v in x.items()}
+    if isinstance(x, list):
+        return [_plain(v) for v in x]
+    if isinstance(x, bool) or type(x).__name__ == "ScalarBoolean":
+        return bool(x)
+    if isinstance(x, int):
+        return int(x)
+    if isinstance(x, float):
+        return float(x)
+    if isinstance(x, str):
+        return str(x)
+    return x
+
+
+def _locate(root: CommentedMap, loc: tuple[Any, ...]) -> tuple[int, int, str]:
+    """Walk a pydantic error location through the YAML data: 1-based line/col and path.
+
+    Elements of ``loc`` that are not keys in the data (discriminator tags, union
+    member names) are skipped, except a last element (a missing field) which names
+    the field but keeps the position of its parent mapping.
+    """
+    node: Any = root
+    line, col = root.lc.line, root.lc.col
+    path = ""
+    for i, el in enumerate(loc):
+        last = i == len(loc) - 1
+        if isinstance(node, CommentedMap) and el in node:
+            line, col = node.lc.value(el) if not last else node.lc.key(el)
+            node = node[el]
+            path = _join(path, el)
+        elif isinstance(node, CommentedSeq) and isinstance(el, int) and 0 <= el < len(node):
+            line, col = node.lc.item(el)
+            node = node[el]
+            path = _join(path, el)
+        elif last and isinstance(el, str | int):
+            path = _join(path, el)
+    return line + 1, col + 1, path
+
+
+def _last_key_value_pos(root: CommentedMap, loc: tuple[Any, ...]) -> tuple[int, int] | None:
+    """Position of the *value* of the last key of ``loc`` (for wrong values)."""
+    node: Any = root
+    pos = None
+    for el in loc:
+        if isinstance(node, CommentedMap) and el in node:
+            pos = node.lc.value(el)
+            node = node[el]
+        elif isinstance(node, CommentedSeq) and isinstance(el, int) and 0 <= el < len(node):
+            pos = node.lc.item(el)
+            node = node[el]
+    return None if pos is None else (pos[0] + 1, pos[1] + 1)
+
+
+@functools.cache
+def _known_fields() -> tuple[str, ...]:
+    names: set[str] = set()
+
+    def walk(obj: Any) -> None:
+        if isinstance(obj, dict):
+            props = obj.get("properties")
+            if isinstance(props, dict):
+                names.update(props)
+            for v in obj.values():
+                walk(v)
+        elif isinstance(obj, list):
+            for v in obj:
+                walk(v)
+
+    walk(DeviceSpec.model_json_schema())
+    return tuple(sorted(names))
+
+
+def _message(err: dict[str, Any]) -> str:
+    kind = err["type"]
+    msg = str(err["msg"])
+    if kind == "extra_forbidden":
+        key = err["loc"][-1] if err["loc"] else ""
+        close = difflib.get_close_matches(str(key), _known_fields(), n=1)
+        hint = f"; did you mean '{close[0]}'?" if close else ""
+        return f"unknown field{hint} (see `betv schema` for the allowed fields)"
+    if kind == "missing":
+        return "missing required field"
+    if msg.startswith("Value error, "):
+        msg = msg[len("Value error, ") :]
+    if msg.startswith("Assertion failed, "):
+        msg = msg[len("Assertion failed, ") :]
+    return msg
+
+
+def _validation_issues(exc: ValidationError, root: CommentedMap, filename: str) -> list[SpecIssue]:
+    grouped: dict[tuple[int, int, str], list[str]] = {}
+    for err in exc.errors():
+        loc = tuple(err["loc"])
+        line, col, path = _locate(root, loc)
+        if err["type"] not in ("extra_forbidden", "missing"):
+            pos = _last_key_value_pos(root, loc)
+            if pos is not None:
+                line, col = pos
+        msgs = grouped.setdefault((line, col, path), [])
+        m = _message(err)
+        if m not in msgs:
+            msgs.append(m)
+    issues = [
+        SpecIssue(Location(filename, line, col), path, "; or ".join(msgs))
+        for (line, col, path), msgs in grouped.items()
+    ]
+    return sorted(issues, key=lambda i: (i.location.line or 0, i.location.col or 0, i.field))

@@ -1,0 +1,435 @@
+"""Device spec -> dimensionless model parameters, scales and a derivation record.
+
+The only module that strips units. For each actuator set it computes
+(docs/MODEL.md, "Physical quantities", "Device-to-parameter relations",
+"Dimensionless model"):
+
+- M = (n·ρ·L·w·t + m_extra)/2    half the slider mass [kg]
+- m                               head mass, given or ρ_head·V_head [kg]
+- k_v = m·(2π f_v)²               vertical contact stiffness [N/m]
+- α = k_v/k_h or (f_v/f_h)² or given
+- f_act = 2 f_drive (AC, zero DC bias) or f_drive;  ω = 2π f_act
+- u = amplitude or calibration(V)
+- ϖ = ω·sqrt(m/k_v) = f_act/f_v,  β = m/M,  κ = μ·tanθ,  λ (MODEL.md, "Push/pull criterion")
+- scales: length u·cosθ [m], time sqrt(m/k_v) [s]
+
+Every input, formula and intermediate value is kept as a :class:`DerivationStep`
+so a report can show how each number was obtained.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import pint
+
+from betvdesign.params import ModelParams
+from betvdesign.spec import (
+    ActuatorSet,
+    BoxGeometry,
+    DeviceSpec,
+    DiscGeometry,
+    Mode,
+    PublishedFit,
+    amplitude_at,
+)
+from betvdesign.units import format_quantity, ureg
+
+__all__ = [
+    "DerivationStep",
+    "DeviceDerivation",
+    "FitComparison",
+    "Scales",
+    "SetDerivation",
+    "amplitude_at",
+    "derive",
+    "derive_set",
+]
+
+
+#: ASCII keys for JSON output of the symbols that are not ASCII already.
+_ASCII = {
+    "ρ": "rho",
+    "ρ_head": "rho_head",
+    "α": "alpha",
+    "ω": "omega",
+    "θ": "theta",
+    "μ": "mu",
+    "ϖ": "varpi",
+    "β": "beta",
+    "κ": "kappa",
+    "λ": "lambda",
+    "t_s": "time_scale",
+    "ℓ": "length_scale",
+}
+#: Keys of the dimensional values :meth:`SetDerivation.derived` reports.
+DERIVED_KEYS = ("M", "m", "k_v", "k_h", "f_act", "omega", "u", "time_scale", "length_scale")
+
+
+@dataclass(frozen=True)
+class DerivationStep:
+    """One number of the derivation: an input from the spec or a computed value.
+
+    symbol: e.g. "k_v"; description: words; formula: "m·(2π f_v)²" or
+    "spec: actuator.vertical_resonance" for inputs; value: pint Quantity in the
+    engineering unit it is best read in; inputs: symbols the formula uses.
+    """
+
+    symbol: str
+    description: str
+    formula: str
+    value: pint.Quantity
+    inputs: tuple[str, ...] = ()
+    key: str = ""
+
+    def __post_init__(self) -> None:
+        if not self.key:
+            object.__setattr__(self, "key", _ASCII.get(self.symbol, self.symbol))
+
+    @property
+    def value_str(self) -> str:
+        """The value as a short string with units, e.g. ``"0.0184 ug"``."""
+        return format_quantity(self.value, ".4g")
+
+    @property
+    def magnitude(self) -> float:
+        return float(self.value.magnitude)
+
+
+@dataclass(frozen=True)
+class Scales:
+    """Scales of the dimensionless model, float SI (MODEL.md, "Dimensionless model").
+
+    length_m: u·cosθ [m] (ζ and s scale); time_s: sqrt(m/k_v) [s] (τ = t/time_s);
+    f_act_hz: actuation frequency [Hz]; omega_rad_s: 2π f_act [rad/s];
+    u_m: amplitude [m]; theta_rad: impact angle [rad].
+    """
+
+    length_m: float
+    time_s: float
+    f_act_hz: float
+    omega_rad_s: float
+    u_m: float
+    theta_rad: float
+
+    def speed_m_s(self, delta_s: float) -> float:
+        """Mean slider speed for a dimensionless per-cycle increment Δs [m/s]:
+        Δs·u·cosθ·f_act (MODEL.md, "Displacement per cycle")."""
+        return delta_s * self.length_m * self.f_act_hz
+
+
+@dataclass(frozen=True)
+class FitComparison:
+    """A computed parameter against the value(s) a publication fitted."""
+
+    name: str
+    computed: float
+    published: tuple[float, ...]
+
+    @property
+    def rel_diff(self) -> float:
+        """Smallest relative difference |computed − published|/published [-]."""
+        return min(abs(self.computed - p) / abs(p) for p in self.published)
+
+    def matches(self, rtol: float = 0.1) -> bool:
+        return self.rel_diff <= rtol
+
+
+@dataclass(frozen=True)
+class SetDerivation:
+    """Model parameters and scales of one actuator set, with their derivation."""
+
+    name: str
+    intended_mode: Mode
+    params: ModelParams
+    lam: float
+    scales: Scales
+    record: list[DerivationStep]
+    actuator_set: ActuatorSet
+    travel_range_m: float
+    published: list[FitComparison] = field(default_factory=list)
+
+    def step(self, symbol: str) -> DerivationStep:
+        """The record entry for ``symbol`` (KeyError if absent)."""
+        for s in self.record:
+            if s.symbol == symbol:
+                return s
+        raise KeyError(symbol)
+
+    @property
+    def mode_predicted(self) -> Mode:
+        return self.params.mode_predicted
+
+    @property
+    def impact_sign(self) -> int:
+        return 1 if self.actuator_set.impact_direction == "+x" else -1
+
+    def derived(self) -> dict[str, str]:
+        """Key dimensional values as strings with units (``{"M": "0.003961 ug", ...}``),
+        keyed by :data:`DERIVED_KEYS`."""
+        by_key = {s.key: s for s in self.record}
+        return {k: by_key[k].value_str for k in DERIVED_KEYS if k in by_key}
+
+
+@dataclass(frozen=True)
+class DeviceDerivation:
+    """Derivations of every actuator set of a device."""
+
+    name: str
+    spec: DeviceSpec
+    sets: list[SetDerivation]
+
+
+def derive(spec: DeviceSpec) -> DeviceDerivation:
+    """Derive the model parameters of every actuator set of ``spec``.
+
+    Raises :class:`~betvdesign.errors.ParameterError` if the numbers give parameters
+    the model cannot take (non-finite, non-positive).
+    """
+    return DeviceDerivation(
+        name=spec.name, spec=spec, sets=[derive_set(spec, s) for s in spec.actuator_sets]
+    )
+
+
+class _Record:
+    def __init__(self) -> None:
+        self.steps: list[DerivationStep] = []
+
+    def add(
+        self,
+        symbol: str,
+        description: str,
+        formula: str,
+        value: pint.Quantity,
+        inputs: tuple[str, ...] = (),
+        unit: str | None = None,
+    ) -> pint.Quantity:
+        if not isinstance(value, pint.Quantity):
+            value = ureg.Quantity(value, "dimensionless")
+        if unit is not None:
+            value = value.to(unit)
+        self.steps.append(DerivationStep(symbol, description, formula, value, inputs))
+        return value
+
+    def spec(self, symbol: str, description: str, path: str, value) -> pint.Quantity:
+        return self.add(symbol, description, f"spec: {path}", value)
+
+
+def _head_mass(rec: _Record, spec: DeviceSpec, aset: ActuatorSet) -> pint.Quantity:
+    head = aset.head
+    if head.mass is not None:
+        return rec.spec("m", "impact head mass", "head.mass", head.mass.to("ug"))
+    geo = head.geometry
+    mat = head.material or spec.material
+    rho_h = rec.spec("ρ_head", f"head density ({mat.name})", "head.material", mat.density)
+    if isinstance(geo, DiscGeometry):
+        d = rec.spec("d_head", "head diameter", "head.geometry.diameter", geo.diameter)
+        t = rec.spec("t_head", "head thickness", "head.geometry.thickness", geo.thickness)
+        vol = rec.add(
+            "V_head",
+            "head volume",
+            "π·d²/4·t",
+            math.pi * d**2 / 4 * t,
+            ("d_head", "t_head"),
+            "um**3",
+        )
+    else:
+        assert isinstance(geo, BoxGeometry)
+        a = rec.spec("l_head", "head length", "head.geometry.length", geo.length)
+        b = rec.spec("w_head", "head width", "head.geometry.width", geo.width)
+        t = rec.spec("t_head", "head thickness", "head.geometry.thickness", geo.thickness)
+        vol = rec.add(
+            "V_head", "head volume", "l·w·t", a * b * t, ("l_head", "w_head", "t_head"), "um**3"
+        )
+    return rec.add(
+        "m", "impact head mass", "ρ_head·V_head", rho_h * vol, ("ρ_head", "V_head"), "ug"
+    )
+
+
+def derive_set(spec: DeviceSpec, aset: ActuatorSet) -> SetDerivation:
+    """Derivation of one actuator set (see the module docstring for the formulas)."""
+    rec = _Record()
+    sl = spec.slider
+    act = aset.actuator
+
+    rho = rec.spec(
+        "ρ", f"slider density ({spec.material.name})", "material.density", spec.material.density
+    )
+    L = rec.spec("L", "beam length", "slider.beam_length", sl.beam_length)
+    w = rec.spec("w", "beam width", "slider.beam_width", sl.beam_width)
+    t = rec.spec("t", "beam thickness", "slider.beam_thickness", sl.beam_thickness)
+    n = rec.spec("n", "beam count", "slider.beam_count", ureg.Quantity(sl.beam_count, ""))
+    m_x = rec.spec("m_extra", "extra slider mass", "slider.extra_mass", sl.extra_mass.to("ug"))
+    M = rec.add(
+        "M",
+        "half the slider mass (the model's M)",
+        "(n·ρ·L·w·t + m_extra)/2",
+        (n * rho * L * w * t + m_x) / 2,
+        ("n", "ρ", "L", "w", "t", "m_extra"),
+        "ug",
+    )
+    m = _head_mass(rec, spec, aset)
+
+    f_v = rec.spec(
+        "f_v",
+        "head vertical resonance",
+        "actuator.vertical_resonance",
+        act.vertical_resonance.to("kHz"),
+    )
+    k_v = rec.add(
+        "k_v",
+        "vertical contact stiffness",
+        "m·(2π·f_v)²",
+        m * (2 * math.pi * f_v) ** 2,
+        ("m", "f_v"),
+        "N/m",
+    )
+    if act.alpha is not None:
+        alpha = rec.spec(
+            "α",
+            "relative impact compliance k_v/k_h",
+            "actuator.alpha",
+            ureg.Quantity(act.alpha, ""),
+        )
+    elif act.horizontal_stiffness is not None:
+        k_h = rec.spec(
+            "k_h",
+            "tangential contact stiffness",
+            "actuator.horizontal_stiffness",
+            act.horizontal_stiffness.to("N/m"),
+        )
+        alpha = rec.add("α", "relative impact compliance", "k_v/k_h", k_v / k_h, ("k_v", "k_h"), "")
+    else:
+        f_h = rec.spec(
+            "f_h",
+            "head tangential resonance",
+            "actuator.horizontal_resonance",
+            act.horizontal_resonance.to("kHz"),
+        )
+        alpha = rec.add(
+            "α", "relative impact compliance", "(f_v/f_h)²", (f_v / f_h) ** 2, ("f_v", "f_h"), ""
+        )
+
+    f_d = rec.spec(
+        "f_drive",
+        f"drive frequency ({aset.drive.waveform})",
+        "drive.frequency",
+        aset.drive.frequency.to("Hz"),
+    )
+    if aset.drive.doubled:
+        f_act = rec.add(
+            "f_act",
+            "actuation frequency: AC with zero DC bias heats on both half waves (AC doubling)",
+            "2·f_drive",
+            2 * f_d,
+            ("f_drive",),
+            "Hz",
+        )
+    else:
+        f_act = rec.add(
+            "f_act",
+            f"actuation frequency ({aset.drive.waveform} drive: not doubled)",
+            "f_drive",
+            f_d,
+            ("f_drive",),
+            "Hz",
+        )
+    omega = rec.add(
+        "ω", "angular actuation frequency", "2π·f_act", 2 * math.pi * f_act, ("f_act",), "rad/s"
+    )
+
+    if act.amplitude is not None:
+        u = rec.spec("u", "actuator amplitude", "actuator.amplitude", act.amplitude.to("um"))
+    else:
+        rec.spec("V", "drive voltage", "drive.voltage", aset.drive.voltage)
+        law = act.calibration.law
+        formula = {
+            "linear": "gain·V",
+            "quadratic": "gain·V²",
+            "measured": "interp(V; measured points)",
+        }[law]
+        u = rec.add(
+            "u",
+            f"actuator amplitude ({law} calibration)",
+            formula,
+            amplitude_at(aset),
+            ("V",),
+            "um",
+        )
+    theta = rec.spec("θ", "impact angle", "contact.impact_angle", aset.contact.impact_angle)
+    mu = rec.spec(
+        "μ",
+        "Coulomb friction coefficient",
+        "contact.friction",
+        ureg.Quantity(aset.contact.friction, ""),
+    )
+
+    t_s = rec.add(
+        "t_s", "time scale sqrt(m/k_v)", "sqrt(m/k_v)", (m / k_v) ** 0.5, ("m", "k_v"), "us"
+    )
+    l_s = rec.add(
+        "ℓ",
+        "length scale u·cosθ (slider, tangential)",
+        "u·cosθ",
+        u * math.cos(theta.to("rad").magnitude),
+        ("u", "θ"),
+        "nm",
+    )
+    varpi = rec.add(
+        "ϖ", "normalised actuation frequency", "ω·sqrt(m/k_v)", omega * t_s, ("ω", "t_s"), ""
+    )
+    beta = rec.add("β", "relative mass m/M", "m/M", m / M, ("m", "M"), "")
+    kappa = rec.add(
+        "κ",
+        "normalised friction μ·tanθ",
+        "μ·tanθ",
+        mu * math.tan(theta.to("rad").magnitude),
+        ("μ", "θ"),
+        "",
+    )
+
+    params = ModelParams(
+        varpi=float(varpi.to("").magnitude),
+        alpha=float(alpha.to("").magnitude),
+        beta=float(beta.to("").magnitude),
+        kappa=float(kappa.to("").magnitude),
+    )
+    lam = params.lam
+    rec.add(
+        "λ",
+        "push/pull criterion (λ < 1 push, λ > 1 pull)",
+        "(κ/ϖ²)·(1/(ακ) − (1/β − β)/(22(κ+1)))",
+        ureg.Quantity(lam, ""),
+        ("ϖ", "α", "β", "κ"),
+    )
+    scales = Scales(
+        length_m=float(l_s.to("m").magnitude),
+        time_s=float(t_s.to("s").magnitude),
+        f_act_hz=float(f_act.to("Hz").magnitude),
+        omega_rad_s=float(omega.to("rad/s").magnitude),
+        u_m=float(u.to("m").magnitude),
+        theta_rad=float(theta.to("rad").magnitude),
+    )
+    return SetDerivation(
+        name=aset.name,
+        intended_mode=aset.intended_mode,
+        params=params,
+        lam=lam,
+        scales=scales,
+        record=rec.steps,
+        actuator_set=aset,
+        travel_range_m=float(sl.travel_range.to("m").magnitude),
+        published=_compare(params, spec.published_fit),
+    )
+
+
+def _compare(params: ModelParams, fit: PublishedFit | None) -> list[FitComparison]:
+    if fit is None:
+        return []
+    out = []
+    for name in ("varpi", "alpha", "beta", "kappa"):
+        vals = fit.values(name)
+        if vals:
+            out.append(FitComparison(name, getattr(params, name), tuple(vals)))
+    return out

@@ -1,0 +1,355 @@
+"""Device specification models (pydantic v2, frozen, extra fields forbidden).
+
+A :class:`DeviceSpec` is what a device YAML file holds (see devices/*.yaml and
+``betv schema``). Every dimensional value is a pint quantity of
+:data:`betvdesign.units.ureg`; bare numbers are rejected where a unit is due.
+The physical meaning of each field is in docs/MODEL.md, "Physical quantities"
+and "Device-to-parameter relations".
+"""
+
+from __future__ import annotations
+
+import itertools
+from typing import Annotated, Any, Literal
+
+import numpy as np
+import pint
+from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
+
+from betvdesign.errors import ParameterError
+from betvdesign.units import (
+    Density,
+    Frequency,
+    ImpactAngle,
+    Length,
+    LinearGain,
+    Mass,
+    NonNegativeLength,
+    NonNegativeMass,
+    NonNegativeVoltage,
+    QuadraticGain,
+    Stiffness,
+    Voltage,
+    format_quantity,
+    parse_quantity,
+    ureg,
+)
+
+Mode = Literal["push", "pull"]
+
+#: Dry-friction coefficients accepted for μ: (0, MU_MAX]. Measured values for
+#: polysilicon on polysilicon lie around 0.2–0.8 (MODEL.md uses 0.4); a value above
+#: 1.5 is far outside anything reported and almost certainly a typo.
+MU_MAX = 1.5
+
+
+class _Model(BaseModel):
+    model_config = ConfigDict(
+        extra="forbid", frozen=True, strict=True, arbitrary_types_allowed=True
+    )
+
+
+class Material(_Model):
+    """A structural material [density in mass/length³]."""
+
+    name: str = Field(min_length=1)
+    density: Density
+
+
+#: Named materials a file can refer to by name (``material: polysilicon``).
+MATERIALS: dict[str, Material] = {
+    "polysilicon": Material(name="polysilicon", density=parse_quantity("2330 kg/m^3")),
+}
+POLYSILICON = MATERIALS["polysilicon"]
+
+
+def _named_material(value: Any) -> Any:
+    if isinstance(value, str):
+        if value not in MATERIALS:
+            known = ", ".join(sorted(MATERIALS))
+            raise ValueError(
+                f"unknown material {value!r}; known: {known} "
+                "(or give {name: ..., density: '... kg/m^3'})"
+            )
+        return MATERIALS[value]
+    return value
+
+
+class Slider(_Model):
+    """The slider: parallel beams joined at both ends.
+
+    Half the slider mass (the model's M) is (beam_count·ρ·L·w·t + extra_mass)/2
+    (MODEL.md, "Physical quantities"): with two beams, one beam plus half the extra.
+    """
+
+    beam_length: Length
+    beam_width: Length
+    beam_thickness: Length
+    beam_count: int = Field(default=2, ge=1, le=16)
+    extra_mass: NonNegativeMass = Field(
+        default_factory=lambda: parse_quantity("0 ug"),
+        description="Mass of connectors/extras on top of the beams [mass]; 0 ug by default.",
+    )
+    travel_range: Length
+
+
+class DiscGeometry(_Model):
+    """A round impact head (a disc) [lengths]."""
+
+    shape: Literal["disc"]
+    diameter: Length
+    thickness: Length
+
+
+class BoxGeometry(_Model):
+    """A rectangular impact head [lengths]."""
+
+    shape: Literal["box"]
+    length: Length
+    width: Length
+    thickness: Length
+
+
+HeadGeometry = Annotated[DiscGeometry | BoxGeometry, Field(discriminator="shape")]
+
+
+class ImpactHead(_Model):
+    """The impact head on the actuator's cold arm: its mass m, given directly or by
+    geometry (+ material, the device material by default)."""
+
+    mass: Mass | None = None
+    geometry: HeadGeometry | None = None
+    material: Material | None = None
+
+    _material = field_validator("material", mode="before")(_named_material)
+
+    @model_validator(mode="after")
+    def _one_source(self) -> ImpactHead:
+        if (self.mass is None) == (self.geometry is None):
+            raise ValueError("give exactly one of 'mass' or 'geometry' for the impact head")
+        if self.mass is not None and self.material is not None:
+            raise ValueError("'material' only applies with 'geometry' (mass is given directly)")
+        return self
+
+
+class Contact(_Model):
+    """Head/slider contact: impact angle θ in (0°, 90°) and Coulomb friction μ [-]."""
+
+    impact_angle: ImpactAngle
+    friction: float = Field(gt=0.0, le=MU_MAX, description="Coulomb friction coefficient μ [-]")
+
+
+class LinearCalibration(_Model):
+    """u = gain·V."""
+
+    law: Literal["linear"]
+    gain: LinearGain
+
+
+class QuadraticCalibration(_Model):
+    """u = gain·V² (Joule heating: deflection ∝ power ∝ V²)."""
+
+    law: Literal["quadratic"]
+    gain: QuadraticGain
+
+
+class CalibrationPoint(_Model):
+    voltage: NonNegativeVoltage
+    amplitude: NonNegativeLength
+
+
+class MeasuredCalibration(_Model):
+    """Measured (V, u) points, linearly interpolated; no extrapolation."""
+
+    law: Literal["measured"]
+    points: list[CalibrationPoint] = Field(min_length=2)
+
+    @model_validator(mode="after")
+    def _increasing(self) -> MeasuredCalibration:
+        volts = [p.voltage.to("V").magnitude for p in self.points]
+        if any(b <= a for a, b in itertools.pairwise(volts)):
+            raise ValueError("calibration points must have strictly increasing voltages")
+        return self
+
+    @property
+    def voltage_range(self) -> tuple[pint.Quantity, pint.Quantity]:
+        return self.points[0].voltage, self.points[-1].voltage
+
+
+Calibration = Annotated[
+    LinearCalibration | QuadraticCalibration | MeasuredCalibration, Field(discriminator="law")
+]
+
+
+class Actuator(_Model):
+    """An electrothermal actuator with its head's contact compliance and amplitude.
+
+    Vertical stiffness from ``vertical_resonance`` f_v: k_v = m·(2π f_v)².
+    Tangential compliance: exactly one of ``alpha`` (α = k_v/k_h, the published
+    devices' phenomenological value), ``horizontal_stiffness`` k_h or
+    ``horizontal_resonance`` f_h (α = (f_v/f_h)²).
+    Amplitude u: exactly one of ``amplitude`` or ``calibration`` (law of the drive voltage).
+    """
+
+    vertical_resonance: Frequency
+    alpha: float | None = Field(default=None, gt=0.0, description="α = k_v/k_h [-]")
+    horizontal_stiffness: Stiffness | None = None
+    horizontal_resonance: Frequency | None = None
+    amplitude: NonNegativeLength | None = None
+    calibration: Calibration | None = None
+
+    @model_validator(mode="after")
+    def _exactly_one(self) -> Actuator:
+        given = [
+            n
+            for n in ("alpha", "horizontal_stiffness", "horizontal_resonance")
+            if getattr(self, n) is not None
+        ]
+        if len(given) != 1:
+            raise ValueError(
+                "give exactly one of 'alpha', 'horizontal_stiffness' or 'horizontal_resonance'"
+                + (f" (got {', '.join(given)})" if given else "")
+            )
+        if (self.amplitude is None) == (self.calibration is None):
+            raise ValueError("give exactly one of 'amplitude' or 'calibration'")
+        if self.amplitude is not None and self.amplitude.to("m").magnitude <= 0:
+            raise ValueError("amplitude must be > 0")
+        return self
+
+
+class Drive(_Model):
+    """Electrical drive.
+
+    waveform: ``ac`` (zero DC bias: heats on both half waves, actuation frequency
+    = 2 × drive frequency, MODEL.md "AC doubling"), ``dc-biased`` or ``unipolar``
+    (actuation frequency = drive frequency).
+    """
+
+    waveform: Literal["ac", "dc-biased", "unipolar"]
+    frequency: Frequency
+    voltage: Voltage | None = None
+
+    @property
+    def doubled(self) -> bool:
+        """True when the actuation frequency is twice the drive frequency."""
+        return self.waveform == "ac"
+
+
+class ActuatorSet(_Model):
+    """One set of symmetric actuators driving the slider one way.
+
+    impact_direction: the direction (+x/−x) the heads strike along the slider; a push
+    set moves the slider that way, a pull set the other way.
+    """
+
+    name: str = Field(min_length=1)
+    intended_mode: Mode
+    impact_direction: Literal["+x", "-x"] = "+x"
+    head: ImpactHead
+    contact: Contact
+    actuator: Actuator
+    drive: Drive
+
+    @model_validator(mode="after")
+    def _drive_matches_calibration(self) -> ActuatorSet:
+        cal = self.actuator.calibration
+        if cal is not None and self.drive.voltage is None:
+            raise ValueError("drive.voltage is required when the actuator gives a calibration")
+        if isinstance(cal, MeasuredCalibration) and self.drive.voltage is not None:
+            lo, hi = cal.voltage_range
+            v = self.drive.voltage
+            if not (lo <= v <= hi):
+                raise ValueError(
+                    f"drive.voltage {format_quantity(v)} lies outside the measured calibration "
+                    f"range {format_quantity(lo)} to {format_quantity(hi)}; no extrapolation"
+                )
+        return self
+
+    @property
+    def travel_sign(self) -> int:
+        """+1/−1: direction the slider moves if the set works in its intended mode."""
+        s = 1 if self.impact_direction == "+x" else -1
+        return s if self.intended_mode == "push" else -s
+
+
+class PublishedFit(_Model):
+    """Dimensionless parameters a publication fitted for this device (optional).
+
+    ``betv check`` compares them with the values computed from the dimensional data
+    and shows the difference; several published values can be listed for one parameter.
+    """
+
+    varpi: float | list[float] | None = None
+    alpha: float | list[float] | None = None
+    beta: float | list[float] | None = None
+    kappa: float | list[float] | None = None
+    source: str | None = None
+
+    def values(self, name: str) -> list[float]:
+        v = getattr(self, name)
+        if v is None:
+            return []
+        return [float(x) for x in (v if isinstance(v, list) else [v])]
+
+
+class DeviceSpec(_Model):
+    """A BETV device: material, slider, one or more actuator sets."""
+
+    name: str = Field(min_length=1)
+    description: str | None = None
+    material: Material = POLYSILICON
+    slider: Slider
+    actuator_sets: list[ActuatorSet] = Field(min_length=1)
+    published_fit: PublishedFit | None = None
+
+    _material = field_validator("material", mode="before")(_named_material)
+
+    @model_validator(mode="after")
+    def _unique_names(self) -> DeviceSpec:
+        names = [s.name for s in self.actuator_sets]
+        dups = sorted({n for n in names if names.count(n) > 1})
+        if dups:
+            raise ValueError(f"actuator set names must be unique; repeated: {', '.join(dups)}")
+        return self
+
+
+def amplitude_at(actuator_set: ActuatorSet, voltage: pint.Quantity | str | None = None):
+    """Actuator amplitude u at a drive voltage [length, µm] (MODEL.md: u grows with V).
+
+    ``voltage`` None means the set's drive voltage. Array-valued voltages give
+    array amplitudes (for sweeps). Raises :class:`ParameterError` when the amplitude
+    cannot be given at that voltage (given directly, or outside a measured range).
+    """
+    act = actuator_set.actuator
+    if voltage is None:
+        if act.amplitude is not None:
+            return act.amplitude.to("um")
+        voltage = actuator_set.drive.voltage
+    if isinstance(voltage, str):
+        voltage = parse_quantity(voltage)
+    try:
+        v = voltage.to("V")
+    except (pint.DimensionalityError, AttributeError):
+        raise ParameterError(f"voltage must be a quantity in volts, got {voltage!r}") from None
+    cal = act.calibration
+    if cal is None:
+        raise ParameterError(
+            f"actuator set {actuator_set.name!r} gives its amplitude directly; "
+            "give a calibration (linear, quadratic or measured) to evaluate other voltages"
+        )
+    vm = np.asarray(v.magnitude, dtype=float)
+    if np.any(vm < 0) or not np.all(np.isfinite(vm)):
+        raise ParameterError(f"voltage must be finite and >= 0 V, got {voltage}")
+    if isinstance(cal, LinearCalibration):
+        return (cal.gain * v).to("um")
+    if isinstance(cal, QuadraticCalibration):
+        return (cal.gain * v**2).to("um")
+    xs = np.array([p.voltage.to("V").magnitude for p in cal.points], dtype=float)
+    ys = np.array([p.amplitude.to("um").magnitude for p in cal.points], dtype=float)
+    if np.any(vm < xs[0]) or np.any(vm > xs[-1]):
+        raise ParameterError(
+            f"voltage {voltage} outside the measured calibration range "
+            f"{xs[0]:g} V to {xs[-1]:g} V of set {actuator_set.name!r}; no extrapolation"
+        )
+    out = np.interp(vm, xs, ys)
+    return ureg.Quantity(float(out) if out.ndim == 0 else out, "um")
