@@ -1,0 +1,150 @@
+"""Δs against λ for fixed (κ, β), across the push/pull boundary.
+
+The fit λ = (κ/ϖ²)(1/(ακ) − D), D = (1/β − β)/(22(κ+1)) (docs/MODEL.md,
+"Push/pull criterion") is inverted for the parameter that is varied:
+
+* ``vary="varpi"`` (α fixed): ϖ = sqrt(κ(1/(ακ) − D)/λ), needs 1/(ακ) > D;
+* ``vary="alpha"`` (ϖ fixed): α = 1/(κ(λϖ²/κ + D)), needs λϖ²/κ + D > 0.
+
+Each λ target is then solved to its periodic state with the same worker as the
+push/pull map, and the summary locates the simulated boundary: the λ values
+between which the converged Δs changes sign (linear interpolation), to compare
+with the fit's λ = 1.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from typing import Any, Literal
+
+import numpy as np
+
+from betvdesign.errors import UsageError
+from betvdesign.params import LAMBDA_FIT_CONSTANT
+from betvdesign.studies.executors import Executor
+from betvdesign.studies.grid import require_positive
+from betvdesign.studies.pushpull import COLUMNS, periodic_point
+from betvdesign.studies.runner import Progress, Study, StudyRun, run_study
+
+Vary = Literal["varpi", "alpha"]
+
+
+def fit_offset(kappa: float, beta: float) -> float:
+    """D = (1/β − β)/(22(κ + 1)) [-] of the λ fit."""
+    return (1.0 / beta - beta) / (LAMBDA_FIT_CONSTANT * (kappa + 1.0))
+
+
+def params_for_lambda(
+    lam: float, *, kappa: float, beta: float, vary: Vary, alpha: float | None, varpi: float | None
+) -> dict[str, float]:
+    """The (ϖ, α, β, κ) point whose λ equals ``lam`` (see module doc)."""
+    d = fit_offset(kappa, beta)
+    if vary == "varpi":
+        if alpha is None:
+            raise UsageError("varying ϖ needs a fixed --alpha")
+        c = 1.0 / (alpha * kappa) - d
+        if c <= 0:
+            raise UsageError(
+                f"with α={alpha:g}, β={beta:g}, κ={kappa:g} the fit gives λ ≤ 0 for every ϖ; "
+                "no ϖ reaches the requested λ (vary alpha instead)"
+            )
+        return {"varpi": math.sqrt(kappa * c / lam), "alpha": alpha, "beta": beta, "kappa": kappa}
+    if vary == "alpha":
+        if varpi is None:
+            raise UsageError("varying α needs a fixed --varpi")
+        y = lam * varpi**2 / kappa + d
+        if y <= 0:
+            raise UsageError(f"λ = {lam:g} needs a negative α at ϖ={varpi:g}; outside the model")
+        return {"varpi": varpi, "alpha": 1.0 / (kappa * y), "beta": beta, "kappa": kappa}
+    raise UsageError(f"--vary must be varpi or alpha, not {vary!r}")
+
+
+def lambda_study(
+    lam: Sequence[float],
+    *,
+    kappa: float,
+    beta: float,
+    vary: Vary = "varpi",
+    alpha: float | None = None,
+    varpi: float | None = None,
+    tol: float = 1e-10,
+    max_cycles: int | None = None,
+) -> Study:
+    """One periodic solve per λ target (ascending order kept as given)."""
+    lam_arr = require_positive(np.asarray(lam, float), "lambda")
+    tasks = []
+    for key, target in enumerate(lam_arr):
+        p = params_for_lambda(
+            float(target), kappa=kappa, beta=beta, vary=vary, alpha=alpha, varpi=varpi
+        )
+        tasks.append({"key": key, **p, "tol": tol, "max_cycles": max_cycles})
+    params = {
+        "lambda": [float(x) for x in lam_arr],
+        "kappa": kappa,
+        "beta": beta,
+        "vary": vary,
+        "alpha": alpha,
+        "varpi": varpi,
+        "tol": tol,
+        "max_cycles": max_cycles,
+    }
+    return Study("lambda", COLUMNS, params, tasks, periodic_point)
+
+
+@dataclass
+class LambdaSummary:
+    """Where the simulated Δs changes sign, against the fit's λ = 1."""
+
+    n_points: int
+    n_converged: int
+    crossings: list[float]
+    not_converged: list[dict[str, Any]]
+
+    def as_dict(self) -> dict[str, Any]:
+        return {
+            "points": self.n_points,
+            "converged": self.n_converged,
+            "lambda_at_sign_change": self.crossings,
+            "not_converged": self.not_converged,
+        }
+
+
+def summarise(rows: Sequence[Mapping[str, Any]]) -> LambdaSummary:
+    """Sign changes of Δs along λ (converged points only, in λ order)."""
+    conv = sorted((r for r in rows if r["converged"]), key=lambda r: r["lam"])
+    crossings = []
+    for a, b in itertools.pairwise(conv):
+        if a["delta_s"] == 0.0:
+            crossings.append(a["lam"])
+        elif a["delta_s"] * b["delta_s"] < 0.0:
+            t = a["delta_s"] / (a["delta_s"] - b["delta_s"])
+            crossings.append(a["lam"] + t * (b["lam"] - a["lam"]))
+    failed = [
+        {k: r[k] for k in ("key", "lam", "varpi", "alpha", "status", "message")}
+        for r in rows
+        if not r["converged"]
+    ]
+    return LambdaSummary(len(rows), len(conv), crossings, failed)
+
+
+def run_lambda_scan(
+    lam: Sequence[float],
+    *,
+    kappa: float,
+    beta: float,
+    vary: Vary = "varpi",
+    alpha: float | None = None,
+    varpi: float | None = None,
+    tol: float = 1e-10,
+    executor: Executor | None = None,
+    out: str | None = None,
+    overwrite: bool = False,
+    progress: Progress | None = None,
+) -> tuple[StudyRun, LambdaSummary]:
+    """Build, run and summarise a Δs-against-λ scan."""
+    study = lambda_study(lam, kappa=kappa, beta=beta, vary=vary, alpha=alpha, varpi=varpi, tol=tol)
+    run = run_study(study, executor, out=out, overwrite=overwrite, progress=progress)
+    return run, summarise(run.rows)

@@ -1,0 +1,476 @@
+"""Tolerance analysis: Monte Carlo over fabrication and operating variation.
+
+Tolerances are given per spec field, as a dotted path into the device file
+(``slider.beam_width``, ``head.mass``, ``contact.friction``,
+``contact.impact_angle``, ``actuator.vertical_resonance``, ``actuator.alpha``,
+``actuator.calibration.gain``, ``drive.frequency``, ``drive.voltage``, ...).
+Paths below an actuator set (``head.``, ``contact.``, ``actuator.``,
+``drive.``) apply to every set: one draw per field and sample is shared by all
+sets (global process/operating variation, fully correlated; state it if you
+read per-set results together).
+
+Distributions: ``normal`` (σ) or ``uniform`` (half-width), each relative
+(``2%``) or absolute (``0.2 um``, or a plain number for unit-less fields).
+Command-line form ``FIELD=[normal|uniform:]AMOUNT``; file form (YAML)::
+
+    tolerances:
+      slider.beam_width: {dist: normal, sigma: 0.2 um}
+      contact.friction: {dist: uniform, half_width: 10%}
+
+Samples are drawn in spec space with a seeded ``numpy.random.Generator``
+(fields in the order given), each sample goes through ``nondim.derive_set``
+(the only place units are stripped), then through the chosen rung:
+``periodic`` (the reference: exact periodic orbit, gives the simulated mode
+and speed) or ``lambda`` (closed-form fit only; P(push) from λ, no speed).
+
+Results: P(push), P(pull), P(not converged), P(outside the 0.5 ≤ ϖ < 2
+window), P(mode ≠ intended), speed percentiles, and sensitivities as Spearman
+rank correlations of each input with speed (periodic) and λ.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+import os
+import re
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, Literal
+
+import numpy as np
+import pint
+
+from betvdesign.errors import BetvError, UsageError
+from betvdesign.studies.executors import Executor
+from betvdesign.studies.runner import Progress, Study, StudyRun, run_study
+
+Dist = Literal["normal", "uniform"]
+Fidelity = Literal["periodic", "lambda"]
+SET_PREFIXES = ("head.", "contact.", "actuator.", "drive.")
+VARPI_WINDOW = (0.5, 2.0)
+PERCENTILES = (5.0, 25.0, 50.0, 75.0, 95.0)
+
+
+@dataclass(frozen=True)
+class Tolerance:
+    """One field's variation: relative (fraction) or absolute (string with unit)."""
+
+    field: str
+    dist: Dist
+    relative: float | None = None
+    absolute: str | None = None
+    source: str = "command line"
+
+    def as_dict(self) -> dict[str, Any]:
+        return {
+            "field": self.field,
+            "dist": self.dist,
+            "relative": self.relative,
+            "absolute": self.absolute,
+        }
+
+
+def _amount(text: str, field: str, source: str) -> tuple[float | None, str | None]:
+    t = str(text).strip()
+    if t.endswith("%"):
+        try:
+            rel = float(t[:-1]) / 100.0
+        except ValueError:
+            raise UsageError(f"{source}: {field}: bad percentage {t!r}") from None
+        if not (math.isfinite(rel) and rel > 0):
+            raise UsageError(f"{source}: {field}: tolerance must be > 0, got {t!r}")
+        return rel, None
+    if not t:
+        raise UsageError(f"{source}: {field}: empty tolerance")
+    return None, t
+
+
+def parse_tolerance(text: str, source: str = "command line") -> Tolerance:
+    """``FIELD=[normal|uniform:]AMOUNT``, AMOUNT ``2%``, ``0.2 um`` or ``0.05``."""
+    m = re.fullmatch(r"\s*([A-Za-z_][\w.]*)\s*=\s*(?:(normal|uniform)\s*:)?\s*(.+?)\s*", text)
+    if not m:
+        raise UsageError(
+            f"{source}: tolerance {text!r} must read FIELD=[normal|uniform:]AMOUNT, "
+            "e.g. slider.beam_width=normal:0.2um or contact.friction=uniform:10%"
+        )
+    field, dist, amount = m.group(1), m.group(2) or "normal", m.group(3)
+    rel, absolute = _amount(amount, field, source)
+    return Tolerance(field, dist, rel, absolute, source)  # type: ignore[arg-type]
+
+
+def load_tolerances(path: str | os.PathLike[str]) -> list[Tolerance]:
+    """Read a ``tolerances:`` mapping from YAML (see module doc)."""
+    from ruamel.yaml import YAML, YAMLError
+
+    p = Path(path)
+    try:
+        data = YAML(typ="rt").load(p.read_text(encoding="utf-8"))
+    except OSError as exc:
+        raise UsageError(f"{p}: cannot read: {exc.strerror}") from None
+    except YAMLError as exc:
+        raise UsageError(f"{p}: not valid YAML: {exc}") from None
+    if not isinstance(data, Mapping) or set(data) != {"tolerances"}:
+        raise UsageError(f"{p}: expected one top-level key 'tolerances'")
+    entries = data["tolerances"]
+    if not isinstance(entries, Mapping) or not entries:
+        raise UsageError(f"{p}: 'tolerances' must map field paths to distributions")
+    out = []
+    for field, spec in entries.items():
+        line = entries.lc.key(field)[0] + 1 if hasattr(entries, "lc") else None
+        where = f"{p}:{line}" if line else str(p)
+        if not isinstance(spec, Mapping):
+            raise UsageError(f"{where}: {field}: expected {{dist: ..., sigma|half_width: ...}}")
+        dist = spec.get("dist", "normal")
+        key = "sigma" if dist == "normal" else "half_width"
+        if dist not in ("normal", "uniform"):
+            raise UsageError(f"{where}: {field}: dist must be normal or uniform, not {dist!r}")
+        unknown = set(spec) - {"dist", key}
+        if unknown or key not in spec:
+            raise UsageError(f"{where}: {field}: {dist} needs exactly '{key}' (and 'dist')")
+        rel, absolute = _amount(spec[key], field, where)
+        out.append(Tolerance(str(field), dist, rel, absolute, where))
+    return out
+
+
+# -- spec access -----------------------------------------------------------------
+def _get(obj: Any, path: Sequence[str]) -> Any:
+    for name in path:
+        if obj is None or name.startswith("_") or not hasattr(obj, "model_fields"):
+            return None
+        if name not in type(obj).model_fields:
+            return None
+        obj = getattr(obj, name)
+    return obj
+
+
+def _set(obj: Any, path: Sequence[str], value: Any) -> Any:
+    if not path:
+        return value
+    child = getattr(obj, path[0])
+    return obj.model_copy(update={path[0]: _set(child, path[1:], value)})
+
+
+def _targets(spec: Any, field: str) -> list[tuple[str, ...]]:
+    """Full attribute paths a field path addresses in ``spec`` (several for set fields)."""
+    parts = tuple(field.split("."))
+    if field.startswith(SET_PREFIXES):
+        return [("actuator_sets", str(i), *parts) for i in range(len(spec.actuator_sets))]
+    return [parts]
+
+
+def _value_at(spec: Any, target: tuple[str, ...]) -> Any:
+    if target[0] == "actuator_sets":
+        return _get(spec.actuator_sets[int(target[1])], target[2:])
+    return _get(spec, target)
+
+
+def _replace(spec: Any, target: tuple[str, ...], value: Any) -> Any:
+    if target[0] == "actuator_sets":
+        i = int(target[1])
+        sets = list(spec.actuator_sets)
+        sets[i] = _set(sets[i], target[2:], value)
+        return spec.model_copy(update={"actuator_sets": sets})
+    return _set(spec, target, value)
+
+
+def _numeric(value: Any) -> bool:
+    return isinstance(value, pint.Quantity) or (
+        isinstance(value, float) and not isinstance(value, bool)
+    )
+
+
+def nominal_values(spec: Any, tolerances: Sequence[Tolerance]) -> dict[str, tuple[float, str]]:
+    """Nominal magnitude and unit of each toleranced field (checked against the spec)."""
+    out: dict[str, tuple[float, str]] = {}
+    for tol in tolerances:
+        if tol.field in out:
+            raise UsageError(f"{tol.source}: {tol.field}: given twice")
+        values = [_value_at(spec, t) for t in _targets(spec, tol.field)]
+        present = [v for v in values if v is not None]
+        if not present or not all(_numeric(v) for v in present):
+            raise UsageError(
+                f"{tol.source}: {tol.field}: not a numeric field of device {spec.name!r} "
+                "(write it as in the device file, e.g. slider.beam_width, head.mass, "
+                "contact.friction, actuator.vertical_resonance, drive.frequency)"
+            )
+        first = present[0]
+        if any(v != first for v in present):
+            raise UsageError(
+                f"{tol.source}: {tol.field}: differs between actuator sets; "
+                "tolerances apply to fields with one nominal value"
+            )
+        if isinstance(first, pint.Quantity):
+            out[tol.field] = (float(first.magnitude), f"{first.units:~}")
+        else:
+            out[tol.field] = (float(first), "")
+    return out
+
+
+def draw(
+    tolerances: Sequence[Tolerance],
+    nominal: Mapping[str, tuple[float, str]],
+    n: int,
+    seed: int,
+) -> np.ndarray:
+    """Sampled magnitudes, shape (n, fields), in each field's nominal unit.
+
+    One seeded ``Generator``; fields drawn in the order given: normal
+    ``x0(1 + r·z)`` or ``x0 + a·z``; uniform with half-width r or a.
+    """
+    from betvdesign.units import ureg
+
+    rng = np.random.default_rng(seed)
+    cols = []
+    for tol in tolerances:
+        x0, unit = nominal[tol.field]
+        z = rng.standard_normal(n) if tol.dist == "normal" else rng.uniform(-1.0, 1.0, n)
+        if tol.relative is not None:
+            cols.append(x0 * (1.0 + tol.relative * z))
+            continue
+        try:
+            q = ureg.Quantity(tol.absolute)
+            a = float(q.to(unit).magnitude) if unit else float(q.to("dimensionless").magnitude)
+        except (pint.PintError, ValueError, TypeError, AttributeError) as exc:
+            raise UsageError(
+                f"{tol.source}: {tol.field}: absolute tolerance {tol.absolute!r} "
+                f"not in units of {unit or 'a plain number'}: {exc}"
+            ) from None
+        if not (math.isfinite(a) and a > 0):
+            raise UsageError(f"{tol.source}: {tol.field}: tolerance must be > 0")
+        cols.append(x0 + a * z)
+    return np.column_stack(cols) if cols else np.empty((n, 0))
+
+
+# -- the worker ------------------------------------------------------------------
+@functools.lru_cache(maxsize=8)
+def _device(path: str, mtime_ns: int) -> Any:
+    from betvdesign.loader import load_device
+
+    return load_device(path)
+
+
+def _perturbed(task: Mapping[str, Any]) -> Any:
+    from betvdesign.units import ureg
+
+    spec = _device(task["device"], task["mtime_ns"])
+    for field, (mag, unit) in task["values"].items():
+        value = ureg.Quantity(mag, unit) if unit else float(mag)
+        if mag <= 0.0:
+            raise BetvError(f"{field} sampled non-positive ({mag:g} {unit})")
+        if field == "contact.impact_angle" and value.to("deg").magnitude >= 90.0:
+            raise BetvError(f"{field} sampled at or above 90° ({mag:g} {unit})")
+        for target in _targets(spec, field):
+            if _value_at(spec, target) is not None:
+                spec = _replace(spec, target, value)
+    return spec
+
+
+def tolerance_point(task: Mapping[str, Any]) -> dict[str, Any]:
+    """One (sample, actuator set): perturb, derive (units stripped), solve."""
+    from betvdesign.nondim import derive_set
+
+    row: dict[str, Any] = {c: None for c in task["columns"]}
+    row.update(key=task["key"], sample=task["sample"], set=task["set_name"])
+    for field, (mag, _) in task["values"].items():
+        row[f"in:{field}"] = mag
+    try:
+        spec = _perturbed(task)
+        d = derive_set(spec, spec.actuator_sets[task["set_index"]])
+    except BetvError as exc:
+        row.update(status="invalid-sample", converged=False, message=str(exc))
+        return row
+    p = d.params
+    row.update(
+        **p.as_dict(),
+        lam=p.lam,
+        mode_predicted=p.mode_predicted,
+        intended=d.intended_mode,
+        in_window=bool(VARPI_WINDOW[0] <= p.varpi < VARPI_WINDOW[1]),
+    )
+    if task["fidelity"] == "lambda":
+        row.update(status="lambda-only", converged=False, message="closed-form λ fit only")
+        return row
+    from betvdesign.dynamics import periodic_orbit
+
+    res = periodic_orbit(p, tol=task["tol"])
+    row.update(status=str(res.status), converged=bool(res.success), message=str(res.message))
+    if res.success and res.delta_s is not None and math.isfinite(res.delta_s):
+        row.update(
+            mode=res.mode,
+            delta_s=float(res.delta_s),
+            speed_um_s=d.scales.speed_m_s(float(res.delta_s)) * 1e6,
+        )
+    return row
+
+
+BASE_COLUMNS: dict[str, type] = {
+    "key": int,
+    "sample": int,
+    "set": str,
+    "status": str,
+    "converged": bool,
+    "varpi": float,
+    "alpha": float,
+    "beta": float,
+    "kappa": float,
+    "lam": float,
+    "mode_predicted": str,
+    "intended": str,
+    "in_window": bool,
+    "mode": str,
+    "delta_s": float,
+    "speed_um_s": float,
+    "message": str,
+}
+
+
+def tolerance_study(
+    device: str | os.PathLike[str],
+    tolerances: Sequence[Tolerance],
+    *,
+    samples: int,
+    seed: int,
+    fidelity: Fidelity = "periodic",
+    tol: float = 1e-10,
+    sets: Sequence[str] | None = None,
+) -> Study:
+    """Draw the samples and build the study (tasks carry plain floats only)."""
+    from betvdesign.loader import load_device
+
+    if samples < 1:
+        raise UsageError(f"--samples must be >= 1, got {samples}")
+    if fidelity not in ("periodic", "lambda"):
+        raise UsageError(f"unknown fidelity {fidelity!r} (periodic or lambda)")
+    if not tolerances:
+        raise UsageError("give at least one tolerance (--tol FIELD=AMOUNT or --tolerances FILE)")
+    path = str(Path(device).resolve())
+    spec = load_device(path)
+    names = [s.name for s in spec.actuator_sets]
+    chosen = list(sets) if sets else names
+    for name in chosen:
+        if name not in names:
+            raise UsageError(f"{device}: no actuator set {name!r} (sets: {', '.join(names)})")
+    nominal = nominal_values(spec, tolerances)
+    x = draw(tolerances, nominal, samples, seed)
+    columns = dict(BASE_COLUMNS) | {f"in:{t.field}": float for t in tolerances}
+    mtime = os.stat(path).st_mtime_ns
+    tasks = []
+    for i in range(samples):
+        values = {t.field: (float(x[i, j]), nominal[t.field][1]) for j, t in enumerate(tolerances)}
+        for name in chosen:
+            tasks.append(
+                {
+                    "key": len(tasks),
+                    "sample": i,
+                    "set_name": name,
+                    "set_index": names.index(name),
+                    "device": path,
+                    "mtime_ns": mtime,
+                    "values": values,
+                    "fidelity": fidelity,
+                    "tol": tol,
+                    "columns": tuple(columns),
+                }
+            )
+    params = {
+        "device": path,
+        "device_mtime_ns": mtime,
+        "tolerances": [t.as_dict() for t in tolerances],
+        "nominal": {k: list(v) for k, v in nominal.items()},
+        "samples": samples,
+        "sets": chosen,
+        "fidelity": fidelity,
+        "tol": tol,
+    }
+    return Study("tolerance", columns, params, tasks, tolerance_point, seed=seed)
+
+
+def _spearman(x: np.ndarray, y: np.ndarray) -> float | None:
+    from scipy.stats import spearmanr
+
+    ok = np.isfinite(x) & np.isfinite(y)
+    if ok.sum() < 3 or np.ptp(x[ok]) == 0 or np.ptp(y[ok]) == 0:
+        return None
+    return float(spearmanr(x[ok], y[ok]).statistic)
+
+
+def summarise(
+    rows: Sequence[Mapping[str, Any]], tolerances: Sequence[Tolerance], fidelity: str
+) -> dict[str, Any]:
+    """Per actuator set: probabilities, speed percentiles, sensitivities."""
+    out: dict[str, Any] = {"fidelity": fidelity, "sets": {}}
+    for name in dict.fromkeys(r["set"] for r in rows):
+        rs = [r for r in rows if r["set"] == name]
+        n = len(rs)
+        valid = [r for r in rs if r["status"] != "invalid-sample"]
+        mode_key = "mode" if fidelity == "periodic" else "mode_predicted"
+        decided = [r for r in valid if r[mode_key] is not None]
+        speeds = np.array([r["speed_um_s"] for r in valid if r["speed_um_s"] is not None])
+        intended = rs[0]["intended"] if valid else None
+        s: dict[str, Any] = {
+            "samples": n,
+            "invalid_samples": n - len(valid),
+            "mode_from": "periodic orbit" if fidelity == "periodic" else "λ fit (stated rung)",
+            "p_push": sum(r[mode_key] == "push" for r in decided) / n,
+            "p_pull": sum(r[mode_key] == "pull" for r in decided) / n,
+            "p_not_converged": (
+                sum(not r["converged"] for r in valid) / n if fidelity == "periodic" else None
+            ),
+            "p_outside_window": sum(not r["in_window"] for r in valid) / n,
+            "intended_mode": intended,
+            "p_not_intended": sum(r[mode_key] != intended for r in valid) / n,
+            "speed_um_s_percentiles": (
+                {f"p{q:g}": float(np.percentile(speeds, q)) for q in PERCENTILES}
+                if speeds.size
+                else None
+            ),
+        }
+        sens = []
+        for t in tolerances:
+            xin = np.array([r[f"in:{t.field}"] for r in valid], dtype=float)
+            lam = np.array([r["lam"] for r in valid], dtype=float)
+            spd = np.array(
+                [np.nan if r["speed_um_s"] is None else r["speed_um_s"] for r in valid], float
+            )
+            sens.append(
+                {
+                    "field": t.field,
+                    "rho_lambda": _spearman(xin, lam),
+                    "rho_speed": _spearman(xin, spd),
+                }
+            )
+        key = "rho_speed" if fidelity == "periodic" else "rho_lambda"
+        sens.sort(key=lambda e: -abs(e[key] or 0.0))
+        s["sensitivities"] = sens
+        s["ranked_by"] = key
+        s["failures"] = [
+            {k: r[k] for k in ("key", "sample", "status", "message")}
+            for r in rs
+            if r["status"] == "invalid-sample" or (fidelity == "periodic" and not r["converged"])
+        ][:50]
+        out["sets"][name] = s
+    return out
+
+
+def run_tolerance(
+    device: str | os.PathLike[str],
+    tolerances: Sequence[Tolerance],
+    *,
+    samples: int,
+    seed: int,
+    fidelity: Fidelity = "periodic",
+    tol: float = 1e-10,
+    sets: Sequence[str] | None = None,
+    executor: Executor | None = None,
+    out: str | None = None,
+    overwrite: bool = False,
+    progress: Progress | None = None,
+) -> tuple[StudyRun, dict[str, Any]]:
+    """Draw, run (streamed/resumable) and summarise a tolerance study."""
+    study = tolerance_study(
+        device, tolerances, samples=samples, seed=seed, fidelity=fidelity, tol=tol, sets=sets
+    )
+    run = run_study(study, executor, out=out, overwrite=overwrite, progress=progress)
+    return run, summarise(run.rows, tolerances, fidelity)
