@@ -1,0 +1,30 @@
+"""Figures of the BETV toolkit: object-oriented matplotlib, one module per family.
+
+Every function draws on the ``ax=`` it is given (or a fresh
+:class:`matplotlib.figure.Figure` when None) from plain, unit-free or explicitly
+unit-suffixed arrays; none computes physics. :func:`figure_svg` turns a figure
+into byte-reproducible inline SVG.
+"""
+
+from betvdesign.plots._figure import figure_style, figure_svg, new_figure
+from betvdesign.plots.phase import orbit_plane, vertical_phase_portrait
+from betvdesign.plots.pushpull import lambda_one_curve, pushpull_map
+from betvdesign.plots.regime import contact_fraction_strip, impact_period_strip
+from betvdesign.plots.sweeps import robustness_vs_lambda, speed_vs_voltage
+from betvdesign.plots.timeseries import slider_displacement, slider_velocity
+
+__all__ = [
+    "contact_fraction_strip",
+    "figure_style",
+    "figure_svg",
+    "impact_period_strip",
+    "lambda_one_curve",
+    "new_figure",
+    "orbit_plane",
+    "pushpull_map",
+    "robustness_vs_lambda",
+    "slider_displacement",
+    "slider_velocity",
+    "speed_vs_voltage",
+    "vertical_phase_portrait",
+]

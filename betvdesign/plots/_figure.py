@@ -1,0 +1,126 @@
+"""Figure creation and reproducible SVG export shared by every plot family.
+
+Object-oriented matplotlib only (``matplotlib.figure.Figure``, never pyplot): no
+global state is touched, so figures can be built concurrently and the caller's
+own matplotlib set-up is left alone.
+
+Reproducibility: :func:`figure_svg` fixes ``svg.hashsalt`` (per figure, so the
+ids of several SVGs inlined into one HTML page cannot collide), drops the SVG
+date metadata, writes text as paths (no font needed by the viewer) and prefixes
+every ``id`` with the figure's own key.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import io
+import re
+from collections.abc import Iterator
+from typing import Any
+
+import matplotlib
+from matplotlib.axes import Axes
+from matplotlib.figure import Figure
+
+#: rcParams pinned for every figure of the package, independent of the user's
+#: matplotlibrc, so the same inputs give the same bytes on every machine.
+STYLE: dict[str, Any] = {
+    "font.family": "DejaVu Sans",
+    "font.size": 8.5,
+    "axes.titlesize": 9.0,
+    "axes.labelsize": 8.5,
+    "legend.fontsize": 7.5,
+    "xtick.labelsize": 7.5,
+    "ytick.labelsize": 7.5,
+    "lines.linewidth": 1.2,
+    "axes.grid": True,
+    "grid.alpha": 0.3,
+    "grid.linewidth": 0.5,
+    "svg.fonttype": "path",
+    "svg.image_inline": True,
+    "path.simplify": True,
+    "axes.formatter.use_mathtext": True,
+    "mathtext.fontset": "dejavusans",
+}
+
+#: Colours of the slider/head contact phases (docs/MODEL.md, "Contact").
+PHASE_COLORS: dict[str, str] = {
+    "free": "#9e9e9e",
+    "slip": "#d62728",
+    "reverse": "#1f77b4",
+    "stick": "#2ca02c",
+}
+
+#: Colours of the two slider modes.
+MODE_COLORS: dict[str, str] = {"push": "#2ca02c", "pull": "#9467bd"}
+
+#: The vertical design window of ϖ (docs/MODEL.md, "What the model shows").
+VARPI_WINDOW: tuple[float, float] = (0.5, 2.0)
+
+DEVICE_COLOR = "#d62728"
+
+
+@contextlib.contextmanager
+def figure_style() -> Iterator[None]:
+    """Context in which figures are built: the package's pinned rcParams."""
+    with matplotlib.rc_context(rc=STYLE):
+        yield
+
+
+def new_figure(
+    width_in: float = 6.4, height_in: float = 3.4, *, nrows: int = 1, ncols: int = 1, **kw: Any
+) -> tuple[Figure, Any]:
+    """A constrained-layout :class:`Figure` [inches] and its axes (array if several)."""
+    fig = Figure(figsize=(width_in, height_in), layout="constrained")
+    axes = fig.subplots(nrows, ncols, squeeze=True, **kw)
+    return fig, axes
+
+
+def axes_or_new(ax: Axes | None, width_in: float = 6.4, height_in: float = 3.4) -> Axes:
+    """``ax`` itself, or a fresh single-axes figure when ``ax`` is None."""
+    if ax is not None:
+        return ax
+    _, new_ax = new_figure(width_in, height_in)
+    return new_ax
+
+
+_ID_RE = re.compile(r'\bid="([^"]+)"')
+
+
+def _prefix_ids(svg: str, prefix: str) -> str:
+    """Prefix every id of ``svg`` and every reference to it (href, url(#...))."""
+    ids = set(_ID_RE.findall(svg))
+    if not ids:
+        return svg
+
+    def sub_id(m: re.Match[str]) -> str:
+        return f'id="{prefix}-{m.group(1)}"'
+
+    def sub_ref(m: re.Match[str]) -> str:
+        name = m.group(2)
+        if name not in ids:
+            return m.group(0)
+        return f"{m.group(1)}#{prefix}-{name}{m.group(3)}"
+
+    svg = _ID_RE.sub(sub_id, svg)
+    return re.sub(r'(href="|url\()#([^")]+)([")])', sub_ref, svg)
+
+
+def figure_svg(fig: Figure, key: str) -> str:
+    """The figure as an ``<svg>`` element string, ready to inline into HTML.
+
+    Byte-reproducible: hash salt fixed to ``key``, no date metadata, text as
+    paths, ids prefixed with ``key`` (a short [A-Za-z0-9_-] string unique within
+    the page). The XML prolog and DOCTYPE are dropped (invalid inside HTML).
+    """
+    if not re.fullmatch(r"[A-Za-z][A-Za-z0-9_-]*", key):
+        raise ValueError(f"figure key must be a simple identifier, got {key!r}")
+    buf = io.StringIO()
+    with matplotlib.rc_context(rc={**STYLE, "svg.hashsalt": f"betvdesign-{key}"}):
+        fig.savefig(buf, format="svg", metadata={"Date": None, "Creator": None})
+    text = buf.getvalue()
+    start = text.find("<svg")
+    if start < 0:  # pragma: no cover - matplotlib always writes an <svg> root
+        raise RuntimeError("matplotlib produced no <svg> element")
+    svg = text[start:].strip()
+    return _prefix_ids(svg, key)

@@ -1,0 +1,90 @@
+"""Push/pull map in the (1/ϖ², 1/(ακ)) plane (docs/MODEL.md, "Push/pull criterion").
+
+With X = 1/ϖ² and Y = 1/(ακ) the fit reads λ = κ·X·(Y − c), c = (1/β − β)/(22(κ+1)),
+so for fixed (κ, β) the boundary λ = 1 is the hyperbola Y = c + 1/(κ·X), i.e.
+1/(ακ) = ϖ²/κ + c. It is a straight line only against ϖ² (not 1/ϖ²); the map uses
+the issue's axes and draws the curve. Below it (smaller 1/(ακ)) λ < 1: push.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+from matplotlib.axes import Axes
+
+from betvdesign.params import LAMBDA_FIT_CONSTANT
+from betvdesign.plots._figure import DEVICE_COLOR, MODE_COLORS, VARPI_WINDOW, axes_or_new
+
+
+def boundary_offset(kappa: float, beta: float) -> float:
+    """c = (1/β − β)/(22(κ + 1)) [-], the λ = 1 curve's offset in 1/(ακ)."""
+    return (1.0 / beta - beta) / (LAMBDA_FIT_CONSTANT * (kappa + 1.0))
+
+
+def lambda_one_curve(inv_varpi2: np.ndarray, kappa: float, beta: float) -> np.ndarray:
+    """1/(ακ) on the λ = 1 boundary at the given 1/ϖ² [-] (for fixed κ, β)."""
+    x = np.asarray(inv_varpi2, dtype=float)
+    return boundary_offset(kappa, beta) + 1.0 / (kappa * x)
+
+
+def pushpull_map(
+    *,
+    kappa: float,
+    beta: float,
+    points: Sequence[tuple[str, float, float]],
+    ax: Axes | None = None,
+) -> Axes:
+    """Draw the push/pull map for fixed (κ, β) and mark design points.
+
+    points: (label, ϖ, α) per design point [-]; each is placed at (1/ϖ², 1/(ακ)).
+    The vertical design window 0.5 ≤ ϖ < 2 is shaded on the 1/ϖ² axis.
+    """
+    ax = axes_or_new(ax)
+    xs = [1.0 / varpi**2 for _, varpi, _ in points]
+    ys = [1.0 / (alpha * kappa) for _, _, alpha in points]
+    c = boundary_offset(kappa, beta)
+    w_lo, w_hi = 1.0 / VARPI_WINDOW[1] ** 2, 1.0 / VARPI_WINDOW[0] ** 2
+    x_max = max([w_hi * 1.15, *(1.25 * x for x in xs)])
+    x = np.linspace(x_max / 400.0, x_max, 400)
+    curve = lambda_one_curve(x, kappa, beta)
+    y_dev = max([0.0, *ys])
+    y_curve_ref = float(lambda_one_curve(np.array([w_lo]), kappa, beta)[0])
+    y_max = 1.3 * max(y_dev, y_curve_ref, 2.0 * abs(c), 1e-12)
+    y_min = min(0.0, c) - 0.03 * y_max
+    lower = np.full_like(x, y_min)
+    upper = np.full_like(x, y_max)
+    clipped = np.clip(curve, y_min, y_max)
+    ax.fill_between(x, lower, clipped, color=MODE_COLORS["push"], alpha=0.13, lw=0)
+    ax.fill_between(x, clipped, upper, color=MODE_COLORS["pull"], alpha=0.13, lw=0)
+    ax.plot(x, curve, color="black", lw=1.4, label=f"λ = 1  (κ = {kappa:.3g}, β = {beta:.3g})")
+    ax.axvspan(w_lo, w_hi, color="#ffbf00", alpha=0.12, lw=0, label="design window 0.5 ≤ ϖ < 2")
+    for (label, _, _), px, py in zip(points, xs, ys, strict=True):
+        ax.plot([px], [py], marker="o", ms=6, color=DEVICE_COLOR, zorder=5)
+        ax.annotate(label, (px, py), xytext=(6, 4), textcoords="offset points", fontsize=7.5)
+    ax.text(
+        0.97,
+        0.04,
+        "push (λ < 1)",
+        transform=ax.transAxes,
+        ha="right",
+        va="bottom",
+        color=MODE_COLORS["push"],
+        fontweight="bold",
+    )
+    ax.text(
+        0.97,
+        0.95,
+        "pull (λ > 1)",
+        transform=ax.transAxes,
+        ha="right",
+        va="top",
+        color=MODE_COLORS["pull"],
+        fontweight="bold",
+    )
+    ax.set_xlim(0.0, x_max)
+    ax.set_ylim(y_min, y_max)
+    ax.set_xlabel("1/ϖ²  [-]")
+    ax.set_ylabel("1/(ακ)  [-]")
+    ax.legend(loc="upper center", framealpha=0.9)
+    return ax

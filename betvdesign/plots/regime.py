@@ -1,0 +1,93 @@
+"""Vertical regime strip against ϖ (docs/MODEL.md, "What the model shows").
+
+The head's vertical motion does not depend on the slider, so this strip is made
+from the vertical-only model: impact period (actuation cycles per period of
+the vertical motion) and contact fraction (share of a cycle in contact).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+from matplotlib.axes import Axes
+
+from betvdesign.plots._figure import DEVICE_COLOR, VARPI_WINDOW, axes_or_new
+
+
+def _decorate(ax: Axes, device_varpi: float | None) -> None:
+    ax.axvspan(*VARPI_WINDOW, color="#ffbf00", alpha=0.15, lw=0, label="design window")
+    if device_varpi is not None:
+        ax.axvline(
+            device_varpi,
+            color=DEVICE_COLOR,
+            lw=1.2,
+            ls="--",
+            label=f"device ϖ = {device_varpi:.3g}",
+        )
+
+
+def impact_period_strip(
+    varpi: Sequence[float],
+    period_cycles: Sequence[float | None],
+    *,
+    device_varpi: float | None = None,
+    ax: Axes | None = None,
+) -> Axes:
+    """Impact period [actuation cycles] against ϖ [-].
+
+    ``period_cycles[i]`` is None where the vertical motion was found aperiodic
+    (or no period was found within the search); those ϖ are drawn as crosses on
+    the top edge, so a gap is never mistaken for a value.
+    """
+    ax = axes_or_new(ax)
+    w = np.asarray(varpi, dtype=float)
+    known = np.array([p is not None for p in period_cycles], dtype=bool)
+    per = np.array([p if p is not None else 0.0 for p in period_cycles], dtype=float)
+    _decorate(ax, device_varpi)
+    ax.plot(w[known], per[known], ls="none", marker="o", ms=2.5, color="black", label="periodic")
+    top = max(4.0, float(per[known].max()) + 1.0) if known.any() else 4.0
+    if (~known).any():
+        ax.plot(
+            w[~known],
+            np.full(int((~known).sum()), top),
+            ls="none",
+            marker="x",
+            ms=3.5,
+            color="#7f7f7f",
+            label="aperiodic / not found",
+        )
+    ax.set_ylim(0.0, top + 0.6)
+    ax.set_ylabel("impact period\n[cycles]")
+    ax.legend(loc="upper left", framealpha=0.9, ncols=2)
+    return ax
+
+
+def contact_fraction_strip(
+    varpi: Sequence[float],
+    contact_fraction: Sequence[float | None],
+    *,
+    device_varpi: float | None = None,
+    ax: Axes | None = None,
+) -> Axes:
+    """Share of the actuation cycle spent in contact [-] against ϖ [-].
+
+    None entries (no periodic vertical motion found) are left out and drawn as
+    crosses on the zero line.
+    """
+    ax = axes_or_new(ax)
+    w = np.asarray(varpi, dtype=float)
+    known = np.array([c is not None for c in contact_fraction], dtype=bool)
+    frac = np.array([c if c is not None else 0.0 for c in contact_fraction], dtype=float)
+    _decorate(ax, device_varpi)
+    ax.plot(
+        w[known], frac[known], ls="-", marker="o", ms=2.0, color="black", label="contact fraction"
+    )
+    if (~known).any():
+        ax.plot(
+            w[~known], np.zeros(int((~known).sum())), ls="none", marker="x", ms=3.5, color="#7f7f7f"
+        )
+    ax.set_ylim(-0.03, max(0.6, float(frac.max()) * 1.15 if frac.size else 0.6))
+    ax.set_xlabel("ϖ  [-]")
+    ax.set_ylabel("contact\nfraction [-]")
+    return ax

@@ -1,0 +1,329 @@
+"""The computations behind one actuator set's report: solver runs, small sweeps.
+
+Unit-free except where explicitly suffixed (``_um``, ``_ms``, ``_v``...); the
+dimensional conversion uses only the :class:`~betvdesign.nondim.Scales` of the
+derivation (MODEL.md, "Displacement per cycle": x = s·u·cosθ, t = τ·sqrt(m/k_v)).
+
+Model rungs, cheapest that answers each question (the captions say which):
+- push/pull map: the λ fit only, no simulation;
+- regime strip: the vertical-only model (the head's vertical motion does not
+  depend on the slider), one call per ϖ;
+- everything about the slider: the exact event-driven model
+  (:func:`betvdesign.dynamics.simulate`, :func:`~betvdesign.dynamics.periodic_orbit`);
+- speed against voltage: one periodic orbit. Every displacement of the model
+  scales with u and ϖ, α, β, κ do not depend on u, so Δs is voltage-independent
+  and speed(V) = Δs·u(V)·cosθ·f_act with u(V) from the amplitude calibration.
+
+Each piece is a :class:`Piece`: its value, or the reason it is missing (upstream
+API not available, solver failure with its message). Nothing is invented.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any, Generic, TypeVar
+
+import numpy as np
+
+from betvdesign.errors import BetvError
+from betvdesign.params import ModelParams
+from betvdesign.plots._figure import VARPI_WINDOW
+
+T = TypeVar("T")
+
+#: Names of the contact phases used by the figures (plots.PHASE_COLORS keys).
+PHASES = ("free", "slip", "reverse", "stick")
+
+
+@dataclass(frozen=True)
+class ReportOptions:
+    """Sizes of the report's computations (kept small: a report takes seconds).
+
+    regime_points: ϖ values of the vertical regime strip;
+    regime_range: (ϖ_min, ϖ_max) of the strip, widened to include the device;
+    robustness_points: λ values of the robustness sweep (one periodic orbit each);
+    dense_cycles: cycles sampled densely for the velocity and phase portrait;
+    samples_per_cycle: dense samples per actuation cycle;
+    max_transient_cycles: cap of the exact run used for the displacement figure;
+    voltage_points: drive voltages of the speed-voltage figure (no solver runs).
+    """
+
+    regime_points: int = 111
+    regime_range: tuple[float, float] = (0.2, 2.95)
+    robustness_points: int = 11
+    dense_cycles: int = 30
+    samples_per_cycle: int = 120
+    max_transient_cycles: int = 4000
+    voltage_points: int = 41
+
+
+@dataclass
+class Piece(Generic[T]):
+    """A computed value, or why there is none (``reason``)."""
+
+    value: T | None = None
+    reason: str | None = None
+    elapsed_s: float = 0.0
+
+    @property
+    def ok(self) -> bool:
+        return self.value is not None
+
+
+class Missing(Exception):
+    """A piece cannot be computed; the message goes into the report verbatim."""
+
+
+def attempt(fn: Callable[[], T]) -> Piece[T]:
+    """Run ``fn``; a :class:`Missing` or user-level error becomes a reason, not a crash."""
+    t0 = time.perf_counter()
+    try:
+        value = fn()
+    except Missing as exc:
+        return Piece(reason=str(exc), elapsed_s=time.perf_counter() - t0)
+    except (BetvError, ArithmeticError, ValueError, RuntimeError) as exc:
+        return Piece(
+            reason=f"computation failed: {type(exc).__name__}: {exc}",
+            elapsed_s=time.perf_counter() - t0,
+        )
+    return Piece(value=value, elapsed_s=time.perf_counter() - t0)
+
+
+def dynamics_api(name: str) -> Callable[..., Any]:
+    """``betvdesign.dynamics.<name>``, or :class:`Missing` saying it is not available."""
+    try:
+        import betvdesign.dynamics as dyn
+    except ImportError as exc:  # pragma: no cover - package always importable once landed
+        raise Missing(f"the exact solver (betvdesign.dynamics) cannot be imported: {exc}") from None
+    fn = getattr(dyn, name, None)
+    if fn is None:
+        raise Missing(f"betvdesign.dynamics.{name} is not available in this build")
+    return fn
+
+
+def require_success(result: Any, what: str) -> Any:
+    """``result`` if its ``success`` is true, else :class:`Missing` with its status/message."""
+    if not getattr(result, "success", False):
+        status = getattr(result, "status", "?")
+        message = getattr(result, "message", "") or "no message"
+        raise Missing(f"{what} did not succeed (status {status}): {message}")
+    return result
+
+
+# --------------------------------------------------------------------------- data
+
+
+@dataclass(frozen=True)
+class RegimeData:
+    """Vertical-only sweep over ϖ [-]: impact period [cycles] and contact fraction [-]."""
+
+    varpi: np.ndarray
+    period_cycles: list[float | None]
+    contact_fraction: list[float | None]
+    labels: list[str]
+
+
+@dataclass(frozen=True)
+class TransientData:
+    """The exact model run from rest (MODEL.md, "Initial state").
+
+    Dense part (first cycles): t_cycles [cycles], states (n, 6) [-].
+    Sections: s at τ = 2mπ/ϖ for m = 0..n_cycles [-]; delta_s per cycle [-].
+    """
+
+    t_cycles: np.ndarray
+    states: np.ndarray
+    section_s: np.ndarray
+    delta_s: np.ndarray
+    n_cycles: int
+    counters: dict[str, Any] = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
+class OrbitData:
+    """One period of the periodic orbit: ζ', s' [-] and the contact phase per sample."""
+
+    dzeta: np.ndarray
+    ds: np.ndarray
+    phases: list[str]
+    period_cycles: int
+
+
+@dataclass(frozen=True)
+class SweepData:
+    """A 1-D sweep: x values and y values (None where no result), plus the varied knob."""
+
+    x: np.ndarray
+    y: list[float | None]
+    knob: str
+    failures: list[str] = field(default_factory=list)
+
+
+# --------------------------------------------------------------------------- pieces
+
+
+def periodic(p: ModelParams) -> Any:
+    """The periodic orbit of the exact model at ``p`` (succeeded), else :class:`Missing`."""
+    return require_success(dynamics_api("periodic_orbit")(p), "periodic_orbit")
+
+
+def regime_strip(varpi_device: float, opts: ReportOptions) -> RegimeData:
+    """Vertical-only sweep of ϖ over the options' range widened to the device's ϖ."""
+    vertical_motion = dynamics_api("vertical_motion")
+    lo = min(opts.regime_range[0], 0.8 * varpi_device)
+    hi = max(opts.regime_range[1], 1.15 * varpi_device, VARPI_WINDOW[1] * 1.2)
+    grid = np.linspace(lo, hi, opts.regime_points)
+    periods: list[float | None] = []
+    fractions: list[float | None] = []
+    labels: list[str] = []
+    for w in grid:
+        res = vertical_motion(float(w))
+        per = getattr(res, "period_cycles", None)
+        frac = getattr(res, "contact_fraction", None)
+        ok = bool(getattr(res, "success", per is not None))
+        periods.append(float(per) if ok and per is not None else None)
+        fractions.append(float(frac) if ok and frac is not None else None)
+        labels.append(str(getattr(res, "regime", "")))
+    return RegimeData(grid, periods, fractions, labels)
+
+
+def transient(p: ModelParams, n_cycles: int, opts: ReportOptions) -> TransientData:
+    """Exact run from rest: dense over the first cycles, sections over ``n_cycles``."""
+    simulate = dynamics_api("simulate")
+    dense_n = min(opts.dense_cycles, n_cycles)
+    head = require_success(simulate(p, dense_n, dense=True), "simulate (dense)")
+    period = 2.0 * math.pi / p.varpi
+    t_cycles = np.linspace(0.0, dense_n, dense_n * opts.samples_per_cycle + 1)
+    states = np.asarray(head.sample(t_cycles * period), dtype=float)
+    full = head if n_cycles == dense_n else require_success(simulate(p, n_cycles), "simulate")
+    section = np.asarray(full.section, dtype=float)
+    delta_s = np.asarray(full.delta_s, dtype=float)
+    if not (np.all(np.isfinite(states)) and np.all(np.isfinite(section))):
+        raise Missing("simulate returned non-finite states")
+    counters = {
+        k: getattr(full, k) for k in ("n_events", "n_cycles", "n_root_evals") if hasattr(full, k)
+    }
+    return TransientData(t_cycles, states, section[:, 4], delta_s, n_cycles, counters)
+
+
+def _phase_name(raw: Any) -> str:
+    """Map a solver phase label to one of :data:`PHASES`."""
+    text = str(getattr(raw, "name", raw)).lower()
+    if "rev" in text:
+        return "reverse"
+    if "stick" in text:
+        return "stick"
+    if "slip" in text:
+        return "slip"
+    return "free"
+
+
+def orbit(p: ModelParams, per: Any, opts: ReportOptions) -> OrbitData:
+    """Sample one period of the periodic orbit with its contact phases."""
+    simulate = dynamics_api("simulate")
+    n = int(getattr(per, "period_cycles", 1) or 1)
+    state0 = np.asarray(per.state, dtype=float)
+    traj = require_success(simulate(p, n, dense=True, state0=state0), "simulate (orbit)")
+    period = 2.0 * math.pi / p.varpi
+    tau = np.linspace(0.0, n * period, n * opts.samples_per_cycle * 2 + 1)
+    states = np.asarray(traj.sample(tau), dtype=float)
+    events = sorted(traj.events, key=lambda e: e[0])
+    phases: list[str] = []
+    j = 0
+    current = _phase_name(events[0][2]) if events else "free"
+    for t in tau:
+        while j < len(events) and events[j][0] <= t:
+            current = _phase_name(events[j][3])
+            j += 1
+        phases.append(current)
+    return OrbitData(states[:, 3], states[:, 5], phases, n)
+
+
+def lambda_targets(lam0: float, n: int) -> np.ndarray:
+    """λ values around the device's λ0 that always include the boundary λ = 1
+    (geometric spacing; λ0 itself is included)."""
+    lo = min(lam0, 1.0) / 2.0
+    hi = max(lam0, 1.0) * 2.0
+    grid = np.geomspace(lo, hi, max(n - 1, 2))
+    return np.unique(np.append(grid, lam0))
+
+
+def alpha_for_lambda(lam: float, p: ModelParams) -> float | None:
+    """α that gives ``lam`` at fixed ϖ, β, κ: α = 1/(λϖ² + κc), c = (1/β − β)/(22(κ+1));
+    None when no positive α exists (MODEL.md, "Push/pull criterion")."""
+    from betvdesign.plots.pushpull import boundary_offset
+
+    denom = lam * p.varpi**2 + p.kappa * boundary_offset(p.kappa, p.beta)
+    return 1.0 / denom if denom > 0 else None
+
+
+def robustness(p: ModelParams, opts: ReportOptions) -> SweepData:
+    """Periodic Δs at λ values around the device's, varying α only (ϖ, β, κ fixed)."""
+    periodic_orbit = dynamics_api("periodic_orbit")
+    xs: list[float] = []
+    ys: list[float | None] = []
+    failures: list[str] = []
+    for lam in lambda_targets(p.lam, opts.robustness_points):
+        alpha = alpha_for_lambda(float(lam), p)
+        if alpha is None:
+            continue
+        q = ModelParams(p.varpi, alpha, p.beta, p.kappa)
+        res = periodic_orbit(q)
+        xs.append(q.lam)
+        if getattr(res, "success", False):
+            ys.append(float(res.delta_s))
+        else:
+            ys.append(None)
+            failures.append(f"λ = {q.lam:.3g} (α = {alpha:.3g}): {getattr(res, 'message', '')}")
+    if not xs:
+        raise Missing("no positive α reaches the λ range around the device")
+    return SweepData(np.asarray(xs), ys, "α", failures)
+
+
+# --------------------------------------------------------------------------- one set
+
+
+@dataclass
+class SetAnalysis:
+    """Every computed piece for one actuator set (see the module docstring)."""
+
+    params: ModelParams
+    periodic: Piece[Any]
+    regime: Piece[RegimeData]
+    transient: Piece[TransientData]
+    orbit: Piece[OrbitData]
+    robustness: Piece[SweepData]
+
+
+def transient_cycles(per: Piece[Any], travel_m: float, length_m: float, opts: ReportOptions) -> int:
+    """Cycles of the exact run: enough to cross the travel range at the periodic
+    speed (+10 %), at least the dense cycles, at most the options' cap."""
+    if not per.ok or float(per.value.delta_s) == 0.0:
+        return opts.max_transient_cycles
+    per_cycle_m = abs(float(per.value.delta_s)) * length_m
+    n_cross = math.ceil(1.1 * travel_m / per_cycle_m)
+    return int(min(max(n_cross, opts.dense_cycles), opts.max_transient_cycles))
+
+
+def analyse_set(
+    p: ModelParams, travel_m: float, length_m: float, opts: ReportOptions
+) -> SetAnalysis:
+    """Run every computation of one set's report (seconds, not minutes)."""
+    per = attempt(lambda: periodic(p))
+    n = transient_cycles(per, travel_m, length_m, opts)
+    orb: Piece[OrbitData] = (
+        attempt(lambda: orbit(p, per.value, opts))
+        if per.ok
+        else Piece(reason=f"no periodic orbit: {per.reason}")
+    )
+    return SetAnalysis(
+        params=p,
+        periodic=per,
+        regime=attempt(lambda: regime_strip(p.varpi, opts)),
+        transient=attempt(lambda: transient(p, n, opts)),
+        orbit=orb,
+        robustness=attempt(lambda: robustness(p, opts)),
+    )

@@ -1,0 +1,300 @@
+"""Build the report model of one device file (data first, rendering later).
+
+load (spec) -> derive (nondim) -> analyse each distinct actuator set (dynamics)
+-> evaluate design rules with the periodic orbits -> format everything into a
+:class:`~betvdesign.report.model.Report`. Bad input raises the loader's
+:class:`~betvdesign.errors.SpecError` before anything is computed or written.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from importlib import metadata
+from pathlib import Path
+from typing import Any
+
+import pint
+
+from betvdesign import __version__
+from betvdesign.loader import load_device
+from betvdesign.nondim import DeviceDerivation, SetDerivation, derive
+from betvdesign.report import figures
+from betvdesign.report.analysis import ReportOptions, SetAnalysis, analyse_set
+from betvdesign.report.inputs import device_inputs
+from betvdesign.report.model import (
+    DerivationRow,
+    FigureBlock,
+    InputRow,
+    KeyValue,
+    Report,
+    RuleRow,
+    SetReport,
+    VerdictBox,
+)
+from betvdesign.rules import RuleResult, evaluate_device, verdict
+
+MAX_WARNINGS = 5
+_SEVERITY_ORDER = {"error": 0, "warning": 1, "info": 2}
+
+
+@dataclass(frozen=True)
+class PreparedDevice:
+    """A device file that loaded and derived cleanly (input is valid)."""
+
+    path: Path
+    derivation: DeviceDerivation
+    inputs: list[InputRow]
+
+
+def prepare(path: str | Path) -> PreparedDevice:
+    """Load, validate and derive ``path`` (raises SpecError/ParameterError on bad input)."""
+    path = Path(path)
+    derivation = derive(load_device(path))
+    return PreparedDevice(path, derivation, device_inputs(path))
+
+
+# --------------------------------------------------------------------------- formatting
+
+
+def fmt_num(x: float | None, digits: int = 4) -> str:
+    """A float with ``digits`` significant digits; "—" for None."""
+    if x is None:
+        return "—"
+    if isinstance(x, float) and not math.isfinite(x):
+        return str(x)
+    return f"{x:.{digits}g}"
+
+
+def fmt_quantity(q: pint.Quantity) -> str:
+    """A quantity with 4 significant digits and a compact unit (µ, not u)."""
+    unit = format(q.units, "~P")
+    mag = fmt_num(float(q.magnitude))
+    return f"{mag} {unit}".strip() if unit else mag
+
+
+def fmt_speed(v_m_s: float) -> str:
+    """Speed magnitude in µm/s or mm/s."""
+    a = abs(v_m_s)
+    return f"{a * 1e6:.4g} µm/s" if a < 1e-3 else f"{a * 1e3:.4g} mm/s"
+
+
+def fmt_time(t_s: float) -> str:
+    """Duration in µs, ms, s."""
+    if t_s < 1e-3:
+        return f"{t_s * 1e6:.4g} µs"
+    if t_s < 1.0:
+        return f"{t_s * 1e3:.4g} ms"
+    return f"{t_s:.4g} s"
+
+
+# --------------------------------------------------------------------------- sections
+
+
+def derivation_rows(sd: SetDerivation) -> tuple[DerivationRow, ...]:
+    return tuple(
+        DerivationRow(
+            st.symbol, st.description, st.formula, fmt_quantity(st.value), ", ".join(st.inputs)
+        )
+        for st in sd.record
+    )
+
+
+def rule_rows(results: list[RuleResult]) -> tuple[RuleRow, ...]:
+    return tuple(
+        RuleRow(r.id, r.severity, fmt_num(r.value), r.threshold, r.passed, r.message, r.source)
+        for r in results
+    )
+
+
+def top_warnings(results: list[RuleResult]) -> tuple[str, ...]:
+    failed = sorted(
+        (r for r in results if not r.passed), key=lambda r: _SEVERITY_ORDER.get(r.severity, 3)
+    )
+    return tuple(f"{r.severity} {r.id}: {r.message}" for r in failed[:MAX_WARNINGS])
+
+
+def verdict_box(sd: SetDerivation, an: SetAnalysis, results: list[RuleResult]) -> VerdictBox:
+    v = verdict(results)
+    errors = [r for r in results if r.severity == "error" and not r.passed]
+    reason = (
+        "every error-severity design rule passes"
+        if v == "pass"
+        else f"{len(errors)} error-severity rule(s) fail: " + ", ".join(r.id for r in errors)
+    )
+    per = an.periodic.value
+    if per is not None:
+        predicted = str(per.mode)
+        by = "exact periodic orbit"
+        v_m_s = sd.scales.speed_m_s(float(per.delta_s))
+        direction = sd.impact_sign * (1 if float(per.delta_s) > 0 else -1)
+        speed = f"{fmt_speed(v_m_s)} toward {'+x' if direction > 0 else '−x'}"
+        crossing = (
+            fmt_time(sd.travel_range_m / abs(v_m_s)) + f" for the "
+            f"{sd.travel_range_m * 1e6:.4g} µm travel range at the periodic speed"
+            if v_m_s != 0
+            else "never (the slider does not move)"
+        )
+    else:
+        predicted = sd.params.mode_predicted
+        by = "λ fit only; the exact periodic orbit is not available: " + str(an.periodic.reason)
+        speed = crossing = f"not available ({an.periodic.reason})"
+    return VerdictBox(
+        verdict=v,
+        verdict_reason=reason,
+        intended_mode=sd.intended_mode,
+        predicted_mode=predicted,
+        predicted_by=by,
+        lam=fmt_num(sd.lam),
+        fit_mode=sd.params.mode_predicted,
+        speed=speed,
+        crossing_time=crossing,
+        warnings=top_warnings(results),
+    )
+
+
+def _versions() -> str:
+    parts = [f"betvdesign {__version__}"]
+    for dist in ("numpy", "scipy", "matplotlib", "weasyprint"):
+        try:
+            parts.append(f"{dist} {metadata.version(dist)}")
+        except metadata.PackageNotFoundError:  # pragma: no cover
+            parts.append(f"{dist} (not installed)")
+    return ", ".join(parts)
+
+
+def provenance(an: SetAnalysis, opts: ReportOptions, timings: bool) -> tuple[KeyValue, ...]:
+    rows: list[KeyValue] = []
+    per = an.periodic
+    if per.ok:
+        r = per.value
+        rows.append(KeyValue("Periodic orbit", f"{r.status}: {r.message}"))
+        for attr, label in (
+            ("period_cycles", "Period [cycles]"),
+            ("residual", "Periodic residual"),
+            ("impacts_per_cycle", "Impacts per cycle"),
+            ("contact_fraction", "Contact fraction"),
+            ("n_cycles", "Cycles simulated (orbit search)"),
+            ("n_events", "Events"),
+            ("n_root_evals", "Root evaluations"),
+        ):
+            if hasattr(r, attr):
+                val = getattr(r, attr)
+                rows.append(
+                    KeyValue(label, fmt_num(val, 3) if isinstance(val, float) else str(val))
+                )
+        if getattr(r, "floquet", None) is not None:
+            mults = ", ".join(f"{abs(complex(m)):.3g}" for m in r.floquet)
+            rows.append(KeyValue("Floquet multipliers |μ|", mults))
+        for attr in ("method", "tol", "rtol", "atol"):
+            if hasattr(r, attr):
+                rows.append(KeyValue(f"Solver {attr}", str(getattr(r, attr))))
+    else:
+        rows.append(KeyValue("Periodic orbit", f"not available: {per.reason}"))
+    tr = an.transient.value
+    if tr is not None:
+        counts = ", ".join(f"{k} {v}" for k, v in tr.counters.items())
+        rows.append(KeyValue("Run from rest", f"{tr.n_cycles} cycles ({counts})"))
+    if an.regime.ok:
+        g = an.regime.value.varpi
+        rows.append(KeyValue("Regime strip", f"{len(g)} values of ϖ in [{g[0]:.3g}, {g[-1]:.3g}]"))
+    if an.robustness.ok:
+        rows.append(KeyValue("Robustness sweep", f"{len(an.robustness.value.x)} periodic orbits"))
+    if timings:
+        for name in ("periodic", "regime", "transient", "orbit", "robustness"):
+            rows.append(KeyValue(f"Run time: {name}", f"{getattr(an, name).elapsed_s:.3g} s"))
+    else:
+        rows.append(
+            KeyValue(
+                "Run times",
+                "omitted so the report is byte-reproducible "
+                "(betv report --timestamp includes them)",
+            )
+        )
+    rows.append(KeyValue("Software", _versions()))
+    return tuple(rows)
+
+
+def _set_key(sd: SetDerivation) -> tuple[Any, ...]:
+    """Sets with equal keys give identical computations and figures (up to direction)."""
+    a = sd.actuator_set
+    return (
+        tuple(sd.params.as_dict().values()),
+        sd.scales.length_m,
+        sd.scales.time_s,
+        sd.scales.f_act_hz,
+        sd.travel_range_m,
+        a.actuator.calibration,
+        a.drive.voltage,
+    )
+
+
+def build_report(
+    prepared: PreparedDevice,
+    *,
+    options: ReportOptions | None = None,
+    generated: str | None = None,
+    reproduce: str | None = None,
+) -> Report:
+    """The full report model of one prepared device.
+
+    generated: an ISO timestamp to print (None: no date anywhere, byte-reproducible;
+    then run times are also left out).
+    """
+    opts = options or ReportOptions()
+    der = prepared.derivation
+    analyses: dict[tuple[Any, ...], tuple[str, SetAnalysis]] = {}
+    per_set: list[tuple[SetDerivation, SetAnalysis, str | None]] = []
+    for sd in der.sets:
+        key = _set_key(sd)
+        if key in analyses:
+            first, an = analyses[key]
+            per_set.append((sd, an, first))
+            continue
+        an = analyse_set(sd.params, sd.travel_range_m, sd.scales.length_m, opts)
+        analyses[key] = (sd.name, an)
+        per_set.append((sd, an, None))
+    periodic = {sd.name: an.periodic.value for sd, an, _ in per_set if an.periodic.ok}
+    results = evaluate_device(der, periodic=periodic)
+    sets: list[SetReport] = []
+    for i, (sd, an, same_as) in enumerate(per_set, start=1):
+        mine = [r for r in results if r.set_name == sd.name]
+        figs: list[FigureBlock] = (
+            [] if same_as else figures.set_figures(f"s{i}", sd, an, opts.voltage_points)
+        )
+        p = sd.params
+        params = (
+            KeyValue("ϖ", fmt_num(p.varpi)),
+            KeyValue("α", fmt_num(p.alpha)),
+            KeyValue("β", fmt_num(p.beta)),
+            KeyValue("κ", fmt_num(p.kappa)),
+            KeyValue("λ", fmt_num(sd.lam)),
+        )
+        sets.append(
+            SetReport(
+                name=sd.name,
+                intended_mode=sd.intended_mode,
+                params=params,
+                verdict=verdict_box(sd, an, mine),
+                derivation=derivation_rows(sd),
+                rules=rule_rows(mine),
+                figures=tuple(figs),
+                provenance=provenance(an, opts, timings=generated is not None),
+                same_as=same_as,
+            )
+        )
+    device_rules = [r for r in results if not r.set_name]
+    spec = der.spec
+    return Report(
+        title=f"BETV design report: {spec.name}",
+        device_name=spec.name,
+        description=spec.description or "",
+        source_file=str(prepared.path),
+        verdict=verdict(results),
+        inputs=tuple(prepared.inputs),
+        sets=tuple(sets),
+        device_rules=rule_rows(device_rules),
+        reproduce=reproduce or f"betv report {prepared.path} -o reports/",
+        version=__version__,
+        generated=generated,
+    )

@@ -1,0 +1,127 @@
+"""The report model: plain, already-formatted data that templates only lay out.
+
+Built first (:mod:`betvdesign.report.build`), rendered second
+(:mod:`betvdesign.report.render`). Every value here is a string or a number that
+came from the device file, the nondimensional derivation, the design rules or
+a solver result; nothing is computed in a template. A value that could not be
+computed is never replaced by a number: the field carries the reason instead
+(:attr:`FigureBlock.unavailable`, :attr:`SetReport.notes`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Literal
+
+Verdict = Literal["pass", "fail", "unknown"]
+
+
+@dataclass(frozen=True)
+class InputRow:
+    """One leaf of the device file as written: dotted field path, text, line."""
+
+    path: str
+    value: str
+    line: int | None
+
+
+@dataclass(frozen=True)
+class DerivationRow:
+    """One derived quantity with the formula that gives it (nondim record)."""
+
+    symbol: str
+    description: str
+    formula: str
+    value: str
+    inputs: str
+
+
+@dataclass(frozen=True)
+class RuleRow:
+    """One design rule result (rules are data: id, severity, value, threshold...)."""
+
+    id: str
+    severity: str
+    value: str
+    threshold: str
+    passed: bool
+    message: str
+    source: str
+
+
+@dataclass(frozen=True)
+class FigureBlock:
+    """A numbered figure: inline SVG, or the reason it could not be drawn.
+
+    model: the model rung that produced the data ("λ fit", "vertical-only exact
+    model", "exact event-driven model"...), stated in the caption.
+    """
+
+    key: str
+    title: str
+    caption: str
+    model: str
+    svg: str | None = None
+    unavailable: str | None = None
+
+
+@dataclass(frozen=True)
+class KeyValue:
+    """A labelled value (verdict box, provenance)."""
+
+    label: str
+    value: str
+
+
+@dataclass(frozen=True)
+class VerdictBox:
+    """What a reviewer reads first for one actuator set."""
+
+    verdict: Verdict
+    verdict_reason: str
+    intended_mode: str
+    predicted_mode: str
+    predicted_by: str
+    lam: str
+    fit_mode: str
+    speed: str
+    crossing_time: str
+    warnings: tuple[str, ...]
+
+
+@dataclass(frozen=True)
+class SetReport:
+    """Everything the report says about one actuator set."""
+
+    name: str
+    intended_mode: str
+    params: tuple[KeyValue, ...]
+    verdict: VerdictBox
+    derivation: tuple[DerivationRow, ...]
+    rules: tuple[RuleRow, ...]
+    figures: tuple[FigureBlock, ...]
+    provenance: tuple[KeyValue, ...]
+    same_as: str | None = None
+    notes: tuple[str, ...] = ()
+
+
+@dataclass(frozen=True)
+class Report:
+    """A whole device report."""
+
+    title: str
+    device_name: str
+    description: str
+    source_file: str
+    verdict: Verdict
+    inputs: tuple[InputRow, ...]
+    sets: tuple[SetReport, ...]
+    reproduce: str
+    version: str
+    device_rules: tuple[RuleRow, ...] = ()
+    generated: str | None = None
+    notes: tuple[str, ...] = field(default_factory=tuple)
+
+    def figures(self) -> list[FigureBlock]:
+        """All figures of the report in reading order."""
+        return [f for s in self.sets for f in s.figures]

@@ -1,0 +1,83 @@
+"""Render a :class:`~betvdesign.report.model.Report` to HTML and PDF, write atomically.
+
+HTML: one self-contained file (inline CSS, inline SVG, no scripts, no external
+references), from a Jinja2 template with autoescape on. PDF: WeasyPrint renders
+the same HTML and CSS. Both are byte-reproducible for the same report: no date
+is written unless the report carries one (``betv report --timestamp``), and
+WeasyPrint's PDF is deterministic for the same HTML and fonts.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import tempfile
+from importlib import resources
+from pathlib import Path
+
+import jinja2
+from markupsafe import Markup
+
+from betvdesign.report.model import Report
+
+_TEMPLATE = "report.html.j2"
+_CSS = "report.css"
+
+
+def _environment() -> jinja2.Environment:
+    return jinja2.Environment(
+        loader=jinja2.PackageLoader("betvdesign.report", "templates"),
+        autoescape=True,
+        undefined=jinja2.StrictUndefined,
+        trim_blocks=True,
+        lstrip_blocks=True,
+        keep_trailing_newline=True,
+    )
+
+
+def _css() -> str:
+    return resources.files("betvdesign.report").joinpath("templates", _CSS).read_text("utf-8")
+
+
+def render_html(report: Report) -> str:
+    """The report as one self-contained HTML document [str]."""
+    template = _environment().get_template(_TEMPLATE)
+    return template.render(r=report, css=Markup(_css()))
+
+
+def render_pdf(html: str) -> bytes:
+    """PDF bytes of ``html`` rendered by WeasyPrint (A4, fonts embedded).
+
+    Nothing outside the document is fetched: the HTML is self-contained and the
+    URL fetcher refuses every request.
+    """
+    import weasyprint  # heavy import, only when a PDF is wanted
+
+    def no_fetch(url: str, *args: object, **kwargs: object) -> dict[str, object]:
+        raise ValueError(f"report references an external resource {url!r}")
+
+    doc = weasyprint.HTML(string=html, base_url=None, url_fetcher=no_fetch)
+    return doc.write_pdf()
+
+
+def write_atomic(path: str | Path, data: bytes | str) -> Path:
+    """Write ``data`` to ``path`` via a temporary file in the same directory + rename.
+
+    A reader never sees a half-written file; on any failure the temporary file is
+    removed and ``path`` is left as it was.
+    """
+    path = Path(path)
+    payload = data.encode("utf-8") if isinstance(data, str) else data
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+    try:
+        with os.fdopen(fd, "wb") as fh:
+            fh.write(payload)
+            fh.flush()
+            os.fsync(fh.fileno())
+        os.chmod(tmp, 0o644)
+        os.replace(tmp, path)
+    except BaseException:
+        with contextlib.suppress(FileNotFoundError):
+            os.unlink(tmp)
+        raise
+    return path

@@ -1,0 +1,80 @@
+"""Write reports of device files: ``NAME.html`` and ``NAME.pdf`` per file (NAME = file stem).
+
+Every input is loaded and validated before anything is computed or written, so
+bad input leaves no file behind; each output is written atomically.
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+from collections.abc import Sequence
+from dataclasses import dataclass
+from pathlib import Path
+
+from betvdesign.errors import UsageError
+from betvdesign.report.analysis import ReportOptions
+from betvdesign.report.build import build_report, prepare
+from betvdesign.report.render import render_html, render_pdf, write_atomic
+
+
+@dataclass(frozen=True)
+class Written:
+    """Files written for one device and its verdict."""
+
+    source: Path
+    html: Path
+    pdf: Path | None
+    verdict: str
+    figures: int
+
+
+def _outdir(outdir: str | Path) -> Path:
+    out = Path(outdir)
+    if out.exists() and not out.is_dir():
+        raise UsageError(f"output path {out} exists and is not a directory")
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise UsageError(f"cannot create output directory {out}: {exc.strerror}") from None
+    return out
+
+
+def write_reports(
+    paths: Sequence[str | Path],
+    outdir: str | Path,
+    *,
+    pdf: bool = True,
+    timestamp: bool = False,
+    options: ReportOptions | None = None,
+) -> list[Written]:
+    """Report every device file in ``paths`` into ``outdir``.
+
+    Raises :class:`~betvdesign.errors.SpecError` (bad device file) or
+    :class:`~betvdesign.errors.UsageError` (no files, clashing names, unusable
+    output directory) before writing anything.
+    """
+    if not paths:
+        raise UsageError("give at least one device file")
+    stems: dict[str, Path] = {}
+    for p in map(Path, paths):
+        if p.stem in stems and stems[p.stem] != p:
+            raise UsageError(f"{stems[p.stem]} and {p} would both write {p.stem}.html")
+        stems[p.stem] = p
+    prepared = [prepare(p) for p in stems.values()]
+    out = _outdir(outdir)
+    generated = _dt.datetime.now(_dt.UTC).replace(microsecond=0).isoformat() if timestamp else None
+    written: list[Written] = []
+    for dev in prepared:
+        report = build_report(
+            dev,
+            options=options,
+            generated=generated,
+            reproduce=f"betv report {dev.path} -o {outdir}",
+        )
+        html = render_html(report)
+        html_path = write_atomic(out / f"{dev.path.stem}.html", html)
+        pdf_path = write_atomic(out / f"{dev.path.stem}.pdf", render_pdf(html)) if pdf else None
+        written.append(
+            Written(dev.path, html_path, pdf_path, report.verdict, len(report.figures()))
+        )
+    return written
