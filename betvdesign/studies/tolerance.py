@@ -41,6 +41,7 @@ from typing import Any, Literal
 
 import numpy as np
 import pint
+from pydantic import BaseModel
 
 from betvdesign.errors import BetvError, UsageError
 from betvdesign.studies.executors import Executor
@@ -137,9 +138,7 @@ def load_tolerances(path: str | os.PathLike[str]) -> list[Tolerance]:
 # -- spec access -----------------------------------------------------------------
 def _get(obj: Any, path: Sequence[str]) -> Any:
     for name in path:
-        if obj is None or name.startswith("_") or not hasattr(obj, "model_fields"):
-            return None
-        if name not in type(obj).model_fields:
+        if not isinstance(obj, BaseModel) or name not in type(obj).model_fields:
             return None
         obj = getattr(obj, name)
     return obj

@@ -1,0 +1,110 @@
+"""``betv tolerance`` and ``betv calibrate``: device-level studies (thin layer over
+``betvdesign.studies.tolerance`` and ``betvdesign.studies.calibration``)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
+from betvdesign.cli import app
+from betvdesign.cli.common import user_errors
+from betvdesign.cli.sweep import (
+    ChunkOpt,
+    ExecutorOpt,
+    JsonOpt,
+    OutOpt,
+    OverwriteOpt,
+    QuietOpt,
+    SchedulerOpt,
+    WorkersOpt,
+    emit,
+    executor_from,
+    interruptible,
+    progress_bar,
+    run_block,
+)
+
+
+@app.command("tolerance")
+def tolerance_cmd(
+    device: Annotated[Path, typer.Argument(help="Device YAML file.")],
+    tol: Annotated[
+        list[str] | None,
+        typer.Option(
+            "--tol",
+            help="FIELD=[normal|uniform:]AMOUNT, e.g. slider.beam_width=normal:0.2um, "
+            "contact.friction=uniform:10%. Repeatable.",
+        ),
+    ] = None,
+    tolerances: Annotated[
+        Path | None, typer.Option("--tolerances", help="YAML file with a 'tolerances:' map.")
+    ] = None,
+    samples: Annotated[int, typer.Option("--samples", "-n", help="Monte Carlo samples.")] = 1000,
+    seed: Annotated[int, typer.Option(help="Seed of the numpy Generator.")] = 0,
+    fidelity: Annotated[
+        str, typer.Option(help="periodic (exact periodic orbit) or lambda (closed-form fit).")
+    ] = "periodic",
+    sets: Annotated[
+        list[str] | None, typer.Option("--set", help="Actuator set(s) to study [all].")
+    ] = None,
+    out: OutOpt = None,
+    overwrite: OverwriteOpt = False,
+    executor: ExecutorOpt = "process",
+    workers: WorkersOpt = None,
+    chunksize: ChunkOpt = None,
+    scheduler: SchedulerOpt = None,
+    as_json: JsonOpt = False,
+    quiet: QuietOpt = False,
+) -> None:
+    """Monte Carlo over fabrication and operating variation of one device."""
+    from betvdesign.studies.tolerance import load_tolerances, parse_tolerance, run_tolerance
+
+    with user_errors(), interruptible(out):
+        tols = [parse_tolerance(t) for t in tol or []]
+        if tolerances is not None:
+            tols += load_tolerances(tolerances)
+        ex = executor_from(executor, workers, chunksize, scheduler)
+        with progress_bar("tolerance Monte Carlo", quiet) as progress:
+            run, summary = run_tolerance(
+                device,
+                tols,
+                samples=samples,
+                seed=seed,
+                fidelity=fidelity,  # type: ignore[arg-type]
+                sets=sets,
+                executor=ex,
+                out=str(out) if out else None,
+                overwrite=overwrite,
+                progress=progress,
+            )
+        data = {"study": "tolerance", "device": str(device), "seed": seed, **run_block(run)}
+        data |= summary
+
+        def human() -> None:
+            typer.echo(f"{device}: {samples} samples, seed {seed}, mode from {fidelity}")
+            for name, s in summary["sets"].items():
+                typer.echo(
+                    f"  set {name} (intended {s['intended_mode']}): "
+                    f"P(push) {s['p_push']:.3f}  P(pull) {s['p_pull']:.3f}  "
+                    f"P(outside window) {s['p_outside_window']:.3f}  "
+                    f"P(not intended) {s['p_not_intended']:.3f}"
+                )
+                if s["p_not_converged"]:
+                    typer.echo(f"    P(not converged) {s['p_not_converged']:.3f}")
+                if s["invalid_samples"]:
+                    typer.echo(f"    invalid samples: {s['invalid_samples']}")
+                pct = s["speed_um_s_percentiles"]
+                if pct:
+                    typer.echo(
+                        "    speed [µm/s] " + "  ".join(f"{k} {v:.4g}" for k, v in pct.items())
+                    )
+                ranked = ", ".join(
+                    f"{e['field']} ({e[s['ranked_by']]:+.2f})"
+                    for e in s["sensitivities"]
+                    if e[s["ranked_by"]] is not None
+                )
+                typer.echo(f"    most sensitive ({s['ranked_by']}): {ranked}")
+
+        emit(data, as_json, human)

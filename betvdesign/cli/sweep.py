@@ -1,0 +1,288 @@
+"""``betv sweep pushpull|regime|lambda``: design-space sweeps (thin layer over
+``betvdesign.studies``).
+
+Every sweep takes the execution options (``--executor serial|process|dask``,
+``--workers``, ``--chunksize``, ``--scheduler tcp://host:port``), streams rows to
+``--out results.csv`` (+ ``results.json`` sidecar) as they finish, resumes an
+interrupted output when run again with the same arguments, shows a rich
+progress bar on stderr and prints a JSON summary on stdout with ``--json``.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import json
+import sys
+from collections.abc import Callable, Iterator
+from pathlib import Path
+from typing import Annotated, Any
+
+import typer
+
+from betvdesign.cli import app
+from betvdesign.cli.common import user_errors
+from betvdesign.errors import UsageError
+from betvdesign.studies.executors import Executor, make_executor
+from betvdesign.studies.grid import parse_range
+from betvdesign.studies.runner import StudyRun
+
+EXIT_INTERRUPTED = 130
+
+sweep_app = typer.Typer(
+    name="sweep",
+    help="Design-space sweeps: push/pull map, vertical regime diagram, Δs against λ.",
+    no_args_is_help=True,
+)
+app.add_typer(sweep_app, name="sweep")
+
+# -- options shared by every study command (also used by cli/studies.py) -------
+ExecutorOpt = Annotated[
+    str, typer.Option("--executor", "-x", help="serial, process (all cores) or dask.")
+]
+WorkersOpt = Annotated[
+    int | None, typer.Option("--workers", "-j", help="Worker processes [default: all cores].")
+]
+ChunkOpt = Annotated[
+    int | None, typer.Option("--chunksize", help="Points per task sent to a worker.")
+]
+SchedulerOpt = Annotated[
+    str | None, typer.Option("--scheduler", help="dask.distributed scheduler tcp://host:port.")
+]
+OutOpt = Annotated[
+    Path | None,
+    typer.Option("--out", "-o", help="Stream rows to this CSV (+ .json sidecar); resumable."),
+]
+OverwriteOpt = Annotated[
+    bool, typer.Option("--overwrite", help="Start afresh even if --out holds other results.")
+]
+JsonOpt = Annotated[bool, typer.Option("--json", help="Print a JSON summary on stdout.")]
+QuietOpt = Annotated[bool, typer.Option("--quiet", "-q", help="No progress bar.")]
+
+
+def executor_from(
+    executor: str, workers: int | None, chunksize: int | None, scheduler: str | None
+) -> Executor:
+    return make_executor(executor, workers=workers, chunksize=chunksize, scheduler=scheduler)
+
+
+@contextlib.contextmanager
+def progress_bar(label: str, quiet: bool) -> Iterator[Callable[[int, int], None] | None]:
+    """A rich progress bar on stderr; yields the ``progress(done, total)`` callback."""
+    if quiet:
+        yield None
+        return
+    from rich.console import Console
+    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TimeRemainingColumn
+
+    bar = Progress(
+        "[progress.description]{task.description}",
+        BarColumn(),
+        MofNCompleteColumn(),
+        TimeRemainingColumn(),
+        console=Console(stderr=True),
+        transient=False,
+    )
+    task_id = bar.add_task(label, total=None)
+    started = False
+
+    def update(done: int, total: int) -> None:
+        nonlocal started
+        if not started:  # start on the first report, so input errors print no bar
+            bar.start()
+            started = True
+        bar.update(task_id, completed=done, total=total)
+
+    try:
+        yield update
+    finally:
+        if started:
+            bar.stop()
+
+
+@contextlib.contextmanager
+def interruptible(out: Path | None) -> Iterator[None]:
+    """Ctrl-C: say what was kept and how to resume; exit 130 without a traceback."""
+    try:
+        yield
+    except KeyboardInterrupt:
+        where = f"finished points are kept in {out}; " if out else ""
+        print(
+            f"interrupted: {where}run the same command again to resume",
+            file=sys.stderr,
+        )
+        raise typer.Exit(EXIT_INTERRUPTED) from None
+
+
+def emit(summary: dict[str, Any], as_json: bool, human: Callable[[], None]) -> None:
+    """Print the JSON summary on stdout, or the human-readable form."""
+    if as_json:
+        typer.echo(json.dumps(summary, indent=2, allow_nan=False))
+    else:
+        human()
+
+
+def run_block(run: StudyRun) -> dict[str, Any]:
+    """The execution part of every summary."""
+    return {
+        "points": run.total,
+        "computed": run.computed,
+        "resumed": run.resumed,
+        "elapsed_s": round(run.elapsed_s, 6),
+        "executor": run.executor.backend,
+        "workers": run.executor.workers,
+        "out": str(run.path) if run.path else None,
+    }
+
+
+def axis(text: str, name: str) -> list[float]:
+    values = parse_range(text, name)
+    return [float(v) for v in values]
+
+
+@sweep_app.command("pushpull")
+def pushpull_cmd(
+    varpi: Annotated[str, typer.Option(help="ϖ range, e.g. 0.5:2:0.1 or 0.5,1,1.5.")],
+    alpha: Annotated[str, typer.Option(help="α range.")],
+    beta: Annotated[str, typer.Option(help="β range.")],
+    kappa: Annotated[str, typer.Option(help="κ range.")],
+    fidelity: Annotated[
+        str, typer.Option(help="periodic (exact periodic orbits) or lambda (closed-form fit).")
+    ] = "periodic",
+    tol: Annotated[float, typer.Option(help="Fixed-point residual tolerance.")] = 1e-10,
+    figure: Annotated[
+        Path | None, typer.Option("--figure", help="Write the map figure (SVG/PNG/PDF).")
+    ] = None,
+    out: OutOpt = None,
+    overwrite: OverwriteOpt = False,
+    executor: ExecutorOpt = "process",
+    workers: WorkersOpt = None,
+    chunksize: ChunkOpt = None,
+    scheduler: SchedulerOpt = None,
+    as_json: JsonOpt = False,
+    quiet: QuietOpt = False,
+) -> None:
+    """Push/pull map over ϖ, α, β, κ, each point solved to its periodic state."""
+    from betvdesign.studies.pushpull import run_pushpull
+
+    with user_errors(), interruptible(out):
+        axes = {n: axis(t, n) for n, t in (("varpi", varpi), ("alpha", alpha))}
+        axes |= {n: axis(t, n) for n, t in (("beta", beta), ("kappa", kappa))}
+        if tol <= 0:
+            raise UsageError(f"--tol must be > 0, got {tol:g}")
+        ex = executor_from(executor, workers, chunksize, scheduler)
+        if figure is not None:
+            _check_figure_path(figure)
+        with progress_bar("push/pull map", quiet) as progress:
+            run, summary = run_pushpull(
+                **axes,
+                fidelity=fidelity,  # type: ignore[arg-type]
+                tol=tol,
+                executor=ex,
+                out=str(out) if out else None,
+                overwrite=overwrite,
+                progress=progress,
+            )
+        if figure is not None:
+            from betvdesign.plots.studies import save_pushpull_figure
+
+            save_pushpull_figure(run.rows, figure)
+        data = {"study": "pushpull", **run_block(run), **summary.as_dict()}
+        data["figure"] = str(figure) if figure else None
+
+        def human() -> None:
+            agree = summary.agreement
+            typer.echo(
+                f"{summary.n_points} points, {summary.n_converged} converged "
+                f"({summary.n_push} push, {summary.n_pull} pull)"
+            )
+            if agree is not None:
+                typer.echo(
+                    f"λ rule agrees at {summary.n_agree}/{summary.n_converged} "
+                    f"({100 * agree:.1f} %)"
+                )
+            for d in summary.disagreements:
+                typer.echo(
+                    f"  disagrees: ϖ={d['varpi']:g} α={d['alpha']:g} β={d['beta']:g} "
+                    f"κ={d['kappa']:g} λ={d['lam']:.4g} simulated {d['mode']} Δs={d['delta_s']:.4g}"
+                )
+            for d in summary.not_converged:
+                typer.echo(
+                    f"  not converged: ϖ={d['varpi']:g} α={d['alpha']:g} β={d['beta']:g} "
+                    f"κ={d['kappa']:g}: {d['status']}: {d['message']}"
+                )
+            typer.echo(f"{run.computed} computed, {run.resumed} resumed in {run.elapsed_s:.2f} s")
+
+        emit(data, as_json, human)
+
+
+def _check_figure_path(path: Path) -> None:
+    if path.suffix.lower() not in (".svg", ".png", ".pdf"):
+        raise UsageError(f"{path}: figure must be .svg, .png or .pdf")
+    parent = path.parent
+    if not parent.is_dir():
+        raise UsageError(f"{path}: directory {parent} does not exist")
+
+
+@sweep_app.command("lambda")
+def lambda_cmd(
+    kappa: Annotated[float, typer.Option(help="Fixed κ.")],
+    beta: Annotated[float, typer.Option(help="Fixed β.")],
+    lam: Annotated[
+        str, typer.Option("--lambda", help="λ targets, e.g. 0.5:1.5:0.05.")
+    ] = "0.5:1.5:0.05",
+    vary: Annotated[
+        str, typer.Option(help="Parameter moved to reach λ: varpi or alpha.")
+    ] = "varpi",
+    alpha: Annotated[float | None, typer.Option(help="Fixed α (when varying ϖ).")] = None,
+    varpi: Annotated[float | None, typer.Option(help="Fixed ϖ (when varying α).")] = None,
+    tol: Annotated[float, typer.Option(help="Fixed-point residual tolerance.")] = 1e-10,
+    out: OutOpt = None,
+    overwrite: OverwriteOpt = False,
+    executor: ExecutorOpt = "process",
+    workers: WorkersOpt = None,
+    chunksize: ChunkOpt = None,
+    scheduler: SchedulerOpt = None,
+    as_json: JsonOpt = False,
+    quiet: QuietOpt = False,
+) -> None:
+    """Δs against λ for fixed (κ, β), across the push/pull boundary."""
+    from betvdesign.studies.lambda_scan import run_lambda_scan
+
+    with user_errors(), interruptible(out):
+        targets = axis(lam, "lambda")
+        for name, value in (("kappa", kappa), ("beta", beta), ("alpha", alpha), ("varpi", varpi)):
+            if value is not None and not value > 0:
+                raise UsageError(f"--{name} must be > 0, got {value:g}")
+        ex = executor_from(executor, workers, chunksize, scheduler)
+        with progress_bar("Δs against λ", quiet) as progress:
+            run, summary = run_lambda_scan(
+                targets,
+                kappa=kappa,
+                beta=beta,
+                vary=vary,  # type: ignore[arg-type]
+                alpha=alpha,
+                varpi=varpi,
+                tol=tol,
+                executor=ex,
+                out=str(out) if out else None,
+                overwrite=overwrite,
+                progress=progress,
+            )
+        rows = [
+            {k: r[k] for k in ("lam", "varpi", "alpha", "status", "mode", "delta_s")}
+            for r in run.rows
+        ]
+        data = {"study": "lambda", **run_block(run), **summary.as_dict(), "rows": rows}
+
+        def human() -> None:
+            typer.echo(f"{'λ':>8} {'ϖ':>8} {'α':>8} {'Δs':>12}  mode / status")
+            for r in rows:
+                ds = "—" if r["delta_s"] is None else f"{r['delta_s']:.5g}"
+                typer.echo(
+                    f"{r['lam']:8.4g} {r['varpi']:8.4g} {r['alpha']:8.4g} {ds:>12}  "
+                    f"{r['mode'] or r['status']}"
+                )
+            where = ", ".join(f"{x:.4g}" for x in summary.crossings) or "none in range"
+            typer.echo(f"Δs changes sign at λ ≈ {where} (the fit puts the boundary at 1)")
+
+        emit(data, as_json, human)
