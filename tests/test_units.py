@@ -61,7 +61,14 @@ def test_bare_numbers_rejected(field, bare):
 
 @pytest.mark.parametrize(
     ("field", "text"),
-    [("length", "5 kHz"), ("mass", "5 um"), ("freq", "3 m"), ("volt", "2 A"), ("angle", "3 m"), ("angle", "3 percent")],
+    [
+        ("length", "5 kHz"),
+        ("mass", "5 um"),
+        ("freq", "3 m"),
+        ("volt", "2 A"),
+        ("angle", "3 m"),
+        ("angle", "3 percent"),
+    ],
 )
 def test_wrong_dimension_rejected(field, text):
     with pytest.raises(ValidationError, match="wrong dimension"):

@@ -1,0 +1,148 @@
+"""``betv check FILE...``: device files -> design verdict (tables, or ``--json``).
+
+Thin: loading is :func:`betvdesign.loader.load_device`, numbers are
+:func:`betvdesign.nondim.derive`, rules and the optional exact solver are
+:func:`betvdesign.rules.check_derivation`.
+
+Exit codes: 0 every error-severity rule passes, 1 a rule fails, 2 bad input or usage.
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+from pathlib import Path
+
+import typer
+from rich.console import Console
+from rich.table import Table
+
+from betvdesign.cli import app
+from betvdesign.cli.common import EXIT_BAD_INPUT, EXIT_OK, EXIT_RULE_FAILED, user_errors
+from betvdesign.errors import SpecError
+from betvdesign.loader import load_device
+from betvdesign.nondim import derive
+from betvdesign.rules import DEFAULT_LAMBDA_MARGIN, CheckResult, RuleResult, check_derivation
+
+_STATUS = {
+    (True, "error"): "[green]ok[/]",
+    (True, "warning"): "[green]ok[/]",
+    (True, "info"): "[blue]info[/]",
+    (False, "error"): "[bold red]FAIL[/]",
+    (False, "warning"): "[yellow]warn[/]",
+    (False, "info"): "[dim]note[/]",
+}
+
+
+@app.command("check")
+def check_cmd(
+    files: list[Path] = typer.Argument(..., help="Device YAML files (see devices/)."),
+    as_json: bool = typer.Option(False, "--json", help="Print JSON on stdout (a list if >1 file)."),
+    simulate: bool = typer.Option(
+        False, "--simulate", help="Run the exact periodic-orbit solver for every actuator set."
+    ),
+    closed_form_only: bool = typer.Option(
+        False,
+        "--closed-form-only",
+        help="Never run the solver, even where the closed form cannot decide.",
+    ),
+    lambda_margin: float = typer.Option(
+        DEFAULT_LAMBDA_MARGIN,
+        "--lambda-margin",
+        min=0.0,
+        help="Required |λ − 1| (default 0.2: ±5 % on f_v or ±10 % on α move λ ~10 %).",
+    ),
+    show_derivation: bool = typer.Option(
+        False, "--derivation", help="Also print every input, formula and intermediate value."
+    ),
+) -> None:
+    """Check device files: design window, push/pull mode and its margin, resonance, fit range."""
+    if simulate and closed_form_only:
+        print("error: --simulate and --closed-form-only exclude each other", file=sys.stderr)
+        raise typer.Exit(EXIT_BAD_INPUT)
+    mode = "always" if simulate else ("never" if closed_form_only else "auto")
+    with user_errors():
+        specs, issues = [], []
+        for f in files:  # collect the issues of every file before giving up
+            try:
+                specs.append((f, load_device(f)))
+            except SpecError as exc:
+                issues.extend(exc.issues)
+        if issues:
+            raise SpecError(issues)
+        results = []
+        for f, spec in specs:
+            res = check_derivation(derive(spec), simulate=mode, lambda_margin=lambda_margin)
+            res.source_file = str(f)
+            results.append(res)
+    if as_json:
+        payload = [r.as_dict() for r in results]
+        out = payload[0] if len(payload) == 1 else payload
+        typer.echo(json.dumps(out, indent=2, ensure_ascii=False))
+    else:
+        console = Console(soft_wrap=False)
+        for r in results:
+            render(r, console, derivation=show_derivation)
+    failed = any(r.verdict == "fail" for r in results)
+    raise typer.Exit(EXIT_RULE_FAILED if failed else EXIT_OK)
+
+
+def render(result: CheckResult, console: Console, *, derivation: bool = False) -> None:
+    """Rich tables for one device: per set parameters, derived values, rules; then notes."""
+    colour = "green" if result.verdict == "pass" else "red"
+    console.rule(
+        f"[bold]{result.derivation.name}[/] ({result.source_file}): "
+        f"[bold {colour}]{result.verdict.upper()}[/]"
+    )
+    for sc in result.sets:
+        s = sc.derivation
+        p = s.params
+        console.print(
+            f"[bold]set {s.name}[/]: intended {s.intended_mode}, impacts "
+            f"{s.actuator_set.impact_direction}; ϖ = {p.varpi:.4g}, α = {p.alpha:.4g}, "
+            f"β = {p.beta:.4g}, κ = {p.kappa:.4g}, λ = {s.lam:.4g} -> predicted "
+            f"[bold]{sc.mode_predicted}[/] (from {sc.mode_source})"
+        )
+        console.print(
+            "  " + ", ".join(f"{k} = {v}" for k, v in s.derived().items()), highlight=False
+        )
+        if derivation:
+            console.print(_record_table(sc))
+        _print_rules(sc.rules, console)
+    device_rules = [r for r in result.rules if not r.set_name]
+    if device_rules:
+        console.print("[bold]device[/]")
+        _print_rules(device_rules, console)
+    for note in result.notes:
+        console.print(f"[cyan]note:[/] {note}", highlight=False)
+
+
+def _rules_table(rules: list[RuleResult]) -> Table:
+    """Compact table (status, severity, rule, value, threshold); messages follow it."""
+    t = Table(pad_edge=False, expand=False)
+    for col in ("", "severity", "rule", "value"):
+        t.add_column(col, no_wrap=True)
+    t.add_column("threshold", overflow="fold")
+    for r in rules:
+        value = "" if r.value is None else f"{r.value:.4g}"
+        t.add_row(_STATUS[(r.passed, r.severity)], r.severity, r.id, value, r.threshold)
+    return t
+
+
+def _print_rules(rules: list[RuleResult], console: Console) -> None:
+    """The table, then the message of every failed or informational rule."""
+    console.print(_rules_table(rules))
+    for r in rules:
+        if not r.passed or r.severity == "info":
+            console.print(
+                f"  {_STATUS[(r.passed, r.severity)]} {r.id}: {r.message}", highlight=False
+            )
+
+
+def _record_table(sc) -> Table:
+    t = Table(title=f"derivation of set {sc.derivation.name}", pad_edge=False)
+    for col in ("symbol", "description", "formula", "value"):
+        t.add_column(col, overflow="fold")
+    for st in sc.derivation.record:
+        t.add_row(st.symbol, st.description, st.formula, st.value_str)
+    return t

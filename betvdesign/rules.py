@@ -1,0 +1,619 @@
+"""Design rules as data: each check of a derived design gives a :class:`RuleResult`.
+
+The rules turn docs/MODEL.md, "What the model shows", into checks a designer can act
+on. They use the closed-form knowledge (design window, λ criterion and its fit range,
+tangential resonance) and, when given, the exact periodic orbit of the solver
+(``periodic``: an object with ``success``, ``message``, ``delta_s``, ``mode``), which
+decides the mode and gives the speed.
+
+Defaults (module constants, all stated in the rule messages):
+
+- frequency window 0.5 ≤ ϖ < 2 (one hit per cycle, finite contact); 2 ≤ ϖ < 2.6
+  impulsive hits; ϖ ≥ 2.6 period doubling / aperiodic.
+- λ margin: |λ − 1| ≥ 0.2. λ ∝ 1/ϖ² and its leading term ∝ 1/(αϖ²), so ±5 % on
+  the resonance frequency or ±10 % on the tangential compliance (typical
+  fabrication spread) each move λ by about 10 %; 0.2 covers both together.
+- tangential resonance: |a·ϖ² − 1| ≥ 0.1 for a = α (free flight) and
+  a = α(1 + 1/β) (stick).
+- λ fit range: α 0.1–4, β 0.1–1.5, κ 0.1–0.4; outside it λ is an extrapolation.
+- published fit: computed parameters within 10 % of a published value.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import asdict, dataclass
+from typing import Any, Literal, Protocol
+
+from betvdesign.nondim import DeviceDerivation, SetDerivation
+
+Severity = Literal["error", "warning", "info"]
+
+VARPI_WINDOW = (0.5, 2.0)
+VARPI_IMPULSIVE_END = 2.6
+DEFAULT_LAMBDA_MARGIN = 0.2
+TANGENTIAL_DETUNING = 0.1
+FIT_RANGE: dict[str, tuple[float, float]] = {
+    "alpha": (0.1, 4.0),
+    "beta": (0.1, 1.5),
+    "kappa": (0.1, 0.4),
+}
+PUBLISHED_RTOL = 0.1
+#: |Δs| below this [-] counts as "the slider does not move" for speed purposes.
+DELTA_S_ZERO = 1e-9
+_FIT_TOL = 1e-9  # relative tolerance at the fit-range edges (κ = 0.4·tan45° = 0.39999...)
+
+SRC_WINDOW = "MODEL.md, What the model shows: Vertical motion (Shin et al. 2004)"
+SRC_LAMBDA = "MODEL.md, Push/pull criterion (empirical fit, Shin et al. 2004)"
+SRC_TANG = "MODEL.md, What the model shows: tangential vibration undamped off contact"
+SRC_SPEED = "MODEL.md, Displacement per cycle: speed = Δs·u·cosθ·f_act"
+SRC_PUBLISHED = "device file: published_fit"
+SRC_SOLVER = "betvdesign.dynamics.periodic_orbit (exact event-driven solver)"
+
+
+class PeriodicLike(Protocol):
+    success: bool
+    message: str
+    delta_s: float
+    mode: str
+
+
+@dataclass(frozen=True)
+class RuleResult:
+    """Outcome of one design rule.
+
+    value: the number checked (None when the rule could not be evaluated);
+    threshold: the pass condition in words/maths; set_name: the actuator set
+    ("" for device-level rules).
+    """
+
+    id: str
+    severity: Severity
+    passed: bool
+    value: float | None
+    threshold: str
+    message: str
+    source: str
+    set_name: str = ""
+
+    def as_dict(self) -> dict[str, Any]:
+        d = asdict(self)
+        if d["value"] is not None and not math.isfinite(d["value"]):
+            d["value"] = str(d["value"])  # JSON has no inf/nan
+        return d
+
+
+def verdict(results: list[RuleResult]) -> Literal["pass", "fail"]:
+    """ "fail" when any error-severity rule fails, else "pass"."""
+    return "fail" if any(r.severity == "error" and not r.passed for r in results) else "pass"
+
+
+# --- closed-form decidability ------------------------------------------------------------
+
+
+def undecided_reasons(
+    s: SetDerivation, *, lambda_margin: float = DEFAULT_LAMBDA_MARGIN
+) -> list[str]:
+    """Why the closed-form λ criterion cannot decide the mode ([] when it can)."""
+    reasons = []
+    if abs(s.lam - 1.0) < lambda_margin:
+        reasons.append(f"λ = {s.lam:.3g} lies within ±{lambda_margin:g} of 1")
+    for name, (lo, hi) in FIT_RANGE.items():
+        v = getattr(s.params, name)
+        if not _in_range(v, lo, hi):
+            reasons.append(f"{name} = {v:.3g} outside the λ fit range {lo:g}–{hi:g}")
+    return reasons
+
+
+def _in_range(v: float, lo: float, hi: float) -> bool:
+    return lo * (1 - _FIT_TOL) <= v <= hi * (1 + _FIT_TOL)
+
+
+# --- per-set rules -----------------------------------------------------------------------
+
+
+def evaluate(
+    derivation_set: SetDerivation,
+    *,
+    lambda_margin: float = DEFAULT_LAMBDA_MARGIN,
+    periodic: PeriodicLike | None = None,
+) -> list[RuleResult]:
+    """Every rule for one actuator set (see the module docstring for thresholds)."""
+    s = derivation_set
+    out = [
+        _frequency_window(s),
+        *_mode_rules(s, periodic, lambda_margin),
+        _tangential_resonance(s),
+        *_fit_range(s),
+        *_published(s),
+        *_speed(s, periodic),
+    ]
+    return [_with_set(r, s.name) for r in out]
+
+
+def _with_set(r: RuleResult, name: str) -> RuleResult:
+    return RuleResult(r.id, r.severity, r.passed, r.value, r.threshold, r.message, r.source, name)
+
+
+def _frequency_window(s: SetDerivation) -> RuleResult:
+    v = s.params.varpi
+    lo, hi = VARPI_WINDOW
+    thr = f"{lo:g} <= varpi < {hi:g}"
+    if v < lo:
+        msg = (
+            f"ϖ = {v:.3g} below the window: the head hits several times per cycle; "
+            f"raise f_act/f_v (f_act = {s.scales.f_act_hz:.4g} Hz)"
+        )
+    elif v < hi:
+        msg = f"ϖ = {v:.3g} inside the window: one hit per cycle, finite contact"
+    elif v < VARPI_IMPULSIVE_END:
+        msg = (
+            f"ϖ = {v:.3g} above the window: contact is impulsive (zero duration), "
+            "the slider is not driven; lower f_act/f_v"
+        )
+    else:
+        msg = (
+            f"ϖ = {v:.3g} far above the window: period doubling or aperiodic hits; lower f_act/f_v"
+        )
+    return RuleResult("frequency-window", "error", lo <= v < hi, v, thr, msg, SRC_WINDOW)
+
+
+def _mode_rules(s: SetDerivation, periodic: PeriodicLike | None, margin: float) -> list[RuleResult]:
+    lam = s.lam
+    lam_mode = "push" if lam < 1.0 else "pull"
+    out: list[RuleResult] = []
+    sim_ok = periodic is not None and bool(getattr(periodic, "success", False))
+    if sim_ok:
+        ds = float(periodic.delta_s)
+        mode = "push" if ds > 0 else "pull"
+        out.append(
+            RuleResult(
+                "mode",
+                "error",
+                mode == s.intended_mode,
+                ds,
+                f"intended {s.intended_mode}: Δs {'> 0' if s.intended_mode == 'push' else '< 0'}",
+                f"exact periodic orbit: Δs = {ds:.4g} per cycle -> {mode} mode "
+                f"(intended {s.intended_mode})",
+                SRC_SOLVER,
+            )
+        )
+        out.append(
+            RuleResult(
+                "lambda-vs-simulation",
+                "info",
+                mode == lam_mode,
+                lam,
+                "λ fit and exact orbit agree",
+                f"λ = {lam:.3g} predicts {lam_mode}, the exact orbit gives {mode}",
+                SRC_LAMBDA,
+            )
+        )
+    else:
+        reasons = undecided_reasons(s, lambda_margin=margin)
+        caveat = f" (closed form cannot decide: {'; '.join(reasons)})" if reasons else ""
+        out.append(
+            RuleResult(
+                "mode",
+                "error",
+                lam_mode == s.intended_mode,
+                lam,
+                f"intended {s.intended_mode}: λ {'< 1' if s.intended_mode == 'push' else '> 1'}",
+                f"λ = {lam:.3g} predicts {lam_mode} mode (intended {s.intended_mode}){caveat}",
+                SRC_LAMBDA,
+            )
+        )
+    if periodic is not None and not sim_ok:
+        out.append(
+            RuleResult(
+                "simulation",
+                "warning",
+                False,
+                None,
+                "exact periodic orbit found",
+                f"exact solver did not find the periodic orbit: {getattr(periodic, 'message', '')}",
+                SRC_SOLVER,
+            )
+        )
+    d = abs(lam - 1.0)
+    out.append(
+        RuleResult(
+            "lambda-margin",
+            "warning",
+            d >= margin,
+            d,
+            f"|λ − 1| >= {margin:g}",
+            f"|λ − 1| = {d:.3g}: "
+            + (
+                "enough margin to the push/pull boundary"
+                if d >= margin
+                else "near the push/pull boundary: fabrication spread can flip the mode"
+            ),
+            SRC_LAMBDA,
+        )
+    )
+    return out
+
+
+def _tangential_resonance(s: SetDerivation) -> RuleResult:
+    p = s.params
+    w2 = p.varpi**2
+    cases = {"free flight a = α": p.alpha, "stick a = α(1 + 1/β)": p.alpha * (1 + 1 / p.beta)}
+    worst_label, worst = min(((k, abs(a * w2 - 1.0)) for k, a in cases.items()), key=lambda t: t[1])
+    ok = worst >= TANGENTIAL_DETUNING
+    msg = f"min |a·ϖ² − 1| = {worst:.3g} ({worst_label}): " + (
+        "tangential head vibration is off resonance"
+        if ok
+        else "near tangential resonance: the head's tangential vibration is undamped off "
+        "contact and can grow without bound; change α or ϖ"
+    )
+    return RuleResult(
+        "tangential-resonance",
+        "warning",
+        ok,
+        worst,
+        f"|a·ϖ² − 1| >= {TANGENTIAL_DETUNING:g}",
+        msg,
+        SRC_TANG,
+    )
+
+
+def _fit_range(s: SetDerivation) -> list[RuleResult]:
+    out = []
+    for name, (lo, hi) in FIT_RANGE.items():
+        v = getattr(s.params, name)
+        ok = _in_range(v, lo, hi)
+        msg = (
+            f"{name} = {v:.3g} inside the λ fit range"
+            if ok
+            else f"{name} = {v:.3g} outside the λ fit range {lo:g}–{hi:g}: "
+            "λ is an extrapolation, confirm with --simulate"
+        )
+        out.append(
+            RuleResult(
+                f"fit-range.{name}",
+                "warning",
+                ok,
+                v,
+                f"{lo:g} <= {name} <= {hi:g}",
+                msg,
+                SRC_LAMBDA,
+            )
+        )
+    return out
+
+
+def _published(s: SetDerivation) -> list[RuleResult]:
+    out = []
+    for c in s.published:
+        pub = " or ".join(f"{p:g}" for p in c.published)
+        ok = c.matches(PUBLISHED_RTOL)
+        closest = min(c.published, key=lambda p: abs(c.computed - p))
+        msg = (
+            f"computed {c.name} = {c.computed:.3g}, published {pub} "
+            f"(closest {closest:g}, {c.rel_diff:.0%} apart)"
+        )
+        if not ok:
+            msg += ": the dimensional data and the published fit disagree"
+        out.append(
+            RuleResult(
+                f"published-fit.{c.name}",
+                "warning",
+                ok,
+                c.computed,
+                f"within {PUBLISHED_RTOL:.0%} of {pub}",
+                msg,
+                SRC_PUBLISHED,
+            )
+        )
+    return out
+
+
+def _speed(s: SetDerivation, periodic: PeriodicLike | None) -> list[RuleResult]:
+    if periodic is None or not getattr(periodic, "success", False):
+        return [
+            RuleResult(
+                "speed",
+                "info",
+                True,
+                None,
+                "needs the periodic Δs",
+                "speed and time to cross need the exact periodic Δs: run with --simulate",
+                SRC_SPEED,
+            )
+        ]
+    ds = float(periodic.delta_s)
+    v = s.scales.speed_m_s(ds)
+    if abs(ds) < DELTA_S_ZERO:
+        return [
+            RuleResult(
+                "speed",
+                "info",
+                False,
+                v,
+                f"|Δs| >= {DELTA_S_ZERO:g}",
+                f"Δs = {ds:.3g}: the slider does not move",
+                SRC_SPEED,
+            )
+        ]
+    t_cross = s.travel_range_m / abs(v)
+    return [
+        RuleResult(
+            "speed",
+            "info",
+            True,
+            v,
+            "Δs·u·cosθ·f_act",
+            f"mean speed {format_speed(v)}, crosses the {s.travel_range_m * 1e6:.4g} um travel "
+            f"range in {format_time(t_cross)}",
+            SRC_SPEED,
+        )
+    ]
+
+
+def format_speed(v_m_s: float) -> str:
+    """Speed in engineering units: um/s below 1 mm/s, else mm/s."""
+    if abs(v_m_s) < 1e-3:
+        return f"{v_m_s * 1e6:.4g} um/s"
+    return f"{v_m_s * 1e3:.4g} mm/s"
+
+
+def format_time(t_s: float) -> str:
+    """Duration in engineering units (us, ms, s)."""
+    if t_s < 1e-3:
+        return f"{t_s * 1e6:.4g} us"
+    if t_s < 1.0:
+        return f"{t_s * 1e3:.4g} ms"
+    return f"{t_s:.4g} s"
+
+
+# --- device-level ------------------------------------------------------------------------
+
+
+def travel_direction(s: SetDerivation, mode: str) -> int:
+    """+1/−1: slider travel for a set working in ``mode`` (push: along its impacts)."""
+    return s.impact_sign if mode == "push" else -s.impact_sign
+
+
+def evaluate_device(
+    derivation: DeviceDerivation,
+    *,
+    lambda_margin: float = DEFAULT_LAMBDA_MARGIN,
+    periodic: dict[str, PeriodicLike] | None = None,
+) -> list[RuleResult]:
+    """Rules of every set (``periodic`` keyed by set name) plus device-level rules."""
+    periodic = periodic or {}
+    out: list[RuleResult] = []
+    predicted: dict[str, int] = {}
+    for s in derivation.sets:
+        res = evaluate(s, lambda_margin=lambda_margin, periodic=periodic.get(s.name))
+        out.extend(res)
+        mode_rule = next(r for r in res if r.id == "mode")
+        if mode_rule.source == SRC_SOLVER:
+            mode = "push" if (mode_rule.value or 0.0) > 0 else "pull"
+        else:
+            mode = s.mode_predicted
+        predicted[s.name] = travel_direction(s, mode)
+    if len(derivation.sets) >= 2:
+        dirs = set(predicted.values())
+        listing = ", ".join(f"{k}: {'+x' if v > 0 else '-x'}" for k, v in predicted.items())
+        ok = dirs == {1, -1}
+        out.append(
+            RuleResult(
+                "bidirectional",
+                "warning",
+                ok,
+                None,
+                "the sets move the slider both ways",
+                f"predicted travel per set ({listing})"
+                + ("" if ok else ": every set moves the slider the same way"),
+                "MODEL.md: opposing actuator sets give the two directions of travel",
+            )
+        )
+    return out
+
+
+# --- the whole check: rules + (optional) exact solver --------------------------------------
+
+SimulateWhen = Literal["auto", "always", "never"]
+
+
+@dataclass
+class SetCheck:
+    """Check outcome of one actuator set."""
+
+    derivation: SetDerivation
+    rules: list[RuleResult]
+    periodic: Any | None = None
+    simulated_because: str = ""
+
+    @property
+    def mode_predicted(self) -> str:
+        p = self.periodic
+        if p is not None and getattr(p, "success", False):
+            return "push" if float(p.delta_s) > 0 else "pull"
+        return self.derivation.mode_predicted
+
+    @property
+    def mode_source(self) -> str:
+        p = self.periodic
+        return "simulation" if p is not None and getattr(p, "success", False) else "lambda"
+
+
+@dataclass
+class CheckResult:
+    """Everything ``betv check`` reports for one device."""
+
+    derivation: DeviceDerivation
+    sets: list[SetCheck]
+    rules: list[RuleResult]
+    notes: list[str]
+    source_file: str = ""
+
+    @property
+    def verdict(self) -> Literal["pass", "fail"]:
+        return verdict(self.rules)
+
+    def as_dict(self) -> dict[str, Any]:
+        """The JSON contract of ``betv check --json`` (issue 2): top-level ``params``,
+        ``derived`` and ``mode_predicted`` describe the first actuator set; ``sets``
+        has every set in full, with its derivation record."""
+        sets = [_set_dict(sc) for sc in self.sets]
+        first = sets[0]
+        return {
+            "device": self.derivation.name,
+            "file": self.source_file,
+            "params": first["params"],
+            "derived": first["derived"],
+            "mode_predicted": first["mode_predicted"],
+            "rules": [r.as_dict() for r in self.rules],
+            "verdict": self.verdict,
+            "notes": list(self.notes),
+            "sets": sets,
+        }
+
+
+def load_solver() -> Any | None:
+    """The exact solver's ``periodic_orbit`` or None while it is not available (lazy import)."""
+    try:
+        from betvdesign.dynamics import periodic_orbit  # type: ignore[attr-defined]
+    except ImportError:
+        return None
+    return periodic_orbit
+
+
+def check_derivation(
+    derivation: DeviceDerivation,
+    *,
+    simulate: SimulateWhen = "auto",
+    lambda_margin: float = DEFAULT_LAMBDA_MARGIN,
+    solver: Any | None = None,
+) -> CheckResult:
+    """Evaluate every rule of a device ("Model no more than a scene needs").
+
+    simulate: "never" closed form only; "always" run the exact periodic orbit for
+    every set; "auto" (default) run it only where the closed form cannot decide
+    (λ within the margin of 1, or parameters outside the λ fit range) and the solver
+    exists. ``solver`` overrides the lazily imported ``periodic_orbit``.
+    Raises :class:`~betvdesign.errors.UsageError` for "always" without a solver.
+    """
+    from betvdesign.errors import UsageError
+
+    if solver is None and simulate != "never":
+        solver = load_solver()
+    if simulate == "always" and solver is None:
+        raise UsageError(
+            "--simulate needs the exact solver (betvdesign.dynamics.periodic_orbit), which is "
+            "not available in this installation yet; run `betv check` without --simulate"
+        )
+    notes: list[str] = []
+    periodic: dict[str, Any] = {}
+    why: dict[str, str] = {}
+    for s in derivation.sets:
+        reasons = undecided_reasons(s, lambda_margin=lambda_margin)
+        if simulate == "always":
+            why[s.name] = "requested (--simulate)"
+        elif simulate == "auto" and reasons:
+            if solver is None:
+                notes.append(
+                    f"set {s.name}: the closed form cannot decide ({'; '.join(reasons)}); "
+                    "the exact solver is not available yet, so the mode is λ's guess"
+                )
+                continue
+            why[s.name] = "the closed form cannot decide: " + "; ".join(reasons)
+        elif reasons:
+            notes.append(
+                f"set {s.name}: the closed form cannot decide ({'; '.join(reasons)}); "
+                "run with --simulate"
+            )
+            continue
+        else:
+            continue
+        periodic[s.name] = _run_solver(solver, s)
+        notes.append(f"set {s.name}: ran the exact solver ({why[s.name]})")
+    rules = evaluate_device(derivation, lambda_margin=lambda_margin, periodic=periodic)
+    sets = [
+        SetCheck(
+            s,
+            [r for r in rules if r.set_name == s.name],
+            periodic.get(s.name),
+            why.get(s.name, ""),
+        )
+        for s in derivation.sets
+    ]
+    return CheckResult(derivation, sets, rules, notes)
+
+
+@dataclass
+class _SolverFailure:
+    """Stands in for a solver result when the solver raised: success False, with why."""
+
+    message: str
+    success: bool = False
+    status: int = -1
+    delta_s: float = math.nan
+    mode: str = ""
+
+
+def _run_solver(solver: Any, s: SetDerivation) -> Any:
+    try:
+        return solver(s.params)
+    except Exception as exc:  # a failing solver must not crash the check; reported as a rule
+        return _SolverFailure(f"{type(exc).__name__}: {exc}")
+
+
+def _set_dict(sc: SetCheck) -> dict[str, Any]:
+    s = sc.derivation
+    params = {**s.params.as_dict(), "lambda": s.lam}
+    derived = s.derived()
+    speed = next((r for r in sc.rules if r.id == "speed" and r.value is not None), None)
+    if speed is not None and speed.passed:
+        derived["speed"] = format_speed(speed.value)
+        derived["time_to_cross"] = format_time(s.travel_range_m / abs(speed.value))
+    p = sc.periodic
+    return {
+        "name": s.name,
+        "intended_mode": s.intended_mode,
+        "impact_direction": s.actuator_set.impact_direction,
+        "params": params,
+        "derived": derived,
+        "mode_predicted": sc.mode_predicted,
+        "mode_source": sc.mode_source,
+        "simulated": p is not None,
+        "simulated_because": sc.simulated_because,
+        "simulation": None
+        if p is None
+        else {
+            "success": bool(getattr(p, "success", False)),
+            "message": str(getattr(p, "message", "")),
+            "delta_s": _json_float(getattr(p, "delta_s", None)),
+        },
+        "published_fit": [
+            {
+                "param": c.name,
+                "computed": c.computed,
+                "published": list(c.published),
+                "rel_diff": c.rel_diff,
+            }
+            for c in s.published
+        ],
+        "record": [
+            {
+                "symbol": st.symbol,
+                "key": st.key,
+                "description": st.description,
+                "formula": st.formula,
+                "value": st.value_str,
+                "inputs": list(st.inputs),
+            }
+            for st in s.record
+        ],
+        "rules": [r.as_dict() for r in sc.rules],
+    }
+
+
+def _json_float(x: Any) -> float | str | None:
+    if x is None:
+        return None
+    x = float(x)
+    return x if math.isfinite(x) else str(x)

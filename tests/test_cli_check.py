@@ -1,0 +1,179 @@
+"""`betv check` and `betv schema` through typer's CliRunner (source: the shipped devices,
+hand-computed shin2004 parameters, the issue's JSON contract)."""
+
+import json
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+from betvdesign import rules
+from betvdesign.cli import app
+from betvdesign.loader import load_device
+from betvdesign.spec import DeviceSpec
+
+DEVICES = Path(__file__).resolve().parents[1] / "devices"
+SHIN = str(DEVICES / "shin2004.yaml")
+OWN = ["push_demo", "pull_demo", "bidir_demo"]
+
+
+@pytest.fixture
+def no_solver(monkeypatch):
+    """Closed form only, whether or not the exact solver is installed."""
+    monkeypatch.setattr(rules, "load_solver", lambda: None)
+
+
+def run(*args):
+    return CliRunner().invoke(app, list(args))
+
+
+def test_shin2004_fails_the_window_and_shows_fit_mismatch(no_solver):
+    r = run("check", SHIN)
+    assert r.exit_code == 1, r.output
+    out = r.stdout
+    assert "FAIL" in out and "frequency-window" in out
+    assert "below the window" in out
+    assert "published-fit.varpi" in out and "disagree" in out
+    assert "cannot decide" in out  # β = 9.09 outside the λ fit range
+
+
+def test_shin2004_json_contract(no_solver):
+    r = run("check", SHIN, "--json")
+    assert r.exit_code == 1
+    d = json.loads(r.stdout)
+    assert set(d) >= {"device", "params", "derived", "mode_predicted", "rules", "verdict"}
+    assert d["device"] == "shin2004" and d["verdict"] == "fail"
+    assert set(d["params"]) == {"varpi", "alpha", "beta", "kappa", "lambda"}
+    assert d["params"]["varpi"] == pytest.approx(1000 / 2940)
+    assert d["params"]["beta"] == pytest.approx(3.6e-11 / (2330 * 170e-6 * 5e-6 * 2e-6))
+    assert d["derived"]["f_act"] == "1000 Hz"
+    assert all(isinstance(v, str) and " " in v for v in d["derived"].values())
+    assert d["mode_predicted"] == "pull"
+    for rule in d["rules"]:
+        assert set(rule) >= {"id", "severity", "passed", "value", "threshold", "message"}
+        assert rule["severity"] in ("error", "warning", "info")
+    win = [x for x in d["rules"] if x["id"] == "frequency-window"]
+    assert win and not any(x["passed"] for x in win)
+    fit = d["sets"][0]["published_fit"]
+    assert {f["param"] for f in fit} == {"varpi", "alpha", "beta", "kappa"}
+    assert next(f for f in d["sets"][0]["record"] if f["symbol"] == "f_act")["formula"] == (
+        "2·f_drive"
+    )
+
+
+@pytest.mark.parametrize("name", OWN)
+def test_own_designs_pass(name, no_solver):
+    r = run("check", str(DEVICES / f"{name}.yaml"), "--json")
+    assert r.exit_code == 0, r.stdout
+    d = json.loads(r.stdout)
+    assert d["verdict"] == "pass"
+    assert all(x["passed"] for x in d["rules"] if x["severity"] != "info"), d["rules"]
+    for s in d["sets"]:
+        assert s["mode_predicted"] == s["intended_mode"]
+        assert abs(s["params"]["lambda"] - 1) >= 0.5  # "clear" designs
+
+
+def test_several_files_give_a_list_and_worst_exit(no_solver):
+    r = run("check", "--json", str(DEVICES / "push_demo.yaml"), SHIN)
+    assert r.exit_code == 1
+    d = json.loads(r.stdout)
+    assert [x["device"] for x in d] == ["push_demo", "shin2004"]
+    r = run("check", "--json", *(str(DEVICES / f"{n}.yaml") for n in OWN))
+    assert r.exit_code == 0 and len(json.loads(r.stdout)) == 3
+
+
+def test_tables_and_derivation(no_solver):
+    r = run("check", "--derivation", str(DEVICES / "bidir_demo.yaml"))
+    assert r.exit_code == 0
+    assert "PASS" in r.stdout and "set east" in r.stdout and "set west" in r.stdout
+    assert "derivation of set east" in r.stdout and "(f_v/f_h)²" in r.stdout
+
+
+def test_simulate_without_solver_is_exit_2(no_solver):
+    r = run("check", "--simulate", SHIN)
+    assert r.exit_code == 2
+    assert "exact solver" in r.stderr and "Traceback" not in r.output
+
+
+def test_usage_errors_exit_2():
+    assert run("check").exit_code == 2
+    assert run("check", "--simulate", "--closed-form-only", SHIN).exit_code == 2
+    assert run("check", "--lambda-margin", "-1", SHIN).exit_code == 2
+
+
+def test_bad_file_exit_2_names_file_line_field(tmp_path, no_solver):
+    bad = tmp_path / "bad.yaml"
+    bad.write_text(Path(SHIN).read_text().replace("beam_width: 5 um", "beam_width: 5", 1))
+    r = run("check", str(bad), SHIN)
+    assert r.exit_code == 2
+    assert f"{bad}:" in r.stderr and "slider.beam_width: missing unit" in r.stderr
+    assert r.stdout == ""  # nothing half-reported
+    missing = run("check", str(tmp_path / "nope.yaml"))
+    assert missing.exit_code == 2 and "file not found" in missing.stderr
+
+
+def test_schema_round_trip(tmp_path):
+    """The exported schema describes the shipped files; model -> JSON -> model is lossless."""
+    r = run("schema")
+    assert r.exit_code == 0
+    schema = json.loads(r.stdout)
+    assert schema["additionalProperties"] is False
+    assert set(schema["required"]) == {"name", "slider", "actuator_sets"}
+    out = tmp_path / "schema.json"
+    assert run("schema", "-o", str(out)).exit_code == 0
+    assert json.loads(out.read_text()) == schema
+    for path in sorted(DEVICES.glob("*.yaml")):
+        spec = load_device(path)
+        data = json.loads(spec.model_dump_json(exclude_none=True))
+        assert DeviceSpec.model_validate(data) == spec
+        _assert_conforms(data, schema, schema)
+
+
+def test_schema_output_dir_missing_is_exit_2(tmp_path):
+    r = run("schema", "-o", str(tmp_path / "no" / "s.json"))
+    assert r.exit_code == 2 and "does not exist" in r.stderr
+
+
+def _assert_conforms(data, sch, root):
+    """Minimal JSON-schema walker (properties, required, additionalProperties, $ref,
+    anyOf/oneOf, items, type string/number/integer) — enough for this schema."""
+    if "$ref" in sch:
+        name = sch["$ref"].split("/")[-1]
+        return _assert_conforms(data, root["$defs"][name], root)
+    for key in ("anyOf", "oneOf"):
+        if key in sch:
+            errors = []
+            for sub in sch[key]:
+                try:
+                    _assert_conforms(data, sub, root)
+                    return None
+                except AssertionError as exc:
+                    errors.append(exc)
+            raise AssertionError(f"{data!r} matches no alternative: {errors}")
+    t = sch.get("type")
+    if t == "object" or "properties" in sch:
+        assert isinstance(data, dict)
+        props = sch.get("properties", {})
+        assert set(sch.get("required", [])) <= set(data)
+        if sch.get("additionalProperties") is False:
+            assert set(data) <= set(props), set(data) - set(props)
+        for k, v in data.items():
+            if k in props:
+                _assert_conforms(v, props[k], root)
+    elif t == "array":
+        assert isinstance(data, list)
+        for item in data:
+            _assert_conforms(item, sch.get("items", {}), root)
+    elif t == "string":
+        assert isinstance(data, str)
+        if "enum" in sch:
+            assert data in sch["enum"]
+        if "const" in sch:
+            assert data == sch["const"]
+    elif t == "integer":
+        assert isinstance(data, int)
+    elif t == "number":
+        assert isinstance(data, int | float)
+    elif t == "null":
+        assert data is None
+    return None
