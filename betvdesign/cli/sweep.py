@@ -286,3 +286,49 @@ def lambda_cmd(
             typer.echo(f"Δs changes sign at λ ≈ {where} (the fit puts the boundary at 1)")
 
         emit(data, as_json, human)
+
+
+@sweep_app.command("regime")
+def regime_cmd(
+    varpi: Annotated[
+        str, typer.Option(help="ϖ grid in (0, 10], e.g. 0.005:10:0.005.")
+    ] = "0.005:10:0.005",
+    max_cycles: Annotated[
+        int, typer.Option(help="Horizon [cycles]; the second half is analysed.")
+    ] = 400,
+    out: OutOpt = None,
+    overwrite: OverwriteOpt = False,
+    executor: ExecutorOpt = "process",
+    workers: WorkersOpt = None,
+    chunksize: ChunkOpt = None,
+    scheduler: SchedulerOpt = None,
+    as_json: JsonOpt = False,
+    quiet: QuietOpt = False,
+) -> None:
+    """Vertical regime diagram: impact period and contact fraction over ϖ."""
+    from betvdesign.studies.regime import run_regime
+
+    with user_errors(), interruptible(out):
+        grid = axis(varpi, "varpi")
+        ex = executor_from(executor, workers, chunksize, scheduler)
+        with progress_bar("vertical regimes", quiet) as progress:
+            run, summary = run_regime(
+                grid,
+                max_cycles=max_cycles,
+                executor=ex,
+                out=str(out) if out else None,
+                overwrite=overwrite,
+                progress=progress,
+            )
+        data = {"study": "regime", **run_block(run), **summary}
+
+        def human() -> None:
+            for iv in summary["intervals"]:
+                typer.echo(
+                    f"ϖ {iv['from']:8.4g} – {iv['to']:<8.4g} {iv['label']:<14} "
+                    f"({iv['points']} points)"
+                )
+            for e in summary["errors"]:
+                typer.echo(f"  error at ϖ={e['varpi']:g}: {e['message']}")
+
+        emit(data, as_json, human)

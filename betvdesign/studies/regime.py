@@ -1,0 +1,191 @@
+"""Vertical regime diagram: impact period and contact fraction over ϖ ∈ (0, 10].
+
+The head's vertical motion does not depend on the slider ("model no more than
+a scene needs"): this study uses only the exact vertical model
+(``dynamics.vertical``), never the slider. Per ϖ it records the solver's
+impact period (cycles between contact ends), hits and impulsive hits per
+cycle, and contact fraction, after transients, and labels the point
+(docs/MODEL.md, "What the model shows"):
+
+* ``period-1``: one hit per cycle with finite contact (the design window);
+* ``multi-hit``: several hits per cycle (small ϖ);
+* ``period-k``: one contact every k ≥ 2 cycles (k = 2: period doubled);
+* ``impulsive``: no finite contact recurs, the hits are impulsive (zero
+  duration) and repeat periodically; the slider is not driven;
+* ``aperiodic``: impulsive hits that repeat with no period found.
+
+Impulsive-only motion is a circle map: an impulsive hit leaves ξ = ξ' = 0, so
+the motion after it depends only on the hit's phase in the cycle. Its period
+is found from the hit phases over the second half of the horizon (after
+transients): period p hits if every phase recurs p hits later to 1e-9 of a
+cycle. Contiguous runs of one label are reported as ϖ intervals.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from betvdesign.errors import UsageError
+from betvdesign.studies.executors import Executor
+from betvdesign.studies.grid import Grid
+from betvdesign.studies.runner import Progress, Study, StudyRun, run_study
+
+#: Relative (to one cycle) tolerance for two hit phases to count as equal.
+PHASE_RTOL = 1e-9
+#: Longest impulsive-hit period (in hits) searched for.
+MAX_HIT_PERIOD = 64
+
+COLUMNS: dict[str, type] = {
+    "key": int,
+    "varpi": float,
+    "status": str,
+    "label": str,
+    "regime": str,
+    "period_cycles": int,
+    "hits_per_cycle": float,
+    "impulsive_per_cycle": float,
+    "contact_fraction": float,
+    "message": str,
+}
+
+
+def impulsive_period(varpi: float, horizon: int) -> tuple[int | None, float]:
+    """(period in cycles or None, impulsive hits per cycle) of impulsive-only motion.
+
+    Uses the hit phases of the second half of ``horizon`` cycles (see module doc).
+    """
+    from betvdesign.dynamics.vertical import VerticalSchedule
+
+    vs = VerticalSchedule(varpi, horizon=horizon)
+    T = 2.0 * math.pi / varpi
+    hits = [
+        (m, t) for m, cyc in enumerate(vs.prefix) if m >= len(vs.prefix) // 2 for t in cyc.impulsive
+    ]
+    n_cyc = max(1, len(vs.prefix) - len(vs.prefix) // 2)
+    rate = len(hits) / n_cyc
+    if len(hits) < 4:
+        return None, rate
+    phase = np.array([t for _, t in hits]) / T
+    cycle = np.array([m for m, _ in hits])
+    for p in range(1, min(MAX_HIT_PERIOD, len(hits) // 2) + 1):
+        d = np.abs(phase[p:] - phase[:-p])
+        d = np.minimum(d, 1.0 - d)
+        if np.all(d <= PHASE_RTOL):
+            k = np.unique(cycle[p:] - cycle[:-p])
+            if k.size == 1:
+                return int(k[0]), rate
+    return None, rate
+
+
+def regime_point(task: Mapping[str, Any]) -> dict[str, Any]:
+    """Worker: vertical-only motion at one ϖ (plain data in and out)."""
+    from betvdesign.dynamics.vertical import vertical_motion
+
+    row: dict[str, Any] = dict.fromkeys(COLUMNS)
+    row.update(key=task["key"], varpi=task["varpi"])
+    try:
+        r = vertical_motion(task["varpi"], max_cycles=task["max_cycles"])
+    except Exception as exc:  # a failed point is recorded and listed, never dropped
+        row.update(status="error", label="error", message=f"{type(exc).__name__}: {exc}")
+        return row
+    row.update(
+        status=r.status,
+        regime=r.regime,
+        period_cycles=r.period_cycles,
+        hits_per_cycle=float(r.hits_per_cycle),
+        impulsive_per_cycle=float(r.impulsive_per_cycle),
+        contact_fraction=float(r.contact_fraction),
+        message=r.message,
+    )
+    if r.period_cycles is not None:
+        k = r.period_cycles
+        row["label"] = (
+            f"period-{k}" if k > 1 else ("multi-hit" if r.hits_per_cycle > 1 else "period-1")
+        )
+        return row
+    k, rate = impulsive_period(task["varpi"], task["max_cycles"])
+    row.update(period_cycles=k, impulsive_per_cycle=rate, hits_per_cycle=rate)
+    if rate == 0.0:
+        row["label"] = "no-impact"
+    else:
+        row["label"] = "impulsive" if k is not None else "aperiodic"
+    return row
+
+
+def regime_study(varpi: Sequence[float], *, max_cycles: int = 400) -> Study:
+    """One vertical-only solve per ϖ (ascending)."""
+    v = np.asarray(varpi, dtype=float)
+    if np.any(~(v > 0)):
+        raise UsageError("varpi: values must be > 0")
+    if max_cycles < 4:
+        raise UsageError(f"--max-cycles must be >= 4, got {max_cycles}")
+    grid = Grid({"varpi": np.sort(v)})
+    tasks = [{"key": p.key, **p.values, "max_cycles": max_cycles} for p in grid]
+    params = {"grid": grid.as_dict(), "max_cycles": max_cycles}
+    return Study("regime", COLUMNS, params, tasks, regime_point)
+
+
+@dataclass(frozen=True)
+class Interval:
+    """A run of grid points sharing one label: ϖ from ``lo`` to ``hi`` [-]."""
+
+    label: str
+    lo: float
+    hi: float
+    points: int
+
+    def as_dict(self) -> dict[str, Any]:
+        return {"label": self.label, "from": self.lo, "to": self.hi, "points": self.points}
+
+
+def intervals(rows: Sequence[Mapping[str, Any]]) -> list[Interval]:
+    """Contiguous runs of equal labels along ϖ."""
+    out: list[Interval] = []
+    for r in sorted(rows, key=lambda r: r["varpi"]):
+        if out and out[-1].label == r["label"]:
+            last = out[-1]
+            out[-1] = Interval(last.label, last.lo, r["varpi"], last.points + 1)
+        else:
+            out.append(Interval(r["label"], r["varpi"], r["varpi"], 1))
+    return out
+
+
+def summarise(rows: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
+    """Intervals, counts per label, and every failed point."""
+    ivs = intervals(rows)
+    counts: dict[str, int] = {}
+    for r in rows:
+        counts[r["label"]] = counts.get(r["label"], 0) + 1
+    return {
+        "points": len(rows),
+        "counts": counts,
+        "intervals": [i.as_dict() for i in ivs],
+        "errors": [
+            {"varpi": r["varpi"], "message": r["message"]} for r in rows if r["status"] == "error"
+        ],
+    }
+
+
+def run_regime(
+    varpi: Sequence[float],
+    *,
+    max_cycles: int = 400,
+    executor: Executor | None = None,
+    out: str | None = None,
+    overwrite: bool = False,
+    progress: Progress | None = None,
+) -> tuple[StudyRun, dict[str, Any]]:
+    """Build, run and summarise the vertical regime diagram."""
+    run = run_study(
+        regime_study(varpi, max_cycles=max_cycles),
+        executor,
+        out=out,
+        overwrite=overwrite,
+        progress=progress,
+    )
+    return run, summarise(run.rows)
