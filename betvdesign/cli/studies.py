@@ -9,7 +9,7 @@ from typing import Annotated
 import typer
 
 from betvdesign.cli import app
-from betvdesign.cli.common import user_errors
+from betvdesign.cli.common import EXIT_RULE_FAILED, user_errors
 from betvdesign.cli.sweep import (
     ChunkOpt,
     ExecutorOpt,
@@ -25,6 +25,7 @@ from betvdesign.cli.sweep import (
     progress_bar,
     run_block,
 )
+from betvdesign.errors import UsageError
 
 
 @app.command("tolerance")
@@ -108,3 +109,47 @@ def tolerance_cmd(
                 typer.echo(f"    most sensitive ({s['ranked_by']}): {ranked}")
 
         emit(data, as_json, human)
+
+
+@app.command("calibrate")
+def calibrate_cmd(
+    device: Annotated[Path, typer.Argument(help="Device YAML file.")],
+    data: Annotated[Path, typer.Argument(help="Measurements CSV (header 'name [unit]').")],
+    kind: Annotated[
+        str, typer.Option(help="speed (voltage, speed) or displacement (time, displacement).")
+    ] = "speed",
+    law: Annotated[
+        str, typer.Option(help="per-voltage, linear (u = g·V), quadratic (u = g·V²) or fixed.")
+    ] = "linear",
+    fit_alpha: Annotated[
+        bool, typer.Option("--fit-alpha", help="Also fit α = k_v/k_h (re-solves per step).")
+    ] = False,
+    set_name: Annotated[str | None, typer.Option("--set", help="Actuator set [first].")] = None,
+    out: Annotated[
+        Path | None, typer.Option("--out", "-o", help="Write the device-file snippet (YAML).")
+    ] = None,
+    as_json: JsonOpt = False,
+) -> None:
+    """Fit the amplitude u (per voltage, or a law's gain) and optionally α to measurements."""
+    from betvdesign.studies.calibration import calibrate, read_measurements
+    from betvdesign.studies.store import write_atomic
+
+    with user_errors():
+        if kind not in ("speed", "displacement"):
+            raise UsageError(f"--kind must be speed or displacement, not {kind!r}")
+        if out is not None and not out.parent.is_dir():
+            raise UsageError(f"{out}: directory {out.parent} does not exist")
+        measured = read_measurements(data, kind)  # type: ignore[arg-type]
+        result = calibrate(device, measured, law=law, fit_alpha=fit_alpha, set_name=set_name)  # type: ignore[arg-type]
+        if out is not None:
+            try:
+                write_atomic(out, result.snippet)
+            except OSError as exc:
+                raise UsageError(f"{out}: cannot write: {exc.strerror}") from None
+        payload = {"study": "calibration", "device": str(device), "data": str(data)}
+        payload |= result.as_dict()
+        payload["out"] = str(out) if out else None
+        emit(payload, as_json, lambda: typer.echo(result.snippet, nl=False))
+        if result.status != "converged":
+            typer.echo(f"error: fit did not converge: {result.message}", err=True)
+            raise typer.Exit(EXIT_RULE_FAILED)

@@ -195,6 +195,9 @@ def pushpull_cmd(
                 f"{summary.n_points} points, {summary.n_converged} converged "
                 f"({summary.n_push} push, {summary.n_pull} pull)"
             )
+            typer.echo(
+                f"λ fit predicts push at {summary.n_predicted_push}/{summary.n_points} points"
+            )
             if agree is not None:
                 typer.echo(
                     f"λ rule agrees at {summary.n_agree}/{summary.n_converged} "

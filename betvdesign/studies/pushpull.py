@@ -146,6 +146,7 @@ class PushPullSummary:
     n_push: int
     n_pull: int
     n_agree: int
+    n_predicted_push: int
     disagreements: list[dict[str, Any]]
     not_converged: list[dict[str, Any]]
 
@@ -161,6 +162,7 @@ class PushPullSummary:
             "converged": self.n_converged,
             "push": self.n_push,
             "pull": self.n_pull,
+            "lambda_predicts_push": self.n_predicted_push,
             "lambda_agrees": self.n_agree,
             "lambda_agreement": self.agreement,
             "disagreements": self.disagreements,
@@ -193,6 +195,7 @@ def summarise(rows: Sequence[Mapping[str, Any]], fidelity: str = "periodic") -> 
         n_push=sum(r["mode"] == "push" for r in conv),
         n_pull=sum(r["mode"] == "pull" for r in conv),
         n_agree=len(conv) - len(disagree),
+        n_predicted_push=sum(r["mode_predicted"] == "push" for r in rows),
         disagreements=disagree,
         not_converged=failed,
     )
