@@ -53,6 +53,9 @@ def load_device_text(text: str, filename: str = "<string>") -> DeviceSpec:
         mark = exc.problem_mark or exc.context_mark
         loc = Location(filename, mark.line + 1, mark.column + 1) if mark else Location(filename)
         problem = exc.problem or exc.context or "malformed YAML"
+        cm = exc.context_mark
+        if exc.problem and exc.context and cm is not None and cm is not mark:
+            problem += f" ({exc.context} at line {cm.line + 1}, column {cm.column + 1})"
         raise SpecError([*issues, SpecIssue(loc, "", f"invalid YAML: {problem}")]) from None
     except YAMLError as exc:
         raise SpecError(
@@ -69,7 +72,8 @@ def load_device_text(text: str, filename: str = "<string>") -> DeviceSpec:
                 SpecIssue(
                     Location(filename, 1, 1),
                     "",
-                    f"expected a mapping at the top level, got {type(data).__name__}",
+                    "expected a mapping at the top level, got "
+                    + ("a list" if isinstance(data, list) else f"a {type(data).__name__}"),
                 )
             ]
         )
@@ -141,7 +145,9 @@ def _plain(x: Any) -> Any:
     return x
 
 
-def _locate(root: CommentedMap, loc: tuple[Any, ...]) -> tuple[int, int, str]:
+def _locate(
+    root: CommentedMap, loc: tuple[Any, ...], *, name_missing: bool = True
+) -> tuple[int, int, str]:
     """Walk a pydantic error location through the YAML data: 1-based line/col and path.
 
     Elements of ``loc`` that are not keys in the data (discriminator tags, union
@@ -161,7 +167,7 @@ def _locate(root: CommentedMap, loc: tuple[Any, ...]) -> tuple[int, int, str]:
             line, col = node.lc.item(el)
             node = node[el]
             path = _join(path, el)
-        elif last and isinstance(el, str | int):
+        elif last and name_missing and isinstance(el, str | int):
             path = _join(path, el)
     return line + 1, col + 1, path
 
@@ -178,6 +184,20 @@ def _last_key_value_pos(root: CommentedMap, loc: tuple[Any, ...]) -> tuple[int, 
             pos = node.lc.item(el)
             node = node[el]
     return None if pos is None else (pos[0] + 1, pos[1] + 1)
+
+
+def _split_path(rel: str) -> tuple[Any, ...]:
+    """``"points[1].voltage"`` -> ``("points", 1, "voltage")``."""
+    out: list[Any] = []
+    for part in rel.split("."):
+        name, _, rest = part.partition("[")
+        if name:
+            out.append(name)
+        while rest:
+            idx, _, rest = rest.partition("]")
+            out.append(int(idx))
+            rest = rest.lstrip("[")
+    return tuple(out)
 
 
 @functools.cache
@@ -220,15 +240,22 @@ def _validation_issues(exc: ValidationError, root: CommentedMap, filename: str) 
     grouped: dict[tuple[int, int, str], list[str]] = {}
     for err in exc.errors():
         loc = tuple(err["loc"])
-        line, col, path = _locate(root, loc)
+        msg = _message(err)
+        relocated = msg.startswith("@") and ": " in msg
+        if relocated:  # spec.at(): the error belongs to a sub-field
+            rel, msg = msg[1:].split(": ", 1)
+            loc = loc + _split_path(rel)
+        # a last loc element absent from the data names a missing field; otherwise it is
+        # a union tag (e.g. "measured", "float") and is left out of the path
+        name_missing = relocated or err["type"] in ("missing", "extra_forbidden")
+        line, col, path = _locate(root, loc, name_missing=name_missing)
         if err["type"] not in ("extra_forbidden", "missing"):
             pos = _last_key_value_pos(root, loc)
             if pos is not None:
                 line, col = pos
         msgs = grouped.setdefault((line, col, path), [])
-        m = _message(err)
-        if m not in msgs:
-            msgs.append(m)
+        if msg not in msgs:
+            msgs.append(msg)
     issues = [
         SpecIssue(Location(filename, line, col), path, "; or ".join(msgs))
         for (line, col, path), msgs in grouped.items()

@@ -43,6 +43,15 @@ Mode = Literal["push", "pull"]
 MU_MAX = 1.5
 
 
+def at(path: str, message: str) -> ValueError:
+    """A cross-field error that belongs to ``path`` (relative to the model raising it).
+
+    The loader moves the error's file position to that field; read directly, the
+    message says ``@path: message``.
+    """
+    return ValueError(f"@{path}: {message}")
+
+
 class _Model(BaseModel):
     model_config = ConfigDict(
         extra="forbid", frozen=True, strict=True, arbitrary_types_allowed=True
@@ -128,7 +137,7 @@ class ImpactHead(_Model):
         if (self.mass is None) == (self.geometry is None):
             raise ValueError("give exactly one of 'mass' or 'geometry' for the impact head")
         if self.mass is not None and self.material is not None:
-            raise ValueError("'material' only applies with 'geometry' (mass is given directly)")
+            raise at("material", "'material' only applies with 'geometry' (mass is given)")
         return self
 
 
@@ -136,7 +145,17 @@ class Contact(_Model):
     """Head/slider contact: impact angle θ in (0°, 90°) and Coulomb friction μ [-]."""
 
     impact_angle: ImpactAngle
-    friction: float = Field(gt=0.0, le=MU_MAX, description="Coulomb friction coefficient μ [-]")
+    friction: float = Field(description=f"Coulomb friction coefficient μ [-], 0 < μ <= {MU_MAX}")
+
+    @field_validator("friction")
+    @classmethod
+    def _physical_mu(cls, v: float) -> float:
+        if not (0.0 < v <= MU_MAX):
+            raise ValueError(
+                f"friction coefficient μ = {v:g} outside the physical range (0, {MU_MAX:g}] "
+                "(polysilicon on polysilicon ≈ 0.4; μ = 0 gives κ = 0, outside the model)"
+            )
+        return v
 
 
 class LinearCalibration(_Model):
@@ -167,8 +186,12 @@ class MeasuredCalibration(_Model):
     @model_validator(mode="after")
     def _increasing(self) -> MeasuredCalibration:
         volts = [p.voltage.to("V").magnitude for p in self.points]
-        if any(b <= a for a, b in itertools.pairwise(volts)):
-            raise ValueError("calibration points must have strictly increasing voltages")
+        for i, (a, b) in enumerate(itertools.pairwise(volts)):
+            if b <= a:
+                raise at(
+                    f"points[{i + 1}].voltage",
+                    "calibration points must have strictly increasing voltages",
+                )
         return self
 
     @property
@@ -213,7 +236,7 @@ class Actuator(_Model):
         if (self.amplitude is None) == (self.calibration is None):
             raise ValueError("give exactly one of 'amplitude' or 'calibration'")
         if self.amplitude is not None and self.amplitude.to("m").magnitude <= 0:
-            raise ValueError("amplitude must be > 0")
+            raise at("amplitude", "amplitude must be > 0")
         return self
 
 
@@ -254,14 +277,15 @@ class ActuatorSet(_Model):
     def _drive_matches_calibration(self) -> ActuatorSet:
         cal = self.actuator.calibration
         if cal is not None and self.drive.voltage is None:
-            raise ValueError("drive.voltage is required when the actuator gives a calibration")
+            raise at("drive.voltage", "required when the actuator gives a calibration")
         if isinstance(cal, MeasuredCalibration) and self.drive.voltage is not None:
             lo, hi = cal.voltage_range
             v = self.drive.voltage
             if not (lo <= v <= hi):
-                raise ValueError(
+                raise at(
+                    "drive.voltage",
                     f"drive.voltage {format_quantity(v)} lies outside the measured calibration "
-                    f"range {format_quantity(lo)} to {format_quantity(hi)}; no extrapolation"
+                    f"range {format_quantity(lo)} to {format_quantity(hi)}; no extrapolation",
                 )
         return self
 
@@ -307,9 +331,12 @@ class DeviceSpec(_Model):
     @model_validator(mode="after")
     def _unique_names(self) -> DeviceSpec:
         names = [s.name for s in self.actuator_sets]
-        dups = sorted({n for n in names if names.count(n) > 1})
-        if dups:
-            raise ValueError(f"actuator set names must be unique; repeated: {', '.join(dups)}")
+        for i, n in enumerate(names):
+            if n in names[:i]:
+                raise at(
+                    f"actuator_sets[{i}].name",
+                    f"actuator set names must be unique; {n!r} is also set {names.index(n)}",
+                )
         return self
 
 
