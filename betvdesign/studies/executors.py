@@ -41,6 +41,15 @@ Task = Any
 Row = dict[str, Any]
 Worker = Callable[[Task], Row]
 
+#: Modules the fork server imports once so workers start warm (missing ones are skipped).
+_PRELOAD = (
+    "numpy",
+    "scipy.optimize",
+    "betvdesign.loader",
+    "betvdesign.nondim",
+    "betvdesign.dynamics",
+)
+
 #: In-flight chunks per worker (keeps workers busy without flooding the queue).
 _WINDOW_PER_WORKER = 4
 
@@ -144,6 +153,8 @@ class ProcessExecutor:
         chunks = chunked(tasks, size)
         workers = min(self.workers, len(chunks))
         ctx = multiprocessing.get_context("forkserver")
+        # Import the heavy modules once in the fork server, not in every worker.
+        ctx.set_forkserver_preload([*_PRELOAD, fn.__module__])
         pool = ProcessPoolExecutor(max_workers=workers, mp_context=ctx)
         try:
             yield from _drain(
