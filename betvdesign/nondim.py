@@ -403,6 +403,8 @@ def derive_set(spec: DeviceSpec, aset: ActuatorSet) -> SetDerivation:
         ureg.Quantity(lam, ""),
         ("ϖ", "α", "β", "κ"),
     )
+    published = _compare(params, spec.published_fit)
+    _record_published(rec, published, spec.published_fit)
     scales = Scales(
         length_m=float(l_s.to("m").magnitude),
         time_s=float(t_s.to("s").magnitude),
@@ -420,7 +422,7 @@ def derive_set(spec: DeviceSpec, aset: ActuatorSet) -> SetDerivation:
         record=rec.steps,
         actuator_set=aset,
         travel_range_m=float(sl.travel_range.to("m").magnitude),
-        published=_compare(params, spec.published_fit),
+        published=published,
     )
 
 
@@ -433,3 +435,28 @@ def _compare(params: ModelParams, fit: PublishedFit | None) -> list[FitCompariso
         if vals:
             out.append(FitComparison(name, getattr(params, name), tuple(vals)))
     return out
+
+
+_SYMBOL = {"varpi": "ϖ", "alpha": "α", "beta": "β", "kappa": "κ"}
+
+
+def _record_published(
+    rec: _Record, published: list[FitComparison], fit: PublishedFit | None
+) -> None:
+    """Published fit values go into the record next to the computed ones, with the gap."""
+    source = f" ({fit.source})" if fit is not None and fit.source else ""
+    for c in published:
+        sym = _SYMBOL[c.name]
+        for i, v in enumerate(c.published):
+            suffix = f"[{i}]" if len(c.published) > 1 else ""
+            gap = abs(c.computed - v) / abs(v)
+            rec.steps.append(
+                DerivationStep(
+                    f"{sym}_pub{suffix}",
+                    f"published fit{source}; computed {sym} = {c.computed:.4g} is {gap:.0%} away",
+                    f"spec: published_fit.{c.name}" + suffix,
+                    ureg.Quantity(v, ""),
+                    (),
+                    f"{c.name}_pub{suffix}",
+                )
+            )

@@ -5,6 +5,8 @@ import math
 from pathlib import Path
 
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from betvdesign.loader import load_device, load_device_text
 from betvdesign.nondim import derive
@@ -133,6 +135,51 @@ def test_record_lists_inputs_and_formulas():
     assert s.step("u").formula == "gain·V"
     # every input of every step is itself in the record, earlier
     seen: set[str] = set()
-    for st in s.record:
-        assert set(st.inputs) <= seen, st.symbol
-        seen.add(st.symbol)
+    for step in s.record:
+        assert set(step.inputs) <= seen, step.symbol
+        seen.add(step.symbol)
+
+
+@settings(max_examples=25, deadline=None)
+@given(
+    f_v=st.floats(1.0, 50.0),
+    ratio=st.floats(0.2, 3.0),
+    mass=st.floats(0.001, 0.1),
+)
+def test_parameters_do_not_depend_on_units(f_v, ratio, mass):
+    """Invariant: the same device written in other units gives the same (ϖ, α, β, κ)."""
+    f_drive = f_v * ratio / 2  # kHz, AC drive -> ϖ = ratio
+    a = _derive(
+        head=f"{{mass: {mass} ug}}",
+        act=f"{{vertical_resonance: {f_v} kHz, alpha: 2, amplitude: 0.2 um}}",
+        drive=f"{{waveform: ac, frequency: {f_drive} kHz}}",
+    )
+    b = _derive(
+        head=f"{{mass: {mass * 1e-9} kg}}",
+        act=f"{{vertical_resonance: {f_v * 1e3} Hz, alpha: 2, amplitude: 200 nm}}",
+        drive=f"{{waveform: ac, frequency: {f_drive * 1e-3} MHz}}",
+    )
+    assert a.params.varpi == pytest.approx(ratio, rel=1e-12)
+    for name in ("varpi", "alpha", "beta", "kappa"):
+        assert getattr(a.params, name) == pytest.approx(getattr(b.params, name), rel=1e-12)
+    assert a.scales.length_m == pytest.approx(b.scales.length_m, rel=1e-12)
+    assert a.lam == pytest.approx(b.lam, rel=1e-10)
+
+
+@pytest.mark.parametrize("deg", [10.0, 30.0, 45.0, 60.0, 80.0])
+def test_kappa_is_mu_tan_theta(deg):
+    text = BASE.replace("30 deg", f"{deg} deg").replace("HEAD", "{mass: 0.02 ug}")
+    text = text.replace("ACT", "{vertical_resonance: 10 kHz, alpha: 2, amplitude: 0.2 um}")
+    s = derive(load_device_text(text.replace("DRIVE", "{waveform: ac, frequency: 5 kHz}")))
+    assert s.sets[0].params.kappa == pytest.approx(0.3 * math.tan(math.radians(deg)), rel=1e-12)
+    rad = text.replace(f"{deg} deg", f"{math.radians(deg)!r} rad")
+    s2 = derive(load_device_text(rad.replace("DRIVE", "{waveform: ac, frequency: 5 kHz}")))
+    assert s2.sets[0].params.kappa == pytest.approx(s.sets[0].params.kappa, rel=1e-12)
+
+
+def test_published_values_in_record():
+    s = derive(load_device(DEVICES / "shin2004.yaml")).sets[0]
+    assert s.step("ϖ_pub").magnitude == 0.9
+    assert "62% away" in s.step("ϖ_pub").description
+    assert s.step("β_pub[0]").magnitude == 0.9 and s.step("β_pub[1]").magnitude == 9.0
+    assert s.step("β_pub[1]").key == "beta_pub[1]"
