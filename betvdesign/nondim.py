@@ -21,9 +21,12 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from pathlib import Path
 
 import pint
 
+from betvdesign.errors import Location, ParameterError, SpecError, SpecIssue
+from betvdesign.loader import load_device
 from betvdesign.params import ModelParams
 from betvdesign.spec import (
     ActuatorSet,
@@ -44,6 +47,7 @@ __all__ = [
     "SetDerivation",
     "amplitude_at",
     "derive",
+    "derive_file",
     "derive_set",
 ]
 
@@ -187,9 +191,29 @@ def derive(spec: DeviceSpec) -> DeviceDerivation:
     Raises :class:`~betvdesign.errors.ParameterError` if the numbers give parameters
     the model cannot take (non-finite, non-positive).
     """
-    return DeviceDerivation(
-        name=spec.name, spec=spec, sets=[derive_set(spec, s) for s in spec.actuator_sets]
-    )
+    sets = []
+    for aset in spec.actuator_sets:
+        try:
+            sets.append(derive_set(spec, aset))
+        except (ZeroDivisionError, OverflowError, FloatingPointError) as exc:
+            raise ParameterError(
+                f"set {aset.name!r}: arithmetic failed ({exc}); check for extreme values"
+            ) from None
+        except ParameterError as exc:
+            raise ParameterError(f"set {aset.name!r}: {exc}") from None
+    return DeviceDerivation(name=spec.name, spec=spec, sets=sets)
+
+
+def derive_file(path: str | Path) -> DeviceDerivation:
+    """Load a device file and derive it; every problem is a :class:`SpecError` naming the
+    file (derived parameters the model cannot take, e.g. overflow, included)."""
+    spec = load_device(path)
+    try:
+        return derive(spec)
+    except ParameterError as exc:
+        raise SpecError(
+            [SpecIssue(Location(str(path)), "", f"derived parameters outside the model: {exc}")]
+        ) from None
 
 
 class _Record:
@@ -209,6 +233,13 @@ class _Record:
             value = ureg.Quantity(value, "dimensionless")
         if unit is not None:
             value = value.to(unit)
+        if not formula.startswith("spec:") and symbol != "λ":
+            mag = float(value.magnitude)
+            if not (math.isfinite(mag) and mag > 0.0):
+                raise ParameterError(
+                    f"{symbol} = {formula} = {mag!r}: must be finite and > 0 "
+                    "(check the inputs for extreme or zero values)"
+                )
         self.steps.append(DerivationStep(symbol, description, formula, value, inputs))
         return value
 

@@ -20,8 +20,7 @@ from rich.table import Table
 from betvdesign.cli import app
 from betvdesign.cli.common import EXIT_BAD_INPUT, EXIT_OK, EXIT_RULE_FAILED, user_errors
 from betvdesign.errors import SpecError
-from betvdesign.loader import load_device
-from betvdesign.nondim import derive
+from betvdesign.nondim import derive_file
 from betvdesign.rules import DEFAULT_LAMBDA_MARGIN, CheckResult, RuleResult, check_derivation
 
 _STATUS = {
@@ -62,17 +61,17 @@ def check_cmd(
         raise typer.Exit(EXIT_BAD_INPUT)
     mode = "always" if simulate else ("never" if closed_form_only else "auto")
     with user_errors():
-        specs, issues = [], []
+        derivations, issues = [], []
         for f in files:  # collect the issues of every file before giving up
             try:
-                specs.append((f, load_device(f)))
+                derivations.append((f, derive_file(f)))
             except SpecError as exc:
                 issues.extend(exc.issues)
         if issues:
             raise SpecError(issues)
         results = []
-        for f, spec in specs:
-            res = check_derivation(derive(spec), simulate=mode, lambda_margin=lambda_margin)
+        for f, d in derivations:
+            res = check_derivation(d, simulate=mode, lambda_margin=lambda_margin)
             res.source_file = str(f)
             results.append(res)
     if as_json:
