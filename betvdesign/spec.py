@@ -54,7 +54,11 @@ def at(path: str, message: str) -> ValueError:
 
 class _Model(BaseModel):
     model_config = ConfigDict(
-        extra="forbid", frozen=True, strict=True, arbitrary_types_allowed=True
+        extra="forbid",
+        frozen=True,
+        strict=True,
+        arbitrary_types_allowed=True,
+        use_attribute_docstrings=True,
     )
 
 
@@ -62,7 +66,9 @@ class Material(_Model):
     """A structural material [density in mass/length³]."""
 
     name: str = Field(min_length=1)
+    """Material name (free text)."""
     density: Density
+    """Density ρ, e.g. '2330 kg/m^3'."""
 
 
 #: Named materials a file can refer to by name (``material: polysilicon``).
@@ -92,14 +98,17 @@ class Slider(_Model):
     """
 
     beam_length: Length
+    """Length L of one slider beam."""
     beam_width: Length
+    """Width w of one slider beam."""
     beam_thickness: Length
+    """Thickness t of one slider beam (structural layer)."""
     beam_count: int = Field(default=2, ge=1, le=16)
-    extra_mass: NonNegativeMass = Field(
-        default_factory=lambda: parse_quantity("0 ug"),
-        description="Mass of connectors/extras on top of the beams [mass]; 0 ug by default.",
-    )
+    """Number of parallel beams (2 for the usual BETV slider)."""
+    extra_mass: NonNegativeMass = Field(default_factory=lambda: parse_quantity("0 ug"))
+    """Mass of connectors/extras on top of the beams; '0 ug' by default."""
     travel_range: Length
+    """Distance the slider can travel; used for the time-to-cross estimate."""
 
 
 class DiscGeometry(_Model):
@@ -127,8 +136,11 @@ class ImpactHead(_Model):
     geometry (+ material, the device material by default)."""
 
     mass: Mass | None = None
+    """Head mass m, e.g. '0.036 ug' (or give geometry)."""
     geometry: HeadGeometry | None = None
+    """Head shape and size (disc or box) when the mass is not given."""
     material: Material | None = None
+    """Head material with geometry; the device material by default."""
 
     _material = field_validator("material", mode="before")(_named_material)
 
@@ -145,6 +157,7 @@ class Contact(_Model):
     """Head/slider contact: impact angle θ in (0°, 90°) and Coulomb friction μ [-]."""
 
     impact_angle: ImpactAngle
+    """Impact angle θ between the head's stroke and the slider normal, in (0°, 90°)."""
     friction: float = Field(description=f"Coulomb friction coefficient μ [-], 0 < μ <= {MU_MAX}")
 
     @field_validator("friction")
@@ -215,11 +228,17 @@ class Actuator(_Model):
     """
 
     vertical_resonance: Frequency
-    alpha: float | None = Field(default=None, gt=0.0, description="α = k_v/k_h [-]")
+    """Head vertical resonance f_v: sqrt(k_v/m) = 2π·f_v."""
+    alpha: float | None = Field(default=None, gt=0.0)
+    """α = k_v/k_h [-] given directly (phenomenological, e.g. from a published fit)."""
     horizontal_stiffness: Stiffness | None = None
+    """Tangential contact stiffness k_h; α = k_v/k_h."""
     horizontal_resonance: Frequency | None = None
+    """Tangential resonance f_h; α = (f_v/f_h)²."""
     amplitude: NonNegativeLength | None = None
+    """Actuator deflection amplitude u at the drive voltage (or give a calibration)."""
     calibration: Calibration | None = None
+    """u as a function of the drive voltage: linear, quadratic or measured points."""
 
     @model_validator(mode="after")
     def _exactly_one(self) -> Actuator:
@@ -249,8 +268,11 @@ class Drive(_Model):
     """
 
     waveform: Literal["ac", "dc-biased", "unipolar"]
+    """'ac' (zero DC bias: f_act = 2·frequency), 'dc-biased' or 'unipolar' (f_act = frequency)."""
     frequency: Frequency
+    """Electrical drive frequency."""
     voltage: Voltage | None = None
+    """Drive voltage amplitude; required with a calibration."""
 
     @property
     def doubled(self) -> bool:
@@ -266,8 +288,11 @@ class ActuatorSet(_Model):
     """
 
     name: str = Field(min_length=1)
+    """Name of the set (unique in the device)."""
     intended_mode: Mode
+    """The mode the design relies on: 'push' (slider moves with the impacts) or 'pull'."""
     impact_direction: Literal["+x", "-x"] = "+x"
+    """Direction along the slider in which the heads strike."""
     head: ImpactHead
     contact: Contact
     actuator: Actuator
@@ -304,10 +329,15 @@ class PublishedFit(_Model):
     """
 
     varpi: float | list[float] | None = None
+    """Published ϖ (a number or a list of the values quoted)."""
     alpha: float | list[float] | None = None
+    """Published α."""
     beta: float | list[float] | None = None
+    """Published β."""
     kappa: float | list[float] | None = None
+    """Published κ."""
     source: str | None = None
+    """Citation of the publication."""
 
     def values(self, name: str) -> list[float]:
         v = getattr(self, name)
@@ -320,11 +350,17 @@ class DeviceSpec(_Model):
     """A BETV device: material, slider, one or more actuator sets."""
 
     name: str = Field(min_length=1)
+    """Device name (shipped files use the file stem)."""
     description: str | None = None
+    """Free text."""
     material: Material = POLYSILICON
+    """Slider (and default head) material: a name ('polysilicon') or {name, density}."""
     slider: Slider
+    """The slider beams and travel range."""
     actuator_sets: list[ActuatorSet] = Field(min_length=1)
+    """One set per direction of travel (two opposing sets for a bidirectional device)."""
     published_fit: PublishedFit | None = None
+    """Optional: parameters a publication fitted; `betv check` compares, never uses them."""
 
     _material = field_validator("material", mode="before")(_named_material)
 

@@ -187,6 +187,7 @@ class QuantitySpec:
         if bounds:
             desc += ", " + " and ".join(bounds)
         return {
+            "x-quantity": desc,
             "type": "string",
             "pattern": r"^\s*[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?\s*\S.*$",
             "description": desc,
