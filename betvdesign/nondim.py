@@ -191,16 +191,7 @@ def derive(spec: DeviceSpec) -> DeviceDerivation:
     Raises :class:`~betvdesign.errors.ParameterError` if the numbers give parameters
     the model cannot take (non-finite, non-positive).
     """
-    sets = []
-    for aset in spec.actuator_sets:
-        try:
-            sets.append(derive_set(spec, aset))
-        except (ZeroDivisionError, OverflowError, FloatingPointError) as exc:
-            raise ParameterError(
-                f"set {aset.name!r}: arithmetic failed ({exc}); check for extreme values"
-            ) from None
-        except ParameterError as exc:
-            raise ParameterError(f"set {aset.name!r}: {exc}") from None
+    sets = [derive_set(spec, aset) for aset in spec.actuator_sets]
     return DeviceDerivation(name=spec.name, spec=spec, sets=sets)
 
 
@@ -279,7 +270,22 @@ def _head_mass(rec: _Record, spec: DeviceSpec, aset: ActuatorSet) -> pint.Quanti
 
 
 def derive_set(spec: DeviceSpec, aset: ActuatorSet) -> SetDerivation:
-    """Derivation of one actuator set (see the module docstring for the formulas)."""
+    """Derivation of one actuator set (see the module docstring for the formulas).
+
+    Raises :class:`ParameterError` (naming the set) when a derived value is not finite
+    and positive, or the arithmetic overflows.
+    """
+    try:
+        return _derive_set(spec, aset)
+    except (ZeroDivisionError, OverflowError, FloatingPointError) as exc:
+        raise ParameterError(
+            f"set {aset.name!r}: arithmetic failed ({exc}); check for extreme values"
+        ) from None
+    except ParameterError as exc:
+        raise ParameterError(f"set {aset.name!r}: {exc}") from None
+
+
+def _derive_set(spec: DeviceSpec, aset: ActuatorSet) -> SetDerivation:
     rec = _Record()
     sl = spec.slider
     act = aset.actuator
