@@ -2,11 +2,14 @@
 and the λ formula evaluated by hand; speed = Δs·u·cosθ·f_act computed by hand)."""
 
 import dataclasses
+import json
 import math
 from pathlib import Path
 from types import SimpleNamespace
 
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from betvdesign import rules
 from betvdesign.errors import UsageError
@@ -196,3 +199,28 @@ def test_solver_exception_becomes_failed_simulation():
     res = check_derivation(SHIN, solver=boom, simulate="always")
     r = _rule(res.sets[0].rules, "simulation")
     assert not r.passed and "RuntimeError: solver exploded" in r.message
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    varpi=st.floats(0.05, 5.0),
+    alpha=st.floats(0.01, 10.0),
+    beta=st.floats(0.01, 20.0),
+    kappa=st.floats(0.01, 2.0),
+    intended=st.sampled_from(["push", "pull"]),
+)
+def test_rule_invariants(varpi, alpha, beta, kappa, intended):
+    """Invariants: window ⇔ 0.5 ≤ ϖ < 2; mode ⇔ (λ < 1) matches intent; verdict fails
+    exactly when one of those two error rules fails; every value is JSON-safe."""
+    s = _set(varpi, alpha, beta, kappa, intended=intended)
+    res = evaluate(s)
+    window = _rule(res, "frequency-window").passed
+    mode = _rule(res, "mode").passed
+    assert window == (0.5 <= varpi < 2.0)
+    assert mode == ((s.lam < 1.0) == (intended == "push"))
+    assert (verdict(res) == "pass") == (window and mode)
+    assert (undecided_reasons(s) == []) == (
+        abs(s.lam - 1) >= DEFAULT_LAMBDA_MARGIN
+        and all(_rule(res, f"fit-range.{n}").passed for n in ("alpha", "beta", "kappa"))
+    )
+    json.dumps([r.as_dict() for r in res], allow_nan=False)
