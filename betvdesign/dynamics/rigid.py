@@ -1,0 +1,466 @@
+"""The α → 0 limit: rigid tangential contact, in exact closed form (unit-free).
+
+docs/MODEL.md, "Dimensionless model". With α = k_v/k_h → 0 the head's tangential
+equation α ζ'' + ζ = (1 ∓ ακ) sin ϖτ (every phase) degenerates to ζ = sin ϖτ: the
+head's tangential position is slaved to the actuator and its velocity is
+ζ' = ϖ cos ϖτ whatever the slider does. The slider then only feels Coulomb
+friction from a head moving on a prescribed path:
+
+- free flight:             s'' = 0
+- contact, slip (s' < ζ'): s'' = +βκ sin ϖτ
+- reverse slip (s' > ζ'):  s'' = −βκ sin ϖτ
+- stick (s' = ζ'):         s' = ϖ cos ϖτ, possible only while the friction needed,
+  |s''| = ϖ² sin ϖτ, is at most βκ sin ϖτ, i.e. ϖ² ≤ βκ (the α → 0 limit of the
+  stick band (1 − b) sin ϖτ ≤ ζ ≤ (1 + b) sin ϖτ with b = ακ(1 + β)).
+
+The relative velocity w = s' − ζ' is affine in cos ϖτ during a slip phase,
+w = w₀ − (cos ϖτ − cos ϖτ₀)(ϖ + σβκ/ϖ), so the instant where slip ends is a closed
+form arccos. Stick, once reached, lasts until the contact ends (the condition
+ϖ² ≤ βκ does not depend on τ), so a contact has at most two phases.
+
+The vertical motion (independent of the slider and of α) gives the contact
+intervals; free flights start from ξ = ξ' = 0 and their hits are located with a
+certified bound (:func:`next_hit`). Because every contact ends at
+τ = (2j+1)π/ϖ with ξ = ξ' = 0, the vertical motion is exactly periodic from the
+first contact end, and the slider's periodic state is the fixed point of a
+monotone scalar map of its velocity, found by bracketing.
+
+The initial state differs from the full model's on purpose: in the rigid limit
+ζ'(0) = ϖ (the full model starts with ζ'(0) = 0 and carries a fast tangential
+oscillation that friction damps within a few cycles). Compare periodic states,
+not transients.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.optimize import brentq
+
+from betvdesign.params import ModelParams
+
+TWO_PI = 2.0 * math.pi
+
+
+@dataclass(frozen=True, slots=True)
+class Contact:
+    """One contact interval [start, end] of the head on the slider [τ]."""
+
+    start: float
+    end: float
+
+
+@dataclass
+class RigidTrajectory:
+    """Transient of the rigid-limit model over whole actuation cycles.
+
+    ``s`` final slider position [-, in units of u·cosθ]; ``v`` final slider velocity;
+    ``delta_s`` per-cycle increments s(2(m+1)π/ϖ) − s(2mπ/ϖ); ``events`` the log of
+    (τ, kind, phase_before, phase_after).
+    """
+
+    status: str
+    success: bool
+    message: str
+    params: ModelParams
+    n_cycles: int
+    s: float
+    v: float
+    delta_s: np.ndarray
+    events: list[tuple[float, str, str, str]] = field(default_factory=list)
+    n_events: int = 0
+    n_root_evals: int = 0
+    elapsed_s: float = 0.0
+
+
+@dataclass
+class RigidPeriodic:
+    """Periodic state of the rigid-limit model.
+
+    ``delta_s`` periodic increment per actuation cycle [-, u·cosθ]; ``mode`` "push"
+    (Δs > 0), "pull" (Δs < 0) or None (not driven); ``period_cycles`` the vertical
+    period in cycles; ``v_section`` the slider velocity at the contact end that
+    starts the period; ``residual`` |F(v) − v| of the velocity map at the fixed point.
+    """
+
+    status: str
+    success: bool
+    message: str
+    params: ModelParams
+    delta_s: float
+    mode: str | None
+    period_cycles: int
+    v_section: float
+    residual: float
+    contacts: list[Contact]
+    impacts_per_cycle: float
+    contact_fraction: float
+    n_root_evals: int = 0
+    elapsed_s: float = 0.0
+
+
+# --------------------------------------------------------------------------- slider
+def _slip_end(sigma: int, tau0: float, w0: float, tau1: float, p: ModelParams) -> float | None:
+    """Instant in (τ₀, τ₁] where the relative velocity of a slip phase reaches 0, or None.
+
+    w(τ) = w₀ − (cos ϖτ − cos ϖτ₀)(ϖ + σβκ/ϖ) (see module docstring); cos ϖτ is
+    decreasing over a contact (ϖτ within [2jπ, (2j+1)π]).
+    """
+    wv, bk = p.varpi, p.beta * p.kappa
+    rate = wv + sigma * bk / wv
+    if rate == 0.0 or w0 == 0.0:
+        return None
+    c0 = math.cos(wv * tau0)
+    c_star = c0 + w0 / rate
+    if not c_star < c0:  # w moves away from 0
+        return None
+    if c_star < math.cos(wv * tau1):
+        return None
+    base = TWO_PI * math.floor(wv * tau0 / TWO_PI + 1e-12)
+    return (base + math.acos(max(-1.0, min(1.0, c_star)))) / wv
+
+
+def _advance_slip(sigma: int, tau0: float, s0: float, v0: float, tau: float, p: ModelParams):
+    """Closed-form slip flow: s'' = σβκ sin ϖτ from (τ₀, s₀, v₀) to τ; returns (s, v)."""
+    wv, bk = p.varpi, p.beta * p.kappa
+    c0, sn0 = math.cos(wv * tau0), math.sin(wv * tau0)
+    c, sn = math.cos(wv * tau), math.sin(wv * tau)
+    v = v0 - sigma * bk / wv * (c - c0)
+    s = s0 + (v0 + sigma * bk / wv * c0) * (tau - tau0) - sigma * bk / wv**2 * (sn - sn0)
+    return s, v
+
+
+def _contact_flow(c: Contact, s: float, v: float, p: ModelParams, log: list | None):
+    """Slider state (s, v) after the contact ``c``, exactly (at most two phases)."""
+    wv = p.varpi
+    can_stick = wv * wv <= p.beta * p.kappa
+    tau = c.start
+    w = v - wv * math.cos(wv * tau)
+    if w < 0.0:
+        phase = "slip"
+    elif w > 0.0 or not can_stick:
+        phase = "reverse"
+    else:
+        phase = "stick"
+    if log is not None:
+        log.append((tau, "contact_start", "free", phase))
+    # At most two phases: slip -> (stick | reverse), reverse -> stick (only if ϖ² ≤ βκ).
+    if phase != "stick":
+        sigma = 1 if phase == "slip" else -1
+        t_hit = None
+        if phase == "slip" or can_stick:
+            t_hit = _slip_end(sigma, tau, w, c.end, p)
+        if t_hit is None:
+            return _end(c, *_advance_slip(sigma, tau, s, v, c.end, p), phase, log)
+        s, v = _advance_slip(sigma, tau, s, v, t_hit, p)
+        new = "stick" if can_stick else "reverse"
+        if log is not None:
+            log.append((t_hit, "velocity_match", phase, new))
+        tau, phase = t_hit, new
+        if phase == "reverse":  # w' = (ϖ² − βκ) sin ϖτ > 0: no further event
+            return _end(c, *_advance_slip(-1, tau, s, v, c.end, p), phase, log)
+    # stick until the contact ends: s' = ζ' = ϖ cos ϖτ
+    s += math.sin(wv * c.end) - math.sin(wv * tau)
+    v = wv * math.cos(wv * c.end)
+    return _end(c, s, v, phase, log)
+
+
+def _end(c: Contact, s: float, v: float, phase: str, log: list | None):
+    if log is not None:
+        log.append((c.end, "contact_end", phase, "free"))
+    return s, v
+
+
+# ------------------------------------------------------------------------ vertical
+class Flight:
+    """Free flight of the head from lift-off: ξ'' + ξ = −sin ϖτ, ξ(τ₀) = ξ'(τ₀) = 0.
+
+    docs/MODEL.md "No contact". Every flight starts at rest on the slider (after a
+    contact end or an impulsive hit). Closed form, uniform in ϖ (including the
+    resonance ϖ = 1, no division by 1 − ϖ²): with t = τ − τ₀, a = (1+ϖ)t/2,
+    S = sin((1−ϖ)t/2)/((1−ϖ)t/2) and (s₀, c₀) = (sin ϖτ₀, cos ϖτ₀),
+
+        ξ  = [−s₀ t S sin a + c₀ (t S cos a − sin t)] / (1 + ϖ)
+        ξ' = [−s₀ (t S cos a + sin ϖt) − ϖ c₀ t S sin a] / (1 + ϖ)
+    """
+
+    __slots__ = ("c0", "s0", "tau0", "varpi")
+
+    def __init__(self, tau0: float, varpi: float):
+        self.tau0, self.varpi = tau0, varpi
+        self.s0, self.c0 = math.sin(varpi * tau0), math.cos(varpi * tau0)
+
+    def xi(self, t: float) -> float:
+        w = self.varpi
+        a, h = 0.5 * (1.0 + w) * t, 0.5 * (1.0 - w) * t
+        tS = t * (math.sin(h) / h if h != 0.0 else 1.0)
+        return (-self.s0 * tS * math.sin(a) + self.c0 * (tS * math.cos(a) - math.sin(t))) / (1 + w)
+
+    def dxi(self, t: float) -> float:
+        w = self.varpi
+        a, h = 0.5 * (1.0 + w) * t, 0.5 * (1.0 - w) * t
+        tS = t * (math.sin(h) / h if h != 0.0 else 1.0)
+        return (
+            -self.s0 * (tS * math.cos(a) + math.sin(w * t)) - w * self.c0 * tS * math.sin(a)
+        ) / (1 + w)
+
+    def d4_bound(self, t: float) -> float:
+        """Bound on |ξ| over [0, t]: ξ = ξ + (1 + ϖ²) sin ϖτ, |ξ| ≤ (t + 1)/(1 + ϖ)."""
+        w = self.varpi
+        xi_max = (t + 1.0) / (1.0 + w)
+        if abs(1.0 - w * w) > 1e-3:
+            xi_max = min(xi_max, (abs(self.s0) + w * abs(self.c0) + 1.0) / abs(1.0 - w * w))
+        return xi_max + 1.0 + w * w
+
+
+def _hermite_min(f0, d0, f1, d1, h):
+    """Minimum over [0, h] of the cubic Hermite interpolant of (f0, d0), (f1, d1)."""
+    # p(x) = f0 + d0 x + c2 x² + c3 x³
+    c2 = (3 * (f1 - f0) / h - 2 * d0 - d1) / h
+    c3 = (d0 + d1 - 2 * (f1 - f0) / h) / (h * h)
+    best = min(f0, f1)
+    qa, qb, qc = 3 * c3, 2 * c2, d0
+    roots: list[float] = []
+    if abs(qa) > 1e-300:
+        disc = qb * qb - 4 * qa * qc
+        if disc >= 0:
+            r = math.sqrt(disc)
+            roots = [(-qb - r) / (2 * qa), (-qb + r) / (2 * qa)]
+    elif abs(qb) > 1e-300:
+        roots = [-qc / qb]
+    for x in roots:
+        if 0 < x < h:
+            best = min(best, f0 + x * (d0 + x * (c2 + x * c3)))
+    return best
+
+
+def next_hit(flight: Flight, horizon: float, *, step: float | None = None):
+    """First τ > τ₀ where the flying head reaches ξ = 0, certified not to miss a graze.
+
+    Returns (τ_hit, kind, n_evals) with kind "contact" (sin ϖτ ≥ 0 at the hit, a
+    finite contact starts) or "impulsive" (sin ϖτ < 0: stopped and lifted off), or
+    (None, "", n) if no hit within ``horizon``. Certification: on each interval the
+    cubic Hermite interpolant's minimum minus the remainder bound M₄h⁴/384 must be
+    positive, otherwise the interval is bisected (docs/MODEL.md "Impacts").
+    """
+    w = flight.varpi
+    h0 = step if step is not None else 0.25 * min(1.0, 1.0 / w)
+    n = 0
+    # Start: ξ = q2 t² + q3 t³ + R, |R| ≤ M4 t⁴/24, with q2 = −s0/2 ≥ 0, q3 = −ϖ c0/6.
+    q2, q3 = max(-flight.s0, 0.0) / 2.0, -w * flight.c0 / 6.0
+    m4 = flight.d4_bound(h0)
+    t1 = h0
+    while t1 > 1e-13 and q2 + q3 * t1 - m4 * t1 * t1 / 24.0 <= 0.0:
+        t1 *= 0.5
+    if t1 <= 1e-13:
+        # The head cannot leave: it is at a contact start (phase 2jπ reached from below).
+        tau = flight.tau0
+        kind = "contact" if math.sin(w * tau) >= 0 else "impulsive"
+        if kind == "impulsive":
+            tau = TWO_PI * math.ceil(w * tau / TWO_PI - 1e-12) / w
+            kind = "contact"
+        return tau, kind, n
+    a = t1
+    fa, da = flight.xi(a), flight.dxi(a)
+    n += 2
+    stack: list[tuple[float, float, float, float, float, float]] = []
+    while a < horizon or stack:
+        if stack:
+            a_, fa_, da_, b, fb, db = stack.pop()
+        else:
+            b = a + h0
+            fb, db = flight.xi(b), flight.dxi(b)
+            n += 2
+            a_, fa_, da_ = a, fa, da
+            a, fa, da = b, fb, db
+        h = b - a_
+        if fb <= 0.0 < fa_:
+            t_hit = brentq(flight.xi, a_, b, xtol=1e-15, rtol=4 * np.finfo(float).eps)
+            n += 40
+            return (*_classify(flight.tau0 + t_hit, w), n)
+        low = _hermite_min(fa_, da_, fb, db, h) - flight.d4_bound(b) * h**4 / 384.0
+        if low > 0.0:
+            continue
+        if h < 1e-12:
+            # Grazing touch located to round-off: the head reaches ξ = 0 tangentially.
+            t_hit = a_ if fa_ <= fb else b
+            return (*_classify(flight.tau0 + t_hit, w), n)
+        mid = 0.5 * (a_ + b)
+        fm, dm = flight.xi(mid), flight.dxi(mid)
+        n += 2
+        # push the right half first so the left half (earlier time) is examined first
+        stack.append((mid, fm, dm, b, fb, db))
+        stack.append((a_, fa_, da_, mid, fm, dm))
+    return None, "", n
+
+
+def _classify(tau: float, varpi: float) -> tuple[float, str]:
+    """Hit kind by the sign of the normal forcing sin ϖτ at the hit.
+
+    A hit within rounding of a contact start (ϖτ = 2jπ approached from below) is a
+    contact start, not an impulsive hit followed at once by one.
+    """
+    phase = varpi * tau
+    tol = 8.0 * np.finfo(float).eps * max(1.0, phase)
+    return tau, ("contact" if math.sin(phase) >= -tol else "impulsive")
+
+
+def contact_schedule(
+    varpi: float, tau_end: float, *, tau_start: float = 0.0, max_contacts: int | None = None
+):
+    """Contacts and impulsive hits of the vertical motion in [τ_start, τ_end].
+
+    Starts from a contact start at τ_start = 2jπ/ϖ (everything zero at τ = 0,
+    docs/MODEL.md "Initial state"); stops early after ``max_contacts`` contacts.
+    Returns (contacts, impulsive_hit_times, n_evals).
+    """
+    contacts: list[Contact] = []
+    impulsive: list[float] = []
+    n_evals = 0
+    start = tau_start
+    while start <= tau_end:
+        end = (TWO_PI * math.floor(varpi * start / TWO_PI + 1e-12) + math.pi) / varpi
+        contacts.append(Contact(start, end))
+        if max_contacts is not None and len(contacts) >= max_contacts:
+            break
+        flight = Flight(end, varpi)
+        while True:
+            hit, kind, evals = next_hit(flight, horizon=max(tau_end - flight.tau0, 0.0) + 1.0)
+            n_evals += evals
+            if hit is None or hit > tau_end:
+                return contacts, impulsive, n_evals
+            if kind == "contact":
+                start = hit
+                break
+            impulsive.append(hit)
+            flight = Flight(hit, varpi)
+    return contacts, impulsive, n_evals
+
+
+# ----------------------------------------------------------------------- public API
+def rigid_simulate(
+    p: ModelParams, cycles: int, *, state0: tuple[float, float] = (0.0, 0.0), log: bool = False
+) -> RigidTrajectory:
+    """Integrate the rigid-limit model over ``cycles`` actuation cycles, exactly.
+
+    ``state0`` = (s, s') at τ = 0 (a contact start). ``alpha`` of ``p`` is ignored
+    (α → 0). See the module docstring for the equations (docs/MODEL.md).
+    """
+    t0 = time.perf_counter()
+    if cycles < 1:
+        raise ValueError(f"cycles must be >= 1, got {cycles}")
+    wv = p.varpi
+    period = TWO_PI / wv
+    tau_end = cycles * period
+    contacts, impulsive, n_evals = contact_schedule(wv, tau_end)
+    events: list = [] if log else None  # type: ignore[assignment]
+    for t in impulsive if log else ():
+        events.append((t, "impulsive_hit", "free", "free"))
+    s, v = state0
+    tau = 0.0
+    sections = [s]
+    k = 0
+    for m in range(1, cycles + 1):
+        t_sec = m * period
+        while k < len(contacts) and contacts[k].end <= t_sec + 1e-12 * period:
+            c = contacts[k]
+            s += v * (c.start - tau)
+            s, v = _contact_flow(c, s, v, p, events)
+            tau = c.end
+            k += 1
+        if k < len(contacts) and contacts[k].start < t_sec:  # contact spans the section
+            raise AssertionError("contacts end at (2j+1)π/ϖ, never across a section")
+        s += v * (t_sec - tau)
+        tau = t_sec
+        sections.append(s)
+    if log:
+        events.sort(key=lambda e: e[0])
+    n_ev = 2 * k + len(impulsive)
+    msg = f"{cycles} cycles, {k} contacts, {len(impulsive)} impulsive hits (rigid limit α → 0)"
+    return RigidTrajectory(
+        status="ok",
+        success=True,
+        message=msg,
+        params=p,
+        n_cycles=cycles,
+        s=s,
+        v=v,
+        delta_s=np.diff(np.asarray(sections)),
+        events=events or [],
+        n_events=n_ev,
+        n_root_evals=n_evals,
+        elapsed_s=time.perf_counter() - t0,
+    )
+
+
+def rigid_periodic(p: ModelParams, *, max_cycles: int = 200) -> RigidPeriodic:
+    """Periodic state of the rigid-limit model, exactly (fixed point of the velocity map).
+
+    The vertical period P (cycles between two contact ends) is found from the
+    vertical motion; over one period the slider velocity map F is monotone
+    non-decreasing with F(v) − v non-increasing, so its fixed point is bracketed
+    and refined to round-off. ``delta_s`` is the displacement per cycle there.
+    Status "no_contact" when the head never makes a finite-duration contact within
+    ``max_cycles`` (ϖ beyond the window: the model does not drive the slider).
+    """
+    t0 = time.perf_counter()
+    wv = p.varpi
+    period = TWO_PI / wv
+    contacts, impulsive, n_evals = contact_schedule(wv, max_cycles * period, max_contacts=2)
+    if len(contacts) < 2:
+        return RigidPeriodic(
+            status="no_contact",
+            success=False,
+            message=(
+                f"no finite-duration contact within {max_cycles} cycles after the first: "
+                f"ϖ = {wv:g} is outside the window where this model drives the slider"
+            ),
+            params=p,
+            delta_s=0.0,
+            mode=None,
+            period_cycles=0,
+            v_section=float("nan"),
+            residual=float("nan"),
+            contacts=contacts,
+            impacts_per_cycle=len(impulsive) / max_cycles,
+            contact_fraction=0.0,
+            n_root_evals=n_evals,
+            elapsed_s=time.perf_counter() - t0,
+        )
+    first, second = contacts[0], contacts[1]
+    n_cyc = round((second.end - first.end) / period)
+    cycle_contact = Contact(second.start, second.end)
+    hits_in_period = 1 + sum(1 for t in impulsive if first.end < t < second.end)
+
+    def one_period(v: float) -> tuple[float, float]:
+        s = v * (cycle_contact.start - first.end)
+        return _contact_flow(cycle_contact, s, v, p, None)
+
+    def gap(v: float) -> float:
+        return one_period(v)[1] - v
+
+    bound = wv + 2.0 * p.beta * p.kappa / wv + 1.0
+    v_star = brentq(gap, -bound, bound, xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=200)
+    ds_period, v_out = one_period(v_star)
+    delta_s = ds_period / n_cyc
+    mode = "push" if delta_s > 0 else ("pull" if delta_s < 0 else None)
+    duration = cycle_contact.end - cycle_contact.start
+    return RigidPeriodic(
+        status="ok",
+        success=True,
+        message=f"periodic (rigid limit α → 0), period {n_cyc} cycle(s), Δs = {delta_s:.12g}",
+        params=p,
+        delta_s=delta_s,
+        mode=mode,
+        period_cycles=n_cyc,
+        v_section=v_star,
+        residual=abs(v_out - v_star),
+        contacts=[first, second],
+        impacts_per_cycle=hits_in_period / n_cyc,
+        contact_fraction=duration / (n_cyc * period),
+        n_root_evals=n_evals,
+        elapsed_s=time.perf_counter() - t0,
+    )
