@@ -203,6 +203,22 @@ def _mode_rules(s: SetDerivation, periodic: PeriodicLike | None, margin: float) 
                 SRC_LAMBDA,
             )
         )
+    if sim_ok and getattr(periodic, "stable", None) is not None:
+        stable = bool(periodic.stable)
+        out.append(
+            RuleResult(
+                "orbit-stability",
+                "warning",
+                stable,
+                None,
+                "all Floquet multipliers |μ| < 1",
+                "the periodic orbit is stable: the slider settles to it"
+                if stable
+                else "the periodic orbit is unstable (a Floquet multiplier |μ| >= 1): the "
+                "slider may never settle to this Δs",
+                SRC_SOLVER,
+            )
+        )
     if periodic is not None and not sim_ok:
         out.append(
             RuleResult(
@@ -581,13 +597,7 @@ def _set_dict(sc: SetCheck) -> dict[str, Any]:
         "mode_source": sc.mode_source,
         "simulated": p is not None,
         "simulated_because": sc.simulated_because,
-        "simulation": None
-        if p is None
-        else {
-            "success": bool(getattr(p, "success", False)),
-            "message": str(getattr(p, "message", "")),
-            "delta_s": _json_float(getattr(p, "delta_s", None)),
-        },
+        "simulation": None if p is None else simulation_summary(p),
         "published_fit": [
             {
                 "param": c.name,
@@ -610,6 +620,25 @@ def _set_dict(sc: SetCheck) -> dict[str, Any]:
         ],
         "rules": [r.as_dict() for r in sc.rules],
     }
+
+
+def simulation_summary(p: Any) -> dict[str, Any]:
+    """JSON-safe summary of a periodic-orbit result (fields the solver provides)."""
+    out: dict[str, Any] = {
+        "status": str(getattr(p, "status", "")),
+        "success": bool(getattr(p, "success", False)),
+        "message": str(getattr(p, "message", "")),
+    }
+    for name in ("delta_s", "residual", "impacts_per_cycle", "contact_fraction", "elapsed_s"):
+        if hasattr(p, name):
+            out[name] = _json_float(getattr(p, name))
+    for name in ("period_cycles", "n_cycles", "transient_cycles"):
+        v = getattr(p, name, None)
+        if v is not None:
+            out[name] = int(v)
+    if getattr(p, "stable", None) is not None:
+        out["stable"] = bool(p.stable)
+    return out
 
 
 def _json_float(x: Any) -> float | str | None:

@@ -177,3 +177,37 @@ def _assert_conforms(data, sch, root):
     elif t == "null":
         assert data is None
     return None
+
+
+def test_simulated_check_reports_orbit_speed_and_json(monkeypatch):
+    """With a solver (here a test double returning Δs = 0.25), --simulate takes the mode
+    from the orbit and derives the speed Δs·u·cosθ·f_act (push_demo: u = 0.14 um,
+    θ = 20.56°, f_act = 6 kHz)."""
+    import math
+    from types import SimpleNamespace
+
+    orbit = SimpleNamespace(
+        status="converged",
+        success=True,
+        message="ok",
+        delta_s=0.25,
+        mode="push",
+        period_cycles=1,
+        residual=1e-12,
+        stable=True,
+        n_cycles=300,
+        elapsed_s=0.01,
+    )
+    monkeypatch.setattr(rules, "load_solver", lambda: lambda p: orbit)
+    path = str(DEVICES / "push_demo.yaml")
+    r = run("check", "--simulate", path)
+    assert r.exit_code == 0, r.stdout
+    assert "exact orbit (requested (--simulate))" in r.stdout
+    assert "from simulation" in r.stdout
+    d = json.loads(run("check", "--simulate", "--json", path).stdout)
+    s = d["sets"][0]
+    assert s["simulated"] and s["mode_source"] == "simulation"
+    assert s["simulation"]["delta_s"] == 0.25 and s["simulation"]["stable"] is True
+    v = 0.25 * 0.14e-6 * math.cos(math.radians(20.56)) * 6000.0  # [m/s]
+    assert d["derived"]["speed"] == f"{v * 1e6:.4g} um/s"
+    assert d["derived"]["time_to_cross"] == f"{50e-6 / v * 1e3:.4g} ms"  # 0.254 s

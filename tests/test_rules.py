@@ -224,3 +224,11 @@ def test_rule_invariants(varpi, alpha, beta, kappa, intended):
         and all(_rule(res, f"fit-range.{n}").passed for n in ("alpha", "beta", "kappa"))
     )
     json.dumps([r.as_dict() for r in res], allow_nan=False)
+
+
+def test_orbit_stability_rule_both_sides():
+    for stable in (True, False):
+        orbit = SimpleNamespace(success=True, message="ok", delta_s=0.2, mode="push", stable=stable)
+        r = _rule(evaluate(_set(*PUSH), periodic=orbit), "orbit-stability")
+        assert r.passed is stable and r.severity == "warning"
+    assert not [r for r in evaluate(_set(*PUSH)) if r.id == "orbit-stability"]

@@ -21,7 +21,13 @@ from betvdesign.cli import app
 from betvdesign.cli.common import EXIT_BAD_INPUT, EXIT_OK, EXIT_RULE_FAILED, user_errors
 from betvdesign.errors import SpecError
 from betvdesign.nondim import derive_file
-from betvdesign.rules import DEFAULT_LAMBDA_MARGIN, CheckResult, RuleResult, check_derivation
+from betvdesign.rules import (
+    DEFAULT_LAMBDA_MARGIN,
+    CheckResult,
+    RuleResult,
+    check_derivation,
+    simulation_summary,
+)
 
 _STATUS = {
     (True, "error"): "[green]ok[/]",
@@ -105,6 +111,14 @@ def render(result: CheckResult, console: Console, *, derivation: bool = False) -
         console.print(
             "  " + ", ".join(f"{k} = {v}" for k, v in s.derived().items()), highlight=False
         )
+        if sc.periodic is not None:
+            sim = simulation_summary(sc.periodic)
+            extra = ", ".join(
+                f"{k} = {v:.4g}" if isinstance(v, float) else f"{k} = {v}"
+                for k, v in sim.items()
+                if k not in ("success", "message")
+            )
+            console.print(f"  exact orbit ({sc.simulated_because}): {extra}", highlight=False)
         if derivation:
             console.print(_record_table(sc))
         _print_rules(sc.rules, console)
