@@ -525,6 +525,7 @@ def check_derivation(
     notes: list[str] = []
     periodic: dict[str, Any] = {}
     why: dict[str, str] = {}
+    solved: dict[Any, Any] = {}
     for s in derivation.sets:
         reasons = undecided_reasons(s, lambda_margin=lambda_margin)
         if simulate == "always":
@@ -545,7 +546,11 @@ def check_derivation(
             continue
         else:
             continue
-        periodic[s.name] = _run_solver(solver, s)
+        if s.params in solved:  # mirrored sets share parameters: solve once
+            periodic[s.name] = solved[s.params]
+            notes.append(f"set {s.name}: same parameters as an already solved set, reused")
+            continue
+        periodic[s.name] = solved[s.params] = _run_solver(solver, s)
         notes.append(f"set {s.name}: ran the exact solver ({why[s.name]})")
     rules = evaluate_device(derivation, lambda_margin=lambda_margin, periodic=periodic)
     sets = [
