@@ -7,7 +7,7 @@ from pathlib import Path
 import pytest
 from typer.testing import CliRunner
 
-from betvdesign import rules
+from betvdesign import checker
 from betvdesign.cli import app
 from betvdesign.loader import load_device
 from betvdesign.spec import DeviceSpec
@@ -20,7 +20,7 @@ OWN = ["push_demo", "pull_demo", "bidir_demo"]
 @pytest.fixture
 def no_solver(monkeypatch):
     """Closed form only, whether or not the exact solver is installed."""
-    monkeypatch.setattr(rules, "load_solver", lambda: None)
+    monkeypatch.setattr(checker, "load_solver", lambda: None)
 
 
 def run(*args):
@@ -198,7 +198,7 @@ def test_simulated_check_reports_orbit_speed_and_json(monkeypatch):
         n_cycles=300,
         elapsed_s=0.01,
     )
-    monkeypatch.setattr(rules, "load_solver", lambda: lambda p: orbit)
+    monkeypatch.setattr(checker, "load_solver", lambda: lambda p: orbit)
     path = str(DEVICES / "push_demo.yaml")
     r = run("check", "--simulate", path)
     assert r.exit_code == 0, r.stdout

@@ -11,7 +11,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from betvdesign import rules
+from betvdesign import checker
+from betvdesign.checker import check_derivation
 from betvdesign.errors import UsageError
 from betvdesign.loader import load_device
 from betvdesign.nondim import derive
@@ -19,7 +20,6 @@ from betvdesign.params import ModelParams
 from betvdesign.rules import (
     DEFAULT_LAMBDA_MARGIN,
     RuleResult,
-    check_derivation,
     evaluate,
     evaluate_device,
     undecided_reasons,
@@ -166,7 +166,7 @@ def test_bidirectional_rule():
 
 
 def test_check_simulate_always_without_solver_is_usage_error(monkeypatch):
-    monkeypatch.setattr(rules, "load_solver", lambda: None)
+    monkeypatch.setattr(checker, "load_solver", lambda: None)
     with pytest.raises(UsageError, match="--simulate needs the exact solver"):
         check_derivation(SHIN, simulate="always")
     res = check_derivation(SHIN, simulate="auto")

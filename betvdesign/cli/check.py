@@ -2,7 +2,7 @@
 
 Thin: loading is :func:`betvdesign.loader.load_device`, numbers are
 :func:`betvdesign.nondim.derive`, rules and the optional exact solver are
-:func:`betvdesign.rules.check_derivation`.
+:func:`betvdesign.checker.check_derivation`.
 
 Exit codes: 0 every error-severity rule passes, 1 a rule fails, 2 bad input or usage.
 """
@@ -17,17 +17,12 @@ import typer
 from rich.console import Console
 from rich.table import Table
 
+from betvdesign.checker import CheckResult, check_derivation, simulation_summary
 from betvdesign.cli import app
 from betvdesign.cli.common import EXIT_BAD_INPUT, EXIT_OK, EXIT_RULE_FAILED, user_errors
 from betvdesign.errors import SpecError
 from betvdesign.nondim import derive_file
-from betvdesign.rules import (
-    DEFAULT_LAMBDA_MARGIN,
-    CheckResult,
-    RuleResult,
-    check_derivation,
-    simulation_summary,
-)
+from betvdesign.rules import DEFAULT_LAMBDA_MARGIN, RuleResult
 
 _STATUS = {
     (True, "error"): "[green]ok[/]",
