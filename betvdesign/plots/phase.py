@@ -23,15 +23,12 @@ PHASE_LABELS: dict[str, str] = {
 
 
 def phase_runs(phases: Sequence[str]) -> list[tuple[int, int, str]]:
-    """Maximal runs of equal labels as (start, stop, label), stop exclusive.
-
-    Consecutive runs share their boundary sample so drawn segments join up.
-    """
+    """Maximal runs of equal labels as (start, stop, label), stop exclusive."""
     runs: list[tuple[int, int, str]] = []
     start = 0
     for i in range(1, len(phases) + 1):
         if i == len(phases) or phases[i] != phases[start]:
-            runs.append((start, min(i + 1, len(phases)), phases[start]))
+            runs.append((start, i, phases[start]))
             start = i
     return runs
 
@@ -91,6 +88,7 @@ def orbit_plane(
         raise ValueError(f"unknown phase labels {sorted(unknown)}")
     seen: set[str] = set()
     for start, stop, label in phase_runs(phases):
+        stop = stop + 1  # share the boundary sample with the next run so segments join
         lw = 2.2 if label != "free" else 1.0
         ax.plot(
             z[start:stop],

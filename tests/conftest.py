@@ -1,0 +1,45 @@
+"""Shared test fixtures: the shipped device files and external tools.
+
+External programs (chromium, poppler-utils) may be missing on a developer's
+machine: tests needing them skip there, printing why. Under CI (environment
+variable CI set, as .ci/run does) a missing program is a failure, never a skip.
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+from pathlib import Path
+
+import pytest
+
+REPO = Path(__file__).resolve().parents[1]
+DEVICES = REPO / "devices"
+
+
+def device_files() -> list[Path]:
+    """Every shipped device file, sorted (usable in parametrize)."""
+    return sorted(DEVICES.glob("*.yaml"))
+
+
+def require_program(name: str, *, candidates: tuple[str, ...] = ()) -> str:
+    """Absolute path of an external program; skip (outside CI) or fail (CI) if absent."""
+    for cand in (name, *candidates):
+        found = shutil.which(cand) or (
+            cand if os.path.isabs(cand) and os.access(cand, os.X_OK) else None
+        )
+        if found:
+            return found
+    reason = f"{name} not found (install it: bash scripts/sysdeps.sh test, as root)"
+    if os.environ.get("CI"):
+        pytest.fail(f"CI: {reason}")
+    print(f"SKIP reason: {reason}")
+    pytest.skip(reason)
+
+
+@pytest.fixture(scope="session")
+def devices() -> list[Path]:
+    """The shipped device files (at least one)."""
+    files = device_files()
+    assert files, f"no device files in {DEVICES}"
+    return files

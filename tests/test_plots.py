@@ -1,0 +1,154 @@
+"""Figure functions of betvdesign.plots: geometry, reproducible SVG, no global state.
+
+Sources: the λ = 1 curve is checked against the independent closed form
+:func:`betvdesign.params.lambda_criterion` (MODEL.md, "Push/pull criterion");
+SVG reproducibility and id hygiene are invariants checked on real output.
+"""
+
+from __future__ import annotations
+
+import itertools
+import re
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from matplotlib.axes import Axes
+
+from betvdesign import plots
+from betvdesign.params import lambda_criterion
+from betvdesign.plots.phase import phase_runs
+
+pos = st.floats(min_value=0.05, max_value=5.0, allow_nan=False)
+
+
+@settings(max_examples=60, deadline=None)
+@given(kappa=pos, beta=pos, varpi=st.floats(min_value=0.3, max_value=3.0))
+def test_lambda_one_curve_is_lambda_equal_one(kappa: float, beta: float, varpi: float) -> None:
+    """Points on the drawn boundary have λ = 1 by the independent λ formula."""
+    y = float(plots.lambda_one_curve(np.array([1.0 / varpi**2]), kappa, beta)[0])
+    if y <= 0:  # no positive α on the boundary there; nothing to draw
+        return
+    alpha = 1.0 / (y * kappa)
+    assert lambda_criterion(varpi, alpha, beta, kappa) == pytest.approx(1.0, rel=1e-9)
+
+
+def _svg_of(draw, key: str = "t1") -> str:
+    with plots.figure_style():
+        fig, ax = plots.new_figure()
+        draw(ax)
+        return plots.figure_svg(fig, key)
+
+
+def _pushpull(ax: Axes) -> None:
+    plots.pushpull_map(kappa=0.4, beta=0.9, points=[("dev", 0.9, 0.1)], ax=ax)
+
+
+def test_svg_is_byte_reproducible_and_dateless() -> None:
+    """The same figure twice gives identical bytes, without a date or XML prolog."""
+    a, b = _svg_of(_pushpull), _svg_of(_pushpull)
+    assert a == b
+    assert a.startswith("<svg")
+    assert "<dc:date>" not in a and "<?xml" not in a and "DOCTYPE" not in a
+
+
+def test_svg_ids_prefixed_and_references_resolve() -> None:
+    """Every id carries the figure key and every #reference points to an id of the SVG,
+    so several figures can be inlined into one HTML page without collisions."""
+    a = _svg_of(_pushpull, "figA")
+    b = _svg_of(_pushpull, "figB")
+    ids_a = set(re.findall(r'\bid="([^"]+)"', a))
+    ids_b = set(re.findall(r'\bid="([^"]+)"', b))
+    assert ids_a and all(i.startswith("figA-") for i in ids_a)
+    assert not ids_a & ids_b
+    refs = set(re.findall(r'(?:href="|url\()#([^")]+)', a))
+    assert refs and refs <= ids_a
+
+
+def test_bad_key_rejected() -> None:
+    with pytest.raises(ValueError, match="identifier"):
+        _svg_of(_pushpull, "bad key")
+
+
+def test_pushpull_marks_device_and_curve() -> None:
+    """The device lands at (1/ϖ², 1/(ακ)) inside the axes limits."""
+    _fig, ax = plots.new_figure()
+    plots.pushpull_map(kappa=0.4, beta=9.0, points=[("d", 0.34, 0.1)], ax=ax)
+    x0, x1 = ax.get_xlim()
+    y0, y1 = ax.get_ylim()
+    assert x0 <= 1 / 0.34**2 <= x1 and y0 <= 1 / 0.04 <= y1
+    markers = [ln for ln in ax.get_lines() if ln.get_marker() == "o"]
+    assert len(markers) == 1
+    np.testing.assert_allclose(markers[0].get_xydata()[0], [1 / 0.34**2, 25.0])
+
+
+@settings(max_examples=50, deadline=None)
+@given(st.lists(st.sampled_from(["free", "slip", "reverse", "stick"]), min_size=1, max_size=40))
+def test_phase_runs_partition(labels: list[str]) -> None:
+    """Runs cover every sample in order, are constant and maximal."""
+    runs = phase_runs(labels)
+    covered = []
+    for start, stop, label in runs:
+        assert stop > start and all(x == label for x in labels[start:stop])
+        covered.extend(range(start, stop))
+    assert covered == list(range(len(labels)))
+    assert all(a[2] != b[2] for a, b in itertools.pairwise(runs))
+
+
+def test_orbit_plane_colours_phases_and_rejects_unknown() -> None:
+    tau = np.linspace(0, 2 * np.pi, 200)
+    phases = ["free"] * 80 + ["slip"] * 50 + ["stick"] * 40 + ["reverse"] * 30
+    ax = plots.orbit_plane(np.sin(tau), 0.5 * np.sin(tau), phases)
+    labels = {ln.get_label() for ln in ax.get_lines()}
+    assert {"no contact", "slip (ζ' > s')", "stick (ζ' = s')", "reverse slip (ζ' < s')"} <= labels
+    with pytest.raises(ValueError, match="unknown phase"):
+        plots.orbit_plane([0.0, 1.0], [0.0, 1.0], ["free", "flying"])
+    with pytest.raises(ValueError, match="same length"):
+        plots.orbit_plane([0.0, 1.0], [0.0], ["free", "free"])
+
+
+def test_every_figure_function_draws_on_given_axes() -> None:
+    """Each function draws on the ax it is given and returns it; None entries are
+    drawn as markers, never silently dropped."""
+    w = np.linspace(0.2, 3.0, 12)
+    period = [1.0] * 10 + [None, None]
+    frac = [0.4] * 10 + [None, None]
+    cases = [
+        lambda ax: plots.impact_period_strip(w, period, device_varpi=0.9, ax=ax),
+        lambda ax: plots.contact_fraction_strip(w, frac, device_varpi=0.9, ax=ax),
+        lambda ax: plots.vertical_phase_portrait(np.sin(w), np.cos(w), steady_from=5, ax=ax),
+        lambda ax: plots.slider_velocity(
+            w, np.sin(w), cycle_mean=([0, 1], [0.1, 0.2]), periodic_mean=0.15, ax=ax
+        ),
+        lambda ax: plots.slider_displacement(
+            w, w**2, travel_um=4.0, extrapolated=([3, 4], [9, 16]), ax=ax
+        ),
+        lambda ax: plots.speed_vs_voltage(
+            w, 2 * w, operating_v=1.0, operating_speed_um_s=2.0, ax=ax
+        ),
+        lambda ax: plots.robustness_vs_lambda(w, [0.1] * 11 + [None], device_lam=0.9, ax=ax),
+        lambda ax: plots.robustness_vs_lambda(w, [0.1] * 12, device_lam=0.9, logx=True, ax=ax),
+    ]
+    for draw in cases:
+        _fig, ax = plots.new_figure()
+        assert draw(ax) is ax
+        assert ax.get_lines(), draw
+    ax = plots.impact_period_strip(w, period)
+    crosses = [ln for ln in ax.get_lines() if ln.get_marker() == "x"]
+    assert len(crosses) == 1 and len(crosses[0].get_xdata()) == 2
+
+
+def test_plots_and_report_never_import_pyplot() -> None:
+    """Figures use matplotlib.figure.Figure only: no pyplot global state."""
+    code = (
+        "import sys, betvdesign.plots, betvdesign.report;"
+        "from betvdesign import plots;"
+        "fig, ax = plots.new_figure(); plots.pushpull_map(kappa=.4, beta=.9,"
+        " points=[('d', .9, .1)], ax=ax); plots.figure_svg(fig, 'k');"
+        "print('matplotlib.pyplot' in sys.modules)"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "False"
