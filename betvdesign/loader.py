@@ -219,6 +219,32 @@ def _known_fields() -> tuple[str, ...]:
     return tuple(sorted(names))
 
 
+_EXPECTED = {
+    "model_type": "a mapping of fields",
+    "model_attributes_type": "a mapping of fields",
+    "dict_type": "a mapping",
+    "list_type": "a list",
+    "string_type": "a string",
+    "int_type": "an integer",
+    "float_type": "a number",
+    "bool_type": "true or false",
+}
+
+
+def _kind_of(value: Any) -> str:
+    if isinstance(value, bool):
+        return f"the boolean {str(value).lower()}"
+    if isinstance(value, dict):
+        return "a mapping"
+    if isinstance(value, list):
+        return "a list"
+    if value is None:
+        return "nothing (null)"
+    if isinstance(value, str):
+        return f"the string {value!r}"
+    return f"{value!r}"
+
+
 def _message(err: dict[str, Any]) -> str:
     kind = err["type"]
     msg = str(err["msg"])
@@ -229,6 +255,8 @@ def _message(err: dict[str, Any]) -> str:
         return f"unknown field{hint} (see `betv schema` for the allowed fields)"
     if kind == "missing":
         return "missing required field"
+    if kind in _EXPECTED:
+        return f"expected {_EXPECTED[kind]}, got {_kind_of(err.get('input'))}"
     if msg.startswith("Value error, "):
         msg = msg[len("Value error, ") :]
     if msg.startswith("Assertion failed, "):

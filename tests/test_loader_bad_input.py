@@ -62,7 +62,7 @@ CASES: dict[str, list[tuple[int | None, int | None, str, str]]] = {
     "calibration_no_voltage.yaml": [
         (21, 7, "actuator_sets[0].drive.voltage", "required when the actuator gives a calib")
     ],
-    "bool_beam_count.yaml": [(8, 15, "slider.beam_count", "valid integer")],
+    "bool_beam_count.yaml": [(8, 15, "slider.beam_count", "expected an integer, got the boolean")],
     "duplicate_set_names.yaml": [(15, 11, "actuator_sets[1].name", "must be unique")],
     "many_issues.yaml": [
         (5, 15, "slider.beam_width", "missing unit"),
@@ -158,3 +158,31 @@ def test_head_mass_and_geometry_exclusive():
     with pytest.raises(SpecError, match="exactly one of 'mass' or 'geometry'") as exc:
         load_device_text(text, "x.yaml")
     assert exc.value.issues[0].field == "actuator_sets[0].head"
+
+
+@pytest.mark.parametrize(
+    ("text", "line", "col", "field", "message"),
+    [
+        (
+            "name: x\nslider: 5\nactuator_sets: []\n",
+            2,
+            9,
+            "slider",
+            "expected a mapping of fields, got 5",
+        ),
+        (
+            "name: x\nslider: {}\nactuator_sets: {}\n",
+            3,
+            16,
+            "actuator_sets",
+            "expected a list, got a mapping",
+        ),
+        ("name: 3\n", 1, 7, "name", "expected a string, got 3"),
+    ],
+)
+def test_wrong_yaml_types(text, line, col, field, message):
+    with pytest.raises(SpecError) as exc:
+        load_device_text(text, "t.yaml")
+    hits = [i for i in exc.value.issues if i.field == field]
+    assert hits and (hits[0].location.line, hits[0].location.col) == (line, col)
+    assert hits[0].message == message
