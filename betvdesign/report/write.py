@@ -11,7 +11,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
-from betvdesign.errors import UsageError
+from betvdesign.errors import SpecError, UsageError
 from betvdesign.report.analysis import ReportOptions
 from betvdesign.report.build import build_report, prepare
 from betvdesign.report.render import render_html, render_pdf, write_atomic
@@ -60,7 +60,14 @@ def write_reports(
         if p.stem in stems and stems[p.stem] != p:
             raise UsageError(f"{stems[p.stem]} and {p} would both write {p.stem}.html")
         stems[p.stem] = p
-    prepared = [prepare(p) for p in stems.values()]
+    prepared, issues = [], []
+    for p in stems.values():  # report the issues of every file before giving up
+        try:
+            prepared.append(prepare(p))
+        except SpecError as exc:
+            issues.extend(exc.issues)
+    if issues:
+        raise SpecError(issues)
     out = _outdir(outdir)
     generated = _dt.datetime.now(_dt.UTC).replace(microsecond=0).isoformat() if timestamp else None
     written: list[Written] = []
