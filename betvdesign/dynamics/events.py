@@ -1,0 +1,376 @@
+"""Certified location of the first event of a phase (unit-free).
+
+docs/MODEL.md, "Impacts and separation" and the stick/slip rules. Every event
+function f of the model (gap ξ, signed relative velocity ±(ζ' − s'), distances
+to the stick band ±(ζ − (1 ∓ b) sin ϖτ)) is a closed-form combination of
+sinusoids whose second derivative is bounded on the search window by an energy
+argument (:func:`flows.energy_radius`). From a point where f > 0,
+
+    f(l + x) ≥ f(l) + f'(l) x − M2 x²/2,
+
+so f cannot vanish before the smallest positive root x* of that quadratic: the
+search advances by x* ("safe step"), which can never jump over a crossing, even
+a grazing one, and converges quadratically onto a simple root. A bracket is
+accepted once f' provably keeps its sign on it (4·M2·d ≤ |f'| with d the Newton
+step): then [l, l + 2d] holds exactly one root, refined by safeguarded Newton
+to round-off. A phase that starts *on* its event surface (f = 0, e.g. slip
+entered at ζ' = s') is started with the first non-vanishing Taylor coefficient
+and the matching derivative bound.
+
+A function is described by an evaluator exposing ``n`` (number of event
+functions), ``scale`` (magnitudes for the round-off noise floor),
+``eval(h) -> (f, f', M2)`` lists and ``start() -> [(derivs, M)]``.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Protocol
+
+from betvdesign.dynamics.flows import (
+    SLIP,
+    STICK,
+    PhaseConstants,
+    derivative_bounds,
+    energy_radius,
+    oscillator,
+    slider,
+)
+
+EPS = 2.220446049250313e-16
+NOISE = 64.0 * EPS
+MAX_STEPS = 5000
+
+
+class EventSearchError(RuntimeError):
+    """The certified search did not terminate (a degenerate, non-isolated event)."""
+
+
+class Evaluator(Protocol):
+    n: int
+    W: float
+    scale: list[float]
+    scale_derivs: list[list[float]]
+
+    def eval(self, h: float) -> tuple[list[float], list[float], list[float]]: ...
+
+    def start(self) -> list[tuple[list[float], list[float]]]: ...
+
+
+def safe_step(f: float, fp: float, m2: float) -> float:
+    """Smallest x > 0 with f + f'x − M2 x²/2 = 0 (f > 0), written without cancellation."""
+    if m2 <= 0.0:
+        return math.inf if fp >= 0.0 else f / -fp
+    return 2.0 * f / (-fp + math.sqrt(fp * fp + 2.0 * m2 * f))
+
+
+def lex_sign(derivs: list[float], noise: list[float]) -> int:
+    """Sign of a function just after a point from its Taylor coefficients.
+
+    Returns the sign of the first coefficient above its noise floor (+1/−1),
+    0 when all are within round-off (the function vanishes to that order).
+    """
+    for d, nz in zip(derivs, noise, strict=False):
+        if d > nz:
+            return 1
+        if d < -nz:
+            return -1
+    return 0
+
+
+def first_root(ev: Evaluator, H: float, counter: list[int]) -> tuple[float, int] | None:
+    """First h in [0, H] where one of ev's functions reaches 0 (certified).
+
+    Returns (h, index) or None when none of them vanishes on [0, H]. ``counter[0]``
+    is incremented by the number of function evaluations.
+    """
+    x = min(H, ev.W)
+    for i, (derivs, bounds) in enumerate(ev.start()):
+        nz = [NOISE * s for s in ev.scale_derivs[i]]
+        order = 0
+        for order in range(len(derivs)):
+            if abs(derivs[order]) > nz[order]:
+                break
+        else:
+            return 0.0, i  # vanishes to every order checked: an event here
+        if derivs[order] < 0.0:
+            return 0.0, i  # leaves its admissible side at once: zero-length phase
+        if order == 0:
+            xi = safe_step(derivs[0], derivs[1], bounds[2])
+        else:
+            xi = 0.5 * (order + 1) * derivs[order] / bounds[order + 1]
+        x = min(x, xi)
+    if x >= H:
+        return None
+    W = ev.W
+    x0 = x
+    for _ in range(MAX_STEPS):
+        counter[0] += 1
+        fs, fps, m2s = ev.eval(x0)
+        step = min(H - x0, W)
+        best: tuple[float, int] | None = None
+        steps = []
+        for i in range(ev.n):
+            f = fs[i]
+            fp = fps[i]
+            if f <= NOISE * ev.scale[i]:
+                return x0, i  # at the root to round-off (or a grazing touch)
+            xi = safe_step(f, fp, m2s[i])
+            steps.append(xi)
+            step = min(step, xi)
+            if fp < 0.0:
+                d = f / -fp
+                if (
+                    4.0 * m2s[i] * d <= -fp
+                    and 2.0 * d <= W
+                    and (best is None or x0 + 2.0 * d < best[0])
+                ):
+                    best = (x0 + 2.0 * d, i)
+        if best is not None:
+            i = best[1]
+            r = _refine(ev, i, x0, min(best[0], H + 2.0 * EPS * H), fs[i], fps[i], counter)
+            if r <= H and all(steps[j] >= r - x0 for j in range(ev.n) if j != i):
+                return r, i
+            if r > H and step >= H - x0:
+                return None
+        if x0 + step >= H:
+            return None
+        x0 += step
+    raise EventSearchError(
+        f"event search did not terminate within {MAX_STEPS} steps on a window of {H:.6g}"
+    )
+
+
+def _refine(
+    ev: Evaluator, i: int, lo: float, hi: float, flo: float, fplo: float, counter: list[int]
+) -> float:
+    """Root of ev's function i in (lo, hi]: f(lo) > 0, f decreasing, f(hi) ≤ 0.
+
+    Safeguarded Newton (bisection when Newton leaves the bracket), to round-off.
+    """
+    x, f, fp = lo, flo, fplo
+    tol = 4.0 * EPS * max(1.0, abs(hi))
+    for _ in range(100):
+        xn = x - f / fp if fp != 0.0 else 0.5 * (lo + hi)
+        if not lo < xn < hi:
+            xn = 0.5 * (lo + hi)
+        if abs(xn - x) <= tol:
+            return xn
+        x = xn
+        counter[0] += 1
+        fs, fps, _ = ev.eval(x)
+        f, fp = fs[i], fps[i]
+        if f > 0.0:
+            lo = x
+        elif f < 0.0:
+            hi = x
+        else:
+            return x
+        if hi - lo <= tol:
+            return hi
+    return x
+
+
+def forced_split(w0: float, F: float, wf: float, y: float, yd: float, sp: float, cp: float):
+    """Particular amplitude P and free-oscillation energy radius E_h of a phase.
+
+    y = P sin φ + y_h with P = F/(w0² − ϖ²); y_h is a free oscillation, so
+    E_h = sqrt(y_h'² + w0² y_h²) is constant over the phase. Returns (P, E_h), or
+    (None, inf) at exact resonance (no such split; the energy bound is used).
+    """
+    den = w0 * w0 - wf * wf
+    if den == 0.0:
+        return None, math.inf
+    P = F / den
+    yh, yhd = y - P * sp, yd - P * wf * cp
+    return P, math.sqrt(yhd * yhd + w0 * w0 * yh * yh)
+
+
+def band_bounds(
+    w0: float, F: float, wf: float, q: float, R: float, P: float | None, Eh: float, n: int
+) -> list[float]:
+    """Bounds on |dʲ/dhʲ (y − q sin φ)|, j = 0..n, over a window of energy radius R.
+
+    The smaller of (a) the energy growth bound (:func:`flows.derivative_bounds`) plus
+    |q|ϖʲ and (b) the split y = P sin φ + y_h: |P − q| ϖʲ + w0^(j−1) E_h. (b) is tight
+    when the head follows the forcing (small α), (a) near resonance.
+    """
+    a = derivative_bounds(w0, F, wf, R, n)
+    out = []
+    for j in range(n + 1):
+        ba = a[j] + abs(q) * wf**j
+        if P is not None:
+            bb = abs(P - q) * wf**j + w0 ** (j - 1) * Eh
+            ba = min(ba, bb)
+        out.append(ba)
+    return out
+
+
+class GapEvent:
+    """Event ξ → 0 in free flight: ξ'' + ξ = −sin φ (MODEL.md "No contact")."""
+
+    n = 1
+
+    def __init__(self, wf: float, xi: float, xid: float, sp0: float, cp0: float, H: float):
+        self.wf, self.xi, self.xid, self.sp0, self.cp0, self.H = wf, xi, xid, sp0, cp0, H
+        self.W = min(H, 1.0 / max(1.0, wf))
+        self.P, self.Eh = forced_split(1.0, -1.0, wf, xi, xid, sp0, cp0)
+        self.m2b = math.inf if self.P is None else abs(self.P) * wf * wf + self.Eh
+        r = energy_radius(1.0, 1.0, xi, xid, H)
+        self.scale = [abs(xi) + r + 1.0]
+        self.scale_derivs = [[self.scale[0]] * 4]
+
+    def eval(self, h: float) -> tuple[list[float], list[float], list[float]]:
+        y, yd, _, _ = oscillator(1.0, self.wf, -1.0, self.xi, self.xid, self.sp0, self.cp0, h)
+        r = energy_radius(1.0, 1.0, y, yd, self.W)
+        return [y], [yd], [min(r + 1.0, self.m2b)]
+
+    def start(self) -> list[tuple[list[float], list[float]]]:
+        wf, y, yd, sp, cp = self.wf, self.xi, self.xid, self.sp0, self.cp0
+        d = [y, yd, -sp - y, -wf * cp - yd]
+        r = energy_radius(1.0, 1.0, y, yd, self.W)
+        return [(d, band_bounds(1.0, -1.0, wf, 0.0, r, self.P, self.Eh, 4))]
+
+
+class SlipEvent:
+    """Event ζ' − s' → 0 in slip (σ = +1) or reverse slip (σ = −1).
+
+    f = σ(ζ' − s'), f' = σ((1 − σb) sin φ − ζ)/α (MODEL.md contact equations):
+    f⁽ʲ⁾ = −σ g⁽ʲ⁻¹⁾/α with g = ζ − (1 − σb) sin φ, bounded by :func:`band_bounds`.
+    """
+
+    n = 1
+
+    def __init__(
+        self,
+        k: PhaseConstants,
+        phase: int,
+        z: float,
+        zd: float,
+        s: float,
+        sd: float,
+        sp0: float,
+        cp0: float,
+        H: float,
+        from_edge: bool = False,
+    ):
+        self.k, self.phase = k, phase
+        self.from_edge = from_edge  # entered at a band edge: f' = −σg/α is 0 there
+        self.sig = 1.0 if phase == SLIP else -1.0
+        self.q = 1.0 - self.sig * k.b
+        self.state = (z, zd, s, sd, sp0, cp0)
+        self.H = H
+        w0, F = self.w0, self.F = k.w0[phase], k.F[phase]
+        wf, al, aq = k.varpi, k.alpha, abs(self.q)
+        self.W = min(H, 1.0 / max(w0, wf))
+        self.P, self.Eh = forced_split(w0, F, wf, z, zd, sp0, cp0)
+        self.m2b = math.inf if self.P is None else (abs(self.P - self.q) * wf + self.Eh) / al
+        r = energy_radius(w0, F, z, zd, H)
+        self.scale = [r + abs(sd) + abs(zd) + 1e-300]
+        # noise floors of the Taylor coefficients, as in solver.decide_phase: |terms|
+        zdd = F * sp0 - w0 * w0 * z
+        self.scale_derivs = [
+            [
+                abs(zd) + abs(sd),
+                (aq * abs(sp0) + abs(z)) / al,
+                (aq * wf * abs(cp0) + abs(zd)) / al,
+                (aq * wf * wf * abs(sp0) + abs(zdd)) / al,
+            ]
+        ]
+
+    def eval(self, h: float) -> tuple[list[float], list[float], list[float]]:
+        k = self.k
+        z, zd, s, sd, sp0, cp0 = self.state
+        wf = k.varpi
+        y, yd, sp, cp = oscillator(self.w0, wf, self.F, z, zd, sp0, cp0, h)
+        _, sdn = slider(k.ds[self.phase], wf, s, sd, sp0, cp0, sp, cp, h)
+        sig = self.sig
+        r = energy_radius(self.w0, self.F, y, yd, self.W)
+        m2 = min((abs(self.q) * wf + r) / k.alpha, self.m2b)
+        return [sig * (yd - sdn)], [sig * (self.q * sp - y) / k.alpha], [m2]
+
+    def start(self) -> list[tuple[list[float], list[float]]]:
+        k = self.k
+        z, zd, _, sd, sp, cp = self.state
+        wf, al, q, sig = k.varpi, k.alpha, self.q, self.sig
+        zdd = self.F * sp - self.w0**2 * z
+        d = [
+            sig * (zd - sd),
+            sig * (q * sp - z) / al,
+            sig * (q * wf * cp - zd) / al,
+            sig * (-q * wf * wf * sp - zdd) / al,
+        ]
+        if self.from_edge:
+            d[1] = 0.0
+        r = energy_radius(self.w0, self.F, z, zd, self.W)
+        gb = band_bounds(self.w0, self.F, wf, q, r, self.P, self.Eh, 3)
+        return [(d, [0.0] + [g / al for g in gb])]
+
+
+class StickEvent:
+    """Stick-band exits: g_lo = ζ − (1 − b) sin φ ≥ 0 and g_hi = (1 + b) sin φ − ζ ≥ 0.
+
+    In stick the pair moves with α(1 + 1/β) ζ'' + ζ = sin ϖτ (MODEL.md). g_lo → 0
+    ends stick into slip, g_hi → 0 into reverse slip; bounds by :func:`band_bounds`.
+    ``on_edge``: stick re-entered on that edge (0 lower, 1 upper), whose value is 0.
+    """
+
+    n = 2
+
+    def __init__(
+        self,
+        k: PhaseConstants,
+        z: float,
+        zd: float,
+        sp0: float,
+        cp0: float,
+        H: float,
+        on_edge: int = -1,
+    ):
+        self.k = k
+        w0, F = self.w0, self.F = k.w0[STICK], k.F[STICK]
+        wf = k.varpi
+        self.state = (z, zd, sp0, cp0)
+        self.H = H
+        self.W = min(H, 1.0 / max(w0, wf))
+        self.q = (1.0 - k.b, 1.0 + k.b)
+        self.on_edge = on_edge
+        self.P, self.Eh = forced_split(w0, F, wf, z, zd, sp0, cp0)
+        self.m2b = [
+            math.inf if self.P is None else abs(self.P - q) * wf * wf + w0 * self.Eh for q in self.q
+        ]
+        r = energy_radius(w0, F, z, zd, H)
+        self.scale = [r / w0 + abs(q) for q in self.q]
+        # noise floors of the Taylor coefficients, as in solver.decide_phase: |terms|
+        zeta = (z, zd, F * sp0 - w0 * w0 * z, F * wf * cp0 - w0 * w0 * zd)
+        sine = (sp0, wf * cp0, wf * wf * sp0, wf**3 * cp0)
+        self.scale_derivs = [[abs(zeta[j]) + abs(q * sine[j]) for j in range(4)] for q in self.q]
+
+    def eval(self, h: float) -> tuple[list[float], list[float], list[float]]:
+        z, zd, sp0, cp0 = self.state
+        wf = self.k.varpi
+        y, yd, sp, cp = oscillator(self.w0, wf, self.F, z, zd, sp0, cp0, h)
+        r = energy_radius(self.w0, self.F, y, yd, self.W)
+        bzz = self.w0 * r + abs(self.F)
+        ql, qh = self.q
+        w2 = wf * wf
+        return (
+            [y - ql * sp, qh * sp - y],
+            [yd - ql * wf * cp, qh * wf * cp - yd],
+            [min(bzz + abs(ql) * w2, self.m2b[0]), min(bzz + qh * w2, self.m2b[1])],
+        )
+
+    def start(self) -> list[tuple[list[float], list[float]]]:
+        z, zd, sp, cp = self.state
+        wf = self.k.varpi
+        w0, F = self.w0, self.F
+        zeta = [z, zd, F * sp - w0 * w0 * z, F * wf * cp - w0 * w0 * zd]
+        sine = [sp, wf * cp, -wf * wf * sp, -(wf**3) * cp]
+        r = energy_radius(w0, F, z, zd, self.W)
+        out = []
+        for sig, q in zip((1.0, -1.0), self.q, strict=True):
+            d = [sig * (zeta[j] - q * sine[j]) for j in range(4)]
+            if len(out) == self.on_edge:
+                d[0] = 0.0
+            out.append((d, band_bounds(w0, F, wf, q, r, self.P, self.Eh, 4)))
+        return out

@@ -1,0 +1,230 @@
+"""The periodic state of the slider: Newton shooting on the Poincaré map (unit-free).
+
+docs/MODEL.md, "Slider". Once the vertical motion is periodic (k_v cycles, exact,
+:mod:`vertical`), the section state at τ = 2mπ/ϖ that still evolves is
+x = (ζ, ζ', s'); the slider position s only drifts (translation invariance, a
+structural multiplier 1 that is excluded). A periodic orbit of n = j·k_v cycles
+is a root of G(x) = Φⁿ(x) − x, where Φⁿ is the exact map over n cycles.
+
+Algorithm: brute-force iteration from rest gives the initial guess (and is the
+fallback: chunks doubling in length up to ``max_cycles``); from it, Newton with a
+forward-difference Jacobian and backtracking on ‖G‖∞. Acceptance is *only* on the
+fixed-point residual ‖G(x)‖∞ ≤ tol over the whole section state (the vertical
+part is periodic by construction and checked too), never on successive Δs
+agreeing (settling can take ~10⁵ cycles). Stability: the Floquet multipliers are
+the eigenvalues of the central-difference Jacobian of Φⁿ at the fixed point; an
+unstable fixed point is not what the device settles to and is not accepted (the
+next period j·k_v is tried, then more brute force).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+
+from betvdesign.dynamics.flows import PhaseConstants
+from betvdesign.dynamics.result import PeriodicResult
+from betvdesign.dynamics.solver import SolverFailure, _Cycle
+from betvdesign.dynamics.vertical import VerticalSchedule
+from betvdesign.errors import ParameterError
+from betvdesign.params import ModelParams
+
+FD_STEP = 1e-7
+MAX_NEWTON = 25
+
+
+class _Map:
+    """Φⁿ: section state (ζ, ζ', s') at the first periodic cycle → n cycles later."""
+
+    def __init__(self, k: PhaseConstants, vs: VerticalSchedule, m0: int):
+        self.cyc = _Cycle(k, vs, None, None)
+        self.m0 = m0
+        self.n_cycles = 0
+
+    def __call__(self, x: np.ndarray, n: int) -> tuple[np.ndarray, float]:
+        z, zd, s, sd = float(x[0]), float(x[1]), 0.0, float(x[2])
+        for j in range(n):
+            z, zd, s, sd = self.cyc.run(self.m0 + j, z, zd, s, sd)
+        self.n_cycles += n
+        return np.array([z, zd, sd]), s
+
+    def residual(self, x: np.ndarray, n: int) -> tuple[float, np.ndarray, float]:
+        try:
+            y, s = self(x, n)
+        except (SolverFailure, RuntimeError):
+            return math.inf, x, math.nan
+        g = y - x
+        r = float(np.max(np.abs(g)))
+        return (r if math.isfinite(r) else math.inf), y, s
+
+    def jacobian(self, x: np.ndarray, n: int, y: np.ndarray, central: bool = False) -> np.ndarray:
+        J = np.empty((3, 3))
+        for i in range(3):
+            h = FD_STEP * max(1.0, abs(x[i]))
+            xp = x.copy()
+            xp[i] += h
+            yp, _ = self(xp, n)
+            if central:
+                xm = x.copy()
+                xm[i] -= h
+                ym, _ = self(xm, n)
+                J[:, i] = (yp - ym) / (2.0 * h)
+            else:
+                J[:, i] = (yp - y) / h
+        return J
+
+
+def _newton(phi: _Map, x: np.ndarray, n: int, tol: float) -> tuple[np.ndarray, float, float, int]:
+    """Newton on Φⁿ(x) − x = 0; returns (x, residual, s-increment, iterations)."""
+    r, y, s = phi.residual(x, n)
+    it = 0
+    while it < MAX_NEWTON and r > tol and math.isfinite(r):
+        it += 1
+        try:
+            J = phi.jacobian(x, n, y)
+            dx = np.linalg.solve(J - np.eye(3), -(y - x))
+        except (SolverFailure, RuntimeError, np.linalg.LinAlgError):
+            break
+        lam = 1.0
+        for _ in range(12):
+            xn = x + lam * dx
+            rn, yn, sn = phi.residual(xn, n)
+            if rn < r:
+                x, r, y, s = xn, rn, yn, sn
+                break
+            lam *= 0.5
+        else:
+            break
+    return x, r, s, it
+
+
+def periodic_orbit(
+    p: ModelParams,
+    *,
+    tol: float = 1e-10,
+    max_cycles: int = 100_000,
+    max_period: int = 4,
+    transient: int = 16,
+) -> PeriodicResult:
+    """Periodic state reached from rest (MODEL.md "Initial state"), by shooting.
+
+    tol: accepted fixed-point residual ‖Φⁿ(x) − x‖∞ [-]; max_cycles: brute-force budget
+    (cycles from rest) before giving up; max_period: periods j·k_v tried, j ≤ max_period;
+    transient: cycles from rest before the first Newton attempt.
+    """
+    if not isinstance(p, ModelParams):
+        raise ParameterError(f"p must be a ModelParams, got {type(p).__name__}")
+    if not (math.isfinite(tol) and tol > 0.0):
+        raise ParameterError(f"tol must be finite and > 0, got {tol!r}")
+    t0 = time.perf_counter()
+    k = PhaseConstants.from_params(p)
+    vs = VerticalSchedule(p.varpi, horizon=1000)
+    hits, frac = vs.hits_per_cycle(), vs.contact_fraction()
+
+    def result(status: str, msg: str, **kw: object) -> PeriodicResult:
+        base: dict[str, object] = dict(
+            delta_s=None,
+            mode=None,
+            period_cycles=None,
+            residual=None,
+            floquet=None,
+            stable=None,
+            state=None,
+            n_newton=0,
+            transient_cycles=0,
+        )
+        base.update(kw)
+        return PeriodicResult(
+            params=p,
+            status=status,
+            success=status == "success",
+            message=msg,
+            impacts_per_cycle=hits,
+            contact_fraction=frac,
+            n_cycles=phi.n_cycles if phi else 0,
+            n_events=phi.cyc.n_events if phi else 0,
+            n_root_evals=(phi.cyc.counter[0] if phi else 0) + vs.n_root_evals,
+            elapsed_s=time.perf_counter() - t0,
+            **base,  # type: ignore[arg-type]
+        )
+
+    phi: _Map | None = None
+    if vs.period is None:
+        return result(
+            "not_driven",
+            f"no contact recurs within {len(vs.prefix)} cycles at ϖ = {p.varpi:g}: hits are "
+            "impulsive only and the slider is not driven (MODEL.md design window 0.5 ≤ ϖ < 2)",
+        )
+    kv = vs.period
+    assert vs.first_end is not None
+    m0 = vs.first_end + 1
+    phi = _Map(k, vs, m0)
+    # From rest to the first periodic cycle, then `transient` more (multiples of k_v).
+    pre = _Map(k, vs, 0)
+    try:
+        x_full, _ = pre(np.zeros(3), m0)
+    except (SolverFailure, RuntimeError) as exc:
+        return result("failed", f"transient from rest failed: {exc}")
+    x = x_full
+    brute = m0
+    chunk = max(kv, (transient // kv) * kv)
+    n_newton = 0
+    best: tuple[float, int] = (math.inf, kv)
+    while True:
+        try:
+            x, _ = phi(x, chunk)
+        except (SolverFailure, RuntimeError) as exc:
+            return result("failed", f"brute-force iteration failed after {brute} cycles: {exc}")
+        brute += chunk
+        if not np.all(np.isfinite(x)):
+            return result("failed", f"state became non-finite after {brute} cycles")
+        for j in range(1, max_period + 1):
+            n = j * kv
+            xs, r, s, it = _newton(phi, x.copy(), n, tol)
+            n_newton += it
+            if r < best[0]:
+                best = (r, n)
+            if r > tol:
+                continue
+            J = phi.jacobian(xs, n, xs, central=True)
+            mu = np.linalg.eigvals(J)
+            mu = mu[np.argsort(-np.abs(mu))]
+            if np.max(np.abs(mu)) >= 1.0:
+                continue  # an unstable orbit: not where the device settles
+            r_final, _, s = phi.residual(xs, n)
+            vert = abs(vs.cycle(m0 + n).xi0 - vs.cycle(m0).xi0) + abs(
+                vs.cycle(m0 + n).xid0 - vs.cycle(m0).xid0
+            )
+            r_final = max(r_final, vert)
+            if r_final > tol:
+                continue
+            ds = s / n
+            vc = vs.cycle(m0)
+            return result(
+                "success",
+                f"periodic orbit of {n} cycle(s), residual {r_final:.2e} ≤ {tol:.0e}, "
+                f"|μ|max = {abs(mu[0]):.6f}",
+                delta_s=ds,
+                mode="push" if ds > 0 else "pull" if ds < 0 else None,
+                period_cycles=n,
+                residual=r_final,
+                floquet=mu,
+                stable=True,
+                state=np.array([vc.xi0, vc.xid0, xs[0], xs[1], 0.0, xs[2]]),
+                n_newton=n_newton,
+                transient_cycles=brute,
+            )
+        if brute >= max_cycles:
+            return result(
+                "not_converged",
+                f"no stable periodic orbit of period ≤ {max_period * kv} cycles found within "
+                f"{brute} cycles (best residual {best[0]:.2e} for period {best[1]}); the "
+                "motion may be quasi-periodic or growing (near a·ϖ² = 1); try a larger "
+                "max_cycles or max_period",
+                n_newton=n_newton,
+                transient_cycles=brute,
+                residual=best[0],
+            )
+        chunk = min(2 * chunk, max(kv, ((max_cycles - brute) // kv) * kv))

@@ -1,0 +1,277 @@
+"""Exact event-driven solver of the BETV impact/stick-slip model (unit-free).
+
+docs/MODEL.md, "Dimensionless model". The vertical motion is computed once,
+exactly (:mod:`vertical`); it fixes in every cycle the contact window
+[t_c, π/ϖ] (local time t = τ − 2mπ/ϖ). Horizontally, free flight has no event
+and is one closed-form step; a contact is a sequence of slip / reverse slip /
+stick phases, each advanced in closed form (:mod:`flows`) to its first event
+located with a certified search (:mod:`events`): ζ' = s' in slip, a stick-band
+exit in stick, or the contact end at t = π/ϖ (known exactly).
+
+Phase choice at a contact start and whenever ζ' = s' (:func:`decide_phase`):
+the sign of ζ' − s' when it is not zero; otherwise the friction band
+(1 − b) sin ϖτ ≤ ζ ≤ (1 + b) sin ϖτ, compared lexicographically on Taylor
+coefficients under the stick flow, which also settles the limit sin ϖτ → 0⁺ at a
+contact opening at τ = 0. Entering stick, the common velocity is the one that
+conserves the momentum ζ' + s'/β (the round-off gap between ζ' and s' at the
+event is removed without a momentum error).
+
+Time is carried as (cycle m, local t ∈ [0, 2π/ϖ]) so that no phase loses digits
+over 10⁵ cycles.
+"""
+
+from __future__ import annotations
+
+import bisect
+import math
+import time
+
+import numpy as np
+
+from betvdesign.dynamics.events import NOISE, SlipEvent, StickEvent, first_root, lex_sign
+from betvdesign.dynamics.flows import (
+    FREE,
+    PHASE_NAMES,
+    REVERSE,
+    SLIP,
+    STICK,
+    PhaseConstants,
+    flow,
+)
+from betvdesign.dynamics.result import Event, Trajectory
+from betvdesign.dynamics.vertical import VerticalCycle, VerticalSchedule
+from betvdesign.errors import ParameterError
+from betvdesign.params import ModelParams
+
+#: Zero-length phases in a row before a contact is declared chattering.
+MAX_ZERO_LENGTH = 8
+
+
+class SolverFailure(RuntimeError):
+    """A contact could not be advanced (chattering or a non-terminating event search)."""
+
+
+def decide_phase(
+    k: PhaseConstants, z: float, zd: float, sd: float, sp: float, cp: float, on: int = -1
+) -> int:
+    """Contact phase at a contact start or at ζ' = s' (MODEL.md stick/slip rules).
+
+    ``on``: the event just located (0: ζ' = s' in slip, 1: lower band edge, 2: upper
+    band edge); that event function is zero by construction, whatever its round-off.
+    """
+    if on < 0:
+        v = zd - sd
+        nv = NOISE * (abs(zd) + abs(sd))
+        if v > nv:
+            return SLIP
+        if v < -nv:
+            return REVERSE
+    A, wf, b = k.a_stick, k.varpi, k.b
+    vs = (zd + sd / k.beta) / (1.0 + 1.0 / k.beta)
+    zeta = (z, vs, (sp - z) / A, (wf * cp - vs) / A)
+    sine = (sp, wf * cp, -wf * wf * sp, -(wf**3) * cp)
+    for edge, sig, q, phase in ((1, 1.0, 1.0 - b, SLIP), (2, -1.0, 1.0 + b, REVERSE)):
+        d = [sig * (zeta[j] - q * sine[j]) for j in range(4)]
+        if on == edge:
+            d[0] = 0.0
+        nz = [NOISE * (abs(zeta[j]) + abs(q * sine[j])) for j in range(4)]
+        if lex_sign(d, nz) < 0:
+            return phase
+    return STICK
+
+
+class _Cycle:
+    """Advances the tangential state through whole cycles (no allocation per call)."""
+
+    def __init__(
+        self,
+        k: PhaseConstants,
+        vs: VerticalSchedule,
+        log: list[Event] | None,
+        segments: list | None,
+    ):
+        self.k = k
+        self.vs = vs
+        self.log = log
+        self.segments = segments
+        self.counter = [0]
+        self.n_events = 0
+        self.T = 2.0 * math.pi / k.varpi
+        self.te = math.pi / k.varpi
+
+    def _event(self, m: int, t: float, kind: str, before: int, after: int) -> None:
+        self.n_events += 1
+        if self.log is not None:
+            self.log.append(Event(m * self.T + t, kind, PHASE_NAMES[before], PHASE_NAMES[after]))
+
+    def _seg(self, m: int, t0: float, t1: float, phase: int, st: tuple, sp: float, cp: float):
+        if self.segments is not None:
+            self.segments.append((m * self.T + t0, m, t0, t1, phase, st, sp, cp))
+
+    def run(self, m: int, z: float, zd: float, s: float, sd: float) -> tuple[float, ...]:
+        """State (ζ, ζ', s, s') at the end of cycle m from its start."""
+        k, te, T = self.k, self.te, self.T
+        vc: VerticalCycle = self.vs.cycle(m)
+        if self.log is not None:
+            for ti in vc.impulsive:
+                self._event(m, ti, "impulsive", FREE, FREE)
+        tc = vc.contact_start
+        if tc is None:
+            self._seg(m, 0.0, T, FREE, (z, zd, s, sd), 0.0, 1.0)
+            z, zd, s, sd, _, _ = flow(k, FREE, z, zd, s, sd, 0.0, 1.0, T)
+            return z, zd, s, sd
+        if tc > 0.0:
+            self._seg(m, 0.0, tc, FREE, (z, zd, s, sd), 0.0, 1.0)
+            z, zd, s, sd, _, _ = flow(k, FREE, z, zd, s, sd, 0.0, 1.0, tc)
+            sp, cp = math.sin(k.varpi * tc), math.cos(k.varpi * tc)
+        else:
+            sp, cp = 0.0, 1.0
+        t = tc
+        phase = decide_phase(k, z, zd, sd, sp, cp)
+        if phase == STICK:
+            zd = sd = (zd + sd / k.beta) / (1.0 + 1.0 / k.beta)
+        self._event(m, t, "impact", FREE, phase)
+        zero_len = 0
+        on_edge = -1
+        from_edge = False
+        while True:
+            H = te - t
+            if phase == STICK:
+                ev = StickEvent(k, z, zd, sp, cp, H, on_edge)
+                on_edge = -1
+            else:
+                ev = SlipEvent(k, phase, z, zd, s, sd, sp, cp, H, from_edge)
+            from_edge = False
+            res = first_root(ev, H, self.counter)
+            h = H if res is None else res[0]
+            self._seg(m, t, t + h, phase, (z, zd, s, sd), sp, cp)
+            z, zd, s, sd, _, _ = flow(k, phase, z, zd, s, sd, sp, cp, h)
+            if res is None:
+                break
+            t += h
+            sp, cp = math.sin(k.varpi * t), math.cos(k.varpi * t)
+            new = decide_phase(k, z, zd, sd, sp, cp, 1 + res[1] if phase == STICK else 0)
+            kind = "band-exit" if phase == STICK else "velocity-match"
+            if phase != STICK:  # ζ' = s' exactly (momentum-conserving common velocity)
+                zd = sd = (zd + sd / k.beta) / (1.0 + 1.0 / k.beta)
+            elif new == STICK:
+                on_edge = res[1]
+            else:
+                from_edge = True
+            self._event(m, t, kind, phase, new)
+            zero_len = zero_len + 1 if h == 0.0 else 0
+            if zero_len > MAX_ZERO_LENGTH:
+                raise SolverFailure(
+                    f"contact phases of zero length repeat at τ = {m * T + t:.12g} "
+                    f"(cycle {m}): the stick/slip switching chatters"
+                )
+            phase = new
+        self._event(m, te, "separation", phase, FREE)
+        self._seg(m, te, T, FREE, (z, zd, s, sd), 0.0, -1.0)
+        z, zd, s, sd, _, _ = flow(k, FREE, z, zd, s, sd, 0.0, -1.0, te)
+        return z, zd, s, sd
+
+
+def _check_state0(state0: object) -> tuple[float, ...]:
+    if state0 is None:
+        return (0.0,) * 6
+    try:
+        arr = np.asarray(state0, dtype=float).reshape(-1)
+    except (TypeError, ValueError):
+        raise ParameterError(f"state0 must be 6 numbers, got {state0!r}") from None
+    if arr.shape != (6,) or not np.all(np.isfinite(arr)):
+        raise ParameterError(f"state0 must be 6 finite numbers (ξ, ξ', ζ, ζ', s, s'), got {arr}")
+    if arr[0] < 0.0:
+        raise ParameterError(f"state0: the gap ξ must be ≥ 0, got {arr[0]}")
+    return tuple(float(x) for x in arr)
+
+
+def _check_cycles(cycles: object) -> int:
+    if isinstance(cycles, bool) or not isinstance(cycles, (int, np.integer)) or cycles < 0:
+        raise ParameterError(f"cycles must be a non-negative integer, got {cycles!r}")
+    return int(cycles)
+
+
+def simulate(
+    p: ModelParams,
+    cycles: int,
+    *,
+    dense: bool = False,
+    state0: object = None,
+    log_events: bool = True,
+) -> Trajectory:
+    """Exact transient of ``cycles`` actuation cycles from ``state0`` at τ = 0.
+
+    p: parameters; state0: (ξ, ξ', ζ, ζ', s, s') at τ = 0, default all zero (MODEL.md
+    "Initial state"); dense: keep the phase segments for :meth:`Trajectory.sample`;
+    log_events: keep the event log (counters are kept either way).
+    """
+    if not isinstance(p, ModelParams):
+        raise ParameterError(f"p must be a ModelParams, got {type(p).__name__}")
+    n = _check_cycles(cycles)
+    st = _check_state0(state0)
+    t0 = time.perf_counter()
+    k = PhaseConstants.from_params(p)
+    vs = VerticalSchedule(p.varpi, st[0], st[1], horizon=max(1000, n + 1))
+    log: list[Event] | None = [] if log_events else None
+    segs: list | None = [] if dense else None
+    cyc = _Cycle(k, vs, log, segs)
+    section = np.empty((n + 1, 6))
+    z, zd, s, sd = st[2:]
+    status, message, done = "success", f"{n} cycles simulated", n
+    for m in range(n):
+        vc = vs.cycle(m)
+        section[m] = (vc.xi0, vc.xid0, z, zd, s, sd)
+        try:
+            z, zd, s, sd = cyc.run(m, z, zd, s, sd)
+        except (SolverFailure, RuntimeError) as exc:
+            status, message, done = "failed", f"{exc}; results up to cycle {m} kept", m
+            break
+        if not (math.isfinite(z) and math.isfinite(zd) and math.isfinite(s) and math.isfinite(sd)):
+            status, done = "failed", m
+            message = f"non-finite state in cycle {m}; results up to cycle {m} kept"
+            break
+    else:
+        vc = vs.cycle(n)
+        section[n] = (vc.xi0, vc.xid0, z, zd, s, sd)
+    section = section[: done + 1]
+    delta = np.diff(section[:, 4])
+    sampler = _make_sampler(k, vs, segs) if dense else None
+    return Trajectory(
+        params=p,
+        solver="exact",
+        status=status,
+        success=status == "success",
+        message=message,
+        s=float(section[-1, 4]),
+        delta_s=delta,
+        section=section,
+        events=log or [],
+        n_events=cyc.n_events,
+        n_cycles=done,
+        n_root_evals=cyc.counter[0] + vs.n_root_evals,
+        elapsed_s=time.perf_counter() - t0,
+        impacts_per_cycle=vs.hits_per_cycle(),
+        contact_fraction=vs.contact_fraction(),
+        _sampler=sampler,
+    )
+
+
+def _make_sampler(k: PhaseConstants, vs: VerticalSchedule, segs: list):
+    starts = [sg[0] for sg in segs]
+    T = 2.0 * math.pi / k.varpi
+
+    def sample(tau: np.ndarray) -> np.ndarray:
+        out = np.empty((tau.size, 6))
+        for j, ta in enumerate(tau):
+            i = bisect.bisect_right(starts, ta) - 1
+            if i < 0 or ta > segs[-1][0] + (segs[-1][3] - segs[-1][2]) * (1 + 1e-12):
+                raise ValueError(f"τ = {ta} outside the simulated span")
+            _, m, t0, _, phase, (z, zd, s, sd), sp, cp = segs[i]
+            h = ta - m * T - t0
+            zn, zdn, sn, sdn, _, _ = flow(k, phase, z, zd, s, sd, sp, cp, h)
+            xi, xid = vs.cycle(m).gap(k.varpi, t0 + h)
+            out[j] = (xi, xid, zn, zdn, sn, sdn)
+        return out
+
+    return sample

@@ -1,0 +1,111 @@
+"""Exact event-driven solver and periodic shooting (sources: the model's own rules in
+docs/MODEL.md, long brute-force iteration as a second method for the periodic state,
+and the α → 0 design knowledge "rigid tangential contact always pulls")."""
+
+import math
+
+import numpy as np
+import pytest
+
+from betvdesign.dynamics import periodic_orbit, simulate
+from betvdesign.dynamics.flows import SLIP, STICK, PhaseConstants
+from betvdesign.dynamics.solver import decide_phase
+from betvdesign.errors import ParameterError
+from betvdesign.params import ModelParams
+
+PULL = ModelParams(1.2, 0.5, 1.0, 0.4)
+PUSH = ModelParams(1.5, 1.0, 0.2, 0.2)
+
+
+def test_simulate_result_contract():
+    tr = simulate(PULL, 20)
+    assert tr.success and tr.status == "success"
+    assert tr.n_cycles == 20 and tr.section.shape == (21, 6) and tr.delta_s.shape == (20,)
+    assert tr.s == pytest.approx(tr.section[0, 4] + tr.delta_s.sum(), abs=1e-12)
+    assert tr.n_events == len(tr.events) > 0 and tr.n_root_evals > 0 and tr.elapsed_s > 0
+    kinds = {e.kind for e in tr.events}
+    assert {"impact", "separation"} <= kinds
+    assert tr.events[0].tau == 0.0 and tr.events[0].kind == "impact"
+
+
+def test_section_times_and_contact_end_are_exact():
+    """Contact always ends at τ = (2j+1)π/ϖ (MODEL.md)."""
+    tr = simulate(PULL, 5)
+    ends = [e.tau for e in tr.events if e.kind == "separation"]
+    w = PULL.varpi
+    for j, t in enumerate(ends):
+        assert t == pytest.approx((2 * j + 1) * math.pi / w, rel=1e-15)
+
+
+def test_initial_contact_phase_from_the_band_limit():
+    """At τ = 0 (sin = 0, state at rest) the band is decided on first derivatives:
+    ζ' = 0 < (1 − b)ϖ → slip when b < 1; (1 − b)ϖ < 0 < (1 + b)ϖ → stick when b > 1."""
+    k = PhaseConstants.from_params(ModelParams(1.0, 0.5, 1.0, 0.4))  # b = 0.4
+    assert decide_phase(k, 0.0, 0.0, 0.0, 0.0, 1.0) == SLIP
+    k = PhaseConstants.from_params(ModelParams(1.0, 2.0, 1.0, 0.4))  # b = 1.6
+    assert decide_phase(k, 0.0, 0.0, 0.0, 0.0, 1.0) == STICK
+    assert simulate(ModelParams(1.0, 2.0, 1.0, 0.4), 1).events[0].phase_after == "stick"
+
+
+@pytest.mark.parametrize("p", [PULL, PUSH], ids=["pull", "push"])
+def test_periodic_orbit_matches_long_brute_force(p):
+    """Second method: brute-force iteration from rest, long enough for |μ|^n < 1e-14."""
+    po = periodic_orbit(p)
+    assert po.success, po.message
+    assert po.residual <= 1e-10 and po.stable and po.period_cycles == 1
+    n = int(math.log(1e-14) / math.log(po.floquet_moduli[0])) + 10
+    tr = simulate(p, n, log_events=False)
+    assert abs(tr.delta_s[-1] - po.delta_s) <= 1e-9
+    assert np.allclose(tr.section[-1, [2, 3, 5]], po.state[[2, 3, 5]], atol=1e-9)
+    assert po.mode == ("push" if po.delta_s > 0 else "pull")
+
+
+def test_periodic_modes_of_reference_designs():
+    assert periodic_orbit(PULL).mode == "pull"
+    assert periodic_orbit(PUSH).mode == "push"
+
+
+@pytest.mark.parametrize("alpha", [1e-3, 1e-2])
+def test_rigid_limit_pulls(alpha):
+    """MODEL.md: α → 0 (rigid tangential contact) always gives pull mode."""
+    po = periodic_orbit(ModelParams(1.5, alpha, 0.2, 0.2))
+    assert po.success, po.message
+    assert po.mode == "pull"
+
+
+def test_not_driven_beyond_the_window():
+    po = periodic_orbit(ModelParams(2.3, 1.0, 1.0, 0.4))
+    assert not po.success and po.status == "not_driven"
+    assert "not driven" in po.message
+
+
+@pytest.mark.parametrize(
+    "kwargs",
+    [
+        {"cycles": -1},
+        {"cycles": 2.5},
+        {"cycles": 3, "state0": [0, 0, 0, math.nan, 0, 0]},
+        {"cycles": 3, "state0": [-1e-3, 0, 0, 0, 0, 0]},
+        {"cycles": 3, "state0": [0, 0, 0]},
+    ],
+)
+def test_bad_arguments_rejected(kwargs):
+    with pytest.raises(ParameterError):
+        simulate(PULL, **kwargs)
+
+
+def test_bad_parameters_rejected():
+    for bad in (0.0, -1.0, math.nan, math.inf):
+        with pytest.raises(ParameterError, match="varpi"):
+            simulate(ModelParams(bad, 1.0, 1.0, 1.0), 1)
+    with pytest.raises(ParameterError):
+        periodic_orbit(PULL, tol=-1.0)
+
+
+def test_dense_output_hits_section_states():
+    tr = simulate(PUSH, 4, dense=True)
+    T = 2 * math.pi / PUSH.varpi
+    st = tr.sample(np.arange(4) * T)
+    assert np.allclose(st, tr.section[:4], atol=1e-12)
+    with pytest.raises(ValueError):
+        simulate(PUSH, 2).sample(1.0)
