@@ -309,7 +309,7 @@ def regime_cmd(
     quiet: QuietOpt = False,
 ) -> None:
     """Vertical regime diagram: impact period and contact fraction over ϖ."""
-    from betvdesign.studies.regime import run_regime
+    from betvdesign.studies.regime import LONG_PERIOD, run_regime
 
     with user_errors(), interruptible(out):
         grid = axis(varpi, "varpi")
@@ -326,12 +326,16 @@ def regime_cmd(
         data = {"study": "regime", **run_block(run), **summary}
 
         def human() -> None:
-            for iv in summary["intervals"]:
+            for iv in summary["overview"]:
                 typer.echo(
                     f"ϖ {iv['from']:8.4g} – {iv['to']:<8.4g} {iv['label']:<14} "
                     f"({iv['points']} points)"
                 )
             for e in summary["errors"]:
                 typer.echo(f"  error at ϖ={e['varpi']:g}: {e['message']}")
+            typer.echo(
+                f"(overview: periods > {LONG_PERIOD} cycles shown as aperiodic; "
+                "--json lists every interval)"
+            )
 
         emit(data, as_json, human)

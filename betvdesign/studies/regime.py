@@ -14,6 +14,10 @@ cycle, and contact fraction, after transients, and labels the point
   duration) and repeat periodically; the slider is not driven;
 * ``aperiodic``: impulsive hits that repeat with no period found.
 
+The overview merges periods longer than :data:`LONG_PERIOD` cycles into
+``aperiodic`` (at a grid resolution they are indistinguishable from it); the
+full intervals keep every label.
+
 Impulsive-only motion is a circle map: an impulsive hit leaves ξ = ξ' = 0, so
 the motion after it depends only on the hit's phase in the cycle. Its period
 is found from the hit phases over the second half of the horizon (after
@@ -37,6 +41,8 @@ from betvdesign.studies.runner import Progress, Study, StudyRun, run_study
 
 #: Relative (to one cycle) tolerance for two hit phases to count as equal.
 PHASE_RTOL = 1e-9
+#: Periods longer than this many cycles are shown as aperiodic in the overview.
+LONG_PERIOD = 8
 #: Longest impulsive-hit period (in hits) searched for.
 MAX_HIT_PERIOD = 64
 
@@ -143,27 +149,37 @@ class Interval:
         return {"label": self.label, "from": self.lo, "to": self.hi, "points": self.points}
 
 
-def intervals(rows: Sequence[Mapping[str, Any]]) -> list[Interval]:
-    """Contiguous runs of equal labels along ϖ."""
+def coarse_label(label: str) -> str:
+    """Label for the overview: long periods (k > :data:`LONG_PERIOD`) join ``aperiodic``."""
+    if label.startswith("period-") and int(label.split("-")[1]) > LONG_PERIOD:
+        return "aperiodic"
+    return label
+
+
+def intervals(rows: Sequence[Mapping[str, Any]], *, coarse: bool = False) -> list[Interval]:
+    """Contiguous runs of equal labels along ϖ (``coarse``: see :func:`coarse_label`)."""
     out: list[Interval] = []
     for r in sorted(rows, key=lambda r: r["varpi"]):
-        if out and out[-1].label == r["label"]:
+        label = coarse_label(r["label"]) if coarse else r["label"]
+        if out and out[-1].label == label:
             last = out[-1]
             out[-1] = Interval(last.label, last.lo, r["varpi"], last.points + 1)
         else:
-            out.append(Interval(r["label"], r["varpi"], r["varpi"], 1))
+            out.append(Interval(label, r["varpi"], r["varpi"], 1))
     return out
 
 
 def summarise(rows: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
     """Intervals, counts per label, and every failed point."""
     ivs = intervals(rows)
+    overview = intervals(rows, coarse=True)
     counts: dict[str, int] = {}
     for r in rows:
         counts[r["label"]] = counts.get(r["label"], 0) + 1
     return {
         "points": len(rows),
         "counts": counts,
+        "overview": [i.as_dict() for i in overview],
         "intervals": [i.as_dict() for i in ivs],
         "errors": [
             {"varpi": r["varpi"], "message": r["message"]} for r in rows if r["status"] == "error"
