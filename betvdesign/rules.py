@@ -124,7 +124,7 @@ def evaluate(
         _frequency_window(s),
         *_mode_rules(s, periodic, lambda_margin),
         _tangential_resonance(s),
-        *_fit_range(s),
+        *_fit_range(s, simulated=periodic is not None and bool(getattr(periodic, "success", 0))),
         *_published(s),
         *_speed(s, periodic),
     ]
@@ -274,7 +274,7 @@ def _tangential_resonance(s: SetDerivation) -> RuleResult:
     )
 
 
-def _fit_range(s: SetDerivation) -> list[RuleResult]:
+def _fit_range(s: SetDerivation, *, simulated: bool = False) -> list[RuleResult]:
     out = []
     for name, (lo, hi) in FIT_RANGE.items():
         v = getattr(s.params, name)
@@ -282,8 +282,12 @@ def _fit_range(s: SetDerivation) -> list[RuleResult]:
         msg = (
             f"{name} = {v:.3g} inside the λ fit range"
             if ok
-            else f"{name} = {v:.3g} outside the λ fit range {lo:g}–{hi:g}: "
-            "λ is an extrapolation, confirm with --simulate"
+            else f"{name} = {v:.3g} outside the λ fit range {lo:g}–{hi:g}: λ is an "
+            + (
+                "extrapolation; the exact orbit decided the mode"
+                if simulated
+                else "extrapolation, confirm with --simulate"
+            )
         )
         out.append(
             RuleResult(
@@ -359,7 +363,7 @@ def _speed(s: SetDerivation, periodic: PeriodicLike | None) -> list[RuleResult]:
             "info",
             True,
             v,
-            "Δs·u·cosθ·f_act",
+            "Δs·u·cosθ·f_act [m/s]",
             f"mean speed {format_speed(v)}, crosses the {s.travel_range_m * 1e6:.4g} um travel "
             f"range in {format_time(t_cross)}",
             SRC_SPEED,
