@@ -128,11 +128,17 @@ def first_root(ev: Evaluator, H: float, counter: list[int]) -> tuple[float, int]
                     best = (x0 + 2.0 * d, i)
         if best is not None:
             i = best[1]
-            r = _refine(ev, i, x0, min(best[0], H + 2.0 * EPS * H), fs[i], fps[i], counter)
-            if r <= H and all(steps[j] >= r - x0 for j in range(ev.n) if j != i):
-                return r, i
-            if r > H and step >= H - x0:
-                return None
+            hi = min(best[0], H)
+            counter[0] += 1
+            f_hi = ev.eval(hi)[0][i]
+            others_clear = all(steps[j] >= hi - x0 for j in range(ev.n) if j != i)
+            if f_hi > 0.0:  # (then hi = H) f_i stays positive up to H
+                if others_clear:
+                    return None
+            else:
+                r = _refine(ev, i, x0, hi, fs[i], fps[i], counter)
+                if all(steps[j] >= r - x0 for j in range(ev.n) if j != i):
+                    return r, i
         if x0 + step >= H:
             return None
         x0 += step
@@ -150,6 +156,7 @@ def _refine(
     """
     x, f, fp = lo, flo, fplo
     tol = 4.0 * EPS * max(1.0, abs(hi))
+    floor = 4.0 * EPS * ev.scale[i]  # |f| at round-off level: converged
     for _ in range(100):
         xn = x - f / fp if fp != 0.0 else 0.5 * (lo + hi)
         if not lo < xn < hi:
@@ -160,12 +167,12 @@ def _refine(
         counter[0] += 1
         fs, fps, _ = ev.eval(x)
         f, fp = fs[i], fps[i]
+        if abs(f) <= floor:
+            return x
         if f > 0.0:
             lo = x
-        elif f < 0.0:
-            hi = x
         else:
-            return x
+            hi = x
         if hi - lo <= tol:
             return hi
     return x
@@ -184,6 +191,18 @@ def forced_split(w0: float, F: float, wf: float, y: float, yd: float, sp: float,
     P = F / den
     yh, yhd = y - P * sp, yd - P * wf * cp
     return P, math.sqrt(yhd * yhd + w0 * w0 * yh * yh)
+
+
+def window(H: float, w0: float, wf: float, P: float | None, F: float) -> float:
+    """Length over which the energy-growth bound is taken (steps never exceed it).
+
+    Away from resonance (|1 − aϖ²| ≥ 0.1) the split bound, valid on any length, is
+    the tight one: the whole interval H. Near resonance: one radian of the fastest
+    frequency, so that the secular growth |F|·W stays small.
+    """
+    if P is not None and abs(P) * w0 * w0 <= 10.0 * abs(F):
+        return H
+    return min(H, 1.0 / max(w0, wf))
 
 
 def band_bounds(
@@ -213,8 +232,8 @@ class GapEvent:
 
     def __init__(self, wf: float, xi: float, xid: float, sp0: float, cp0: float, H: float):
         self.wf, self.xi, self.xid, self.sp0, self.cp0, self.H = wf, xi, xid, sp0, cp0, H
-        self.W = min(H, 1.0 / max(1.0, wf))
         self.P, self.Eh = forced_split(1.0, -1.0, wf, xi, xid, sp0, cp0)
+        self.W = window(H, 1.0, wf, self.P, -1.0)
         self.m2b = math.inf if self.P is None else abs(self.P) * wf * wf + self.Eh
         r = energy_radius(1.0, 1.0, xi, xid, H)
         self.scale = [abs(xi) + r + 1.0]
@@ -262,9 +281,14 @@ class SlipEvent:
         self.H = H
         w0, F = self.w0, self.F = k.w0[phase], k.F[phase]
         wf, al, aq = k.varpi, k.alpha, abs(self.q)
-        self.W = min(H, 1.0 / max(w0, wf))
         self.P, self.Eh = forced_split(w0, F, wf, z, zd, sp0, cp0)
+        self.W = window(H, w0, wf, self.P, F)
         self.m2b = math.inf if self.P is None else (abs(self.P - self.q) * wf + self.Eh) / al
+        self.fast = self.W == H and self.P is not None
+        if self.fast:  # y = P sin φ + a_c cos w0h + a_s sin w0h (no cancellation here)
+            self.ac = z - self.P * sp0
+            self.as_ = (zd - self.P * wf * cp0) / w0
+            self.sdc = sd + k.ds[phase] * cp0 / wf
         r = energy_radius(w0, F, z, zd, H)
         self.scale = [r + abs(sd) + abs(zd) + 1e-300]
         # noise floors of the Taylor coefficients, as in solver.decide_phase: |terms|
@@ -282,6 +306,15 @@ class SlipEvent:
         k = self.k
         z, zd, s, sd, sp0, cp0 = self.state
         wf = k.varpi
+        if self.fast:
+            cw, sw = math.cos(wf * h), math.sin(wf * h)
+            sp, cp = sp0 * cw + cp0 * sw, cp0 * cw - sp0 * sw
+            w0 = self.w0
+            c0, s0 = math.cos(w0 * h), math.sin(w0 * h)
+            y = self.P * sp + self.ac * c0 + self.as_ * s0
+            yd = self.P * wf * cp + w0 * (self.as_ * c0 - self.ac * s0)
+            sdn = self.sdc - k.ds[self.phase] * cp / wf
+            return [self.sig * (yd - sdn)], [self.sig * (self.q * sp - y) / k.alpha], [self.m2b]
         y, yd, sp, cp = oscillator(self.w0, wf, self.F, z, zd, sp0, cp0, h)
         _, sdn = slider(k.ds[self.phase], wf, s, sd, sp0, cp0, sp, cp, h)
         sig = self.sig
@@ -332,10 +365,14 @@ class StickEvent:
         wf = k.varpi
         self.state = (z, zd, sp0, cp0)
         self.H = H
-        self.W = min(H, 1.0 / max(w0, wf))
         self.q = (1.0 - k.b, 1.0 + k.b)
         self.on_edge = on_edge
         self.P, self.Eh = forced_split(w0, F, wf, z, zd, sp0, cp0)
+        self.W = window(H, w0, wf, self.P, F)
+        self.fast = self.W == H and self.P is not None
+        if self.fast:
+            self.ac = z - self.P * sp0
+            self.as_ = (zd - self.P * wf * cp0) / w0
         self.m2b = [
             math.inf if self.P is None else abs(self.P - q) * wf * wf + w0 * self.Eh for q in self.q
         ]
@@ -349,10 +386,22 @@ class StickEvent:
     def eval(self, h: float) -> tuple[list[float], list[float], list[float]]:
         z, zd, sp0, cp0 = self.state
         wf = self.k.varpi
+        ql, qh = self.q
+        if self.fast:
+            cw, sw = math.cos(wf * h), math.sin(wf * h)
+            sp, cp = sp0 * cw + cp0 * sw, cp0 * cw - sp0 * sw
+            w0 = self.w0
+            c0, s0 = math.cos(w0 * h), math.sin(w0 * h)
+            y = self.P * sp + self.ac * c0 + self.as_ * s0
+            yd = self.P * wf * cp + w0 * (self.as_ * c0 - self.ac * s0)
+            return (
+                [y - ql * sp, qh * sp - y],
+                [yd - ql * wf * cp, qh * wf * cp - yd],
+                self.m2b,
+            )
         y, yd, sp, cp = oscillator(self.w0, wf, self.F, z, zd, sp0, cp0, h)
         r = energy_radius(self.w0, self.F, y, yd, self.W)
         bzz = self.w0 * r + abs(self.F)
-        ql, qh = self.q
         w2 = wf * wf
         return (
             [y - ql * sp, qh * sp - y],

@@ -134,6 +134,7 @@ def periodic_orbit(
             state=None,
             n_newton=0,
             transient_cycles=0,
+            transient_s=0.0,
         )
         base.update(kw)
         return PeriodicResult(
@@ -164,17 +165,17 @@ def periodic_orbit(
     # From rest to the first periodic cycle, then `transient` more (multiples of k_v).
     pre = _Map(k, vs, 0)
     try:
-        x_full, _ = pre(np.zeros(3), m0)
+        x, s_total = pre(np.zeros(3), m0)
     except (SolverFailure, RuntimeError) as exc:
         return result("failed", f"transient from rest failed: {exc}")
-    x = x_full
     brute = m0
     chunk = max(kv, (transient // kv) * kv)
     n_newton = 0
     best: tuple[float, int] = (math.inf, kv)
     while True:
         try:
-            x, _ = phi(x, chunk)
+            x, s_chunk = phi(x, chunk)
+            s_total += s_chunk
         except (SolverFailure, RuntimeError) as exc:
             return result("failed", f"brute-force iteration failed after {brute} cycles: {exc}")
         brute += chunk
@@ -215,6 +216,7 @@ def periodic_orbit(
                 state=np.array([vc.xi0, vc.xid0, xs[0], xs[1], 0.0, xs[2]]),
                 n_newton=n_newton,
                 transient_cycles=brute,
+                transient_s=s_total,
             )
         if brute >= max_cycles:
             return result(
@@ -225,6 +227,7 @@ def periodic_orbit(
                 "max_cycles or max_period",
                 n_newton=n_newton,
                 transient_cycles=brute,
+                transient_s=s_total,
                 residual=best[0],
             )
         chunk = min(2 * chunk, max(kv, ((max_cycles - brute) // kv) * kv))

@@ -80,7 +80,8 @@ class PeriodicResult:
     "pull" (Δs < 0); ``residual``: max-norm of (map(state) − state) over the whole
     section state, slider position excepted (it drifts by design); ``floquet``:
     multipliers of the section map (ζ, ζ', s'), complex, sorted by decreasing modulus;
-    ``stable``: all |μ| < 1.
+    ``stable``: all |μ| < 1; ``transient_cycles``, ``transient_s``: cycles iterated from
+    rest before the orbit was accepted and the slider position [-] they reached.
     """
 
     params: ModelParams
@@ -102,6 +103,7 @@ class PeriodicResult:
     n_root_evals: int
     elapsed_s: float
     transient_cycles: int = 0
+    transient_s: float = 0.0
 
     @property
     def floquet_moduli(self) -> list[float] | None:

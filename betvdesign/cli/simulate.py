@@ -1,0 +1,188 @@
+"""``betv simulate``: the exact solver from the command line (thin layer).
+
+Parameters come either from a device file (``betv simulate devices/x.yaml
+[--set NAME]``: loaded and made dimensionless by :func:`betvdesign.nondim.derive_file`,
+so results are also given in µm, ms and µm/s) or directly as
+``--varpi --alpha --beta --kappa``. ``--cycles N`` runs a transient of N cycles
+from rest (:func:`betvdesign.dynamics.simulate`); ``--periodic`` solves for the
+periodic state (:func:`betvdesign.dynamics.periodic_orbit`).
+
+``--json`` prints one object on stdout (contract in docs/ARCHITECTURE.md):
+``params, status, message, cycles, s, delta_s, mode, period_cycles, residual,
+floquet, impacts_per_cycle, contact_fraction`` (+ ``device``, ``set`` and
+``physical`` when a device file gives the scales). Exit codes: 0 solved,
+1 the solver did not succeed (the message says why and what to try), 2 bad input.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+from typing import Any
+
+import typer
+
+from betvdesign.cli import app
+from betvdesign.cli.common import EXIT_OK, EXIT_RULE_FAILED, user_errors
+from betvdesign.errors import UsageError
+from betvdesign.params import ModelParams
+
+
+def _params_from_options(
+    file: Path | None, set_name: str | None, opts: dict[str, float | None]
+) -> tuple[ModelParams, Any, dict[str, Any]]:
+    """(params, scales or None, identification) from a device file or the four options."""
+    given = [k for k, v in opts.items() if v is not None]
+    if file is not None:
+        if given:
+            raise UsageError(
+                f"give either a device file or --{'/--'.join(opts)}, not both "
+                f"(got {file} and --{', --'.join(given)})"
+            )
+        from betvdesign.nondim import derive_file
+
+        der = derive_file(file)
+        names = [s.name for s in der.sets]
+        if set_name is None:
+            chosen = der.sets[0]
+        else:
+            matches = [s for s in der.sets if s.name == set_name]
+            if not matches:
+                raise UsageError(f"{file}: no actuator set {set_name!r} (sets: {', '.join(names)})")
+            chosen = matches[0]
+        return chosen.params, chosen.scales, {"device": der.name, "set": chosen.name}
+    if set_name is not None:
+        raise UsageError("--set needs a device file")
+    missing = [k for k, v in opts.items() if v is None]
+    if missing:
+        raise UsageError(
+            "give a device file or all of --varpi --alpha --beta --kappa "
+            f"(missing: --{', --'.join(missing)})"
+        )
+    return ModelParams(**opts), None, {}  # type: ignore[arg-type]
+
+
+def _physical(scales: Any, s: float, delta_s: float | None, cycles: int) -> dict[str, Any]:
+    """Dimensional values [µm, µm/s, ms] from the device scales (MODEL.md "Displacement
+    per cycle": length u·cosθ, speed Δs·u·cosθ·f_act)."""
+    out: dict[str, Any] = {
+        "length_scale_um": scales.length_m * 1e6,
+        "f_act_hz": scales.f_act_hz,
+        "cycle_ms": 1e3 / scales.f_act_hz,
+        "time_ms": cycles * 1e3 / scales.f_act_hz,
+        "s_um": s * scales.length_m * 1e6,
+        "delta_s_um": None,
+        "speed_um_s": None,
+    }
+    if delta_s is not None:
+        out["delta_s_um"] = delta_s * scales.length_m * 1e6
+        out["speed_um_s"] = delta_s * scales.length_m * scales.f_act_hz * 1e6
+    return out
+
+
+def _finite(x: float | None) -> float | None:
+    return None if x is None or not math.isfinite(x) else float(x)
+
+
+@app.command("simulate")
+def simulate_cmd(
+    file: Path | None = typer.Argument(None, help="Device YAML file (see devices/)."),
+    set_name: str | None = typer.Option(
+        None, "--set", help="Actuator set of the device file (default: the first)."
+    ),
+    varpi: float | None = typer.Option(None, "--varpi", help="ϖ = ω·sqrt(m/k_v) [-]."),
+    alpha: float | None = typer.Option(None, "--alpha", help="α = k_v/k_h [-]."),
+    beta: float | None = typer.Option(None, "--beta", help="β = m/M [-]."),
+    kappa: float | None = typer.Option(None, "--kappa", help="κ = μ·tanθ [-]."),
+    cycles: int = typer.Option(100, "--cycles", min=1, help="Transient cycles from rest."),
+    periodic: bool = typer.Option(
+        False, "--periodic", help="Solve for the periodic state (Newton shooting)."
+    ),
+    tol: float = typer.Option(1e-10, "--tol", help="Periodic residual accepted [-]."),
+    max_cycles: int = typer.Option(
+        100_000, "--max-cycles", min=1, help="Brute-force budget of --periodic [cycles]."
+    ),
+    as_json: bool = typer.Option(False, "--json", help="Print one JSON object on stdout."),
+) -> None:
+    """Simulate one design exactly: a transient (--cycles) or the periodic state (--periodic)."""
+    from betvdesign.dynamics import periodic_orbit, simulate
+
+    opts = {"varpi": varpi, "alpha": alpha, "beta": beta, "kappa": kappa}
+    with user_errors():
+        p, scales, ident = _params_from_options(file, set_name, opts)
+        if periodic:
+            po = periodic_orbit(p, tol=tol, max_cycles=max_cycles)
+            out: dict[str, Any] = {
+                "params": p.as_dict(),
+                "status": po.status,
+                "message": po.message,
+                "cycles": po.transient_cycles,
+                "s": po.transient_s,
+                "delta_s": _finite(po.delta_s),
+                "mode": po.mode,
+                "period_cycles": po.period_cycles,
+                "residual": _finite(po.residual),
+                "floquet": po.floquet_moduli,
+                "impacts_per_cycle": po.impacts_per_cycle,
+                "contact_fraction": po.contact_fraction,
+            }
+            success = po.success
+        else:
+            tr = simulate(p, cycles, log_events=False)
+            last = float(tr.delta_s[-1]) if len(tr.delta_s) else None
+            out = {
+                "params": p.as_dict(),
+                "status": tr.status,
+                "message": tr.message,
+                "cycles": tr.n_cycles,
+                "s": tr.s,
+                "delta_s": last,
+                "mode": None if last is None or last == 0 else ("push" if last > 0 else "pull"),
+                "period_cycles": None,
+                "residual": None,
+                "floquet": None,
+                "impacts_per_cycle": tr.impacts_per_cycle,
+                "contact_fraction": tr.contact_fraction,
+            }
+            success = tr.success
+    out.update(ident)
+    if scales is not None:
+        out["physical"] = _physical(scales, out["s"], out["delta_s"], out["cycles"])
+    if as_json:
+        typer.echo(json.dumps(out, indent=2, ensure_ascii=False))
+    else:
+        _print_text(out, periodic)
+    raise typer.Exit(EXIT_OK if success else EXIT_RULE_FAILED)
+
+
+def _print_text(out: dict[str, Any], periodic: bool) -> None:
+    pr = out["params"]
+    head = f"{out['device']} / set {out['set']}: " if "device" in out else ""
+    typer.echo(
+        f"{head}ϖ = {pr['varpi']:.6g}, α = {pr['alpha']:.6g}, β = {pr['beta']:.6g}, "
+        f"κ = {pr['kappa']:.6g}"
+    )
+    typer.echo(f"status: {out['status']} — {out['message']}")
+    ph = out.get("physical")
+    ds = out["delta_s"]
+    what = "periodic Δs" if periodic else "last-cycle Δs"
+    if ds is not None:
+        line = f"{what} = {ds:.10g} per cycle [u·cosθ]"
+        if ph:
+            line += f" = {ph['delta_s_um']:.6g} µm; mean speed {ph['speed_um_s']:.6g} µm/s"
+        typer.echo(line + (f" -> {out['mode']}" if out["mode"] else ""))
+    line = f"s after {out['cycles']} cycles = {out['s']:.10g} [u·cosθ]"
+    if ph:
+        line += f" = {ph['s_um']:.6g} µm in {ph['time_ms']:.6g} ms"
+    typer.echo(line)
+    if periodic and out["period_cycles"] is not None:
+        fl = ", ".join(f"{m:.6g}" for m in out["floquet"] or [])
+        typer.echo(
+            f"period {out['period_cycles']} cycle(s), residual {out['residual']:.2e}, "
+            f"|Floquet multipliers| {fl}"
+        )
+    typer.echo(
+        f"impacts per cycle {out['impacts_per_cycle']:.4g}, "
+        f"contact fraction {out['contact_fraction']:.4g}"
+    )

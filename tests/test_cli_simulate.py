@@ -1,0 +1,103 @@
+"""``betv simulate`` (source: typer CliRunner runs of the command, checked against the
+Python API it wraps and against the JSON contract of issue 3 / docs/ARCHITECTURE.md)."""
+
+import json
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+from betvdesign.cli import app
+from betvdesign.dynamics import periodic_orbit, simulate
+from betvdesign.nondim import derive_file
+from betvdesign.params import ModelParams
+
+DEVICES = Path(__file__).resolve().parents[1] / "devices"
+KEYS = {
+    "params",
+    "status",
+    "message",
+    "cycles",
+    "s",
+    "delta_s",
+    "mode",
+    "period_cycles",
+    "residual",
+    "floquet",
+    "impacts_per_cycle",
+    "contact_fraction",
+}
+ARGS = ["--varpi", "1.2", "--alpha", "0.5", "--beta", "1", "--kappa", "0.4"]
+
+
+def _run(args):
+    return CliRunner().invoke(app, ["simulate", *args])
+
+
+def test_transient_json_matches_api():
+    r = _run([*ARGS, "--cycles", "30", "--json"])
+    assert r.exit_code == 0, r.output
+    out = json.loads(r.stdout)
+    assert KEYS <= set(out)
+    tr = simulate(ModelParams(1.2, 0.5, 1.0, 0.4), 30)
+    assert out["s"] == tr.s and out["delta_s"] == tr.delta_s[-1] and out["cycles"] == 30
+    assert out["params"] == {"varpi": 1.2, "alpha": 0.5, "beta": 1.0, "kappa": 0.4}
+    assert out["period_cycles"] is None and out["floquet"] is None
+
+
+def test_periodic_json_matches_api():
+    r = _run([*ARGS, "--periodic", "--json"])
+    assert r.exit_code == 0, r.output
+    out = json.loads(r.stdout)
+    po = periodic_orbit(ModelParams(1.2, 0.5, 1.0, 0.4))
+    assert out["delta_s"] == po.delta_s and out["mode"] == "pull" == po.mode
+    assert out["period_cycles"] == 1 and out["residual"] <= 1e-10
+    assert len(out["floquet"]) == 3 and max(out["floquet"]) < 1
+
+
+def test_device_file_gives_physical_units():
+    path = DEVICES / "push_demo.yaml"
+    r = _run([str(path), "--periodic", "--json"])
+    assert r.exit_code == 0, r.output
+    out = json.loads(r.stdout)
+    d = derive_file(path).sets[0]
+    ph = out["physical"]
+    assert out["set"] == d.name and out["params"] == d.params.as_dict()
+    assert ph["speed_um_s"] == pytest.approx(
+        out["delta_s"] * d.scales.length_m * d.scales.f_act_hz * 1e6, rel=1e-12
+    )
+    assert ph["delta_s_um"] == pytest.approx(out["delta_s"] * d.scales.length_m * 1e6)
+
+
+def test_text_output():
+    r = _run([*ARGS, "--cycles", "5"])
+    assert r.exit_code == 0
+    assert "last-cycle Δs" in r.stdout and "pull" in r.stdout
+
+
+@pytest.mark.parametrize(
+    "args,needle",
+    [
+        (["--varpi", "1.2", "--alpha", "nan", "--beta", "1", "--kappa", "0.4"], "alpha"),
+        (["--varpi", "0", "--alpha", "1", "--beta", "1", "--kappa", "0.4"], "varpi"),
+        (["--varpi", "1.2"], "missing"),
+        ([str(DEVICES / "push_demo.yaml"), "--varpi", "1"], "not both"),
+        ([str(DEVICES / "push_demo.yaml"), "--set", "nope"], "no actuator set"),
+        (["does-not-exist.yaml"], "does-not-exist.yaml"),
+    ],
+)
+def test_bad_input_exit_2_without_traceback(args, needle):
+    r = _run(args)
+    assert r.exit_code == 2
+    assert needle in r.stderr
+    assert "Traceback" not in r.output
+
+
+def test_solver_failure_exit_1_with_message():
+    """ϖ beyond the window: no contact recurs, the slider is not driven (MODEL.md)."""
+    r = _run(
+        ["--varpi", "2.3", "--alpha", "1", "--beta", "1", "--kappa", "0.4", "--periodic", "--json"]
+    )
+    assert r.exit_code == 1
+    out = json.loads(r.stdout)
+    assert out["status"] == "not_driven" and out["delta_s"] is None and out["mode"] is None
