@@ -1,0 +1,88 @@
+"""``betv bench``: work-precision study of the exact solver against the alternatives.
+
+Thin: everything is :func:`betvdesign.bench.workprecision.run` and
+:func:`betvdesign.bench.chart.write_outputs`. ``--json`` prints the rows
+``{"method", "setting", "design", "error", "seconds", "status", ...}`` on stdout
+(our solver's rows have method ``"exact"``); ``-o DIR`` also writes the chart
+(PNG, SVG) and the table (CSV, JSON). ``--quick`` (default) takes seconds to a
+minute; ``--full`` is the study of the README chart (minutes).
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+from pathlib import Path
+
+import typer
+
+from betvdesign.cli import app
+from betvdesign.cli.common import user_errors
+from betvdesign.errors import UsageError
+
+
+@app.command("bench")
+def bench_cmd(
+    full: bool = typer.Option(False, "--full/--quick", help="Full study (minutes) or quick."),
+    as_json: bool = typer.Option(False, "--json", help="Print the rows as JSON on stdout."),
+    outdir: Path | None = typer.Option(
+        None, "-o", "--output", help="Write work_precision.{png,svg,csv,json} here."
+    ),
+    design: list[str] = typer.Option(
+        [], "--design", help="Design(s) to run (default all): push, pull, near-lambda-1, ..."
+    ),
+    method: list[str] = typer.Option(
+        [], "--method", help="Method(s) to run (default all): exact, solve_ivp-DOP853, ..."
+    ),
+) -> None:
+    """Chart error against CPU time for the exact solver and the alternatives."""
+    from betvdesign.bench import workprecision as wp
+
+    with user_errors():
+        level = "full" if full else "quick"
+        unknown = [d for d in design if d not in wp.DESIGNS]
+        if unknown:
+            raise UsageError(f"unknown design {', '.join(unknown)}; one of {', '.join(wp.DESIGNS)}")
+        known = {m.method for m in wp.methods(level)}
+        bad = [m for m in method if m not in known]
+        if bad:
+            raise UsageError(f"unknown method {', '.join(bad)}; one of {', '.join(sorted(known))}")
+        if outdir is not None and outdir.exists() and not outdir.is_dir():
+            raise UsageError(f"{outdir}: not a directory")
+
+        def progress(msg: str) -> None:
+            print(f"bench: {msg}", file=sys.stderr)
+
+        rows = wp.run(
+            level,
+            designs=design or None,
+            only=method or None,
+            progress=None if as_json else progress,
+        )
+        written = []
+        if outdir is not None:
+            from betvdesign.bench.chart import write_outputs
+
+            try:
+                written = write_outputs(rows, outdir)
+            except OSError as exc:
+                raise UsageError(f"{outdir}: cannot write ({exc.strerror or exc})") from None
+    if as_json:
+        typer.echo(json.dumps([r.as_dict() for r in rows], indent=1, allow_nan=False))
+        return
+    for r in rows:
+        err = "—" if r.error is None else f"{r.error:.2e}"
+        sec = "—" if r.as_dict()["seconds"] is None else f"{r.seconds:.4f}"
+        typer.echo(
+            f"{r.design:14s} {r.metric:8s} {r.method:18s} {r.setting:20s} "
+            f"err {err:>9s}  cpu {sec:>8s} s  {r.status}"
+        )
+    for s in wp.summarise(rows):
+        if s["ratio"] is not None and s["exact_error"] is not None:
+            typer.echo(
+                f"{s['design']} {s['metric']}: exact {s['exact_error']:.1e} in "
+                f"{s['exact_seconds']:.4f} s; cheapest ≤1e-6: {s['cheapest_alternative']} "
+                f"{s['alternative_seconds']:.4f} s (×{s['ratio']:.0f})"
+            )
+    for p in written:
+        typer.echo(f"wrote {p}")
