@@ -37,7 +37,7 @@ def test_unreachable_lambda_is_a_usage_error():
         params_for_lambda(1.0, kappa=0.1, beta=0.1, vary="beta", alpha=1.0, varpi=1.0)
 
 
-def test_sign_change_is_interpolated_between_converged_points():
+def test_sign_change_is_bracketed_between_converged_points():
     rows = [
         {"key": 0, "lam": 0.8, "converged": True, "delta_s": 0.3},
         {
@@ -54,5 +54,5 @@ def test_sign_change_is_interpolated_between_converged_points():
         {"key": 3, "lam": 1.2, "converged": True, "delta_s": -0.1},
     ]
     s = summarise(rows)
-    assert s.crossings == [pytest.approx(1.1)]
+    assert s.crossings == [{"from": 1.0, "to": 1.2, "delta_s_from": 0.1, "delta_s_to": -0.1}]
     assert s.n_converged == 3 and [f["key"] for f in s.not_converged] == [1]

@@ -21,3 +21,54 @@ def test_intervals_are_contiguous_runs_in_varpi_order():
     s = summarise(rows)
     assert s["counts"] == {"multi-hit": 2, "period-1": 3, "impulsive": 1}
     assert s["errors"] == []
+
+
+# -- with the exact vertical solver ------------------------------------------------
+import math  # noqa: E402
+
+import numpy as np  # noqa: E402
+import pytest  # noqa: E402
+from scipy.optimize import brentq  # noqa: E402
+
+from betvdesign.studies.regime import regime_point, run_regime  # noqa: E402
+
+
+def _first_hit_phase(varpi: float) -> float:
+    """Second method: free flight from rest at the contact end (phase π) in closed form,
+    ξ(t') = (sin ϖt' − ϖ sin t')/(1 − ϖ²); the first root located on a fine scan and
+    refined by brentq. Returns the hit's phase ϖτ mod 2π."""
+    xi = lambda t: (np.sin(varpi * t) - varpi * np.sin(t)) / (1.0 - varpi**2)  # noqa: E731
+    ts = np.linspace(1e-2, 3.0 * math.pi / varpi, 400_001)  # ξ ≈ ϖt³/6 > 0 before
+    v = xi(ts)
+    i = np.flatnonzero(np.sign(v[1:]) != np.sign(v[:-1]))[0]
+    t_hit = brentq(xi, ts[i], ts[i + 1], xtol=1e-15)
+    return (math.pi + varpi * t_hit) % (2.0 * math.pi)
+
+
+@pytest.mark.parametrize("varpi", [0.3, 0.8, 1.5, 1.9])
+def test_window_is_period_one_with_the_closed_form_contact_fraction(varpi):
+    """Inside 0.5 ≤ ϖ < 2 (and at 0.3): one hit per cycle; contact lasts from the hit to
+    phase π, so the contact fraction is (π − φ_hit)/(2π)."""
+    phase = _first_hit_phase(varpi)
+    assert 0.0 <= phase <= math.pi  # hit with sin ϖτ ≥ 0: a contact starts
+    row = regime_point({"key": 0, "varpi": varpi, "max_cycles": 200})
+    assert row["label"] == "period-1" and row["period_cycles"] == 1
+    assert row["contact_fraction"] == pytest.approx((math.pi - phase) / (2 * math.pi), abs=1e-9)
+
+
+@pytest.mark.parametrize("varpi", [2.1, 2.3, 2.5])
+def test_between_2_and_2_6_hits_are_impulsive(varpi):
+    """MODEL.md: beyond ϖ ≈ 2, up to about 2.6, the hits are impulsive (no contact)."""
+    row = regime_point({"key": 0, "varpi": varpi, "max_cycles": 200})
+    assert row["label"] == "impulsive"
+    assert row["contact_fraction"] == 0.0 and row["hits_per_cycle"] > 0
+
+
+def test_diagram_reports_the_window_and_higher_regimes_as_intervals():
+    run, s = run_regime(np.round(np.arange(0.1, 3.51, 0.1), 12), max_cycles=200)
+    labels = {iv["label"] for iv in s["overview"]}
+    assert {"period-1", "impulsive", "period-2"} <= labels
+    first = s["overview"][0]
+    assert first["label"] == "period-1" and first["from"] == 0.1 and first["to"] >= 1.9
+    assert sum(iv["points"] for iv in s["intervals"]) == len(run.rows) == 35
+    assert s["errors"] == []

@@ -96,3 +96,16 @@ def test_foreign_file_and_unwritable_paths(tmp_path):
         run_study(study, out=blocker / "sub" / "r.csv")
     with pytest.raises(UsageError, match="sidecar"):
         ResultStore(tmp_path / "r.json", study="x", columns={"key": int}, parameters={}, total=0)
+
+
+def test_resumed_periodic_map_is_byte_identical(tmp_path):
+    """Real solver: interrupt after 3 of 6 points, resume on 2 processes, compare files."""
+    study, _ = pushpull_study([0.9, 1.3, 1.7], [1.0, 4.0], [0.5], [0.4])
+    ref = run_study(study, SerialExecutor(), out=tmp_path / "ref.csv")
+    out = tmp_path / "run.csv"
+    with pytest.raises(Stop):
+        run_study(study, SerialExecutor(chunksize=1), out=out, progress=_interrupt_after(3))
+    resumed = run_study(study, ProcessExecutor(2, 1), out=out)
+    assert (resumed.resumed, resumed.computed) == (3, 3)
+    assert out.read_bytes() == (tmp_path / "ref.csv").read_bytes()
+    assert all(r["converged"] for r in ref.rows)

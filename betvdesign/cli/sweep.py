@@ -285,8 +285,13 @@ def lambda_cmd(
                     f"{r['lam']:8.4g} {r['varpi']:8.4g} {r['alpha']:8.4g} {ds:>12}  "
                     f"{r['mode'] or r['status']}"
                 )
-            where = ", ".join(f"{x:.4g}" for x in summary.crossings) or "none in range"
-            typer.echo(f"Δs changes sign at λ ≈ {where} (the fit puts the boundary at 1)")
+            where = (
+                ", ".join(
+                    f"between λ = {c['from']:.4g} and {c['to']:.4g}" for c in summary.crossings
+                )
+                or "nowhere in the range"
+            )
+            typer.echo(f"Δs changes sign {where} (the fit puts the boundary at λ = 1)")
 
         emit(data, as_json, human)
 

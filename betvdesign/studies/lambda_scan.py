@@ -7,9 +7,11 @@ The fit λ = (κ/ϖ²)(1/(ακ) − D), D = (1/β − β)/(22(κ+1)) (docs/MODEL
 * ``vary="alpha"`` (ϖ fixed): α = 1/(κ(λϖ²/κ + D)), needs λϖ²/κ + D > 0.
 
 Each λ target is then solved to its periodic state with the same worker as the
-push/pull map, and the summary locates the simulated boundary: the λ values
-between which the converged Δs changes sign (linear interpolation), to compare
-with the fit's λ = 1.
+push/pull map, and the summary locates the simulated boundary: the pairs of
+neighbouring λ values between which the converged Δs changes sign, to compare
+with the fit's λ = 1. The bracket is reported, not an interpolated root: near
+λ = 1 |Δs| often grows sharply on both sides (the speed changes abruptly), so
+a straight line between the two points would say nothing reliable.
 """
 
 from __future__ import annotations
@@ -100,28 +102,31 @@ class LambdaSummary:
 
     n_points: int
     n_converged: int
-    crossings: list[float]
+    crossings: list[dict[str, float]]
     not_converged: list[dict[str, Any]]
 
     def as_dict(self) -> dict[str, Any]:
         return {
             "points": self.n_points,
             "converged": self.n_converged,
-            "lambda_at_sign_change": self.crossings,
+            "sign_changes": self.crossings,
             "not_converged": self.not_converged,
         }
 
 
 def summarise(rows: Sequence[Mapping[str, Any]]) -> LambdaSummary:
-    """Sign changes of Δs along λ (converged points only, in λ order)."""
+    """Brackets [λ_a, λ_b] where Δs changes sign (converged points only, in λ order)."""
     conv = sorted((r for r in rows if r["converged"]), key=lambda r: r["lam"])
-    crossings = []
-    for a, b in itertools.pairwise(conv):
-        if a["delta_s"] == 0.0:
-            crossings.append(a["lam"])
-        elif a["delta_s"] * b["delta_s"] < 0.0:
-            t = a["delta_s"] / (a["delta_s"] - b["delta_s"])
-            crossings.append(a["lam"] + t * (b["lam"] - a["lam"]))
+    crossings = [
+        {
+            "from": a["lam"],
+            "to": b["lam"],
+            "delta_s_from": a["delta_s"],
+            "delta_s_to": b["delta_s"],
+        }
+        for a, b in itertools.pairwise(conv)
+        if (a["delta_s"] > 0) != (b["delta_s"] > 0)
+    ]
     failed = [
         {k: r[k] for k in ("key", "lam", "varpi", "alpha", "status", "message")}
         for r in rows

@@ -93,7 +93,7 @@ def periodic_point(task: Mapping[str, Any]) -> dict[str, Any]:
         floquet_radius=radius,
         impacts_per_cycle=_finite_or_none(getattr(res, "impacts_per_cycle", None)),
         contact_fraction=_finite_or_none(getattr(res, "contact_fraction", None)),
-        cycles=_int_or_none(getattr(res, "n_cycles", None)),
+        cycles=_int_or_none(getattr(res, "transient_cycles", None)),
         message=str(getattr(res, "message", "")),
     )
     return row
