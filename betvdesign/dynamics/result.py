@@ -41,7 +41,9 @@ class Trajectory:
     increments (length n_cycles); ``section``: states (ξ, ξ', ζ, ζ', s, s') at
     τ = 2mπ/ϖ, m = 0..n_cycles, shape (n_cycles+1, 6); ``events``: the event log;
     ``solver``: "exact" or the reference method (e.g. "solve_ivp:DOP853/exact");
-    ``n_fev``: right-hand-side evaluations (reference solvers; 0 for the exact one).
+    ``n_fev``: right-hand-side evaluations (reference solvers; 0 for the exact one);
+    ``phases``: (τ_start, τ_end, tangential phase) pieces of the exact solution, each one
+    closed-form expression (filled when ``dense=True``).
     """
 
     params: ModelParams
@@ -60,6 +62,7 @@ class Trajectory:
     n_fev: int = 0
     impacts_per_cycle: float = float("nan")
     contact_fraction: float = float("nan")
+    phases: list[tuple[float, float, str]] = field(default_factory=list, repr=False)
     _sampler: Callable[[np.ndarray], np.ndarray] | None = field(default=None, repr=False)
 
     def sample(self, tau: np.ndarray | float) -> np.ndarray:

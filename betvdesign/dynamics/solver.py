@@ -253,6 +253,7 @@ def simulate(
         elapsed_s=time.perf_counter() - t0,
         impacts_per_cycle=vs.hits_per_cycle(),
         contact_fraction=vs.contact_fraction(),
+        phases=[(sg[0], sg[0] + sg[3] - sg[2], PHASE_NAMES[sg[4]]) for sg in segs or []],
         _sampler=sampler,
     )
 
