@@ -5,6 +5,7 @@ changes only by the tangential spring's impulse ∫(sin ϖτ − ζ)/α dτ (fri
 impacts are internal or normal); contact ends exactly at τ = (2j+1)π/ϖ."""
 
 import math
+from itertools import pairwise
 
 import numpy as np
 from hypothesis import HealthCheck, given, settings
@@ -41,11 +42,11 @@ def test_gap_never_negative(p):
 def test_phase_changes_only_at_events(p):
     tr = simulate(p, 4, dense=True)
     tangential = [e for e in tr.events if e.kind != "impulsive"]
-    for a, b in zip(tangential, tangential[1:], strict=False):
+    for a, b in pairwise(tangential):
         assert a.phase_after == b.phase_before, (a, b)
     # every boundary between two dense pieces of different phase is a logged event time
     times = {round(e.tau, 9) for e in tangential}
-    for (t0, t1, ph), (u0, _, ph2) in zip(tr.phases, tr.phases[1:], strict=False):
+    for (_, t1, ph), (u0, _, ph2) in pairwise(tr.phases):
         assert abs(t1 - u0) <= 1e-12 * max(1.0, t1)
         if ph != ph2:
             assert round(t1, 9) in times, (t1, ph, ph2)
