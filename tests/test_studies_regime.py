@@ -1,6 +1,13 @@
-"""Vertical regime diagram (sources: interval bookkeeping on hand-made rows)."""
+"""Vertical regime diagram (sources: interval bookkeeping on hand-made rows; the
+closed-form free flight after a contact end as a second method; MODEL.md regimes)."""
 
-from betvdesign.studies.regime import intervals, summarise
+import math
+
+import numpy as np
+import pytest
+from scipy.optimize import brentq
+
+from betvdesign.studies.regime import intervals, regime_point, run_regime, summarise
 
 
 def _rows(labels):
@@ -24,13 +31,6 @@ def test_intervals_are_contiguous_runs_in_varpi_order():
 
 
 # -- with the exact vertical solver ------------------------------------------------
-import math  # noqa: E402
-
-import numpy as np  # noqa: E402
-import pytest  # noqa: E402
-from scipy.optimize import brentq  # noqa: E402
-
-from betvdesign.studies.regime import regime_point, run_regime  # noqa: E402
 
 
 def _first_hit_phase(varpi: float) -> float:
