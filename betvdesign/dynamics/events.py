@@ -38,6 +38,7 @@ from betvdesign.dynamics.flows import (
 )
 
 EPS = 2.220446049250313e-16
+TWO_PI = 2.0 * math.pi
 NOISE = 64.0 * EPS
 MAX_STEPS = 5000
 
@@ -54,7 +55,13 @@ class Evaluator(Protocol):
 
     def eval(self, h: float) -> tuple[list[float], list[float], list[float]]: ...
 
-    def start(self) -> list[tuple[list[float], list[float]]]: ...
+    def start(self) -> list[list[float]]: ...
+
+    def m2_start(self, i: int) -> float: ...
+
+    def bounds(self, i: int) -> list[float]: ...
+
+    def clear(self, h: float) -> bool: ...
 
 
 def safe_step(f: float, fp: float, m2: float) -> float:
@@ -84,64 +91,72 @@ def first_root(ev: Evaluator, H: float, counter: list[int]) -> tuple[float, int]
     Returns (h, index) or None when none of them vanishes on [0, H]. ``counter[0]``
     is incremented by the number of function evaluations.
     """
-    x = min(H, ev.W)
-    for i, (derivs, bounds) in enumerate(ev.start()):
-        nz = [NOISE * s for s in ev.scale_derivs[i]]
+    W = ev.W
+    x = H if H < W else W
+    for i, derivs in enumerate(ev.start()):
+        nz = ev.scale_derivs[i]
         order = 0
         for order in range(len(derivs)):
-            if abs(derivs[order]) > nz[order]:
+            if abs(derivs[order]) > NOISE * nz[order]:
                 break
         else:
             return 0.0, i  # vanishes to every order checked: an event here
         if derivs[order] < 0.0:
             return 0.0, i  # leaves its admissible side at once: zero-length phase
         if order == 0:
-            xi = safe_step(derivs[0], derivs[1], bounds[2])
+            xi = safe_step(derivs[0], derivs[1], ev.m2_start(i))
         else:
-            xi = 0.5 * (order + 1) * derivs[order] / bounds[order + 1]
-        x = min(x, xi)
-    if x >= H:
+            xi = 0.5 * (order + 1) * derivs[order] / ev.bounds(i)[order + 1]
+        if xi < x:
+            x = xi
+    if x >= H or ev.clear(0.0):
         return None
-    W = ev.W
+    n = ev.n
+    scale = ev.scale
     x0 = x
     for _ in range(MAX_STEPS):
         counter[0] += 1
         fs, fps, m2s = ev.eval(x0)
-        step = min(H - x0, W)
-        best: tuple[float, int] | None = None
+        step = H - x0
+        if W < step:
+            step = W
+        best_end = math.inf
+        best_i = -1
         steps = []
-        for i in range(ev.n):
+        for i in range(n):
             f = fs[i]
             fp = fps[i]
-            if f <= NOISE * ev.scale[i]:
+            if f <= NOISE * scale[i]:
                 return x0, i  # at the root to round-off (or a grazing touch)
             xi = safe_step(f, fp, m2s[i])
             steps.append(xi)
-            step = min(step, xi)
+            if xi < step:
+                step = xi
             if fp < 0.0:
                 d = f / -fp
-                if (
-                    4.0 * m2s[i] * d <= -fp
-                    and 2.0 * d <= W
-                    and (best is None or x0 + 2.0 * d < best[0])
-                ):
-                    best = (x0 + 2.0 * d, i)
-        if best is not None:
-            i = best[1]
-            hi = min(best[0], H)
-            counter[0] += 1
-            f_hi = ev.eval(hi)[0][i]
-            others_clear = all(steps[j] >= hi - x0 for j in range(ev.n) if j != i)
-            if f_hi > 0.0:  # (then hi = H) f_i stays positive up to H
-                if others_clear:
+                if 4.0 * m2s[i] * d <= -fp and 2.0 * d <= W and x0 + 2.0 * d < best_end:
+                    best_end, best_i = x0 + 2.0 * d, i
+        if best_i >= 0:
+            i = best_i
+            # f_i(x0 + 2d) ≤ −f + 2·M2·d² < 0 by construction; only a clipped end needs a look
+            clipped = best_end > H
+            hi = H if clipped else best_end
+            f_hi = -1.0
+            if clipped:
+                counter[0] += 1
+                f_hi = ev.eval(hi)[0][i]
+            if f_hi > 0.0:  # f_i stays positive up to H
+                if all(steps[j] >= hi - x0 for j in range(n) if j != i):
                     return None
             else:
                 r = _refine(ev, i, x0, hi, fs[i], fps[i], counter)
-                if all(steps[j] >= r - x0 for j in range(ev.n) if j != i):
+                if n == 1 or all(steps[j] >= r - x0 for j in range(n) if j != i):
                     return r, i
         if x0 + step >= H:
             return None
         x0 += step
+        if ev.clear(x0):
+            return None
     raise EventSearchError(
         f"event search did not terminate within {MAX_STEPS} steps on a window of {H:.6g}"
     )
@@ -176,6 +191,23 @@ def _refine(
         if hi - lo <= tol:
             return hi
     return x
+
+
+def cos_range(pa: float, pb: float) -> tuple[float, float]:
+    """(min, max) of cos over the phase interval [pa, pb] [rad], exactly."""
+    lo = min(math.cos(pa), math.cos(pb))
+    hi = max(math.cos(pa), math.cos(pb))
+    if math.floor((pb - math.pi) / TWO_PI) >= math.ceil((pa - math.pi) / TWO_PI):
+        lo = -1.0  # contains an odd multiple of π
+    if math.floor(pb / TWO_PI) >= math.ceil(pa / TWO_PI):
+        hi = 1.0  # contains a multiple of 2π
+    return lo, hi
+
+
+def amp_cos_min(K: float, pa: float, pb: float) -> float:
+    """min of K·cos φ over φ ∈ [pa, pb]."""
+    lo, hi = cos_range(pa, pb)
+    return K * lo if K >= 0.0 else K * hi
 
 
 def forced_split(w0: float, F: float, wf: float, y: float, yd: float, sp: float, cp: float):
@@ -233,6 +265,7 @@ class GapEvent:
     def __init__(self, wf: float, xi: float, xid: float, sp0: float, cp0: float, H: float):
         self.wf, self.xi, self.xid, self.sp0, self.cp0, self.H = wf, xi, xid, sp0, cp0, H
         self.P, self.Eh = forced_split(1.0, -1.0, wf, xi, xid, sp0, cp0)
+        self.phi0 = math.atan2(sp0, cp0)
         self.W = window(H, 1.0, wf, self.P, -1.0)
         self.m2b = math.inf if self.P is None else abs(self.P) * wf * wf + self.Eh
         r = energy_radius(1.0, 1.0, xi, xid, H)
@@ -244,11 +277,23 @@ class GapEvent:
         r = energy_radius(1.0, 1.0, y, yd, self.W)
         return [y], [yd], [min(r + 1.0, self.m2b)]
 
-    def start(self) -> list[tuple[list[float], list[float]]]:
+    def start(self) -> list[list[float]]:
         wf, y, yd, sp, cp = self.wf, self.xi, self.xid, self.sp0, self.cp0
-        d = [y, yd, -sp - y, -wf * cp - yd]
-        r = energy_radius(1.0, 1.0, y, yd, self.W)
-        return [(d, band_bounds(1.0, -1.0, wf, 0.0, r, self.P, self.Eh, 4))]
+        return [[y, yd, -sp - y, -wf * cp - yd]]
+
+    def m2_start(self, i: int) -> float:
+        return min(energy_radius(1.0, 1.0, self.xi, self.xid, self.W) + 1.0, self.m2b)
+
+    def clear(self, h: float) -> bool:
+        """ξ = P sin φ + ξ_h, |ξ_h| ≤ E_h: positive on [h, H] when min P sin φ > E_h."""
+        if self.P is None:
+            return False
+        a = self.phi0 + self.wf * h - 0.5 * math.pi
+        return amp_cos_min(self.P, a, self.phi0 + self.wf * self.H - 0.5 * math.pi) > self.Eh
+
+    def bounds(self, i: int) -> list[float]:
+        r = energy_radius(1.0, 1.0, self.xi, self.xid, self.W)
+        return band_bounds(1.0, -1.0, self.wf, 0.0, r, self.P, self.Eh, 4)
 
 
 class SlipEvent:
@@ -284,6 +329,7 @@ class SlipEvent:
         self.P, self.Eh = forced_split(w0, F, wf, z, zd, sp0, cp0)
         self.W = window(H, w0, wf, self.P, F)
         self.m2b = math.inf if self.P is None else (abs(self.P - self.q) * wf + self.Eh) / al
+        self.phi0 = math.atan2(sp0, cp0)
         self.fast = self.W == H and self.P is not None
         if self.fast:  # y = P sin φ + a_c cos w0h + a_s sin w0h (no cancellation here)
             self.ac = z - self.P * sp0
@@ -322,7 +368,7 @@ class SlipEvent:
         m2 = min((abs(self.q) * wf + r) / k.alpha, self.m2b)
         return [sig * (yd - sdn)], [sig * (self.q * sp - y) / k.alpha], [m2]
 
-    def start(self) -> list[tuple[list[float], list[float]]]:
+    def start(self) -> list[list[float]]:
         k = self.k
         z, zd, _, sd, sp, cp = self.state
         wf, al, q, sig = k.varpi, k.alpha, self.q, self.sig
@@ -335,9 +381,30 @@ class SlipEvent:
         ]
         if self.from_edge:
             d[1] = 0.0
+        return [d]
+
+    def clear(self, h: float) -> bool:
+        """f = σ(K cos φ − c) + σ ζ_h', K = Pϖ + ds/ϖ, c = s'-constant, |ζ_h'| ≤ E_h:
+        positive on [h, H] when min σ(K cos φ − c) > E_h."""
+        if not self.fast:
+            return False
+        wf, sig = self.k.varpi, self.sig
+        K = sig * (self.P * wf + self.k.ds[self.phase] / wf)
+        m = amp_cos_min(K, self.phi0 + wf * h, self.phi0 + wf * self.H)
+        return m - sig * self.sdc > self.Eh
+
+    def m2_start(self, i: int) -> float:
+        if self.fast:
+            return self.m2b
+        z, zd = self.state[0], self.state[1]
         r = energy_radius(self.w0, self.F, z, zd, self.W)
-        gb = band_bounds(self.w0, self.F, wf, q, r, self.P, self.Eh, 3)
-        return [(d, [0.0] + [g / al for g in gb])]
+        return min((abs(self.q) * self.k.varpi + r) / self.k.alpha, self.m2b)
+
+    def bounds(self, i: int) -> list[float]:
+        z, zd = self.state[0], self.state[1]
+        r = energy_radius(self.w0, self.F, z, zd, self.W)
+        gb = band_bounds(self.w0, self.F, self.k.varpi, self.q, r, self.P, self.Eh, 3)
+        return [0.0] + [g / self.k.alpha for g in gb]
 
 
 class StickEvent:
@@ -369,6 +436,7 @@ class StickEvent:
         self.on_edge = on_edge
         self.P, self.Eh = forced_split(w0, F, wf, z, zd, sp0, cp0)
         self.W = window(H, w0, wf, self.P, F)
+        self.phi0 = math.atan2(sp0, cp0)
         self.fast = self.W == H and self.P is not None
         if self.fast:
             self.ac = z - self.P * sp0
@@ -409,17 +477,43 @@ class StickEvent:
             [min(bzz + abs(ql) * w2, self.m2b[0]), min(bzz + qh * w2, self.m2b[1])],
         )
 
-    def start(self) -> list[tuple[list[float], list[float]]]:
+    def start(self) -> list[list[float]]:
         z, zd, sp, cp = self.state
         wf = self.k.varpi
         w0, F = self.w0, self.F
         zeta = [z, zd, F * sp - w0 * w0 * z, F * wf * cp - w0 * w0 * zd]
         sine = [sp, wf * cp, -wf * wf * sp, -(wf**3) * cp]
-        r = energy_radius(w0, F, z, zd, self.W)
         out = []
         for sig, q in zip((1.0, -1.0), self.q, strict=True):
             d = [sig * (zeta[j] - q * sine[j]) for j in range(4)]
             if len(out) == self.on_edge:
                 d[0] = 0.0
-            out.append((d, band_bounds(w0, F, wf, q, r, self.P, self.Eh, 4)))
+            out.append(d)
         return out
+
+    def clear(self, h: float) -> bool:
+        """g = σ(P − q) sin φ + σ ζ_h, |ζ_h| ≤ E_h/w0: both positive on [h, H] when
+        min σ(P − q) sin φ > E_h/w0 for both edges."""
+        if not self.fast:
+            return False
+        wf = self.k.varpi
+        a = self.phi0 + wf * h - 0.5 * math.pi
+        b = self.phi0 + wf * self.H - 0.5 * math.pi
+        eh = self.Eh / self.w0
+        return all(
+            amp_cos_min(sig * (self.P - q), a, b) > eh
+            for sig, q in zip((1.0, -1.0), self.q, strict=True)
+        )
+
+    def m2_start(self, i: int) -> float:
+        if self.fast:
+            return self.m2b[i]
+        z, zd = self.state[0], self.state[1]
+        r = energy_radius(self.w0, self.F, z, zd, self.W)
+        wf = self.k.varpi
+        return min(self.w0 * r + abs(self.F) + abs(self.q[i]) * wf * wf, self.m2b[i])
+
+    def bounds(self, i: int) -> list[float]:
+        z, zd = self.state[0], self.state[1]
+        r = energy_radius(self.w0, self.F, z, zd, self.W)
+        return band_bounds(self.w0, self.F, self.k.varpi, self.q[i], r, self.P, self.Eh, 4)
