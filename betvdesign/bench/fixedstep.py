@@ -38,6 +38,8 @@ class FixedStepResult:
     n_fev: int
     n_events: int
     elapsed_s: float
+    n_contacts: int = 0
+    n_impulsive: int = 0
 
 
 def _accel(phase: str, tau: float, y: list[float], p: ModelParams) -> tuple[float, float, float]:
@@ -104,7 +106,7 @@ def rk4_post(
     # at τ = 0, sin ϖτ = 0: a naive band test at the contact start
     phase = FREE if (y[0] > 0.0 or y[1] > 0.0) else _contact_phase(y, 0.0, p)
     section = [list(y)]
-    n_events = 0
+    n_events = n_con = n_imp = 0
     for m in range(cycles):
         for j in range(steps_per_cycle):
             tau = (m * steps_per_cycle + j) * h
@@ -115,7 +117,9 @@ def rk4_post(
                 if y[0] < 0.0:  # impact detected after the fact
                     y[0] = y[1] = 0.0
                     n_events += 1
+                    n_imp += sn < 0.0
                     if sn >= 0.0:
+                        n_con += 1
                         phase = _contact_phase(y, sn, p)
                         if phase == STICK:
                             _to_stick(y, p)
@@ -149,6 +153,8 @@ def rk4_post(
                 4 * (m + 1) * steps_per_cycle,
                 n_events,
                 time.perf_counter() - t0,
+                n_con,
+                n_imp,
             )
     arr = np.asarray(section)
     n = cycles * steps_per_cycle
@@ -163,4 +169,6 @@ def rk4_post(
         4 * n,
         n_events,
         time.perf_counter() - t0,
+        n_con,
+        n_imp,
     )

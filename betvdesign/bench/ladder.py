@@ -54,6 +54,10 @@ def lambda_disagreement(
         ({k: r[k] for k in keys} for r in wrong), key=lambda d: abs(d["lam"] - 1.0), reverse=True
     )
     margin = max((abs(r["lam"] - 1.0) for r in wrong), default=0.0)
+    by_beta = {
+        str(b): max((abs(r["lam"] - 1.0) for r in wrong if r["beta"] == b), default=0.0)
+        for b in g["beta"]
+    }
     bands = []
     edges = [0.0, 0.1, 0.2, 0.5, 1.0, 2.0, math.inf]
     for lo, hi in itertools.pairwise(edges):
@@ -73,6 +77,7 @@ def lambda_disagreement(
         "rate": len(wrong) / len(conv) if conv else None,
         "mispredictions": wrong_list,
         "trust_margin": margin,
+        "trust_margin_by_beta": by_beta,
         "bands": bands,
         "rigid_mode_disagreement": sum(1 for r in conv if r["mode"] == "push") / max(len(conv), 1),
         "agreement_reported_by_study": summary.agreement,
