@@ -112,10 +112,11 @@ class _Cycle:
         """State (ζ, ζ', s, s') at the end of cycle m from its start."""
         k, te, T = self.k, self.te, self.T
         vc: VerticalCycle = self.vs.cycle(m)
-        if self.log is not None:
-            for ti in vc.impulsive:
-                self._event(m, ti, "impulsive", FREE, FREE)
         tc = vc.contact_start
+        if self.log is not None:  # impulsive hits before the contact, in time order
+            for ti in vc.impulsive:
+                if tc is None or ti < tc:
+                    self._event(m, ti, "impulsive", FREE, FREE)
         if tc is None:
             self._seg(m, 0.0, T, FREE, (z, zd, s, sd), 0.0, 1.0)
             z, zd, s, sd, _, _ = flow(k, FREE, z, zd, s, sd, 0.0, 1.0, T)
@@ -167,6 +168,10 @@ class _Cycle:
                 )
             phase = new
         self._event(m, te, "separation", phase, FREE)
+        if self.log is not None:  # impulsive hits after the separation
+            for ti in vc.impulsive:
+                if ti > te:
+                    self._event(m, ti, "impulsive", FREE, FREE)
         self._seg(m, te, T, FREE, (z, zd, s, sd), 0.0, -1.0)
         z, zd, s, sd, _, _ = flow(k, FREE, z, zd, s, sd, 0.0, -1.0, te)
         return z, zd, s, sd

@@ -101,6 +101,12 @@ class VerticalSchedule:
                 if self.first_end is None:
                     self.first_end = m
                 else:
+                    # From this contact end on, cycle m repeats cycle first_end's
+                    # post-contact flight (same state ξ = ξ' = 0 at π/ϖ): copy it, so
+                    # the pattern holds the impulsive hits after the separation too.
+                    ref = cycles[self.first_end]
+                    cur.free.extend(seg for seg in ref.free if seg[0] > te)
+                    cur.impulsive.extend(ti for ti in ref.impulsive if ti > te)
                     self.period = m - self.first_end
                     self.prefix = cycles[: self.first_end + 1]
                     self.pattern = cycles[self.first_end + 1 :]
