@@ -56,13 +56,11 @@ def check_cmd(
         False, "--derivation", help="Also print every input, formula and intermediate value."
     ),
 ) -> None:
-    """Check device files: design window, push/pull mode and its margin, tangential
-    resonance, λ fit range, published fit, speed.
+    """Check device files: design window, push/pull mode, margin, resonance, fit range, speed.
 
-    The closed-form rules decide; the exact periodic-orbit solver runs by itself only
-    where they cannot (λ within the margin of 1, or α, β, κ outside the λ fit range),
-    and for every set with --simulate. Exit 0: every error rule passes; 1: one fails;
-    2: bad input or usage.
+    The exact solver runs by itself only where λ cannot decide (near 1, or outside its fit).
+
+    --simulate runs it for every set. Exit 0 pass, 1 an error rule fails, 2 bad input/usage.
     """
     if simulate and closed_form_only:
         print("error: --simulate and --closed-form-only exclude each other", file=sys.stderr)
