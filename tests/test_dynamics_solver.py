@@ -109,3 +109,14 @@ def test_dense_output_hits_section_states():
     assert np.allclose(st, tr.section[:4], atol=1e-12)
     with pytest.raises(ValueError):
         simulate(PUSH, 2).sample(1.0)
+
+
+def test_minimal_period_and_trust_region():
+    """A design near ϖ = 2 whose transient guess sits where s' is neutral (all reverse
+    slip): shooting must still find the period-1 orbit (not report it as period 4), and
+    agree with brute force."""
+    p = ModelParams(1.8711431350358352, 0.7328458411511358, 3.935443208849082, 0.1124640256281036)
+    po = periodic_orbit(p)
+    assert po.success and po.period_cycles == 1, po.message
+    n = int(math.log(1e-14) / math.log(po.floquet_moduli[0])) + 10
+    assert abs(simulate(p, n, log_events=False).delta_s[-1] - po.delta_s) <= 1e-9

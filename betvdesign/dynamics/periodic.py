@@ -33,6 +33,7 @@ from betvdesign.params import ModelParams
 
 FD_STEP = 1e-7
 MAX_NEWTON = 25
+TRUST = 2.0
 
 
 class _Map:
@@ -87,7 +88,10 @@ def _newton(phi: _Map, x: np.ndarray, n: int, tol: float) -> tuple[np.ndarray, f
             dx = np.linalg.solve(J - np.eye(3), -(y - x))
         except (SolverFailure, RuntimeError, np.linalg.LinAlgError):
             break
-        lam = 1.0
+        # trust region: a step far beyond the state's own size leaves the region where
+        # the linearisation holds (e.g. into all-reverse-slip, where s' is neutral)
+        size = float(np.max(np.abs(dx)))
+        lam = min(1.0, TRUST * (1.0 + float(np.max(np.abs(x)))) / size) if size > 0 else 1.0
         for _ in range(12):
             xn = x + lam * dx
             rn, yn, sn = phi.residual(xn, n)
@@ -189,6 +193,13 @@ def periodic_orbit(
                 best = (r, n)
             if r > tol:
                 continue
+            for d in range(1, j):  # a period-n fixed point may have a shorter period
+                if j % d == 0:
+                    xd, rd, sd, itd = _newton(phi, xs.copy(), d * kv, tol)
+                    n_newton += itd
+                    if rd <= tol and float(np.max(np.abs(xd - xs))) <= 1e3 * tol:
+                        xs, r, s, n = xd, rd, sd, d * kv
+                        break
             J = phi.jacobian(xs, n, xs, central=True)
             mu = np.linalg.eigvals(J)
             mu = mu[np.argsort(-np.abs(mu))]

@@ -1,0 +1,228 @@
+"""Speed and accuracy of the exact solver (issue 3 targets), measured, not asserted.
+
+    .venv/bin/python benchmarks/bench_solver.py              # everything (~1-2 min)
+    .venv/bin/python benchmarks/bench_solver.py speed        # per-cycle cost vs solve_ivp
+    .venv/bin/python benchmarks/bench_solver.py periodic     # warm periodic solves
+    .venv/bin/python benchmarks/bench_solver.py accuracy     # exact vs reference, shooting
+                                                             # vs brute force
+
+Targets: ≥ 100× faster per simulated cycle than the project's own solve_ivp
+reference (``betvdesign.dynamics.reference``, DOP853, rtol 1e-10, atol 1e-12)
+measured side by side in one run; periodic solve of one design median ≤ 20 ms
+warm; exact vs reference ≤ 1e-8 in s after 100 cycles on 20 designs spread over
+the window; periodic Δs from shooting vs long brute force ≤ 1e-9.
+
+Times are CPU seconds of this process (``time.process_time``, best of repeats):
+the machines are shared, and CPU time is what load does not inflate much. Wall
+times are printed next to them. Writes benchmarks/out/bench_solver.json.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import statistics
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+from betvdesign.dynamics import periodic_orbit, reference, simulate
+from betvdesign.params import ModelParams
+
+ROOT = Path(__file__).resolve().parents[1]
+OUT = ROOT / "benchmarks" / "out"
+
+#: Named designs: published fit, push and pull examples, stick-dominated, small α.
+NAMED = {
+    "shin2004-fit": ModelParams(0.9, 0.1, 0.9, 0.4),
+    "push": ModelParams(1.5, 1.0, 0.2, 0.2),
+    "push-stiff-band": ModelParams(1.5, 2.0, 0.5, 0.1),
+    "pull": ModelParams(1.2, 0.5, 1.0, 0.4),
+    "heavy-head": ModelParams(0.9, 0.1, 9.0, 0.4),
+    "stick": ModelParams(1.0, 2.0, 1.0, 0.4),
+}
+
+
+def window_sets(n: int = 20, seed: int = 20041) -> dict[str, ModelParams]:
+    """n designs spread over 0.5 ≤ ϖ < 2 (the same draw as tests/test_dynamics_reference)."""
+    rng = np.random.default_rng(seed)
+    out = {}
+    for i in range(n):
+        p = ModelParams(
+            float(rng.uniform(0.55, 1.95)),
+            float(10 ** rng.uniform(-1.3, 0.5)),
+            float(10 ** rng.uniform(-1, 1)),
+            float(10 ** rng.uniform(-1.3, 0)),
+        )
+        out[f"w{i:02d}"] = p
+    return out
+
+
+def _timed(fn, repeats: int) -> tuple[float, float, object]:
+    """(best CPU s, best wall s, last result) over ``repeats`` runs."""
+    cpu, wall, res = math.inf, math.inf, None
+    for _ in range(repeats):
+        c0, w0 = time.process_time(), time.perf_counter()
+        res = fn()
+        cpu = min(cpu, time.process_time() - c0)
+        wall = min(wall, time.perf_counter() - w0)
+    return cpu, wall, res
+
+
+def bench_speed(designs: dict[str, ModelParams], n_exact: int = 200, n_ref: int = 20) -> dict:
+    rows = []
+    for name, p in designs.items():
+        simulate(p, 3)  # warm imports and caches
+        ce, we, ex = _timed(lambda p=p: simulate(p, n_exact, log_events=False), 3)
+        cr, wr, rf = _timed(lambda p=p: reference.simulate(p, n_ref, rtol=1e-10, atol=1e-12), 1)
+        row = {
+            "design": name,
+            "params": p.as_dict(),
+            "exact_us_per_cycle_cpu": ce / n_exact * 1e6,
+            "exact_us_per_cycle_wall": we / n_exact * 1e6,
+            "ref_ms_per_cycle_cpu": cr / n_ref * 1e3,
+            "ref_ms_per_cycle_wall": wr / n_ref * 1e3,
+            "speedup_cpu": (cr / n_ref) / (ce / n_exact),
+            "exact_root_evals_per_cycle": ex.n_root_evals / n_exact,
+            "exact_events_per_cycle": ex.n_events / n_exact,
+            "ref_fev_per_cycle": rf.n_fev / n_ref,
+            "status": f"{ex.status}/{rf.status}",
+        }
+        rows.append(row)
+        print(
+            f"  {name:16s} exact {row['exact_us_per_cycle_cpu']:7.1f} µs/cycle "
+            f"({row['exact_root_evals_per_cycle']:.1f} evals)  solve_ivp "
+            f"{row['ref_ms_per_cycle_cpu']:6.2f} ms/cycle  -> {row['speedup_cpu']:6.0f}×",
+            flush=True,
+        )
+    sp = [r["speedup_cpu"] for r in rows]
+    total = sum(r["ref_ms_per_cycle_cpu"] * 1e3 for r in rows) / sum(
+        r["exact_us_per_cycle_cpu"] for r in rows
+    )
+    summary = {
+        "speedup_min": min(sp),
+        "speedup_median": statistics.median(sp),
+        "speedup_aggregate": total,
+    }
+    print(
+        f"  speed-up per cycle: min {summary['speedup_min']:.0f}×, median "
+        f"{summary['speedup_median']:.0f}×, aggregate (equal cycles per design) {total:.0f}×"
+    )
+    return {"rows": rows, "summary": summary}
+
+
+def bench_periodic(designs: dict[str, ModelParams], repeats: int = 7) -> dict:
+    rows = []
+    for name, p in designs.items():
+        periodic_orbit(p)  # warm
+        cpus, walls = [], []
+        res = None
+        for _ in range(repeats):
+            c0, w0 = time.process_time(), time.perf_counter()
+            res = periodic_orbit(p)
+            cpus.append(time.process_time() - c0)
+            walls.append(time.perf_counter() - w0)
+        assert res is not None
+        rows.append(
+            {
+                "design": name,
+                "params": p.as_dict(),
+                "status": res.status,
+                "median_ms_cpu": statistics.median(cpus) * 1e3,
+                "median_ms_wall": statistics.median(walls) * 1e3,
+                "cycles": res.n_cycles,
+                "newton": res.n_newton,
+                "delta_s": res.delta_s,
+                "residual": res.residual,
+                "max_floquet": None if res.floquet is None else float(max(abs(res.floquet))),
+            }
+        )
+        r = rows[-1]
+        print(
+            f"  {name:16s} {r['status']:13s} median {r['median_ms_cpu']:6.2f} ms CPU "
+            f"({r['median_ms_wall']:6.2f} wall), {r['cycles']} cycles, {r['newton']} Newton, "
+            f"|μ|max {r['max_floquet']}",
+            flush=True,
+        )
+    ok = [r["median_ms_cpu"] for r in rows if r["status"] == "success"]
+    summary = {
+        "median_of_medians_ms_cpu": statistics.median(ok) if ok else None,
+        "max_median_ms_cpu": max(ok) if ok else None,
+        "n_success": len(ok),
+        "n": len(rows),
+    }
+    print(
+        f"  periodic solve: median over designs {summary['median_of_medians_ms_cpu']:.2f} ms, "
+        f"slowest design {summary['max_median_ms_cpu']:.2f} ms ({len(ok)}/{len(rows)} solved)"
+    )
+    return {"rows": rows, "summary": summary}
+
+
+def bench_accuracy(designs: dict[str, ModelParams], cycles: int = 100) -> dict:
+    rows = []
+    for name, p in designs.items():
+        ex = simulate(p, cycles, log_events=False)
+        rf = reference.simulate(p, cycles, rtol=1e-13, atol=1e-14)
+        d = abs(ex.s - rf.s)
+        rows.append(
+            {
+                "design": name,
+                "s": ex.s,
+                "abs_diff_s": d,
+                "rel_diff_s": d / max(1.0, abs(ex.s)),
+                "status": f"{ex.status}/{rf.status}",
+            }
+        )
+        print(f"  {name:16s} s = {ex.s:14.6f}  |exact − ref| = {d:.2e}", flush=True)
+    shoot = []
+    for name, p in designs.items():
+        po = periodic_orbit(p)
+        if not po.success or po.floquet_moduli[0] > 0.995:
+            continue
+        n = min(20000, int(math.log(1e-13) / math.log(po.floquet_moduli[0])) + 50)
+        tr = simulate(p, n, log_events=False)
+        diff = abs(tr.delta_s[-1] - po.delta_s)
+        shoot.append({"design": name, "brute_cycles": n, "abs_diff_delta_s": diff})
+        print(f"  {name:16s} shooting vs {n:6d}-cycle brute force: |ΔΔs| = {diff:.2e}", flush=True)
+    summary = {
+        "max_abs_diff_s": max(r["abs_diff_s"] for r in rows),
+        "max_rel_diff_s": max(r["rel_diff_s"] for r in rows),
+        "max_abs_diff_delta_s_shooting": max((r["abs_diff_delta_s"] for r in shoot), default=None),
+    }
+    print(
+        f"  after {cycles} cycles: max |Δs| {summary['max_abs_diff_s']:.2e} "
+        f"(relative {summary['max_rel_diff_s']:.2e}); shooting vs brute force max "
+        f"{summary['max_abs_diff_delta_s_shooting']:.2e}"
+    )
+    return {"rows": rows, "shooting": shoot, "summary": summary}
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("what", nargs="*", default=["speed", "periodic", "accuracy"])
+    args = ap.parse_args(argv)
+    designs = {**NAMED, **window_sets()}
+    out: dict = {"python": sys.version.split()[0]}
+    if "speed" in args.what:
+        print("speed per simulated cycle (exact vs solve_ivp DOP853 rtol 1e-10):")
+        out["speed"] = bench_speed(designs)
+    if "periodic" in args.what:
+        print("periodic_orbit, warm, median of 7:")
+        out["periodic"] = bench_periodic(designs)
+    if "accuracy" in args.what:
+        print("accuracy (reference: DOP853 rtol 1e-13, atol 1e-14):")
+        out["accuracy"] = bench_accuracy(window_sets())
+    OUT.mkdir(parents=True, exist_ok=True)
+    path = OUT / "bench_solver.json"
+    tmp = path.with_suffix(".json.tmp")
+    tmp.write_text(json.dumps(out, indent=2))
+    tmp.replace(path)
+    print(f"wrote {path.relative_to(ROOT)}")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
