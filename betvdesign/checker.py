@@ -38,6 +38,7 @@ class SetCheck:
     rules: list[RuleResult]
     periodic: Any | None = None
     simulated_because: str = ""
+    vertical: Any | None = None
 
     @property
     def mode_predicted(self) -> str:
@@ -94,6 +95,22 @@ def load_solver() -> Any | None:
     return periodic_orbit
 
 
+def load_vertical() -> Any | None:
+    """The exact vertical-motion fast path ``dynamics.vertical_motion`` or None."""
+    try:
+        from betvdesign.dynamics import vertical_motion  # type: ignore[attr-defined]
+    except ImportError:
+        return None
+    return vertical_motion
+
+
+def _vertical(fn: Any, varpi: float) -> Any:
+    try:
+        return fn(varpi)
+    except Exception as exc:  # reported in the window rule, never a crash
+        return _SolverFailure(f"{type(exc).__name__}: {exc}")
+
+
 def check_derivation(
     derivation: DeviceDerivation,
     *,
@@ -146,13 +163,21 @@ def check_derivation(
             continue
         periodic[s.name] = solved[s.params] = _run_solver(solver, s)
         notes.append(f"set {s.name}: ran the exact solver ({why[s.name]})")
-    rules = evaluate_device(derivation, lambda_margin=lambda_margin, periodic=periodic)
+    vertical: dict[str, Any] = {}
+    vm = load_vertical() if simulate != "never" else None
+    if vm is not None:  # cheap (closed-form vertical schedule): quoted by the window rule
+        for s in derivation.sets:
+            vertical[s.name] = _vertical(vm, s.params.varpi)
+    rules = evaluate_device(
+        derivation, lambda_margin=lambda_margin, periodic=periodic, vertical=vertical
+    )
     sets = [
         SetCheck(
             s,
             [r for r in rules if r.set_name == s.name],
             periodic.get(s.name),
             why.get(s.name, ""),
+            vertical.get(s.name),
         )
         for s in derivation.sets
     ]
@@ -197,6 +222,7 @@ def _set_dict(sc: SetCheck) -> dict[str, Any]:
         "simulated": p is not None,
         "simulated_because": sc.simulated_because,
         "simulation": None if p is None else simulation_summary(p),
+        "vertical": None if sc.vertical is None else _vertical_summary(sc.vertical),
         "published_fit": [
             {
                 "param": c.name,
@@ -237,6 +263,18 @@ def simulation_summary(p: Any) -> dict[str, Any]:
             out[name] = int(v)
     if getattr(p, "stable", None) is not None:
         out["stable"] = bool(p.stable)
+    return out
+
+
+def _vertical_summary(v: Any) -> dict[str, Any]:
+    out: dict[str, Any] = {
+        "success": bool(getattr(v, "success", False)),
+        "message": str(getattr(v, "message", "")),
+    }
+    if out["success"]:
+        out["regime"] = str(v.regime)
+        for name in ("hits_per_cycle", "impulsive_per_cycle", "contact_fraction"):
+            out[name] = _json_float(getattr(v, name, None))
     return out
 
 

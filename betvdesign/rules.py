@@ -117,11 +117,16 @@ def evaluate(
     *,
     lambda_margin: float = DEFAULT_LAMBDA_MARGIN,
     periodic: PeriodicLike | None = None,
+    vertical: Any | None = None,
 ) -> list[RuleResult]:
-    """Every rule for one actuator set (see the module docstring for thresholds)."""
+    """Every rule for one actuator set (see the module docstring for thresholds).
+
+    periodic: exact periodic orbit (decides the mode, gives the speed); vertical: the
+    exact vertical motion (``dynamics.vertical_motion``), quoted by the window rule.
+    """
     s = derivation_set
     out = [
-        _frequency_window(s),
+        _frequency_window(s, vertical),
         *_mode_rules(s, periodic, lambda_margin),
         _tangential_resonance(s),
         *_fit_range(s, simulated=periodic is not None and bool(getattr(periodic, "success", 0))),
@@ -135,7 +140,7 @@ def _with_set(r: RuleResult, name: str) -> RuleResult:
     return RuleResult(r.id, r.severity, r.passed, r.value, r.threshold, r.message, r.source, name)
 
 
-def _frequency_window(s: SetDerivation) -> RuleResult:
+def _frequency_window(s: SetDerivation, vertical: Any | None = None) -> RuleResult:
     v = s.params.varpi
     lo, hi = VARPI_WINDOW
     thr = f"{lo:g} <= varpi < {hi:g}"
@@ -155,6 +160,14 @@ def _frequency_window(s: SetDerivation) -> RuleResult:
         msg = (
             f"ϖ = {v:.3g} far above the window: period doubling or aperiodic hits; lower f_act/f_v"
         )
+    if vertical is not None and getattr(vertical, "success", False):
+        msg += (
+            f" [exact vertical motion: {vertical.regime}, {vertical.hits_per_cycle:g} hit(s) "
+            f"per cycle ({vertical.impulsive_per_cycle:g} impulsive), in contact "
+            f"{vertical.contact_fraction:.0%} of the time]"
+        )
+    elif vertical is not None:
+        msg += f" [exact vertical motion: {getattr(vertical, 'message', '')}]"
     return RuleResult("frequency-window", "error", lo <= v < hi, v, thr, msg, SRC_WINDOW)
 
 
@@ -400,13 +413,20 @@ def evaluate_device(
     *,
     lambda_margin: float = DEFAULT_LAMBDA_MARGIN,
     periodic: dict[str, PeriodicLike] | None = None,
+    vertical: dict[str, Any] | None = None,
 ) -> list[RuleResult]:
-    """Rules of every set (``periodic`` keyed by set name) plus device-level rules."""
+    """Rules of every set (``periodic``, ``vertical`` keyed by set name) plus device rules."""
     periodic = periodic or {}
+    vertical = vertical or {}
     out: list[RuleResult] = []
     predicted: dict[str, int] = {}
     for s in derivation.sets:
-        res = evaluate(s, lambda_margin=lambda_margin, periodic=periodic.get(s.name))
+        res = evaluate(
+            s,
+            lambda_margin=lambda_margin,
+            periodic=periodic.get(s.name),
+            vertical=vertical.get(s.name),
+        )
         out.extend(res)
         mode_rule = next(r for r in res if r.id == "mode")
         if mode_rule.source == SRC_SOLVER:

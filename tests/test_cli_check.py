@@ -263,3 +263,26 @@ def test_decided_design_is_not_simulated_unless_asked():
     assert transient.success
     assert transient.delta_s[-1] == pytest.approx(s["simulation"]["delta_s"], rel=1e-6)
     assert "um/s" in d["derived"]["speed"] or "mm/s" in d["derived"]["speed"]
+
+
+def test_check_quotes_vertical_motion_consistently():
+    """The window rule quotes dynamics.vertical_motion(ϖ) for the set's own ϖ."""
+    from betvdesign.dynamics import vertical_motion
+
+    d = json.loads(run("check", "--json", SHIN).stdout)
+    s = d["sets"][0]
+    vm = vertical_motion(s["params"]["varpi"])
+    assert s["vertical"]["regime"] == vm.regime
+    win = next(x for x in s["rules"] if x["id"] == "frequency-window")
+    assert f"exact vertical motion: {vm.regime}" in win["message"]
+    d = json.loads(run("check", "--json", "--closed-form-only", SHIN).stdout)
+    assert d["sets"][0]["vertical"] is None and d["sets"][0]["simulation"] is None
+
+
+def test_markup_in_names_is_printed_literally(tmp_path, no_solver):
+    f = tmp_path / "m.yaml"
+    f.write_text(
+        (DEVICES / "push_demo.yaml").read_text().replace("name: forward", "name: '[red]fwd'")
+    )
+    r = run("check", str(f))
+    assert r.exit_code == 0 and "set [red]fwd" in r.stdout

@@ -233,3 +233,20 @@ def test_orbit_stability_rule_both_sides():
         r = _rule(evaluate(_set(*PUSH), periodic=orbit), "orbit-stability")
         assert r.passed is stable and r.severity == "warning"
     assert not [r for r in evaluate(_set(*PUSH)) if r.id == "orbit-stability"]
+
+
+def test_window_rule_quotes_the_exact_vertical_motion():
+    vm = SimpleNamespace(
+        success=True,
+        regime="multi-impact",
+        hits_per_cycle=2.0,
+        impulsive_per_cycle=1.0,
+        contact_fraction=0.43,
+        message="ok",
+    )
+    r = _rule(evaluate(_set(0.34, 2.0, 0.5, 0.2), vertical=vm), "frequency-window")
+    assert not r.passed
+    assert "exact vertical motion: multi-impact, 2 hit(s) per cycle (1 impulsive)" in r.message
+    failed = SimpleNamespace(success=False, message="no contact recurred")
+    r = _rule(evaluate(_set(2.3, 2.0, 0.5, 0.2), vertical=failed), "frequency-window")
+    assert "impulsive" in r.message and "no contact recurred" in r.message

@@ -15,6 +15,7 @@ from pathlib import Path
 
 import typer
 from rich.console import Console
+from rich.markup import escape as esc
 from rich.table import Table
 
 from betvdesign.checker import CheckResult, check_derivation, simulation_summary
@@ -96,20 +97,20 @@ def render(result: CheckResult, console: Console, *, derivation: bool = False) -
     """Rich tables for one device: per set parameters, derived values, rules; then notes."""
     colour = "green" if result.verdict == "pass" else "red"
     console.rule(
-        f"[bold]{result.derivation.name}[/] ({result.source_file}): "
+        f"[bold]{esc(result.derivation.name)}[/] ({esc(result.source_file)}): "
         f"[bold {colour}]{result.verdict.upper()}[/]"
     )
     for sc in result.sets:
         s = sc.derivation
         p = s.params
         console.print(
-            f"[bold]set {s.name}[/]: intended {s.intended_mode}, impacts "
+            f"[bold]set {esc(s.name)}[/]: intended {s.intended_mode}, impacts "
             f"{s.actuator_set.impact_direction}; ϖ = {p.varpi:.4g}, α = {p.alpha:.4g}, "
             f"β = {p.beta:.4g}, κ = {p.kappa:.4g}, λ = {s.lam:.4g} -> predicted "
             f"[bold]{sc.mode_predicted}[/] (from {sc.mode_source})"
         )
         console.print(
-            "  " + ", ".join(f"{k} = {v}" for k, v in s.derived().items()), highlight=False
+            "  " + esc(", ".join(f"{k} = {v}" for k, v in s.derived().items())), highlight=False
         )
         if sc.periodic is not None:
             sim = simulation_summary(sc.periodic)
@@ -118,7 +119,7 @@ def render(result: CheckResult, console: Console, *, derivation: bool = False) -
                 for k, v in sim.items()
                 if k not in ("success", "message")
             )
-            console.print(f"  exact orbit ({sc.simulated_because}): {extra}", highlight=False)
+            console.print(esc(f"  exact orbit ({sc.simulated_because}): {extra}"), highlight=False)
         if derivation:
             console.print(_record_table(sc))
         _print_rules(sc.rules, console)
@@ -127,7 +128,7 @@ def render(result: CheckResult, console: Console, *, derivation: bool = False) -
         console.print("[bold]device[/]")
         _print_rules(device_rules, console)
     for note in result.notes:
-        console.print(f"[cyan]note:[/] {note}", highlight=False)
+        console.print(f"[cyan]note:[/] {esc(note)}", highlight=False)
 
 
 def _rules_table(rules: list[RuleResult]) -> Table:
@@ -138,7 +139,7 @@ def _rules_table(rules: list[RuleResult]) -> Table:
     t.add_column("threshold", overflow="fold")
     for r in rules:
         value = "" if r.value is None else f"{r.value:.4g}"
-        t.add_row(_STATUS[(r.passed, r.severity)], r.severity, r.id, value, r.threshold)
+        t.add_row(_STATUS[(r.passed, r.severity)], r.severity, r.id, value, esc(r.threshold))
     return t
 
 
@@ -148,14 +149,14 @@ def _print_rules(rules: list[RuleResult], console: Console) -> None:
     for r in rules:
         if not r.passed or r.severity == "info":
             console.print(
-                f"  {_STATUS[(r.passed, r.severity)]} {r.id}: {r.message}", highlight=False
+                f"  {_STATUS[(r.passed, r.severity)]} {r.id}: {esc(r.message)}", highlight=False
             )
 
 
 def _record_table(sc) -> Table:
-    t = Table(title=f"derivation of set {sc.derivation.name}", pad_edge=False)
+    t = Table(title=f"derivation of set {esc(sc.derivation.name)}", pad_edge=False)
     for col in ("symbol", "description", "formula", "value"):
         t.add_column(col, overflow="fold")
     for st in sc.derivation.record:
-        t.add_row(st.symbol, st.description, st.formula, st.value_str)
+        t.add_row(*(esc(x) for x in (st.symbol, st.description, st.formula, st.value_str)))
     return t
