@@ -182,7 +182,7 @@ def bench_accuracy(designs: dict[str, ModelParams], cycles: int = 100) -> dict:
         po = periodic_orbit(p)
         if not po.success or po.floquet_moduli[0] > 0.995:
             continue
-        n = min(20000, int(math.log(1e-13) / math.log(po.floquet_moduli[0])) + 50)
+        n = min(20000, max(3000, int(math.log(1e-13) / math.log(po.floquet_moduli[0])) + 50))
         tr = simulate(p, n, log_events=False)
         diff = abs(tr.delta_s[-1] - po.delta_s)
         shoot.append({"design": name, "brute_cycles": n, "abs_diff_delta_s": diff})
