@@ -30,7 +30,7 @@ def test_chunking_covers_every_task_once():
     chunks = chunked(tasks, 3)
     assert [len(c) for c in chunks] == [3, 3, 3, 1]
     assert [t for c in chunks for t in c] == tasks
-    assert 1 <= default_chunksize(1152, 2) <= 64
+    assert default_chunksize(1152, 2) == 32 and default_chunksize(10, 2) == 1
 
 
 def test_lambda_rung_identical_on_all_backends(cluster):

@@ -8,7 +8,7 @@ import pytest
 from betvdesign.dynamics import simulate
 from betvdesign.params import ModelParams
 from betvdesign.plots.studies import save_pushpull_figure
-from betvdesign.studies.pushpull import periodic_point, run_pushpull, summarise
+from betvdesign.studies.pushpull import periodic_point, pushpull_study, run_pushpull, summarise
 
 
 def _task(varpi, alpha, beta=0.5, kappa=0.4, **kw):
@@ -102,3 +102,16 @@ def test_map_figure_is_byte_reproducible(tmp_path):
     assert text.count('<g id="axes_') == 2  # one panel per (κ, β): κ = 0.4, β ∈ {0.5, 1}
     assert "<svg" in text and "Date" not in text
     assert np.isfinite([r["delta_s"] for r in run.rows]).all()
+
+
+def test_vertical_precheck_gives_the_solvers_own_not_driven_answer():
+    """At ϖ = 2.2 no contact recurs: the per-ϖ vertical pre-check must answer exactly what
+    a full periodic solve answers (status, no mode, hits per cycle)."""
+    study, _ = pushpull_study([1.2, 2.2], [1.0], [0.5], [0.4])
+    pre = {t["varpi"]: t["not_driven"] for t in study.tasks}
+    assert pre[1.2] is None and pre[2.2] is not None
+    fast = periodic_point(study.tasks[1])
+    full = periodic_point({**study.tasks[1], "not_driven": None})
+    for col in ("status", "converged", "mode", "delta_s", "period_cycles", "impacts_per_cycle"):
+        assert fast[col] == full[col], col
+    assert full["status"] == "not_driven"

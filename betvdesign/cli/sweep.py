@@ -52,6 +52,14 @@ OutOpt = Annotated[
     Path | None,
     typer.Option("--out", "-o", help="Stream rows to this CSV (+ .json sidecar); resumable."),
 ]
+MaxCyclesOpt = Annotated[
+    int | None,
+    typer.Option(
+        "--max-cycles",
+        help="Cycle budget per periodic solve [default: the solver's, 100000]; points "
+        "that do not settle within it are listed as not converged.",
+    ),
+]
 OverwriteOpt = Annotated[
     bool, typer.Option("--overwrite", help="Start afresh even if --out holds other results.")
 ]
@@ -149,6 +157,7 @@ def pushpull_cmd(
         str, typer.Option(help="periodic (exact periodic orbits) or lambda (closed-form fit).")
     ] = "periodic",
     tol: Annotated[float, typer.Option(help="Fixed-point residual tolerance.")] = 1e-10,
+    max_cycles: MaxCyclesOpt = None,
     figure: Annotated[
         Path | None, typer.Option("--figure", help="Write the map figure (SVG/PNG/PDF).")
     ] = None,
@@ -177,6 +186,7 @@ def pushpull_cmd(
                 **axes,
                 fidelity=fidelity,  # type: ignore[arg-type]
                 tol=tol,
+                max_cycles=max_cycles,
                 executor=ex,
                 out=str(out) if out else None,
                 overwrite=overwrite,
@@ -239,6 +249,7 @@ def lambda_cmd(
     alpha: Annotated[float | None, typer.Option(help="Fixed α (when varying ϖ).")] = None,
     varpi: Annotated[float | None, typer.Option(help="Fixed ϖ (when varying α).")] = None,
     tol: Annotated[float, typer.Option(help="Fixed-point residual tolerance.")] = 1e-10,
+    max_cycles: MaxCyclesOpt = None,
     out: OutOpt = None,
     overwrite: OverwriteOpt = False,
     executor: ExecutorOpt = "process",
@@ -266,6 +277,7 @@ def lambda_cmd(
                 alpha=alpha,
                 varpi=varpi,
                 tol=tol,
+                max_cycles=max_cycles,
                 executor=ex,
                 out=str(out) if out else None,
                 overwrite=overwrite,

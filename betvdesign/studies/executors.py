@@ -50,6 +50,9 @@ _PRELOAD = (
     "betvdesign.dynamics",
 )
 
+#: Chunks per worker the default chunk size aims at.
+_CHUNKS_PER_WORKER = 16
+
 #: In-flight chunks per worker (keeps workers busy without flooding the queue).
 _WINDOW_PER_WORKER = 4
 
@@ -67,10 +70,15 @@ def chunked(tasks: Sequence[Task], size: int) -> list[list[Task]]:
 
 
 def default_chunksize(n_tasks: int, workers: int) -> int:
-    """About four chunks per worker, between 1 and 64 tasks each."""
+    """About sixteen chunks per worker, between 1 and 32 tasks each.
+
+    Point costs are heavy-tailed (a point that never settles burns the whole
+    cycle budget), so many small chunks balance the load; a chunk of even one
+    periodic solve (milliseconds) still dwarfs the inter-process overhead.
+    """
     if n_tasks <= 0:
         return 1
-    return max(1, min(64, math.ceil(n_tasks / (_WINDOW_PER_WORKER * max(1, workers)))))
+    return max(1, min(32, math.ceil(n_tasks / (_CHUNKS_PER_WORKER * max(1, workers)))))
 
 
 @dataclass

@@ -28,7 +28,7 @@ from betvdesign.errors import UsageError
 from betvdesign.params import LAMBDA_FIT_CONSTANT
 from betvdesign.studies.executors import Executor
 from betvdesign.studies.grid import require_positive
-from betvdesign.studies.pushpull import COLUMNS, periodic_point
+from betvdesign.studies.pushpull import COLUMNS, periodic_point, vertical_precheck
 from betvdesign.studies.runner import Progress, Study, StudyRun, run_study
 
 Vary = Literal["varpi", "alpha"]
@@ -77,12 +77,17 @@ def lambda_study(
 ) -> Study:
     """One periodic solve per λ target (ascending order kept as given)."""
     lam_arr = require_positive(np.asarray(lam, float), "lambda")
+    if max_cycles is not None and max_cycles < 1:
+        raise UsageError(f"--max-cycles must be >= 1, got {max_cycles}")
     tasks = []
     for key, target in enumerate(lam_arr):
         p = params_for_lambda(
             float(target), kappa=kappa, beta=beta, vary=vary, alpha=alpha, varpi=varpi
         )
         tasks.append({"key": key, **p, "tol": tol, "max_cycles": max_cycles})
+    idle = vertical_precheck([t["varpi"] for t in tasks])
+    for t in tasks:
+        t["not_driven"] = idle.get(t["varpi"])
     params = {
         "lambda": [float(x) for x in lam_arr],
         "kappa": kappa,
@@ -144,12 +149,22 @@ def run_lambda_scan(
     alpha: float | None = None,
     varpi: float | None = None,
     tol: float = 1e-10,
+    max_cycles: int | None = None,
     executor: Executor | None = None,
     out: str | None = None,
     overwrite: bool = False,
     progress: Progress | None = None,
 ) -> tuple[StudyRun, LambdaSummary]:
     """Build, run and summarise a Δs-against-λ scan."""
-    study = lambda_study(lam, kappa=kappa, beta=beta, vary=vary, alpha=alpha, varpi=varpi, tol=tol)
+    study = lambda_study(
+        lam,
+        kappa=kappa,
+        beta=beta,
+        vary=vary,
+        alpha=alpha,
+        varpi=varpi,
+        tol=tol,
+        max_cycles=max_cycles,
+    )
     run = run_study(study, executor, out=out, overwrite=overwrite, progress=progress)
     return run, summarise(run.rows)

@@ -69,10 +69,25 @@ def lambda_point(task: Mapping[str, Any]) -> dict[str, Any]:
 
 
 def periodic_point(task: Mapping[str, Any]) -> dict[str, Any]:
-    """Worker of the ``periodic`` rung: one periodic-orbit solve (plain data in and out)."""
+    """Worker of the ``periodic`` rung: one periodic-orbit solve (plain data in and out).
+
+    A task carrying ``not_driven`` (from :func:`vertical_precheck`) is answered
+    without the slider: no contact recurs, so nothing drives it.
+    """
     from betvdesign.dynamics import periodic_orbit
 
     row = _base_row(task)
+    if task.get("not_driven"):
+        nd = task["not_driven"]
+        row.update(
+            status="not_driven",
+            converged=False,
+            impacts_per_cycle=nd["hits_per_cycle"],
+            contact_fraction=0.0,
+            cycles=0,
+            message=nd["message"],
+        )
+        return row
     p = ModelParams(task["varpi"], task["alpha"], task["beta"], task["kappa"])
     kwargs: dict[str, Any] = {"tol": task["tol"]}
     if task.get("max_cycles") is not None:
@@ -110,6 +125,24 @@ def _int_or_none(x: Any) -> int | None:
     return None if x is None else int(x)
 
 
+#: Vertical horizon [cycles] within which a contact must recur (as in ``periodic_orbit``).
+VERTICAL_HORIZON = 1000
+
+
+def vertical_precheck(varpi: Sequence[float]) -> dict[float, dict[str, Any]]:
+    """ϖ values at which no contact recurs (the slider is not driven), by the vertical
+    model alone, once per ϖ instead of once per grid point ("model no more than a
+    scene needs"; docs/MODEL.md, "Vertical motion")."""
+    from betvdesign.dynamics import vertical_motion
+
+    out = {}
+    for v in sorted(set(float(x) for x in varpi)):
+        r = vertical_motion(v, max_cycles=VERTICAL_HORIZON)
+        if r.period_cycles is None:
+            out[v] = {"hits_per_cycle": float(r.hits_per_cycle), "message": r.message}
+    return out
+
+
 def pushpull_study(
     varpi: Sequence[float],
     alpha: Sequence[float],
@@ -128,9 +161,21 @@ def pushpull_study(
         "varpi": require_positive(np.asarray(varpi, float), "varpi"),
     }
     grid = Grid(axes)
-    tasks = [{"key": pt.key, **pt.values, "tol": tol, "max_cycles": max_cycles} for pt in grid]
     if fidelity not in ("periodic", "lambda"):
         raise UsageError(f"unknown fidelity {fidelity!r} (periodic or lambda)")
+    if max_cycles is not None and max_cycles < 1:
+        raise UsageError(f"--max-cycles must be >= 1, got {max_cycles}")
+    idle = vertical_precheck(axes["varpi"]) if fidelity == "periodic" else {}
+    tasks = [
+        {
+            "key": pt.key,
+            **pt.values,
+            "tol": tol,
+            "max_cycles": max_cycles,
+            "not_driven": idle.get(pt.values["varpi"]),
+        }
+        for pt in grid
+    ]
     worker = periodic_point if fidelity == "periodic" else lambda_point
     params = {"grid": grid.as_dict(), "fidelity": fidelity, "tol": tol, "max_cycles": max_cycles}
     return Study("pushpull", COLUMNS, params, tasks, worker), grid
