@@ -43,3 +43,13 @@ def devices() -> list[Path]:
     files = device_files()
     assert files, f"no device files in {DEVICES}"
     return files
+
+
+@pytest.fixture(scope="session")
+def reports_dir(tmp_path_factory: pytest.TempPathFactory, devices: list[Path]) -> Path:
+    """Reports (HTML + PDF) of every shipped device, written once per session."""
+    from betvdesign.report import write_reports
+
+    out = tmp_path_factory.mktemp("reports")
+    write_reports(devices, out)
+    return out

@@ -111,7 +111,7 @@ def figure_svg(fig: Figure, key: str) -> str:
 
     Byte-reproducible: hash salt fixed to ``key``, no date metadata, text as
     paths, ids prefixed with ``key`` (a short [A-Za-z0-9_-] string unique within
-    the page). The XML prolog and DOCTYPE are dropped (invalid inside HTML).
+    the page). The XML prolog, DOCTYPE and RDF metadata are dropped.
     """
     if not re.fullmatch(r"[A-Za-z][A-Za-z0-9_-]*", key):
         raise ValueError(f"figure key must be a simple identifier, got {key!r}")
@@ -123,4 +123,8 @@ def figure_svg(fig: Figure, key: str) -> str:
     if start < 0:  # pragma: no cover - matplotlib always writes an <svg> root
         raise RuntimeError("matplotlib produced no <svg> element")
     svg = text[start:].strip()
+    # The RDF <metadata> block only names matplotlib and the image type; dropping it
+    # leaves no namespace URI but the SVG/XLink ones in the page.
+    svg = re.sub(r"\s*<metadata>.*?</metadata>", "", svg, flags=re.S)
+    svg = re.sub(r'\s+xmlns:(?:dc|cc|rdf)="[^"]*"', "", svg)
     return _prefix_ids(svg, key)

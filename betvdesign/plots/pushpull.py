@@ -58,7 +58,8 @@ def pushpull_map(
     ax.fill_between(x, lower, clipped, color=MODE_COLORS["push"], alpha=0.13, lw=0)
     ax.fill_between(x, clipped, upper, color=MODE_COLORS["pull"], alpha=0.13, lw=0)
     ax.plot(x, curve, color="black", lw=1.4, label=f"λ = 1  (κ = {kappa:.3g}, β = {beta:.3g})")
-    ax.axvspan(w_lo, w_hi, color="#ffbf00", alpha=0.12, lw=0, label="design window 0.5 ≤ ϖ < 2")
+    for edge, label in ((w_lo, "design window 0.5 ≤ ϖ < 2"), (w_hi, None)):
+        ax.axvline(edge, color="#b8860b", lw=1.0, ls="-.", label=label)
     for (label, _, _), px, py in zip(points, xs, ys, strict=True):
         ax.plot([px], [py], marker="o", ms=6, color=DEVICE_COLOR, zorder=5)
         ax.annotate(label, (px, py), xytext=(6, 4), textcoords="offset points", fontsize=7.5)

@@ -16,18 +16,25 @@ def slider_velocity(
     *,
     cycle_mean: tuple[Sequence[float], Sequence[float]] | None = None,
     periodic_mean: float | None = None,
+    logx: bool = False,
     ax: Axes | None = None,
 ) -> Axes:
     """Slider velocity s' [-] against time [actuation cycles].
+
+    logx: logarithmic time axis (t = 0 is then left out), to show the first
+    cycles and a long settling in one panel.
 
     cycle_mean: (cycle index m, mean velocity Δs_m·ϖ/(2π)) per cycle [-], drawn
     as dots at the cycle mid-points; periodic_mean: the periodic orbit's mean
     velocity Δs·ϖ/(2π) [-], drawn as a dashed line (the settled state).
     """
     ax = axes_or_new(ax)
-    ax.plot(
-        np.asarray(t_cycles, float), np.asarray(ds, float), color="#1f77b4", lw=0.7, label="s'(τ)"
-    )
+    t = np.asarray(t_cycles, float)
+    v = np.asarray(ds, float)
+    if logx:
+        ax.set_xscale("log")
+        t, v = t[t > 0], v[t > 0]
+    ax.plot(t, v, color="#1f77b4", lw=0.7, label="s'(τ)")
     if cycle_mean is not None:
         m, v = (np.asarray(a, float) for a in cycle_mean)
         ax.plot(

@@ -20,6 +20,7 @@ API not available, solver failure with its message). Nothing is invented.
 
 from __future__ import annotations
 
+import functools
 import math
 import time
 from collections.abc import Callable
@@ -53,9 +54,9 @@ class ReportOptions:
 
     regime_points: int = 111
     regime_range: tuple[float, float] = (0.2, 2.95)
-    robustness_points: int = 11
+    robustness_points: int = 21
     dense_cycles: int = 30
-    samples_per_cycle: int = 120
+    samples_per_cycle: int = 64
     max_transient_cycles: int = 4000
     voltage_points: int = 41
 
@@ -170,24 +171,28 @@ def periodic(p: ModelParams) -> Any:
     return require_success(dynamics_api("periodic_orbit")(p), "periodic_orbit")
 
 
+#: Horizon [cycles] within which a contact must recur for the regime strip (beyond
+#: it the ϖ is drawn as "aperiodic / not found").
+REGIME_HORIZON = 200
+
+
+@functools.lru_cache(maxsize=4096)
+def _vertical(varpi: float) -> tuple[float | None, float | None, str]:
+    """(impact period [cycles], contact fraction [-], regime) of the vertical-only model."""
+    res = dynamics_api("vertical_motion")(varpi, max_cycles=REGIME_HORIZON)
+    if not res.success or res.period_cycles is None:
+        return None, None, str(res.regime)
+    return float(res.period_cycles), float(res.contact_fraction), str(res.regime)
+
+
 def regime_strip(varpi_device: float, opts: ReportOptions) -> RegimeData:
-    """Vertical-only sweep of ϖ over the options' range widened to the device's ϖ."""
-    vertical_motion = dynamics_api("vertical_motion")
+    """Vertical-only sweep of ϖ over the options' range widened to the device's ϖ
+    (results cached per ϖ: the strip is shared by every device of a run)."""
     lo = min(opts.regime_range[0], 0.8 * varpi_device)
     hi = max(opts.regime_range[1], 1.15 * varpi_device, VARPI_WINDOW[1] * 1.2)
     grid = np.linspace(lo, hi, opts.regime_points)
-    periods: list[float | None] = []
-    fractions: list[float | None] = []
-    labels: list[str] = []
-    for w in grid:
-        res = vertical_motion(float(w))
-        per = getattr(res, "period_cycles", None)
-        frac = getattr(res, "contact_fraction", None)
-        ok = bool(getattr(res, "success", per is not None))
-        periods.append(float(per) if ok and per is not None else None)
-        fractions.append(float(frac) if ok and frac is not None else None)
-        labels.append(str(getattr(res, "regime", "")))
-    return RegimeData(grid, periods, fractions, labels)
+    rows = [_vertical(float(w)) for w in grid]
+    return RegimeData(grid, [r[0] for r in rows], [r[1] for r in rows], [r[2] for r in rows])
 
 
 def transient(p: ModelParams, n_cycles: int, opts: ReportOptions) -> TransientData:
@@ -243,12 +248,14 @@ def orbit(p: ModelParams, per: Any, opts: ReportOptions) -> OrbitData:
 
 
 def lambda_targets(lam0: float, n: int) -> np.ndarray:
-    """λ values around the device's λ0 that always include the boundary λ = 1
-    (geometric spacing; λ0 itself is included)."""
+    """λ values around the device's λ0 that always straddle the boundary λ = 1:
+    geometric spacing from min(λ0, 1)/2 to max(λ0, 1)·2, plus λ0 itself and points
+    at ±5, 10, 20 % of 1 where Δs changes fastest (MODEL.md, "Push/pull criterion")."""
     lo = min(lam0, 1.0) / 2.0
     hi = max(lam0, 1.0) * 2.0
-    grid = np.geomspace(lo, hi, max(n - 1, 2))
-    return np.unique(np.append(grid, lam0))
+    near_one = [0.8, 0.9, 0.95, 1.05, 1.1, 1.2]
+    grid = np.geomspace(lo, hi, max(n - len(near_one) - 1, 2))
+    return np.unique(np.concatenate([grid, near_one, [lam0]]))
 
 
 def alpha_for_lambda(lam: float, p: ModelParams) -> float | None:

@@ -224,8 +224,8 @@ def _set_key(sd: SetDerivation) -> tuple[Any, ...]:
         sd.scales.time_s,
         sd.scales.f_act_hz,
         sd.travel_range_m,
-        a.actuator.calibration,
-        a.drive.voltage,
+        repr(a.actuator.calibration),
+        str(a.drive.voltage),
     )
 
 
@@ -294,7 +294,7 @@ def build_report(
         inputs=tuple(prepared.inputs),
         sets=tuple(sets),
         device_rules=rule_rows(device_rules),
-        reproduce=reproduce or f"betv report {prepared.path} -o reports/",
+        reproduce=reproduce or f"betv report {prepared.path} -o DIR",
         version=__version__,
         generated=generated,
     )

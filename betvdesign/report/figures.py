@@ -15,7 +15,7 @@ import numpy as np
 
 from betvdesign import plots
 from betvdesign.nondim import SetDerivation
-from betvdesign.report.analysis import Piece, SetAnalysis
+from betvdesign.report.analysis import REGIME_HORIZON, Piece, SetAnalysis
 from betvdesign.report.model import FigureBlock
 from betvdesign.spec import amplitude_at
 from betvdesign.units import ureg
@@ -23,9 +23,9 @@ from betvdesign.units import ureg
 EXACT = "exact event-driven impact model (closed-form phases, MODEL.md)"
 
 
-def _svg(key: str, draw: Callable[[Any], None], *, size=(6.4, 3.4), nrows=1, ncols=1) -> str:
+def _svg(key: str, draw: Callable[[Any], None], *, size=(6.4, 3.4), **grid: Any) -> str:
     with plots.figure_style():
-        fig, axes = plots.new_figure(*size, nrows=nrows, ncols=ncols)
+        fig, axes = plots.new_figure(*size, **grid)
         draw(axes)
         return plots.figure_svg(fig, key)
 
@@ -73,8 +73,9 @@ def regime(key: str, sd: SetDerivation, an: SetAnalysis) -> FigureBlock:
     n = len(data.varpi) if data is not None else 0
     caption = (
         f"Impact period (actuation cycles per period of the head's vertical motion) and share "
-        f"of the cycle in contact, against ϖ ({n} values); design window 0.5 ≤ ϖ < 2 shaded, "
-        f"device ϖ = {p.varpi:.3g} dashed."
+        f"of the cycle in contact, against ϖ ({n} values, from rest; crosses: no contact "
+        f"recurring within {REGIME_HORIZON} cycles, hits impulsive only); design window "
+        f"0.5 ≤ ϖ < 2 shaded, device ϖ = {p.varpi:.3g} dashed."
     )
 
     def draw(axes: Any) -> None:
@@ -129,9 +130,12 @@ def settling(key: str, sd: SetDerivation, an: SetAnalysis) -> FigureBlock:
         if an.transient.ok and an.orbit.ok
         else Piece(reason="; ".join(r for r in (an.transient.reason, an.orbit.reason) if r))
     )
+    run = f"{tr.n_cycles}-cycle run" if tr is not None else "run"
+    first = f"first {int(tr.t_cycles[-1])}" if tr is not None else "first"
     caption = (
-        "(a) Slider velocity s' over the first cycles from rest and the per-cycle mean "
-        "Δsₘ·ϖ/2π over the whole run, settling toward the periodic state (dashed). "
+        f"(a) Slider velocity s' over the {first} cycles from rest and the per-cycle mean "
+        f"Δsₘ·ϖ/2π over the whole {run} (log time axis), settling toward the periodic "
+        "state (dashed). "
         "(b) The periodic orbit in the (ζ', s') plane; colour marks no contact, slip, "
         "reverse slip and stick."
     )
@@ -140,13 +144,12 @@ def settling(key: str, sd: SetDerivation, an: SetAnalysis) -> FigureBlock:
 
     def draw(axes: Any) -> None:
         mean = tr.delta_s * p.varpi / (2 * math.pi)
-        idx = np.arange(len(mean))
-        keep = idx < tr.t_cycles[-1] + 0.5
         plots.slider_velocity(
             tr.t_cycles,
             tr.states[:, 5],
-            cycle_mean=(idx[keep], mean[keep]),
+            cycle_mean=(np.arange(len(mean)), mean),
             periodic_mean=float(per.delta_s) * p.varpi / (2 * math.pi),
+            logx=True,
             ax=axes[0],
         )
         plots.orbit_plane(orb.dzeta, orb.ds, orb.phases, ax=axes[1])

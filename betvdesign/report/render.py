@@ -10,6 +10,7 @@ WeasyPrint's PDF is deterministic for the same HTML and fonts.
 from __future__ import annotations
 
 import contextlib
+import logging
 import os
 import tempfile
 from importlib import resources
@@ -56,8 +57,17 @@ def render_pdf(html: str) -> bytes:
     def no_fetch(url: str, *args: object, **kwargs: object) -> dict[str, object]:
         raise ValueError(f"report references an external resource {url!r}")
 
-    doc = weasyprint.HTML(string=html, base_url=None, url_fetcher=no_fetch)
-    return doc.write_pdf()
+    # Inline SVG style attributes (fill, stroke...) reach WeasyPrint's HTML cascade,
+    # which warns that they are unknown CSS properties before the SVG renderer uses
+    # them; those warnings are noise, anything worse is still reported.
+    logger = logging.getLogger("weasyprint")
+    level = logger.level
+    logger.setLevel(logging.ERROR)
+    try:
+        doc = weasyprint.HTML(string=html, base_url=None, url_fetcher=no_fetch)
+        return doc.write_pdf()
+    finally:
+        logger.setLevel(level)
 
 
 def write_atomic(path: str | Path, data: bytes | str) -> Path:

@@ -76,7 +76,7 @@ def write_reports(
             dev,
             options=options,
             generated=generated,
-            reproduce=f"betv report {dev.path} -o {outdir}",
+            reproduce=f"betv report {dev.path} -o DIR",
         )
         html = render_html(report)
         html_path = write_atomic(out / f"{dev.path.stem}.html", html)

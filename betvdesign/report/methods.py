@@ -1,0 +1,192 @@
+"""The methods report: work-precision chart, failure map and fidelity ladder (HTML/PDF).
+
+``betv report --methods -o DIR`` writes ``methods.html`` (self-contained) and
+``methods.pdf``. Built like the design reports: a plain-data model first
+(:class:`MethodsReport`), rendered second by Jinja2 (autoescape) with the design
+reports' CSS, WeasyPrint for the PDF, atomic writes. The work-precision rows are
+measured now (quick study, unless rows are passed in, e.g. loaded from the JSON
+that ``benchmarks/work_precision.py`` writes); the ladder's trust limits are the
+measured ones the toolkit itself uses (:mod:`betvdesign.fidelity_measured`).
+The same rows give the same bytes.
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from markupsafe import Markup
+
+from betvdesign import plots
+from betvdesign.bench.chart import work_precision_figure
+from betvdesign.bench.failures import FAILURES, Failure
+from betvdesign.bench.workprecision import DESIGNS, Row, summarise
+from betvdesign.report.render import _css, _environment, render_pdf, write_atomic
+
+TEMPLATE = "methods.html.j2"
+REGENERATE = "python benchmarks/work_precision.py && python benchmarks/work_precision.py --ladder"
+
+
+@dataclass(frozen=True)
+class RungRow:
+    name: str
+    model: str
+    answers: str
+    exact: str
+    cost: str
+    source: str
+
+
+@dataclass(frozen=True)
+class MethodsReport:
+    """Plain data of the methods report (every number already formatted)."""
+
+    title: str
+    version: str
+    level: str
+    chart_svg: str
+    designs: tuple[tuple[str, str, str], ...]
+    ratios: tuple[dict[str, str], ...]
+    failures: tuple[Failure, ...]
+    rungs: tuple[RungRow, ...]
+    lambda_summary: str
+    lambda_bands: tuple[dict[str, Any], ...]
+    lambda_svg: str
+    mispredictions: tuple[dict[str, str], ...]
+    trust_margins: str
+    not_converged: str
+    rigid_summary: str
+    command: str
+
+
+def _fmt(x: float | None, spec: str = ".2e") -> str:
+    return "—" if x is None else format(x, spec)
+
+
+def _lambda_figure(bands: Sequence[dict[str, Any]]) -> str:
+    """Bar chart: points and mispredictions of the λ rule per |λ − 1| band."""
+    with plots.figure_style():
+        fig, ax = plots.new_figure(6.4, 2.6)
+        labels = [f"{b['lo']:g}–{b['hi']:g}" if b["hi"] else f"≥ {b['lo']:g}" for b in bands]
+        x = range(len(bands))
+        ax.bar(x, [b["points"] for b in bands], color="#bbbbbb", label="points (converged)")
+        ax.bar(x, [b["mispredicted"] for b in bands], color="#d62728", label="λ mispredicts")
+        ax.set_xticks(list(x), labels)
+        ax.set_xlabel("|λ − 1| [-]")
+        ax.set_ylabel("grid points")
+        ax.set_yscale("log")
+        ax.legend(loc="upper right")
+        return plots.figure_svg(fig, "lam")
+
+
+def build(rows: Sequence[Row], *, level: str = "quick") -> MethodsReport:
+    """The report model from work-precision rows and the measured ladder data."""
+    from betvdesign import __version__
+    from betvdesign.fidelity import RUNG_INFO, RUNGS
+    from betvdesign.fidelity_measured import MEASURED
+
+    lam = MEASURED["lambda"]
+    costs = MEASURED["costs_cpu_s"]
+    rig = MEASURED["rigid"]
+    fig = work_precision_figure(rows)
+    ratios = tuple(
+        {
+            "design": s["design"],
+            "metric": s["metric"],
+            "exact_error": _fmt(s["exact_error"], ".1e"),
+            "exact_seconds": _fmt(s["exact_seconds"]),
+            "alternative": s["cheapest_alternative"] or "none reaches 1e-6",
+            "alternative_seconds": _fmt(s["alternative_seconds"]),
+            "ratio": "—" if s["ratio"] is None else f"×{s['ratio']:.0f}",
+        }
+        for s in summarise(rows)
+    )
+    rungs = tuple(
+        RungRow(
+            r,
+            RUNG_INFO[r].model,
+            ", ".join(sorted(RUNG_INFO[r].answers)),
+            RUNG_INFO[r].exact,
+            f"{costs[r]:.2e} s" + (f" ({MEASURED['full_cycles']} cycles)" if r == "full" else ""),
+            RUNG_INFO[r].source,
+        )
+        for r in RUNGS
+    )
+    mis = tuple(
+        {k: (f"{v:.4g}" if isinstance(v, float) else str(v)) for k, v in m.items()}
+        for m in lam["mispredictions"]
+    )
+    alphas = [s["alpha"] for s in rig["samples"]]
+    nc: dict[str, int] = {}
+    for r in lam["not_converged"]:
+        key = f"{r['status']} at ϖ = {r['varpi']:g}"
+        nc[key] = nc.get(key, 0) + 1
+    return MethodsReport(
+        title="betvdesign methods: speed, accuracy and model choice",
+        version=__version__,
+        level=level,
+        chart_svg=plots.figure_svg(fig, "wp"),
+        designs=tuple(
+            (d.name, ", ".join(f"{k} = {v:g}" for k, v in d.params.as_dict().items()), d.why)
+            for d in DESIGNS.values()
+        ),
+        ratios=ratios,
+        failures=FAILURES,
+        rungs=rungs,
+        lambda_summary=(
+            f"On the push/pull map ({lam['points']} points, {lam['converged']} with a converged "
+            f"periodic orbit) the λ rule names the wrong mode at {lam['mispredicted']} points "
+            f"({100 * lam['rate']:.2f} %)."
+        ),
+        lambda_bands=tuple(lam["bands"]),
+        lambda_svg=_lambda_figure(lam["bands"]),
+        mispredictions=mis,
+        trust_margins=", ".join(
+            f"β = {b}: {m:.3g}"
+            for b, m in sorted(lam["trust_margin_by_beta"].items(), key=lambda t: float(t[0]))
+        ),
+        not_converged="; ".join(f"{n} {k}" for k, n in sorted(nc.items())) or "none",
+        rigid_summary=(
+            f"relative Δs error of the α → 0 rigid limit ≤ {rig['coef']:.3g}·α^{rig['power']:.2f} "
+            f"over {len(alphas)} samples (α from {min(alphas):g} "
+            f"to {max(alphas):g}); its mode (always pull) disagrees "
+            f"with the full model at {100 * lam['rigid_mode_disagreement']:.1f} % of the map"
+        ),
+        command=REGENERATE,
+    )
+
+
+def render_html(report: MethodsReport) -> str:
+    """One self-contained HTML document (inline CSS and SVG)."""
+    tpl = _environment().get_template(TEMPLATE)
+    return tpl.render(r=report, css=Markup(_css()), svg=Markup)
+
+
+def load_rows(path: str | Path) -> list[Row]:
+    """Rows from the JSON that ``betv bench -o`` / the benchmark script writes."""
+    doc = json.loads(Path(path).read_text("utf-8"))
+    return [
+        Row(**{**r, "seconds": r["seconds"] if r["seconds"] is not None else float("nan")})
+        for r in doc["rows"]
+    ]
+
+
+def write_methods_report(
+    outdir: str | Path, *, rows: Sequence[Row] | None = None, pdf: bool = True
+) -> list[Path]:
+    """Write methods.html (and methods.pdf); runs the quick study when ``rows`` is None."""
+    from betvdesign.bench import workprecision as wp
+
+    level = "given"
+    if rows is None:
+        rows, level = wp.run("quick"), "quick"
+    out = Path(outdir)
+    out.mkdir(parents=True, exist_ok=True)
+    html = render_html(build(rows, level=level))
+    written = [write_atomic(out / "methods.html", html)]
+    if pdf:
+        written.append(write_atomic(out / "methods.pdf", render_pdf(html)))
+    return written

@@ -1,0 +1,261 @@
+"""Design reports (betv report): content, self-containment, reproducibility, CLI.
+
+Sources: the derived parameters are checked against :func:`betvdesign.nondim.derive`
+(the report must show the derivation's numbers); shin2004's verdict against
+docs/MODEL.md, "The published device" (its dimensional data give ϖ ≈ 0.34, below
+the 0.5 ≤ ϖ < 2 window: a failing design); push_demo's predicted mode against a
+transient run of the exact solver (Δs > 0 after settling: push); self-containment
+by parsing the HTML; reproducibility by two independent runs; the CLI with
+typer's CliRunner.
+"""
+
+from __future__ import annotations
+
+import re
+from html.parser import HTMLParser
+from pathlib import Path
+
+import pytest
+from conftest import DEVICES, device_files
+from typer.testing import CliRunner
+
+from betvdesign.cli import app
+from betvdesign.loader import load_device
+from betvdesign.nondim import derive
+from betvdesign.report import analysis as report_analysis
+from betvdesign.report import build_report, prepare, render_html, write_reports
+from betvdesign.report.analysis import alpha_for_lambda, lambda_targets
+from betvdesign.report.build import fmt_num
+
+FIGURES_PER_SET = 7
+
+
+class _Scan(HTMLParser):
+    """Collect tags, attributes, ids and the visible text of a document."""
+
+    def __init__(self) -> None:
+        super().__init__(convert_charrefs=True)
+        self.tags: list[tuple[str, dict[str, str | None]]] = []
+        self.text: list[str] = []
+        self._skip = 0
+
+    def handle_starttag(self, tag: str, attrs: list[tuple[str, str | None]]) -> None:
+        self.tags.append((tag, dict(attrs)))
+        if tag in ("style", "svg"):
+            self._skip += 1
+
+    def handle_endtag(self, tag: str) -> None:
+        if tag in ("style", "svg"):
+            self._skip -= 1
+
+    def handle_data(self, data: str) -> None:
+        if not self._skip:
+            self.text.append(data)
+
+
+def scan(html: str) -> _Scan:
+    s = _Scan()
+    s.feed(html)
+    return s
+
+
+def text_of(html: str) -> str:
+    return re.sub(r"\s+", " ", " ".join(scan(html).text))
+
+
+def distinct_sets(path: Path) -> int:
+    der = derive(load_device(path))
+    keys = {(tuple(s.params.as_dict().values()), s.scales) for s in der.sets}
+    return len(keys)
+
+
+@pytest.mark.parametrize("device", device_files(), ids=lambda p: p.stem)
+def test_report_content(reports_dir: Path, device: Path) -> None:
+    """Verdict box, derived parameters (from nondim.derive), rules, every figure
+    with a caption naming its model, provenance and the reproduce command."""
+    html = (reports_dir / f"{device.stem}.html").read_text("utf-8")
+    assert (reports_dir / f"{device.stem}.pdf").stat().st_size > 10_000
+    text = text_of(html)
+    der = derive(load_device(device))
+    assert re.search(r"Device verdict: (PASS|FAIL)", text)
+    for s in der.sets:
+        assert f"Actuator set “{s.name}”" in text
+        assert f"Intended mode {s.intended_mode}" in text
+        p = s.params
+        for sym, val in (("ϖ", p.varpi), ("α", p.alpha), ("β", p.beta), ("κ", p.kappa)):
+            assert f"{sym} = {fmt_num(val)}" in text, sym
+        assert f"λ = {fmt_num(s.lam)}" in text
+    for needle in (
+        "1. Verdict",
+        "2. Device inputs",
+        "3. Design rules",
+        "4. Figures",
+        "5. Numerical provenance",
+        f"betv report {device}",
+    ):
+        assert needle in text
+    n_fig = FIGURES_PER_SET * distinct_sets(device)
+    figs = [a for t, a in scan(html).tags if t == "figure"]
+    assert len(figs) == n_fig
+    captions = re.findall(r"Figure (\d+)\. ([^.]+)\.", text)
+    assert [int(n) for n, _ in captions] == list(range(1, n_fig + 1))
+    assert text.count("Model: ") == n_fig
+    for title in (
+        "Push/pull map",
+        "Vertical regime strip",
+        "Vertical phase portrait",
+        "Slider velocity settling",
+        "Slider displacement",
+        "Mean speed against drive",
+        "Robustness",
+    ):
+        assert title in text
+    # Every number shown for an input is the file's own text.
+    assert "slider.travel_range" in text
+
+
+def test_shin2004_fails_with_reasons(reports_dir: Path) -> None:
+    """MODEL.md: shin2004's data give ϖ ≈ 0.34 < 0.5, so the verdict is fail and the
+    window rule is the first finding; the derivation shows where ϖ comes from."""
+    text = text_of((reports_dir / "shin2004.html").read_text("utf-8"))
+    assert "Device verdict: FAIL" in text
+    assert "ϖ = 0.3401" in text and "ω·sqrt(m/k_v)" in text
+    assert "frequency-window" in text
+    assert "2·f_drive" in text  # AC doubling shown
+
+
+def test_push_demo_predicts_push(reports_dir: Path) -> None:
+    """push_demo: the exact solver's transient settles to Δs > 0 (push); the report's
+    predicted mode says push."""
+    from betvdesign.dynamics.solver import simulate
+
+    der = derive(load_device(DEVICES / "push_demo.yaml"))
+    tr = simulate(der.sets[0].params, 300)
+    assert tr.success and tr.delta_s[-1] > 0
+    text = text_of((reports_dir / "push_demo.html").read_text("utf-8"))
+    assert re.search(r"Predicted mode push", text)
+
+
+@pytest.mark.parametrize("device", device_files(), ids=lambda p: p.stem)
+def test_html_is_self_contained(reports_dir: Path, device: Path) -> None:
+    """No script, no external resource, unique ids, every #reference resolves."""
+    html = (reports_dir / f"{device.stem}.html").read_text("utf-8")
+    doc = scan(html)
+    tags = {t for t, _ in doc.tags}
+    assert not tags & {"script", "link", "iframe", "object", "embed", "img", "video", "audio"}
+    ids = [a["id"] for _, a in doc.tags if a.get("id")]
+    assert len(ids) == len(set(ids)), "duplicate ids"
+    for _, attrs in doc.tags:
+        for name in ("href", "xlink:href", "src"):
+            ref = attrs.get(name)
+            if ref is not None:
+                assert ref.startswith("#") and ref[1:] in ids, ref
+    for ref in re.findall(r"url\(([^)]*)\)", html):
+        assert ref.startswith("#") and ref[1:] in ids, ref
+    assert "http://" not in html.replace("http://www.w3.org/", "")
+    assert "https://" not in html
+
+
+def test_reports_are_byte_reproducible(reports_dir: Path, tmp_path: Path) -> None:
+    """A second, independent run writes byte-identical HTML and PDF (shin2004: the
+    device with the most content: failing rules, two sets, every figure)."""
+    again = write_reports([DEVICES / "shin2004.yaml"], tmp_path)
+    for w in again:
+        for suffix in (".html", ".pdf"):
+            first = (reports_dir / f"{w.source.stem}{suffix}").read_bytes()
+            second = (tmp_path / f"{w.source.stem}{suffix}").read_bytes()
+            assert first == second, f"{w.source.stem}{suffix} differs between runs"
+
+
+def test_template_autoescapes_device_text(tmp_path: Path) -> None:
+    """Text from the device file is escaped, never interpreted as HTML."""
+    src = (DEVICES / "push_demo.yaml").read_text("utf-8")
+    src = re.sub(
+        r"^description:.*$", "description: '<script>alert(1)</script> & <b>x</b>'", src, flags=re.M
+    )
+    f = tmp_path / "evil.yaml"
+    f.write_text(src, "utf-8")
+    html = render_html(build_report(prepare(f)))
+    assert "<script>" not in html and "<b>x</b>" not in html
+    assert "&lt;script&gt;alert(1)&lt;/script&gt; &amp; &lt;b&gt;x&lt;/b&gt;" in html
+
+
+def test_missing_solver_is_stated_not_invented(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Without a periodic orbit, the verdict box and figures say why; no speed is shown."""
+
+    def no_api(name: str):
+        raise report_analysis.Missing(f"betvdesign.dynamics.{name} is not available (test)")
+
+    monkeypatch.setattr(report_analysis, "dynamics_api", no_api)
+    report_analysis._vertical.cache_clear()  # the regime strip caches per ϖ
+    report = build_report(prepare(DEVICES / "push_demo.yaml"))
+    box = report.sets[0].verdict
+    assert box.speed.startswith("not available") and "(test)" in box.speed
+    assert "λ fit only" in box.predicted_by
+    figs = report.figures()
+    assert figs[0].svg is not None  # the λ map needs no solver
+    assert all(f.svg is None and "(test)" in (f.unavailable or "") for f in figs[1:])
+    text = text_of(render_html(report))
+    assert text.count("Not drawn:") == len(figs) - 1
+    report_analysis._vertical.cache_clear()  # drop the failures cached for ϖ
+
+
+def test_lambda_targets_and_alpha_inversion() -> None:
+    """The robustness sweep straddles λ = 1 and contains the device's λ; the α that
+    is solved for gives the target λ back (independent λ formula)."""
+    from betvdesign.params import ModelParams
+
+    p = ModelParams(1.2, 2.0, 0.5, 0.15)
+    targets = lambda_targets(p.lam, 11)
+    assert targets.min() < 1 < targets.max() and p.lam in targets
+    for lam in targets:
+        a = alpha_for_lambda(float(lam), p)
+        assert a is not None
+        assert ModelParams(p.varpi, a, p.beta, p.kappa).lam == pytest.approx(lam, rel=1e-12)
+
+
+# --------------------------------------------------------------------------- CLI
+
+runner = CliRunner()
+
+
+def test_cli_writes_reports_and_exit_codes(tmp_path: Path) -> None:
+    """Exit 0 when written (even for a failing device); --strict turns a fail into 1."""
+    shin = str(DEVICES / "shin2004.yaml")
+    res = runner.invoke(app, ["report", shin, "-o", str(tmp_path / "a"), "--no-pdf"])
+    assert res.exit_code == 0, res.output
+    assert "verdict fail" in res.output
+    assert (tmp_path / "a" / "shin2004.html").is_file()
+    assert not (tmp_path / "a" / "shin2004.pdf").exists()
+    res = runner.invoke(app, ["report", shin, "-o", str(tmp_path / "b"), "--no-pdf", "--strict"])
+    assert res.exit_code == 1
+    assert (tmp_path / "b" / "shin2004.html").is_file()  # written all the same
+
+
+def test_cli_bad_input_writes_nothing(tmp_path: Path) -> None:
+    """Bad input: the check's error (file:line: field), exit 2, no file written, even
+    for the good file given alongside."""
+    bad = tmp_path / "bad.yaml"
+    src = (DEVICES / "push_demo.yaml").read_text("utf-8")
+    bad.write_text(src.replace("beam_width: 10 um", "beam_width: -10 um"), "utf-8")
+    out = tmp_path / "out"
+    res = runner.invoke(app, ["report", str(DEVICES / "push_demo.yaml"), str(bad), "-o", str(out)])
+    assert res.exit_code == 2
+    assert re.search(r"bad\.yaml:\d+:\d+: slider\.beam_width", res.output), res.output
+    assert "Traceback" not in res.output
+    assert not out.exists() or not any(out.iterdir())
+
+
+def test_cli_usage_errors(tmp_path: Path) -> None:
+    clash = tmp_path / "sub"
+    clash.mkdir()
+    copy = clash / "push_demo.yaml"
+    copy.write_text((DEVICES / "push_demo.yaml").read_text("utf-8"), "utf-8")
+    res = runner.invoke(
+        app, ["report", str(DEVICES / "push_demo.yaml"), str(copy), "-o", str(tmp_path / "o")]
+    )
+    assert res.exit_code == 2 and "would both write push_demo.html" in res.output
+    afile = tmp_path / "file"
+    afile.write_text("x")
+    res = runner.invoke(app, ["report", str(DEVICES / "push_demo.yaml"), "-o", str(afile)])
+    assert res.exit_code == 2 and "not a directory" in res.output
