@@ -145,6 +145,28 @@ def _plain(x: Any) -> Any:
     return x
 
 
+def _key_pos(node: CommentedMap, key: Any, *, value: bool) -> tuple[int, int]:
+    """0-based (line, col) of a key (or its value); keys brought in by a YAML merge key
+    (``<<: *anchor``) are found in the anchored mapping; else the mapping itself."""
+    data = node.lc.data
+    if key in data:
+        entry = data[key]
+        return (entry[2], entry[3]) if value else (entry[0], entry[1])
+    for item in getattr(node, "merge", None) or []:
+        # ruamel versions differ: (index, map) tuples or the maps themselves
+        merged = item[1] if isinstance(item, tuple) else item
+        if isinstance(merged, CommentedMap) and key in merged:
+            return _key_pos(merged, key, value=value)
+    return node.lc.line, node.lc.col
+
+
+def _item_pos(node: CommentedSeq, index: int) -> tuple[int, int]:
+    data = node.lc.data
+    if index in data:
+        return data[index][0], data[index][1]
+    return node.lc.line, node.lc.col
+
+
 def _locate(
     root: CommentedMap, loc: tuple[Any, ...], *, name_missing: bool = True
 ) -> tuple[int, int, str]:
@@ -160,11 +182,11 @@ def _locate(
     for i, el in enumerate(loc):
         last = i == len(loc) - 1
         if isinstance(node, CommentedMap) and el in node:
-            line, col = node.lc.value(el) if not last else node.lc.key(el)
+            line, col = _key_pos(node, el, value=not last)
             node = node[el]
             path = _join(path, el)
         elif isinstance(node, CommentedSeq) and isinstance(el, int) and 0 <= el < len(node):
-            line, col = node.lc.item(el)
+            line, col = _item_pos(node, el)
             node = node[el]
             path = _join(path, el)
         elif last and name_missing and isinstance(el, str | int):
@@ -178,10 +200,10 @@ def _last_key_value_pos(root: CommentedMap, loc: tuple[Any, ...]) -> tuple[int, 
     pos = None
     for el in loc:
         if isinstance(node, CommentedMap) and el in node:
-            pos = node.lc.value(el)
+            pos = _key_pos(node, el, value=True)
             node = node[el]
         elif isinstance(node, CommentedSeq) and isinstance(el, int) and 0 <= el < len(node):
-            pos = node.lc.item(el)
+            pos = _item_pos(node, el)
             node = node[el]
     return None if pos is None else (pos[0] + 1, pos[1] + 1)
 
@@ -276,16 +298,19 @@ def _validation_issues(exc: ValidationError, root: CommentedMap, filename: str) 
         # a last loc element absent from the data names a missing field; otherwise it is
         # a union tag (e.g. "measured", "float") and is left out of the path
         name_missing = relocated or err["type"] in ("missing", "extra_forbidden")
-        line, col, path = _locate(root, loc, name_missing=name_missing)
-        if err["type"] not in ("extra_forbidden", "missing"):
-            pos = _last_key_value_pos(root, loc)
-            if pos is not None:
-                line, col = pos
+        try:
+            line, col, path = _locate(root, loc, name_missing=name_missing)
+            if err["type"] not in ("extra_forbidden", "missing"):
+                pos = _last_key_value_pos(root, loc)
+                if pos is not None:
+                    line, col = pos
+        except (KeyError, IndexError, TypeError, AttributeError):  # never a traceback
+            line, col, path = 0, 0, ".".join(str(x) for x in loc)
         msgs = grouped.setdefault((line, col, path), [])
         if msg not in msgs:
             msgs.append(msg)
     issues = [
-        SpecIssue(Location(filename, line, col), path, "; or ".join(msgs))
+        SpecIssue(Location(filename, line or None, col or None), path, "; or ".join(msgs))
         for (line, col, path), msgs in grouped.items()
     ]
     return sorted(issues, key=lambda i: (i.location.line or 0, i.location.col or 0, i.field))

@@ -76,6 +76,10 @@ CASES: dict[str, list[tuple[int | None, int | None, str, str]]] = {
     "top_level_list.yaml": [(1, 1, "", "expected a mapping at the top level, got a list")],
     "empty.yaml": [(None, None, "", "empty file")],
     "not_utf8.yaml": [(None, None, "", "not UTF-8 text")],
+    "merge_key_error.yaml": [
+        (12, 38, "actuator_sets[0].drive.frequency", "wrong dimension"),
+        (12, 38, "actuator_sets[1].drive.frequency", "wrong dimension"),
+    ],
     # valid fields, but the derived parameters are outside the model (nondim.derive_file)
     "overflow_params.yaml": [(None, None, "", "k_v = m·(2π·f_v)² = 0.0: must be finite and > 0")],
     "zero_amplitude.yaml": [(None, None, "", "u = interp(V; measured points) = 0.0")],
@@ -186,3 +190,11 @@ def test_wrong_yaml_types(text, line, col, field, message):
     hits = [i for i in exc.value.issues if i.field == field]
     assert hits and (hits[0].location.line, hits[0].location.col) == (line, col)
     assert hits[0].message == message
+
+
+def test_anchors_and_merge_keys_build_mirrored_sets():
+    text = (SPECS / "merge_key_error.yaml").read_text().replace("500 um", "500 Hz")
+    spec = load_device_text(text, "m.yaml")
+    right, left = spec.actuator_sets
+    assert (right.name, left.name) == ("right", "left")
+    assert left.impact_direction == "-x" and left.drive == right.drive
