@@ -111,33 +111,29 @@ def first_root(ev: Evaluator, H: float, counter: list[int]) -> tuple[float, int]
             x = xi
     if x >= H or ev.clear(0.0):
         return None
-    n = ev.n
     scale = ev.scale
     x0 = x
+    cand: tuple[float, int] | None = None  # a located root; others may still come first
+    active = list(range(ev.n))  # functions not yet settled on [x0, H]
     for _ in range(MAX_STEPS):
         counter[0] += 1
         fs, fps, m2s = ev.eval(x0)
-        step = H - x0
-        if W < step:
-            step = W
         best_end = math.inf
         best_i = -1
-        steps = []
-        for i in range(n):
+        steps = {}
+        for i in active:
             f = fs[i]
             fp = fps[i]
             if f <= NOISE * scale[i]:
                 return x0, i  # at the root to round-off (or a grazing touch)
-            xi = safe_step(f, fp, m2s[i])
-            steps.append(xi)
-            if xi < step:
-                step = xi
+            steps[i] = safe_step(f, fp, m2s[i])
             if fp < 0.0:
                 d = f / -fp
                 if 4.0 * m2s[i] * d <= -fp and 2.0 * d <= W and x0 + 2.0 * d < best_end:
                     best_end, best_i = x0 + 2.0 * d, i
         if best_i >= 0:
             i = best_i
+            active.remove(i)
             # f_i(x0 + 2d) ≤ −f + 2·M2·d² < 0 by construction; only a clipped end needs a look
             clipped = best_end > H
             hi = H if clipped else best_end
@@ -145,17 +141,19 @@ def first_root(ev: Evaluator, H: float, counter: list[int]) -> tuple[float, int]
             if clipped:
                 counter[0] += 1
                 f_hi = ev.eval(hi)[0][i]
-            if f_hi > 0.0:  # f_i stays positive up to H
-                if all(steps[j] >= hi - x0 for j in range(n) if j != i):
-                    return None
-            else:
+            if f_hi <= 0.0:  # else f_i (monotone on the bracket) stays positive up to H
                 r = _refine(ev, i, x0, hi, fs[i], fps[i], counter)
-                if n == 1 or all(steps[j] >= r - x0 for j in range(n) if j != i):
-                    return r, i
-        if x0 + step >= H:
-            return None
+                cand, H = (r, i), r  # the others are searched on [x0, r] only
+        step = H - x0
+        if W < step:
+            step = W
+        for i in active:
+            if steps[i] < step:
+                step = steps[i]
+        if not active or x0 + step >= H:
+            return cand
         x0 += step
-        if ev.clear(x0):
+        if cand is None and ev.clear(x0):
             return None
     raise EventSearchError(
         f"event search did not terminate within {MAX_STEPS} steps on a window of {H:.6g}"
