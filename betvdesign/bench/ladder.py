@@ -63,7 +63,8 @@ def lambda_disagreement(
     for lo, hi in itertools.pairwise(edges):
         inside = [r for r in conv if lo <= abs(r["lam"] - 1.0) < hi]
         bad = [r for r in inside if r["mode_predicted"] != r["mode"]]
-        bands.append({"lo": lo, "hi": hi, "points": len(inside), "mispredicted": len(bad)})
+        top = hi if math.isfinite(hi) else None  # None: open band (JSON/Python-literal safe)
+        bands.append({"lo": lo, "hi": top, "points": len(inside), "mispredicted": len(bad)})
     return {
         "grid": {k: list(v) for k, v in g.items()},
         "points": len(rows),

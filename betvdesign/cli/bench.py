@@ -86,3 +86,62 @@ def bench_cmd(
             )
     for p in written:
         typer.echo(f"wrote {p}")
+
+
+def methods_report(files: list[Path], outdir: Path, *, pdf: bool = True) -> int:
+    """``betv report --methods [ROWS.json] -o DIR``: the methods report; exit code.
+
+    Without a file the quick work-precision study runs now; with one, its rows (the
+    JSON written by ``betv bench -o`` or ``benchmarks/work_precision.py``) are used.
+    """
+    from betvdesign.report.methods import load_rows, write_methods_report
+
+    with user_errors():
+        if len(files) > 1:
+            raise UsageError("--methods takes at most one work-precision JSON file")
+        if outdir.exists() and not outdir.is_dir():
+            raise UsageError(f"output path {outdir} exists and is not a directory")
+        rows = None
+        if files:
+            try:
+                rows = load_rows(files[0])
+            except (OSError, ValueError, KeyError, TypeError) as exc:
+                raise UsageError(f"{files[0]}: not a work-precision JSON ({exc})") from None
+        written = write_methods_report(outdir, rows=rows, pdf=pdf)
+    typer.echo("methods report -> " + ", ".join(str(p) for p in written))
+    return 0
+
+
+@app.command("ladder")
+def ladder_cmd(
+    question: str = typer.Argument(..., help="mode | regime | delta_s | transient | stability"),
+    varpi: float = typer.Option(..., "--varpi", help="ϖ [-]"),
+    alpha: float = typer.Option(..., "--alpha", help="α [-]"),
+    beta: float = typer.Option(..., "--beta", help="β [-]"),
+    kappa: float = typer.Option(..., "--kappa", help="κ [-]"),
+    tol: float = typer.Option(1e-6, "--tol", help="Accuracy asked (relative, for delta_s)."),
+    fidelity: str | None = typer.Option(
+        None, "--fidelity", help="Force a rung: lambda, vertical, rigid, full, periodic."
+    ),
+    as_json: bool = typer.Option(False, "--json", help="Print the answer as JSON."),
+) -> None:
+    """Answer a question with the cheapest adequate model, and say which and why."""
+    from betvdesign import fidelity as fid
+    from betvdesign.params import ModelParams
+
+    with user_errors():
+        p = ModelParams(varpi, alpha, beta, kappa)
+        ans = fid.answer(p, question, tol=tol, force=fidelity)  # type: ignore[arg-type]
+    doc = {
+        **ans.choice.as_dict(),
+        "status": ans.status,
+        "message": ans.message,
+        "value": ans.value,
+        "mode": ans.mode,
+        "seconds": ans.seconds,
+    }
+    if as_json:
+        typer.echo(json.dumps(doc, allow_nan=False, default=float))
+        return
+    typer.echo(f"{question}: {ans.value!r} (mode {ans.mode}) [{ans.status}] {ans.message}")
+    typer.echo(f"model: {doc['model']} (rung {ans.choice.rung}); why: {ans.choice.reason}")

@@ -19,7 +19,7 @@ from betvdesign.cli.common import EXIT_OK, EXIT_RULE_FAILED, user_errors
 
 @app.command("report")
 def report_cmd(
-    files: list[Path] = typer.Argument(..., help="Device YAML files (see devices/)."),
+    files: list[Path] = typer.Argument(None, help="Device YAML files (see devices/)."),
     outdir: Path = typer.Option(Path("reports"), "-o", "--output", help="Output directory."),
     pdf: bool = typer.Option(True, "--pdf/--no-pdf", help="Also write NAME.pdf (WeasyPrint)."),
     strict: bool = typer.Option(
@@ -30,9 +30,20 @@ def report_cmd(
         "--timestamp",
         help="Print the generation time and run times (reports then differ between runs).",
     ),
+    methods: bool = typer.Option(
+        False,
+        "--methods",
+        help="Write the methods report (speed/accuracy chart, failure map, fidelity ladder) "
+        "instead; FILE may then be a work-precision JSON from `betv bench -o`.",
+    ),
 ) -> None:
     """Write NAME.html (self-contained) and NAME.pdf for every device file."""
     from betvdesign.report import write_reports
+
+    if methods:
+        from betvdesign.cli.bench import methods_report
+
+        raise typer.Exit(methods_report(files or [], outdir, pdf=pdf))
 
     with user_errors():
         written = write_reports(files, outdir, pdf=pdf, timestamp=timestamp)

@@ -19,8 +19,8 @@ form arccos. Stick, once reached, lasts until the contact ends (the condition
 ϖ² ≤ βκ does not depend on τ), so a contact has at most two phases.
 
 The vertical motion (independent of the slider and of α) gives the contact
-intervals; free flights start from ξ = ξ' = 0 and their hits are located with a
-certified bound (:func:`next_hit`). Because every contact ends at
+intervals; it is the full model's own exact vertical schedule
+(:class:`betvdesign.dynamics.vertical.VerticalSchedule`). Because every contact ends at
 τ = (2j+1)π/ϖ with ξ = ξ' = 0, the vertical motion is exactly periodic from the
 first contact end, and the slider's periodic state is the fixed point of a
 monotone scalar map of its velocity, found by bracketing.
@@ -40,6 +40,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.optimize import brentq
 
+from betvdesign.dynamics.vertical import VerticalSchedule
 from betvdesign.params import ModelParams
 
 TWO_PI = 2.0 * math.pi
@@ -175,169 +176,31 @@ def _end(c: Contact, s: float, v: float, phase: str, log: list | None):
 
 
 # ------------------------------------------------------------------------ vertical
-class Flight:
-    """Free flight of the head from lift-off: ξ'' + ξ = −sin ϖτ, ξ(τ₀) = ξ'(τ₀) = 0.
+def contact_schedule(varpi: float, tau_end: float, *, max_contacts: int | None = None):
+    """Contacts and impulsive hits of the vertical motion in [0, τ_end].
 
-    docs/MODEL.md "No contact". Every flight starts at rest on the slider (after a
-    contact end or an impulsive hit). Closed form, uniform in ϖ (including the
-    resonance ϖ = 1, no division by 1 − ϖ²): with t = τ − τ₀, a = (1+ϖ)t/2,
-    S = sin((1−ϖ)t/2)/((1−ϖ)t/2) and (s₀, c₀) = (sin ϖτ₀, cos ϖτ₀),
-
-        ξ  = [−s₀ t S sin a + c₀ (t S cos a − sin t)] / (1 + ϖ)
-        ξ' = [−s₀ (t S cos a + sin ϖt) − ϖ c₀ t S sin a] / (1 + ϖ)
+    From rest at a contact start at τ = 0 (docs/MODEL.md "Initial state"); the exact
+    vertical motion is :class:`betvdesign.dynamics.vertical.VerticalSchedule` (the
+    same one the full model uses). Stops after ``max_contacts`` contacts.
+    Returns (contacts, impulsive_hit_times, n_root_evals).
     """
-
-    __slots__ = ("c0", "s0", "tau0", "varpi")
-
-    def __init__(self, tau0: float, varpi: float):
-        self.tau0, self.varpi = tau0, varpi
-        self.s0, self.c0 = math.sin(varpi * tau0), math.cos(varpi * tau0)
-
-    def xi(self, t: float) -> float:
-        w = self.varpi
-        a, h = 0.5 * (1.0 + w) * t, 0.5 * (1.0 - w) * t
-        tS = t * (math.sin(h) / h if h != 0.0 else 1.0)
-        return (-self.s0 * tS * math.sin(a) + self.c0 * (tS * math.cos(a) - math.sin(t))) / (1 + w)
-
-    def dxi(self, t: float) -> float:
-        w = self.varpi
-        a, h = 0.5 * (1.0 + w) * t, 0.5 * (1.0 - w) * t
-        tS = t * (math.sin(h) / h if h != 0.0 else 1.0)
-        return (
-            -self.s0 * (tS * math.cos(a) + math.sin(w * t)) - w * self.c0 * tS * math.sin(a)
-        ) / (1 + w)
-
-    def d4_bound(self, t: float) -> float:
-        """Bound on |ξ| over [0, t]: ξ = ξ + (1 + ϖ²) sin ϖτ, |ξ| ≤ (t + 1)/(1 + ϖ)."""
-        w = self.varpi
-        xi_max = (t + 1.0) / (1.0 + w)
-        if abs(1.0 - w * w) > 1e-3:
-            xi_max = min(xi_max, (abs(self.s0) + w * abs(self.c0) + 1.0) / abs(1.0 - w * w))
-        return xi_max + 1.0 + w * w
-
-
-def _hermite_min(f0, d0, f1, d1, h):
-    """Minimum over [0, h] of the cubic Hermite interpolant of (f0, d0), (f1, d1)."""
-    # p(x) = f0 + d0 x + c2 x² + c3 x³
-    c2 = (3 * (f1 - f0) / h - 2 * d0 - d1) / h
-    c3 = (d0 + d1 - 2 * (f1 - f0) / h) / (h * h)
-    best = min(f0, f1)
-    qa, qb, qc = 3 * c3, 2 * c2, d0
-    roots: list[float] = []
-    if abs(qa) > 1e-300:
-        disc = qb * qb - 4 * qa * qc
-        if disc >= 0:
-            r = math.sqrt(disc)
-            roots = [(-qb - r) / (2 * qa), (-qb + r) / (2 * qa)]
-    elif abs(qb) > 1e-300:
-        roots = [-qc / qb]
-    for x in roots:
-        if 0 < x < h:
-            best = min(best, f0 + x * (d0 + x * (c2 + x * c3)))
-    return best
-
-
-def next_hit(flight: Flight, horizon: float, *, step: float | None = None):
-    """First τ > τ₀ where the flying head reaches ξ = 0, certified not to miss a graze.
-
-    Returns (τ_hit, kind, n_evals) with kind "contact" (sin ϖτ ≥ 0 at the hit, a
-    finite contact starts) or "impulsive" (sin ϖτ < 0: stopped and lifted off), or
-    (None, "", n) if no hit within ``horizon``. Certification: on each interval the
-    cubic Hermite interpolant's minimum minus the remainder bound M₄h⁴/384 must be
-    positive, otherwise the interval is bisected (docs/MODEL.md "Impacts").
-    """
-    w = flight.varpi
-    h0 = step if step is not None else 0.25 * min(1.0, 1.0 / w)
-    n = 0
-    # Start: ξ = q2 t² + q3 t³ + R, |R| ≤ M4 t⁴/24, with q2 = −s0/2 ≥ 0, q3 = −ϖ c0/6.
-    q2, q3 = max(-flight.s0, 0.0) / 2.0, -w * flight.c0 / 6.0
-    m4 = flight.d4_bound(h0)
-    t1 = h0
-    while t1 > 1e-13 and q2 + q3 * t1 - m4 * t1 * t1 / 24.0 <= 0.0:
-        t1 *= 0.5
-    if t1 <= 1e-13:
-        # The head cannot leave: it is at a contact start (phase 2jπ reached from below).
-        tau = flight.tau0
-        kind = "contact" if math.sin(w * tau) >= 0 else "impulsive"
-        if kind == "impulsive":
-            tau = TWO_PI * math.ceil(w * tau / TWO_PI - 1e-12) / w
-            kind = "contact"
-        return tau, kind, n
-    a = t1
-    fa, da = flight.xi(a), flight.dxi(a)
-    n += 2
-    stack: list[tuple[float, float, float, float, float, float]] = []
-    while a < horizon or stack:
-        if stack:
-            a_, fa_, da_, b, fb, db = stack.pop()
-        else:
-            b = a + h0
-            fb, db = flight.xi(b), flight.dxi(b)
-            n += 2
-            a_, fa_, da_ = a, fa, da
-            a, fa, da = b, fb, db
-        h = b - a_
-        if fb <= 0.0 < fa_:
-            t_hit = brentq(flight.xi, a_, b, xtol=1e-15, rtol=4 * np.finfo(float).eps)
-            n += 40
-            return (*_classify(flight.tau0 + t_hit, w), n)
-        low = _hermite_min(fa_, da_, fb, db, h) - flight.d4_bound(b) * h**4 / 384.0
-        if low > 0.0:
-            continue
-        if h < 1e-12:
-            # Grazing touch located to round-off: the head reaches ξ = 0 tangentially.
-            t_hit = a_ if fa_ <= fb else b
-            return (*_classify(flight.tau0 + t_hit, w), n)
-        mid = 0.5 * (a_ + b)
-        fm, dm = flight.xi(mid), flight.dxi(mid)
-        n += 2
-        # push the right half first so the left half (earlier time) is examined first
-        stack.append((mid, fm, dm, b, fb, db))
-        stack.append((a_, fa_, da_, mid, fm, dm))
-    return None, "", n
-
-
-def _classify(tau: float, varpi: float) -> tuple[float, str]:
-    """Hit kind by the sign of the normal forcing sin ϖτ at the hit.
-
-    A hit within rounding of a contact start (ϖτ = 2jπ approached from below) is a
-    contact start, not an impulsive hit followed at once by one.
-    """
-    phase = varpi * tau
-    tol = 8.0 * np.finfo(float).eps * max(1.0, phase)
-    return tau, ("contact" if math.sin(phase) >= -tol else "impulsive")
-
-
-def contact_schedule(
-    varpi: float, tau_end: float, *, tau_start: float = 0.0, max_contacts: int | None = None
-):
-    """Contacts and impulsive hits of the vertical motion in [τ_start, τ_end].
-
-    Starts from a contact start at τ_start = 2jπ/ϖ (everything zero at τ = 0,
-    docs/MODEL.md "Initial state"); stops early after ``max_contacts`` contacts.
-    Returns (contacts, impulsive_hit_times, n_evals).
-    """
+    period = TWO_PI / varpi
+    n_cyc = math.ceil(tau_end / period - 1e-12)
+    vs = VerticalSchedule(varpi, horizon=max(n_cyc + 1, 2))
     contacts: list[Contact] = []
     impulsive: list[float] = []
-    n_evals = 0
-    start = tau_start
-    while start <= tau_end:
-        end = (TWO_PI * math.floor(varpi * start / TWO_PI + 1e-12) + math.pi) / varpi
-        contacts.append(Contact(start, end))
-        if max_contacts is not None and len(contacts) >= max_contacts:
+    for m in range(n_cyc + 1):
+        try:
+            cyc = vs.cycle(m)
+        except IndexError:  # no contact recurs: the computed horizon is all there is
             break
-        flight = Flight(end, varpi)
-        while True:
-            hit, kind, evals = next_hit(flight, horizon=max(tau_end - flight.tau0, 0.0) + 1.0)
-            n_evals += evals
-            if hit is None or hit > tau_end:
-                return contacts, impulsive, n_evals
-            if kind == "contact":
-                start = hit
+        base = m * period
+        if cyc.contact_start is not None and base + cyc.contact_start <= tau_end:
+            contacts.append(Contact(base + cyc.contact_start, base + math.pi / varpi))
+            if max_contacts is not None and len(contacts) >= max_contacts:
                 break
-            impulsive.append(hit)
-            flight = Flight(hit, varpi)
-    return contacts, impulsive, n_evals
+        impulsive.extend(base + t for t in cyc.impulsive if base + t <= tau_end)
+    return contacts, impulsive, vs.n_root_evals
 
 
 # ----------------------------------------------------------------------- public API
@@ -381,7 +244,7 @@ def rigid_simulate(
     n_ev = 2 * k + len(impulsive)
     msg = f"{cycles} cycles, {k} contacts, {len(impulsive)} impulsive hits (rigid limit α → 0)"
     return RigidTrajectory(
-        status="ok",
+        status="success",
         success=True,
         message=msg,
         params=p,
@@ -449,7 +312,7 @@ def rigid_periodic(p: ModelParams, *, max_cycles: int = 200) -> RigidPeriodic:
     mode = "push" if delta_s > 0 else ("pull" if delta_s < 0 else None)
     duration = cycle_contact.end - cycle_contact.start
     return RigidPeriodic(
-        status="ok",
+        status="success",
         success=True,
         message=f"periodic (rigid limit α → 0), period {n_cyc} cycle(s), Δs = {delta_s:.12g}",
         params=p,

@@ -132,6 +132,7 @@ def build(rows: Sequence[Row], *, level: str = "quick") -> MethodsReport:
         designs=tuple(
             (d.name, ", ".join(f"{k} = {v:g}" for k, v in d.params.as_dict().items()), d.why)
             for d in DESIGNS.values()
+            if any(r.design == d.name for r in rows)
         ),
         ratios=ratios,
         failures=FAILURES,
@@ -180,7 +181,7 @@ def write_methods_report(
     """Write methods.html (and methods.pdf); runs the quick study when ``rows`` is None."""
     from betvdesign.bench import workprecision as wp
 
-    level = "given"
+    level = "loaded from file"
     if rows is None:
         rows, level = wp.run("quick"), "quick"
     out = Path(outdir)

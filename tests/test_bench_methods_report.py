@@ -1,0 +1,84 @@
+"""The methods report (betvdesign.report.methods, ``betv report --methods``).
+
+Sources: the rendered HTML parsed back (sections, failure-map rows = the catalogue,
+inline SVG figures, no external references), byte-reproducibility of two renders of
+the same rows, the PDF read back with pypdf (pages, text), CLI runs (CliRunner).
+"""
+
+from __future__ import annotations
+
+import json
+import re
+
+import pytest
+from pypdf import PdfReader
+from typer.testing import CliRunner
+
+from betvdesign.bench.chart import write_outputs
+from betvdesign.bench.failures import FAILURES
+from betvdesign.bench.workprecision import Row
+from betvdesign.cli import app
+from betvdesign.report.methods import build, render_html, write_methods_report
+
+
+def _rows() -> list[Row]:
+    """Measured-looking rows for two methods (the report only lays them out)."""
+    out = []
+    for metric in ("s_N", "delta_s"):
+        out.append(Row("exact", "closed-form events", "pull", metric, 1e-12, 1e-3, "success", ""))
+        for rt, err, sec in ((1e-8, 1e-7, 4e-2), (1e-11, 1e-10, 6e-2)):
+            out.append(
+                Row("solve_ivp-DOP853", f"rtol={rt:.0e}", "pull", metric, err, sec, "success", "")
+            )
+    return out
+
+
+@pytest.fixture(scope="module")
+def html():
+    return render_html(build(_rows()))
+
+
+def test_sections_and_failure_map(html):
+    for sec in ("work-precision", "failure-map", "ladder", "reproduce"):
+        assert f'<section id="{sec}">' in html
+    for f in FAILURES:
+        assert f'id="failure-{f.id}"' in html
+    assert html.count("<svg") == 2  # chart + λ disagreement bars
+    assert "×40" in html and "×60" not in html  # ratio: DOP853 1e-8 (4e-2 s) / exact 1e-3 s
+
+
+def test_self_contained_and_reproducible(html):
+    assert not re.search(r'(src|href)="(https?:)?//', html)
+    assert "<script" not in html
+    assert render_html(build(_rows())) == html
+
+
+def test_pdf_and_cli(tmp_path):
+    written = write_methods_report(tmp_path / "a", rows=_rows())
+    pdf = PdfReader(str(written[1]))
+    text = "".join(p.extract_text() for p in pdf.pages)
+    assert len(pdf.pages) >= 3
+    assert "Failure map" in text and "Fidelity ladder" in text
+    write_outputs(_rows(), tmp_path / "wp")
+    res = CliRunner().invoke(
+        app,
+        [
+            "report",
+            "--methods",
+            str(tmp_path / "wp" / "work_precision.json"),
+            "-o",
+            str(tmp_path / "b"),
+            "--no-pdf",
+        ],
+    )
+    assert res.exit_code == 0, res.output
+    assert (tmp_path / "b" / "methods.html").read_text() == written[0].read_text()
+
+
+def test_cli_bad_rows_file(tmp_path):
+    bad = tmp_path / "rows.json"
+    bad.write_text(json.dumps({"nope": 1}))
+    res = CliRunner().invoke(app, ["report", "--methods", str(bad), "-o", str(tmp_path / "o")])
+    assert res.exit_code == 2
+    assert "not a work-precision JSON" in res.stderr
+    assert not (tmp_path / "o" / "methods.html").exists()
