@@ -10,13 +10,14 @@ from __future__ import annotations
 
 import difflib
 import functools
+import warnings
 from pathlib import Path
 from typing import Any
 
 from pydantic import ValidationError
 from ruamel.yaml import YAML
 from ruamel.yaml.comments import CommentedMap, CommentedSeq
-from ruamel.yaml.error import MarkedYAMLError, YAMLError
+from ruamel.yaml.error import MarkedYAMLError, YAMLError, YAMLWarning
 from ruamel.yaml.nodes import MappingNode, Node, SequenceNode
 
 from betvdesign.errors import Location, SpecError, SpecIssue
@@ -46,9 +47,11 @@ def load_device_text(text: str, filename: str = "<string>") -> DeviceSpec:
     yaml = YAML(typ="rt")
     yaml.allow_duplicate_keys = True  # duplicates are found on the node tree, all at once
     try:
-        root_node = yaml.compose(text)
-        issues.extend(_duplicate_keys(root_node, filename))
-        data = yaml.load(text)
+        with warnings.catch_warnings():  # a re-defined anchor is legal YAML: the last wins
+            warnings.simplefilter("ignore", YAMLWarning)
+            root_node = yaml.compose(text)
+            issues.extend(_duplicate_keys(root_node, filename))
+            data = yaml.load(text)
     except MarkedYAMLError as exc:
         mark = exc.problem_mark or exc.context_mark
         loc = Location(filename, mark.line + 1, mark.column + 1) if mark else Location(filename)
