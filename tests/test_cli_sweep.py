@@ -127,3 +127,149 @@ def test_tolerance_file_errors_name_file_and_line(tmp_path):
     r = _run(["tolerance", DEVICE, "--tolerances", str(f), "-x", "serial", "--fidelity", "lambda"])
     assert r.exit_code == 2
     assert f"{f}:3: head.mass2: dist must be normal or uniform" in r.stderr
+
+
+# -- real runs of the exact solver through the CLI -----------------------------------
+def test_pushpull_map_json_figure_and_resume(tmp_path):
+    out, fig = tmp_path / "map.csv", tmp_path / "map.svg"
+    args = [
+        "sweep",
+        "pushpull",
+        "--varpi",
+        "0.9,1.3,2.2",
+        "--alpha",
+        "0.1,4",
+        "--beta",
+        "0.5",
+        "--kappa",
+        "0.4",
+        "-x",
+        "serial",
+        "-o",
+        str(out),
+        "--figure",
+        str(fig),
+        "--json",
+    ]
+    r = _run(args)
+    assert r.exit_code == 0, r.stderr
+    data = json.loads(r.stdout)
+    assert data["points"] == 6 and data["computed"] == 6
+    assert data["converged"] == 4 and data["push"] + data["pull"] == 4
+    assert {d["status"] for d in data["not_converged"]} == {"not_driven"}  # ϖ = 2.2
+    assert fig.read_text().startswith("<?xml") and out.exists()
+    first = out.read_bytes()
+    again = json.loads(_run(args).stdout)
+    assert again["computed"] == 0 and again["resumed"] == 6
+    assert out.read_bytes() == first
+
+
+def test_human_output_lists_failures():
+    r = _run(
+        [
+            "sweep",
+            "pushpull",
+            "--varpi",
+            "2.2",
+            "--alpha",
+            "1",
+            "--beta",
+            "0.5",
+            "--kappa",
+            "0.4",
+            "-x",
+            "serial",
+            "-q",
+        ]
+    )
+    assert r.exit_code == 0
+    assert "not converged: ϖ=2.2" in r.stdout and "not_driven" in r.stdout
+
+
+def test_lambda_and_regime_commands():
+    r = _run(
+        [
+            "sweep",
+            "lambda",
+            "--kappa",
+            "0.4",
+            "--beta",
+            "0.5",
+            "--alpha",
+            "1",
+            "--lambda",
+            "0.8,0.9,1.0,1.2",
+            "-x",
+            "serial",
+            "--json",
+        ]
+    )
+    assert r.exit_code == 0, r.stderr
+    data = json.loads(r.stdout)
+    assert [round(x["lam"], 12) for x in data["rows"]] == [0.8, 0.9, 1.0, 1.2]
+    assert data["sign_changes"] and data["sign_changes"][0]["from"] < data["sign_changes"][0]["to"]
+    r = _run(["sweep", "lambda", "--kappa", "0.4", "--beta", "0.5", "-x", "serial"])
+    assert r.exit_code == 2 and "needs a fixed --alpha" in r.stderr
+    r = _run(["sweep", "regime", "--varpi", "0.5:2.5:0.5", "-x", "serial", "--json"])
+    assert r.exit_code == 0, r.stderr
+    data = json.loads(r.stdout)
+    assert [iv["label"] for iv in data["overview"]] == ["period-1", "impulsive"]
+
+
+def test_tolerance_periodic_rung_cli():
+    r = _run(
+        [
+            "tolerance",
+            "devices/push_demo.yaml",
+            "--tol",
+            "actuator.horizontal_resonance=5%",
+            "--tol",
+            "drive.frequency=uniform:2%",
+            "-n",
+            "3",
+            "--seed",
+            "4",
+            "-x",
+            "serial",
+            "--json",
+        ]
+    )
+    assert r.exit_code == 0, r.stderr
+    s = json.loads(r.stdout)["sets"]["forward"]
+    assert s["mode_from"] == "periodic orbit" and s["p_push"] + s["p_pull"] <= 1.0
+    assert s["speed_um_s_percentiles"] is not None
+
+
+def test_ctrl_c_keeps_finished_points_and_exits_130(tmp_path, monkeypatch):
+    from betvdesign.studies import pushpull
+
+    calls = {"n": 0}
+    real = pushpull.lambda_point
+
+    def flaky(task):
+        calls["n"] += 1
+        if calls["n"] > 2:
+            raise KeyboardInterrupt
+        return real(task)
+
+    monkeypatch.setattr(pushpull, "lambda_point", flaky)
+    out = tmp_path / "m.csv"
+    r = _run(
+        [
+            *MAP,
+            "--varpi",
+            "0.5:1.5:0.25",
+            "-x",
+            "serial",
+            "--chunksize",
+            "1",
+            "--fidelity",
+            "lambda",
+            "-o",
+            str(out),
+        ]
+    )
+    assert r.exit_code == 130
+    assert "run the same command again to resume" in r.stderr
+    meta = json.loads((tmp_path / "m.json").read_text())
+    assert meta["status"] == "interrupted" and meta["done"] == 2
