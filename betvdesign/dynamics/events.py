@@ -35,6 +35,7 @@ from betvdesign.dynamics.flows import (
     energy_radius,
     oscillator,
     slider,
+    split_eval,
 )
 
 EPS = 2.220446049250313e-16
@@ -351,12 +352,7 @@ class SlipEvent:
         z, zd, s, sd, sp0, cp0 = self.state
         wf = k.varpi
         if self.fast:
-            cw, sw = math.cos(wf * h), math.sin(wf * h)
-            sp, cp = sp0 * cw + cp0 * sw, cp0 * cw - sp0 * sw
-            w0 = self.w0
-            c0, s0 = math.cos(w0 * h), math.sin(w0 * h)
-            y = self.P * sp + self.ac * c0 + self.as_ * s0
-            yd = self.P * wf * cp + w0 * (self.as_ * c0 - self.ac * s0)
+            y, yd, sp, cp = split_eval(self.P, self.ac, self.as_, self.w0, wf, sp0, cp0, h)
             sdn = self.sdc - k.ds[self.phase] * cp / wf
             return [self.sig * (yd - sdn)], [self.sig * (self.q * sp - y) / k.alpha], [self.m2b]
         y, yd, sp, cp = oscillator(self.w0, wf, self.F, z, zd, sp0, cp0, h)
@@ -454,12 +450,7 @@ class StickEvent:
         wf = self.k.varpi
         ql, qh = self.q
         if self.fast:
-            cw, sw = math.cos(wf * h), math.sin(wf * h)
-            sp, cp = sp0 * cw + cp0 * sw, cp0 * cw - sp0 * sw
-            w0 = self.w0
-            c0, s0 = math.cos(w0 * h), math.sin(w0 * h)
-            y = self.P * sp + self.ac * c0 + self.as_ * s0
-            yd = self.P * wf * cp + w0 * (self.as_ * c0 - self.ac * s0)
+            y, yd, sp, cp = split_eval(self.P, self.ac, self.as_, self.w0, wf, sp0, cp0, h)
             return (
                 [y - ql * sp, qh * sp - y],
                 [yd - ql * wf * cp, qh * wf * cp - yd],

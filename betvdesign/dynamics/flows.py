@@ -85,6 +85,20 @@ def oscillator(
     return y, yd, sp0 * cw + cp0 * sw, cp0 * cw - sp0 * sw
 
 
+def split_eval(
+    P: float, ac: float, as_: float, w0: float, wf: float, sp0: float, cp0: float, h: float
+) -> tuple[float, float, float, float]:
+    """(y, y', sin φ, cos φ) at h from the split y = P sin φ + a_c cos w0h + a_s sin w0h.
+
+    The cheap form of :func:`oscillator` away from resonance (no cancellation there);
+    a_c = y0 − P sin φ0, a_s = (y0' − Pϖ cos φ0)/w0.
+    """
+    cw, sw = math.cos(wf * h), math.sin(wf * h)
+    sp, cp = sp0 * cw + cp0 * sw, cp0 * cw - sp0 * sw
+    c0, s0 = math.cos(w0 * h), math.sin(w0 * h)
+    return P * sp + ac * c0 + as_ * s0, P * wf * cp + w0 * (as_ * c0 - ac * s0), sp, cp
+
+
 def energy_radius(w0: float, F: float, y: float, yd: float, H: float) -> float:
     """Bound R on sqrt(y'² + w0² y²) over the next H [-] of forcing |F sin| ≤ |F|.
 
