@@ -286,3 +286,9 @@ def test_markup_in_names_is_printed_literally(tmp_path, no_solver):
     )
     r = run("check", str(f))
     assert r.exit_code == 0 and "set [red]fwd" in r.stdout
+
+
+def test_summary_line_for_several_files(no_solver):
+    r = run("check", *(str(p) for p in sorted(DEVICES.glob("*.yaml"))))
+    assert r.exit_code == 1
+    assert "summary: 3 pass, 1 fail (shin2004)" in r.stdout

@@ -89,6 +89,14 @@ def check_cmd(
         console = Console(soft_wrap=False)
         for r in results:
             render(r, console, derivation=show_derivation)
+        if len(results) > 1:
+            failed_names = [r.derivation.name for r in results if r.verdict == "fail"]
+            console.print(
+                f"[bold]summary:[/] {len(results) - len(failed_names)} pass, "
+                f"{len(failed_names)} fail"
+                + (f" ({esc(', '.join(failed_names))})" if failed_names else ""),
+                highlight=False,
+            )
     failed = any(r.verdict == "fail" for r in results)
     raise typer.Exit(EXIT_RULE_FAILED if failed else EXIT_OK)
 
