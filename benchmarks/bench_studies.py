@@ -35,14 +35,15 @@ BETA = [0.1, 0.5, 1.0, 1.5]
 ALPHA = [0.1, *np.arange(0.5, 4.0001, 0.5).round(12).tolist()]
 VARPI = np.round(np.arange(0.5, 2.0001, 0.1), 12).tolist()
 
+#: Fabrication and operating variation of devices/push_demo.yaml (the benchmark device).
 TOLERANCES = [
-    "slider.beam_width=normal:5%",
+    "slider.beam_width=normal:0.3 um",
     "slider.beam_thickness=normal:3%",
-    "head.mass=normal:5%",
-    "contact.friction=uniform:15%",
+    "head.geometry.diameter=normal:1 um",
+    "contact.friction=uniform:25%",
     "contact.impact_angle=normal:1 deg",
     "actuator.vertical_resonance=normal:3%",
-    "actuator.alpha=normal:10%",
+    "actuator.horizontal_resonance=normal:5%",
     "drive.frequency=normal:1%",
 ]
 
@@ -90,11 +91,11 @@ def bench_map(workers: int, max_cycles: int | None, scaling: bool) -> dict:
     return res
 
 
-def bench_tolerance(workers: int, samples: int) -> dict:
-    device = ROOT / "devices" / "shin2004.yaml"
+def bench_tolerance(workers: int, samples: int, fidelities: tuple[str, ...]) -> dict:
+    device = ROOT / "devices" / "push_demo.yaml"
     tols = [parse_tolerance(t) for t in TOLERANCES]
     res: dict = {"workers": workers, "samples": samples, "device": str(device.name)}
-    for fidelity in ("lambda", "periodic"):
+    for fidelity in fidelities:
         t0 = time.perf_counter()
         _, summary = run_tolerance(
             device,
@@ -102,16 +103,19 @@ def bench_tolerance(workers: int, samples: int) -> dict:
             samples=samples,
             seed=1,
             fidelity=fidelity,
-            sets=["right"],
+            sets=["forward"],
             executor=ProcessExecutor(workers),
         )
         wall = time.perf_counter() - t0
-        s = summary["sets"]["right"]
+        s = summary["sets"]["forward"]
         res[fidelity] = {
             "wall_s": round(wall, 3),
             "p_push": s["p_push"],
             "p_pull": s["p_pull"],
             "p_not_converged": s["p_not_converged"],
+            "p_outside_window": s["p_outside_window"],
+            "speed_um_s_percentiles": s["speed_um_s_percentiles"],
+            "most_sensitive": [e["field"] for e in s["sensitivities"][:3]],
         }
         print(f"tolerance {fidelity:>8}: {samples} samples {wall:7.2f} s wall", file=sys.stderr)
     return res
@@ -124,14 +128,18 @@ def main() -> None:
     ap.add_argument("--samples", type=int, default=10_000)
     ap.add_argument("--max-cycles", type=int, default=None, help="cycle budget per solve")
     ap.add_argument("--no-scaling", action="store_true", help="full map only")
+    ap.add_argument(
+        "--fidelity", action="append", choices=("lambda", "periodic"), help="tolerance rung(s)"
+    )
     args = ap.parse_args()
+    args.fidelity = args.fidelity or ["lambda", "periodic"]
     out: dict = {"cpu_count": os.cpu_count()}
     # Warm-up: import and first-call costs outside the timings.
     run_study(pushpull_study([1.0], [1.0], [0.5], [0.4])[0], SerialExecutor())
     if args.which in ("all", "map"):
         out["map"] = bench_map(args.workers, args.max_cycles, not args.no_scaling)
     if args.which in ("all", "tolerance"):
-        out["tolerance"] = bench_tolerance(args.workers, args.samples)
+        out["tolerance"] = bench_tolerance(args.workers, args.samples, tuple(args.fidelity))
     OUT.mkdir(parents=True, exist_ok=True)
     (OUT / "bench_studies.json").write_text(json.dumps(out, indent=2) + "\n")
     print(json.dumps(out, indent=2))
