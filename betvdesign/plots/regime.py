@@ -32,21 +32,40 @@ def impact_period_strip(
     period_cycles: Sequence[float | None],
     *,
     device_varpi: float | None = None,
+    hits_per_cycle: Sequence[float | None] | None = None,
     ax: Axes | None = None,
 ) -> Axes:
-    """Impact period [actuation cycles] against ϖ [-].
+    """Impact period [actuation cycles] against ϖ [-], optionally with the hits per cycle.
 
     ``period_cycles[i]`` is None where the vertical motion was found aperiodic
     (or no period was found within the search); those ϖ are drawn as crosses on
-    the top edge, so a gap is never mistaken for a value.
+    the top edge, so a gap is never mistaken for a value. ``hits_per_cycle``
+    (mean hits per actuation cycle, impulsive ones included) is drawn as open
+    squares where known: more than one marks the multi-impact regime.
     """
     ax = axes_or_new(ax)
     w = np.asarray(varpi, dtype=float)
     known = np.array([p is not None for p in period_cycles], dtype=bool)
     per = np.array([p if p is not None else 0.0 for p in period_cycles], dtype=float)
     _decorate(ax, device_varpi)
-    ax.plot(w[known], per[known], ls="none", marker="o", ms=2.5, color="black", label="periodic")
+    ax.plot(
+        w[known], per[known], ls="none", marker="o", ms=2.5, color="black", label="impact period"
+    )
     top = max(4.0, float(per[known].max()) + 1.0) if known.any() else 4.0
+    if hits_per_cycle is not None:
+        hk = np.array([h is not None for h in hits_per_cycle], dtype=bool)
+        hv = np.array([h if h is not None else 0.0 for h in hits_per_cycle], dtype=float)
+        ax.plot(
+            w[hk],
+            hv[hk],
+            ls="none",
+            marker="s",
+            ms=2.5,
+            mfc="none",
+            color="#1f77b4",
+            label="hits per cycle",
+        )
+        top = max(top, float(hv[hk].max()) + 1.0) if hk.any() else top
     if (~known).any():
         ax.plot(
             w[~known],

@@ -47,7 +47,8 @@ class ReportOptions:
     regime_range: (ϖ_min, ϖ_max) of the strip, widened to include the device;
     robustness_points: λ values of the robustness sweep (one periodic orbit each);
     dense_cycles: cycles sampled densely for the velocity and phase portrait;
-    samples_per_cycle: dense samples per actuation cycle;
+    samples_per_cycle: dense samples per actuation cycle, or per natural period 2π of
+    the head (τ units) when ϖ < 1 makes a cycle hold several of them;
     max_transient_cycles: cap of the exact run used for the displacement figure;
     voltage_points: drive voltages of the speed-voltage figure (no solver runs).
     """
@@ -124,6 +125,7 @@ class RegimeData:
     varpi: np.ndarray
     period_cycles: list[float | None]
     contact_fraction: list[float | None]
+    hits_per_cycle: list[float | None]
     labels: list[str]
 
 
@@ -177,12 +179,23 @@ REGIME_HORIZON = 200
 
 
 @functools.lru_cache(maxsize=4096)
-def _vertical(varpi: float) -> tuple[float | None, float | None, str]:
-    """(impact period [cycles], contact fraction [-], regime) of the vertical-only model."""
+def _vertical(varpi: float) -> tuple[float | None, float | None, float | None, str]:
+    """(impact period [cycles], contact fraction [-], hits per cycle, regime) of the
+    vertical-only model; None where no contact recurs within the horizon."""
     res = dynamics_api("vertical_motion")(varpi, max_cycles=REGIME_HORIZON)
     if not res.success or res.period_cycles is None:
-        return None, None, str(res.regime)
-    return float(res.period_cycles), float(res.contact_fraction), str(res.regime)
+        return None, None, None, str(res.regime)
+    return (
+        float(res.period_cycles),
+        float(res.contact_fraction),
+        float(res.hits_per_cycle),
+        str(res.regime),
+    )
+
+
+def vertical(varpi: float) -> Any:
+    """The exact vertical motion at the device's ϖ (full default horizon)."""
+    return dynamics_api("vertical_motion")(varpi)
 
 
 def regime_strip(varpi_device: float, opts: ReportOptions) -> RegimeData:
@@ -192,7 +205,19 @@ def regime_strip(varpi_device: float, opts: ReportOptions) -> RegimeData:
     hi = max(opts.regime_range[1], 1.15 * varpi_device, VARPI_WINDOW[1] * 1.2)
     grid = np.linspace(lo, hi, opts.regime_points)
     rows = [_vertical(float(w)) for w in grid]
-    return RegimeData(grid, [r[0] for r in rows], [r[1] for r in rows], [r[2] for r in rows])
+    return RegimeData(
+        grid,
+        [r[0] for r in rows],
+        [r[1] for r in rows],
+        [r[2] for r in rows],
+        [r[3] for r in rows],
+    )
+
+
+def samples_per_cycle(p: ModelParams, opts: ReportOptions) -> int:
+    """Dense samples per actuation cycle: the options' count per cycle or per natural
+    period of the head (a cycle spans 1/ϖ of those), whichever is more."""
+    return math.ceil(opts.samples_per_cycle * max(1.0, 1.0 / p.varpi))
 
 
 def transient(p: ModelParams, n_cycles: int, opts: ReportOptions) -> TransientData:
@@ -201,7 +226,7 @@ def transient(p: ModelParams, n_cycles: int, opts: ReportOptions) -> TransientDa
     dense_n = min(opts.dense_cycles, n_cycles)
     head = require_success(simulate(p, dense_n, dense=True), "simulate (dense)")
     period = 2.0 * math.pi / p.varpi
-    t_cycles = np.linspace(0.0, dense_n, dense_n * opts.samples_per_cycle + 1)
+    t_cycles = np.linspace(0.0, dense_n, dense_n * samples_per_cycle(p, opts) + 1)
     states = np.asarray(head.sample(t_cycles * period), dtype=float)
     full = head if n_cycles == dense_n else require_success(simulate(p, n_cycles), "simulate")
     section = np.asarray(full.section, dtype=float)
@@ -233,7 +258,7 @@ def orbit(p: ModelParams, per: Any, opts: ReportOptions) -> OrbitData:
     state0 = np.asarray(per.state, dtype=float)
     traj = require_success(simulate(p, n, dense=True, state0=state0), "simulate (orbit)")
     period = 2.0 * math.pi / p.varpi
-    tau = np.linspace(0.0, n * period, n * opts.samples_per_cycle * 2 + 1)
+    tau = np.linspace(0.0, n * period, n * samples_per_cycle(p, opts) * 2 + 1)
     states = np.asarray(traj.sample(tau), dtype=float)
     events = sorted(traj.events, key=lambda e: e[0])
     phases: list[str] = []
@@ -299,6 +324,7 @@ class SetAnalysis:
 
     params: ModelParams
     periodic: Piece[Any]
+    vertical: Piece[Any]
     regime: Piece[RegimeData]
     transient: Piece[TransientData]
     orbit: Piece[OrbitData]
@@ -329,6 +355,7 @@ def analyse_set(
     return SetAnalysis(
         params=p,
         periodic=per,
+        vertical=attempt(lambda: vertical(p.varpi)),
         regime=attempt(lambda: regime_strip(p.varpi, opts)),
         transient=attempt(lambda: transient(p, n, opts)),
         orbit=orb,

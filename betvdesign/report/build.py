@@ -139,8 +139,18 @@ def verdict_box(sd: SetDerivation, an: SetAnalysis, results: list[RuleResult]) -
         predicted = sd.params.mode_predicted
         by = "λ fit only; the exact periodic orbit is not available: " + str(an.periodic.reason)
         speed = crossing = f"not available ({an.periodic.reason})"
+    vr = an.vertical.value
+    vertical = (
+        f"{vr.regime}: {vr.hits_per_cycle:g} hit(s) per cycle "
+        f"({vr.impulsive_per_cycle:g} impulsive), in contact {vr.contact_fraction:.0%} of the time"
+        if vr is not None and vr.success
+        else f"no periodic contact: {vr.message}"
+        if vr is not None
+        else f"not available ({an.vertical.reason})"
+    )
     return VerdictBox(
         verdict=v,
+        vertical=vertical,
         verdict_reason=reason,
         intended_mode=sd.intended_mode,
         predicted_mode=predicted,
@@ -201,7 +211,7 @@ def provenance(an: SetAnalysis, opts: ReportOptions, timings: bool) -> tuple[Key
     if an.robustness.ok:
         rows.append(KeyValue("Robustness sweep", f"{len(an.robustness.value.x)} periodic orbits"))
     if timings:
-        for name in ("periodic", "regime", "transient", "orbit", "robustness"):
+        for name in ("periodic", "vertical", "regime", "transient", "orbit", "robustness"):
             rows.append(KeyValue(f"Run time: {name}", f"{getattr(an, name).elapsed_s:.3g} s"))
     else:
         rows.append(
@@ -255,7 +265,8 @@ def build_report(
         analyses[key] = (sd.name, an)
         per_set.append((sd, an, None))
     periodic = {sd.name: an.periodic.value for sd, an, _ in per_set if an.periodic.ok}
-    results = evaluate_device(der, periodic=periodic)
+    vertical = {sd.name: an.vertical.value for sd, an, _ in per_set if an.vertical.ok}
+    results = evaluate_device(der, periodic=periodic, vertical=vertical)
     sets: list[SetReport] = []
     for i, (sd, an, same_as) in enumerate(per_set, start=1):
         mine = [r for r in results if r.set_name == sd.name]

@@ -50,8 +50,8 @@ def pushpull(key: str, sd: SetDerivation) -> FigureBlock:
         f"Device point (1/ϖ², 1/(ακ)) = ({1 / p.varpi**2:.3g}, {1 / (p.alpha * p.kappa):.3g}) "
         f"against the λ = 1 boundary 1/(ακ) = ϖ²/κ + (1/β − β)/(22(κ+1)) for the device's "
         f"κ = {p.kappa:.3g}, β = {p.beta:.3g}; λ = {p.lam:.4g} predicts {p.mode_predicted} mode. "
-        "Below the curve λ < 1 (push), above λ > 1 (pull); the shaded band is the vertical "
-        "design window 0.5 ≤ ϖ < 2."
+        "Below the curve λ < 1 (push), above λ > 1 (pull); the dash-dotted lines bound the "
+        "vertical design window 0.5 ≤ ϖ < 2."
     )
 
     def draw(ax: Any) -> None:
@@ -72,14 +72,21 @@ def regime(key: str, sd: SetDerivation, an: SetAnalysis) -> FigureBlock:
     data = an.regime.value
     n = len(data.varpi) if data is not None else 0
     caption = (
-        f"Impact period (actuation cycles per period of the head's vertical motion) and share "
+        f"Impact period (actuation cycles per period of the head's vertical motion), mean hits "
+        f"per cycle (impulsive included; above 1: multi-impact) and share "
         f"of the cycle in contact, against ϖ ({n} values, from rest; crosses: no contact "
         f"recurring within {REGIME_HORIZON} cycles, hits impulsive only); design window "
         f"0.5 ≤ ϖ < 2 shaded, device ϖ = {p.varpi:.3g} dashed."
     )
 
     def draw(axes: Any) -> None:
-        plots.impact_period_strip(data.varpi, data.period_cycles, device_varpi=p.varpi, ax=axes[0])
+        plots.impact_period_strip(
+            data.varpi,
+            data.period_cycles,
+            device_varpi=p.varpi,
+            hits_per_cycle=data.hits_per_cycle,
+            ax=axes[0],
+        )
         plots.contact_fraction_strip(
             data.varpi, data.contact_fraction, device_varpi=p.varpi, ax=axes[1]
         )

@@ -86,6 +86,7 @@ class VerdictBox:
     fit_mode: str
     speed: str
     crossing_time: str
+    vertical: str
     warnings: tuple[str, ...]
 
 
