@@ -34,6 +34,7 @@ from betvdesign.params import ModelParams
 FD_STEP = 1e-7
 MAX_NEWTON = 25
 TRUST = 2.0
+POLISH = 1e-14
 
 
 class _Map:
@@ -77,12 +78,22 @@ class _Map:
         return J
 
 
-def _newton(phi: _Map, x: np.ndarray, n: int, tol: float) -> tuple[np.ndarray, float, float, int]:
-    """Newton on Φⁿ(x) − x = 0; returns (x, residual, s-increment, iterations)."""
+def _newton(
+    phi: _Map, x: np.ndarray, n: int, tol: float, polish: float = 0.0
+) -> tuple[np.ndarray, float, float, int]:
+    """Newton on Φⁿ(x) − x = 0; returns (x, residual, s-increment, iterations).
+
+    Gives up after two iterations in a row that do not halve the residual (not in
+    Newton's basin yet: more brute force is cheaper). Once the residual is ≤ tol it
+    goes on while the residual keeps halving, down to ``polish`` (the fixed point's
+    error is about residual/(1 − |μ|max), so an accepted residual is polished).
+    """
     r, y, s = phi.residual(x, n)
     it = 0
-    while it < MAX_NEWTON and r > tol and math.isfinite(r):
+    slow = 0
+    while it < MAX_NEWTON and r > polish and math.isfinite(r) and slow < 2:
         it += 1
+        r_prev = r
         try:
             J = phi.jacobian(x, n, y)
             dx = np.linalg.solve(J - np.eye(3), -(y - x))
@@ -101,6 +112,9 @@ def _newton(phi: _Map, x: np.ndarray, n: int, tol: float) -> tuple[np.ndarray, f
             lam *= 0.5
         else:
             break
+        slow = slow + 1 if r > 0.5 * r_prev else 0
+        if r <= tol and slow:
+            break  # accepted and no longer improving fast: polished as far as it goes
     return x, r, s, it
 
 
@@ -187,7 +201,7 @@ def periodic_orbit(
             return result("failed", f"state became non-finite after {brute} cycles")
         for j in range(1, max_period + 1):
             n = j * kv
-            xs, r, s, it = _newton(phi, x.copy(), n, tol)
+            xs, r, s, it = _newton(phi, x.copy(), n, tol, POLISH)
             n_newton += it
             if r < best[0]:
                 best = (r, n)
@@ -195,7 +209,7 @@ def periodic_orbit(
                 continue
             for d in range(1, j):  # a period-n fixed point may have a shorter period
                 if j % d == 0:
-                    xd, rd, sd, itd = _newton(phi, xs.copy(), d * kv, tol)
+                    xd, rd, sd, itd = _newton(phi, xs.copy(), d * kv, tol, POLISH)
                     n_newton += itd
                     if rd <= tol and float(np.max(np.abs(xd - xs))) <= 1e3 * tol:
                         xs, r, s, n = xd, rd, sd, d * kv
