@@ -72,6 +72,29 @@ def safe_step(f: float, fp: float, m2: float) -> float:
     return 2.0 * f / (-fp + math.sqrt(fp * fp + 2.0 * m2 * f))
 
 
+def local_m2(f: float, fp: float, fpp: float, m2: float, m3: float) -> float:
+    """A bound on |f''| for :func:`first_root` at a point where f > 0, from f''(h) exactly.
+
+    |f''(h + t)| ≤ |f''(h)| + M3·t. The value returned is valid over the longest
+    interval it is used on: the safe step it produces (≤ the step under |f''(h)|), and
+    the Newton bracket [h, h + 2f/|f'|] if it passes the bracket test; when it would pass
+    that test without covering the bracket, it is raised just enough to fail it. Capped
+    by the global bound ``m2`` (valid everywhere).
+    """
+    a = abs(fpp)
+    L = safe_step(f, fp, a)
+    m = a + m3 * L
+    if fp < 0.0:
+        d = f / -fp
+        if 2.0 * d > L:
+            mb = a + m3 * 2.0 * d
+            if 4.0 * mb * d <= -fp:
+                m = mb  # covers the bracket; its step is still ≤ L ≤ 2d
+            elif 4.0 * m * d <= -fp:
+                m = -fp / (4.0 * d) * (1.0 + 1e-9)
+    return m if m < m2 else m2
+
+
 def lex_sign(derivs: list[float], noise: list[float]) -> int:
     """Sign of a function just after a point from its Taylor coefficients.
 
@@ -334,6 +357,7 @@ class SlipEvent:
             self.ac = z - self.P * sp0
             self.as_ = (zd - self.P * wf * cp0) / w0
             self.sdc = sd + k.ds[phase] * cp0 / wf
+            self.m3b = (abs(self.P - self.q) * wf * wf + w0 * self.Eh) / al
         r = energy_radius(w0, F, z, zd, H)
         self.scale = [r + abs(sd) + abs(zd) + 1e-300]
         # noise floors of the Taylor coefficients, as in solver.decide_phase: |terms|
@@ -354,7 +378,10 @@ class SlipEvent:
         if self.fast:
             y, yd, sp, cp = split_eval(self.P, self.ac, self.as_, self.w0, wf, sp0, cp0, h)
             sdn = self.sdc - k.ds[self.phase] * cp / wf
-            return [self.sig * (yd - sdn)], [self.sig * (self.q * sp - y) / k.alpha], [self.m2b]
+            sig, al = self.sig, k.alpha
+            f, fp = sig * (yd - sdn), sig * (self.q * sp - y) / al
+            fpp = sig * (self.q * wf * cp - yd) / al
+            return [f], [fp], [local_m2(f, fp, fpp, self.m2b, self.m3b)]
         y, yd, sp, cp = oscillator(self.w0, wf, self.F, z, zd, sp0, cp0, h)
         _, sdn = slider(k.ds[self.phase], wf, s, sd, sp0, cp0, sp, cp, h)
         sig = self.sig
@@ -435,6 +462,7 @@ class StickEvent:
         if self.fast:
             self.ac = z - self.P * sp0
             self.as_ = (zd - self.P * wf * cp0) / w0
+            self.m3b = [abs(self.P - q) * wf**3 + w0 * w0 * self.Eh for q in self.q]
         self.m2b = [
             math.inf if self.P is None else abs(self.P - q) * wf * wf + w0 * self.Eh for q in self.q
         ]
@@ -451,10 +479,17 @@ class StickEvent:
         ql, qh = self.q
         if self.fast:
             y, yd, sp, cp = split_eval(self.P, self.ac, self.as_, self.w0, wf, sp0, cp0, h)
+            f0, f1 = y - ql * sp, qh * sp - y
+            g0, g1 = yd - ql * wf * cp, qh * wf * cp - yd
+            ydd = self.F * sp - self.w0 * self.w0 * y
+            w2sp = wf * wf * sp
             return (
-                [y - ql * sp, qh * sp - y],
-                [yd - ql * wf * cp, qh * wf * cp - yd],
-                self.m2b,
+                [f0, f1],
+                [g0, g1],
+                [
+                    local_m2(f0, g0, ydd + ql * w2sp, self.m2b[0], self.m3b[0]),
+                    local_m2(f1, g1, -ydd - qh * w2sp, self.m2b[1], self.m3b[1]),
+                ],
             )
         y, yd, sp, cp = oscillator(self.w0, wf, self.F, z, zd, sp0, cp0, h)
         r = energy_radius(self.w0, self.F, y, yd, self.W)
