@@ -54,7 +54,9 @@ class Evaluator(Protocol):
     scale: list[float]
     scale_derivs: list[list[float]]
 
-    def eval(self, h: float) -> tuple[list[float], list[float], list[float]]: ...
+    def eval(
+        self, h: float, bounds: bool = True
+    ) -> tuple[list[float], list[float], list[float]]: ...
 
     def start(self) -> list[list[float]]: ...
 
@@ -202,7 +204,7 @@ def _refine(
             return xn
         x = xn
         counter[0] += 1
-        fs, fps, _ = ev.eval(x)
+        fs, fps, _ = ev.eval(x, False)
         f, fp = fs[i], fps[i]
         if abs(f) <= floor:
             return x
@@ -294,7 +296,7 @@ class GapEvent:
         self.scale = [abs(xi) + r + 1.0]
         self.scale_derivs = [[self.scale[0]] * 4]
 
-    def eval(self, h: float) -> tuple[list[float], list[float], list[float]]:
+    def eval(self, h: float, bounds: bool = True) -> tuple[list[float], list[float], list[float]]:
         y, yd, _, _ = oscillator(1.0, self.wf, -1.0, self.xi, self.xid, self.sp0, self.cp0, h)
         r = energy_radius(1.0, 1.0, y, yd, self.W)
         return [y], [yd], [min(r + 1.0, self.m2b)]
@@ -371,7 +373,7 @@ class SlipEvent:
             ]
         ]
 
-    def eval(self, h: float) -> tuple[list[float], list[float], list[float]]:
+    def eval(self, h: float, bounds: bool = True) -> tuple[list[float], list[float], list[float]]:
         k = self.k
         z, zd, s, sd, sp0, cp0 = self.state
         wf = k.varpi
@@ -380,6 +382,8 @@ class SlipEvent:
             sdn = self.sdc - k.ds[self.phase] * cp / wf
             sig, al = self.sig, k.alpha
             f, fp = sig * (yd - sdn), sig * (self.q * sp - y) / al
+            if not bounds:
+                return [f], [fp], []
             fpp = sig * (self.q * wf * cp - yd) / al
             return [f], [fp], [local_m2(f, fp, fpp, self.m2b, self.m3b)]
         y, yd, sp, cp = oscillator(self.w0, wf, self.F, z, zd, sp0, cp0, h)
@@ -473,7 +477,7 @@ class StickEvent:
         sine = (sp0, wf * cp0, wf * wf * sp0, wf**3 * cp0)
         self.scale_derivs = [[abs(zeta[j]) + abs(q * sine[j]) for j in range(4)] for q in self.q]
 
-    def eval(self, h: float) -> tuple[list[float], list[float], list[float]]:
+    def eval(self, h: float, bounds: bool = True) -> tuple[list[float], list[float], list[float]]:
         z, zd, sp0, cp0 = self.state
         wf = self.k.varpi
         ql, qh = self.q
@@ -481,6 +485,8 @@ class StickEvent:
             y, yd, sp, cp = split_eval(self.P, self.ac, self.as_, self.w0, wf, sp0, cp0, h)
             f0, f1 = y - ql * sp, qh * sp - y
             g0, g1 = yd - ql * wf * cp, qh * wf * cp - yd
+            if not bounds:
+                return [f0, f1], [g0, g1], []
             ydd = self.F * sp - self.w0 * self.w0 * y
             w2sp = wf * wf * sp
             return (
