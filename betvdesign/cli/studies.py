@@ -12,6 +12,7 @@ from betvdesign.cli import app
 from betvdesign.cli.common import EXIT_RULE_FAILED, user_errors
 from betvdesign.cli.sweep import (
     ChunkOpt,
+    Execution,
     ExecutorOpt,
     JsonOpt,
     OutOpt,
@@ -20,9 +21,7 @@ from betvdesign.cli.sweep import (
     SchedulerOpt,
     WorkersOpt,
     emit,
-    executor_from,
     interruptible,
-    progress_bar,
     run_block,
 )
 from betvdesign.errors import UsageError
@@ -66,20 +65,17 @@ def tolerance_cmd(
         tols = [parse_tolerance(t) for t in tol or []]
         if tolerances is not None:
             tols += load_tolerances(tolerances)
-        ex = executor_from(executor, workers, chunksize, scheduler)
-        with progress_bar("tolerance Monte Carlo", quiet) as progress:
-            run, summary = run_tolerance(
-                device,
-                tols,
-                samples=samples,
-                seed=seed,
-                fidelity=fidelity,  # type: ignore[arg-type]
-                sets=sets,
-                executor=ex,
-                out=str(out) if out else None,
-                overwrite=overwrite,
-                progress=progress,
-            )
+        execution = Execution(executor, workers, chunksize, scheduler, out, overwrite, quiet)
+        run, summary = execution.run(
+            "tolerance Monte Carlo",
+            run_tolerance,
+            device,
+            tols,
+            samples=samples,
+            seed=seed,
+            fidelity=fidelity,
+            sets=sets,
+        )
         data = {"study": "tolerance", "device": str(device), "seed": seed, **run_block(run)}
         data |= summary
 

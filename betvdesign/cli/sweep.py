@@ -14,19 +14,21 @@ import contextlib
 import json
 import sys
 from collections.abc import Callable, Iterator
+from dataclasses import dataclass
 from pathlib import Path
-from typing import Annotated, Any
+from typing import Annotated, Any, TypeVar
 
 import typer
 
 from betvdesign.cli import app
 from betvdesign.cli.common import user_errors
 from betvdesign.errors import UsageError
-from betvdesign.studies.executors import Executor, make_executor
+from betvdesign.studies.executors import make_executor
 from betvdesign.studies.grid import parse_range
 from betvdesign.studies.runner import StudyRun
 
 EXIT_INTERRUPTED = 130
+T = TypeVar("T")
 
 sweep_app = typer.Typer(
     name="sweep",
@@ -67,10 +69,32 @@ JsonOpt = Annotated[bool, typer.Option("--json", help="Print a JSON summary on s
 QuietOpt = Annotated[bool, typer.Option("--quiet", "-q", help="No progress bar.")]
 
 
-def executor_from(
-    executor: str, workers: int | None, chunksize: int | None, scheduler: str | None
-) -> Executor:
-    return make_executor(executor, workers=workers, chunksize=chunksize, scheduler=scheduler)
+@dataclass(frozen=True)
+class Execution:
+    """The execution options every study command takes, and how to apply them."""
+
+    executor: str
+    workers: int | None
+    chunksize: int | None
+    scheduler: str | None
+    out: Path | None
+    overwrite: bool
+    quiet: bool
+
+    def run(self, label: str, fn: Callable[..., T], /, *args: Any, **kwargs: Any) -> T:
+        """``fn(*args, **kwargs)`` with the executor, output and a progress bar."""
+        ex = make_executor(
+            self.executor, workers=self.workers, chunksize=self.chunksize, scheduler=self.scheduler
+        )
+        with progress_bar(label, self.quiet) as progress:
+            return fn(
+                *args,
+                executor=ex,
+                out=str(self.out) if self.out else None,
+                overwrite=self.overwrite,
+                progress=progress,
+                **kwargs,
+            )
 
 
 @contextlib.contextmanager
@@ -178,20 +202,17 @@ def pushpull_cmd(
         axes |= {n: axis(t, n) for n, t in (("beta", beta), ("kappa", kappa))}
         if tol <= 0:
             raise UsageError(f"--tol must be > 0, got {tol:g}")
-        ex = executor_from(executor, workers, chunksize, scheduler)
         if figure is not None:
             _check_figure_path(figure)
-        with progress_bar("push/pull map", quiet) as progress:
-            run, summary = run_pushpull(
-                **axes,
-                fidelity=fidelity,  # type: ignore[arg-type]
-                tol=tol,
-                max_cycles=max_cycles,
-                executor=ex,
-                out=str(out) if out else None,
-                overwrite=overwrite,
-                progress=progress,
-            )
+        execution = Execution(executor, workers, chunksize, scheduler, out, overwrite, quiet)
+        run, summary = execution.run(
+            "push/pull map",
+            run_pushpull,
+            **axes,
+            fidelity=fidelity,
+            tol=tol,
+            max_cycles=max_cycles,
+        )
         if figure is not None:
             from betvdesign.plots.studies import save_pushpull_figure
 
@@ -267,22 +288,19 @@ def lambda_cmd(
         for name, value in (("kappa", kappa), ("beta", beta), ("alpha", alpha), ("varpi", varpi)):
             if value is not None and not value > 0:
                 raise UsageError(f"--{name} must be > 0, got {value:g}")
-        ex = executor_from(executor, workers, chunksize, scheduler)
-        with progress_bar("Δs against λ", quiet) as progress:
-            run, summary = run_lambda_scan(
-                targets,
-                kappa=kappa,
-                beta=beta,
-                vary=vary,  # type: ignore[arg-type]
-                alpha=alpha,
-                varpi=varpi,
-                tol=tol,
-                max_cycles=max_cycles,
-                executor=ex,
-                out=str(out) if out else None,
-                overwrite=overwrite,
-                progress=progress,
-            )
+        execution = Execution(executor, workers, chunksize, scheduler, out, overwrite, quiet)
+        run, summary = execution.run(
+            "Δs against λ",
+            run_lambda_scan,
+            targets,
+            kappa=kappa,
+            beta=beta,
+            vary=vary,
+            alpha=alpha,
+            varpi=varpi,
+            tol=tol,
+            max_cycles=max_cycles,
+        )
         rows = [
             {k: r[k] for k in ("lam", "varpi", "alpha", "status", "mode", "delta_s")}
             for r in run.rows
@@ -330,16 +348,8 @@ def regime_cmd(
 
     with user_errors(), interruptible(out):
         grid = axis(varpi, "varpi")
-        ex = executor_from(executor, workers, chunksize, scheduler)
-        with progress_bar("vertical regimes", quiet) as progress:
-            run, summary = run_regime(
-                grid,
-                max_cycles=max_cycles,
-                executor=ex,
-                out=str(out) if out else None,
-                overwrite=overwrite,
-                progress=progress,
-            )
+        execution = Execution(executor, workers, chunksize, scheduler, out, overwrite, quiet)
+        run, summary = execution.run("vertical regimes", run_regime, grid, max_cycles=max_cycles)
         data = {"study": "regime", **run_block(run), **summary}
 
         def human() -> None:

@@ -20,16 +20,15 @@ import itertools
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from typing import Any, Literal
+from typing import Any, Literal, Unpack
 
 import numpy as np
 
 from betvdesign.errors import UsageError
 from betvdesign.params import LAMBDA_FIT_CONSTANT
-from betvdesign.studies.executors import Executor
 from betvdesign.studies.grid import require_positive
 from betvdesign.studies.pushpull import COLUMNS, periodic_point, vertical_precheck
-from betvdesign.studies.runner import Progress, Study, StudyRun, run_study
+from betvdesign.studies.runner import RunArgs, Study, StudyRun, run_study
 
 Vary = Literal["varpi", "alpha"]
 
@@ -150,10 +149,7 @@ def run_lambda_scan(
     varpi: float | None = None,
     tol: float = 1e-10,
     max_cycles: int | None = None,
-    executor: Executor | None = None,
-    out: str | None = None,
-    overwrite: bool = False,
-    progress: Progress | None = None,
+    **run: Unpack[RunArgs],
 ) -> tuple[StudyRun, LambdaSummary]:
     """Build, run and summarise a Δs-against-λ scan."""
     study = lambda_study(
@@ -166,5 +162,5 @@ def run_lambda_scan(
         tol=tol,
         max_cycles=max_cycles,
     )
-    run = run_study(study, executor, out=out, overwrite=overwrite, progress=progress)
-    return run, summarise(run.rows)
+    result = run_study(study, **run)
+    return result, summarise(result.rows)

@@ -18,15 +18,14 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from typing import Any, Literal
+from typing import Any, Literal, Unpack
 
 import numpy as np
 
 from betvdesign.errors import UsageError
 from betvdesign.params import ModelParams
-from betvdesign.studies.executors import Executor
 from betvdesign.studies.grid import Grid, require_positive
-from betvdesign.studies.runner import Progress, Study, StudyRun, run_study
+from betvdesign.studies.runner import RunArgs, Study, StudyRun, run_study
 
 Fidelity = Literal["periodic", "lambda"]
 AXES = ("kappa", "beta", "alpha", "varpi")
@@ -255,14 +254,11 @@ def run_pushpull(
     fidelity: Fidelity = "periodic",
     tol: float = 1e-10,
     max_cycles: int | None = None,
-    executor: Executor | None = None,
-    out: str | None = None,
-    overwrite: bool = False,
-    progress: Progress | None = None,
+    **run: Unpack[RunArgs],
 ) -> tuple[StudyRun, PushPullSummary]:
     """Build, run (streamed/resumable when ``out`` is given) and summarise a map."""
     study, _ = pushpull_study(
         varpi, alpha, beta, kappa, fidelity=fidelity, tol=tol, max_cycles=max_cycles
     )
-    run = run_study(study, executor, out=out, overwrite=overwrite, progress=progress)
-    return run, summarise(run.rows, fidelity)
+    result = run_study(study, **run)
+    return result, summarise(result.rows, fidelity)

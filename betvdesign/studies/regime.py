@@ -30,14 +30,13 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Unpack
 
 import numpy as np
 
 from betvdesign.errors import UsageError
-from betvdesign.studies.executors import Executor
 from betvdesign.studies.grid import Grid
-from betvdesign.studies.runner import Progress, Study, StudyRun, run_study
+from betvdesign.studies.runner import RunArgs, Study, StudyRun, run_study
 
 #: Relative (to one cycle) tolerance for two hit phases to count as equal.
 PHASE_RTOL = 1e-9
@@ -191,17 +190,8 @@ def run_regime(
     varpi: Sequence[float],
     *,
     max_cycles: int = 400,
-    executor: Executor | None = None,
-    out: str | None = None,
-    overwrite: bool = False,
-    progress: Progress | None = None,
+    **run: Unpack[RunArgs],
 ) -> tuple[StudyRun, dict[str, Any]]:
     """Build, run and summarise the vertical regime diagram."""
-    run = run_study(
-        regime_study(varpi, max_cycles=max_cycles),
-        executor,
-        out=out,
-        overwrite=overwrite,
-        progress=progress,
-    )
-    return run, summarise(run.rows)
+    result = run_study(regime_study(varpi, max_cycles=max_cycles), **run)
+    return result, summarise(result.rows)

@@ -17,12 +17,21 @@ import time
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, TypedDict
 
 from betvdesign.studies.executors import Executor, ExecutorInfo, Row, SerialExecutor, Worker
 from betvdesign.studies.store import ColumnType, ResultStore
 
 Progress = Callable[[int, int], None]
+
+
+class RunArgs(TypedDict, total=False):
+    """Keyword arguments of :func:`run_study` that the ``run_*`` helpers pass through."""
+
+    executor: Executor | None
+    out: str | os.PathLike[str] | None
+    overwrite: bool
+    progress: Progress | None
 
 
 @dataclass(frozen=True)

@@ -37,15 +37,14 @@ import re
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Literal
+from typing import Any, Literal, Unpack
 
 import numpy as np
 import pint
 from pydantic import BaseModel
 
 from betvdesign.errors import BetvError, UsageError
-from betvdesign.studies.executors import Executor
-from betvdesign.studies.runner import Progress, Study, StudyRun, run_study
+from betvdesign.studies.runner import RunArgs, Study, StudyRun, run_study
 
 Dist = Literal["normal", "uniform"]
 Fidelity = Literal["periodic", "lambda"]
@@ -462,14 +461,11 @@ def run_tolerance(
     fidelity: Fidelity = "periodic",
     tol: float = 1e-10,
     sets: Sequence[str] | None = None,
-    executor: Executor | None = None,
-    out: str | None = None,
-    overwrite: bool = False,
-    progress: Progress | None = None,
+    **run: Unpack[RunArgs],
 ) -> tuple[StudyRun, dict[str, Any]]:
     """Draw, run (streamed/resumable) and summarise a tolerance study."""
     study = tolerance_study(
         device, tolerances, samples=samples, seed=seed, fidelity=fidelity, tol=tol, sets=sets
     )
-    run = run_study(study, executor, out=out, overwrite=overwrite, progress=progress)
-    return run, summarise(run.rows, tolerances, fidelity)
+    result = run_study(study, **run)
+    return result, summarise(result.rows, tolerances, fidelity)
