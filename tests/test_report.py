@@ -22,12 +22,15 @@ from typer.testing import CliRunner
 from betvdesign.cli import app
 from betvdesign.loader import load_device
 from betvdesign.nondim import derive
+from betvdesign.report import ReportOptions, build_report, prepare, render_html, write_reports
 from betvdesign.report import analysis as report_analysis
-from betvdesign.report import build_report, prepare, render_html, write_reports
 from betvdesign.report.analysis import alpha_for_lambda, lambda_targets
 from betvdesign.report.build import fmt_num
+from betvdesign.report.render import write_atomic
 
 FIGURES_PER_SET = 7
+#: Small sweeps for tests about rendering, not about the numbers.
+SMALL = ReportOptions(regime_points=5, robustness_points=8)
 
 
 class _Scan(HTMLParser):
@@ -168,16 +171,32 @@ def test_reports_are_byte_reproducible(reports_dir: Path, tmp_path: Path) -> Non
 
 
 def test_template_autoescapes_device_text(tmp_path: Path) -> None:
-    """Text from the device file is escaped, never interpreted as HTML."""
+    """Text from the device file is escaped, never interpreted as HTML, in the page and
+    in the figures' SVG text (the set name labels the push/pull map)."""
     src = (DEVICES / "push_demo.yaml").read_text("utf-8")
     src = re.sub(
-        r"^description:.*$", "description: '<script>alert(1)</script> & <b>x</b>'", src, flags=re.M
+        r"^description:.*$",
+        "description: '<script>alert(1)</script> & <b>x</b>'",
+        src,
+        flags=re.M,
     )
+    src = src.replace("name: forward", "name: '<i>fwd</i>'")
     f = tmp_path / "evil.yaml"
     f.write_text(src, "utf-8")
-    html = render_html(build_report(prepare(f)))
-    assert "<script>" not in html and "<b>x</b>" not in html
+    html = render_html(build_report(prepare(f), options=SMALL))
+    assert "<script>" not in html and "<b>x</b>" not in html and "<i>fwd" not in html
     assert "&lt;script&gt;alert(1)&lt;/script&gt; &amp; &lt;b&gt;x&lt;/b&gt;" in html
+    assert "&lt;i&gt;fwd&lt;/i&gt;" in html
+
+
+def test_write_atomic_leaves_no_partial_file(tmp_path: Path) -> None:
+    """A failing write keeps the old file and removes its temporary file."""
+    target = tmp_path / "r.html"
+    write_atomic(target, "old")
+    with pytest.raises(TypeError):
+        write_atomic(target, object())  # type: ignore[arg-type]
+    assert target.read_text() == "old"
+    assert [p.name for p in tmp_path.iterdir()] == ["r.html"]
 
 
 def test_missing_solver_is_stated_not_invented(monkeypatch: pytest.MonkeyPatch) -> None:
