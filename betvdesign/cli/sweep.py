@@ -28,6 +28,8 @@ from betvdesign.studies.grid import parse_range
 from betvdesign.studies.runner import StudyRun
 
 EXIT_INTERRUPTED = 130
+#: Disagreements/failures printed in the human summary (--json lists all).
+MAX_LISTED = 40
 T = TypeVar("T")
 
 sweep_app = typer.Typer(
@@ -234,16 +236,20 @@ def pushpull_cmd(
                     f"λ rule agrees at {summary.n_agree}/{summary.n_converged} "
                     f"({100 * agree:.1f} %)"
                 )
-            for d in summary.disagreements:
-                typer.echo(
-                    f"  disagrees: ϖ={d['varpi']:g} α={d['alpha']:g} β={d['beta']:g} "
-                    f"κ={d['kappa']:g} λ={d['lam']:.4g} simulated {d['mode']} Δs={d['delta_s']:.4g}"
-                )
-            for d in summary.not_converged:
-                typer.echo(
-                    f"  not converged: ϖ={d['varpi']:g} α={d['alpha']:g} β={d['beta']:g} "
-                    f"κ={d['kappa']:g}: {d['status']}: {d['message']}"
-                )
+            lines = [
+                f"  disagrees: ϖ={d['varpi']:g} α={d['alpha']:g} β={d['beta']:g} "
+                f"κ={d['kappa']:g} λ={d['lam']:.4g} simulated {d['mode']} Δs={d['delta_s']:.4g}"
+                for d in summary.disagreements
+            ]
+            lines += [
+                f"  not converged: ϖ={d['varpi']:g} α={d['alpha']:g} β={d['beta']:g} "
+                f"κ={d['kappa']:g}: {d['status']}: {d['message']}"
+                for d in summary.not_converged
+            ]
+            for line in lines[:MAX_LISTED]:
+                typer.echo(line)
+            if len(lines) > MAX_LISTED:
+                typer.echo(f"  ... and {len(lines) - MAX_LISTED} more (--json lists every point)")
             typer.echo(f"{run.computed} computed, {run.resumed} resumed in {run.elapsed_s:.2f} s")
 
         emit(data, as_json, human)
