@@ -32,7 +32,7 @@ from betvdesign.report.model import (
     SetReport,
     VerdictBox,
 )
-from betvdesign.rules import RuleResult, evaluate_device, verdict
+from betvdesign.rules import RuleResult, evaluate_device, format_speed, format_time, verdict
 
 MAX_WARNINGS = 5
 _SEVERITY_ORDER = {"error": 0, "warning": 1, "info": 2}
@@ -71,21 +71,6 @@ def fmt_quantity(q: pint.Quantity) -> str:
     unit = format(q.units, "~P")
     mag = fmt_num(float(q.magnitude))
     return f"{mag} {unit}".strip() if unit else mag
-
-
-def fmt_speed(v_m_s: float) -> str:
-    """Speed magnitude in µm/s or mm/s."""
-    a = abs(v_m_s)
-    return f"{a * 1e6:.4g} µm/s" if a < 1e-3 else f"{a * 1e3:.4g} mm/s"
-
-
-def fmt_time(t_s: float) -> str:
-    """Duration in µs, ms, s."""
-    if t_s < 1e-3:
-        return f"{t_s * 1e6:.4g} µs"
-    if t_s < 1.0:
-        return f"{t_s * 1e3:.4g} ms"
-    return f"{t_s:.4g} s"
 
 
 # --------------------------------------------------------------------------- sections
@@ -128,9 +113,9 @@ def verdict_box(sd: SetDerivation, an: SetAnalysis, results: list[RuleResult]) -
         by = "exact periodic orbit"
         v_m_s = sd.scales.speed_m_s(float(per.delta_s))
         direction = sd.impact_sign * (1 if float(per.delta_s) > 0 else -1)
-        speed = f"{fmt_speed(v_m_s)} toward {'+x' if direction > 0 else '−x'}"
+        speed = f"{format_speed(abs(v_m_s))} toward {'+x' if direction > 0 else '−x'}"
         crossing = (
-            fmt_time(sd.travel_range_m / abs(v_m_s)) + f" for the "
+            format_time(sd.travel_range_m / abs(v_m_s)) + f" for the "
             f"{sd.travel_range_m * 1e6:.4g} µm travel range at the periodic speed"
             if v_m_s != 0
             else "never (the slider does not move)"
