@@ -27,7 +27,12 @@ import numpy as np
 from betvdesign.errors import UsageError
 from betvdesign.params import LAMBDA_FIT_CONSTANT
 from betvdesign.studies.grid import require_positive
-from betvdesign.studies.pushpull import COLUMNS, periodic_point, vertical_precheck
+from betvdesign.studies.pushpull import (
+    COLUMNS,
+    MODEL_STATEMENT,
+    periodic_point,
+    vertical_precheck,
+)
 from betvdesign.studies.runner import RunArgs, Study, StudyRun, run_study
 
 Vary = Literal["varpi", "alpha"]
@@ -111,6 +116,7 @@ class LambdaSummary:
 
     def as_dict(self) -> dict[str, Any]:
         return {
+            "model": MODEL_STATEMENT["periodic"],
             "points": self.n_points,
             "converged": self.n_converged,
             "sign_changes": self.crossings,

@@ -28,6 +28,14 @@ from betvdesign.studies.grid import Grid, require_positive
 from betvdesign.studies.runner import RunArgs, Study, StudyRun, run_study
 
 Fidelity = Literal["periodic", "lambda"]
+
+#: What each rung is and why a study would use it (stated in every summary).
+MODEL_STATEMENT: dict[str, str] = {
+    "periodic": "exact periodic orbit per point (dynamics.periodic_orbit, Newton shooting on "
+    "the Poincaré map): the reference; the mode is the sign of the simulated Δs",
+    "lambda": "closed-form λ fit only (no simulation): microseconds per point, but a fit that "
+    "can name the wrong mode near λ = 1",
+}
 AXES = ("kappa", "beta", "alpha", "varpi")
 
 #: Result columns of the map (types for the CSV store).
@@ -202,6 +210,7 @@ class PushPullSummary:
     def as_dict(self) -> dict[str, Any]:
         return {
             "fidelity": self.fidelity,
+            "model": MODEL_STATEMENT[self.fidelity],
             "points": self.n_points,
             "converged": self.n_converged,
             "push": self.n_push,

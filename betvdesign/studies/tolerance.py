@@ -44,6 +44,7 @@ import pint
 from pydantic import BaseModel
 
 from betvdesign.errors import BetvError, UsageError
+from betvdesign.studies.pushpull import MODEL_STATEMENT
 from betvdesign.studies.runner import RunArgs, Study, StudyRun, run_study
 
 Dist = Literal["normal", "uniform"]
@@ -398,7 +399,11 @@ def summarise(
     rows: Sequence[Mapping[str, Any]], tolerances: Sequence[Tolerance], fidelity: str
 ) -> dict[str, Any]:
     """Per actuator set: probabilities, speed percentiles, sensitivities."""
-    out: dict[str, Any] = {"fidelity": fidelity, "sets": {}}
+    out: dict[str, Any] = {
+        "fidelity": fidelity,
+        "model": MODEL_STATEMENT[fidelity] + "; each sample through nondim.derive_set",
+        "sets": {},
+    }
     for name in dict.fromkeys(r["set"] for r in rows):
         rs = [r for r in rows if r["set"] == name]
         n = len(rs)
