@@ -66,6 +66,8 @@ class Evaluator(Protocol):
 
     def clear(self, h: float) -> bool: ...
 
+    def free_len(self, h: float, i: int) -> float: ...
+
 
 def safe_step(f: float, fp: float, m2: float) -> float:
     """Smallest x > 0 with f + f'x − M2 x²/2 = 0 (f > 0), written without cancellation."""
@@ -152,7 +154,9 @@ def first_root(ev: Evaluator, H: float, counter: list[int]) -> tuple[float, int]
             fp = fps[i]
             if f <= NOISE * scale[i]:
                 return x0, i  # at the root to round-off (or a grazing touch)
-            steps[i] = safe_step(f, fp, m2s[i])
+            xi = safe_step(f, fp, m2s[i])
+            li = ev.free_len(x0, i)
+            steps[i] = xi if xi > li else li
             if fp < 0.0:
                 d = f / -fp
                 if 4.0 * m2s[i] * d <= -fp and 2.0 * d <= W and x0 + 2.0 * d < best_end:
@@ -232,6 +236,36 @@ def amp_cos_min(K: float, pa: float, pb: float) -> float:
     """min of K·cos φ over φ ∈ [pa, pb]."""
     lo, hi = cos_range(pa, pb)
     return K * lo if K >= 0.0 else K * hi
+
+
+def envelope_time(K: float, E: float, a: float, th0: float, wf: float) -> float:
+    """First t ≥ 0 with K cos(θ0 + ϖt) + E ≤ a (0: already; inf: never).
+
+    With f = K cos θ + E + (free oscillation of amplitude ≤ a), f > 0 until then: a
+    certified no-root length that does not shrink with a loose |f''| bound.
+    """
+    if K == 0.0:
+        return 0.0 if E <= a else math.inf
+    c = (a - E) / K
+    u = th0 % TWO_PI
+    if K > 0.0:  # cos θ ≤ c on [acos c, 2π − acos c]
+        if c >= 1.0:
+            return 0.0
+        if c < -1.0:
+            return math.inf
+        al = math.acos(c)
+        if al <= u <= TWO_PI - al:
+            return 0.0
+        return ((al - u) if u < al else (TWO_PI + al - u)) / wf
+    # K < 0: cos θ ≥ c on [0, acos c] ∪ [2π − acos c, 2π)
+    if c <= -1.0:
+        return 0.0
+    if c > 1.0:
+        return math.inf
+    be = math.acos(c)
+    if u <= be or u >= TWO_PI - be:
+        return 0.0
+    return (TWO_PI - be - u) / wf
 
 
 def forced_split(w0: float, F: float, wf: float, y: float, yd: float, sp: float, cp: float):
@@ -314,6 +348,9 @@ class GapEvent:
             return False
         a = self.phi0 + self.wf * h - 0.5 * math.pi
         return amp_cos_min(self.P, a, self.phi0 + self.wf * self.H - 0.5 * math.pi) > self.Eh
+
+    def free_len(self, h: float, i: int) -> float:
+        return 0.0
 
     def bounds(self, i: int) -> list[float]:
         r = energy_radius(1.0, 1.0, self.xi, self.xid, self.W)
@@ -417,6 +454,14 @@ class SlipEvent:
         K = sig * (self.P * wf + self.k.ds[self.phase] / wf)
         m = amp_cos_min(K, self.phi0 + wf * h, self.phi0 + wf * self.H)
         return m - sig * self.sdc > self.Eh
+
+    def free_len(self, h: float, i: int) -> float:
+        """Length from h on which f > 0 is certified by its slow envelope (fast mode)."""
+        if not self.fast:
+            return 0.0
+        wf, sig = self.k.varpi, self.sig
+        K = sig * (self.P * wf + self.k.ds[self.phase] / wf)
+        return envelope_time(K, -sig * self.sdc, self.Eh, self.phi0 + wf * h, wf)
 
     def m2_start(self, i: int) -> float:
         if self.fast:
@@ -534,6 +579,14 @@ class StickEvent:
             amp_cos_min(sig * (self.P - q), a, b) > eh
             for sig, q in zip((1.0, -1.0), self.q, strict=True)
         )
+
+    def free_len(self, h: float, i: int) -> float:
+        """Length from h on which g_i > 0 is certified by its slow envelope (fast mode)."""
+        if not self.fast:
+            return 0.0
+        wf = self.k.varpi
+        K = (1.0 if i == 0 else -1.0) * (self.P - self.q[i])
+        return envelope_time(K, 0.0, self.Eh / self.w0, self.phi0 + wf * h - 0.5 * math.pi, wf)
 
     def m2_start(self, i: int) -> float:
         if self.fast:
