@@ -114,3 +114,24 @@ def test_vertical_matches_simulate_event_log():
 def test_vertical_rejects_bad_varpi(bad):
     with pytest.raises(ParameterError, match="varpi"):
         vertical_motion(bad)
+
+
+def test_envelope_time_closed_form_and_grid():
+    """First t with K cos(θ0 + ϖt) + E ≤ a: hand values, then a fine grid (second method)."""
+    from betvdesign.dynamics.events import envelope_time
+
+    assert envelope_time(1.0, 0.0, 0.5, 0.0, 1.0) == pytest.approx(math.pi / 3)
+    assert envelope_time(-1.0, 0.0, 0.5, 0.0, 1.0) == 0.0
+    assert envelope_time(-1.0, 0.0, 0.5, math.pi, 1.0) == pytest.approx(math.pi / 3)
+    assert envelope_time(1.0, 3.0, 0.5, 0.0, 1.0) == math.inf
+    rng = np.random.default_rng(3)
+    for _ in range(200):
+        K, E, a, th0, w = rng.normal(), rng.normal(), abs(rng.normal()), rng.uniform(-9, 9), 0.7
+        t = envelope_time(K, E, a, th0, w)
+        grid = np.linspace(0.0, 20.0, 200001)
+        below = K * np.cos(th0 + w * grid) + E <= a
+        expect = grid[np.argmax(below)] if below.any() else math.inf
+        if math.isinf(expect):
+            assert t > 20.0 - 1e-3
+        else:
+            assert t == pytest.approx(expect, abs=2e-4)
