@@ -82,3 +82,15 @@ def test_report_in_chromium(browser, reports_dir: Path, tmp_path: Path, name: st
     page.close()
     assert errors == [], errors
     assert foreign == [], foreign
+
+
+def test_missing_program_fails_under_ci_and_skips_elsewhere(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """The rule of these tests: a missing chromium/poppler skips only outside CI."""
+    monkeypatch.setenv("CI", "1")
+    with pytest.raises(pytest.fail.Exception, match="CI: no-such-program-betv not found"):
+        require_program("no-such-program-betv")
+    monkeypatch.delenv("CI")
+    with pytest.raises(pytest.skip.Exception, match="no-such-program-betv not found"):
+        require_program("no-such-program-betv")

@@ -117,6 +117,25 @@ def test_report_content(reports_dir: Path, device: Path) -> None:
     assert "slider.travel_range" in text
 
 
+@pytest.mark.parametrize("device", device_files(), ids=lambda p: p.stem)
+def test_verdict_and_rules_agree_with_betv_check(reports_dir: Path, device: Path) -> None:
+    """Second path: ``betv check --simulate`` (checker.check_derivation, which runs the
+    solver itself) gives the same verdict and the same rule outcomes as the report."""
+    from betvdesign.checker import check_derivation
+
+    html = (reports_dir / f"{device.stem}.html").read_text("utf-8")
+    check = check_derivation(derive(load_device(device)), simulate="always")
+    assert f"Device verdict: <strong>{check.verdict.upper()}</strong>" in html
+    rows = re.findall(
+        r"<tr class=\"[^\"]*\"><td><code>([^<]+)</code></td><td>(\w+)</td>"
+        r"<td class=\"num\">[^<]*</td><td>[^<]*</td><td>(pass|FAIL)</td>",
+        html,
+    )
+    shown = sorted((rid, sev, res == "pass") for rid, sev, res in rows)
+    expected = sorted((r.id, r.severity, r.passed) for r in check.rules)
+    assert shown == expected
+
+
 def test_shin2004_fails_with_reasons(reports_dir: Path) -> None:
     """MODEL.md: shin2004's data give ϖ ≈ 0.34 < 0.5, so the verdict is fail and the
     window rule is the first finding; the derivation shows where ϖ comes from."""
@@ -274,6 +293,8 @@ def test_cli_usage_errors(tmp_path: Path) -> None:
         app, ["report", str(DEVICES / "push_demo.yaml"), str(copy), "-o", str(tmp_path / "o")]
     )
     assert res.exit_code == 2 and "would both write push_demo.html" in res.output
+    res = runner.invoke(app, ["report", "-o", str(tmp_path / "o")])
+    assert res.exit_code == 2 and "at least one device file" in res.output
     afile = tmp_path / "file"
     afile.write_text("x")
     res = runner.invoke(app, ["report", str(DEVICES / "push_demo.yaml"), "-o", str(afile)])
