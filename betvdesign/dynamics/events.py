@@ -3,23 +3,30 @@
 docs/MODEL.md, "Impacts and separation" and the stick/slip rules. Every event
 function f of the model (gap ξ, signed relative velocity ±(ζ' − s'), distances
 to the stick band ±(ζ − (1 ∓ b) sin ϖτ)) is a closed-form combination of
-sinusoids whose second derivative is bounded on the search window by an energy
-argument (:func:`flows.energy_radius`). From a point where f > 0,
+sinusoids whose derivatives are bounded on the search window by the smaller of
+an energy-growth bound (:func:`flows.energy_radius`, valid through resonance) and
+the split "forced part P sin φ + free oscillation of constant energy"
+(:func:`band_bounds`), and locally from the exact second derivative plus a bound
+on the third (:func:`local_m2`). From a point where f > 0,
 
     f(l + x) ≥ f(l) + f'(l) x − M2 x²/2,
 
 so f cannot vanish before the smallest positive root x* of that quadratic: the
 search advances by x* ("safe step"), which can never jump over a crossing, even
-a grazing one, and converges quadratically onto a simple root. A bracket is
+a grazing one, and converges quadratically onto a simple root. Where the slow
+(forced) part minus the free oscillation's amplitude stays positive, longer
+certified steps are taken (:func:`envelope_time`), and a whole remaining window
+is cleared at once when that minimum is positive (``clear``). A bracket is
 accepted once f' provably keeps its sign on it (4·M2·d ≤ |f'| with d the Newton
 step): then [l, l + 2d] holds exactly one root, refined by safeguarded Newton
 to round-off. A phase that starts *on* its event surface (f = 0, e.g. slip
 entered at ζ' = s') is started with the first non-vanishing Taylor coefficient
-and the matching derivative bound.
+and the matching derivative bound (``start``, ``bounds``).
 
-A function is described by an evaluator exposing ``n`` (number of event
-functions), ``scale`` (magnitudes for the round-off noise floor),
-``eval(h) -> (f, f', M2)`` lists and ``start() -> [(derivs, M)]``.
+An evaluator (:class:`Evaluator`) exposes ``n`` event functions, noise scales,
+``eval(h) -> (f, f', M2)`` lists, the Taylor coefficients at the start, bounds,
+``clear`` and ``free_len``; :class:`GapEvent`, :class:`SlipEvent` and
+:class:`StickEvent` are the model's three.
 """
 
 from __future__ import annotations
