@@ -86,7 +86,7 @@ def tolerance_cmd(
                     f"  set {name} (intended {s['intended_mode']}): "
                     f"P(push) {s['p_push']:.3f}  P(pull) {s['p_pull']:.3f}  "
                     f"P(outside window) {s['p_outside_window']:.3f}  "
-                    f"P(not intended) {s['p_not_intended']:.3f}"
+                    f"P(wrong mode) {s['p_wrong_mode']:.3f}"
                 )
                 if s["p_not_converged"]:
                     typer.echo(f"    P(not converged) {s['p_not_converged']:.3f}")

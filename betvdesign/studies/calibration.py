@@ -269,7 +269,9 @@ def calibrate(
         s2 = 1.0 if data.sigma is not None else float(2.0 * res.cost / (n - p))
         try:
             cov = np.linalg.inv(jac.T @ jac) * s2
-            stderr = [float(x) for x in np.sqrt(np.diag(cov))]
+            var = np.diag(cov)
+            # a singular or ill-conditioned fit gives no usable uncertainty: say None
+            stderr = [float(x) for x in np.sqrt(var)] if np.all(var >= 0) else None
         except np.linalg.LinAlgError:
             stderr = None
     rms = float(np.sqrt(np.mean((model.predict(theta) - data.y) ** 2)))

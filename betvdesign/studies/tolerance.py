@@ -24,8 +24,9 @@ Samples are drawn in spec space with a seeded ``numpy.random.Generator``
 and speed) or ``lambda`` (closed-form fit only; P(push) from λ, no speed).
 
 Results: P(push), P(pull), P(not converged), P(outside the 0.5 ≤ ϖ < 2
-window), P(mode ≠ intended), speed percentiles, and sensitivities as Spearman
-rank correlations of each input with speed (periodic) and λ.
+window), P(wrong mode: the opposite of the intended one), speed percentiles,
+and sensitivities as Spearman rank correlations of each input with speed
+(periodic) and λ.
 """
 
 from __future__ import annotations
@@ -423,7 +424,9 @@ def summarise(
             ),
             "p_outside_window": sum(not r["in_window"] for r in valid) / n,
             "intended_mode": intended,
-            "p_not_intended": sum(r[mode_key] != intended for r in valid) / n,
+            # the opposite of the intended mode (not converged counts separately)
+            "p_wrong_mode": sum(r[mode_key] is not None and r[mode_key] != intended for r in valid)
+            / n,
             "speed_um_s_percentiles": (
                 {f"p{q:g}": float(np.percentile(speeds, q)) for q in PERCENTILES}
                 if speeds.size
