@@ -118,3 +118,42 @@ def test_tolerance_file(tmp_path):
         UsageError, match=r"t.yaml:2: slider.beam_width: normal needs exactly 'sigma'"
     ):
         load_tolerances(f)
+
+
+def test_periodic_rung_speeds_follow_from_the_exact_orbit():
+    """Second route per sample: periodic_orbit on the row's parameters and the sample's own
+    scales give the same Δs and speed Δs·u·cosθ·f_act."""
+    from betvdesign.dynamics import periodic_orbit
+    from betvdesign.params import ModelParams
+
+    dev = "devices/push_demo.yaml"
+    tols = [parse_tolerance("actuator.horizontal_resonance=4%")]
+    study = tolerance_study(dev, tols, samples=3, seed=5)
+    run, summary = run_tolerance(dev, tols, samples=3, seed=5)
+    spec = load_device(dev)
+    aset = spec.actuator_sets[0]
+    for task, row in zip(study.tasks, run.rows, strict=True):
+        f_h = task["values"]["actuator.horizontal_resonance"][0]
+        act = aset.actuator.model_copy(
+            update={"horizontal_resonance": aset.actuator.horizontal_resonance * (f_h / 3.5)}
+        )
+        d = derive_set(spec, aset.model_copy(update={"actuator": act}))
+        res = periodic_orbit(ModelParams(row["varpi"], row["alpha"], row["beta"], row["kappa"]))
+        assert row["alpha"] == pytest.approx(d.params.alpha, rel=1e-12)
+        assert row["delta_s"] == res.delta_s and row["mode"] == res.mode == "push"
+        assert row["speed_um_s"] == pytest.approx(d.scales.speed_m_s(res.delta_s) * 1e6, rel=1e-12)
+    s = summary["sets"]["forward"]
+    assert s["p_push"] == 1.0 and s["p_wrong_mode"] == 0.0 and s["p_not_converged"] == 0.0
+
+
+def test_dominant_input_ranks_first():
+    """λ ∝ α⁻¹-ish: a 10 % spread of f_h (α = (f_v/f_h)²) dominates a 0.1 % spread of μ."""
+    tols = [
+        parse_tolerance("contact.friction=0.1%"),
+        parse_tolerance("actuator.horizontal_resonance=10%"),
+    ]
+    _, summary = run_tolerance(
+        "devices/push_demo.yaml", tols, samples=200, seed=9, fidelity="lambda"
+    )
+    sens = summary["sets"]["forward"]["sensitivities"]
+    assert sens[0]["field"] == "actuator.horizontal_resonance" and abs(sens[0]["rho_lambda"]) > 0.9
