@@ -115,3 +115,23 @@ def test_vertical_precheck_gives_the_solvers_own_not_driven_answer():
     for col in ("status", "converged", "mode", "delta_s", "period_cycles", "impacts_per_cycle"):
         assert fast[col] == full[col], col
     assert full["status"] == "not_driven"
+
+
+def test_a_solver_crash_is_listed_not_fatal(monkeypatch):
+    """If the solver raises at one point, that point is an 'error' row listed with its
+    parameters; the other points are still solved."""
+    import betvdesign.dynamics as dyn
+
+    real = dyn.periodic_orbit
+
+    def crashing(p, **kw):
+        if p.varpi == 1.3:
+            raise ZeroDivisionError("float division by zero")
+        return real(p, **kw)
+
+    monkeypatch.setattr(dyn, "periodic_orbit", crashing)
+    run, s = run_pushpull([0.9, 1.3], [1.0], [0.5], [0.4])
+    bad = [r for r in run.rows if r["status"] == "error"]
+    assert len(bad) == 1 and bad[0]["varpi"] == 1.3 and bad[0]["mode"] is None
+    assert "ZeroDivisionError" in bad[0]["message"]
+    assert [d["varpi"] for d in s.not_converged] == [1.3] and s.n_converged == 1

@@ -20,7 +20,7 @@ import itertools
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from typing import Any, Literal, Unpack
+from typing import Any, Literal
 
 import numpy as np
 
@@ -33,7 +33,7 @@ from betvdesign.studies.pushpull import (
     periodic_point,
     vertical_precheck,
 )
-from betvdesign.studies.runner import RunArgs, Study, StudyRun, run_study
+from betvdesign.studies.runner import Study, StudyRun, run_study, split_run_args
 
 Vary = Literal["varpi", "alpha"]
 
@@ -145,28 +145,9 @@ def summarise(rows: Sequence[Mapping[str, Any]]) -> LambdaSummary:
     return LambdaSummary(len(rows), len(conv), crossings, failed)
 
 
-def run_lambda_scan(
-    lam: Sequence[float],
-    *,
-    kappa: float,
-    beta: float,
-    vary: Vary = "varpi",
-    alpha: float | None = None,
-    varpi: float | None = None,
-    tol: float = 1e-10,
-    max_cycles: int | None = None,
-    **run: Unpack[RunArgs],
-) -> tuple[StudyRun, LambdaSummary]:
-    """Build, run and summarise a Δs-against-λ scan."""
-    study = lambda_study(
-        lam,
-        kappa=kappa,
-        beta=beta,
-        vary=vary,
-        alpha=alpha,
-        varpi=varpi,
-        tol=tol,
-        max_cycles=max_cycles,
-    )
-    result = run_study(study, **run)
+def run_lambda_scan(*args: Any, **kwargs: Any) -> tuple[StudyRun, LambdaSummary]:
+    """Build (arguments of :func:`lambda_study`), run (:class:`RunArgs`: executor, out,
+    overwrite, progress) and summarise a Δs-against-λ scan."""
+    study_kw, run = split_run_args(kwargs)
+    result = run_study(lambda_study(*args, **study_kw), **run)
     return result, summarise(result.rows)

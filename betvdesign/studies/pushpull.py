@@ -18,14 +18,14 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from typing import Any, Literal, Unpack
+from typing import Any, Literal
 
 import numpy as np
 
 from betvdesign.errors import UsageError
 from betvdesign.params import ModelParams
 from betvdesign.studies.grid import Grid, require_positive
-from betvdesign.studies.runner import RunArgs, Study, StudyRun, run_study
+from betvdesign.studies.runner import Study, StudyRun, run_study, split_run_args
 
 Fidelity = Literal["periodic", "lambda"]
 
@@ -99,7 +99,11 @@ def periodic_point(task: Mapping[str, Any]) -> dict[str, Any]:
     kwargs: dict[str, Any] = {"tol": task["tol"]}
     if task.get("max_cycles") is not None:
         kwargs["max_cycles"] = task["max_cycles"]
-    res = periodic_orbit(p, **kwargs)
+    try:
+        res = periodic_orbit(p, **kwargs)
+    except Exception as exc:  # a solver crash is recorded and listed, never fatal to a sweep
+        row.update(status="error", converged=False, message=solver_error(exc))
+        return row
     floquet = getattr(res, "floquet", None)
     radius = None
     if floquet is not None and len(floquet):
@@ -119,6 +123,11 @@ def periodic_point(task: Mapping[str, Any]) -> dict[str, Any]:
         message=str(getattr(res, "message", "")),
     )
     return row
+
+
+def solver_error(exc: BaseException) -> str:
+    """Message of a row whose solve raised (a solver defect: report it with the point)."""
+    return f"solver raised {type(exc).__name__}: {exc} (a defect; report these parameters)"
 
 
 def _finite_or_none(x: Any) -> float | None:
@@ -254,20 +263,10 @@ def summarise(rows: Sequence[Mapping[str, Any]], fidelity: str = "periodic") -> 
     )
 
 
-def run_pushpull(
-    varpi: Sequence[float],
-    alpha: Sequence[float],
-    beta: Sequence[float],
-    kappa: Sequence[float],
-    *,
-    fidelity: Fidelity = "periodic",
-    tol: float = 1e-10,
-    max_cycles: int | None = None,
-    **run: Unpack[RunArgs],
-) -> tuple[StudyRun, PushPullSummary]:
-    """Build, run (streamed/resumable when ``out`` is given) and summarise a map."""
-    study, _ = pushpull_study(
-        varpi, alpha, beta, kappa, fidelity=fidelity, tol=tol, max_cycles=max_cycles
-    )
+def run_pushpull(*args: Any, **kwargs: Any) -> tuple[StudyRun, PushPullSummary]:
+    """Build (arguments of :func:`pushpull_study`), run (:class:`RunArgs`: executor, out,
+    overwrite, progress; streamed and resumable with ``out``) and summarise a map."""
+    study_kw, run = split_run_args(kwargs)
+    study, _ = pushpull_study(*args, **study_kw)
     result = run_study(study, **run)
-    return result, summarise(result.rows, fidelity)
+    return result, summarise(result.rows, study.parameters["fidelity"])

@@ -36,6 +36,7 @@ import numpy as np
 
 from betvdesign.errors import UsageError
 from betvdesign.studies.grid import Grid
+from betvdesign.studies.pushpull import solver_error
 from betvdesign.studies.runner import RunArgs, Study, StudyRun, run_study
 
 #: Relative (to one cycle) tolerance for two hit phases to count as equal.
@@ -96,7 +97,7 @@ def regime_point(task: Mapping[str, Any]) -> dict[str, Any]:
     try:
         r = vertical_motion(task["varpi"], max_cycles=task["max_cycles"])
     except Exception as exc:  # a failed point is recorded and listed, never dropped
-        row.update(status="error", label="error", message=f"{type(exc).__name__}: {exc}")
+        row.update(status="error", label="error", message=solver_error(exc))
         return row
     row.update(
         status=r.status,

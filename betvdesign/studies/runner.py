@@ -34,6 +34,13 @@ class RunArgs(TypedDict, total=False):
     progress: Progress | None
 
 
+def split_run_args(kwargs: Mapping[str, Any]) -> tuple[dict[str, Any], RunArgs]:
+    """Split keyword arguments into (study builder's, :class:`RunArgs`)."""
+    run = {k: v for k, v in kwargs.items() if k in RunArgs.__annotations__}
+    rest = {k: v for k, v in kwargs.items() if k not in run}
+    return rest, RunArgs(**run)  # type: ignore[typeddict-item]
+
+
 @dataclass(frozen=True)
 class Study:
     """Everything needed to run (and resume) one study."""

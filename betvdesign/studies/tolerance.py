@@ -38,15 +38,15 @@ import re
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Literal, Unpack
+from typing import Any, Literal
 
 import numpy as np
 import pint
 from pydantic import BaseModel
 
 from betvdesign.errors import BetvError, UsageError
-from betvdesign.studies.pushpull import MODEL_STATEMENT
-from betvdesign.studies.runner import RunArgs, Study, StudyRun, run_study
+from betvdesign.studies.pushpull import MODEL_STATEMENT, solver_error
+from betvdesign.studies.runner import Study, StudyRun, run_study, split_run_args
 
 Dist = Literal["normal", "uniform"]
 Fidelity = Literal["periodic", "lambda"]
@@ -294,7 +294,11 @@ def tolerance_point(task: Mapping[str, Any]) -> dict[str, Any]:
         return row
     from betvdesign.dynamics import periodic_orbit
 
-    res = periodic_orbit(p, tol=task["tol"])
+    try:
+        res = periodic_orbit(p, tol=task["tol"])
+    except Exception as exc:  # recorded and counted as not converged, never fatal
+        row.update(status="error", converged=False, message=solver_error(exc))
+        return row
     row.update(status=str(res.status), converged=bool(res.success), message=str(res.message))
     if res.success and res.delta_s is not None and math.isfinite(res.delta_s):
         row.update(
@@ -461,19 +465,10 @@ def summarise(
 
 
 def run_tolerance(
-    device: str | os.PathLike[str],
-    tolerances: Sequence[Tolerance],
-    *,
-    samples: int,
-    seed: int,
-    fidelity: Fidelity = "periodic",
-    tol: float = 1e-10,
-    sets: Sequence[str] | None = None,
-    **run: Unpack[RunArgs],
+    device: str | os.PathLike[str], tolerances: Sequence[Tolerance], **kwargs: Any
 ) -> tuple[StudyRun, dict[str, Any]]:
-    """Draw, run (streamed/resumable) and summarise a tolerance study."""
-    study = tolerance_study(
-        device, tolerances, samples=samples, seed=seed, fidelity=fidelity, tol=tol, sets=sets
-    )
+    """Draw (keywords of :func:`tolerance_study`), run (:class:`RunArgs`) and summarise."""
+    study_kw, run = split_run_args(kwargs)
+    study = tolerance_study(device, tolerances, **study_kw)
     result = run_study(study, **run)
-    return result, summarise(result.rows, tolerances, fidelity)
+    return result, summarise(result.rows, tolerances, study.parameters["fidelity"])
