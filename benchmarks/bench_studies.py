@@ -56,7 +56,8 @@ def bench_map(workers: int, max_cycles: int | None, scaling: bool) -> dict:
     for frac, alphas in sizes if scaling else sizes[-1:]:
         t0 = time.perf_counter()
         study, grid = pushpull_study(VARPI, alphas, BETA, KAPPA, max_cycles=max_cycles)
-        run = run_study(study, ProcessExecutor(workers))
+        out = OUT / f"map_{frac}.csv"  # rows kept for inspection (status, message)
+        run = run_study(study, ProcessExecutor(workers), out=out, overwrite=True)
         wall = time.perf_counter() - t0
         status: dict[str, int] = {}
         for r in run.rows:
@@ -141,7 +142,9 @@ def main() -> None:
     if args.which in ("all", "tolerance"):
         out["tolerance"] = bench_tolerance(args.workers, args.samples, tuple(args.fidelity))
     OUT.mkdir(parents=True, exist_ok=True)
-    (OUT / "bench_studies.json").write_text(json.dumps(out, indent=2) + "\n")
+    path = OUT / "bench_studies.json"  # merged: a partial run keeps the other parts
+    old = json.loads(path.read_text()) if path.exists() else {}
+    path.write_text(json.dumps(old | out, indent=2) + "\n")
     print(json.dumps(out, indent=2))
 
 
