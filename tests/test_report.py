@@ -24,7 +24,7 @@ from betvdesign.loader import load_device
 from betvdesign.nondim import derive
 from betvdesign.report import ReportOptions, build_report, prepare, render_html, write_reports
 from betvdesign.report import analysis as report_analysis
-from betvdesign.report.analysis import alpha_for_lambda, lambda_targets
+from betvdesign.report.analysis import alpha_for_lambda, lambda_floor, lambda_targets
 from betvdesign.report.build import fmt_num
 from betvdesign.report.render import write_atomic
 
@@ -250,6 +250,20 @@ def test_lambda_targets_and_alpha_inversion() -> None:
         a = alpha_for_lambda(float(lam), p)
         assert a is not None
         assert ModelParams(p.varpi, a, p.beta, p.kappa).lam == pytest.approx(lam, rel=1e-12)
+
+
+def test_lambda_floor_is_the_large_alpha_limit() -> None:
+    """With β > 1 the fit's λ tends to −κc/ϖ² as α → ∞ (independent λ formula): targets
+    below it get no α, targets above it do."""
+    from betvdesign.params import ModelParams
+
+    p = ModelParams(0.34, 0.1, 9.09, 0.4)
+    floor = lambda_floor(p)
+    assert floor is not None
+    assert ModelParams(p.varpi, 1e12, p.beta, p.kappa).lam == pytest.approx(floor, rel=1e-9)
+    assert alpha_for_lambda(0.99 * floor, p) is None
+    assert alpha_for_lambda(1.01 * floor, p) is not None
+    assert lambda_floor(ModelParams(1.2, 2.0, 0.5, 0.15)) is None  # β < 1: any λ > 0
 
 
 # --------------------------------------------------------------------------- CLI

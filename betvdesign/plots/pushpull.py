@@ -13,19 +13,14 @@ from collections.abc import Sequence
 import numpy as np
 from matplotlib.axes import Axes
 
-from betvdesign.params import LAMBDA_FIT_CONSTANT
 from betvdesign.plots._figure import DEVICE_COLOR, MODE_COLORS, VARPI_WINDOW, axes_or_new
-
-
-def boundary_offset(kappa: float, beta: float) -> float:
-    """c = (1/β − β)/(22(κ + 1)) [-], the λ = 1 curve's offset in 1/(ακ)."""
-    return (1.0 / beta - beta) / (LAMBDA_FIT_CONSTANT * (kappa + 1.0))
+from betvdesign.studies.lambda_scan import fit_offset
 
 
 def lambda_one_curve(inv_varpi2: np.ndarray, kappa: float, beta: float) -> np.ndarray:
     """1/(ακ) on the λ = 1 boundary at the given 1/ϖ² [-] (for fixed κ, β)."""
     x = np.asarray(inv_varpi2, dtype=float)
-    return boundary_offset(kappa, beta) + 1.0 / (kappa * x)
+    return fit_offset(kappa, beta) + 1.0 / (kappa * x)
 
 
 def pushpull_map(
@@ -43,7 +38,7 @@ def pushpull_map(
     ax = axes_or_new(ax)
     xs = [1.0 / varpi**2 for _, varpi, _ in points]
     ys = [1.0 / (alpha * kappa) for _, _, alpha in points]
-    c = boundary_offset(kappa, beta)
+    c = fit_offset(kappa, beta)
     w_lo, w_hi = 1.0 / VARPI_WINDOW[1] ** 2, 1.0 / VARPI_WINDOW[0] ** 2
     x_max = max([w_hi * 1.15, *(1.25 * x for x in xs)])
     x = np.linspace(x_max / 400.0, x_max, 400)

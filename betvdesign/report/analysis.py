@@ -29,9 +29,10 @@ from typing import Any, Generic, TypeVar
 
 import numpy as np
 
-from betvdesign.errors import BetvError
+from betvdesign.errors import BetvError, UsageError
 from betvdesign.params import ModelParams
 from betvdesign.plots._figure import VARPI_WINDOW
+from betvdesign.studies.lambda_scan import fit_offset, params_for_lambda
 
 T = TypeVar("T")
 
@@ -163,6 +164,7 @@ class SweepData:
     y: list[float | None]
     knob: str
     failures: list[str] = field(default_factory=list)
+    skipped: int = 0
 
 
 # --------------------------------------------------------------------------- pieces
@@ -284,12 +286,23 @@ def lambda_targets(lam0: float, n: int) -> np.ndarray:
 
 
 def alpha_for_lambda(lam: float, p: ModelParams) -> float | None:
-    """α that gives ``lam`` at fixed ϖ, β, κ: α = 1/(λϖ² + κc), c = (1/β − β)/(22(κ+1));
-    None when no positive α exists (MODEL.md, "Push/pull criterion")."""
-    from betvdesign.plots.pushpull import boundary_offset
+    """α that gives ``lam`` at fixed ϖ, β, κ (inverse of the λ fit, MODEL.md "Push/pull
+    criterion", via :func:`betvdesign.studies.lambda_scan.params_for_lambda`); None when
+    no positive α exists."""
+    try:
+        point = params_for_lambda(
+            lam, kappa=p.kappa, beta=p.beta, vary="alpha", alpha=None, varpi=p.varpi
+        )
+    except UsageError:
+        return None
+    return point["alpha"]
 
-    denom = lam * p.varpi**2 + p.kappa * boundary_offset(p.kappa, p.beta)
-    return 1.0 / denom if denom > 0 else None
+
+def lambda_floor(p: ModelParams) -> float | None:
+    """Smallest λ reachable with α > 0 at fixed ϖ, β, κ (α → ∞): −κ·c/ϖ² when the fit's
+    offset c = (1/β − β)/(22(κ+1)) is negative (β > 1), else None (λ → 0 is reachable)."""
+    c = fit_offset(p.kappa, p.beta)
+    return -p.kappa * c / p.varpi**2 if c < 0 else None
 
 
 def robustness(p: ModelParams, opts: ReportOptions) -> SweepData:
@@ -298,9 +311,11 @@ def robustness(p: ModelParams, opts: ReportOptions) -> SweepData:
     xs: list[float] = []
     ys: list[float | None] = []
     failures: list[str] = []
+    skipped = 0
     for lam in lambda_targets(p.lam, opts.robustness_points):
         alpha = alpha_for_lambda(float(lam), p)
         if alpha is None:
+            skipped += 1
             continue
         q = ModelParams(p.varpi, alpha, p.beta, p.kappa)
         res = periodic_orbit(q)
@@ -312,7 +327,7 @@ def robustness(p: ModelParams, opts: ReportOptions) -> SweepData:
             failures.append(f"λ = {q.lam:.3g} (α = {alpha:.3g}): {getattr(res, 'message', '')}")
     if not xs:
         raise Missing("no positive α reaches the λ range around the device")
-    return SweepData(np.asarray(xs), ys, "α", failures)
+    return SweepData(np.asarray(xs), ys, "α", failures, skipped)
 
 
 # --------------------------------------------------------------------------- one set

@@ -15,7 +15,7 @@ import numpy as np
 
 from betvdesign import plots
 from betvdesign.nondim import SetDerivation
-from betvdesign.report.analysis import REGIME_HORIZON, Piece, SetAnalysis
+from betvdesign.report.analysis import REGIME_HORIZON, Piece, SetAnalysis, lambda_floor
 from betvdesign.report.model import FigureBlock
 from betvdesign.spec import amplitude_at
 from betvdesign.units import ureg
@@ -260,6 +260,13 @@ def robustness(key: str, sd: SetDerivation, an: SetAnalysis) -> FigureBlock:
     )
     if data is not None:
         caption += f" {len(data.x)} periodic orbits."
+        floor = lambda_floor(p)
+        if data.skipped and floor is not None:
+            caption += (
+                f" {data.skipped} target(s) below λ = {floor:.3g} left out: with β > 1 the fit "
+                "gives λ above that for every positive α (its limit α → ∞), so α alone cannot "
+                "bring λ lower."
+            )
         if data.failures:
             caption += " No periodic orbit at: " + "; ".join(data.failures) + "."
 

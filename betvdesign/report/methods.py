@@ -22,6 +22,7 @@ from markupsafe import Markup
 
 from betvdesign import plots
 from betvdesign.bench.chart import work_precision_figure
+from betvdesign.bench.failuremap import default_varpis, failure_map_figure, scan
 from betvdesign.bench.failures import FAILURES, Failure
 from betvdesign.bench.workprecision import DESIGNS, Row, summarise
 from betvdesign.report.render import _css, _environment, render_pdf, write_atomic
@@ -55,6 +56,7 @@ class MethodsReport:
     lambda_summary: str
     lambda_bands: tuple[dict[str, Any], ...]
     lambda_svg: str
+    failure_svg: str
     mispredictions: tuple[dict[str, str], ...]
     trust_margins: str
     not_converged: str
@@ -82,8 +84,11 @@ def _lambda_figure(bands: Sequence[dict[str, Any]]) -> str:
         return plots.figure_svg(fig, "lam")
 
 
-def build(rows: Sequence[Row], *, level: str = "quick") -> MethodsReport:
-    """The report model from work-precision rows and the measured ladder data."""
+def build(
+    rows: Sequence[Row], fm_rows: Sequence[dict[str, Any]], *, level: str = "quick"
+) -> MethodsReport:
+    """The report model from work-precision rows, the failure map along ϖ
+    (:func:`betvdesign.bench.failuremap.scan` rows) and the measured ladder data."""
     from betvdesign import __version__
     from betvdesign.fidelity import RUNG_INFO, RUNGS
     from betvdesign.fidelity_measured import MEASURED
@@ -144,6 +149,7 @@ def build(rows: Sequence[Row], *, level: str = "quick") -> MethodsReport:
         ),
         lambda_bands=tuple(lam["bands"]),
         lambda_svg=_lambda_figure(lam["bands"]),
+        failure_svg=plots.figure_svg(failure_map_figure(fm_rows), "fm"),
         mispredictions=mis,
         trust_margins=", ".join(
             f"β = {b}: {m:.3g}"
@@ -166,27 +172,39 @@ def render_html(report: MethodsReport) -> str:
     return tpl.render(r=report, css=Markup(_css()), svg=Markup)
 
 
-def load_rows(path: str | Path) -> list[Row]:
-    """Rows from the JSON that ``betv bench -o`` / the benchmark script writes."""
-    doc = json.loads(Path(path).read_text("utf-8"))
-    return [
+def load_rows(path: str | Path) -> tuple[list[Row], list[dict[str, Any]] | None]:
+    """Rows from the JSON that ``betv bench -o`` / the benchmark script writes, and the
+    failure-map rows from ``failure_map.json`` next to it when present."""
+    path = Path(path)
+    doc = json.loads(path.read_text("utf-8"))
+    rows = [
         Row(**{**r, "seconds": r["seconds"] if r["seconds"] is not None else float("nan")})
         for r in doc["rows"]
     ]
+    fm_path = path.with_name("failure_map.json")
+    fm = json.loads(fm_path.read_text("utf-8"))["rows"] if fm_path.is_file() else None
+    return rows, fm
 
 
 def write_methods_report(
-    outdir: str | Path, *, rows: Sequence[Row] | None = None, pdf: bool = True
+    outdir: str | Path,
+    *,
+    rows: Sequence[Row] | None = None,
+    fm_rows: Sequence[dict[str, Any]] | None = None,
+    pdf: bool = True,
 ) -> list[Path]:
-    """Write methods.html (and methods.pdf); runs the quick study when ``rows`` is None."""
+    """Write methods.html (and methods.pdf). Runs the quick work-precision study when
+    ``rows`` is None and a 12-point failure-map scan when ``fm_rows`` is None."""
     from betvdesign.bench import workprecision as wp
 
     level = "loaded from file"
     if rows is None:
         rows, level = wp.run("quick"), "quick"
+    if fm_rows is None:
+        fm_rows = scan(default_varpis(8))
     out = Path(outdir)
     out.mkdir(parents=True, exist_ok=True)
-    html = render_html(build(rows, level=level))
+    html = render_html(build(rows, fm_rows, level=level))
     written = [write_atomic(out / "methods.html", html)]
     if pdf:
         written.append(write_atomic(out / "methods.pdf", render_pdf(html)))
