@@ -51,7 +51,10 @@ class ReportOptions:
     samples_per_cycle: dense samples per actuation cycle, or per natural period 2π of
     the head (τ units) when ϖ < 1 makes a cycle hold several of them;
     max_transient_cycles: cap of the exact run used for the displacement figure;
-    voltage_points: drive voltages of the speed-voltage figure (no solver runs).
+    voltage_points: drive voltages of the speed-voltage figure (no solver runs);
+    periodic_tol: fixed-point residual accepted for a periodic orbit [-];
+    periodic_max_cycles: cycle budget of the device's periodic orbit (settling can take
+    ~10⁵ cycles, MODEL.md "Slider"); sweep_max_cycles: the same for each λ-sweep orbit.
     """
 
     regime_points: int = 111
@@ -61,6 +64,9 @@ class ReportOptions:
     samples_per_cycle: int = 64
     max_transient_cycles: int = 4000
     voltage_points: int = 41
+    periodic_tol: float = 1e-10
+    periodic_max_cycles: int = 100_000
+    sweep_max_cycles: int = 20_000
 
 
 @dataclass
@@ -170,9 +176,12 @@ class SweepData:
 # --------------------------------------------------------------------------- pieces
 
 
-def periodic(p: ModelParams) -> Any:
+def periodic(p: ModelParams, opts: ReportOptions) -> Any:
     """The periodic orbit of the exact model at ``p`` (succeeded), else :class:`Missing`."""
-    return require_success(dynamics_api("periodic_orbit")(p), "periodic_orbit")
+    res = dynamics_api("periodic_orbit")(
+        p, tol=opts.periodic_tol, max_cycles=opts.periodic_max_cycles
+    )
+    return require_success(res, "periodic_orbit")
 
 
 #: Horizon [cycles] within which a contact must recur for the regime strip (beyond
@@ -318,7 +327,7 @@ def robustness(p: ModelParams, opts: ReportOptions) -> SweepData:
             skipped += 1
             continue
         q = ModelParams(p.varpi, alpha, p.beta, p.kappa)
-        res = periodic_orbit(q)
+        res = periodic_orbit(q, tol=opts.periodic_tol, max_cycles=opts.sweep_max_cycles)
         xs.append(q.lam)
         if getattr(res, "success", False):
             ys.append(float(res.delta_s))
@@ -360,7 +369,7 @@ def analyse_set(
     p: ModelParams, travel_m: float, length_m: float, opts: ReportOptions
 ) -> SetAnalysis:
     """Run every computation of one set's report (seconds, not minutes)."""
-    per = attempt(lambda: periodic(p))
+    per = attempt(lambda: periodic(p, opts))
     n = transient_cycles(per, travel_m, length_m, opts)
     orb: Piece[OrbitData] = (
         attempt(lambda: orbit(p, per.value, opts))

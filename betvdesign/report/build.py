@@ -159,7 +159,15 @@ def _versions() -> str:
 
 
 def provenance(an: SetAnalysis, opts: ReportOptions, timings: bool) -> tuple[KeyValue, ...]:
-    rows: list[KeyValue] = []
+    rows: list[KeyValue] = [
+        KeyValue(
+            "Solver",
+            "exact event-driven model (closed-form phases, certified event search; "
+            "betvdesign.dynamics); periodic orbit by shooting from rest "
+            f"(dynamics.periodic_orbit): tol {opts.periodic_tol:g}, budget "
+            f"{opts.periodic_max_cycles} cycles ({opts.sweep_max_cycles} per λ-sweep orbit)",
+        )
+    ]
     per = an.periodic
     if per.ok:
         r = per.value
@@ -170,6 +178,9 @@ def provenance(an: SetAnalysis, opts: ReportOptions, timings: bool) -> tuple[Key
             ("impacts_per_cycle", "Impacts per cycle"),
             ("contact_fraction", "Contact fraction"),
             ("n_cycles", "Cycles simulated (orbit search)"),
+            ("transient_cycles", "Cycles before shooting"),
+            ("n_newton", "Newton iterations"),
+            ("stable", "Stable (all |μ| < 1)"),
             ("n_events", "Events"),
             ("n_root_evals", "Root evaluations"),
         ):
@@ -181,9 +192,6 @@ def provenance(an: SetAnalysis, opts: ReportOptions, timings: bool) -> tuple[Key
         if getattr(r, "floquet", None) is not None:
             mults = ", ".join(f"{abs(complex(m)):.3g}" for m in r.floquet)
             rows.append(KeyValue("Floquet multipliers |μ|", mults))
-        for attr in ("method", "tol", "rtol", "atol"):
-            if hasattr(r, attr):
-                rows.append(KeyValue(f"Solver {attr}", str(getattr(r, attr))))
     else:
         rows.append(KeyValue("Periodic orbit", f"not available: {per.reason}"))
     tr = an.transient.value
