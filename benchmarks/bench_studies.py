@@ -23,7 +23,7 @@ from pathlib import Path
 import numpy as np
 
 from betvdesign.studies.executors import ProcessExecutor, SerialExecutor
-from betvdesign.studies.pushpull import periodic_point, pushpull_study
+from betvdesign.studies.pushpull import periodic_point, pushpull_study, summarise
 from betvdesign.studies.runner import run_study
 from betvdesign.studies.tolerance import parse_tolerance, run_tolerance
 
@@ -62,7 +62,14 @@ def bench_map(workers: int, max_cycles: int | None, scaling: bool) -> dict:
         status: dict[str, int] = {}
         for r in run.rows:
             status[r["status"]] = status.get(r["status"], 0) + 1
-        res[frac] = {"points": grid.size, "wall_s": round(wall, 3), "status": status}
+        summ = summarise(run.rows)
+        res[frac] = {
+            "points": grid.size,
+            "wall_s": round(wall, 3),
+            "status": status,
+            "lambda_agreement": summ.agreement,
+            "not_converged_on_resonance": sum(bool(d["resonance"]) for d in summ.not_converged),
+        }
         print(
             f"map {frac:>10}: {grid.size:5d} points  {wall:7.2f} s wall on {workers} workers "
             f"{status}",

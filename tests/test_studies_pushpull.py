@@ -135,3 +135,14 @@ def test_a_solver_crash_is_listed_not_fatal(monkeypatch):
     assert len(bad) == 1 and bad[0]["varpi"] == 1.3 and bad[0]["mode"] is None
     assert "ZeroDivisionError" in bad[0]["message"]
     assert [d["varpi"] for d in s.not_converged] == [1.3] and s.n_converged == 1
+
+
+def test_resonant_points_are_named_in_the_summary():
+    """α = 4, ϖ = 0.5 sits exactly on α·ϖ² = 1 (free-flight tangential resonance)."""
+    from betvdesign.studies.pushpull import tangential_resonance
+
+    assert tangential_resonance({"varpi": 0.5, "alpha": 4.0, "beta": 0.5}) == "alpha"
+    assert tangential_resonance({"varpi": 0.5, "alpha": 4 / 3, "beta": 0.5}) == "stick"
+    assert tangential_resonance({"varpi": 0.6, "alpha": 4.0, "beta": 0.5}) is None
+    _, s = run_pushpull([0.5], [4.0], [0.5], [0.4], max_cycles=64)
+    assert [d["resonance"] for d in s.not_converged] == ["alpha"]

@@ -243,7 +243,9 @@ def pushpull_cmd(
             ]
             lines += [
                 f"  not converged: ϖ={d['varpi']:g} α={d['alpha']:g} β={d['beta']:g} "
-                f"κ={d['kappa']:g}: {d['status']}: {d['message']}"
+                f"κ={d['kappa']:g}: {d['status']}"
+                + (f" (on the resonance a·ϖ² = 1, a = {d['resonance']})" if d["resonance"] else "")
+                + f": {d['message']}"
                 for d in summary.not_converged
             ]
             for line in lines[:MAX_LISTED]:

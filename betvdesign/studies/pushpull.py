@@ -232,6 +232,21 @@ class PushPullSummary:
         }
 
 
+#: Relative distance to a·ϖ² = 1 below which a point counts as at the tangential resonance.
+RESONANCE_RTOL = 1e-9
+
+
+def tangential_resonance(row: Mapping[str, Any]) -> str | None:
+    """Which tangential resonance a·ϖ² = 1 the point sits on, if any (docs/MODEL.md: the
+    head's tangential motion is undamped in free flight and can grow without bound there):
+    ``"alpha"`` (a = α, free flight), ``"stick"`` (a = α(1 + 1/β)) or None."""
+    w2 = row["varpi"] ** 2
+    for name, a in (("alpha", row["alpha"]), ("stick", row["alpha"] * (1 + 1 / row["beta"]))):
+        if abs(a * w2 - 1.0) <= RESONANCE_RTOL:
+            return name
+    return None
+
+
 def _brief(row: Mapping[str, Any], keys: Sequence[str]) -> dict[str, Any]:
     return {k: row[k] for k in keys}
 
@@ -246,7 +261,11 @@ def summarise(rows: Sequence[Mapping[str, Any]], fidelity: str = "periodic") -> 
         if r["mode"] != r["mode_predicted"]
     ]
     failed = (
-        [_brief(r, (*point, "status", "message")) for r in rows if not r["converged"]]
+        [
+            {**_brief(r, (*point, "status", "message")), "resonance": tangential_resonance(r)}
+            for r in rows
+            if not r["converged"]
+        ]
         if fidelity == "periodic"
         else []
     )
