@@ -3,6 +3,8 @@
     .venv/bin/python benchmarks/bench_studies.py              # everything
     .venv/bin/python benchmarks/bench_studies.py map           # 1152-point map only
     .venv/bin/python benchmarks/bench_studies.py tolerance     # 10^4-sample tolerance only
+    .venv/bin/python benchmarks/bench_studies.py regime        # 2000-point regime diagram
+    options: --max-cycles N (map budget), --no-scaling, --fidelity lambda|periodic
 
 Targets (2 cores): the 2 κ × 4 β × 9 α × 16 ϖ push/pull map to periodic states
 in ≤ 60 s wall (goal ≤ 10 s); a 10⁴-sample tolerance study of one device in
@@ -24,6 +26,7 @@ import numpy as np
 
 from betvdesign.studies.executors import ProcessExecutor, SerialExecutor
 from betvdesign.studies.pushpull import periodic_point, pushpull_study, summarise
+from betvdesign.studies.regime import run_regime
 from betvdesign.studies.runner import run_study
 from betvdesign.studies.tolerance import parse_tolerance, run_tolerance
 
@@ -99,6 +102,22 @@ def bench_map(workers: int, max_cycles: int | None, scaling: bool) -> dict:
     return res
 
 
+def bench_regime(workers: int) -> dict:
+    """The vertical regime diagram on the CLI's default grid (2000 points, ϖ ∈ (0, 10])."""
+    varpi = np.round(np.arange(0.005, 10.0001, 0.005), 12)
+    t0 = time.perf_counter()
+    _, summary = run_regime(varpi, executor=ProcessExecutor(workers))
+    wall = time.perf_counter() - t0
+    print(f"regime: {len(varpi)} points {wall:7.2f} s wall", file=sys.stderr)
+    return {
+        "points": len(varpi),
+        "wall_s": round(wall, 3),
+        "counts": summary["counts"],
+        "overview_intervals": len(summary["overview"]),
+        "errors": len(summary["errors"]),
+    }
+
+
 def bench_tolerance(workers: int, samples: int, fidelities: tuple[str, ...]) -> dict:
     device = ROOT / "devices" / "push_demo.yaml"
     tols = [parse_tolerance(t) for t in TOLERANCES]
@@ -131,7 +150,9 @@ def bench_tolerance(workers: int, samples: int, fidelities: tuple[str, ...]) -> 
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("which", nargs="?", default="all", choices=("all", "map", "tolerance"))
+    ap.add_argument(
+        "which", nargs="?", default="all", choices=("all", "map", "regime", "tolerance")
+    )
     ap.add_argument("--workers", type=int, default=os.cpu_count() or 1)
     ap.add_argument("--samples", type=int, default=10_000)
     ap.add_argument("--max-cycles", type=int, default=None, help="cycle budget per solve")
@@ -146,6 +167,8 @@ def main() -> None:
     run_study(pushpull_study([1.0], [1.0], [0.5], [0.4])[0], SerialExecutor())
     if args.which in ("all", "map"):
         out["map"] = bench_map(args.workers, args.max_cycles, not args.no_scaling)
+    if args.which in ("all", "regime"):
+        out["regime"] = bench_regime(args.workers)
     if args.which in ("all", "tolerance"):
         out["tolerance"] = bench_tolerance(args.workers, args.samples, tuple(args.fidelity))
     OUT.mkdir(parents=True, exist_ok=True)
