@@ -68,7 +68,11 @@ def pushpull_panel(
         xs = np.linspace(x.min() * 0.9, x.max() * 1.1, 300)
         curve = lambda_one_curve(xs, kappa, beta)
         ax.plot(xs, curve, color="black", lw=1.2, label="λ = 1")
-        ax.set_ylim(min(0.0, y.min()) - 0.05 * np.ptp(y), y.max() * 1.1 + 1e-12)
+        if y.min() > 0 and y.max() / y.min() > 20:  # α spanning decades: log axis
+            ax.set_yscale("log")
+            ax.set_ylim(y.min() / 1.5, y.max() * 1.5)
+        else:
+            ax.set_ylim(min(0.0, y.min()) - 0.05 * np.ptp(y), y.max() * 1.1 + 1e-12)
     ax.set_title(f"κ = {kappa:g}, β = {beta:g}")
     ax.set_xlabel("1/ϖ²  [-]")
     ax.set_ylabel("1/(ακ)  [-]")
