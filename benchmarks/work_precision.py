@@ -1,6 +1,7 @@
 """Work-precision study and fidelity-ladder measurements (regenerates the README chart).
 
-    python benchmarks/work_precision.py                 # full study -> docs/img/, reports/bench/
+    python benchmarks/work_precision.py                 # full study + failure map along ϖ
+                                                        # -> docs/img/, reports/bench/
     python benchmarks/work_precision.py --quick         # a subset, seconds to a minute
     python benchmarks/work_precision.py --ladder        # λ disagreement, rigid envelope, rung
                                                         # costs -> betvdesign/fidelity_measured.py
@@ -29,6 +30,12 @@ def work_precision(level: str, out: Path, img: Path | None) -> None:
     if img is not None:
         for p in write_outputs(rows, img):
             print(f"wrote {p}")
+    from betvdesign.bench.failuremap import default_varpis, scan, write_failure_map
+
+    fm = scan(default_varpis(30 if level == "full" else 10))
+    for d in [out] + ([img] if img is not None else []):
+        for p in write_failure_map(fm, d):
+            print(f"wrote {p}")
     print("\nexact vs the cheapest alternative reaching 1e-6 (CPU seconds):")
     for s in wp.summarise(rows):
         alt = s["cheapest_alternative"] or "none reaches 1e-6"
@@ -42,10 +49,15 @@ def work_precision(level: str, out: Path, img: Path | None) -> None:
         )
 
 
-def ladder(out_module: Path) -> None:
+def ladder(out_module: Path, reuse_map: bool) -> None:
     from betvdesign.bench.ladder import measure, write_measured
 
-    m = measure()
+    previous = None
+    if reuse_map:
+        from betvdesign.fidelity_measured import MEASURED
+
+        previous = {k: v for k, v in MEASURED["lambda"].items() if k != "sample"}
+    m = measure(reuse_map=previous)
     write_measured(m, out_module)
     lam = m["lambda"]
     print(f"wrote {out_module}")
@@ -54,9 +66,19 @@ def ladder(out_module: Path) -> None:
         f"{lam['mispredicted']} mispredicted ({100 * lam['rate']:.2f} %)"
     )
     print("  by |λ−1| band:", json.dumps(lam["bands"]))
-    print("  trust margin by β:", lam["trust_margin_by_beta"])
+    print("  trust margin by β (map only):", lam["trust_margin_by_beta"])
     for w in lam["mispredictions"]:
         print("  ", w)
+    val = lam["sample"]
+    print(
+        f"λ rule on {val['points']} random off-grid designs ({val['converged']} converged): "
+        f"{val['mispredicted']} mispredicted ({100 * val['rate']:.2f} %)"
+    )
+    for w in val["mispredictions"]:
+        print("  ", w)
+    print(f"  trust table (ϖ bins {lam['varpi_bins']} × β bins {lam['beta_bins']}):")
+    for row in lam["trust_table"]:
+        print("   ", [round(x, 3) for x in row])
     print(f"rigid limit: error ≈ {m['rigid']['coef']:.3g}·α^{m['rigid']['power']:.2f}")
     print(f"rigid limit mode disagreement on the map: {100 * lam['rigid_mode_disagreement']:.1f} %")
     print("rung cost (median CPU s):", json.dumps(m["costs_cpu_s"]))
@@ -66,10 +88,13 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
     ap.add_argument("--quick", action="store_true", help="quick subset of the study")
     ap.add_argument("--ladder", action="store_true", help="measure the fidelity ladder instead")
+    ap.add_argument(
+        "--reuse-map", action="store_true", help="with --ladder: keep the stored push/pull map"
+    )
     ap.add_argument("-o", "--output", type=Path, default=ROOT / "reports" / "bench")
     args = ap.parse_args()
     if args.ladder:
-        ladder(ROOT / "betvdesign" / "fidelity_measured.py")
+        ladder(ROOT / "betvdesign" / "fidelity_measured.py", args.reuse_map)
         return
     level = "quick" if args.quick else "full"
     work_precision(level, args.output, None if args.quick else ROOT / "docs" / "img")

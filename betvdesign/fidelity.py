@@ -132,20 +132,31 @@ def _measured() -> dict[str, Any]:
     return fidelity_measured.MEASURED
 
 
-def lambda_trust_margin(beta: float) -> float:
-    """|λ − 1| beyond which the λ rule never mispredicted on the measured map [-].
+def _bin(x: float, edges: list[float]) -> int | None:
+    for i in range(len(edges) - 1):
+        last = i == len(edges) - 2
+        if edges[i] * (1 - 1e-9) <= x < edges[i + 1] or (last and x <= edges[i + 1] * (1 + 1e-9)):
+            return i
+    return None
 
-    Measured per β of the map (mispredictions cluster at small β and low ϖ); between
-    two measured β values the larger margin of the two applies; outside the measured
-    β range there is no margin (inf: always simulate).
+
+def lambda_trust_margin(varpi: float, beta: float) -> float:
+    """|λ − 1| beyond which the λ rule is trusted at this (ϖ, β) [-]; inf: never.
+
+    Measured (``benchmarks/work_precision.py --ladder``): the largest |λ − 1| at which
+    the rule mispredicted, on the push/pull map and on a seeded random off-grid sample,
+    per (ϖ, β) bin, times a safety factor; never below the same quantity taken over
+    all mispredictions within |λ − 1| < 0.5 (the boundary band everywhere).
+    Outside the measured bins: inf.
     """
-    table = {float(b): m for b, m in _measured()["lambda"]["trust_margin_by_beta"].items()}
-    betas = sorted(table)
-    if not betas[0] * (1 - 1e-9) <= beta <= betas[-1] * (1 + 1e-9):
+    lam = _measured()["lambda"]
+    i, j = _bin(varpi, lam["varpi_bins"]), _bin(beta, lam["beta_bins"])
+    if i is None or j is None:
         return math.inf
-    lo = max(b for b in betas if b <= beta * (1 + 1e-9))
-    hi = min(b for b in betas if b >= beta * (1 - 1e-9))
-    return float(max(table[lo], table[hi]))
+    every = lam["mispredictions"] + lam["sample"]["mispredictions"]
+    near = [abs(m["lam"] - 1.0) for m in every if abs(m["lam"] - 1.0) < 0.5]
+    floor = lam["safety"] * max(near, default=0.0)
+    return float(max(lam["trust_table"][i][j], floor))
 
 
 def rigid_error_estimate(alpha: float) -> float:
@@ -206,7 +217,7 @@ def choose_rung(
             "the rigid limit do not apply there",
         )
     if question == "mode":
-        margin = lambda_trust_margin(p.beta)
+        margin = lambda_trust_margin(p.varpi, p.beta)
         dist = abs(p.lam - 1.0)
         if not _in_fit_range(p) or math.isinf(margin):
             return Choice(
@@ -216,14 +227,15 @@ def choose_rung(
             return Choice(
                 "lambda",
                 question,
-                f"|λ − 1| = {dist:.3g} ≥ {margin:.3g}, beyond which the λ rule never "
-                f"mispredicted the simulated mode on the measured push/pull map (β = {p.beta:g})",
+                f"|λ − 1| = {dist:.3g} ≥ {margin:.3g}: beyond the largest misprediction "
+                f"distance measured near ϖ = {p.varpi:.3g}, β = {p.beta:.3g} (push/pull map "
+                "and random sample, with a safety factor)",
             )
         return Choice(
             "periodic",
             question,
-            f"|λ − 1| = {dist:.3g} < {margin:.3g}: on the measured map the λ rule "
-            f"mispredicted up to |λ − 1| = {margin:.3g} near β = {p.beta:g}, so the periodic "
+            f"|λ − 1| = {dist:.3g} < {margin:.3g}: the λ rule was measured to mispredict "
+            f"this far from λ = 1 near ϖ = {p.varpi:.3g}, β = {p.beta:.3g}, so the periodic "
             "orbit decides",
         )
     # delta_s

@@ -128,3 +128,21 @@ def test_cli_output_not_a_directory(tmp_path):
     assert res.exit_code == 2
     assert "not a directory" in res.stderr
     assert f.read_text() == "keep"
+
+
+def test_failure_map_scan_along_varpi(tmp_path):
+    """Scan along ϖ (at the resonance ϖ = 1 too): exact within 1e-10 of DOP853 rtol 1e-13,
+    every alternative measured; outputs written (PNG, SVG, JSON)."""
+    from betvdesign.bench.failuremap import scan, write_failure_map
+
+    rows = scan([1.0, 1.7], cycles=3)
+    assert {r["method"] for r in rows} == {"exact", "solve_ivp-RK45", "tanh-LSODA", "rk4-post"}
+    for r in rows:
+        assert r["exact_status"] == "success" and r["error"] is not None
+        if r["method"] == "exact":
+            assert r["error"] <= 1e-10
+        if r["method"] == "rk4-post":
+            assert r["error"] > 1e-6
+    paths = write_failure_map(rows, tmp_path)
+    assert sorted(p.suffix for p in paths) == [".json", ".png", ".svg"]
+    assert json.loads(paths[-1].read_text())["rows"] == rows

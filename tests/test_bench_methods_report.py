@@ -15,6 +15,7 @@ from pypdf import PdfReader
 from typer.testing import CliRunner
 
 from betvdesign.bench.chart import write_outputs
+from betvdesign.bench.failuremap import scan, write_failure_map
 from betvdesign.bench.failures import FAILURES
 from betvdesign.bench.workprecision import Row
 from betvdesign.cli import app
@@ -34,8 +35,14 @@ def _rows() -> list[Row]:
 
 
 @pytest.fixture(scope="module")
-def html():
-    return render_html(build(_rows()))
+def fm():
+    """A real (tiny) failure-map scan: two frequencies, two cycles."""
+    return scan([0.9, 1.5], cycles=2)
+
+
+@pytest.fixture(scope="module")
+def html(fm):
+    return render_html(build(_rows(), fm))
 
 
 def test_sections_and_failure_map(html):
@@ -43,23 +50,24 @@ def test_sections_and_failure_map(html):
         assert f'<section id="{sec}">' in html
     for f in FAILURES:
         assert f'id="failure-{f.id}"' in html
-    assert html.count("<svg") == 2  # chart + λ disagreement bars
+    assert html.count("<svg") == 3  # chart, failure map along ϖ, λ disagreement bars
     assert "×40" in html and "×60" not in html  # ratio: DOP853 1e-8 (4e-2 s) / exact 1e-3 s
 
 
-def test_self_contained_and_reproducible(html):
+def test_self_contained_and_reproducible(html, fm):
     assert not re.search(r'(src|href)="(https?:)?//', html)
     assert "<script" not in html
-    assert render_html(build(_rows())) == html
+    assert render_html(build(_rows(), fm)) == html
 
 
-def test_pdf_and_cli(tmp_path):
-    written = write_methods_report(tmp_path / "a", rows=_rows())
+def test_pdf_and_cli(tmp_path, fm):
+    written = write_methods_report(tmp_path / "a", rows=_rows(), fm_rows=fm)
     pdf = PdfReader(str(written[1]))
     text = "".join(p.extract_text() for p in pdf.pages)
     assert len(pdf.pages) >= 3
     assert "Failure map" in text and "Fidelity ladder" in text
     write_outputs(_rows(), tmp_path / "wp")
+    write_failure_map(fm, tmp_path / "wp")  # found beside the rows: no live scan
     res = CliRunner().invoke(
         app,
         [

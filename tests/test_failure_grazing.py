@@ -41,3 +41,14 @@ def test_coarse_fixed_step_misses_contacts(exact):
     assert r.n_impulsive > 5  # ... but several contacts were taken for impulsive hits
     assert r.n_contacts < CYCLES
     assert abs(r.s - exact.s) / abs(exact.s) > 1e-3
+
+
+def test_exact_continuous_at_window_edge():
+    """ϖ = 0.5: the head lands exactly at a contact start (a phase boundary); the exact
+    solver's s is the limit from both sides (no misclassified hit)."""
+    vals = [
+        simulate(ModelParams(w, 0.5, 0.5, 0.4), 10, log_events=False).s
+        for w in (0.5 - 1e-9, 0.5, 0.5 + 1e-9)
+    ]
+    assert vals[1] == pytest.approx(vals[0], rel=1e-6)
+    assert vals[1] == pytest.approx(vals[2], rel=1e-6)

@@ -145,13 +145,105 @@ def rung_costs(designs: Sequence[ModelParams], cycles: int = 100) -> dict[str, f
     }
 
 
+#: Bins of the λ trust table: ϖ edges and β edges (mispredictions cluster at low ϖ).
+VARPI_BINS = (0.5, 0.7, 0.9, 1.2, 1.6, 2.0)
+BETA_BINS = (0.1, 0.3, 0.75, 1.25, 1.5)
+#: Safety factor on the largest misprediction distance seen in a bin (a judgement,
+#: stated in the reason the ladder prints).
+SAFETY = 1.25
+
+
+def _periodic_row(args: tuple[float, float, float, float]) -> dict[str, Any]:
+    from betvdesign.dynamics import periodic_orbit
+
+    p = ModelParams(*args)
+    po = periodic_orbit(p)
+    return {
+        **p.as_dict(),
+        "lam": p.lam,
+        "mode_predicted": p.mode_predicted,
+        "status": po.status,
+        "mode": po.mode if po.success else None,
+        "delta_s": po.delta_s if po.success else None,
+    }
+
+
+def validation_sample(
+    n: int = 1500, seed: int = 20261122, workers: int = 2
+) -> list[dict[str, Any]]:
+    """Periodic mode at ``n`` seeded random designs in the window and the λ fit range
+    (ϖ ∈ [0.5, 2), α ∈ [0.1, 4], β ∈ [0.1, 1.5], κ ∈ [0.1, 0.4]), off the map's grid."""
+    from concurrent.futures import ProcessPoolExecutor
+
+    rng = np.random.default_rng(seed)
+    pts = [
+        (float(w), float(a), float(b), float(k))
+        for w, a, b, k in zip(
+            rng.uniform(0.5, 2.0, n),
+            rng.uniform(0.1, 4.0, n),
+            rng.uniform(0.1, 1.5, n),
+            rng.uniform(0.1, 0.4, n),
+            strict=True,
+        )
+    ]
+    with ProcessPoolExecutor(max_workers=workers) as ex:
+        return list(ex.map(_periodic_row, pts, chunksize=16))
+
+
+def _bin(x: float, edges: Sequence[float]) -> int | None:
+    for i, (lo, hi) in enumerate(itertools.pairwise(edges)):
+        if lo * (1 - 1e-9) <= x < hi or (i == len(edges) - 2 and x <= hi * (1 + 1e-9)):
+            return i
+    return None
+
+
+def trust_table(mispredictions: Sequence[dict[str, Any]]) -> list[list[float]]:
+    """margin[i_ϖ][i_β] = SAFETY × largest |λ − 1| of a misprediction in that bin
+    (0 where none was seen)."""
+    table = [[0.0] * (len(BETA_BINS) - 1) for _ in range(len(VARPI_BINS) - 1)]
+    for m in mispredictions:
+        i, j = _bin(m["varpi"], VARPI_BINS), _bin(m["beta"], BETA_BINS)
+        if i is not None and j is not None:
+            table[i][j] = max(table[i][j], SAFETY * abs(m["lam"] - 1.0))
+    return table
+
+
+def sample_summary(rows: Sequence[dict[str, Any]]) -> dict[str, Any]:
+    conv = [r for r in rows if r["mode"] in ("push", "pull")]
+    wrong = [r for r in conv if r["mode"] != r["mode_predicted"]]
+    keys = ("kappa", "beta", "alpha", "varpi", "lam", "mode", "delta_s")
+    return {
+        "points": len(rows),
+        "converged": len(conv),
+        "mispredicted": len(wrong),
+        "rate": len(wrong) / len(conv) if conv else None,
+        "mispredictions": sorted(
+            ({k: r[k] for k in keys} for r in wrong), key=lambda d: -abs(d["lam"] - 1.0)
+        ),
+    }
+
+
 def measure(
-    *, executor: Any = None, grid: dict[str, Sequence[float]] | None = None
+    *,
+    executor: Any = None,
+    grid: dict[str, Sequence[float]] | None = None,
+    reuse_map: dict[str, Any] | None = None,
+    sample: int = 1500,
 ) -> dict[str, Any]:
-    """Everything :mod:`betvdesign.fidelity` relies on, measured now."""
+    """Everything :mod:`betvdesign.fidelity` relies on, measured now (``reuse_map``: a
+    previous ``lambda`` entry, to skip re-solving the map)."""
     from betvdesign.bench.workprecision import DESIGNS
 
-    lam = lambda_disagreement(grid, executor=executor)
+    lam = reuse_map or lambda_disagreement(grid, executor=executor)
+    val = sample_summary(validation_sample(sample))
+    lam = {
+        **lam,
+        "sample": val,
+        "varpi_bins": list(VARPI_BINS),
+        "beta_bins": list(BETA_BINS),
+        "safety": SAFETY,
+        "trust_table": trust_table(lam["mispredictions"] + val["mispredictions"]),
+    }
     rig = rigid_envelope()
     costs = rung_costs([d.params for d in DESIGNS.values()])
     return {"lambda": lam, "rigid": rig, "costs_cpu_s": costs, "full_cycles": 100}

@@ -92,7 +92,8 @@ def methods_report(files: list[Path], outdir: Path, *, pdf: bool = True) -> int:
     """``betv report --methods [ROWS.json] -o DIR``: the methods report; exit code.
 
     Without a file the quick work-precision study runs now; with one, its rows (the
-    JSON written by ``betv bench -o`` or ``benchmarks/work_precision.py``) are used.
+    JSON written by ``betv bench -o`` or ``benchmarks/work_precision.py``) are used,
+    and the failure map from ``failure_map.json`` beside it when present.
     """
     from betvdesign.report.methods import load_rows, write_methods_report
 
@@ -101,13 +102,13 @@ def methods_report(files: list[Path], outdir: Path, *, pdf: bool = True) -> int:
             raise UsageError("--methods takes at most one work-precision JSON file")
         if outdir.exists() and not outdir.is_dir():
             raise UsageError(f"output path {outdir} exists and is not a directory")
-        rows = None
+        rows = fm = None
         if files:
             try:
-                rows = load_rows(files[0])
+                rows, fm = load_rows(files[0])
             except (OSError, ValueError, KeyError, TypeError) as exc:
                 raise UsageError(f"{files[0]}: not a work-precision JSON ({exc})") from None
-        written = write_methods_report(outdir, rows=rows, pdf=pdf)
+        written = write_methods_report(outdir, rows=rows, fm_rows=fm, pdf=pdf)
     typer.echo("methods report -> " + ", ".join(str(p) for p in written))
     return 0
 

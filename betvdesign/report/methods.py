@@ -12,6 +12,7 @@ The same rows give the same bytes.
 
 from __future__ import annotations
 
+import itertools
 import json
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -58,7 +59,9 @@ class MethodsReport:
     lambda_svg: str
     failure_svg: str
     mispredictions: tuple[dict[str, str], ...]
-    trust_margins: str
+    trust_header: tuple[str, ...]
+    trust_rows: tuple[tuple[str, tuple[str, ...]], ...]
+    sample_summary: str
     not_converged: str
     rigid_summary: str
     command: str
@@ -90,10 +93,11 @@ def build(
     """The report model from work-precision rows, the failure map along ϖ
     (:func:`betvdesign.bench.failuremap.scan` rows) and the measured ladder data."""
     from betvdesign import __version__
-    from betvdesign.fidelity import RUNG_INFO, RUNGS
+    from betvdesign.fidelity import RUNG_INFO, RUNGS, lambda_trust_margin
     from betvdesign.fidelity_measured import MEASURED
 
     lam = MEASURED["lambda"]
+    val = lam["sample"]
     costs = MEASURED["costs_cpu_s"]
     rig = MEASURED["rigid"]
     fig = work_precision_figure(rows)
@@ -147,13 +151,26 @@ def build(
             f"periodic orbit) the λ rule names the wrong mode at {lam['mispredicted']} points "
             f"({100 * lam['rate']:.2f} %)."
         ),
+        sample_summary=(
+            f"On {val['points']} seeded random designs off the grid ({val['converged']} "
+            f"converged) it is wrong at {val['mispredicted']} ({100 * val['rate']:.2f} %), "
+            f"{sum(1 for m in val['mispredictions'] if abs(m['lam'] - 1) > 1)} of them with "
+            "|λ − 1| > 1, all at ϖ < 0.9: the fit fails at low frequency far from λ = 1."
+        ),
         lambda_bands=tuple(lam["bands"]),
         lambda_svg=_lambda_figure(lam["bands"]),
         failure_svg=plots.figure_svg(failure_map_figure(fm_rows), "fm"),
         mispredictions=mis,
-        trust_margins=", ".join(
-            f"β = {b}: {m:.3g}"
-            for b, m in sorted(lam["trust_margin_by_beta"].items(), key=lambda t: float(t[0]))
+        trust_header=tuple(f"β {a:g}–{b:g}" for a, b in itertools.pairwise(lam["beta_bins"])),
+        trust_rows=tuple(
+            (
+                f"ϖ {a:g}–{b:g}",
+                tuple(
+                    f"{lambda_trust_margin(0.5 * (a + b), 0.5 * (c + d)):.3g}"
+                    for c, d in itertools.pairwise(lam["beta_bins"])
+                ),
+            )
+            for a, b in itertools.pairwise(lam["varpi_bins"])
         ),
         not_converged="; ".join(f"{n} {k}" for k, n in sorted(nc.items())) or "none",
         rigid_summary=(
