@@ -238,6 +238,21 @@ def test_missing_solver_is_stated_not_invented(monkeypatch: pytest.MonkeyPatch) 
     report_analysis._vertical.cache_clear()  # drop the failures cached for ϖ
 
 
+def test_amplitude_without_calibration_says_why_no_voltage_curve(tmp_path: Path) -> None:
+    """u given directly: the speed-voltage figure is not drawn and says it needs u(V);
+    the other figures are drawn."""
+    src = (DEVICES / "pull_demo.yaml").read_text("utf-8")
+    src = re.sub(r"calibration:\n\s+law: linear\n\s+gain: [^\n]*\n", "amplitude: 0.09 um\n", src)
+    assert "amplitude: 0.09 um" in src
+    f = tmp_path / "amp.yaml"
+    f.write_text(src, "utf-8")
+    figs = build_report(prepare(f), options=SMALL).figures()
+    speed = [x for x in figs if x.title.startswith("Mean speed")]
+    assert len(speed) == 1 and speed[0].svg is None
+    assert "not a calibration u(V)" in (speed[0].unavailable or "")
+    assert sum(x.svg is not None for x in figs) == len(figs) - 1
+
+
 def test_lambda_targets_and_alpha_inversion() -> None:
     """The robustness sweep straddles λ = 1 and contains the device's λ; the α that
     is solved for gives the target λ back (independent λ formula)."""
