@@ -61,18 +61,19 @@ def work_precision_axes(ax: Axes, rows: Sequence[Row], design: str, metric: str)
     ax.set_ylabel("relative error [-]")
 
 
-def work_precision_figure(rows: Sequence[Row]) -> Figure:
-    """All designs (columns) × metrics (rows) on one figure, shared legend."""
+def work_precision_figure(rows: Sequence[Row], *, tall: bool = False) -> Figure:
+    """All designs × metrics on one figure, shared legend: designs as columns (wide, for
+    screens) or, with ``tall``, as rows (fits a portrait page)."""
     designs = list(dict.fromkeys(r.design for r in rows))
     metrics = [m for m in ("s_N", "delta_s") if any(r.metric == m for r in rows)]
+    nd, nm = len(designs), len(metrics)
     with figure_style():
-        fig, axes = new_figure(
-            2.6 * len(designs) + 0.6,
-            2.5 * len(metrics) + 0.5,
-            nrows=len(metrics),
-            ncols=len(designs),
-        )
-        axes = np.asarray(axes).reshape(len(metrics), len(designs))
+        if tall:
+            fig, axes = new_figure(6.4, 1.7 * nd + 0.6, nrows=nd, ncols=nm)
+            axes = np.asarray(axes).reshape(nd, nm).T
+        else:
+            fig, axes = new_figure(2.6 * nd + 0.6, 2.5 * nm + 0.5, nrows=nm, ncols=nd)
+            axes = np.asarray(axes).reshape(nm, nd)
         for i, metric in enumerate(metrics):
             for j, design in enumerate(designs):
                 work_precision_axes(axes[i][j], rows, design, metric)
@@ -81,7 +82,8 @@ def work_precision_figure(rows: Sequence[Row]) -> Figure:
             for h, lab in zip(*ax.get_legend_handles_labels(), strict=True):
                 handles.setdefault(lab, h)
                 labels[lab] = lab
-        fig.legend(list(handles.values()), list(labels), loc="outside lower center", ncols=7)
+        ncols = 4 if tall else 7
+        fig.legend(list(handles.values()), list(labels), loc="outside lower center", ncols=ncols)
     return fig
 
 

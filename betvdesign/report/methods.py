@@ -100,7 +100,7 @@ def build(
     val = lam["sample"]
     costs = MEASURED["costs_cpu_s"]
     rig = MEASURED["rigid"]
-    fig = work_precision_figure(rows)
+    fig = work_precision_figure(rows, tall=True)
     ratios = tuple(
         {
             "design": s["design"],
