@@ -148,6 +148,14 @@ def settling(key: str, sd: SetDerivation, an: SetAnalysis) -> FigureBlock:
     )
     if per is not None:
         caption += f" Periodic Δs = {float(per.delta_s):.4g} per cycle ({per.mode} mode)."
+        if tr is not None and len(tr.delta_s) and float(per.delta_s) != 0.0:
+            k = int(per.period_cycles or 1)
+            last = float(np.mean(tr.delta_s[-k:]))
+            gap = abs(last / float(per.delta_s) - 1.0)
+            caption += (
+                f" After {len(tr.delta_s)} cycles from rest the mean Δsₘ of the last {k} "
+                f"cycle(s) differs from it by a relative {gap:.2g}."
+            )
 
     def draw(axes: Any) -> None:
         mean = tr.delta_s * p.varpi / (2 * math.pi)
