@@ -152,3 +152,13 @@ def test_plots_and_report_never_import_pyplot() -> None:
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "False"
+
+
+def test_robustness_rings_fit_misses() -> None:
+    """Points whose Δs sign disagrees with their side of λ = 1 are ringed, others not."""
+    lam = [0.5, 0.9, 1.1, 2.0, 3.0]
+    ds = [1.0, -0.5, 0.7, -1.0, -2.0]  # misses: λ = 0.9 (pull below 1), λ = 1.1 (push above)
+    ax = plots.robustness_vs_lambda(lam, ds)
+    rings = [ln for ln in ax.get_lines() if ln.get_label().startswith("fit misses")]
+    assert len(rings) == 1
+    np.testing.assert_allclose(sorted(rings[0].get_xdata()), [0.9, 1.1])

@@ -51,7 +51,7 @@ def robustness_vs_lambda(
     """Periodic slider increment Δs per cycle [-] against the λ fit [-].
 
     The fit's mode boundary λ = 1 is drawn; Δs > 0 is push, Δs < 0 pull, so a
-    point whose sign disagrees with its side of λ = 1 is a fit miss. None
+    point whose sign disagrees with its side of λ = 1 is a fit miss (ringed). None
     entries (no periodic orbit found) are drawn as crosses on Δs = 0.
     logx: logarithmic λ axis (for sweeps spanning decades).
     """
@@ -71,6 +71,18 @@ def robustness_vs_lambda(
         ms=3,
         label="periodic Δs (exact model)",
     )
+    miss = ok & (((x < 1.0) & (y < 0.0)) | ((x > 1.0) & (y > 0.0)))
+    if miss.any():
+        ax.plot(
+            x[miss],
+            y[miss],
+            ls="none",
+            marker="o",
+            ms=8,
+            mfc="none",
+            color=DEVICE_COLOR,
+            label="fit misses (sign of Δs ≠ side of λ = 1)",
+        )
     if (~ok).any():
         ax.plot(
             x[~ok],
