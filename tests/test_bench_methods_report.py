@@ -2,7 +2,8 @@
 
 Sources: the rendered HTML parsed back (sections, failure-map rows = the catalogue,
 inline SVG figures, no external references), byte-reproducibility of two renders of
-the same rows, the PDF read back with pypdf (pages, text), CLI runs (CliRunner).
+the same rows, the PDF read back with pypdf (pages, text), CLI runs (CliRunner), and
+a real browser (chromium, headless) loading the HTML from file://.
 """
 
 from __future__ import annotations
@@ -12,6 +13,7 @@ import re
 
 import pytest
 from pypdf import PdfReader
+from test_browser import browser  # noqa: F401 - the chromium fixture, shared
 from typer.testing import CliRunner
 
 from betvdesign.bench.chart import write_outputs
@@ -90,3 +92,28 @@ def test_cli_bad_rows_file(tmp_path):
     assert res.exit_code == 2
     assert "not a work-precision JSON" in res.stderr
     assert not (tmp_path / "o" / "methods.html").exists()
+
+
+@pytest.mark.browser
+def test_methods_report_in_chromium(browser, html, tmp_path):  # noqa: F811
+    """Real browser (chromium via playwright, from file://): no console errors, no
+    network requests, all three figures laid out with a real size."""
+    path = tmp_path / "methods.html"
+    path.write_text(html)
+    page = browser.new_page(viewport={"width": 1100, "height": 900})
+    errors: list[str] = []
+    foreign: list[str] = []
+    page.on("console", lambda m: errors.append(m.text) if m.type == "error" else None)
+    page.on("pageerror", lambda e: errors.append(str(e)))
+    page.on(
+        "request", lambda r: None if re.match(r"(file|data):", r.url) else foreign.append(r.url)
+    )
+    page.goto(path.resolve().as_uri(), wait_until="load")
+    figures = page.locator("figure.fig")
+    assert figures.count() == 3
+    for i in range(3):
+        box = figures.nth(i).locator("svg").first.bounding_box()
+        assert box is not None and box["width"] > 200 and box["height"] > 120, (i, box)
+    page.screenshot(path=str(tmp_path / "methods.png"), full_page=True)
+    page.close()
+    assert errors == [] and foreign == []
