@@ -47,7 +47,7 @@ def tolerance_cmd(
         str, typer.Option(help="periodic (exact periodic orbit) or lambda (closed-form fit).")
     ] = "periodic",
     sets: Annotated[
-        list[str] | None, typer.Option("--set", help="Actuator set(s) to study [all].")
+        list[str] | None, typer.Option("--set", help="Actuator set(s) to study (default: all).")
     ] = None,
     out: OutOpt = None,
     overwrite: OverwriteOpt = False,
@@ -120,7 +120,9 @@ def calibrate_cmd(
     fit_alpha: Annotated[
         bool, typer.Option("--fit-alpha", help="Also fit α = k_v/k_h (re-solves per step).")
     ] = False,
-    set_name: Annotated[str | None, typer.Option("--set", help="Actuator set [first].")] = None,
+    set_name: Annotated[
+        str | None, typer.Option("--set", help="Actuator set (default: the first).")
+    ] = None,
     out: Annotated[
         Path | None, typer.Option("--out", "-o", help="Write the device-file snippet (YAML).")
     ] = None,

@@ -44,7 +44,7 @@ ExecutorOpt = Annotated[
     str, typer.Option("--executor", "-x", help="serial, process (all cores) or dask.")
 ]
 WorkersOpt = Annotated[
-    int | None, typer.Option("--workers", "-j", help="Worker processes [default: all cores].")
+    int | None, typer.Option("--workers", "-j", help="Worker processes (default: all cores).")
 ]
 ChunkOpt = Annotated[
     int | None, typer.Option("--chunksize", help="Points per task sent to a worker.")
@@ -60,7 +60,7 @@ MaxCyclesOpt = Annotated[
     int | None,
     typer.Option(
         "--max-cycles",
-        help="Cycle budget per periodic solve [default: the solver's, 100000]; points "
+        help="Cycle budget per periodic solve (default: the solver's, 100000); points "
         "that do not settle within it are listed as not converged.",
     ),
 ]
