@@ -1,18 +1,24 @@
 """The whole design check of a device: rules, plus the exact solver where it is needed.
 
 "Model no more than a scene needs": the closed-form rules (:mod:`betvdesign.rules`)
-decide unless λ is within the margin of 1 or the parameters lie outside the λ fit
-range; only then (or when asked) is the exact periodic orbit computed
-(``betvdesign.dynamics.periodic_orbit``, imported lazily). :class:`CheckResult`
-is what ``betv check`` prints, and ``CheckResult.as_dict()`` is its JSON contract.
+decide unless λ is within the margin of 1, the parameters lie outside the λ fit
+range, or the fidelity ladder (:func:`betvdesign.fidelity.choose_rung`, question
+"mode") does not trust λ there (outside the window, or within the measured trust
+margin at (ϖ, β)); only then (or when asked) is the exact periodic orbit computed
+(``betvdesign.dynamics.periodic_orbit``, imported lazily). ``fidelity=`` (``betv
+check --fidelity RUNG``) forces the rung that decides the mode. Every set records
+which rung answered and why (:class:`ModeFidelity`). :class:`CheckResult` is what
+``betv check`` prints, and ``CheckResult.as_dict()`` is its JSON contract.
 """
 
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any, Literal
 
+from betvdesign import fidelity as fid
 from betvdesign.errors import UsageError
 from betvdesign.nondim import DeviceDerivation, SetDerivation
 from betvdesign.rules import (
@@ -30,6 +36,31 @@ from betvdesign.rules import (
 SimulateWhen = Literal["auto", "always", "never"]
 
 
+@dataclass(frozen=True)
+class ModeFidelity:
+    """Which rung of the fidelity ladder answered "which mode?" for a set, and why.
+
+    rung: the rung whose answer was used; chosen: the rung the ladder (or
+    ``--fidelity``/``--simulate``) chose; they differ when the chosen solver could not
+    run or failed and λ's guess stands in (the reason then says so).
+    """
+
+    rung: fid.Rung
+    reason: str
+    chosen: fid.Rung
+    forced: bool = False
+
+    def as_dict(self) -> dict[str, Any]:
+        return {
+            "question": "mode",
+            "rung": self.rung,
+            "reason": self.reason,
+            "chosen": self.chosen,
+            "forced": self.forced,
+            "model": fid.RUNG_INFO[self.rung].model,
+        }
+
+
 @dataclass
 class SetCheck:
     """Check outcome of one actuator set."""
@@ -39,18 +70,26 @@ class SetCheck:
     periodic: Any | None = None
     simulated_because: str = ""
     vertical: Any | None = None
+    fidelity: ModeFidelity | None = None
+    mode_answer: fid.Answer | None = None
 
     @property
     def mode_predicted(self) -> str:
-        p = self.periodic
+        p, a = self.periodic, self.mode_answer
         if p is not None and getattr(p, "success", False):
             return "push" if float(p.delta_s) > 0 else "pull"
+        if a is not None and a.success and a.mode in ("push", "pull"):
+            return str(a.mode)
         return self.derivation.mode_predicted
 
     @property
     def mode_source(self) -> str:
-        p = self.periodic
-        return "simulation" if p is not None and getattr(p, "success", False) else "lambda"
+        """ "simulation" when a solver rung decided the mode, else "lambda"."""
+        rung = self.fidelity.rung if self.fidelity is not None else None
+        if rung is None:  # built by hand: infer from the results
+            p = self.periodic
+            return "simulation" if p is not None and getattr(p, "success", False) else "lambda"
+        return "lambda" if rung == "lambda" else "simulation"
 
 
 @dataclass
@@ -79,6 +118,7 @@ class CheckResult:
             "params": first["params"],
             "derived": first["derived"],
             "mode_predicted": first["mode_predicted"],
+            "fidelity": first["fidelity"],
             "rules": [r.as_dict() for r in self.rules],
             "verdict": self.verdict,
             "notes": list(self.notes),
@@ -117,59 +157,101 @@ def check_derivation(
     simulate: SimulateWhen = "auto",
     lambda_margin: float = DEFAULT_LAMBDA_MARGIN,
     solver: Any | None = None,
+    fidelity: fid.Rung | None = None,
+    vertical: Callable[[float], Any] | None = None,
+    simulate_reason: str = "requested (--simulate)",
 ) -> CheckResult:
     """Evaluate every rule of a device ("Model no more than a scene needs").
 
     simulate: "never" closed form only; "always" run the exact periodic orbit for
-    every set; "auto" (default) run it only where the closed form cannot decide
-    (λ within the margin of 1, or parameters outside the λ fit range) and the solver
-    exists. ``solver`` overrides the lazily imported ``periodic_orbit``.
-    Raises :class:`~betvdesign.errors.UsageError` for "always" without a solver.
+    every set (``simulate_reason`` says why); "auto" (default) run it only where the
+    closed form cannot decide (:func:`betvdesign.rules.undecided_reasons`: λ within
+    the margin of 1, parameters outside the λ fit range, or a rung other than λ chosen
+    by :func:`betvdesign.fidelity.choose_rung`) and the solver exists.
+    fidelity: force the rung that decides the mode ("lambda", "rigid", "full",
+    "periodic"; ``betv check --fidelity``). ``solver`` overrides the lazily imported
+    ``periodic_orbit``; ``vertical`` the lazily imported ``vertical_motion`` (ϖ ->
+    result, or None to leave it out). Raises :class:`~betvdesign.errors.UsageError`
+    for an unknown rung, a rung that cannot tell the mode, a rung contradicting
+    ``simulate``, or a periodic orbit required without a solver.
     """
-    if solver is None and simulate != "never":
+    if fidelity is not None:
+        fid.choose_rung(derivation.sets[0].params, "mode", force=fidelity)  # validates
+        clash = {"always": ("periodic", "--simulate"), "never": ("lambda", "--closed-form-only")}
+        if simulate in clash and fidelity != clash[simulate][0]:
+            raise UsageError(f"--fidelity {fidelity} contradicts {clash[simulate][1]}")
+    needs_orbit = simulate == "always" or fidelity == "periodic"
+    if solver is None and (needs_orbit or (simulate == "auto" and fidelity is None)):
         solver = load_solver()
-    if simulate == "always" and solver is None:
+    if needs_orbit and solver is None:
         raise UsageError(
             "--simulate needs the exact solver (betvdesign.dynamics.periodic_orbit), which is "
             "not available in this installation yet; run `betv check` without --simulate"
         )
     notes: list[str] = []
     periodic: dict[str, Any] = {}
+    answers: dict[str, fid.Answer] = {}
     why: dict[str, str] = {}
+    used: dict[str, ModeFidelity] = {}
     solved: dict[Any, Any] = {}
     for s in derivation.sets:
         reasons = undecided_reasons(s, lambda_margin=lambda_margin)
-        if simulate == "always":
-            why[s.name] = "requested (--simulate)"
-        elif simulate == "auto" and reasons:
-            if solver is None:
-                notes.append(
-                    f"set {s.name}: the closed form cannot decide ({'; '.join(reasons)}); "
-                    "the exact solver is not available yet, so the mode is λ's guess"
-                )
-                continue
-            why[s.name] = "the closed form cannot decide: " + "; ".join(reasons)
+        cannot = f"the closed form cannot decide ({'; '.join(reasons)})"
+        if fidelity is not None:
+            choice = fid.choose_rung(s.params, "mode", force=fidelity)
+            if fidelity != "periodic" and reasons:
+                notes.append(f"set {s.name}: --fidelity {fidelity} forced although {cannot}")
+        elif simulate == "always":
+            choice = fid.Choice("periodic", "mode", simulate_reason, forced=True)
         elif reasons:
-            notes.append(
-                f"set {s.name}: the closed form cannot decide ({'; '.join(reasons)}); "
-                "run with --simulate"
-            )
-            continue
+            because = "the closed form cannot decide: " + "; ".join(reasons)
+            choice = fid.Choice("periodic", "mode", because)
         else:
+            choice = fid.choose_rung(s.params, "mode")  # the λ rung, with its measured reason
+        used[s.name] = ModeFidelity(choice.rung, choice.reason, choice.rung, choice.forced)
+        if choice.rung == "lambda":
             continue
+        if choice.rung != "periodic":  # rigid or full, forced
+            key = (s.params, choice.rung)
+            if key not in solved:
+                solved[key] = fid.evaluate(s.params, choice)
+            answers[s.name] = ans = solved[key]
+            if not (ans.success and ans.mode in ("push", "pull")):
+                used[s.name] = _fallback(choice, f"the {choice.rung} rung gave no mode")
+            continue
+        if simulate == "never":
+            notes.append(f"set {s.name}: {cannot}; run with --simulate")
+            used[s.name] = _fallback(choice, "--closed-form-only")
+            continue
+        if solver is None:
+            notes.append(
+                f"set {s.name}: {cannot}; the exact solver is not available yet, so the "
+                "mode is λ's guess"
+            )
+            used[s.name] = _fallback(choice, "the exact solver is not available")
+            continue
+        why[s.name] = choice.reason
         if s.params in solved:  # mirrored sets share parameters: solve once
             periodic[s.name] = solved[s.params]
             notes.append(f"set {s.name}: same parameters as an already solved set, reused")
-            continue
-        periodic[s.name] = solved[s.params] = _run_solver(solver, s)
-        notes.append(f"set {s.name}: ran the exact solver ({why[s.name]})")
-    vertical: dict[str, Any] = {}
-    vm = load_vertical() if simulate != "never" else None
+        else:
+            periodic[s.name] = solved[s.params] = _run_solver(solver, s)
+            notes.append(f"set {s.name}: ran the exact solver ({why[s.name]})")
+        if not getattr(periodic[s.name], "success", False):
+            used[s.name] = _fallback(choice, "the periodic orbit was not found")
+    vertical_of: dict[str, Any] = {}
+    vm = vertical if vertical is not None else (load_vertical() if simulate != "never" else None)
     if vm is not None:  # cheap (closed-form vertical schedule): quoted by the window rule
         for s in derivation.sets:
-            vertical[s.name] = _vertical(vm, s.params.varpi)
+            v = _vertical(vm, s.params.varpi)
+            if v is not None:
+                vertical_of[s.name] = v
     rules = evaluate_device(
-        derivation, lambda_margin=lambda_margin, periodic=periodic, vertical=vertical
+        derivation,
+        lambda_margin=lambda_margin,
+        periodic=periodic,
+        vertical=vertical_of,
+        mode_answers=answers,
     )
     sets = [
         SetCheck(
@@ -177,11 +259,23 @@ def check_derivation(
             [r for r in rules if r.set_name == s.name],
             periodic.get(s.name),
             why.get(s.name, ""),
-            vertical.get(s.name),
+            vertical_of.get(s.name),
+            used[s.name],
+            answers.get(s.name),
         )
         for s in derivation.sets
     ]
     return CheckResult(derivation, sets, rules, notes)
+
+
+def _fallback(choice: fid.Choice, what: str) -> ModeFidelity:
+    """λ stands in for the chosen rung, which could not answer (``what``)."""
+    return ModeFidelity(
+        "lambda",
+        f"{what}: λ's guess stands in for the {choice.rung} rung ({choice.reason})",
+        choice.rung,
+        choice.forced,
+    )
 
 
 @dataclass
@@ -219,6 +313,7 @@ def _set_dict(sc: SetCheck) -> dict[str, Any]:
         "derived": derived,
         "mode_predicted": sc.mode_predicted,
         "mode_source": sc.mode_source,
+        "fidelity": None if sc.fidelity is None else sc.fidelity.as_dict(),
         "simulated": p is not None,
         "simulated_because": sc.simulated_because,
         "simulation": None if p is None else simulation_summary(p),

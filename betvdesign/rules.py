@@ -13,6 +13,11 @@ Defaults (module constants, all stated in the rule messages):
 - λ margin: |λ − 1| ≥ 0.2. λ ∝ 1/ϖ² and its leading term ∝ 1/(αϖ²), so ±5 % on
   the resonance frequency or ±10 % on the tangential compliance (typical
   fabrication spread) each move λ by about 10 %; 0.2 covers both together.
+  Where the mode rests on λ alone, the margin is at least the *measured* trust
+  margin of the fidelity ladder at the design's (ϖ, β)
+  (:func:`betvdesign.fidelity.lambda_trust_margin`, measured by
+  ``benchmarks/work_precision.py --ladder``): below ϖ ≈ 0.9 the λ fit was seen to
+  mispredict even at λ ≈ 4–18, so 0.2 is not enough there.
 - tangential resonance: |a·ϖ² − 1| ≥ 0.1 for a = α (free flight) and
   a = α(1 + 1/β) (stick).
 - λ fit range: α 0.1–4, β 0.1–1.5, κ 0.1–0.4; outside it λ is an extrapolation.
@@ -25,6 +30,7 @@ import math
 from dataclasses import asdict, dataclass
 from typing import Any, Literal, Protocol
 
+from betvdesign import fidelity
 from betvdesign.nondim import DeviceDerivation, SetDerivation
 
 Severity = Literal["error", "warning", "info"]
@@ -49,6 +55,10 @@ SRC_TANG = "MODEL.md, What the model shows: tangential vibration undamped off co
 SRC_SPEED = "MODEL.md, Displacement per cycle: speed = Δs·u·cosθ·f_act"
 SRC_PUBLISHED = "device file: published_fit"
 SRC_SOLVER = "betvdesign.dynamics.periodic_orbit (exact event-driven solver)"
+SRC_TRUST = (
+    "λ trust margin per (ϖ, β) measured against the exact periodic orbit "
+    "(benchmarks/work_precision.py --ladder -> betvdesign/fidelity_measured.py)"
+)
 
 
 class PeriodicLike(Protocol):
@@ -94,7 +104,13 @@ def verdict(results: list[RuleResult]) -> Literal["pass", "fail"]:
 def undecided_reasons(
     s: SetDerivation, *, lambda_margin: float = DEFAULT_LAMBDA_MARGIN
 ) -> list[str]:
-    """Why the closed-form λ criterion cannot decide the mode ([] when it can)."""
+    """Why the closed-form λ criterion cannot decide the mode ([] when it can).
+
+    λ decides only when |λ − 1| ≥ ``lambda_margin`` (fabrication spread), every
+    parameter lies in the fit range, and the fidelity ladder
+    (:func:`betvdesign.fidelity.choose_rung`, question "mode") accepts the λ rung:
+    inside the design window and beyond the measured trust margin at (ϖ, β).
+    """
     reasons = []
     if abs(s.lam - 1.0) < lambda_margin:
         reasons.append(f"λ = {s.lam:.3g} lies within ±{lambda_margin:g} of 1")
@@ -102,7 +118,20 @@ def undecided_reasons(
         v = getattr(s.params, name)
         if not _in_range(v, lo, hi):
             reasons.append(f"{name} = {v:.3g} outside the λ fit range {lo:g}–{hi:g}")
+    if not reasons:
+        choice = fidelity.choose_rung(s.params, "mode")
+        if choice.rung != "lambda":
+            reasons.append(choice.reason)
     return reasons
+
+
+def required_lambda_margin(
+    s: SetDerivation, *, lambda_margin: float = DEFAULT_LAMBDA_MARGIN
+) -> float:
+    """|λ − 1| the mode needs when it rests on λ alone [-]: the larger of
+    ``lambda_margin`` and the measured trust margin at (ϖ, β) (where one was measured)."""
+    trust = fidelity.lambda_trust_margin(s.params.varpi, s.params.beta)
+    return max(lambda_margin, trust) if math.isfinite(trust) else lambda_margin
 
 
 def _in_range(v: float, lo: float, hi: float) -> bool:
@@ -118,22 +147,35 @@ def evaluate(
     lambda_margin: float = DEFAULT_LAMBDA_MARGIN,
     periodic: PeriodicLike | None = None,
     vertical: Any | None = None,
+    mode_answer: fidelity.Answer | None = None,
 ) -> list[RuleResult]:
     """Every rule for one actuator set (see the module docstring for thresholds).
 
     periodic: exact periodic orbit (decides the mode, gives the speed); vertical: the
-    exact vertical motion (``dynamics.vertical_motion``), quoted by the window rule.
+    exact vertical motion (``dynamics.vertical_motion``), quoted by the window rule;
+    mode_answer: the mode from another rung of the fidelity ladder ("rigid" or "full",
+    forced with ``--fidelity``), used when there is no periodic orbit.
     """
     s = derivation_set
+    decided = _decided_by(periodic, mode_answer)
     out = [
         _frequency_window(s, vertical),
-        *_mode_rules(s, periodic, lambda_margin),
+        *_mode_rules(s, periodic, lambda_margin, mode_answer),
         _tangential_resonance(s),
-        *_fit_range(s, simulated=periodic is not None and bool(getattr(periodic, "success", 0))),
+        *_fit_range(s, simulated=decided is not None),
         *_published(s),
         *_speed(s, periodic),
     ]
     return [_with_set(r, s.name) for r in out]
+
+
+def _decided_by(periodic: PeriodicLike | None, answer: Any | None) -> str | None:
+    """The solver rung that decided the mode ("periodic", "rigid", "full") or None (λ)."""
+    if periodic is not None and getattr(periodic, "success", False):
+        return "periodic"
+    if answer is not None and answer.success and answer.mode in ("push", "pull"):
+        return str(answer.choice.rung)
+    return None
 
 
 def _with_set(r: RuleResult, name: str) -> RuleResult:
@@ -171,11 +213,18 @@ def _frequency_window(s: SetDerivation, vertical: Any | None = None) -> RuleResu
     return RuleResult("frequency-window", "error", lo <= v < hi, v, thr, msg, SRC_WINDOW)
 
 
-def _mode_rules(s: SetDerivation, periodic: PeriodicLike | None, margin: float) -> list[RuleResult]:
+def _mode_rules(
+    s: SetDerivation,
+    periodic: PeriodicLike | None,
+    margin: float,
+    answer: fidelity.Answer | None = None,
+) -> list[RuleResult]:
     lam = s.lam
     lam_mode = "push" if lam < 1.0 else "pull"
     out: list[RuleResult] = []
-    sim_ok = periodic is not None and bool(getattr(periodic, "success", False))
+    decided = _decided_by(periodic, answer)
+    sim_ok = decided == "periodic"
+    want = f"intended {s.intended_mode}: Δs {'> 0' if s.intended_mode == 'push' else '< 0'}"
     if sim_ok:
         ds = float(periodic.delta_s)
         mode = "push" if ds > 0 else "pull"
@@ -185,7 +234,7 @@ def _mode_rules(s: SetDerivation, periodic: PeriodicLike | None, margin: float) 
                 "error",
                 mode == s.intended_mode,
                 ds,
-                f"intended {s.intended_mode}: Δs {'> 0' if s.intended_mode == 'push' else '< 0'}",
+                want,
                 f"exact periodic orbit: Δs = {ds:.4g} per cycle -> {mode} mode "
                 f"(intended {s.intended_mode})",
                 SRC_SOLVER,
@@ -200,6 +249,22 @@ def _mode_rules(s: SetDerivation, periodic: PeriodicLike | None, margin: float) 
                 "λ fit and exact orbit agree",
                 f"λ = {lam:.3g} predicts {lam_mode}, the exact orbit gives {mode}",
                 SRC_LAMBDA,
+            )
+        )
+    elif decided is not None:  # another rung, forced with --fidelity
+        info = fidelity.RUNG_INFO[answer.choice.rung]
+        value = answer.value if isinstance(answer.value, int | float) else None
+        shown = f"Δs = {value:.4g} -> " if value is not None else ""
+        out.append(
+            RuleResult(
+                "mode",
+                "error",
+                answer.mode == s.intended_mode,
+                value,
+                want,
+                f"{info.model}: {shown}{answer.mode} mode (intended {s.intended_mode}); "
+                f"{info.exact}",
+                info.source,
             )
         )
     else:
@@ -232,36 +297,59 @@ def _mode_rules(s: SetDerivation, periodic: PeriodicLike | None, margin: float) 
                 SRC_SOLVER,
             )
         )
+    failed: tuple[str, str, str] | None = None  # (threshold, message, source)
     if periodic is not None and not sim_ok:
-        out.append(
-            RuleResult(
-                "simulation",
-                "warning",
-                False,
-                None,
-                "exact periodic orbit found",
-                f"exact solver did not find the periodic orbit: {getattr(periodic, 'message', '')}",
-                SRC_SOLVER,
-            )
+        msg = getattr(periodic, "message", "")
+        failed = (
+            "exact periodic orbit found",
+            f"exact solver did not find the periodic orbit: {msg}",
+            SRC_SOLVER,
         )
-    d = abs(lam - 1.0)
-    out.append(
-        RuleResult(
-            "lambda-margin",
-            "warning",
-            d >= margin,
-            d,
-            f"|λ − 1| >= {margin:g}",
-            f"|λ − 1| = {d:.3g}: "
-            + (
-                "enough margin to the push/pull boundary"
-                if d >= margin
-                else "near the push/pull boundary: fabrication spread can flip the mode"
-            ),
-            SRC_LAMBDA,
+    elif answer is not None and decided is None:
+        info = fidelity.RUNG_INFO[answer.choice.rung]
+        failed = (
+            f"{answer.choice.rung} rung gives a mode",
+            f"{info.model} gave no mode ({answer.status}): {answer.message}",
+            info.source,
         )
-    )
+    if failed is not None:
+        out.append(RuleResult("simulation", "warning", False, None, *failed))
+    out.append(_lambda_margin(s, margin, decided))
     return out
+
+
+def _lambda_margin(s: SetDerivation, margin: float, decided: str | None) -> RuleResult:
+    """|λ − 1| against the fabrication margin and, where the mode rests on λ alone
+    (``decided`` None), the measured trust margin of the λ rung at (ϖ, β)."""
+    p = s.params
+    d = abs(s.lam - 1.0)
+    trust = fidelity.lambda_trust_margin(p.varpi, p.beta)
+    need = margin if decided else required_lambda_margin(s, lambda_margin=margin)
+    where = f"near ϖ = {p.varpi:.3g}, β = {p.beta:.3g}"
+    if d < margin:
+        msg = "near the push/pull boundary: fabrication spread can flip the mode"
+    elif d < need:
+        msg = (
+            f"the λ fit was measured to mispredict the mode this far from λ = 1 {where} "
+            f"(trust margin {trust:.3g}): λ alone cannot decide; run with --simulate"
+        )
+    elif decided and d < trust:
+        msg = (
+            f"enough margin to λ = 1 for fabrication spread; λ itself is not trusted {where} "
+            f"(measured trust margin {trust:.3g}), so the {decided} rung decided the mode"
+        )
+    else:
+        msg = "enough margin to the push/pull boundary"
+    measured = need > margin
+    return RuleResult(
+        "lambda-margin",
+        "warning",
+        d >= need,
+        d,
+        f"|λ − 1| >= {need:.3g}" + (f" (measured trust margin {where})" if measured else ""),
+        f"|λ − 1| = {d:.3g}: {msg}",
+        f"{SRC_LAMBDA}; {SRC_TRUST}",
+    )
 
 
 def _tangential_resonance(s: SetDerivation) -> RuleResult:
@@ -414,23 +502,31 @@ def evaluate_device(
     lambda_margin: float = DEFAULT_LAMBDA_MARGIN,
     periodic: dict[str, PeriodicLike] | None = None,
     vertical: dict[str, Any] | None = None,
+    mode_answers: dict[str, fidelity.Answer] | None = None,
 ) -> list[RuleResult]:
-    """Rules of every set (``periodic``, ``vertical`` keyed by set name) plus device rules."""
+    """Rules of every set (``periodic``, ``vertical``, ``mode_answers`` keyed by set name)
+    plus device rules."""
     periodic = periodic or {}
     vertical = vertical or {}
+    mode_answers = mode_answers or {}
     out: list[RuleResult] = []
     predicted: dict[str, int] = {}
     for s in derivation.sets:
-        res = evaluate(
-            s,
-            lambda_margin=lambda_margin,
-            periodic=periodic.get(s.name),
-            vertical=vertical.get(s.name),
+        per, ans = periodic.get(s.name), mode_answers.get(s.name)
+        out.extend(
+            evaluate(
+                s,
+                lambda_margin=lambda_margin,
+                periodic=per,
+                vertical=vertical.get(s.name),
+                mode_answer=ans,
+            )
         )
-        out.extend(res)
-        mode_rule = next(r for r in res if r.id == "mode")
-        if mode_rule.source == SRC_SOLVER:
-            mode = "push" if (mode_rule.value or 0.0) > 0 else "pull"
+        decided = _decided_by(per, ans)
+        if decided == "periodic":
+            mode = "push" if float(per.delta_s) > 0 else "pull"
+        elif decided is not None:
+            mode = str(ans.mode)
         else:
             mode = s.mode_predicted
         predicted[s.name] = travel_direction(s, mode)

@@ -62,7 +62,11 @@ def test_shin2004_json_contract(no_solver):
 
 
 @pytest.mark.parametrize("name", OWN)
-def test_own_designs_pass(name, no_solver):
+def test_own_designs_pass(name):
+    """Every rule passes; λ decides push_demo and bidir_demo (ϖ ≥ 0.9, beyond the measured
+    trust margin), while pull_demo (ϖ = 0.8, β = 1.2, λ = 5.2) lies within the measured
+    margin there (λ mispredicted at ϖ = 0.78, β = 1.2, λ = 4.4), so the fidelity ladder
+    sends it to the periodic orbit."""
     r = run("check", str(DEVICES / f"{name}.yaml"), "--json")
     assert r.exit_code == 0, r.stdout
     d = json.loads(r.stdout)
@@ -71,6 +75,10 @@ def test_own_designs_pass(name, no_solver):
     for s in d["sets"]:
         assert s["mode_predicted"] == s["intended_mode"]
         assert abs(s["params"]["lambda"] - 1) >= 0.5  # "clear" designs
+        rung = "periodic" if name == "pull_demo" else "lambda"
+        assert s["fidelity"]["rung"] == s["fidelity"]["chosen"] == rung
+        assert "measured" in s["fidelity"]["reason"]
+    assert d["fidelity"] == d["sets"][0]["fidelity"]
 
 
 def test_several_files_give_a_list_and_worst_exit(no_solver):

@@ -14,6 +14,7 @@ from hypothesis import strategies as st
 from betvdesign import checker
 from betvdesign.checker import check_derivation
 from betvdesign.errors import UsageError
+from betvdesign.fidelity import lambda_trust_margin
 from betvdesign.loader import load_device
 from betvdesign.nondim import derive
 from betvdesign.params import ModelParams
@@ -212,7 +213,8 @@ def test_solver_exception_becomes_failed_simulation():
 )
 def test_rule_invariants(varpi, alpha, beta, kappa, intended):
     """Invariants: window ⇔ 0.5 ≤ ϖ < 2; mode ⇔ (λ < 1) matches intent; verdict fails
-    exactly when one of those two error rules fails; every value is JSON-safe."""
+    exactly when one of those two error rules fails; λ decides only where the measured
+    trust margin allows; every value is JSON-safe."""
     s = _set(varpi, alpha, beta, kappa, intended=intended)
     res = evaluate(s)
     window = _rule(res, "frequency-window").passed
@@ -220,8 +222,11 @@ def test_rule_invariants(varpi, alpha, beta, kappa, intended):
     assert window == (0.5 <= varpi < 2.0)
     assert mode == ((s.lam < 1.0) == (intended == "push"))
     assert (verdict(res) == "pass") == (window and mode)
+    # λ decides only beyond the larger of the fabrication margin and the measured trust
+    # margin of the fidelity ladder at (ϖ, β), inside the window and the fit range
     assert (undecided_reasons(s) == []) == (
-        abs(s.lam - 1) >= DEFAULT_LAMBDA_MARGIN
+        abs(s.lam - 1) >= max(DEFAULT_LAMBDA_MARGIN, lambda_trust_margin(varpi, beta))
+        and window
         and all(_rule(res, f"fit-range.{n}").passed for n in ("alpha", "beta", "kappa"))
     )
     json.dumps([r.as_dict() for r in res], allow_nan=False)

@@ -18,6 +18,7 @@ from rich.console import Console
 from rich.markup import escape as esc
 from rich.table import Table
 
+from betvdesign import fidelity as fid
 from betvdesign.checker import CheckResult, check_derivation, simulation_summary
 from betvdesign.cli import app
 from betvdesign.cli.common import EXIT_BAD_INPUT, EXIT_OK, EXIT_RULE_FAILED, user_errors
@@ -56,12 +57,22 @@ def check_cmd(
     show_derivation: bool = typer.Option(
         False, "--derivation", help="Also print every input, formula and intermediate value."
     ),
+    fidelity: str | None = typer.Option(
+        None,
+        "--fidelity",
+        metavar="RUNG",
+        help="Force the rung that decides the mode: lambda, rigid, full or periodic "
+        "(default: the cheapest the fidelity ladder trusts; see `betv ladder`).",
+    ),
 ) -> None:
     """Check device files: design window, push/pull mode, margin, resonance, fit range, speed.
 
-    The exact solver runs by itself only where λ cannot decide (near 1, or outside its fit).
+    The exact solver runs by itself only where λ cannot decide (near 1, outside its fit,
+    or within the measured trust margin of the fidelity ladder); each set states which
+    rung decided its mode and why.
 
-    --simulate runs it for every set. Exit 0 pass, 1 an error rule fails, 2 bad input/usage.
+    --simulate runs it for every set; --fidelity RUNG forces a rung.
+    Exit 0 pass, 1 an error rule fails, 2 bad input/usage.
     """
     if simulate and closed_form_only:
         print("error: --simulate and --closed-form-only exclude each other", file=sys.stderr)
@@ -78,7 +89,12 @@ def check_cmd(
             raise SpecError(issues)
         results = []
         for f, d in derivations:
-            res = check_derivation(d, simulate=mode, lambda_margin=lambda_margin)
+            res = check_derivation(
+                d,
+                simulate=mode,
+                lambda_margin=lambda_margin,
+                fidelity=fidelity,  # type: ignore[arg-type]  # validated: UsageError
+            )
             res.source_file = str(f)
             results.append(res)
     if as_json:
@@ -117,6 +133,15 @@ def render(result: CheckResult, console: Console, *, derivation: bool = False) -
             f"β = {p.beta:.4g}, κ = {p.kappa:.4g}, λ = {s.lam:.4g} -> predicted "
             f"[bold]{sc.mode_predicted}[/] (from {sc.mode_source})"
         )
+        if sc.fidelity is not None:
+            f = sc.fidelity
+            forced = ", forced" if f.forced else ""
+            console.print(
+                esc(
+                    f"  fidelity: rung {f.rung}{forced} ({fid.RUNG_INFO[f.rung].model}): {f.reason}"
+                ),
+                highlight=False,
+            )
         console.print(
             "  " + esc(", ".join(f"{k} = {v}" for k, v in s.derived().items())), highlight=False
         )
