@@ -148,7 +148,7 @@ def _vertical(fn: Any, varpi: float) -> Any:
     try:
         return fn(varpi)
     except Exception as exc:  # reported in the window rule, never a crash
-        return _SolverFailure(f"{type(exc).__name__}: {exc}")
+        return SolverFailure(f"{type(exc).__name__}: {exc}")
 
 
 def check_derivation(
@@ -279,7 +279,7 @@ def _fallback(choice: fid.Choice, what: str) -> ModeFidelity:
 
 
 @dataclass
-class _SolverFailure:
+class SolverFailure:
     """Stands in for a solver result when the solver raised: success False, with why."""
 
     message: str
@@ -293,7 +293,7 @@ def _run_solver(solver: Any, s: SetDerivation) -> Any:
     try:
         return solver(s.params)
     except Exception as exc:  # a failing solver must not crash the check; reported as a rule
-        return _SolverFailure(f"{type(exc).__name__}: {exc}")
+        return SolverFailure(f"{type(exc).__name__}: {exc}")
 
 
 def _set_dict(sc: SetCheck) -> dict[str, Any]:

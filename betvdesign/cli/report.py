@@ -30,6 +30,13 @@ def report_cmd(
         "--timestamp",
         help="Print the generation time and run times (reports then differ between runs).",
     ),
+    fidelity: str | None = typer.Option(
+        None,
+        "--fidelity",
+        metavar="RUNG",
+        help="Force the rung that decides each set's mode for the verdict: lambda, rigid, "
+        "full or periodic (default: the periodic orbit the figures need anyway).",
+    ),
     methods: bool = typer.Option(
         False,
         "--methods",
@@ -37,8 +44,11 @@ def report_cmd(
         "instead; FILE may then be a work-precision JSON from `betv bench -o`.",
     ),
 ) -> None:
-    """Write NAME.html (self-contained) and NAME.pdf for every device file."""
-    from betvdesign.report import write_reports
+    """Write NAME.html (self-contained) and NAME.pdf for every device file.
+
+    Every figure caption and verdict box states its fidelity rung and why.
+    """
+    from betvdesign.report import ReportOptions, write_reports
 
     if methods:
         from betvdesign.cli.bench import methods_report
@@ -46,7 +56,8 @@ def report_cmd(
         raise typer.Exit(methods_report(files or [], outdir, pdf=pdf))
 
     with user_errors():
-        written = write_reports(files, outdir, pdf=pdf, timestamp=timestamp)
+        options = ReportOptions(fidelity=fidelity)
+        written = write_reports(files, outdir, pdf=pdf, timestamp=timestamp, options=options)
     for w in written:
         outputs = ", ".join(str(p) for p in (w.html, w.pdf) if p is not None)
         typer.echo(f"{w.source}: verdict {w.verdict}, {w.figures} figures -> {outputs}")

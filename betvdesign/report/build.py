@@ -1,8 +1,10 @@
 """Build the report model of one device file (data first, rendering later).
 
 load (spec) -> derive (nondim) -> analyse each distinct actuator set (dynamics)
--> evaluate design rules with the periodic orbits -> format everything into a
-:class:`~betvdesign.report.model.Report`. Bad input raises the loader's
+-> the design check (:func:`betvdesign.checker.check_derivation`, fed the periodic
+orbits and vertical motions already computed; its mode-deciding rung is the
+periodic orbit, or the one forced with ``ReportOptions.fidelity``) -> format
+everything into a :class:`~betvdesign.report.model.Report`. Bad input raises the loader's
 :class:`~betvdesign.errors.SpecError` before anything is computed or written.
 """
 
@@ -17,6 +19,8 @@ from typing import Any
 import pint
 
 from betvdesign import __version__
+from betvdesign import fidelity as fid
+from betvdesign.checker import SetCheck, SolverFailure, check_derivation
 from betvdesign.loader import load_device
 from betvdesign.nondim import DeviceDerivation, SetDerivation, derive
 from betvdesign.report import figures
@@ -32,7 +36,7 @@ from betvdesign.report.model import (
     SetReport,
     VerdictBox,
 )
-from betvdesign.rules import RuleResult, evaluate_device, format_speed, format_time, verdict
+from betvdesign.rules import RuleResult, format_speed, format_time, verdict
 
 MAX_WARNINGS = 5
 _SEVERITY_ORDER = {"error": 0, "warning": 1, "info": 2}
@@ -99,7 +103,11 @@ def top_warnings(results: list[RuleResult]) -> tuple[str, ...]:
     return tuple(f"{r.severity} {r.id}: {r.message}" for r in failed[:MAX_WARNINGS])
 
 
-def verdict_box(sd: SetDerivation, an: SetAnalysis, results: list[RuleResult]) -> VerdictBox:
+def verdict_box(
+    sd: SetDerivation, an: SetAnalysis, results: list[RuleResult], sc: SetCheck | None = None
+) -> VerdictBox:
+    """The verdict box of one set; ``sc`` (its design check) gives the predicted mode and
+    the fidelity rung that decided it (without it: the periodic orbit, else λ)."""
     v = verdict(results)
     errors = [r for r in results if r.severity == "error" and not r.passed]
     reason = (
@@ -108,9 +116,18 @@ def verdict_box(sd: SetDerivation, an: SetAnalysis, results: list[RuleResult]) -
         else f"{len(errors)} error-severity rule(s) fail: " + ", ".join(r.id for r in errors)
     )
     per = an.periodic.value
+    predicted = sc.mode_predicted if sc is not None else sd.params.mode_predicted
+    rung, rung_reason = ("lambda", "")
+    if sc is not None and sc.fidelity is not None:
+        rung, rung_reason = sc.fidelity.rung, sc.fidelity.reason
     if per is not None:
-        predicted = str(per.mode)
-        by = "exact periodic orbit"
+        if sc is None:
+            predicted = str(per.mode)
+        by = (
+            "exact periodic orbit"
+            if sc is None or rung == "periodic"
+            else fid.RUNG_INFO[rung].model
+        )
         v_m_s = sd.scales.speed_m_s(float(per.delta_s))
         direction = sd.impact_sign * (1 if float(per.delta_s) > 0 else -1)
         speed = f"{format_speed(abs(v_m_s))} toward {'+x' if direction > 0 else '−x'}"
@@ -121,8 +138,11 @@ def verdict_box(sd: SetDerivation, an: SetAnalysis, results: list[RuleResult]) -
             else "never (the slider does not move)"
         )
     else:
-        predicted = sd.params.mode_predicted
-        by = "λ fit only; the exact periodic orbit is not available: " + str(an.periodic.reason)
+        by = (
+            "λ fit only; the exact periodic orbit is not available: " + str(an.periodic.reason)
+            if rung == "lambda"
+            else fid.RUNG_INFO[rung].model
+        )
         speed = crossing = f"not available ({an.periodic.reason})"
     vr = an.vertical.value
     vertical = (
@@ -145,6 +165,8 @@ def verdict_box(sd: SetDerivation, an: SetAnalysis, results: list[RuleResult]) -
         speed=speed,
         crossing_time=crossing,
         warnings=top_warnings(results),
+        rung=rung,
+        rung_reason=rung_reason,
     )
 
 
@@ -232,6 +254,41 @@ def _set_key(sd: SetDerivation) -> tuple[Any, ...]:
     )
 
 
+#: Why the report's own periodic orbit decides the mode unless a rung is forced.
+REPORT_REASON = (
+    "the report computes the exact periodic orbit for its figures anyway, so the orbit "
+    "decides the mode (no cheaper rung is needed)"
+)
+
+
+def design_check(
+    der: DeviceDerivation,
+    per_set: list[tuple[SetDerivation, SetAnalysis, str | None]],
+    opts: ReportOptions,
+):
+    """The design check of ``betv check --simulate`` (or ``--fidelity``), fed the
+    report's periodic orbits and vertical motions instead of solving again."""
+    orbits = {sd.params: an.periodic for sd, an, _ in per_set}
+    verticals = {sd.params.varpi: an.vertical for sd, an, _ in per_set}
+
+    def solver(p: Any) -> Any:
+        piece = orbits[p]
+        return piece.value if piece.ok else SolverFailure(str(piece.reason))
+
+    def vertical(varpi: float) -> Any:
+        piece = verticals[varpi]
+        return piece.value if piece.ok else None
+
+    return check_derivation(
+        der,
+        simulate="always" if opts.fidelity is None else "auto",
+        solver=solver,
+        vertical=vertical,
+        fidelity=opts.fidelity,  # type: ignore[arg-type]  # checked: UsageError
+        simulate_reason=REPORT_REASON,
+    )
+
+
 def build_report(
     prepared: PreparedDevice,
     *,
@@ -257,14 +314,15 @@ def build_report(
         an = analyse_set(sd.params, sd.travel_range_m, sd.scales.length_m, opts)
         analyses[key] = (sd.name, an)
         per_set.append((sd, an, None))
-    periodic = {sd.name: an.periodic.value for sd, an, _ in per_set if an.periodic.ok}
-    vertical = {sd.name: an.vertical.value for sd, an, _ in per_set if an.vertical.ok}
-    results = evaluate_device(der, periodic=periodic, vertical=vertical)
+    check = design_check(der, per_set, opts)
+    results = check.rules
     sets: list[SetReport] = []
-    for i, (sd, an, same_as) in enumerate(per_set, start=1):
-        mine = [r for r in results if r.set_name == sd.name]
+    for i, ((sd, an, same_as), sc) in enumerate(zip(per_set, check.sets, strict=True), start=1):
+        mine = sc.rules
         figs: list[FigureBlock] = (
-            [] if same_as else figures.set_figures(f"s{i}", sd, an, opts.voltage_points)
+            []
+            if same_as
+            else figures.set_figures(f"s{i}", sd, an, opts.voltage_points, opts.periodic_tol)
         )
         p = sd.params
         params = (
@@ -279,7 +337,7 @@ def build_report(
                 name=sd.name,
                 intended_mode=sd.intended_mode,
                 params=params,
-                verdict=verdict_box(sd, an, mine),
+                verdict=verdict_box(sd, an, mine, sc),
                 derivation=derivation_rows(sd),
                 rules=rule_rows(mine),
                 figures=tuple(figs),

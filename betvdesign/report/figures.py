@@ -1,7 +1,9 @@
 """The report's figures for one actuator set: data from the analysis, drawn by plots.
 
-Each builder returns a :class:`FigureBlock` whose caption says what is shown
-and which model rung made it; when its data are missing the block carries the
+Each builder returns a :class:`FigureBlock` whose caption says what is shown,
+which model made it and which rung of the fidelity ladder that is, and why
+(:func:`betvdesign.fidelity.choose_rung`'s reason where the ladder picks the same
+rung for the figure's question); when its data are missing the block carries the
 reason instead of an SVG (never an invented curve).
 """
 
@@ -13,7 +15,7 @@ from typing import Any
 
 import numpy as np
 
-from betvdesign import plots
+from betvdesign import fidelity, plots
 from betvdesign.nondim import SetDerivation
 from betvdesign.report.analysis import REGIME_HORIZON, Piece, SetAnalysis, lambda_floor
 from betvdesign.report.model import FigureBlock
@@ -30,18 +32,43 @@ def _svg(key: str, draw: Callable[[Any], None], *, size=(6.4, 3.4), **grid: Any)
         return plots.figure_svg(fig, key)
 
 
+def ladder(
+    p: Any, question: fidelity.Question, rung: str, *, tol: float = 1e-6, why: str = ""
+) -> tuple[str, str]:
+    """(rung, reason) of a figure answering ``question`` with ``rung``: the fidelity
+    ladder's own reason when it picks that rung, else ``why`` (and what it would pick)."""
+    c = fidelity.choose_rung(p, question, tol=tol)
+    if c.rung == rung:
+        return rung, c.reason
+    return rung, why or (
+        f"the figure needs the {rung} rung (for {question!r} alone the ladder would use "
+        f"{c.rung}: {c.reason})"
+    )
+
+
 def _block(
     key: str,
     title: str,
     caption: str,
     model: str,
+    rung: tuple[str, str],
     piece: Piece[Any],
     draw: Callable[[Any], None],
     **layout: Any,
 ) -> FigureBlock:
     if not piece.ok:
-        return FigureBlock(key, title, caption, model, unavailable=piece.reason)
-    return FigureBlock(key, title, caption, model, svg=_svg(key, draw, **layout))
+        return FigureBlock(
+            key, title, caption, model, unavailable=piece.reason, rung=rung[0], rung_reason=rung[1]
+        )
+    return FigureBlock(
+        key,
+        title,
+        caption,
+        model,
+        svg=_svg(key, draw, **layout),
+        rung=rung[0],
+        rung_reason=rung[1],
+    )
 
 
 def pushpull(key: str, sd: SetDerivation) -> FigureBlock:
@@ -62,6 +89,7 @@ def pushpull(key: str, sd: SetDerivation) -> FigureBlock:
         "Push/pull map",
         caption,
         "λ fit of Shin et al. (2004), no simulation",
+        ("lambda", "the figure places the device against the λ fit's own boundary"),
         Piece(value=True),
         draw,
     )
@@ -97,6 +125,7 @@ def regime(key: str, sd: SetDerivation, an: SetAnalysis) -> FigureBlock:
         "Vertical regime strip",
         caption,
         model,
+        ladder(p, "regime", "vertical"),
         an.regime,
         draw,
         size=(6.4, 4.0),
@@ -123,6 +152,7 @@ def vertical_portrait(key: str, sd: SetDerivation, an: SetAnalysis) -> FigureBlo
         "Vertical phase portrait of the head",
         caption,
         EXACT,
+        ladder(sd.params, "transient", "full"),
         an.transient,
         draw,
         size=(5.0, 3.6),
@@ -174,6 +204,11 @@ def settling(key: str, sd: SetDerivation, an: SetAnalysis) -> FigureBlock:
         "Slider velocity settling and periodic orbit",
         caption,
         EXACT,
+        (
+            "full + periodic",
+            ladder(p, "transient", "full")[1] + "; the periodic state (dashed) and the orbit "
+            "plane need the periodic orbit itself",
+        ),
         both,
         draw,
         size=(7.0, 3.3),
@@ -214,13 +249,16 @@ def displacement(key: str, sd: SetDerivation, an: SetAnalysis) -> FigureBlock:
         "Slider displacement over the travel range",
         caption + ext_note,
         EXACT,
+        ladder(sd.params, "transient", "full"),
         an.transient,
         draw,
     )
     return block
 
 
-def speed_voltage(key: str, sd: SetDerivation, an: SetAnalysis, points: int) -> FigureBlock:
+def speed_voltage(
+    key: str, sd: SetDerivation, an: SetAnalysis, points: int, tol: float = 1e-10
+) -> FigureBlock:
     aset = sd.actuator_set
     sc = sd.scales
     cal = aset.actuator.calibration
@@ -254,7 +292,8 @@ def speed_voltage(key: str, sd: SetDerivation, an: SetAnalysis, points: int) -> 
     model = (
         "one periodic orbit of the exact model; Δs does not depend on u, so speed scales with u(V)"
     )
-    return _block(key, "Mean speed against drive voltage", caption, model, piece, draw)
+    rung = ladder(sd.params, "delta_s", "periodic", tol=tol)
+    return _block(key, "Mean speed against drive voltage", caption, model, rung, piece, draw)
 
 
 def robustness(key: str, sd: SetDerivation, an: SetAnalysis) -> FigureBlock:
@@ -283,21 +322,33 @@ def robustness(key: str, sd: SetDerivation, an: SetAnalysis) -> FigureBlock:
         plots.robustness_vs_lambda(data.x, data.y, device_lam=p.lam, logx=logx, ax=ax)
 
     model = f"periodic orbits of the {EXACT}"
+    rung = (
+        "periodic",
+        "the sweep checks where the λ fit misses the exact mode, so every point needs the "
+        "periodic orbit (λ cannot check itself)",
+    )
     return _block(
-        key, "Robustness of the mode near the operating point", caption, model, an.robustness, draw
+        key,
+        "Robustness of the mode near the operating point",
+        caption,
+        model,
+        rung,
+        an.robustness,
+        draw,
     )
 
 
 def set_figures(
-    prefix: str, sd: SetDerivation, an: SetAnalysis, voltage_points: int
+    prefix: str, sd: SetDerivation, an: SetAnalysis, voltage_points: int, tol: float = 1e-10
 ) -> list[FigureBlock]:
-    """The seven figures of one actuator set, in reading order."""
+    """The seven figures of one actuator set, in reading order (``tol``: the periodic
+    orbit's residual, the accuracy the speed figure's Δs is asked for)."""
     return [
         pushpull(f"{prefix}-pushpull", sd),
         regime(f"{prefix}-regime", sd, an),
         vertical_portrait(f"{prefix}-vphase", sd, an),
         settling(f"{prefix}-settling", sd, an),
         displacement(f"{prefix}-displacement", sd, an),
-        speed_voltage(f"{prefix}-speed", sd, an, voltage_points),
+        speed_voltage(f"{prefix}-speed", sd, an, voltage_points, tol),
         robustness(f"{prefix}-robustness", sd, an),
     ]

@@ -53,8 +53,10 @@ class RuleRow:
 class FigureBlock:
     """A numbered figure: inline SVG, or the reason it could not be drawn.
 
-    model: the model rung that produced the data ("λ fit", "vertical-only exact
-    model", "exact event-driven model"...), stated in the caption.
+    model: the model that produced the data ("λ fit", "vertical-only exact
+    model", "exact event-driven model"...), stated in the caption; rung: the
+    rung(s) of the fidelity ladder (:data:`betvdesign.fidelity.RUNGS`, "+" between
+    two) and rung_reason why that rung, also in the caption.
     """
 
     key: str
@@ -63,6 +65,8 @@ class FigureBlock:
     model: str
     svg: str | None = None
     unavailable: str | None = None
+    rung: str = ""
+    rung_reason: str = ""
 
 
 @dataclass(frozen=True)
@@ -75,7 +79,11 @@ class KeyValue:
 
 @dataclass(frozen=True)
 class VerdictBox:
-    """What a reviewer reads first for one actuator set."""
+    """What a reviewer reads first for one actuator set.
+
+    rung / rung_reason: the rung of the fidelity ladder that decided the predicted mode
+    (and so the verdict's mode rule) and why (``betv report --fidelity`` forces it).
+    """
 
     verdict: Verdict
     verdict_reason: str
@@ -88,6 +96,8 @@ class VerdictBox:
     crossing_time: str
     vertical: str
     warnings: tuple[str, ...]
+    rung: str = ""
+    rung_reason: str = ""
 
 
 @dataclass(frozen=True)
