@@ -199,8 +199,15 @@ def check_derivation(
         cannot = f"the closed form cannot decide ({'; '.join(reasons)})"
         if fidelity is not None:
             choice = fid.choose_rung(s.params, "mode", force=fidelity)
-            if fidelity != "periodic" and reasons:
-                notes.append(f"set {s.name}: --fidelity {fidelity} forced although {cannot}")
+            if fidelity == "lambda" and reasons:
+                notes.append(f"set {s.name}: --fidelity lambda forced although {cannot}")
+            elif fidelity == "rigid":
+                est = fid.rigid_error_estimate(s.params.alpha)
+                notes.append(
+                    f"set {s.name}: --fidelity rigid: measured bound on the α → 0 limit's "
+                    f"relative Δs error at α = {s.params.alpha:.3g}: {est:.2g}; its mode is "
+                    "always pull (MODEL.md)"
+                )
         elif simulate == "always":
             choice = fid.Choice("periodic", "mode", simulate_reason, forced=True)
         elif reasons:

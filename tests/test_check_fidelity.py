@@ -22,7 +22,7 @@ from betvdesign import checker
 from betvdesign.checker import check_derivation
 from betvdesign.cli import app
 from betvdesign.errors import UsageError
-from betvdesign.fidelity import lambda_trust_margin
+from betvdesign.fidelity import lambda_trust_margin, rigid_error_estimate
 from betvdesign.fidelity_measured import MEASURED
 from betvdesign.nondim import derive_file
 from betvdesign.params import ModelParams
@@ -129,6 +129,9 @@ def test_forced_rungs_answer_with_their_own_solver():
         assert f"--fidelity {rung}" in sc.fidelity.reason
         assert _rule(sc.rules, "mode").value == pytest.approx(ds, rel=1e-12)
         assert sc.mode_source == "simulation" and sc.mode_predicted == "pull"
+        if rung == "rigid":
+            est = f"{rigid_error_estimate(p.alpha):.2g}"  # measured bound, about 8 at α = 0.3
+            assert any(f"relative Δs error at α = 0.3: {est}" in n for n in res.notes)
     res = check_derivation(der, fidelity="lambda")
     sc = res.sets[0]
     assert sc.periodic is None and sc.mode_answer is None
