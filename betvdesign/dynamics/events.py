@@ -80,7 +80,10 @@ def safe_step(f: float, fp: float, m2: float) -> float:
     """Smallest x > 0 with f + f'x − M2 x²/2 = 0 (f > 0), written without cancellation."""
     if m2 <= 0.0:
         return math.inf if fp >= 0.0 else f / -fp
-    return 2.0 * f / (-fp + math.sqrt(fp * fp + 2.0 * m2 * f))
+    root = math.sqrt(fp * fp + 2.0 * m2 * f)
+    if fp > 0.0:
+        return (fp + root) / m2
+    return 2.0 * f / (root - fp)
 
 
 def local_m2(f: float, fp: float, fpp: float, m2: float, m3: float) -> float:
@@ -92,6 +95,8 @@ def local_m2(f: float, fp: float, fpp: float, m2: float, m3: float) -> float:
     that test without covering the bracket, it is raised just enough to fail it. Capped
     by the global bound ``m2`` (valid everywhere).
     """
+    if f <= 0.0:
+        return m2
     a = abs(fpp)
     L = safe_step(f, fp, a)
     m = a + m3 * L
@@ -159,8 +164,8 @@ def first_root(ev: Evaluator, H: float, counter: list[int]) -> tuple[float, int]
         for i in active:
             f = fs[i]
             fp = fps[i]
-            if f <= NOISE * scale[i]:
-                return x0, i  # at the root to round-off (or a grazing touch)
+            if f <= 0.0 or (f <= NOISE * scale[i] and fp <= 0.0):
+                return x0, i  # at the root to round-off, heading down (or a graze)
             xi = safe_step(f, fp, m2s[i])
             li = ev.free_len(x0, i)
             steps[i] = xi if xi > li else li
@@ -290,6 +295,11 @@ def forced_split(w0: float, F: float, wf: float, y: float, yd: float, sp: float,
     return P, math.sqrt(yhd * yhd + w0 * w0 * yh * yh)
 
 
+def split_ok(P: float | None, w0: float, F: float) -> bool:
+    """The split y = P sin φ + free oscillation is free of cancellation: |1 − aϖ²| ≥ 0.1."""
+    return P is not None and abs(P) * w0 * w0 <= 10.0 * abs(F)
+
+
 def window(H: float, w0: float, wf: float, P: float | None, F: float) -> float:
     """Length over which the energy-growth bound is taken (steps never exceed it).
 
@@ -297,7 +307,7 @@ def window(H: float, w0: float, wf: float, P: float | None, F: float) -> float:
     the tight one: the whole interval H. Near resonance: one radian of the fastest
     frequency, so that the secular growth |F|·W stays small.
     """
-    if P is not None and abs(P) * w0 * w0 <= 10.0 * abs(F):
+    if split_ok(P, w0, F):
         return H
     return min(H, 1.0 / max(w0, wf))
 
@@ -351,7 +361,7 @@ class GapEvent:
 
     def clear(self, h: float) -> bool:
         """ξ = P sin φ + ξ_h, |ξ_h| ≤ E_h: positive on [h, H] when min P sin φ > E_h."""
-        if self.P is None:
+        if not split_ok(self.P, 1.0, -1.0):
             return False
         a = self.phi0 + self.wf * h - 0.5 * math.pi
         return amp_cos_min(self.P, a, self.phi0 + self.wf * self.H - 0.5 * math.pi) > self.Eh
@@ -398,7 +408,7 @@ class SlipEvent:
         self.W = window(H, w0, wf, self.P, F)
         self.m2b = math.inf if self.P is None else (abs(self.P - self.q) * wf + self.Eh) / al
         self.phi0 = math.atan2(sp0, cp0)
-        self.fast = self.W == H and self.P is not None
+        self.fast = split_ok(self.P, w0, F)
         if self.fast:  # y = P sin φ + a_c cos w0h + a_s sin w0h (no cancellation here)
             self.ac = z - self.P * sp0
             self.as_ = (zd - self.P * wf * cp0) / w0
@@ -514,7 +524,7 @@ class StickEvent:
         self.P, self.Eh = forced_split(w0, F, wf, z, zd, sp0, cp0)
         self.W = window(H, w0, wf, self.P, F)
         self.phi0 = math.atan2(sp0, cp0)
-        self.fast = self.W == H and self.P is not None
+        self.fast = split_ok(self.P, w0, F)
         if self.fast:
             self.ac = z - self.P * sp0
             self.as_ = (zd - self.P * wf * cp0) / w0

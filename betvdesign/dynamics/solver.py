@@ -28,7 +28,7 @@ import time
 
 import numpy as np
 
-from betvdesign.dynamics.events import NOISE, SlipEvent, StickEvent, first_root, lex_sign
+from betvdesign.dynamics.events import EPS, NOISE, SlipEvent, StickEvent, first_root, lex_sign
 from betvdesign.dynamics.flows import (
     FREE,
     PHASE_NAMES,
@@ -45,6 +45,8 @@ from betvdesign.params import ModelParams
 
 #: Zero-length phases in a row before a contact is declared chattering.
 MAX_ZERO_LENGTH = 8
+#: Phase switches within one contact before it is declared chattering (Zeno).
+MAX_SWITCHES = 1000
 
 
 class SolverFailure(RuntimeError):
@@ -133,6 +135,7 @@ class _Cycle:
             zd = sd = (zd + sd / k.beta) / (1.0 + 1.0 / k.beta)
         self._event(m, t, "impact", FREE, phase)
         zero_len = 0
+        n_switch = 0
         on_edge = -1
         from_edge = False
         while True:
@@ -160,11 +163,13 @@ class _Cycle:
             else:
                 from_edge = True
             self._event(m, t, kind, phase, new)
-            zero_len = zero_len + 1 if h == 0.0 else 0
-            if zero_len > MAX_ZERO_LENGTH:
+            zero_len = zero_len + 1 if h <= 64.0 * EPS * max(1.0, t) else 0
+            n_switch += 1
+            if zero_len > MAX_ZERO_LENGTH or n_switch > MAX_SWITCHES:
                 raise SolverFailure(
-                    f"contact phases of zero length repeat at τ = {m * T + t:.12g} "
-                    f"(cycle {m}): the stick/slip switching chatters"
+                    f"contact phases of (near) zero length repeat at τ = {m * T + t:.12g} "
+                    f"(cycle {m}, {n_switch} switches in this contact): the stick/slip "
+                    "switching chatters (a Zeno point of the model); try other parameters"
                 )
             phase = new
         self._event(m, te, "separation", phase, FREE)
