@@ -120,3 +120,31 @@ def test_minimal_period_and_trust_region():
     assert po.success and po.period_cycles == 1, po.message
     # the transient leaves the all-reverse region only after ~10³ cycles: brute force 3000
     assert abs(simulate(p, 3000, log_events=False).delta_s[-1] - po.delta_s) <= 1e-9
+
+
+def test_within_round_off_of_both_resonances():
+    """ϖ = 1 − 1e-16 with α = 1: vertical and tangential free flight resonant to round-off;
+    the event search must not use the split form there (second method: solve_ivp)."""
+    from betvdesign.dynamics import reference
+
+    p = ModelParams(0.9999999999999999, 1.0, 1.0, 1.0)
+    ex = simulate(p, 4)
+    rf = reference.simulate(p, 4, rtol=1e-12, atol=1e-13)
+    assert ex.success and rf.success, ex.message
+    assert abs(ex.s - rf.s) <= 1e-8 * max(1.0, abs(ex.s))
+
+
+def test_band_edge_near_one_at_the_first_contact():
+    """b = ακ(1+β) = 1 − 1e-5: at τ = 0 the lower band edge (1 − b) sin ϖτ is almost flat;
+    the start from rest must slip cleanly, not chatter (MODEL.md initial state)."""
+    tr = simulate(ModelParams(1.5, 0.5, 1.0, 0.99999), 4)
+    assert tr.success, tr.message
+    assert tr.events[0].phase_after == "slip"
+
+
+def test_degenerate_band_fails_loudly():
+    """b = 1 to round-off at τ = 0 is a Zeno point of the switching rules: the solver
+    stops with a message, never a silent or NaN result."""
+    tr = simulate(ModelParams(1.5, 0.5, 1.0, 0.9999999999999999), 4)
+    assert not tr.success and tr.status == "failed" and "chatters" in tr.message
+    assert np.all(np.isfinite(tr.section))
