@@ -44,7 +44,10 @@ def tolerance_cmd(
     samples: Annotated[int, typer.Option("--samples", "-n", help="Monte Carlo samples.")] = 1000,
     seed: Annotated[int, typer.Option(help="Seed of the numpy Generator.")] = 0,
     fidelity: Annotated[
-        str, typer.Option(help="periodic (exact periodic orbit) or lambda (closed-form fit).")
+        str,
+        typer.Option(
+            help="Fidelity rung: periodic (exact periodic orbit) or lambda (closed-form fit)."
+        ),
     ] = "periodic",
     sets: Annotated[
         list[str] | None, typer.Option("--set", help="Actuator set(s) to study (default: all).")

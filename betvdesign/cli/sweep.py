@@ -148,11 +148,14 @@ def interruptible(out: Path | None) -> Iterator[None]:
 
 
 def emit(summary: dict[str, Any], as_json: bool, human: Callable[[], None]) -> None:
-    """Print the JSON summary on stdout, or the human-readable form."""
+    """Print the JSON summary on stdout, or the human-readable form (led by the fidelity
+    rung the study used and why, when the summary states one)."""
     if as_json:
         typer.echo(json.dumps(summary, indent=2, allow_nan=False))
-    else:
-        human()
+        return
+    if "fidelity" in summary and "fidelity_reason" in summary:
+        typer.echo(f"fidelity rung {summary['fidelity']}: {summary['fidelity_reason']}")
+    human()
 
 
 def run_block(run: StudyRun) -> dict[str, Any]:
@@ -180,7 +183,10 @@ def pushpull_cmd(
     beta: Annotated[str, typer.Option(help="β range.")],
     kappa: Annotated[str, typer.Option(help="κ range.")],
     fidelity: Annotated[
-        str, typer.Option(help="periodic (exact periodic orbits) or lambda (closed-form fit).")
+        str,
+        typer.Option(
+            help="Fidelity rung: periodic (exact periodic orbits) or lambda (closed-form fit)."
+        ),
     ] = "periodic",
     tol: Annotated[float, typer.Option(help="Fixed-point residual tolerance.")] = 1e-10,
     max_cycles: MaxCyclesOpt = None,

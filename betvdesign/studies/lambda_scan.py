@@ -116,7 +116,10 @@ class LambdaSummary:
 
     def as_dict(self) -> dict[str, Any]:
         return {
+            "fidelity": "periodic",
             "model": MODEL_STATEMENT["periodic"],
+            "fidelity_reason": "the scan locates where the exact Δs changes sign against the "
+            "fit's λ = 1, which only the periodic orbit gives",
             "points": self.n_points,
             "converged": self.n_converged,
             "sign_changes": self.crossings,

@@ -23,6 +23,7 @@ from typing import Any, Literal
 import numpy as np
 
 from betvdesign.errors import UsageError
+from betvdesign.fidelity import RUNGS
 from betvdesign.params import ModelParams
 from betvdesign.studies.grid import Grid, require_positive
 from betvdesign.studies.runner import Study, StudyRun, run_study, split_run_args
@@ -36,6 +37,27 @@ MODEL_STATEMENT: dict[str, str] = {
     "lambda": "closed-form λ fit only (no simulation): microseconds per point, but a fit that "
     "can name the wrong mode near λ = 1",
 }
+#: Why a study runs on each rung (``fidelity_reason`` next to ``fidelity`` and ``model`` in
+#: every summary; rung names are those of :data:`betvdesign.fidelity.RUNGS`).
+RUNG_REASON: dict[str, str] = {
+    "periodic": "the default: every point's mode and Δs from the exact periodic orbit, the "
+    "reference the λ rule is measured against",
+    "lambda": "chosen with --fidelity lambda: λ alone, which the fidelity ladder trusts only "
+    "beyond the measured margin at (ϖ, β) (betv ladder mode); its mode can be wrong",
+}
+
+
+def require_fidelity(fidelity: str, offered: Sequence[str] = ("periodic", "lambda")) -> None:
+    """:class:`UsageError` unless ``fidelity`` is a ladder rung this study offers."""
+    if fidelity in offered:
+        return
+    what = "fidelity" if fidelity in RUNGS else "unknown fidelity"
+    raise UsageError(
+        f"{what} {fidelity!r}: this study offers {' or '.join(offered)} "
+        f"(rungs of the fidelity ladder: {', '.join(RUNGS)})"
+    )
+
+
 AXES = ("kappa", "beta", "alpha", "varpi")
 
 #: Result columns of the map (types for the CSV store).
@@ -177,8 +199,7 @@ def pushpull_study(
         "varpi": require_positive(np.asarray(varpi, float), "varpi"),
     }
     grid = Grid(axes)
-    if fidelity not in ("periodic", "lambda"):
-        raise UsageError(f"unknown fidelity {fidelity!r} (periodic or lambda)")
+    require_fidelity(fidelity)
     if max_cycles is not None and max_cycles < 1:
         raise UsageError(f"--max-cycles must be >= 1, got {max_cycles}")
     idle = vertical_precheck(axes["varpi"]) if fidelity == "periodic" else {}
@@ -220,6 +241,7 @@ class PushPullSummary:
         return {
             "fidelity": self.fidelity,
             "model": MODEL_STATEMENT[self.fidelity],
+            "fidelity_reason": RUNG_REASON[self.fidelity],
             "points": self.n_points,
             "converged": self.n_converged,
             "push": self.n_push,

@@ -177,8 +177,11 @@ def summarise(rows: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
     for r in rows:
         counts[r["label"]] = counts.get(r["label"], 0) + 1
     return {
+        "fidelity": "vertical",
         "model": "vertical-only exact model (dynamics.vertical): the head's vertical motion "
         "does not depend on the slider, so no slider is simulated",
+        "fidelity_reason": "regimes need the head's vertical motion only: the cheapest exact "
+        "rung for them (fidelity.choose_rung)",
         "points": len(rows),
         "counts": counts,
         "overview": [i.as_dict() for i in overview],

@@ -45,7 +45,12 @@ import pint
 from pydantic import BaseModel
 
 from betvdesign.errors import BetvError, UsageError
-from betvdesign.studies.pushpull import MODEL_STATEMENT, solver_error
+from betvdesign.studies.pushpull import (
+    MODEL_STATEMENT,
+    RUNG_REASON,
+    require_fidelity,
+    solver_error,
+)
 from betvdesign.studies.runner import Study, StudyRun, run_study, split_run_args
 
 Dist = Literal["normal", "uniform"]
@@ -345,8 +350,7 @@ def tolerance_study(
 
     if samples < 1:
         raise UsageError(f"--samples must be >= 1, got {samples}")
-    if fidelity not in ("periodic", "lambda"):
-        raise UsageError(f"unknown fidelity {fidelity!r} (periodic or lambda)")
+    require_fidelity(fidelity)
     if not tolerances:
         raise UsageError("give at least one tolerance (--tol FIELD=AMOUNT or --tolerances FILE)")
     path = str(Path(device).resolve())
@@ -407,6 +411,7 @@ def summarise(
     out: dict[str, Any] = {
         "fidelity": fidelity,
         "model": MODEL_STATEMENT[fidelity] + "; each sample through nondim.derive_set",
+        "fidelity_reason": RUNG_REASON[fidelity],
         "sets": {},
     }
     for name in dict.fromkeys(r["set"] for r in rows):
