@@ -22,7 +22,9 @@ designs = st.builds(
     alpha=st.floats(0.05, 3.0),
     beta=st.floats(0.1, 10.0),
     kappa=st.floats(0.05, 1.0),
-)
+).filter(lambda p: abs(p.alpha * p.kappa * (1 + p.beta) - 1) > 1e-9)
+# b = ακ(1+β) = 1 exactly is the one Zeno point of the switching rules at τ = 0; the
+# solver stops there with a message (tests/test_dynamics_solver.py) instead of a result.
 SETTINGS = settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 
 
