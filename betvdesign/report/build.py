@@ -20,7 +20,7 @@ import pint
 
 from betvdesign import __version__
 from betvdesign import fidelity as fid
-from betvdesign.checker import SetCheck, SolverFailure, check_derivation
+from betvdesign.checker import CheckResult, SetCheck, SolverFailure, check_derivation
 from betvdesign.loader import load_device
 from betvdesign.nondim import DeviceDerivation, SetDerivation, derive
 from betvdesign.report import figures
@@ -265,7 +265,7 @@ def design_check(
     der: DeviceDerivation,
     per_set: list[tuple[SetDerivation, SetAnalysis, str | None]],
     opts: ReportOptions,
-):
+) -> CheckResult:
     """The design check of ``betv check --simulate`` (or ``--fidelity``), fed the
     report's periodic orbits and vertical motions instead of solving again."""
     orbits = {sd.params: an.periodic for sd, an, _ in per_set}
