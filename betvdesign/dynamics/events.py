@@ -42,13 +42,13 @@ from betvdesign.dynamics.flows import (
     energy_radius,
     oscillator,
     slider,
-    split_eval,
 )
 
 EPS = 2.220446049250313e-16
 TWO_PI = 2.0 * math.pi
 NOISE = 64.0 * EPS
 MAX_STEPS = 5000
+_cos, _sin = math.cos, math.sin
 
 
 class EventSearchError(RuntimeError):
@@ -98,7 +98,11 @@ def local_m2(f: float, fp: float, fpp: float, m2: float, m3: float) -> float:
     if f <= 0.0:
         return m2
     a = abs(fpp)
-    L = safe_step(f, fp, a)
+    if a <= 0.0:  # L = safe_step(f, fp, a), inlined
+        L = math.inf if fp >= 0.0 else f / -fp
+    else:
+        root = math.sqrt(fp * fp + 2.0 * a * f)
+        L = (fp + root) / a if fp > 0.0 else 2.0 * f / (root - fp)
     m = a + m3 * L
     if fp < 0.0:
         d = f / -fp
@@ -152,26 +156,34 @@ def first_root(ev: Evaluator, H: float, counter: list[int]) -> tuple[float, int]
     if x >= H or ev.clear(0.0):
         return None
     scale = ev.scale
+    evaluate, free_len, clear = ev.eval, ev.free_len, ev.clear
+    sqrt = math.sqrt
     x0 = x
     cand: tuple[float, int] | None = None  # a located root; others may still come first
     active = list(range(ev.n))  # functions not yet settled on [x0, H]
+    steps = [0.0] * ev.n
     for _ in range(MAX_STEPS):
         counter[0] += 1
-        fs, fps, m2s = ev.eval(x0)
+        fs, fps, m2s = evaluate(x0)
         best_end = math.inf
         best_i = -1
-        steps = {}
         for i in active:
             f = fs[i]
             fp = fps[i]
             if f <= 0.0 or (f <= NOISE * scale[i] and fp <= 0.0):
                 return x0, i  # at the root to round-off, heading down (or a graze)
-            xi = safe_step(f, fp, m2s[i])
-            li = ev.free_len(x0, i)
+            m2 = m2s[i]
+            # xi = safe_step(f, fp, m2), inlined (the hot path)
+            if m2 <= 0.0:
+                xi = math.inf if fp >= 0.0 else f / -fp
+            else:
+                root = sqrt(fp * fp + 2.0 * m2 * f)
+                xi = (fp + root) / m2 if fp > 0.0 else 2.0 * f / (root - fp)
+            li = free_len(x0, i)
             steps[i] = xi if xi > li else li
             if fp < 0.0:
                 d = f / -fp
-                if 4.0 * m2s[i] * d <= -fp and 2.0 * d <= W and x0 + 2.0 * d < best_end:
+                if 4.0 * m2 * d <= -fp and 2.0 * d <= W and x0 + 2.0 * d < best_end:
                     best_end, best_i = x0 + 2.0 * d, i
         if best_i >= 0:
             i = best_i
@@ -182,7 +194,7 @@ def first_root(ev: Evaluator, H: float, counter: list[int]) -> tuple[float, int]
             f_hi = -1.0
             if clipped:
                 counter[0] += 1
-                f_hi = ev.eval(hi)[0][i]
+                f_hi = evaluate(hi)[0][i]
             if f_hi <= 0.0:  # else f_i (monotone on the bracket) stays positive up to H
                 r = _refine(ev, i, x0, hi, fs[i], fps[i], counter)
                 cand, H = (r, i), r  # the others are searched on [x0, r] only
@@ -195,7 +207,7 @@ def first_root(ev: Evaluator, H: float, counter: list[int]) -> tuple[float, int]
         if not active or x0 + step >= H:
             return cand
         x0 += step
-        if cand is None and ev.clear(x0):
+        if cand is None and clear(x0):
             return None
     raise EventSearchError(
         f"event search did not terminate within {MAX_STEPS} steps on a window of {H:.6g}"
@@ -212,6 +224,7 @@ def _refine(
     x, f, fp = lo, flo, fplo
     tol = 4.0 * EPS * max(1.0, abs(hi))
     floor = 4.0 * EPS * ev.scale[i]  # |f| at round-off level: converged
+    evaluate = ev.eval
     for _ in range(100):
         xn = x - f / fp if fp != 0.0 else 0.5 * (lo + hi)
         if not lo < xn < hi:
@@ -220,7 +233,7 @@ def _refine(
             return xn
         x = xn
         counter[0] += 1
-        fs, fps, _ = ev.eval(x, False)
+        fs, fps, _ = evaluate(x, False)
         f, fp = fs[i], fps[i]
         if abs(f) <= floor:
             return x
@@ -235,8 +248,8 @@ def _refine(
 
 def cos_range(pa: float, pb: float) -> tuple[float, float]:
     """(min, max) of cos over the phase interval [pa, pb] [rad], exactly."""
-    lo = min(math.cos(pa), math.cos(pb))
-    hi = max(math.cos(pa), math.cos(pb))
+    ca, cb = math.cos(pa), math.cos(pb)
+    lo, hi = (ca, cb) if ca < cb else (cb, ca)
     if math.floor((pb - math.pi) / TWO_PI) >= math.ceil((pa - math.pi) / TWO_PI):
         lo = -1.0  # contains an odd multiple of π
     if math.floor(pb / TWO_PI) >= math.ceil(pa / TWO_PI):
@@ -256,28 +269,64 @@ def envelope_time(K: float, E: float, a: float, th0: float, wf: float) -> float:
     With f = K cos θ + E + (free oscillation of amplitude ≤ a), f > 0 until then: a
     certified no-root length that does not shrink with a loose |f''| bound.
     """
+    return envelope_at(envelope_prep(K, E, a), th0, wf)
+
+
+def envelope_prep(K: float, E: float, a: float) -> tuple[int, float]:
+    """The part of :func:`envelope_time` that does not depend on θ0: (mode, acos c).
+
+    mode 0: the threshold is already reached for every θ0 (time 0); 1: never (inf);
+    2: K > 0, cos θ ≤ c on [acos c, 2π − acos c]; 3: K < 0, cos θ ≥ c on
+    [0, acos c] ∪ [2π − acos c, 2π), with c = (a − E)/K.
+    """
     if K == 0.0:
-        return 0.0 if E <= a else math.inf
+        return (0, 0.0) if E <= a else (1, 0.0)
     c = (a - E) / K
-    u = th0 % TWO_PI
-    if K > 0.0:  # cos θ ≤ c on [acos c, 2π − acos c]
+    if K > 0.0:
         if c >= 1.0:
-            return 0.0
+            return 0, 0.0
         if c < -1.0:
-            return math.inf
-        al = math.acos(c)
+            return 1, 0.0
+        return 2, math.acos(c)
+    if c <= -1.0:
+        return 0, 0.0
+    if c > 1.0:
+        return 1, 0.0
+    return 3, math.acos(c)
+
+
+def envelope_at(prep: tuple[int, float], th0: float, wf: float) -> float:
+    """:func:`envelope_time` from its preparation :func:`envelope_prep` at θ0."""
+    mode, al = prep
+    if mode == 0:
+        return 0.0
+    if mode == 1:
+        return math.inf
+    u = th0 % TWO_PI
+    if mode == 2:
         if al <= u <= TWO_PI - al:
             return 0.0
         return ((al - u) if u < al else (TWO_PI + al - u)) / wf
-    # K < 0: cos θ ≥ c on [0, acos c] ∪ [2π − acos c, 2π)
-    if c <= -1.0:
+    if u <= al or u >= TWO_PI - al:
         return 0.0
-    if c > 1.0:
-        return math.inf
-    be = math.acos(c)
-    if u <= be or u >= TWO_PI - be:
-        return 0.0
-    return (TWO_PI - be - u) / wf
+    return (TWO_PI - al - u) / wf
+
+
+def cos_range_prep(pb: float) -> tuple[float, float, float]:
+    """The part of :func:`cos_range` that depends on the interval's end pb only."""
+    return math.cos(pb), math.floor((pb - math.pi) / TWO_PI), math.floor(pb / TWO_PI)
+
+
+def cos_range_to(pa: float, end: tuple[float, float, float]) -> tuple[float, float]:
+    """:func:`cos_range` (pa, pb) with pb's part prepared by :func:`cos_range_prep`."""
+    ca = math.cos(pa)
+    cb, f1, f2 = end
+    lo, hi = (ca, cb) if ca < cb else (cb, ca)
+    if f1 >= math.ceil((pa - math.pi) / TWO_PI):
+        lo = -1.0  # contains an odd multiple of π
+    if f2 >= math.ceil(pa / TWO_PI):
+        hi = 1.0  # contains a multiple of 2π
+    return lo, hi
 
 
 def forced_split(w0: float, F: float, wf: float, y: float, yd: float, sp: float, cp: float):
@@ -414,6 +463,13 @@ class SlipEvent:
             self.as_ = (zd - self.P * wf * cp0) / w0
             self.sdc = sd + k.ds[phase] * cp0 / wf
             self.m3b = (abs(self.P - self.q) * wf * wf + w0 * self.Eh) / al
+            # constants of eval/clear/free_len (same floating-point operations)
+            self._c = (wf, w0, sp0, cp0, self.P, self.ac, self.as_, self.P * wf, self.sdc,
+                       k.ds[phase], self.sig, self.q, al, self.q * wf, self.m2b, self.m3b)
+            self.K = self.sig * (self.P * wf + k.ds[phase] / wf)
+            self.ssdc = self.sig * self.sdc
+            self.env = envelope_prep(self.K, -self.ssdc, self.Eh)
+            self._end: tuple[float, float, float] | None = None  # cos_range_prep, on demand
         r = energy_radius(w0, F, z, zd, H)
         self.scale = [r + abs(sd) + abs(zd) + 1e-300]
         # noise floors of the Taylor coefficients, as in solver.decide_phase: |terms|
@@ -428,18 +484,22 @@ class SlipEvent:
         ]
 
     def eval(self, h: float, bounds: bool = True) -> tuple[list[float], list[float], list[float]]:
+        if self.fast:  # split_eval and the slider law, inlined (the hot path)
+            wf, w0, sp0, cp0, P, ac, as_, Pwf, sdc, ds, sig, q, al, qwf, m2b, m3b = self._c
+            cw, sw = _cos(wf * h), _sin(wf * h)
+            sp, cp = sp0 * cw + cp0 * sw, cp0 * cw - sp0 * sw
+            c0, s0 = _cos(w0 * h), _sin(w0 * h)
+            y = P * sp + ac * c0 + as_ * s0
+            yd = Pwf * cp + w0 * (as_ * c0 - ac * s0)
+            sdn = sdc - ds * cp / wf
+            f, fp = sig * (yd - sdn), sig * (q * sp - y) / al
+            if not bounds:
+                return [f], [fp], []
+            fpp = sig * (qwf * cp - yd) / al
+            return [f], [fp], [local_m2(f, fp, fpp, m2b, m3b)]
         k = self.k
         z, zd, s, sd, sp0, cp0 = self.state
         wf = k.varpi
-        if self.fast:
-            y, yd, sp, cp = split_eval(self.P, self.ac, self.as_, self.w0, wf, sp0, cp0, h)
-            sdn = self.sdc - k.ds[self.phase] * cp / wf
-            sig, al = self.sig, k.alpha
-            f, fp = sig * (yd - sdn), sig * (self.q * sp - y) / al
-            if not bounds:
-                return [f], [fp], []
-            fpp = sig * (self.q * wf * cp - yd) / al
-            return [f], [fp], [local_m2(f, fp, fpp, self.m2b, self.m3b)]
         y, yd, sp, cp = oscillator(self.w0, wf, self.F, z, zd, sp0, cp0, h)
         _, sdn = slider(k.ds[self.phase], wf, s, sd, sp0, cp0, sp, cp, h)
         sig = self.sig
@@ -467,18 +527,18 @@ class SlipEvent:
         positive on [h, H] when min σ(K cos φ − c) > E_h."""
         if not self.fast:
             return False
-        wf, sig = self.k.varpi, self.sig
-        K = sig * (self.P * wf + self.k.ds[self.phase] / wf)
-        m = amp_cos_min(K, self.phi0 + wf * h, self.phi0 + wf * self.H)
-        return m - sig * self.sdc > self.Eh
+        if self._end is None:
+            self._end = cos_range_prep(self.phi0 + self.k.varpi * self.H)
+        lo, hi = cos_range_to(self.phi0 + self.k.varpi * h, self._end)
+        K = self.K
+        return (K * lo if K >= 0.0 else K * hi) - self.ssdc > self.Eh
 
     def free_len(self, h: float, i: int) -> float:
         """Length from h on which f > 0 is certified by its slow envelope (fast mode)."""
         if not self.fast:
             return 0.0
-        wf, sig = self.k.varpi, self.sig
-        K = sig * (self.P * wf + self.k.ds[self.phase] / wf)
-        return envelope_time(K, -sig * self.sdc, self.Eh, self.phi0 + wf * h, wf)
+        wf = self.k.varpi
+        return envelope_at(self.env, self.phi0 + wf * h, wf)
 
     def m2_start(self, i: int) -> float:
         if self.fast:
@@ -529,6 +589,10 @@ class StickEvent:
             self.ac = z - self.P * sp0
             self.as_ = (zd - self.P * wf * cp0) / w0
             self.m3b = [abs(self.P - q) * wf**3 + w0 * w0 * self.Eh for q in self.q]
+            self.K = (self.P - self.q[0], -1.0 * (self.P - self.q[1]))
+            self.eh = self.Eh / w0
+            self.env = [envelope_prep(K, 0.0, self.eh) for K in self.K]
+            self._end: tuple[float, float, float] | None = None  # cos_range_prep, on demand
         self.m2b = [
             math.inf if self.P is None else abs(self.P - q) * wf * wf + w0 * self.Eh for q in self.q
         ]
@@ -543,8 +607,13 @@ class StickEvent:
         z, zd, sp0, cp0 = self.state
         wf = self.k.varpi
         ql, qh = self.q
-        if self.fast:
-            y, yd, sp, cp = split_eval(self.P, self.ac, self.as_, self.w0, wf, sp0, cp0, h)
+        if self.fast:  # split_eval inlined (the hot path)
+            w0, P, ac, as_ = self.w0, self.P, self.ac, self.as_
+            cw, sw = _cos(wf * h), _sin(wf * h)
+            sp, cp = sp0 * cw + cp0 * sw, cp0 * cw - sp0 * sw
+            c0, s0 = _cos(w0 * h), _sin(w0 * h)
+            y = P * sp + ac * c0 + as_ * s0
+            yd = P * wf * cp + w0 * (as_ * c0 - ac * s0)
             f0, f1 = y - ql * sp, qh * sp - y
             g0, g1 = yd - ql * wf * cp, qh * wf * cp - yd
             if not bounds:
@@ -588,22 +657,21 @@ class StickEvent:
         min σ(P − q) sin φ > E_h/w0 for both edges."""
         if not self.fast:
             return False
-        wf = self.k.varpi
-        a = self.phi0 + wf * h - 0.5 * math.pi
-        b = self.phi0 + wf * self.H - 0.5 * math.pi
-        eh = self.Eh / self.w0
-        return all(
-            amp_cos_min(sig * (self.P - q), a, b) > eh
-            for sig, q in zip((1.0, -1.0), self.q, strict=True)
-        )
+        if self._end is None:
+            self._end = cos_range_prep(self.phi0 + self.k.varpi * self.H - 0.5 * math.pi)
+        lo, hi = cos_range_to(self.phi0 + self.k.varpi * h - 0.5 * math.pi, self._end)
+        eh = self.eh
+        for K in self.K:  # amp_cos_min(K, a, b) > eh for both edges
+            if not (K * lo if K >= 0.0 else K * hi) > eh:
+                return False
+        return True
 
     def free_len(self, h: float, i: int) -> float:
         """Length from h on which g_i > 0 is certified by its slow envelope (fast mode)."""
         if not self.fast:
             return 0.0
         wf = self.k.varpi
-        K = (1.0 if i == 0 else -1.0) * (self.P - self.q[i])
-        return envelope_time(K, 0.0, self.Eh / self.w0, self.phi0 + wf * h - 0.5 * math.pi, wf)
+        return envelope_at(self.env[i], self.phi0 + wf * h - 0.5 * math.pi, wf)
 
     def m2_start(self, i: int) -> float:
         if self.fast:
