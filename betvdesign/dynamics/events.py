@@ -75,6 +75,14 @@ class Evaluator(Protocol):
 
     def free_len(self, h: float, i: int) -> float: ...
 
+    def probe(self, h: float) -> tuple[list[float], list[float], list[float], list[float]]: ...
+
+
+def probe(ev: Evaluator, h: float) -> tuple[list[float], list[float], list[float], list[float]]:
+    """eval(h) plus every function's free_len(h): one search step's look at h."""
+    fs, fps, m2s = ev.eval(h)
+    return fs, fps, m2s, [ev.free_len(h, i) for i in range(ev.n)]
+
 
 def safe_step(f: float, fp: float, m2: float) -> float:
     """Smallest x > 0 with f + f'x − M2 x²/2 = 0 (f > 0), written without cancellation."""
@@ -156,7 +164,7 @@ def first_root(ev: Evaluator, H: float, counter: list[int]) -> tuple[float, int]
     if x >= H or ev.clear(0.0):
         return None
     scale = ev.scale
-    evaluate, free_len, clear = ev.eval, ev.free_len, ev.clear
+    evaluate, look, clear = ev.eval, ev.probe, ev.clear
     sqrt = math.sqrt
     x0 = x
     cand: tuple[float, int] | None = None  # a located root; others may still come first
@@ -164,7 +172,7 @@ def first_root(ev: Evaluator, H: float, counter: list[int]) -> tuple[float, int]
     steps = [0.0] * ev.n
     for _ in range(MAX_STEPS):
         counter[0] += 1
-        fs, fps, m2s = evaluate(x0)
+        fs, fps, m2s, lens = look(x0)
         best_end = math.inf
         best_i = -1
         for i in active:
@@ -179,7 +187,7 @@ def first_root(ev: Evaluator, H: float, counter: list[int]) -> tuple[float, int]
             else:
                 root = sqrt(fp * fp + 2.0 * m2 * f)
                 xi = (fp + root) / m2 if fp > 0.0 else 2.0 * f / (root - fp)
-            li = free_len(x0, i)
+            li = lens[i]
             steps[i] = xi if xi > li else li
             if fp < 0.0:
                 d = f / -fp
@@ -418,6 +426,9 @@ class GapEvent:
     def free_len(self, h: float, i: int) -> float:
         return 0.0
 
+    def probe(self, h: float) -> tuple[list[float], list[float], list[float], list[float]]:
+        return probe(self, h)
+
     def bounds(self, i: int) -> list[float]:
         r = energy_radius(1.0, 1.0, self.xi, self.xid, self.W)
         return band_bounds(1.0, -1.0, self.wf, 0.0, r, self.P, self.Eh, 4)
@@ -465,7 +476,7 @@ class SlipEvent:
             self.m3b = (abs(self.P - self.q) * wf * wf + w0 * self.Eh) / al
             # constants of eval/clear/free_len (same floating-point operations)
             self._c = (wf, w0, sp0, cp0, self.P, self.ac, self.as_, self.P * wf, self.sdc,
-                       k.ds[phase], self.sig, self.q, al, self.q * wf, self.m2b, self.m3b)
+                       k.ds[phase], self.sig, self.q, al, self.q * wf)
             self.K = self.sig * (self.P * wf + k.ds[phase] / wf)
             self.ssdc = self.sig * self.sdc
             self.env = envelope_prep(self.K, -self.ssdc, self.Eh)
@@ -483,20 +494,35 @@ class SlipEvent:
             ]
         ]
 
+    def _core(self, h: float) -> tuple[float, float, float]:
+        """(f, f', f'') at h in fast mode: split_eval and the slider law, inlined."""
+        wf, w0, sp0, cp0, P, ac, as_, Pwf, sdc, ds, sig, q, al, qwf = self._c
+        cw, sw = _cos(wf * h), _sin(wf * h)
+        sp, cp = sp0 * cw + cp0 * sw, cp0 * cw - sp0 * sw
+        c0, s0 = _cos(w0 * h), _sin(w0 * h)
+        y = P * sp + ac * c0 + as_ * s0
+        yd = Pwf * cp + w0 * (as_ * c0 - ac * s0)
+        sdn = sdc - ds * cp / wf
+        return sig * (yd - sdn), sig * (q * sp - y) / al, sig * (qwf * cp - yd) / al
+
     def eval(self, h: float, bounds: bool = True) -> tuple[list[float], list[float], list[float]]:
-        if self.fast:  # split_eval and the slider law, inlined (the hot path)
-            wf, w0, sp0, cp0, P, ac, as_, Pwf, sdc, ds, sig, q, al, qwf, m2b, m3b = self._c
-            cw, sw = _cos(wf * h), _sin(wf * h)
-            sp, cp = sp0 * cw + cp0 * sw, cp0 * cw - sp0 * sw
-            c0, s0 = _cos(w0 * h), _sin(w0 * h)
-            y = P * sp + ac * c0 + as_ * s0
-            yd = Pwf * cp + w0 * (as_ * c0 - ac * s0)
-            sdn = sdc - ds * cp / wf
-            f, fp = sig * (yd - sdn), sig * (q * sp - y) / al
-            if not bounds:
-                return [f], [fp], []
-            fpp = sig * (qwf * cp - yd) / al
-            return [f], [fp], [local_m2(f, fp, fpp, m2b, m3b)]
+        if not self.fast:
+            return self._eval_slow(h)
+        f, fp, fpp = self._core(h)
+        if not bounds:
+            return [f], [fp], []
+        return [f], [fp], [local_m2(f, fp, fpp, self.m2b, self.m3b)]
+
+    def probe(self, h: float) -> tuple[list[float], list[float], list[float], list[float]]:
+        """eval(h) and free_len(h, 0) in one call (the search's hot path)."""
+        if not self.fast:
+            return probe(self, h)
+        f, fp, fpp = self._core(h)
+        wf = self.k.varpi
+        li = envelope_at(self.env, self.phi0 + wf * h, wf)
+        return [f], [fp], [local_m2(f, fp, fpp, self.m2b, self.m3b)], [li]
+
+    def _eval_slow(self, h: float) -> tuple[list[float], list[float], list[float]]:
         k = self.k
         z, zd, s, sd, sp0, cp0 = self.state
         wf = k.varpi
@@ -637,6 +663,16 @@ class StickEvent:
             [yd - ql * wf * cp, qh * wf * cp - yd],
             [min(bzz + abs(ql) * w2, self.m2b[0]), min(bzz + qh * w2, self.m2b[1])],
         )
+
+    def probe(self, h: float) -> tuple[list[float], list[float], list[float], list[float]]:
+        """eval(h) and free_len(h, i) of both edges in one call (the search's hot path)."""
+        if not self.fast:
+            return probe(self, h)
+        fs, fps, m2s = self.eval(h)
+        wf = self.k.varpi
+        th = self.phi0 + wf * h - 0.5 * math.pi
+        env = self.env
+        return fs, fps, m2s, [envelope_at(env[0], th, wf), envelope_at(env[1], th, wf)]
 
     def start(self) -> list[list[float]]:
         z, zd, sp, cp = self.state

@@ -28,7 +28,7 @@ import time
 
 import numpy as np
 
-from betvdesign.dynamics.events import EPS, NOISE, SlipEvent, StickEvent, first_root, lex_sign
+from betvdesign.dynamics.events import EPS, NOISE, SlipEvent, StickEvent, first_root
 from betvdesign.dynamics.flows import (
     FREE,
     PHASE_NAMES,
@@ -73,12 +73,16 @@ def decide_phase(
     zeta = (z, vs, (sp - z) / A, (wf * cp - vs) / A)
     sine = (sp, wf * cp, -wf * wf * sp, -(wf**3) * cp)
     for edge, sig, q, phase in ((1, 1.0, 1.0 - b, SLIP), (2, -1.0, 1.0 + b, REVERSE)):
-        d = [sig * (zeta[j] - q * sine[j]) for j in range(4)]
-        if on == edge:
-            d[0] = 0.0
-        nz = [NOISE * (abs(zeta[j]) + abs(q * sine[j])) for j in range(4)]
-        if lex_sign(d, nz) < 0:
-            return phase
+        # lex_sign of d_j = σ(ζ_j − q sine_j) over noise floors NOISE·(|ζ_j| + |q sine_j|),
+        # inlined; d_0 = 0 on the edge just located
+        for j in range(4):
+            zj, qs = zeta[j], q * sine[j]
+            dj = 0.0 if j == 0 and on == edge else sig * (zj - qs)
+            nz = NOISE * (abs(zj) + abs(qs))
+            if dj > nz:
+                break  # leaves the band on the admissible side: not this edge
+            if dj < -nz:
+                return phase
     return STICK
 
 
