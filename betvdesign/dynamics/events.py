@@ -69,7 +69,7 @@ class Evaluator(Protocol):
 
     def m2_start(self, i: int) -> float: ...
 
-    def bounds(self, i: int) -> list[float]: ...
+    def bounds(self, i: int, n: int = 4) -> list[float]: ...
 
     def clear(self, h: float) -> bool: ...
 
@@ -158,7 +158,7 @@ def first_root(ev: Evaluator, H: float, counter: list[int]) -> tuple[float, int]
         if order == 0:
             xi = safe_step(derivs[0], derivs[1], ev.m2_start(i))
         else:
-            xi = 0.5 * (order + 1) * derivs[order] / ev.bounds(i)[order + 1]
+            xi = 0.5 * (order + 1) * derivs[order] / ev.bounds(i, order + 1)[order + 1]
         if xi < x:
             x = xi
     if x >= H or ev.clear(0.0):
@@ -429,9 +429,10 @@ class GapEvent:
     def probe(self, h: float) -> tuple[list[float], list[float], list[float], list[float]]:
         return probe(self, h)
 
-    def bounds(self, i: int) -> list[float]:
+    def bounds(self, i: int, n: int = 4) -> list[float]:
+        """Bounds on |ξ|, |ξ'|, ..., |ξ⁽ⁿ⁾| over the window."""
         r = energy_radius(1.0, 1.0, self.xi, self.xid, self.W)
-        return band_bounds(1.0, -1.0, self.wf, 0.0, r, self.P, self.Eh, 4)
+        return band_bounds(1.0, -1.0, self.wf, 0.0, r, self.P, self.Eh, n)
 
 
 class SlipEvent:
@@ -573,10 +574,11 @@ class SlipEvent:
         r = energy_radius(self.w0, self.F, z, zd, self.W)
         return min((abs(self.q) * self.k.varpi + r) / self.k.alpha, self.m2b)
 
-    def bounds(self, i: int) -> list[float]:
+    def bounds(self, i: int, n: int = 4) -> list[float]:
+        """Bounds on |f⁽ʲ⁾|, j = 0..n (j = 0 not used: 0)."""
         z, zd = self.state[0], self.state[1]
         r = energy_radius(self.w0, self.F, z, zd, self.W)
-        gb = band_bounds(self.w0, self.F, self.k.varpi, self.q, r, self.P, self.Eh, 3)
+        gb = band_bounds(self.w0, self.F, self.k.varpi, self.q, r, self.P, self.Eh, n - 1)
         return [0.0] + [g / self.k.alpha for g in gb]
 
 
@@ -717,7 +719,8 @@ class StickEvent:
         wf = self.k.varpi
         return min(self.w0 * r + abs(self.F) + abs(self.q[i]) * wf * wf, self.m2b[i])
 
-    def bounds(self, i: int) -> list[float]:
+    def bounds(self, i: int, n: int = 4) -> list[float]:
+        """Bounds on |g_i⁽ʲ⁾|, j = 0..n."""
         z, zd = self.state[0], self.state[1]
         r = energy_radius(self.w0, self.F, z, zd, self.W)
-        return band_bounds(self.w0, self.F, self.k.varpi, self.q[i], r, self.P, self.Eh, 4)
+        return band_bounds(self.w0, self.F, self.k.varpi, self.q[i], r, self.P, self.Eh, n)

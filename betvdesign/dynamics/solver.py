@@ -37,6 +37,7 @@ from betvdesign.dynamics.flows import (
     STICK,
     PhaseConstants,
     flow,
+    oscillator,
 )
 from betvdesign.dynamics.result import Event, Trajectory
 from betvdesign.dynamics.vertical import VerticalCycle, VerticalSchedule
@@ -104,6 +105,25 @@ class _Cycle:
         self.n_events = 0
         self.T = 2.0 * math.pi / k.varpi
         self.te = math.pi / k.varpi
+        self._free_cache: dict[tuple[float, float], tuple[float, ...]] = {}
+
+    def _free(
+        self, z: float, zd: float, s: float, sd: float, cp0: float, h: float
+    ) -> tuple[float, float, float, float]:
+        """flow(k, FREE, z, zd, s, sd, 0, cp0, h) for a forcing phase 0 or π (cp0 = ±1).
+
+        Free flights start at the section or at a contact end and last a duration fixed
+        by the (periodic) vertical motion: the oscillator's coefficients, which depend on
+        h only, are computed once (:func:`flows.oscillator`, same operations).
+        """
+        key = (h, cp0)
+        c = self._free_cache.get(key)
+        if c is None:
+            w0, F = self.k.w0[FREE], self.k.F[FREE]
+            y0, v0, _, _ = oscillator(w0, self.k.varpi, F, 0.0, 0.0, 0.0, cp0, h)
+            c = self._free_cache[key] = (math.cos(w0 * h), math.sin(w0 * h), w0, y0, v0)
+        c0, s0, w0, A, B = c
+        return z * c0 + zd / w0 * s0 + A, -z * w0 * s0 + zd * c0 + B, s + sd * h, sd
 
     def _event(self, m: int, t: float, kind: str, before: int, after: int) -> None:
         self.n_events += 1
@@ -125,11 +145,10 @@ class _Cycle:
                     self._event(m, ti, "impulsive", FREE, FREE)
         if tc is None:
             self._seg(m, 0.0, T, FREE, (z, zd, s, sd), 0.0, 1.0)
-            z, zd, s, sd, _, _ = flow(k, FREE, z, zd, s, sd, 0.0, 1.0, T)
-            return z, zd, s, sd
+            return self._free(z, zd, s, sd, 1.0, T)
         if tc > 0.0:
             self._seg(m, 0.0, tc, FREE, (z, zd, s, sd), 0.0, 1.0)
-            z, zd, s, sd, _, _ = flow(k, FREE, z, zd, s, sd, 0.0, 1.0, tc)
+            z, zd, s, sd = self._free(z, zd, s, sd, 1.0, tc)
             sp, cp = math.sin(k.varpi * tc), math.cos(k.varpi * tc)
         else:
             sp, cp = 0.0, 1.0
@@ -182,8 +201,7 @@ class _Cycle:
                 if ti > te:
                     self._event(m, ti, "impulsive", FREE, FREE)
         self._seg(m, te, T, FREE, (z, zd, s, sd), 0.0, -1.0)
-        z, zd, s, sd, _, _ = flow(k, FREE, z, zd, s, sd, 0.0, -1.0, te)
-        return z, zd, s, sd
+        return self._free(z, zd, s, sd, -1.0, te)
 
 
 def _check_state0(state0: object) -> tuple[float, ...]:
