@@ -245,7 +245,13 @@ def check_derivation(
             periodic[s.name] = solved[s.params] = _run_solver(solver, s)
             notes.append(f"set {s.name}: ran the exact solver ({why[s.name]})")
         if not getattr(periodic[s.name], "success", False):
-            used[s.name] = _fallback(choice, "the periodic orbit was not found")
+            unbounded = getattr(periodic[s.name], "status", "") == "unbounded"
+            what = (
+                "no periodic orbit exists (the head's tangential motion grows without bound)"
+                if unbounded
+                else "the periodic orbit was not found"
+            )
+            used[s.name] = _fallback(choice, what)
     vertical_of: dict[str, Any] = {}
     vm = vertical if vertical is not None else (load_vertical() if simulate != "never" else None)
     if vm is not None:  # cheap (closed-form vertical schedule): quoted by the window rule

@@ -298,6 +298,7 @@ def _mode_rules(
             )
         )
     failed: tuple[str, str, str] | None = None  # (threshold, message, source)
+    severity = "warning"
     if periodic is not None and not sim_ok:
         msg = getattr(periodic, "message", "")
         failed = (
@@ -305,6 +306,9 @@ def _mode_rules(
             f"exact solver did not find the periodic orbit: {msg}",
             SRC_SOLVER,
         )
+        if getattr(periodic, "status", "") == "unbounded":  # proven: no steady motion at all
+            severity = "error"
+            failed = ("bounded tangential motion", f"no periodic orbit exists: {msg}", SRC_SOLVER)
     elif answer is not None and decided is None:
         info = fidelity.RUNG_INFO[answer.choice.rung]
         failed = (
@@ -313,7 +317,7 @@ def _mode_rules(
             info.source,
         )
     if failed is not None:
-        out.append(RuleResult("simulation", "warning", False, None, *failed))
+        out.append(RuleResult("simulation", severity, False, None, *failed))
     out.append(_lambda_margin(s, margin, decided))
     return out
 

@@ -1,8 +1,8 @@
 """Failure map "growth": a·ϖ² = 1 with weak friction, tangential motion unbounded.
 
 Sources: the exact transient (secular growth of ζ, checked against solve_ivp DOP853
-over the first cycles) and the documented contract of periodic_orbit (a failure has a
-status and a message, never a mode); the design rule on tangential resonance.
+over the first cycles) and the documented contract of periodic_orbit (status
+"unbounded" with a message, never a mode); the design rule on tangential resonance.
 """
 
 from __future__ import annotations
@@ -26,10 +26,13 @@ def test_exact_follows_secular_growth():
     assert tr.section[20, 2] == pytest.approx(ref.section[-1, 2], rel=1e-7)
 
 
-def test_periodic_orbit_reports_no_periodic_state():
-    """No periodic state exists: status not success, a message, no mode, no Δs claim."""
+def test_periodic_orbit_reports_unbounded_growth():
+    """No periodic state exists (proven bound, tests/test_dynamics_growth.py): status
+    "unbounded" within a few hundred cycles, not the whole budget; no mode, no Δs; the
+    message names the resonance and the measured growth rate."""
     po = periodic_orbit(P, max_cycles=3000)
     assert not po.success
-    assert po.status != "success"
-    assert po.mode is None
-    assert po.message
+    assert po.status == "unbounded"
+    assert po.transient_cycles < 300
+    assert po.mode is None and po.delta_s is None
+    assert "a·ϖ² = 1" in po.message and "per cycle" in po.message

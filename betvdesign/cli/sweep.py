@@ -248,7 +248,8 @@ def pushpull_cmd(
                 for d in summary.disagreements
             ]
             lines += [
-                f"  not converged: ϖ={d['varpi']:g} α={d['alpha']:g} β={d['beta']:g} "
+                f"  {'unbounded' if d['status'] == 'unbounded' else 'not converged'}: "
+                f"ϖ={d['varpi']:g} α={d['alpha']:g} β={d['beta']:g} "
                 f"κ={d['kappa']:g}: {d['status']}"
                 + (f" (on the resonance a·ϖ² = 1, a = {d['resonance']})" if d["resonance"] else "")
                 + f": {d['message']}"

@@ -15,6 +15,25 @@ agreeing (settling can take ~10⁵ cycles). Stability: the Floquet multipliers a
 the eigenvalues of the central-difference Jacobian of Φⁿ at the fixed point; an
 unstable fixed point is not what the device settles to and is not accepted (the
 next period j·k_v is tried, then more brute force).
+
+Unbounded tangential motion (MODEL.md, last design note): at the free-flight
+resonance α·ϖ² = 1 no bounded motion exists while ακ < 2, whatever β — proof, for
+the oscillator α ζ'' + ζ = F(τ) of free flight and slip, with w = ζ' − iϖζ:
+(w e^{iϖτ})' = ϖ² F e^{iϖτ}, so over a cycle (e^{iϖτ} = 1 at both sections)
+Im w grows by ϖ² ∫₀ᵀ F sin ϖτ dτ. F = sin ϖτ in free flight; in contact (only where
+sin ϖτ ≥ 0) F = (1 − ακσ) sin ϖτ with σ = ±1 in slip and |σ| ≤ 1 in stick (the
+band rule; stick written as α ζ'' + ζ = sin ϖτ − α·friction). Hence
+Im w = −ϖ ζ at the section grows by at least ϖ²(π/ϖ − ακ·π/(2ϖ)), i.e.
+**ζ(section) falls by at least π(1 − ακ/2) every cycle**, from any state: the
+amplitude grows linearly without bound and no periodic orbit of any period exists.
+Such a point gets status ``"unbounded"`` after a short window that measures the
+rate (and checks it against the bound), instead of a 10⁵-cycle budget ending in
+``not_converged``. "Exact" means |α·ϖ² − 1| ≤ RESONANCE_RTOL: a detuning δ turns
+the per-cycle increment by ≈ πδ, so the growth stays linear for ≳ 0.01/δ ≈ 10⁷
+cycles there, far beyond any budget. Detuned points, however close, take the normal
+path (they settle, with |μ| → 1, or end ``not_converged``), so a slowly settling
+orbit is never flagged. The stick resonance α(1 + 1/β)·ϖ² = 1 is bounded: stick
+holds only while ζ stays within the friction band, so it cannot grow.
 """
 
 from __future__ import annotations
@@ -35,6 +54,20 @@ FD_STEP = 1e-7
 MAX_NEWTON = 25
 TRUST = 2.0
 POLISH = 1e-14
+#: |α·ϖ² − 1| at or below which the free-flight tangential resonance counts as exact.
+RESONANCE_RTOL = 1e-9
+#: Cycles over which the secular growth at an exact resonance is measured.
+GROWTH_WINDOW = 256
+
+
+def resonance_growth_bound(p: ModelParams) -> float | None:
+    """Proven least fall of ζ per cycle at the section [-/cycle], π(1 − ακ/2), when
+    α·ϖ² = 1 (within :data:`RESONANCE_RTOL`) and ακ < 2; None when the bound does not
+    apply (module docstring; MODEL.md "Dimensionless model", no-contact and slip)."""
+    ak = p.alpha * p.kappa
+    if abs(p.alpha * p.varpi**2 - 1.0) > RESONANCE_RTOL or ak >= 2.0:
+        return None
+    return math.pi * (1.0 - 0.5 * ak)
 
 
 class _Map:
@@ -131,6 +164,10 @@ def periodic_orbit(
     tol: accepted fixed-point residual ‖Φⁿ(x) − x‖∞ [-]; max_cycles: brute-force budget
     (cycles from rest) before giving up; max_period: periods j·k_v tried, j ≤ max_period;
     transient: cycles from rest before the first Newton attempt.
+
+    status: "success"; "unbounded" (exact free-flight tangential resonance α·ϖ² = 1 with
+    ακ < 2: no bounded motion exists, proven and measured, see the module docstring);
+    "not_converged" (budget spent); "not_driven" (no contact recurs); "failed".
     """
     if not isinstance(p, ModelParams):
         raise ParameterError(f"p must be a ModelParams, got {type(p).__name__}")
@@ -187,6 +224,18 @@ def periodic_orbit(
     except (SolverFailure, RuntimeError) as exc:
         return result("failed", f"transient from rest failed: {exc}")
     brute = m0
+    bound = resonance_growth_bound(p)
+    if bound is not None:
+        window = min(GROWTH_WINDOW, max_cycles - m0)  # the budget holds here too
+        grown = _measure_growth(phi, x.copy(), bound, kv, window)
+        if grown is not None:
+            rate, n, amp, s_win = grown
+            return result(
+                "unbounded",
+                _unbounded_message(p, bound, rate, n, amp, m0 + n),
+                transient_cycles=m0 + n,
+                transient_s=s_total + s_win,
+            )
     chunk = max(kv, (transient // kv) * kv)
     n_newton = 0
     best: tuple[float, int] = (math.inf, kv)
@@ -256,3 +305,47 @@ def periodic_orbit(
                 residual=best[0],
             )
         chunk = min(2 * chunk, max(kv, ((max_cycles - brute) // kv) * kv))
+
+
+def _measure_growth(
+    phi: _Map, x: np.ndarray, bound: float, kv: int, window: int
+) -> tuple[float, int, float, float] | None:
+    """Iterate about ``window`` cycles (at least ``kv``) from ``x`` in steps of the vertical
+    period ``kv``; return (mean fall of ζ per cycle [-], cycles, final amplitude
+    sqrt(ζ² + (ζ'/ϖ)²) [-], s gained [-]) when every step's fall is at least ``kv`` times
+    the proven per-cycle ``bound`` (up to round-off), else None (the bound is not borne
+    out, e.g. a solver defect: then the normal search decides)."""
+    varpi = phi.cyc.k.varpi
+    z0 = float(x[0])
+    steps = max(1, window // kv)
+    s_total = 0.0
+    try:
+        for _ in range(steps):
+            z_prev = float(x[0])
+            x, s = phi(x, kv)
+            s_total += s
+            if z_prev - float(x[0]) < kv * bound - 1e-9 * max(1.0, abs(z_prev)):
+                return None
+    except (SolverFailure, RuntimeError):
+        return None
+    if not np.all(np.isfinite(x)):
+        return None
+    n = steps * kv
+    return (z0 - float(x[0])) / n, n, math.hypot(float(x[0]), float(x[1]) / varpi), s_total
+
+
+def _unbounded_message(
+    p: ModelParams, bound: float, rate: float, window: int, amp: float, cycles: int
+) -> str:
+    """What grows, why, by how much, and what to try (status "unbounded")."""
+    ak = p.alpha * p.kappa
+    return (
+        f"unbounded tangential motion: free-flight tangential resonance a·ϖ² = 1 with "
+        f"a = α = {p.alpha:g} at ϖ = {p.varpi:g} (α·ϖ² = {p.alpha * p.varpi**2:.12g}; stick "
+        f"has a = α(1 + 1/β) = {p.alpha * (1 + 1 / p.beta):g}). Contact friction absorbs at "
+        f"most half the resonant drive when ακ = {ak:g} < 2, so no periodic orbit exists: "
+        f"ζ at the section falls by ≥ π(1 − ακ/2) = {bound:.6g} per cycle (proven); "
+        f"measured {rate:.6g} per cycle over {window} cycles, amplitude {amp:.4g} "
+        f"after {cycles} cycles. Move ϖ or α away from the resonance (α·ϖ² ≠ 1, "
+        f"e.g. by a few %)"
+    )

@@ -77,6 +77,11 @@ class Trajectory:
 class PeriodicResult:
     """The periodic state the slider settles to (MODEL.md "Slider").
 
+    ``status``: "success"; "unbounded" (no periodic orbit exists: at the exact
+    tangential resonance α·ϖ² = 1 with ακ < 2 the head's tangential amplitude grows
+    linearly, proven and measured, see :mod:`betvdesign.dynamics.periodic`);
+    "not_converged"; "not_driven"; "failed". Only "success" carries Δs and a mode.
+
     ``state``: section state (ξ, ξ', ζ, ζ', s, s') at τ = 2m*π/ϖ on the orbit (s = 0);
     ``delta_s`` [-]: slider increment per actuation cycle on the orbit (the orbit's
     increment over ``period_cycles`` divided by it); ``mode``: "push" (Δs > 0) or

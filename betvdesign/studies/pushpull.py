@@ -11,13 +11,14 @@ Two rungs (docs/MODEL.md, "Push/pull criterion" and "Slider"):
 
 The summary compares the λ < 1 rule with the simulated mode at every converged
 point and lists every disagreement and every point that did not converge
-(including unbounded tangential motion), so nothing is dropped silently.
+(status ``unbounded``, the exact tangential resonance α·ϖ² = 1 where the head's
+motion grows without bound, is also listed on its own), so nothing is dropped silently.
 """
 
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any, Literal
 
 import numpy as np
@@ -231,6 +232,9 @@ class PushPullSummary:
     n_predicted_push: int
     disagreements: list[dict[str, Any]]
     not_converged: list[dict[str, Any]]
+    #: The subset of ``not_converged`` whose status is "unbounded" (no periodic orbit
+    #: exists: the head's tangential motion grows linearly; the message gives the rate).
+    unbounded: list[dict[str, Any]] = field(default_factory=list)
 
     @property
     def agreement(self) -> float | None:
@@ -251,6 +255,7 @@ class PushPullSummary:
             "lambda_agreement": self.agreement,
             "disagreements": self.disagreements,
             "not_converged": self.not_converged,
+            "unbounded": self.unbounded,
         }
 
 
@@ -301,6 +306,7 @@ def summarise(rows: Sequence[Mapping[str, Any]], fidelity: str = "periodic") -> 
         n_predicted_push=sum(r["mode_predicted"] == "push" for r in rows),
         disagreements=disagree,
         not_converged=failed,
+        unbounded=[d for d in failed if d["status"] == "unbounded"],
     )
 
 
