@@ -459,39 +459,52 @@ class SlipEvent:
     ):
         self.k, self.phase = k, phase
         self.from_edge = from_edge  # entered at a band edge: f' = −σg/α is 0 there
-        self.sig = 1.0 if phase == SLIP else -1.0
-        self.q = 1.0 - self.sig * k.b
+        c = k.cache.get(phase)
+        if c is None:  # per-phase constants, once per parameter set
+            sig = 1.0 if phase == SLIP else -1.0
+            q = 1.0 - sig * k.b
+            w0, F, wf, ds = k.w0[phase], k.F[phase], k.varpi, k.ds[phase]
+            P = forced_split(w0, F, wf, 0.0, 0.0, 0.0, 1.0)[0]
+            fast = split_ok(P, w0, F)
+            apq = 0.0 if P is None else abs(P - q) * wf
+            K = sig * (P * wf + ds / wf) if fast else 0.0  # type: ignore[operator]
+            c = k.cache[phase] = (sig, q, w0, F, wf, k.alpha, ds, P, fast, apq, K)
+        sig, q, w0, F, wf, al, ds, P, fast, apq, K = c
+        self.sig, self.q, self.w0, self.F, self.P, self.fast = sig, q, w0, F, P, fast
         self.state = (z, zd, s, sd, sp0, cp0)
         self.H = H
-        w0, F = self.w0, self.F = k.w0[phase], k.F[phase]
-        wf, al, aq = k.varpi, k.alpha, abs(self.q)
-        self.P, self.Eh = forced_split(w0, F, wf, z, zd, sp0, cp0)
-        self.W = window(H, w0, wf, self.P, F)
-        self.m2b = math.inf if self.P is None else (abs(self.P - self.q) * wf + self.Eh) / al
+        if P is None:
+            self.Eh = Eh = math.inf
+            self.m2b = math.inf
+            self.W = window(H, w0, wf, P, F)
+        else:  # forced_split, inlined: y_h = ζ − P sin φ0, y_h' = ζ' − Pϖ cos φ0
+            yh, yhd = z - P * sp0, zd - P * wf * cp0
+            self.Eh = Eh = math.sqrt(yhd * yhd + w0 * w0 * yh * yh)
+            self.m2b = (apq + Eh) / al
+            self.W = H if fast else window(H, w0, wf, P, F)
         self.phi0 = math.atan2(sp0, cp0)
-        self.fast = split_ok(self.P, w0, F)
-        if self.fast:  # y = P sin φ + a_c cos w0h + a_s sin w0h (no cancellation here)
-            self.ac = z - self.P * sp0
-            self.as_ = (zd - self.P * wf * cp0) / w0
-            self.sdc = sd + k.ds[phase] * cp0 / wf
-            self.m3b = (abs(self.P - self.q) * wf * wf + w0 * self.Eh) / al
+        if fast:  # y = P sin φ + a_c cos w0h + a_s sin w0h (no cancellation here)
+            self.ac = yh
+            self.as_ = yhd / w0
+            self.sdc = sd + ds * cp0 / wf
+            self.m3b = (apq * wf + w0 * Eh) / al
             # constants of eval/clear/free_len (same floating-point operations)
-            self._c = (wf, w0, sp0, cp0, self.P, self.ac, self.as_, self.P * wf, self.sdc,
-                       k.ds[phase], self.sig, self.q, al, self.q * wf)
-            self.K = self.sig * (self.P * wf + k.ds[phase] / wf)
-            self.ssdc = self.sig * self.sdc
-            self.env = envelope_prep(self.K, -self.ssdc, self.Eh)
+            self._c = (wf, w0, sp0, cp0, P, yh, self.as_, P * wf, self.sdc, ds, sig, q, al, q * wf)
+            self.K = K
+            self.ssdc = sig * self.sdc
+            self.env = envelope_prep(K, -self.ssdc, Eh)
             self._end: tuple[float, float, float] | None = None  # cos_range_prep, on demand
-        r = energy_radius(w0, F, z, zd, H)
-        self.scale = [r + abs(sd) + abs(zd) + 1e-300]
+        azd, asd = abs(zd), abs(sd)
+        r = math.sqrt(zd * zd + w0 * w0 * z * z) + abs(F) * H  # energy_radius
+        self.scale = [r + asd + azd + 1e-300]
         # noise floors of the Taylor coefficients, as in solver.decide_phase: |terms|
-        zdd = F * sp0 - w0 * w0 * z
+        aq = abs(q)
         self.scale_derivs = [
             [
-                abs(zd) + abs(sd),
+                azd + asd,
                 (aq * abs(sp0) + abs(z)) / al,
-                (aq * wf * abs(cp0) + abs(zd)) / al,
-                (aq * wf * wf * abs(sp0) + abs(zdd)) / al,
+                (aq * wf * abs(cp0) + azd) / al,
+                (aq * wf * wf * abs(sp0) + abs(F * sp0 - w0 * w0 * z)) / al,
             ]
         ]
 
@@ -603,33 +616,61 @@ class StickEvent:
         on_edge: int = -1,
     ):
         self.k = k
-        w0, F = self.w0, self.F = k.w0[STICK], k.F[STICK]
-        wf = k.varpi
+        c = k.cache.get(STICK)
+        if c is None:  # per-parameter-set constants, once
+            w0, F, wf = k.w0[STICK], k.F[STICK], k.varpi
+            qs = (1.0 - k.b, 1.0 + k.b)
+            P = forced_split(w0, F, wf, 0.0, 0.0, 0.0, 1.0)[0]
+            fast = split_ok(P, w0, F)
+            a2 = [0.0 if P is None else abs(P - q) * wf * wf for q in qs]
+            a3 = [abs(P - q) * wf**3 for q in qs] if fast else []  # type: ignore[operator]
+            K = (P - qs[0], -1.0 * (P - qs[1])) if fast else ()  # type: ignore[operator]
+            c = k.cache[STICK] = (w0, F, wf, qs, P, fast, a2, a3, K, wf**3)
+        w0, F, wf, qs, P, fast, a2, a3, K, w3 = c
+        self.w0, self.F, self.q, self.P, self.fast = w0, F, qs, P, fast
         self.state = (z, zd, sp0, cp0)
         self.H = H
-        self.q = (1.0 - k.b, 1.0 + k.b)
         self.on_edge = on_edge
-        self.P, self.Eh = forced_split(w0, F, wf, z, zd, sp0, cp0)
-        self.W = window(H, w0, wf, self.P, F)
+        if P is None:
+            self.Eh = Eh = math.inf
+            self.W = window(H, w0, wf, P, F)
+            self.m2b = [math.inf, math.inf]
+        else:  # forced_split, inlined
+            yh, yhd = z - P * sp0, zd - P * wf * cp0
+            self.Eh = Eh = math.sqrt(yhd * yhd + w0 * w0 * yh * yh)
+            self.W = H if fast else window(H, w0, wf, P, F)
+            wE = w0 * Eh
+            self.m2b = [a2[0] + wE, a2[1] + wE]
         self.phi0 = math.atan2(sp0, cp0)
-        self.fast = split_ok(self.P, w0, F)
-        if self.fast:
-            self.ac = z - self.P * sp0
-            self.as_ = (zd - self.P * wf * cp0) / w0
-            self.m3b = [abs(self.P - q) * wf**3 + w0 * w0 * self.Eh for q in self.q]
-            self.K = (self.P - self.q[0], -1.0 * (self.P - self.q[1]))
-            self.eh = self.Eh / w0
-            self.env = [envelope_prep(K, 0.0, self.eh) for K in self.K]
+        if fast:
+            self.ac = yh
+            self.as_ = yhd / w0
+            wwE = w0 * w0 * Eh
+            self.m3b = [a3[0] + wwE, a3[1] + wwE]
+            self.K = K
+            self.eh = eh = Eh / w0
+            self.env = [envelope_prep(K[0], 0.0, eh), envelope_prep(K[1], 0.0, eh)]
             self._end: tuple[float, float, float] | None = None  # cos_range_prep, on demand
-        self.m2b = [
-            math.inf if self.P is None else abs(self.P - q) * wf * wf + w0 * self.Eh for q in self.q
-        ]
-        r = energy_radius(w0, F, z, zd, H)
-        self.scale = [r / w0 + abs(q) for q in self.q]
+        r = math.sqrt(zd * zd + w0 * w0 * z * z) + abs(F) * H  # energy_radius
+        q0, q1 = qs
+        self.scale = [r / w0 + abs(q0), r / w0 + abs(q1)]
         # noise floors of the Taylor coefficients, as in solver.decide_phase: |terms|
-        zeta = (z, zd, F * sp0 - w0 * w0 * z, F * wf * cp0 - w0 * w0 * zd)
-        sine = (sp0, wf * cp0, wf * wf * sp0, wf**3 * cp0)
-        self.scale_derivs = [[abs(zeta[j]) + abs(q * sine[j]) for j in range(4)] for q in self.q]
+        za = (abs(z), abs(zd), abs(F * sp0 - w0 * w0 * z), abs(F * wf * cp0 - w0 * w0 * zd))
+        sine = (sp0, wf * cp0, wf * wf * sp0, w3 * cp0)
+        self.scale_derivs = [
+            [
+                za[0] + abs(q0 * sine[0]),
+                za[1] + abs(q0 * sine[1]),
+                za[2] + abs(q0 * sine[2]),
+                za[3] + abs(q0 * sine[3]),
+            ],
+            [
+                za[0] + abs(q1 * sine[0]),
+                za[1] + abs(q1 * sine[1]),
+                za[2] + abs(q1 * sine[2]),
+                za[3] + abs(q1 * sine[3]),
+            ],
+        ]
 
     def eval(self, h: float, bounds: bool = True) -> tuple[list[float], list[float], list[float]]:
         z, zd, sp0, cp0 = self.state

@@ -39,7 +39,7 @@ so w0 = 1/sqrt(a) and F = c/a for a ζ'' + ζ = c sin ϖτ.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from betvdesign.params import ModelParams
 
@@ -136,6 +136,8 @@ class PhaseConstants:
     w0: dict[int, float]
     F: dict[int, float]
     ds: dict[int, float]
+    #: per-phase constants of the event searches (:mod:`events`), filled on first use
+    cache: dict = field(default_factory=dict, compare=False, repr=False)
 
     @classmethod
     def from_params(cls, p: ModelParams) -> PhaseConstants:
