@@ -342,8 +342,9 @@ def _unbounded_message(
     return (
         f"unbounded tangential motion: free-flight tangential resonance a·ϖ² = 1 with "
         f"a = α = {p.alpha:g} at ϖ = {p.varpi:g} (α·ϖ² = {p.alpha * p.varpi**2:.12g}; stick "
-        f"has a = α(1 + 1/β) = {p.alpha * (1 + 1 / p.beta):g}). Contact friction absorbs at "
-        f"most half the resonant drive when ακ = {ak:g} < 2, so no periodic orbit exists: "
+        f"has a = α(1 + 1/β) = {p.alpha * (1 + 1 / p.beta):g}). Contact friction cancels at "
+        f"most the fraction ακ/2 = {ak / 2:g} < 1 of the resonant drive, so no periodic "
+        f"orbit exists: "
         f"ζ at the section falls by ≥ π(1 − ακ/2) = {bound:.6g} per cycle (proven); "
         f"measured {rate:.6g} per cycle over {window} cycles, amplitude {amp:.4g} "
         f"after {cycles} cycles. Move ϖ or α away from the resonance (α·ϖ² ≠ 1, "
