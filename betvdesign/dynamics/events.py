@@ -642,9 +642,13 @@ class StickEvent:
             wE = w0 * Eh
             self.m2b = [a2[0] + wE, a2[1] + wE]
         self.phi0 = math.atan2(sp0, cp0)
+        self._w3 = w3
         if fast:
             self.ac = yh
             self.as_ = yhd / w0
+            self._c = (wf, w0, sp0, cp0, P, yh, self.as_, P * wf)
+            self._qw = (qs[0] * wf, qs[1] * wf)
+            self._w02, self._wf2 = w0 * w0, wf * wf
             wwE = w0 * w0 * Eh
             self.m3b = [a3[0] + wwE, a3[1] + wwE]
             self.K = K
@@ -672,31 +676,25 @@ class StickEvent:
             ],
         ]
 
+    def _split(self, h: float) -> tuple[float, float, float, float]:
+        """(ζ, ζ', sin φ, cos φ) at h in fast mode: :func:`flows.split_eval`, inlined."""
+        wf, w0, sp0, cp0, P, ac, as_, Pwf = self._c
+        cw, sw = _cos(wf * h), _sin(wf * h)
+        sp, cp = sp0 * cw + cp0 * sw, cp0 * cw - sp0 * sw
+        c0, s0 = _cos(w0 * h), _sin(w0 * h)
+        return P * sp + ac * c0 + as_ * s0, Pwf * cp + w0 * (as_ * c0 - ac * s0), sp, cp
+
     def eval(self, h: float, bounds: bool = True) -> tuple[list[float], list[float], list[float]]:
+        if self.fast:
+            if bounds:
+                return self.probe(h)[:3]  # type: ignore[return-value]
+            y, yd, sp, cp = self._split(h)
+            ql, qh = self.q
+            qlw, qhw = self._qw
+            return [y - ql * sp, qh * sp - y], [yd - qlw * cp, qhw * cp - yd], []
         z, zd, sp0, cp0 = self.state
         wf = self.k.varpi
         ql, qh = self.q
-        if self.fast:  # split_eval inlined (the hot path)
-            w0, P, ac, as_ = self.w0, self.P, self.ac, self.as_
-            cw, sw = _cos(wf * h), _sin(wf * h)
-            sp, cp = sp0 * cw + cp0 * sw, cp0 * cw - sp0 * sw
-            c0, s0 = _cos(w0 * h), _sin(w0 * h)
-            y = P * sp + ac * c0 + as_ * s0
-            yd = P * wf * cp + w0 * (as_ * c0 - ac * s0)
-            f0, f1 = y - ql * sp, qh * sp - y
-            g0, g1 = yd - ql * wf * cp, qh * wf * cp - yd
-            if not bounds:
-                return [f0, f1], [g0, g1], []
-            ydd = self.F * sp - self.w0 * self.w0 * y
-            w2sp = wf * wf * sp
-            return (
-                [f0, f1],
-                [g0, g1],
-                [
-                    local_m2(f0, g0, ydd + ql * w2sp, self.m2b[0], self.m3b[0]),
-                    local_m2(f1, g1, -ydd - qh * w2sp, self.m2b[1], self.m3b[1]),
-                ],
-            )
         y, yd, sp, cp = oscillator(self.w0, wf, self.F, z, zd, sp0, cp0, h)
         r = energy_radius(self.w0, self.F, y, yd, self.W)
         bzz = self.w0 * r + abs(self.F)
@@ -711,25 +709,41 @@ class StickEvent:
         """eval(h) and free_len(h, i) of both edges in one call (the search's hot path)."""
         if not self.fast:
             return probe(self, h)
-        fs, fps, m2s = self.eval(h)
-        wf = self.k.varpi
+        y, yd, sp, cp = self._split(h)
+        ql, qh = self.q
+        qlw, qhw = self._qw
+        f0, f1 = y - ql * sp, qh * sp - y
+        g0, g1 = yd - qlw * cp, qhw * cp - yd
+        ydd = self.F * sp - self._w02 * y
+        w2sp = self._wf2 * sp
+        m2b, m3b = self.m2b, self.m3b
+        wf = self._c[0]
         th = self.phi0 + wf * h - 0.5 * math.pi
         env = self.env
-        return fs, fps, m2s, [envelope_at(env[0], th, wf), envelope_at(env[1], th, wf)]
+        return (
+            [f0, f1],
+            [g0, g1],
+            [
+                local_m2(f0, g0, ydd + ql * w2sp, m2b[0], m3b[0]),
+                local_m2(f1, g1, -ydd - qh * w2sp, m2b[1], m3b[1]),
+            ],
+            [envelope_at(env[0], th, wf), envelope_at(env[1], th, wf)],
+        )
 
     def start(self) -> list[list[float]]:
         z, zd, sp, cp = self.state
         wf = self.k.varpi
         w0, F = self.w0, self.F
-        zeta = [z, zd, F * sp - w0 * w0 * z, F * wf * cp - w0 * w0 * zd]
-        sine = [sp, wf * cp, -wf * wf * sp, -(wf**3) * cp]
-        out = []
-        for sig, q in zip((1.0, -1.0), self.q, strict=True):
-            d = [sig * (zeta[j] - q * sine[j]) for j in range(4)]
-            if len(out) == self.on_edge:
-                d[0] = 0.0
-            out.append(d)
-        return out
+        z2, z3 = F * sp - w0 * w0 * z, F * wf * cp - w0 * w0 * zd
+        s1, s2, s3 = wf * cp, -wf * wf * sp, -self._w3 * cp
+        q0, q1 = self.q
+        d0 = [z - q0 * sp, zd - q0 * s1, z2 - q0 * s2, z3 - q0 * s3]  # σ = +1
+        d1 = [-(z - q1 * sp), -(zd - q1 * s1), -(z2 - q1 * s2), -(z3 - q1 * s3)]  # σ = −1
+        if self.on_edge == 0:
+            d0[0] = 0.0
+        elif self.on_edge == 1:
+            d1[0] = 0.0
+        return [d0, d1]
 
     def clear(self, h: float) -> bool:
         """g = σ(P − q) sin φ + σ ζ_h, |ζ_h| ≤ E_h/w0: both positive on [h, H] when
