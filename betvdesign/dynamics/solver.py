@@ -134,20 +134,26 @@ class _Cycle:
         if self.segments is not None:
             self.segments.append((m * self.T + t0, m, t0, t1, phase, st, sp, cp))
 
-    def run(self, m: int, z: float, zd: float, s: float, sd: float) -> tuple[float, ...]:
-        """State (ζ, ζ', s, s') at the end of cycle m from its start."""
+    def run(
+        self, m: int, z: float, zd: float, s: float, sd: float, vc: VerticalCycle | None = None
+    ) -> tuple[float, ...]:
+        """State (ζ, ζ', s, s') at the end of cycle m from its start (vc: vs.cycle(m))."""
         k, te, T = self.k, self.te, self.T
-        vc: VerticalCycle = self.vs.cycle(m)
+        dense, logging = self.segments is not None, self.log is not None
+        if vc is None:
+            vc = self.vs.cycle(m)
         tc = vc.contact_start
-        if self.log is not None:  # impulsive hits before the contact, in time order
+        if logging:  # impulsive hits before the contact, in time order
             for ti in vc.impulsive:
                 if tc is None or ti < tc:
                     self._event(m, ti, "impulsive", FREE, FREE)
         if tc is None:
-            self._seg(m, 0.0, T, FREE, (z, zd, s, sd), 0.0, 1.0)
+            if dense:
+                self._seg(m, 0.0, T, FREE, (z, zd, s, sd), 0.0, 1.0)
             return self._free(z, zd, s, sd, 1.0, T)
         if tc > 0.0:
-            self._seg(m, 0.0, tc, FREE, (z, zd, s, sd), 0.0, 1.0)
+            if dense:
+                self._seg(m, 0.0, tc, FREE, (z, zd, s, sd), 0.0, 1.0)
             z, zd, s, sd = self._free(z, zd, s, sd, 1.0, tc)
             sp, cp = math.sin(k.varpi * tc), math.cos(k.varpi * tc)
         else:
@@ -156,7 +162,10 @@ class _Cycle:
         phase = decide_phase(k, z, zd, sd, sp, cp)
         if phase == STICK:
             zd = sd = (zd + sd / k.beta) / (1.0 + 1.0 / k.beta)
-        self._event(m, t, "impact", FREE, phase)
+        if logging:
+            self._event(m, t, "impact", FREE, phase)
+        else:
+            self.n_events += 1  # counted all the same
         zero_len = 0
         n_switch = 0
         on_edge = -1
@@ -171,7 +180,8 @@ class _Cycle:
             from_edge = False
             res = first_root(ev, H, self.counter)
             h = H if res is None else res[0]
-            self._seg(m, t, t + h, phase, (z, zd, s, sd), sp, cp)
+            if dense:
+                self._seg(m, t, t + h, phase, (z, zd, s, sd), sp, cp)
             z, zd, s, sd, _, _ = flow(k, phase, z, zd, s, sd, sp, cp, h)
             if res is None:
                 break
@@ -185,7 +195,10 @@ class _Cycle:
                 on_edge = res[1]
             else:
                 from_edge = True
-            self._event(m, t, kind, phase, new)
+            if logging:
+                self._event(m, t, kind, phase, new)
+            else:
+                self.n_events += 1
             zero_len = zero_len + 1 if h <= 64.0 * EPS * max(1.0, t) else 0
             n_switch += 1
             if zero_len > MAX_ZERO_LENGTH or n_switch > MAX_SWITCHES:
@@ -195,12 +208,15 @@ class _Cycle:
                     "switching chatters (a Zeno point of the model); try other parameters"
                 )
             phase = new
-        self._event(m, te, "separation", phase, FREE)
-        if self.log is not None:  # impulsive hits after the separation
-            for ti in vc.impulsive:
+        if logging:
+            self._event(m, te, "separation", phase, FREE)
+            for ti in vc.impulsive:  # impulsive hits after the separation
                 if ti > te:
                     self._event(m, ti, "impulsive", FREE, FREE)
-        self._seg(m, te, T, FREE, (z, zd, s, sd), 0.0, -1.0)
+        else:
+            self.n_events += 1
+        if dense:
+            self._seg(m, te, T, FREE, (z, zd, s, sd), 0.0, -1.0)
         return self._free(z, zd, s, sd, -1.0, te)
 
 
@@ -248,25 +264,26 @@ def simulate(
     log: list[Event] | None = [] if log_events else None
     segs: list | None = [] if dense else None
     cyc = _Cycle(k, vs, log, segs)
-    section = np.empty((n + 1, 6))
+    rows = []
     z, zd, s, sd = st[2:]
     status, message, done = "success", f"{n} cycles simulated", n
+    run, cycle = cyc.run, vs.cycle
     for m in range(n):
-        vc = vs.cycle(m)
-        section[m] = (vc.xi0, vc.xid0, z, zd, s, sd)
+        vc = cycle(m)
+        rows.append((vc.xi0, vc.xid0, z, zd, s, sd))
         try:
-            z, zd, s, sd = cyc.run(m, z, zd, s, sd)
+            z, zd, s, sd = run(m, z, zd, s, sd, vc)
         except (SolverFailure, RuntimeError) as exc:
             status, message, done = "failed", f"{exc}; results up to cycle {m} kept", m
             break
-        if not (math.isfinite(z) and math.isfinite(zd) and math.isfinite(s) and math.isfinite(sd)):
+        if (z - z) + (zd - zd) + (s - s) + (sd - sd) != 0.0:  # x − x is NaN unless x is finite
             status, done = "failed", m
             message = f"non-finite state in cycle {m}; results up to cycle {m} kept"
             break
     else:
-        vc = vs.cycle(n)
-        section[n] = (vc.xi0, vc.xid0, z, zd, s, sd)
-    section = section[: done + 1]
+        vc = cycle(n)
+        rows.append((vc.xi0, vc.xid0, z, zd, s, sd))
+    section = np.array(rows, dtype=float).reshape(-1, 6)
     delta = np.diff(section[:, 4])
     sampler = _make_sampler(k, vs, segs) if dense else None
     return Trajectory(
