@@ -202,9 +202,9 @@ def first_root(ev: Evaluator, H: float, counter: list[int]) -> tuple[float, int]
             f_hi = -1.0
             if clipped:
                 counter[0] += 1
-                f_hi = evaluate(hi)[0][i]
+                f_hi = evaluate(hi, False)[0][i]
             if f_hi <= 0.0:  # else f_i (monotone on the bracket) stays positive up to H
-                r = _refine(ev, i, x0, hi, fs[i], fps[i], counter)
+                r = _refine(ev, i, x0, hi, fs[i], fps[i], counter, f_hi if clipped else None)
                 cand, H = (r, i), r  # the others are searched on [x0, r] only
         step = H - x0
         if W < step:
@@ -223,20 +223,32 @@ def first_root(ev: Evaluator, H: float, counter: list[int]) -> tuple[float, int]
 
 
 def _refine(
-    ev: Evaluator, i: int, lo: float, hi: float, flo: float, fplo: float, counter: list[int]
+    ev: Evaluator,
+    i: int,
+    lo: float,
+    hi: float,
+    flo: float,
+    fplo: float,
+    counter: list[int],
+    fhi: float | None = None,
 ) -> float:
     """Root of ev's function i in (lo, hi]: f(lo) > 0, f decreasing, f(hi) ≤ 0.
 
-    Safeguarded Newton (bisection when a step leaves the bracket), to round-off. When
-    the evaluator returns f'' with eval(x, False) (fast mode), the steps after the first
-    carry Halley's correction (cubic convergence: about one evaluation less per root);
-    the bracket, the stopping tests and hence the accuracy are those of Newton.
+    Safeguarded Newton, to round-off: a step that leaves the bracket is replaced by the
+    false-position point of the bracket ends when both values are known (``fhi``: f(hi)
+    if evaluated), by bisection otherwise and never twice in a row, so the bracket still
+    at least halves every second fallback. When the evaluator returns f'' with
+    eval(x, False) (fast mode), the steps after the first carry Halley's correction
+    (cubic convergence: about one evaluation less per root); the bracket, the stopping
+    tests and hence the accuracy are those of Newton.
     """
     x, f, fp, fpp = lo, flo, fplo, 0.0
+    f_lo, f_hi = flo, fhi  # f at the bracket ends, when known
+    secant = True
     tol = 4.0 * EPS * max(1.0, abs(hi))
     floor = 4.0 * EPS * ev.scale[i]  # |f| at round-off level: converged
     evaluate = ev.eval
-    for _ in range(100):
+    for _ in range(200):
         if fp != 0.0:
             dn = f / fp
             den = 1.0 - 0.5 * dn * fpp / fp  # Halley's correction (fpp = 0: Newton)
@@ -245,6 +257,11 @@ def _refine(
             xn = 0.5 * (lo + hi)
         if not lo < xn < hi:
             xn = 0.5 * (lo + hi)
+            if secant and f_hi is not None:  # false position (f_lo > 0 ≥ f_hi)
+                xs = lo + (hi - lo) * (f_lo / (f_lo - f_hi))
+                if lo < xs < hi:
+                    xn = xs
+            secant = not secant
         if abs(xn - x) <= tol:
             return xn
         x = xn
@@ -255,9 +272,9 @@ def _refine(
         if abs(f) <= floor:
             return x
         if f > 0.0:
-            lo = x
+            lo, f_lo = x, f
         else:
-            hi = x
+            hi, f_hi = x, f
         if hi - lo <= tol:
             return hi
     return x
