@@ -12,7 +12,8 @@ measured side by side in one run; periodic solve of one design median ≤ 20 ms
 warm; exact vs reference ≤ 1e-8 in s after 100 cycles on 20 designs spread over
 the window; periodic Δs from shooting vs long brute force ≤ 1e-9.
 
-Times are CPU seconds of this process (``time.process_time``, best of repeats):
+Times are CPU seconds of this process (``time.process_time``, best of 3 for both
+solvers):
 the machines are shared, and CPU time is what load does not inflate much. Wall
 times are printed next to them. Writes benchmarks/out/bench_solver.json.
 """
@@ -77,7 +78,7 @@ def bench_speed(designs: dict[str, ModelParams], n_exact: int = 200, n_ref: int 
     for name, p in designs.items():
         simulate(p, 3)  # warm imports and caches
         ce, we, ex = _timed(lambda p=p: simulate(p, n_exact, log_events=False), 3)
-        cr, wr, rf = _timed(lambda p=p: reference.simulate(p, n_ref, rtol=1e-10, atol=1e-12), 1)
+        cr, wr, rf = _timed(lambda p=p: reference.simulate(p, n_ref, rtol=1e-10, atol=1e-12), 3)
         row = {
             "design": name,
             "params": p.as_dict(),
