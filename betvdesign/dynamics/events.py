@@ -61,9 +61,10 @@ class Evaluator(Protocol):
     scale: list[float]
     scale_derivs: list[list[float]]
 
-    def eval(
-        self, h: float, bounds: bool = True
-    ) -> tuple[list[float], list[float], list[float]]: ...
+    def eval(self, h: float, bounds: bool = True) -> tuple[list[float], list[float], list[float]]:
+        """(f, f', M2) lists at h; with bounds=False (f, f', f'') where f'' is exact and
+        cheap (fast mode), else (f, f', []): the refinement then takes Newton steps."""
+        ...
 
     def start(self) -> list[list[float]]: ...
 
@@ -432,6 +433,8 @@ class GapEvent:
 
     def eval(self, h: float, bounds: bool = True) -> tuple[list[float], list[float], list[float]]:
         y, yd, _, _ = oscillator(1.0, self.wf, -1.0, self.xi, self.xid, self.sp0, self.cp0, h)
+        if not bounds:
+            return [y], [yd], []  # no f'' here: the refinement takes Newton steps
         r = energy_radius(1.0, 1.0, y, yd, self.W)
         return [y], [yd], [min(r + 1.0, self.m2b)]
 
@@ -547,7 +550,7 @@ class SlipEvent:
 
     def eval(self, h: float, bounds: bool = True) -> tuple[list[float], list[float], list[float]]:
         if not self.fast:
-            return self._eval_slow(h)
+            return self._eval_slow(h, bounds)
         f, fp, fpp = self._core(h)
         if not bounds:
             return [f], [fp], [fpp]
@@ -562,13 +565,17 @@ class SlipEvent:
         li = envelope_at(self.env, self.phi0 + wf * h, wf)
         return [f], [fp], [local_m2(f, fp, fpp, self.m2b, self.m3b)], [li]
 
-    def _eval_slow(self, h: float) -> tuple[list[float], list[float], list[float]]:
+    def _eval_slow(
+        self, h: float, bounds: bool = True
+    ) -> tuple[list[float], list[float], list[float]]:
         k = self.k
         z, zd, s, sd, sp0, cp0 = self.state
         wf = k.varpi
         y, yd, sp, cp = oscillator(self.w0, wf, self.F, z, zd, sp0, cp0, h)
         _, sdn = slider(k.ds[self.phase], wf, s, sd, sp0, cp0, sp, cp, h)
         sig = self.sig
+        if not bounds:  # no f'' here: the refinement takes Newton steps
+            return [sig * (yd - sdn)], [sig * (self.q * sp - y) / k.alpha], []
         r = energy_radius(self.w0, self.F, y, yd, self.W)
         m2 = min((abs(self.q) * wf + r) / k.alpha, self.m2b)
         return [sig * (yd - sdn)], [sig * (self.q * sp - y) / k.alpha], [m2]
@@ -728,6 +735,8 @@ class StickEvent:
         wf = self.k.varpi
         ql, qh = self.q
         y, yd, sp, cp = oscillator(self.w0, wf, self.F, z, zd, sp0, cp0, h)
+        if not bounds:  # no f'' here: the refinement takes Newton steps
+            return [y - ql * sp, qh * sp - y], [yd - ql * wf * cp, qh * wf * cp - yd], []
         r = energy_radius(self.w0, self.F, y, yd, self.W)
         bzz = self.w0 * r + abs(self.F)
         w2 = wf * wf
