@@ -115,10 +115,12 @@ def test_only_exact_resonances_of_the_map_qualify():
     ],
 )
 def test_slow_or_near_resonant_orbits_still_converge(varpi, alpha, beta, kappa, min_cycles, min_mu):
-    """Never flagged: these settle (long brute force + Newton to residual ≤ 1e-10)."""
-    po = periodic_orbit(ModelParams(varpi, alpha, beta, kappa))
+    """Never flagged: these settle (shooting to residual ≤ 1e-10), though plain iteration
+    from rest has not settled after ``min_cycles``."""
+    p = ModelParams(varpi, alpha, beta, kappa)
+    po = periodic_orbit(p)
     assert po.status == "success", po.message
-    assert po.transient_cycles >= min_cycles
+    assert abs(simulate(p, min_cycles, log_events=False).delta_s[-1] - po.delta_s) > 1e-6
     assert max(po.floquet_moduli) >= min_mu
 
 

@@ -1,0 +1,116 @@
+"""Accelerated start of the periodic solve (Anderson mixing + slider-velocity bracket).
+
+Sources: long brute-force iteration from rest (a second method: n cycles with
+|μ|maxⁿ < 1e-14) for the Δs and section state of the hard designs near ϖ → 2; the
+unaccelerated solver (brute force + Newton only, the fallback path, by setting the
+acceleration budget to 0) for the Floquet moduli, period and counters; the model's
+necessary condition for a slider orbit (MODEL.md "Contact": a net-zero slider impulse
+per cycle needs the friction to change sign or stick within the contact) for the
+round-off "fixed points" at huge |s'| that the acceleration must never hand over.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from betvdesign.dynamics import periodic, periodic_orbit, simulate
+from betvdesign.dynamics.flows import PhaseConstants
+from betvdesign.dynamics.vertical import VerticalSchedule
+from betvdesign.params import ModelParams
+
+#: Window designs (benchmarks/bench_solver.py draw, seed 20041) whose transient from rest
+#: takes hundreds to ~10⁵ cycles (near ϖ → 2).
+HARD = {
+    "w14": ModelParams(
+        1.9154180469268849, 0.20382786257394497, 0.14569786872377327, 0.1447646069398345
+    ),
+    "w12": ModelParams(
+        1.8711431350358352, 0.7328458411511358, 3.935443208849082, 0.1124640256281036
+    ),
+    "w13": ModelParams(
+        1.7377800638661298, 0.13817201431889722, 2.3880965745560054, 0.08831371547706637
+    ),
+    "w00": ModelParams(
+        1.8085018435162556, 1.8285564459679067, 0.23820580746354814, 0.30567585044676665
+    ),
+}
+
+
+def _unaccelerated(p: ModelParams, monkeypatch: pytest.MonkeyPatch):
+    with monkeypatch.context() as m:
+        m.setattr(periodic, "ANDERSON_BUDGET", 0)
+        return periodic_orbit(p)
+
+
+@pytest.mark.parametrize("name", list(HARD))
+def test_hard_designs_match_long_brute_force(name):
+    """Δs and section state equal those of brute force from rest: the transient (w14: s'
+    drifts ~8.5e-5 per cycle to the orbit's −7.56, ~95 000 cycles; the others leave the
+    one-way-slip region within ~2000) plus n with |μ|maxⁿ < 1e-14."""
+    p = HARD[name]
+    po = periodic_orbit(p)
+    assert po.success and po.stable and po.residual <= 1e-10, po.message
+    n = (100_000 if name == "w14" else 3000) + int(math.log(1e-14) / math.log(po.floquet_moduli[0]))
+    tr = simulate(p, n, log_events=False)
+    assert tr.success
+    assert abs(tr.delta_s[-1] - po.delta_s) <= 1e-9
+    assert np.allclose(tr.section[-1, [2, 3, 5]], po.state[[2, 3, 5]], atol=1e-9)
+
+
+@pytest.mark.parametrize("name", list(HARD))
+def test_same_orbit_as_the_fallback_in_fewer_cycles(name, monkeypatch):
+    """The fallback (brute force + Newton, no acceleration) finds the same orbit, period and
+    Floquet moduli (finite differences at round-off-close points: ≤ 1e-7), in more cycles."""
+    p = HARD[name]
+    fast, slow = periodic_orbit(p), _unaccelerated(p, monkeypatch)
+    assert fast.success and slow.success
+    assert fast.period_cycles == slow.period_cycles == 1
+    assert abs(fast.delta_s - slow.delta_s) <= 1e-11
+    assert np.allclose(fast.floquet_moduli, slow.floquet_moduli, atol=1e-7)
+    assert fast.n_cycles < slow.n_cycles
+    assert fast.transient_cycles < slow.transient_cycles
+
+
+def _map(p: ModelParams) -> periodic._Map:
+    vs = VerticalSchedule(p.varpi, horizon=1000)
+    assert vs.period == 1 and vs.first_end is not None
+    return periodic._Map(PhaseConstants.from_params(p), vs, vs.first_end + 1)
+
+
+@pytest.mark.parametrize("name", ["w14", "w12"])
+def test_round_off_fixed_points_exist_and_are_never_returned(name):
+    """At |s'| = 1e15 a whole contact slips one way and the slider's increment
+    (βκ∫sin ϖτ dτ ≠ 0) is below the ulp of s': Φ(x) − x passes the residual test though no
+    orbit is there. The acceleration's start and the accepted orbit stay clear of it:
+    ζ' − s' changes sign or sticks within the contact of the accepted orbit."""
+    p = HARD[name]
+    phi = _map(p)
+    po = periodic_orbit(p)
+    x = po.state[[2, 3, 5]].copy()
+    x[2] = 1e15
+    for _ in range(3):  # (ζ, ζ') of the one-way-slip piece: Newton on them, s' held
+        y, _ = phi(x, 1)
+        J = np.empty((2, 2))
+        for i in range(2):
+            xp = x.copy()
+            xp[i] += 1e-6
+            J[:, i] = (phi(xp, 1)[0][:2] - y[:2]) / 1e-6
+        x[:2] += np.linalg.solve(J - np.eye(2), x[:2] - y[:2])
+    assert np.max(np.abs(phi(x, 1)[0] - x)) <= 1e-10  # the trap is real
+    start = periodic._anderson(_map(p), po.state[[2, 3, 5]] + [0.5, 0.5, 0.5], 1)
+    assert start is not None and abs(start[2]) < 100.0
+    # the accepted orbit: friction changes sign (or sticks) within its contact
+    tr = simulate(p, 1, state0=po.state)
+    kinds = {e.kind for e in tr.events} - {"impact", "separation", "impulsive"}
+    assert kinds, [tuple(e) for e in tr.events]
+    assert abs(po.state[5]) < 1e3
+
+
+def test_unbounded_detection_and_not_driven_unchanged():
+    """Exact resonance α·ϖ² = 1 (ακ < 2) still ends "unbounded"; beyond the window
+    "not_driven" (the acceleration runs after both checks)."""
+    assert periodic_orbit(ModelParams(1.0, 1.0, 0.5, 0.4)).status == "unbounded"
+    assert periodic_orbit(ModelParams(2.3, 1.0, 1.0, 0.4)).status == "not_driven"
