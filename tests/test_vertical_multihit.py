@@ -50,3 +50,12 @@ def test_window_has_single_hit():
         vm = vertical_motion(varpi)
         assert vm.regime == "single-impact"
         assert vm.impulsive_per_cycle == 0.0
+
+
+def test_event_counter_does_not_depend_on_logging():
+    """n_events counts impulsive hits whether or not the event log is kept (invariant)."""
+    p = ModelParams(0.3401, 0.5, 0.5, 0.2)
+    logged = simulate(p, 6)
+    silent = simulate(p, 6, log_events=False)
+    assert logged.n_events == len(logged.events) == silent.n_events
+    assert any(e.kind == "impulsive" for e in logged.events)

@@ -147,6 +147,8 @@ class _Cycle:
             for ti in vc.impulsive:
                 if tc is None or ti < tc:
                     self._event(m, ti, "impulsive", FREE, FREE)
+        elif vc.impulsive:  # counted all the same (the whole cycle's, logged or not)
+            self.n_events += len(vc.impulsive)
         if tc is None:
             if dense:
                 self._seg(m, 0.0, T, FREE, (z, zd, s, sd), 0.0, 1.0)
