@@ -469,11 +469,18 @@ def _speed(s: SetDerivation, periodic: PeriodicLike | None) -> list[RuleResult]:
             True,
             v,
             "Δs·u·cosθ·f_act [m/s]",
-            f"mean speed {format_speed(v)}, crosses the {s.travel_range_m * 1e6:.4g} um travel "
-            f"range in {format_time(t_cross)}",
+            f"mean speed {format_speed(abs(v))} toward {_travel_direction(s, ds)} "
+            f"({'with' if ds > 0 else 'against'} the impact direction "
+            f"{s.actuator_set.impact_direction}), crosses the {s.travel_range_m * 1e6:.4g} um "
+            f"travel range in {format_time(t_cross)}",
             SRC_SPEED,
         )
     ]
+
+
+def _travel_direction(s: SetDerivation, delta_s: float) -> str:
+    """Direction the slider travels: Δs is along the set's impact direction."""
+    return "+x" if s.impact_sign * (1 if delta_s > 0 else -1) > 0 else "-x"
 
 
 def format_speed(v_m_s: float) -> str:

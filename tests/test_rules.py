@@ -255,3 +255,22 @@ def test_window_rule_quotes_the_exact_vertical_motion():
     failed = SimpleNamespace(success=False, message="no contact recurred")
     r = _rule(evaluate(_set(2.3, 2.0, 0.5, 0.2), vertical=failed), "frequency-window")
     assert "impulsive" in r.message and "no contact recurred" in r.message
+
+
+def test_speed_message_names_travel_direction():
+    """Δs is along the impact direction: pull on a −x set travels toward +x (MODEL.md, Slider)."""
+    from pathlib import Path
+    from types import SimpleNamespace
+
+    from betvdesign.loader import load_device
+    from betvdesign.nondim import derive
+    from betvdesign.rules import _speed
+
+    shin = Path(__file__).resolve().parents[1] / "devices" / "shin2004.yaml"
+    sets = {s.name: s for s in derive(load_device(shin)).sets}
+    pull = SimpleNamespace(success=True, delta_s=-4.63)
+    right = _speed(sets["right"], pull)[0]
+    left = _speed(sets["left"], pull)[0]
+    assert "toward -x (against the impact direction +x)" in right.message
+    assert "toward +x (against the impact direction -x)" in left.message
+    assert right.value < 0 and left.value < 0  # value stays signed along the impact direction
