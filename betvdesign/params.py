@@ -69,6 +69,9 @@ def lambda_criterion(varpi: float, alpha: float, beta: float, kappa: float) -> f
     λ = (κ/ϖ²)·(1/(ακ) − (1/β − β)/(22(κ + 1)));  λ < 1 push, λ > 1 pull.
     Works elementwise on numpy arrays too.
     """
-    return (kappa / varpi**2) * (
-        1.0 / (alpha * kappa) - (1.0 / beta - beta) / (LAMBDA_FIT_CONSTANT * (kappa + 1.0))
-    )
+    return (kappa / varpi**2) * (1.0 / (alpha * kappa) - fit_offset(kappa, beta))
+
+
+def fit_offset(kappa: float, beta: float) -> float:
+    """D = (1/β − β)/(22(κ + 1)) [-], the mass term of the λ fit (λ = (κ/ϖ²)(1/(ακ) − D))."""
+    return (1.0 / beta - beta) / (LAMBDA_FIT_CONSTANT * (kappa + 1.0))

@@ -196,6 +196,14 @@ def vertical_motion(varpi: float, *, max_cycles: int = 1000) -> VerticalResult:
 
     varpi: ϖ [-] (> 0, finite); max_cycles: horizon within which a contact must recur.
     """
+    return vertical_motion_schedule(varpi, max_cycles=max_cycles)[0]
+
+
+def vertical_motion_schedule(
+    varpi: float, *, max_cycles: int = 1000
+) -> tuple[VerticalResult, VerticalSchedule]:
+    """:func:`vertical_motion` and the schedule it was read from (for further analysis,
+    e.g. the hit phases of impulsive-only motion, without computing it again)."""
     try:
         v = float(varpi)
     except (TypeError, ValueError):
@@ -207,7 +215,7 @@ def vertical_motion(varpi: float, *, max_cycles: int = 1000) -> VerticalResult:
     el = time.perf_counter() - t0
     if vs.period is None:
         imp = vs.hits_per_cycle()
-        return VerticalResult(
+        res = VerticalResult(
             v,
             "not_periodic",
             False,
@@ -224,6 +232,7 @@ def vertical_motion(varpi: float, *, max_cycles: int = 1000) -> VerticalResult:
             vs.n_root_evals,
             el,
         )
+        return res, vs
     k = vs.period
     imp = sum(len(c.impulsive) for c in vs.pattern) / k
     hits = vs.hits_per_cycle()
@@ -235,7 +244,7 @@ def vertical_motion(varpi: float, *, max_cycles: int = 1000) -> VerticalResult:
         regime = "single-impact"
     tc = next(c.contact_start for c in vs.pattern if c.contact_start is not None)
     assert tc is not None
-    return VerticalResult(
+    res = VerticalResult(
         v,
         "success",
         True,
@@ -250,3 +259,4 @@ def vertical_motion(varpi: float, *, max_cycles: int = 1000) -> VerticalResult:
         vs.n_root_evals,
         el,
     )
+    return res, vs

@@ -13,8 +13,8 @@ from collections.abc import Sequence
 import numpy as np
 from matplotlib.axes import Axes
 
+from betvdesign.params import fit_offset
 from betvdesign.plots._figure import DEVICE_COLOR, MODE_COLORS, VARPI_WINDOW, axes_or_new
-from betvdesign.studies.lambda_scan import fit_offset
 
 
 def lambda_one_curve(inv_varpi2: np.ndarray, kappa: float, beta: float) -> np.ndarray:

@@ -30,9 +30,9 @@ from typing import Any, Generic, TypeVar
 import numpy as np
 
 from betvdesign.errors import BetvError, UsageError
-from betvdesign.params import ModelParams
+from betvdesign.params import ModelParams, fit_offset
 from betvdesign.plots._figure import VARPI_WINDOW
-from betvdesign.studies.lambda_scan import fit_offset, params_for_lambda
+from betvdesign.studies.lambda_scan import params_for_lambda
 
 T = TypeVar("T")
 

@@ -25,7 +25,7 @@ from typing import Any, Literal
 import numpy as np
 
 from betvdesign.errors import UsageError
-from betvdesign.params import LAMBDA_FIT_CONSTANT
+from betvdesign.params import fit_offset
 from betvdesign.studies.grid import require_positive
 from betvdesign.studies.pushpull import (
     COLUMNS,
@@ -36,11 +36,6 @@ from betvdesign.studies.pushpull import (
 from betvdesign.studies.runner import Study, StudyRun, run_study, split_run_args
 
 Vary = Literal["varpi", "alpha"]
-
-
-def fit_offset(kappa: float, beta: float) -> float:
-    """D = (1/β − β)/(22(κ + 1)) [-] of the λ fit."""
-    return (1.0 / beta - beta) / (LAMBDA_FIT_CONSTANT * (kappa + 1.0))
 
 
 def params_for_lambda(

@@ -30,7 +30,7 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from typing import Any, Unpack
+from typing import TYPE_CHECKING, Any, Unpack
 
 import numpy as np
 
@@ -38,6 +38,9 @@ from betvdesign.errors import UsageError
 from betvdesign.studies.grid import Grid
 from betvdesign.studies.pushpull import solver_error
 from betvdesign.studies.runner import RunArgs, Study, StudyRun, run_study
+
+if TYPE_CHECKING:
+    from betvdesign.dynamics.vertical import VerticalSchedule
 
 #: Relative (to one cycle) tolerance for two hit phases to count as equal.
 PHASE_RTOL = 1e-9
@@ -60,15 +63,12 @@ COLUMNS: dict[str, type] = {
 }
 
 
-def impulsive_period(varpi: float, horizon: int) -> tuple[int | None, float]:
+def impulsive_period(vs: VerticalSchedule) -> tuple[int | None, float]:
     """(period in cycles or None, impulsive hits per cycle) of impulsive-only motion.
 
-    Uses the hit phases of the second half of ``horizon`` cycles (see module doc).
+    Uses the hit phases of the second half of the schedule's cycles (see module doc).
     """
-    from betvdesign.dynamics.vertical import VerticalSchedule
-
-    vs = VerticalSchedule(varpi, horizon=horizon)
-    T = 2.0 * math.pi / varpi
+    T = 2.0 * math.pi / vs.varpi
     hits = [
         (m, t) for m, cyc in enumerate(vs.prefix) if m >= len(vs.prefix) // 2 for t in cyc.impulsive
     ]
@@ -90,12 +90,12 @@ def impulsive_period(varpi: float, horizon: int) -> tuple[int | None, float]:
 
 def regime_point(task: Mapping[str, Any]) -> dict[str, Any]:
     """Worker: vertical-only motion at one ϖ (plain data in and out)."""
-    from betvdesign.dynamics.vertical import vertical_motion
+    from betvdesign.dynamics.vertical import vertical_motion_schedule
 
     row: dict[str, Any] = dict.fromkeys(COLUMNS)
     row.update(key=task["key"], varpi=task["varpi"])
     try:
-        r = vertical_motion(task["varpi"], max_cycles=task["max_cycles"])
+        r, vs = vertical_motion_schedule(task["varpi"], max_cycles=task["max_cycles"])
     except Exception as exc:  # a failed point is recorded and listed, never dropped
         row.update(status="error", label="error", message=solver_error(exc))
         return row
@@ -114,7 +114,7 @@ def regime_point(task: Mapping[str, Any]) -> dict[str, Any]:
             f"period-{k}" if k > 1 else ("multi-hit" if r.hits_per_cycle > 1 else "period-1")
         )
         return row
-    k, rate = impulsive_period(task["varpi"], task["max_cycles"])
+    k, rate = impulsive_period(vs)  # the schedule already computed, not a second run
     row.update(period_cycles=k, impulsive_per_cycle=rate, hits_per_cycle=rate)
     if rate == 0.0:
         row["label"] = "no-impact"
