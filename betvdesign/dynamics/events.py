@@ -34,7 +34,9 @@ from __future__ import annotations
 import math
 from typing import Protocol
 
+from betvdesign.dynamics._jit import jitable
 from betvdesign.dynamics.flows import (
+    REVERSE,
     SLIP,
     STICK,
     PhaseConstants,
@@ -85,6 +87,7 @@ def probe(ev: Evaluator, h: float) -> tuple[list[float], list[float], list[float
     return fs, fps, m2s, [ev.free_len(h, i) for i in range(ev.n)]
 
 
+@jitable
 def safe_step(f: float, fp: float, m2: float) -> float:
     """Smallest x > 0 with f + f'x − M2 x²/2 = 0 (f > 0), written without cancellation."""
     if m2 <= 0.0:
@@ -95,6 +98,7 @@ def safe_step(f: float, fp: float, m2: float) -> float:
     return 2.0 * f / (root - fp)
 
 
+@jitable
 def local_m2(f: float, fp: float, fpp: float, m2: float, m3: float) -> float:
     """A bound on |f''| for :func:`first_root` at a point where f > 0, from f''(h) exactly.
 
@@ -136,6 +140,62 @@ def lex_sign(derivs: list[float], noise: list[float]) -> int:
         if d < -nz:
             return -1
     return 0
+
+
+@jitable
+def decide_phase_core(
+    A: float,
+    wf: float,
+    b: float,
+    beta: float,
+    z: float,
+    zd: float,
+    sd: float,
+    sp: float,
+    cp: float,
+    on: int,
+) -> int:
+    """Contact phase at a contact start or at ζ' = s' (MODEL.md stick/slip rules).
+
+    A = α(1 + 1/β) [-] stick inertia, wf = ϖ, b = ακ(1 + β) stick-band half-width;
+    (ζ, ζ', s', sin ϖτ, cos ϖτ) the state. The sign of ζ' − s' decides when it is
+    above round-off; otherwise the band (1 − b) sin ϖτ ≤ ζ ≤ (1 + b) sin ϖτ, compared
+    lexicographically on Taylor coefficients under the stick flow (:func:`lex_sign`,
+    inlined). ``on``: the event just located (0: ζ' = s' in slip, 1: lower band edge,
+    2: upper band edge), whose function is zero by construction whatever its round-off.
+    """
+    if on < 0:
+        v = zd - sd
+        nv = NOISE * (abs(zd) + abs(sd))
+        if v > nv:
+            return SLIP
+        if v < -nv:
+            return REVERSE
+    vs = (zd + sd / beta) / (1.0 + 1.0 / beta)
+    z2 = (sp - z) / A
+    z3 = (wf * cp - vs) / A
+    s1 = wf * cp
+    s2 = -wf * wf * sp
+    s3 = -(wf * wf * wf) * cp
+    for edge in range(1, 3):
+        sig, q, phase = (1.0, 1.0 - b, SLIP) if edge == 1 else (-1.0, 1.0 + b, REVERSE)
+        for j in range(4):
+            if j == 0:
+                zj, sj = z, sp
+            elif j == 1:
+                zj, sj = vs, s1
+            elif j == 2:
+                zj, sj = z2, s2
+            else:
+                zj, sj = z3, s3
+            qs = q * sj
+            dj = 0.0 if j == 0 and on == edge else sig * (zj - qs)
+            nz = NOISE * (abs(zj) + abs(qs))
+            if dj > nz:
+                break  # leaves the band on the admissible side: not this edge
+            if dj < -nz:
+                return phase
+    return STICK
 
 
 def first_root(ev: Evaluator, H: float, counter: list[int]) -> tuple[float, int] | None:
@@ -218,9 +278,12 @@ def first_root(ev: Evaluator, H: float, counter: list[int]) -> tuple[float, int]
         x0 += step
         if cand is None and clear(x0):
             return None
-    raise EventSearchError(
-        f"event search did not terminate within {MAX_STEPS} steps on a window of {H:.6g}"
-    )
+    raise EventSearchError(search_failure_message(H))
+
+
+def search_failure_message(H: float) -> str:
+    """What :class:`EventSearchError` says for a search window H [-]."""
+    return f"event search did not terminate within {MAX_STEPS} steps on a window of {H:.6g}"
 
 
 def _refine(
@@ -307,6 +370,7 @@ def envelope_time(K: float, E: float, a: float, th0: float, wf: float) -> float:
     return envelope_at(envelope_prep(K, E, a), th0, wf)
 
 
+@jitable
 def envelope_prep(K: float, E: float, a: float) -> tuple[int, float]:
     """The part of :func:`envelope_time` that does not depend on θ0: (mode, acos c).
 
@@ -330,6 +394,7 @@ def envelope_prep(K: float, E: float, a: float) -> tuple[int, float]:
     return 3, math.acos(c)
 
 
+@jitable
 def envelope_at(prep: tuple[int, float], th0: float, wf: float) -> float:
     """:func:`envelope_time` from its preparation :func:`envelope_prep` at θ0."""
     mode, al = prep
@@ -347,11 +412,13 @@ def envelope_at(prep: tuple[int, float], th0: float, wf: float) -> float:
     return (TWO_PI - al - u) / wf
 
 
+@jitable
 def cos_range_prep(pb: float) -> tuple[float, float, float]:
     """The part of :func:`cos_range` that depends on the interval's end pb only."""
     return math.cos(pb), math.floor((pb - math.pi) / TWO_PI), math.floor(pb / TWO_PI)
 
 
+@jitable
 def cos_range_to(pa: float, end: tuple[float, float, float]) -> tuple[float, float]:
     """:func:`cos_range` (pa, pb) with pb's part prepared by :func:`cos_range_prep`."""
     ca = math.cos(pa)

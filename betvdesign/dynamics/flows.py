@@ -41,6 +41,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
+from betvdesign.dynamics._jit import jitable
 from betvdesign.params import ModelParams
 
 # Phase codes (ints: they sit in the inner loops).
@@ -52,6 +53,7 @@ REVERSE = -1
 PHASE_NAMES = {FREE: "free", SLIP: "slip", STICK: "stick", REVERSE: "reverse"}
 
 
+@jitable
 def sinc(x: float) -> float:
     """sin(x)/x with the removable singularity filled in (Taylor for |x| < 1e-3)."""
     if -1e-3 < x < 1e-3:
@@ -60,6 +62,7 @@ def sinc(x: float) -> float:
     return math.sin(x) / x
 
 
+@jitable
 def oscillator(
     w0: float, wf: float, F: float, y0: float, v0: float, sp0: float, cp0: float, h: float
 ) -> tuple[float, float, float, float]:
@@ -163,6 +166,7 @@ class PhaseConstants:
         )
 
 
+@jitable
 def slider(
     ds: float,
     wf: float,

@@ -88,8 +88,7 @@ class _Map:
 
     def __call__(self, x: np.ndarray, n: int) -> tuple[np.ndarray, float]:
         z, zd, s, sd = float(x[0]), float(x[1]), 0.0, float(x[2])
-        for j in range(n):
-            z, zd, s, sd = self.cyc.run(self.m0 + j, z, zd, s, sd)
+        z, zd, s, sd = self.cyc.run_many(self.m0, n, z, zd, s, sd, check_finite=False)
         self.n_cycles += n
         return np.array([z, zd, sd]), s
 

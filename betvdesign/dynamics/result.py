@@ -43,7 +43,8 @@ class Trajectory:
     ``solver``: "exact" or the reference method (e.g. "solve_ivp:DOP853/exact");
     ``n_fev``: right-hand-side evaluations (reference solvers; 0 for the exact one);
     ``phases``: (τ_start, τ_end, tangential phase) pieces of the exact solution, each one
-    closed-form expression (filled when ``dense=True``).
+    closed-form expression (filled when ``dense=True``); ``engine``: which implementation
+    of the exact solver advanced the cycles ("compiled" or "python", same algorithm).
     """
 
     params: ModelParams
@@ -63,6 +64,8 @@ class Trajectory:
     impacts_per_cycle: float = float("nan")
     contact_fraction: float = float("nan")
     phases: list[tuple[float, float, str]] = field(default_factory=list, repr=False)
+    #: "compiled" (numba kernel, :mod:`betvdesign.dynamics.kernels`) or "python"
+    engine: str = "python"
     _sampler: Callable[[np.ndarray], np.ndarray] | None = field(default=None, repr=False)
 
     def sample(self, tau: np.ndarray | float) -> np.ndarray:

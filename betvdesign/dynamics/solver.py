@@ -24,16 +24,22 @@ from __future__ import annotations
 
 import bisect
 import math
+import os
 import time
 
 import numpy as np
 
-from betvdesign.dynamics.events import EPS, NOISE, SlipEvent, StickEvent, first_root
+from betvdesign.dynamics.events import (
+    EPS,
+    SlipEvent,
+    StickEvent,
+    decide_phase_core,
+    first_root,
+    search_failure_message,
+)
 from betvdesign.dynamics.flows import (
     FREE,
     PHASE_NAMES,
-    REVERSE,
-    SLIP,
     STICK,
     PhaseConstants,
     flow,
@@ -54,37 +60,45 @@ class SolverFailure(RuntimeError):
     """A contact could not be advanced (chattering or a non-terminating event search)."""
 
 
+class CycleFailure(SolverFailure):
+    """Cycle ``cycle`` could not be advanced (:meth:`_Cycle.run_many`); the message says why."""
+
+    def __init__(self, message: str, cycle: int):
+        super().__init__(message)
+        self.cycle = cycle
+
+
+def chatter_message(tau: float, m: int, n_switch: int) -> str:
+    """What a chattering contact (a Zeno point) at τ [-] in cycle m reports."""
+    return (
+        f"contact phases of (near) zero length repeat at τ = {tau:.12g} "
+        f"(cycle {m}, {n_switch} switches in this contact): the stick/slip "
+        "switching chatters (a Zeno point of the model); try other parameters"
+    )
+
+
+def _kernels():
+    """The compiled kernel module, or None when switched off (``BETV_KERNELS=0``) or
+    numba is missing (then the pure-Python path runs; results are the same)."""
+    if os.environ.get("BETV_KERNELS", "1") == "0":
+        return None
+    try:
+        from betvdesign.dynamics import kernels
+    except ImportError:  # numba not installed: the pure-Python path
+        return None
+    return kernels
+
+
 def decide_phase(
     k: PhaseConstants, z: float, zd: float, sd: float, sp: float, cp: float, on: int = -1
 ) -> int:
-    """Contact phase at a contact start or at ζ' = s' (MODEL.md stick/slip rules).
+    """Contact phase at a contact start or at ζ' = s' (MODEL.md stick/slip rules):
+    :func:`events.decide_phase_core` with k's constants.
 
     ``on``: the event just located (0: ζ' = s' in slip, 1: lower band edge, 2: upper
     band edge); that event function is zero by construction, whatever its round-off.
     """
-    if on < 0:
-        v = zd - sd
-        nv = NOISE * (abs(zd) + abs(sd))
-        if v > nv:
-            return SLIP
-        if v < -nv:
-            return REVERSE
-    A, wf, b = k.a_stick, k.varpi, k.b
-    vs = (zd + sd / k.beta) / (1.0 + 1.0 / k.beta)
-    zeta = (z, vs, (sp - z) / A, (wf * cp - vs) / A)
-    sine = (sp, wf * cp, -wf * wf * sp, -(wf**3) * cp)
-    for edge, sig, q, phase in ((1, 1.0, 1.0 - b, SLIP), (2, -1.0, 1.0 + b, REVERSE)):
-        # lex_sign of d_j = σ(ζ_j − q sine_j) over noise floors NOISE·(|ζ_j| + |q sine_j|),
-        # inlined; d_0 = 0 on the edge just located
-        for j in range(4):
-            zj, qs = zeta[j], q * sine[j]
-            dj = 0.0 if j == 0 and on == edge else sig * (zj - qs)
-            nz = NOISE * (abs(zj) + abs(qs))
-            if dj > nz:
-                break  # leaves the band on the admissible side: not this edge
-            if dj < -nz:
-                return phase
-    return STICK
+    return decide_phase_core(k.a_stick, k.varpi, k.b, k.beta, z, zd, sd, sp, cp, on)
 
 
 class _Cycle:
@@ -106,6 +120,81 @@ class _Cycle:
         self.T = 2.0 * math.pi / k.varpi
         self.te = math.pi / k.varpi
         self._free_cache: dict[tuple[float, float], tuple[float, ...]] = {}
+        #: compiled kernel and its constants, when it can serve (no log, no dense output)
+        self._kern = _kernels() if log is None and segments is None else None
+        self._kc = None if self._kern is None else self._kern.constants(k)
+        self._sched: dict[tuple[int, int], tuple[np.ndarray, np.ndarray]] = {}
+        self._norows = np.empty((0, 4))
+
+    @property
+    def engine(self) -> str:
+        """"compiled" when :meth:`run_many` uses the numba kernel, else "python"."""
+        return "python" if self._kc is None else "compiled"
+
+    def run_many(
+        self,
+        m0: int,
+        n: int,
+        z: float,
+        zd: float,
+        s: float,
+        sd: float,
+        rows: np.ndarray | None = None,
+        check_finite: bool = True,
+    ) -> tuple[float, float, float, float]:
+        """State (ζ, ζ', s, s') after cycles m0..m0+n−1 from the state at m0's start.
+
+        rows (n + 1, ≥ 4): receives in columns 0–3 the state at every cycle start and
+        at the end. Raises :class:`CycleFailure` naming the cycle that failed (rows up
+        to its start are filled). The compiled kernel runs when it can (see engine).
+        """
+        if self._kc is None:
+            for j in range(n):
+                m = m0 + j
+                if rows is not None:
+                    rows[j, :4] = (z, zd, s, sd)
+                try:
+                    z, zd, s, sd = self.run(m, z, zd, s, sd)
+                except (SolverFailure, RuntimeError) as exc:
+                    raise CycleFailure(str(exc), m) from exc
+                if check_finite and (z - z) + (zd - zd) + (s - s) + (sd - sd) != 0.0:
+                    raise CycleFailure(f"non-finite state in cycle {m}", m)
+            if rows is not None:
+                rows[n, :4] = (z, zd, s, sd)
+            return z, zd, s, sd
+        tcs, nimp = self._schedule(m0, n)
+        buf = self._norows if rows is None else np.empty((n + 1, 4))
+        kern = self._kern
+        code, j, nev, evals, a, b, z, zd, s, sd = kern.run_cycles(
+            self._kc, tcs, nimp, z, zd, s, sd, buf, check_finite
+        )
+        self.n_events += int(nev)
+        self.counter[0] += int(evals)
+        if rows is not None:
+            rows[: j + 1, :4] = buf[: j + 1]
+        if code == kern.OK:
+            return z, zd, s, sd
+        m = m0 + int(j)
+        if code == kern.SEARCH_FAILED:
+            msg = search_failure_message(a)
+        elif code == kern.CHATTER:
+            msg = chatter_message(m * self.T + a, m, int(b))
+        else:
+            msg = f"non-finite state in cycle {m}"
+        raise CycleFailure(msg, m)
+
+    def _schedule(self, m0: int, n: int) -> tuple[np.ndarray, np.ndarray]:
+        """Contact-opening times (NaN: none) and impulsive-hit counts of cycles m0..m0+n−1."""
+        key = (m0, n)
+        got = self._sched.get(key)
+        if got is None:
+            cyc = [self.vs.cycle(m) for m in range(m0, m0 + n)]
+            tcs = np.array([math.nan if c.contact_start is None else c.contact_start for c in cyc])
+            nimp = np.array([len(c.impulsive) for c in cyc], dtype=np.int64)
+            got = (tcs, nimp)
+            if n <= 64:  # the periodic map's repeated calls; a long transient runs once
+                self._sched[key] = got
+        return got
 
     def _free(
         self, z: float, zd: float, s: float, sd: float, cp0: float, h: float
@@ -204,11 +293,7 @@ class _Cycle:
             zero_len = zero_len + 1 if h <= 64.0 * EPS * max(1.0, t) else 0
             n_switch += 1
             if zero_len > MAX_ZERO_LENGTH or n_switch > MAX_SWITCHES:
-                raise SolverFailure(
-                    f"contact phases of (near) zero length repeat at τ = {m * T + t:.12g} "
-                    f"(cycle {m}, {n_switch} switches in this contact): the stick/slip "
-                    "switching chatters (a Zeno point of the model); try other parameters"
-                )
+                raise SolverFailure(chatter_message(m * T + t, m, n_switch))
             phase = new
         if logging:
             self._event(m, te, "separation", phase, FREE)
@@ -266,26 +351,17 @@ def simulate(
     log: list[Event] | None = [] if log_events else None
     segs: list | None = [] if dense else None
     cyc = _Cycle(k, vs, log, segs)
-    rows = []
+    section = np.empty((n + 1, 6))
     z, zd, s, sd = st[2:]
     status, message, done = "success", f"{n} cycles simulated", n
-    run, cycle = cyc.run, vs.cycle
-    for m in range(n):
-        vc = cycle(m)
-        rows.append((vc.xi0, vc.xid0, z, zd, s, sd))
-        try:
-            z, zd, s, sd = run(m, z, zd, s, sd, vc)
-        except (SolverFailure, RuntimeError) as exc:
-            status, message, done = "failed", f"{exc}; results up to cycle {m} kept", m
-            break
-        if (z - z) + (zd - zd) + (s - s) + (sd - sd) != 0.0:  # x − x is NaN unless x is finite
-            status, done = "failed", m
-            message = f"non-finite state in cycle {m}; results up to cycle {m} kept"
-            break
-    else:
-        vc = cycle(n)
-        rows.append((vc.xi0, vc.xid0, z, zd, s, sd))
-    section = np.array(rows, dtype=float).reshape(-1, 6)
+    try:
+        cyc.run_many(0, n, z, zd, s, sd, section[:, 2:])
+    except CycleFailure as exc:
+        status, message, done = "failed", f"{exc}; results up to cycle {exc.cycle} kept", exc.cycle
+        section = section[: done + 1]
+    for m in range(done + 1):
+        vc = vs.cycle(m)
+        section[m, 0], section[m, 1] = vc.xi0, vc.xid0
     delta = np.diff(section[:, 4])
     sampler = _make_sampler(k, vs, segs) if dense else None
     return Trajectory(
@@ -305,6 +381,7 @@ def simulate(
         impacts_per_cycle=vs.hits_per_cycle(),
         contact_fraction=vs.contact_fraction(),
         phases=[(sg[0], sg[0] + sg[3] - sg[2], PHASE_NAMES[sg[4]]) for sg in segs or []],
+        engine=cyc.engine,
         _sampler=sampler,
     )
 
