@@ -5,6 +5,8 @@
     .venv/bin/python benchmarks/bench_solver.py periodic     # warm periodic solves
     .venv/bin/python benchmarks/bench_solver.py accuracy     # exact vs reference, shooting
                                                              # vs brute force
+    .venv/bin/python benchmarks/bench_solver.py compile      # numba kernel: cold compile
+                                                             # and cached load, per process
 
 Targets: ≥ 100× faster per simulated cycle than the project's own solve_ivp
 reference (``betvdesign.dynamics.reference``, DOP853, rtol 1e-10, atol 1e-12)
@@ -12,8 +14,8 @@ measured side by side in one run; periodic solve of one design median ≤ 20 ms
 warm; exact vs reference ≤ 1e-8 in s after 100 cycles on 20 designs spread over
 the window; periodic Δs from shooting vs long brute force ≤ 1e-9.
 
-Times are CPU seconds of this process (``time.process_time``, best of 3 for both
-solvers):
+Times are CPU seconds of this process (``time.process_time``, best of 5 for the exact
+solver's compiled kernel, of 3 for its pure-Python path and for solve_ivp):
 the machines are shared, and CPU time is what load does not inflate much. Wall
 times are printed next to them. Writes benchmarks/out/bench_solver.json.
 """
@@ -23,8 +25,11 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import os
 import statistics
+import subprocess
 import sys
+import tempfile
 import time
 from pathlib import Path
 
@@ -76,12 +81,19 @@ def _timed(fn, repeats: int) -> tuple[float, float, object]:
 def bench_speed(designs: dict[str, ModelParams], n_exact: int = 200, n_ref: int = 20) -> dict:
     rows = []
     for name, p in designs.items():
-        simulate(p, 3)  # warm imports and caches
-        ce, we, ex = _timed(lambda p=p: simulate(p, n_exact, log_events=False), 3)
+        simulate(p, 3, log_events=False)  # warm imports, caches and the compiled kernel
+        ce, we, ex = _timed(lambda p=p: simulate(p, n_exact, log_events=False), 5)
+        os.environ["BETV_KERNELS"] = "0"  # the pure-Python path of the same solver
+        try:
+            cp, _, _ = _timed(lambda p=p: simulate(p, n_exact, log_events=False), 3)
+        finally:
+            del os.environ["BETV_KERNELS"]
         cr, wr, rf = _timed(lambda p=p: reference.simulate(p, n_ref, rtol=1e-10, atol=1e-12), 3)
         row = {
             "design": name,
             "params": p.as_dict(),
+            "engine": ex.engine,
+            "python_us_per_cycle_cpu": cp / n_exact * 1e6,
             "exact_us_per_cycle_cpu": ce / n_exact * 1e6,
             "exact_us_per_cycle_wall": we / n_exact * 1e6,
             "ref_ms_per_cycle_cpu": cr / n_ref * 1e3,
@@ -95,6 +107,7 @@ def bench_speed(designs: dict[str, ModelParams], n_exact: int = 200, n_ref: int 
         rows.append(row)
         print(
             f"  {name:16s} exact {row['exact_us_per_cycle_cpu']:7.1f} µs/cycle "
+            f"[{ex.engine}; python {row['python_us_per_cycle_cpu']:5.1f}] "
             f"({row['exact_root_evals_per_cycle']:.1f} evals)  solve_ivp "
             f"{row['ref_ms_per_cycle_cpu']:6.2f} ms/cycle  -> {row['speedup_cpu']:6.0f}×",
             flush=True,
@@ -201,9 +214,46 @@ def bench_accuracy(designs: dict[str, ModelParams], cycles: int = 100) -> dict:
     return {"rows": rows, "shooting": shoot, "summary": summary}
 
 
+_COLD = """
+import time
+t0 = time.perf_counter()
+from betvdesign.dynamics import simulate
+from betvdesign.params import ModelParams
+t1 = time.perf_counter()
+tr = simulate(ModelParams(1.2, 0.5, 1.0, 0.4), 3, log_events=False)
+t2 = time.perf_counter()
+assert tr.engine == "compiled", tr.engine
+print(t1 - t0, t2 - t1)
+"""
+
+
+def bench_compile(repeats: int = 3) -> dict:
+    """Cost of the compiled kernel per process: first use with an empty cache (compile,
+    once per machine and source version) and with a warm cache (load), in fresh
+    interpreters; wall seconds, best of ``repeats``."""
+    runs: dict[str, list[float]] = {"cold": [], "cached": []}
+    for _ in range(repeats):
+        with tempfile.TemporaryDirectory() as d:
+            env = dict(os.environ, XDG_CACHE_HOME=d)
+            env.pop("BETV_KERNELS", None)
+            for kind in ("cold", "cached"):
+                res = subprocess.run(
+                    [sys.executable, "-c", _COLD], env=env, capture_output=True, text=True
+                )
+                if res.returncode != 0:
+                    raise RuntimeError(res.stderr)
+                runs[kind].append(float(res.stdout.split()[1]))
+    out = {f"{k}_s": min(v) for k, v in runs.items()}
+    print(
+        f"  first simulate in a new process: cold cache {out['cold_s']:.2f} s (compile), "
+        f"warm cache {out['cached_s']:.2f} s (load)"
+    )
+    return out
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("what", nargs="*", default=["speed", "periodic", "accuracy"])
+    ap.add_argument("what", nargs="*", default=["speed", "periodic", "accuracy", "compile"])
     args = ap.parse_args(argv)
     designs = {**NAMED, **window_sets()}
     out: dict = {"python": sys.version.split()[0]}
@@ -213,6 +263,9 @@ def main(argv: list[str] | None = None) -> int:
     if "periodic" in args.what:
         print("periodic_orbit, warm, median of 7:")
         out["periodic"] = bench_periodic(designs)
+    if "compile" in args.what:
+        print("compiled kernel, first use per process (fresh interpreters):")
+        out["compile"] = bench_compile()
     if "accuracy" in args.what:
         print("accuracy (reference: DOP853 rtol 1e-13, atol 1e-14):")
         out["accuracy"] = bench_accuracy(window_sets())
