@@ -36,7 +36,7 @@ DESIGNS = [
     ModelParams(1.0, 2.0, 1.0, 0.4),
     ModelParams(0.34, 0.1, 9.09, 0.4),  # multi-impact (shin2004's computed ϖ)
 ]
-COMPILED = [p for p in DESIGNS if kernels.constants(PhaseConstants.from_params(p)) is not None]
+COMPILED = DESIGNS
 
 
 def _both(p, cycles, monkeypatch, **kw):
@@ -55,10 +55,12 @@ def _assert_same(a, b):
     assert a.n_root_evals == b.n_root_evals
 
 
-def test_most_designs_take_the_kernel():
-    """Only designs with a contact phase near tangential resonance (|1 − aϖ²| < 0.1)
-    stay on the pure-Python path; the kernel serves the rest."""
-    assert len(COMPILED) >= 20
+def test_designs_cover_both_modes_of_the_events():
+    """The window designs include phases near resonance (the events' slow mode) and
+    away from it (fast mode), so the comparisons below exercise both."""
+    flags = (kernels.KC_SLIP + 8, kernels.KC_REV + 8, kernels.KC_STICK + 12)
+    fast = [min(kernels.constants(PhaseConstants.from_params(p))[list(flags)]) for p in DESIGNS]
+    assert 0.0 in fast and 1.0 in fast
 
 
 @pytest.mark.parametrize("p", COMPILED, ids=lambda p: f"{p.varpi:.2f}-{p.alpha:.2g}")
@@ -103,12 +105,25 @@ def test_periodic_orbit_same_on_both_paths(monkeypatch):
         assert a.n_cycles == b.n_cycles and a.n_root_evals == b.n_root_evals
 
 
-def test_near_resonance_stays_on_the_python_path():
-    """α·ϖ² = 1: the split form the kernel compiles has no meaning there."""
-    p = ModelParams(1.25, 0.64, 1.0, 0.4)
-    assert kernels.constants(PhaseConstants.from_params(p)) is None
-    tr = simulate(p, 5, log_events=False)
-    assert tr.engine == "python" and tr.success
+@pytest.mark.parametrize(
+    "p",
+    [
+        ModelParams(1.0, 0.5, 1.0, 0.4),  # ϖ = 1: vertical free flight resonant
+        ModelParams(1.25, 0.64, 1.0, 0.4),  # αϖ² = 1 exactly (no split: energy bounds)
+        ModelParams(1.25, 0.32, 1.0, 0.4),  # α(1+1/β)ϖ² = 1: stick resonant
+        ModelParams(1.25, 0.62, 1.0, 0.4),  # |1 − αϖ²| < 0.1: near resonance
+        ModelParams(1.2, 0.33, 1.0, 0.4),  # stick phase near resonance
+    ],
+    ids=["varpi1", "slip-res", "stick-res", "slip-near", "stick-near"],
+)
+def test_kernel_matches_python_path_at_resonances(p, monkeypatch):
+    """Near and at tangential resonance the events switch to the uniform closed form
+    with energy-growth bounds; the kernel compiles that mode too."""
+    k = PhaseConstants.from_params(p)
+    kernels.constants(k)
+    a, b = _both(p, 60, monkeypatch)
+    assert a.engine == "compiled"
+    _assert_same(a, b)
 
 
 def test_event_log_and_dense_output_use_the_python_path():

@@ -8,9 +8,11 @@ over flat float64 arrays so that numba can compile it. The scalar pieces (closed
 flows, safe steps, curvature bounds, envelopes, the phase rule) are *not* copied:
 they are the functions of :mod:`flows` and :mod:`events` marked ``@jitable``.
 
-Used when nothing but the states is asked for (no event log, no dense output) and every
-contact phase is away from tangential resonance (|1 − aϖ²| ≥ 0.1, "fast mode" of the
-events); otherwise the pure-Python path runs. Both paths are tested against each other
+Used whenever nothing but the states is asked for (no event log, no dense output):
+studies, periodic shooting, benchmarks; with an event log or dense output the
+pure-Python path runs. Both modes of the events are compiled: the split form away from
+tangential resonance and the uniform form with energy-growth bounds near it
+(|1 − aϖ²| < 0.1, exact resonance included). Both paths are tested against each other
 (tests/test_dynamics_kernels.py); with ``NUMBA_DISABLE_JIT=1`` this module runs as plain
 Python. ``BETV_KERNELS=0`` switches the kernel off (the pure-Python path everywhere).
 
@@ -56,8 +58,8 @@ OK, SEARCH_FAILED, CHATTER, NON_FINITE = 0, 1, 2, 3
 
 # -- layout of the per-parameter-set constants (kc) ---------------------------------
 KC_WF, KC_AL, KC_BETA, KC_B, KC_A, KC_WFREE, KC_FFREE = range(7)
-KC_SLIP, KC_REV, KC_STICK = 7, 16, 25  # slip blocks: sig q w0 F ds P apq K; stick: 12
-KC_SIZE = 37
+KC_SLIP, KC_REV, KC_STICK = 7, 16, 25  # slip: sig q w0 F ds P apq K fast; stick: 13
+KC_SIZE = 38
 
 # -- layout of one event evaluator (e) ------------------------------------------------
 E_KIND, E_N, E_H, E_PHI0, E_OFF = 0, 1, 2, 3, 4
@@ -67,7 +69,8 @@ E_M2B, E_M3B, E_ENVM, E_ENVA, E_CK = 33, 35, 37, 39, 41  # 2 each
 E_CC, E_CT, E_END, E_ENDSET = 43, 44, 45, 48  # E_END: 3
 E_Q, E_QW = 49, 51  # 2 each
 E_SDC, E_DS, E_SIG, E_AL, E_W02, E_WF2, E_R0, E_BDIV, E_BJ = range(53, 62)
-E_SIZE = 64
+E_FAST, E_W, E_Z, E_ZD, E_S, E_SDV, E_M2S = range(62, 69)  # E_M2S: 2
+E_SIZE = 72
 
 
 def _cache_dir() -> str:
@@ -92,23 +95,34 @@ try:
         b0 = KC_SLIP if phase == SLIP else KC_REV
         sig, q, w0, F = kc[b0], kc[b0 + 1], kc[b0 + 2], kc[b0 + 3]
         ds, P, apq, K = kc[b0 + 4], kc[b0 + 5], kc[b0 + 6], kc[b0 + 7]
+        fast = kc[b0 + 8] != 0.0
         wf, al = kc[KC_WF], kc[KC_AL]
-        yh, yhd = z - P * sp0, zd - P * wf * cp0
-        Eh = math.sqrt(yhd * yhd + w0 * w0 * yh * yh)
-        e[E_KIND], e[E_N], e[E_H] = 0.0, 1.0, H
+        e[E_KIND], e[E_N], e[E_H], e[E_FAST] = 0.0, 1.0, H, 1.0 if fast else 0.0
         e[E_PHI0], e[E_OFF] = math.atan2(sp0, cp0), 0.0
         e[E_WF], e[E_W0], e[E_SP0], e[E_CP0], e[E_P], e[E_F] = wf, w0, sp0, cp0, P, F
-        as_ = yhd / w0
-        sdc = sd + ds * cp0 / wf
-        e[E_AC], e[E_AS], e[E_PWF], e[E_EH] = yh, as_, P * wf, Eh
-        e[E_M2B] = (apq + Eh) / al
-        e[E_M3B] = (apq * wf + w0 * Eh) / al
-        ssdc = sig * sdc
-        mode, acs = envelope_prep(K, -ssdc, Eh)
-        e[E_ENVM], e[E_ENVA] = mode, acs
-        e[E_CK], e[E_CC], e[E_CT], e[E_ENDSET] = K, ssdc, Eh, 0.0
+        e[E_Z], e[E_ZD], e[E_S], e[E_SDV] = z, zd, s, sd
         e[E_Q], e[E_QW] = q, q * wf
-        e[E_SDC], e[E_DS], e[E_SIG], e[E_AL] = sdc, ds, sig, al
+        e[E_DS], e[E_SIG], e[E_AL] = ds, sig, al
+        yh = yhd = 0.0
+        if P != P:  # exact resonance: no split (P is None in events)
+            Eh = m2b = math.inf
+            W = min(H, 1.0 / max(w0, wf))
+        else:
+            yh, yhd = z - P * sp0, zd - P * wf * cp0
+            Eh = math.sqrt(yhd * yhd + w0 * w0 * yh * yh)
+            m2b = (apq + Eh) / al
+            W = H if fast else min(H, 1.0 / max(w0, wf))  # events.window
+        e[E_EH], e[E_M2B], e[E_W] = Eh, m2b, W
+        if fast:
+            as_ = yhd / w0
+            sdc = sd + ds * cp0 / wf
+            e[E_AC], e[E_AS], e[E_PWF] = yh, as_, P * wf
+            e[E_M3B] = (apq * wf + w0 * Eh) / al
+            ssdc = sig * sdc
+            mode, acs = envelope_prep(K, -ssdc, Eh)
+            e[E_ENVM], e[E_ENVA] = mode, acs
+            e[E_CK], e[E_CC], e[E_CT], e[E_ENDSET] = K, ssdc, Eh, 0.0
+            e[E_SDC] = sdc
         azd, asd = abs(zd), abs(sd)
         r = math.sqrt(zd * zd + w0 * w0 * z * z) + abs(F) * H  # energy_radius
         e[E_SCALE] = r + asd + azd + 1e-300
@@ -122,7 +136,9 @@ try:
         e[E_D + 1] = 0.0 if from_edge else sig * (q * sp0 - z) / al
         e[E_D + 2] = sig * (q * wf * cp0 - zd) / al
         e[E_D + 3] = sig * (-q * wf * wf * sp0 - zdd) / al
-        e[E_R0], e[E_BDIV], e[E_BJ] = r, al, 0.0
+        R0 = math.sqrt(zd * zd + w0 * w0 * z * z) + abs(F) * W  # energy_radius over W
+        e[E_R0], e[E_BDIV], e[E_BJ] = R0, al, 0.0
+        e[E_M2S] = m2b if fast else min((abs(q) * wf + R0) / al, m2b)
 
     @register_jitable
     def _stick_init(kc, z, zd, sp0, cp0, H, on_edge, e):
@@ -131,24 +147,35 @@ try:
         w0, F, ql, qh, P = kc[b0], kc[b0 + 1], kc[b0 + 2], kc[b0 + 3], kc[b0 + 4]
         wf = kc[KC_WF]
         w3 = kc[b0 + 11]
-        yh, yhd = z - P * sp0, zd - P * wf * cp0
-        Eh = math.sqrt(yhd * yhd + w0 * w0 * yh * yh)
-        e[E_KIND], e[E_N], e[E_H] = 1.0, 2.0, H
+        fast = kc[b0 + 12] != 0.0
+        e[E_KIND], e[E_N], e[E_H], e[E_FAST] = 1.0, 2.0, H, 1.0 if fast else 0.0
         e[E_PHI0], e[E_OFF] = math.atan2(sp0, cp0), 0.5 * math.pi
         e[E_WF], e[E_W0], e[E_SP0], e[E_CP0], e[E_P], e[E_F] = wf, w0, sp0, cp0, P, F
-        e[E_AC], e[E_AS], e[E_PWF], e[E_EH] = yh, yhd / w0, P * wf, Eh
-        wE = w0 * Eh
-        e[E_M2B], e[E_M2B + 1] = kc[b0 + 5] + wE, kc[b0 + 6] + wE
-        wwE = w0 * w0 * Eh
-        e[E_M3B], e[E_M3B + 1] = kc[b0 + 7] + wwE, kc[b0 + 8] + wwE
-        eh = Eh / w0
-        for i in range(2):
-            K = kc[b0 + 9 + i]
-            mode, acs = envelope_prep(K, 0.0, eh)
-            e[E_ENVM + i], e[E_ENVA + i], e[E_CK + i] = mode, acs, K
-        e[E_CC], e[E_CT], e[E_ENDSET] = 0.0, eh, 0.0
+        e[E_Z], e[E_ZD] = z, zd
         e[E_Q], e[E_Q + 1], e[E_QW], e[E_QW + 1] = ql, qh, ql * wf, qh * wf
-        e[E_W02], e[E_WF2] = w0 * w0, wf * wf
+        yh = yhd = 0.0
+        if P != P:  # exact resonance: no split (P is None in events)
+            Eh = math.inf
+            W = min(H, 1.0 / max(w0, wf))
+            m2b0 = m2b1 = math.inf
+        else:
+            yh, yhd = z - P * sp0, zd - P * wf * cp0
+            Eh = math.sqrt(yhd * yhd + w0 * w0 * yh * yh)
+            W = H if fast else min(H, 1.0 / max(w0, wf))  # events.window
+            wE = w0 * Eh
+            m2b0, m2b1 = kc[b0 + 5] + wE, kc[b0 + 6] + wE
+        e[E_EH], e[E_W], e[E_M2B], e[E_M2B + 1] = Eh, W, m2b0, m2b1
+        if fast:
+            e[E_AC], e[E_AS], e[E_PWF] = yh, yhd / w0, P * wf
+            wwE = w0 * w0 * Eh
+            e[E_M3B], e[E_M3B + 1] = kc[b0 + 7] + wwE, kc[b0 + 8] + wwE
+            eh = Eh / w0
+            for i in range(2):
+                K = kc[b0 + 9 + i]
+                mode, acs = envelope_prep(K, 0.0, eh)
+                e[E_ENVM + i], e[E_ENVA + i], e[E_CK + i] = mode, acs, K
+            e[E_CC], e[E_CT], e[E_ENDSET] = 0.0, eh, 0.0
+            e[E_W02], e[E_WF2] = w0 * w0, wf * wf
         r = math.sqrt(zd * zd + w0 * w0 * z * z) + abs(F) * H  # energy_radius
         e[E_SCALE], e[E_SCALE + 1] = r / w0 + abs(ql), r / w0 + abs(qh)
         za0, za1 = abs(z), abs(zd)
@@ -171,12 +198,36 @@ try:
             e[E_D] = 0.0
         elif on_edge == 1:
             e[E_D + 4] = 0.0
-        e[E_R0], e[E_BDIV], e[E_BJ] = r, 1.0, 1.0
+        R0 = math.sqrt(zd * zd + w0 * w0 * z * z) + abs(F) * W  # energy_radius over W
+        e[E_R0], e[E_BDIV], e[E_BJ] = R0, 1.0, 1.0
+        for i in range(2):
+            m2b = e[E_M2B + i]
+            qi = ql if i == 0 else qh
+            e[E_M2S + i] = m2b if fast else min(w0 * R0 + abs(F) + abs(qi) * wf * wf, m2b)
+
+    @register_jitable
+    def _eval_slow(e, h, out):
+        """The events' eval(h, False) near resonance (uniform closed form, no f'': 0)."""
+        wf, w0, sp0, cp0 = e[E_WF], e[E_W0], e[E_SP0], e[E_CP0]
+        y, yd, sp, cp = oscillator(w0, wf, e[E_F], e[E_Z], e[E_ZD], sp0, cp0, h)
+        out[4] = out[5] = 0.0
+        if e[E_KIND] == 0.0:
+            _, sdn = slider(e[E_DS], wf, e[E_S], e[E_SDV], sp0, cp0, sp, cp, h)
+            sig = e[E_SIG]
+            out[0] = sig * (yd - sdn)
+            out[2] = sig * (e[E_Q] * sp - y) / e[E_AL]
+            return y, yd
+        ql, qh = e[E_Q], e[E_Q + 1]
+        out[0], out[1] = y - ql * sp, qh * sp - y
+        out[2], out[3] = yd - e[E_QW] * cp, e[E_QW + 1] * cp - yd
+        return y, yd
 
     @register_jitable
     def _eval(e, h, out):
-        """(f_i, f_i', f_i'') at h into out[0:2], out[2:4], out[4:6]: the events' fast
-        eval(h, False) (split form, no cancellation away from resonance)."""
+        """(f_i, f_i', f_i'') at h into out[0:2], out[2:4], out[4:6]: the events'
+        eval(h, False); returns (y, y') of the oscillator."""
+        if e[E_FAST] == 0.0:
+            return _eval_slow(e, h, out)
         wf, w0, sp0, cp0 = e[E_WF], e[E_W0], e[E_SP0], e[E_CP0]
         P, ac, as_ = e[E_P], e[E_AC], e[E_AS]
         cw, sw = math.cos(wf * h), math.sin(wf * h)
@@ -190,20 +241,33 @@ try:
             out[0] = sig * (yd - sdn)
             out[2] = sig * (e[E_Q] * sp - y) / al
             out[4] = sig * (e[E_QW] * cp - yd) / al
-            return
+            return y, yd
         ql, qh = e[E_Q], e[E_Q + 1]
         out[0], out[1] = y - ql * sp, qh * sp - y
         out[2], out[3] = yd - e[E_QW] * cp, e[E_QW + 1] * cp - yd
         ydd = e[E_F] * sp - e[E_W02] * y
         w2sp = e[E_WF2] * sp
         out[4], out[5] = ydd + ql * w2sp, -ydd - qh * w2sp
+        return y, yd
 
     @register_jitable
     def _probe(e, h, out):
         """One search step's look at h: f, f', the local |f''| bound and the envelope's
         free length of each function into out[0:2], [2:4], [4:6], [6:8] (probe())."""
-        _eval(e, h, out)
+        y, yd = _eval(e, h, out)
         wf = e[E_WF]
+        if e[E_FAST] == 0.0:  # energy-growth bounds (events' probe near resonance)
+            w0, F = e[E_W0], e[E_F]
+            r = math.sqrt(yd * yd + w0 * w0 * y * y) + abs(F) * e[E_W]  # energy_radius
+            if e[E_KIND] == 0.0:
+                out[4] = min((abs(e[E_Q]) * wf + r) / e[E_AL], e[E_M2B])
+            else:
+                bzz = w0 * r + abs(F)
+                w2 = wf * wf
+                out[4] = min(bzz + abs(e[E_Q]) * w2, e[E_M2B])
+                out[5] = min(bzz + e[E_Q + 1] * w2, e[E_M2B + 1])
+            out[6] = out[7] = 0.0
+            return
         th = e[E_PHI0] + wf * h - e[E_OFF]
         for i in range(int(e[E_N])):
             out[4 + i] = local_m2(out[i], out[2 + i], out[4 + i], e[E_M2B + i], e[E_M3B + i])
@@ -212,6 +276,8 @@ try:
     @register_jitable
     def _clear(e, h):
         """Every function provably positive on [h, H] (the events' clear())."""
+        if e[E_FAST] == 0.0:
+            return False
         wf = e[E_WF]
         if e[E_ENDSET] == 0.0:
             c, f1, f2 = cos_range_prep(e[E_PHI0] + wf * e[E_H] - e[E_OFF])
@@ -237,8 +303,11 @@ try:
             b0, b1 = b1, bk
             bj = bk
         ba = bj + abs(q) * wf ** float(j)
-        bb = abs(e[E_P] - q) * wf ** float(j) + w0 ** float(j - 1) * e[E_EH]
-        return min(ba, bb) / e[E_BDIV]
+        P = e[E_P]
+        if P == P:  # the split bound exists (not at exact resonance)
+            bb = abs(P - q) * wf ** float(j) + w0 ** float(j - 1) * e[E_EH]
+            ba = min(ba, bb)
+        return ba / e[E_BDIV]
 
     @register_jitable
     def _refine(e, i, lo, hi, flo, fplo, fhi, has_hi, tmp):
@@ -284,7 +353,7 @@ try:
         """events.first_root in fast mode: (code, h, index, evaluations); code 0 none,
         1 root at (h, index), −1 the search did not terminate."""
         n = int(e[E_N])
-        W = e[E_H]
+        W = e[E_W]
         x = H if H < W else W
         for i in range(n):
             o = E_D + 4 * i
@@ -296,7 +365,7 @@ try:
             if order < 0 or e[o + order] < 0.0:
                 return 1, 0.0, i, 0
             if order == 0:
-                xi = safe_step(e[o], e[o + 1], e[E_M2B + i])
+                xi = safe_step(e[o], e[o + 1], e[E_M2S + i])
             else:
                 xi = 0.5 * (order + 1) * e[o + order] / _start_bound(e, i, order)
             if xi < x:
@@ -481,25 +550,27 @@ finally:
     numba.config.CACHE_DIR = _user_cache
 
 
-def constants(k: PhaseConstants) -> np.ndarray | None:
-    """The kernel's per-parameter-set constants (kc), or None when a contact phase is
-    near tangential resonance (|1 − aϖ²| < 0.1: the events' slow mode, not compiled).
+def constants(k: PhaseConstants) -> np.ndarray:
+    """The kernel's per-parameter-set constants (kc).
 
     Read from the events' own per-phase constants (``k.cache``, filled here by
-    constructing one event of each phase), so both paths use the same numbers.
+    constructing one event of each phase), so both paths use the same numbers. P is NaN
+    where the events have None (exact resonance); a phase's ``fast`` flag is 0 near
+    resonance (|1 − aϖ²| < 0.1), where the events use energy-growth bounds.
     """
     SlipEvent(k, SLIP, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0)
     SlipEvent(k, REVERSE, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0)
     StickEvent(k, 0.0, 0.0, 0.0, 1.0, 1.0)
     kc = np.zeros(KC_SIZE)
     kc[:KC_SLIP] = (k.varpi, k.alpha, k.beta, k.b, k.a_stick, k.w0[FREE], k.F[FREE])
+    nan = math.nan
     for phase, b0 in ((SLIP, KC_SLIP), (REVERSE, KC_REV)):
         sig, q, w0, F, _, _, ds, P, fast, apq, K = k.cache[phase]
-        if not fast:
-            return None
-        kc[b0 : b0 + 8] = (sig, q, w0, F, ds, P, apq, K)
+        kc[b0 : b0 + 9] = (sig, q, w0, F, ds, nan if P is None else P, apq, K, float(fast))
     w0, F, _, qs, P, fast, a2, a3, K, w3 = k.cache[STICK]
-    if not fast:
-        return None
-    kc[KC_STICK:KC_SIZE] = (w0, F, qs[0], qs[1], P, a2[0], a2[1], a3[0], a3[1], K[0], K[1], w3)
+    a3, K = (a3, K) if fast else ((0.0, 0.0), (0.0, 0.0))
+    kc[KC_STICK:KC_SIZE] = (
+        *(w0, F, qs[0], qs[1], nan if P is None else P),
+        *(a2[0], a2[1], a3[0], a3[1], K[0], K[1], w3, float(fast)),
+    )
     return kc

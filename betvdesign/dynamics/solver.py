@@ -128,7 +128,7 @@ class _Cycle:
 
     @property
     def engine(self) -> str:
-        """"compiled" when :meth:`run_many` uses the numba kernel, else "python"."""
+        """ "compiled" when :meth:`run_many` uses the numba kernel, else "python"."""
         return "python" if self._kc is None else "compiled"
 
     def run_many(
