@@ -71,7 +71,10 @@ def bench_map(workers: int, max_cycles: int | None, scaling: bool) -> dict:
             "wall_s": round(wall, 3),
             "status": status,
             "lambda_agreement": summ.agreement,
-            "not_converged_on_resonance": sum(bool(d["resonance"]) for d in summ.not_converged),
+            "unbounded": len(summ.unbounded),
+            "failed_on_resonance": sum(
+                bool(d["resonance"]) for d in summ.not_converged if d not in summ.unbounded
+            ),
         }
         print(
             f"map {frac:>10}: {grid.size:5d} points  {wall:7.2f} s wall on {workers} workers "

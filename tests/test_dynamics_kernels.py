@@ -231,3 +231,27 @@ def test_cache_dir_is_per_source(tmp_path, monkeypatch):
     assert d.startswith(str(tmp_path / "betvdesign" / "numba"))
     assert len(os.path.basename(d)) == 16 and d == kernels._cache_dir()
     int(os.path.basename(d), 16)  # a hex digest
+
+
+def test_unusable_numba_falls_back_loudly(monkeypatch):
+    """When the kernel module cannot be imported (numba missing, no writable cache) the
+    solver warns, naming the cause, and runs the pure-Python path: same numbers."""
+    import builtins
+
+    real_import = builtins.__import__
+
+    def fake_import(name, globals=None, locals=None, fromlist=(), level=0):
+        if name == "betvdesign.dynamics" and fromlist and "kernels" in fromlist:
+            raise ImportError("No module named 'numba'")
+        return real_import(name, globals, locals, fromlist, level)
+
+    solver._import_kernels.cache_clear()
+    monkeypatch.setattr(builtins, "__import__", fake_import)
+    try:
+        with pytest.warns(RuntimeWarning, match="compiled kernels unavailable.*numba"):
+            tr = simulate(DESIGNS[0], 5, log_events=False)
+    finally:
+        monkeypatch.undo()
+        solver._import_kernels.cache_clear()
+    assert tr.engine == "python" and tr.success
+    assert simulate(DESIGNS[0], 5, log_events=False).engine == "compiled"

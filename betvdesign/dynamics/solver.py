@@ -18,14 +18,21 @@ event is removed without a momentum error).
 
 Time is carried as (cycle m, local t ∈ [0, 2π/ϖ]) so that no phase loses digits
 over 10⁵ cycles.
+
+Two implementations of the cycle loop, one algorithm: :meth:`_Cycle.run` (pure Python,
+with event log and dense output) and the compiled kernel :func:`kernels.run_cycles`
+(numba), which :meth:`_Cycle.run_many` uses whenever only states are wanted
+(``Trajectory.engine`` says which ran; tests/test_dynamics_kernels.py holds them equal).
 """
 
 from __future__ import annotations
 
 import bisect
+import functools
 import math
 import os
 import time
+import warnings
 
 import numpy as np
 
@@ -82,9 +89,22 @@ def _kernels():
     numba is missing (then the pure-Python path runs; results are the same)."""
     if os.environ.get("BETV_KERNELS", "1") == "0":
         return None
+    return _import_kernels()
+
+
+@functools.cache
+def _import_kernels():
+    """Import :mod:`kernels` once per process; None (with a warning naming the cause)
+    when numba cannot be used here, e.g. not installed or no writable cache."""
     try:
         from betvdesign.dynamics import kernels
-    except ImportError:  # numba not installed: the pure-Python path
+    except Exception as exc:  # any numba set-up failure: same results, slower
+        warnings.warn(
+            f"compiled kernels unavailable ({type(exc).__name__}: {exc}); "
+            "the exact solver runs its pure-Python path (same results, slower)",
+            RuntimeWarning,
+            stacklevel=3,
+        )
         return None
     return kernels
 
