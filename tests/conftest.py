@@ -11,8 +11,11 @@ import os
 import shutil
 from pathlib import Path
 
+import numpy as np
 import pytest
 from hypothesis import settings
+
+from betvdesign.params import ModelParams
 
 # CI gates on a reproducible suite: the same hypothesis examples on every run
 # (a new counterexample is found in development, where the database keeps it).
@@ -22,6 +25,25 @@ if os.environ.get("CI"):
 
 REPO = Path(__file__).resolve().parents[1]
 DEVICES = REPO / "devices"
+
+
+def _window_sets(n: int = 20, seed: int = 20041) -> list[ModelParams]:
+    """n designs spread over the window 0.5 ≤ ϖ < 2 (log-uniform α, β, κ); the same
+    draw as benchmarks/bench_solver.py ``window_sets``."""
+    rng = np.random.default_rng(seed)
+    return [
+        ModelParams(
+            float(rng.uniform(0.55, 1.95)),
+            float(10 ** rng.uniform(-1.3, 0.5)),
+            float(10 ** rng.uniform(-1, 1)),
+            float(10 ** rng.uniform(-1.3, 0)),
+        )
+        for _ in range(n)
+    ]
+
+
+#: 20 designs spread over the window (tests of the exact solver against other methods).
+WINDOW_SETS = _window_sets()
 
 
 def device_files() -> list[Path]:

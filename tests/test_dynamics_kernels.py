@@ -11,24 +11,18 @@ import sys
 
 import numpy as np
 import pytest
+from conftest import WINDOW_SETS
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from betvdesign.dynamics import kernels, periodic_orbit, simulate, solver
 from betvdesign.dynamics.flows import PhaseConstants
+from betvdesign.dynamics.vertical import VerticalSchedule
 from betvdesign.params import ModelParams
 
-RNG = np.random.default_rng(20041)
-#: the window designs of tests/test_dynamics_reference.py plus the named benchmark ones
+#: the window designs (tests/conftest.py) plus the named benchmark ones
 DESIGNS = [
-    ModelParams(
-        float(RNG.uniform(0.55, 1.95)),
-        float(10 ** RNG.uniform(-1.3, 0.5)),
-        float(10 ** RNG.uniform(-1, 1)),
-        float(10 ** RNG.uniform(-1.3, 0)),
-    )
-    for _ in range(20)
-] + [
+    *WINDOW_SETS,
     ModelParams(0.9, 0.1, 0.9, 0.4),
     ModelParams(1.5, 1.0, 0.2, 0.2),
     ModelParams(1.2, 0.5, 1.0, 0.4),
@@ -36,7 +30,6 @@ DESIGNS = [
     ModelParams(1.0, 2.0, 1.0, 0.4),
     ModelParams(0.34, 0.1, 9.09, 0.4),  # multi-impact (shin2004's computed ϖ)
 ]
-COMPILED = DESIGNS
 
 
 def _both(p, cycles, monkeypatch, **kw):
@@ -63,7 +56,7 @@ def test_designs_cover_both_modes_of_the_events():
     assert 0.0 in fast and 1.0 in fast
 
 
-@pytest.mark.parametrize("p", COMPILED, ids=lambda p: f"{p.varpi:.2f}-{p.alpha:.2g}")
+@pytest.mark.parametrize("p", DESIGNS, ids=lambda p: f"{p.varpi:.2f}-{p.alpha:.2g}")
 def test_kernel_matches_python_path(p, monkeypatch):
     a, b = _both(p, 150, monkeypatch)
     assert (a.engine, b.engine) == ("compiled", "python")
@@ -95,7 +88,7 @@ def test_kernel_matches_python_path_random(p, st4):
 
 
 def test_periodic_orbit_same_on_both_paths(monkeypatch):
-    for p in COMPILED[:6]:
+    for p in DESIGNS[:6]:
         a = periodic_orbit(p)
         with monkeypatch.context() as mp:
             mp.setenv("BETV_KERNELS", "0")
@@ -176,8 +169,6 @@ def test_kernel_failure_codes_become_cycle_failures(code, a, b, expect):
     naming the cycle; no failure passes as a result."""
     p = DESIGNS[0]
     k = PhaseConstants.from_params(p)
-    from betvdesign.dynamics.vertical import VerticalSchedule
-
     cyc = solver._Cycle(k, VerticalSchedule(p.varpi), None, None)
     assert cyc.engine == "compiled"
     cyc._kern = _StubKernel(code, a, b)
@@ -203,7 +194,7 @@ print(json.dumps(out))
 def test_kernel_source_runs_as_plain_python():
     """NUMBA_DISABLE_JIT=1: the kernel module runs uncompiled (the pure-Python path of
     the kernel itself) and gives the compiled kernel's numbers."""
-    picks = COMPILED[:3] + COMPILED[-1:]
+    picks = DESIGNS[:3] + DESIGNS[-1:]
     args = [[p.varpi, p.alpha, p.beta, p.kappa] for p in picks]
     env = dict(os.environ, NUMBA_DISABLE_JIT="1")
     env.pop("BETV_KERNELS", None)

@@ -6,22 +6,12 @@ import math
 
 import numpy as np
 import pytest
+from conftest import WINDOW_SETS
 
 from betvdesign.dynamics import reference, simulate
 from betvdesign.errors import ParameterError
 from betvdesign.params import ModelParams
 
-RNG = np.random.default_rng(20041)
-#: 20 designs spread over the window 0.5 ≤ ϖ < 2 (log-uniform α, β, κ).
-WINDOW_SETS = [
-    ModelParams(
-        float(RNG.uniform(0.55, 1.95)),
-        float(10 ** RNG.uniform(-1.3, 0.5)),
-        float(10 ** RNG.uniform(-1, 1)),
-        float(10 ** RNG.uniform(-1.3, 0)),
-    )
-    for _ in range(20)
-]
 CYCLES = 30
 
 

@@ -208,10 +208,7 @@ class _Cycle:
         key = (m0, n)
         got = self._sched.get(key)
         if got is None:
-            cyc = [self.vs.cycle(m) for m in range(m0, m0 + n)]
-            tcs = np.array([math.nan if c.contact_start is None else c.contact_start for c in cyc])
-            nimp = np.array([len(c.impulsive) for c in cyc], dtype=np.int64)
-            got = (tcs, nimp)
+            got = self.vs.arrays(m0, n)[2:]
             if n <= 64:  # the periodic map's repeated calls; a long transient runs once
                 self._sched[key] = got
         return got
@@ -379,9 +376,7 @@ def simulate(
     except CycleFailure as exc:
         status, message, done = "failed", f"{exc}; results up to cycle {exc.cycle} kept", exc.cycle
         section = section[: done + 1]
-    for m in range(done + 1):
-        vc = vs.cycle(m)
-        section[m, 0], section[m, 1] = vc.xi0, vc.xid0
+    section[:, 0], section[:, 1] = vs.arrays(0, done + 1)[:2]
     delta = np.diff(section[:, 4])
     sampler = _make_sampler(k, vs, segs) if dense else None
     return Trajectory(

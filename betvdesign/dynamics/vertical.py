@@ -21,6 +21,8 @@ import math
 import time
 from dataclasses import dataclass, field
 
+import numpy as np
+
 from betvdesign.dynamics.events import EPS, GapEvent, first_root
 from betvdesign.dynamics.flows import oscillator
 from betvdesign.errors import ParameterError
@@ -80,6 +82,7 @@ class VerticalSchedule:
         self.period: int | None = None
         self.n_root_evals = 0
         self._counter = [0]
+        self._table: tuple[np.ndarray, ...] | None = None  # arrays(), built on first use
         self._run(xi0, xid0, horizon)
 
     # -- construction -------------------------------------------------------------
@@ -151,6 +154,27 @@ class VerticalSchedule:
             raise IndexError(f"cycle {m} beyond the computed vertical horizon")
         assert self.first_end is not None
         return self.pattern[(m - self.first_end - 1) % self.period]
+
+    def arrays(self, m0: int, n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """Cycles m0..m0+n−1 as arrays: section state ξ0, ξ0' [-], contact-opening local
+        time [-] (NaN: none) and number of impulsive hits; each distinct cycle (prefix
+        and one period) is read once, the rest by index."""
+        if self._table is None:
+            cyc = self.prefix + self.pattern
+            tc = [math.nan if c.contact_start is None else c.contact_start for c in cyc]
+            self._table = (
+                np.array([c.xi0 for c in cyc]),
+                np.array([c.xid0 for c in cyc]),
+                np.array(tc),
+                np.array([len(c.impulsive) for c in cyc], dtype=np.int64),
+            )
+        m = np.arange(m0, m0 + n)
+        k = len(self.prefix)
+        if n and m[-1] >= k:
+            if self.period is None:
+                raise IndexError(f"cycle {m[-1]} beyond the computed vertical horizon")
+            m = np.where(m < k, m, k + (m - k) % self.period)
+        return tuple(col[m] for col in self._table)  # type: ignore[return-value]
 
     def hits_per_cycle(self) -> float:
         """Hits (contact starts + impulsive) per cycle over one period (or the horizon)."""
