@@ -46,6 +46,27 @@ def parse_quantity(text: str) -> pint.Quantity:
     return q
 
 
+def parse_positive(text: str, unit: str, what: str) -> float:
+    """Magnitude in ``unit`` of a user-given quantity such as ``"1 mm/s"`` (a CLI option
+    named ``what``); :class:`~betvdesign.errors.UsageError` unless it parses, has the
+    dimension of ``unit`` and is finite and > 0."""
+    from betvdesign.errors import UsageError
+
+    try:
+        q = parse_quantity(text)
+        v = float(q.to(unit).magnitude)
+    except (ValueError, pint.DimensionalityError, pint.PintError) as exc:
+        raise UsageError(f"{what}: {exc} (expected a quantity in units of {unit})") from None
+    if not (math.isfinite(v) and v > 0):
+        raise UsageError(f"{what}: must be finite and > 0, got {text!r}")
+    return v
+
+
+def parse_speed(text: str, what: str = "speed") -> float:
+    """A speed such as ``"1 mm/s"`` in m/s (see :func:`parse_positive`)."""
+    return parse_positive(text, "m/s", what)
+
+
 def format_quantity(q: pint.Quantity, fmt: str = "") -> str:
     """Write a quantity as a string that :func:`parse_quantity` reads back.
 

@@ -10,7 +10,6 @@ Exit codes: 0 every error-severity rule passes, 1 a rule fails, 2 bad input or u
 from __future__ import annotations
 
 import json
-import sys
 from pathlib import Path
 
 import typer
@@ -18,13 +17,13 @@ from rich.console import Console
 from rich.markup import escape as esc
 from rich.table import Table
 
-from betvdesign import fidelity as fid
 from betvdesign.checker import CheckResult, check_derivation, simulation_summary
 from betvdesign.cli import app
-from betvdesign.cli.common import EXIT_BAD_INPUT, EXIT_OK, EXIT_RULE_FAILED, user_errors
+from betvdesign.cli.common import EXIT_OK, EXIT_RULE_FAILED, user_errors
 from betvdesign.errors import SpecError
 from betvdesign.nondim import derive_file
-from betvdesign.rules import DEFAULT_LAMBDA_MARGIN, RuleResult
+from betvdesign.rules import RuleResult
+from betvdesign.units import parse_speed
 
 _STATUS = {
     (True, "error"): "[green]ok[/]",
@@ -40,45 +39,26 @@ _STATUS = {
 def check_cmd(
     files: list[Path] = typer.Argument(..., help="Device YAML files (see devices/)."),
     as_json: bool = typer.Option(False, "--json", help="Print JSON on stdout (a list if >1 file)."),
-    simulate: bool = typer.Option(
-        False, "--simulate", help="Run the exact periodic-orbit solver for every actuator set."
-    ),
-    closed_form_only: bool = typer.Option(
-        False,
-        "--closed-form-only",
-        help="Never run the solver, even where the closed form cannot decide.",
-    ),
-    lambda_margin: float = typer.Option(
-        DEFAULT_LAMBDA_MARGIN,
-        "--lambda-margin",
-        min=0.0,
-        help="Required |λ − 1| (default 0.2: ±5 % on f_v or ±10 % on α move λ ~10 %).",
+    target_speed: str | None = typer.Option(
+        None,
+        "--target-speed",
+        metavar="Q",
+        help="Required slider speed with its unit, e.g. '1 mm/s' (adds the error rule "
+        "target-speed).",
     ),
     show_derivation: bool = typer.Option(
         False, "--derivation", help="Also print every input, formula and intermediate value."
     ),
-    fidelity: str | None = typer.Option(
-        None,
-        "--fidelity",
-        metavar="RUNG",
-        help="Force the rung that decides the mode: lambda, rigid, full or periodic "
-        "(default: the cheapest the fidelity ladder trusts; see `betv ladder`).",
-    ),
 ) -> None:
-    """Check device files: design window, push/pull mode, margin, resonance, fit range, speed.
+    """Check device files: design window, push/pull mode, margin, resonance, settling, speed.
 
-    The exact solver runs by itself only where λ cannot decide (near 1, outside its fit,
-    or within the measured trust margin of the fidelity ladder); each set states which
-    rung decided its mode and why.
-
-    --simulate runs it for every set; --fidelity RUNG forces a rung.
+    Every set's mode and speed come from its exact periodic orbit (and the transient
+    from rest for settling); the paper's λ fit is shown beside it, never decisive.
+    Each failed rule says what to change; `betv fix FILE` finds the smallest change.
     Exit 0 pass, 1 an error rule fails, 2 bad input/usage.
     """
-    if simulate and closed_form_only:
-        print("error: --simulate and --closed-form-only exclude each other", file=sys.stderr)
-        raise typer.Exit(EXIT_BAD_INPUT)
-    mode = "always" if simulate else ("never" if closed_form_only else "auto")
     with user_errors():
+        target = None if target_speed is None else parse_speed(target_speed, "--target-speed")
         derivations, issues = [], []
         for f in files:  # collect the issues of every file before giving up
             try:
@@ -89,12 +69,7 @@ def check_cmd(
             raise SpecError(issues)
         results = []
         for f, d in derivations:
-            res = check_derivation(
-                d,
-                simulate=mode,
-                lambda_margin=lambda_margin,
-                fidelity=fidelity,  # type: ignore[arg-type]  # validated: UsageError
-            )
+            res = check_derivation(d, target_speed_m_s=target)
             res.source_file = str(f)
             results.append(res)
     if as_json:
@@ -130,18 +105,9 @@ def render(result: CheckResult, console: Console, *, derivation: bool = False) -
         console.print(
             f"[bold]set {esc(s.name)}[/]: intended {s.intended_mode}, impacts "
             f"{s.actuator_set.impact_direction}; ϖ = {p.varpi:.4g}, α = {p.alpha:.4g}, "
-            f"β = {p.beta:.4g}, κ = {p.kappa:.4g}, λ = {s.lam:.4g} -> predicted "
-            f"[bold]{sc.mode_predicted}[/] (from {sc.mode_source})"
+            f"β = {p.beta:.4g}, κ = {p.kappa:.4g} -> exact orbit: [bold]{sc.mode_predicted}[/] "
+            f"(λ = {s.lam:.4g} predicts {sc.lambda_mode})"
         )
-        if sc.fidelity is not None:
-            f = sc.fidelity
-            forced = ", forced" if f.forced else ""
-            console.print(
-                esc(
-                    f"  fidelity: rung {f.rung}{forced} ({fid.RUNG_INFO[f.rung].model}): {f.reason}"
-                ),
-                highlight=False,
-            )
         console.print(
             "  " + esc(", ".join(f"{k} = {v}" for k, v in s.derived().items())), highlight=False
         )
@@ -152,7 +118,7 @@ def render(result: CheckResult, console: Console, *, derivation: bool = False) -
                 for k, v in sim.items()
                 if k not in ("success", "message")
             )
-            console.print(esc(f"  exact orbit ({sc.simulated_because}): {extra}"), highlight=False)
+            console.print(esc(f"  exact orbit: {extra}"), highlight=False)
         if derivation:
             console.print(_record_table(sc))
         _print_rules(sc.rules, console)
@@ -184,6 +150,8 @@ def _print_rules(rules: list[RuleResult], console: Console) -> None:
             console.print(
                 f"  {_STATUS[(r.passed, r.severity)]} {r.id}: {esc(r.message)}", highlight=False
             )
+            if r.fix and not r.passed:
+                console.print(f"      [cyan]fix:[/] {esc(r.fix)}", highlight=False)
 
 
 def _record_table(sc) -> Table:

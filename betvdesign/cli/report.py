@@ -30,13 +30,6 @@ def report_cmd(
         "--timestamp",
         help="Print the generation time and run times (reports then differ between runs).",
     ),
-    fidelity: str | None = typer.Option(
-        None,
-        "--fidelity",
-        metavar="RUNG",
-        help="Force the rung that decides each set's mode for the verdict: lambda, rigid, "
-        "full or periodic (default: the periodic orbit the figures need anyway).",
-    ),
     methods: bool = typer.Option(
         False,
         "--methods",
@@ -46,7 +39,8 @@ def report_cmd(
 ) -> None:
     """Write NAME.html (self-contained) and NAME.pdf for every device file.
 
-    Every figure caption and verdict box states its fidelity rung and why.
+    The verdict always rests on the exact periodic orbit of every set; every figure
+    caption states which model drew it and why.
     """
     from betvdesign.report import ReportOptions, write_reports
 
@@ -56,7 +50,7 @@ def report_cmd(
         raise typer.Exit(methods_report(files or [], outdir, pdf=pdf))
 
     with user_errors():
-        options = ReportOptions(fidelity=fidelity)
+        options = ReportOptions()
         written = write_reports(files, outdir, pdf=pdf, timestamp=timestamp, options=options)
     for w in written:
         outputs = ", ".join(str(p) for p in (w.html, w.pdf) if p is not None)

@@ -12,7 +12,6 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from betvdesign.errors import SpecError, UsageError
-from betvdesign.fidelity import choose_rung
 from betvdesign.report.analysis import ReportOptions
 from betvdesign.report.build import build_report, prepare
 from betvdesign.report.render import render_html, render_pdf, write_atomic
@@ -52,7 +51,7 @@ def write_reports(
 
     Raises :class:`~betvdesign.errors.SpecError` (bad device file) or
     :class:`~betvdesign.errors.UsageError` (no files, clashing names, unusable
-    output directory, a ``options.fidelity`` rung that cannot tell the mode) before
+    output directory) before
     writing anything.
     """
     if not paths:
@@ -70,8 +69,6 @@ def write_reports(
             issues.extend(exc.issues)
     if issues:
         raise SpecError(issues)
-    if options is not None and options.fidelity is not None:  # a bad rung: before any output
-        choose_rung(prepared[0].derivation.sets[0].params, "mode", force=options.fidelity)  # type: ignore[arg-type]
     out = _outdir(outdir)
     generated = _dt.datetime.now(_dt.UTC).replace(microsecond=0).isoformat() if timestamp else None
     written: list[Written] = []

@@ -47,8 +47,8 @@ from pydantic import BaseModel
 from betvdesign.errors import BetvError, UsageError
 from betvdesign.studies.pushpull import (
     MODEL_STATEMENT,
-    RUNG_REASON,
     require_fidelity,
+    rung_reason,
     solver_error,
 )
 from betvdesign.studies.runner import Study, StudyRun, run_study, split_run_args
@@ -411,7 +411,7 @@ def summarise(
     out: dict[str, Any] = {
         "fidelity": fidelity,
         "model": MODEL_STATEMENT[fidelity] + "; each sample through nondim.derive_set",
-        "fidelity_reason": RUNG_REASON[fidelity],
+        "fidelity_reason": rung_reason(fidelity),
         "sets": {},
     }
     for name in dict.fromkeys(r["set"] for r in rows):
