@@ -13,8 +13,10 @@ mode-margin corners (ϖ ± 5 %, α ± 10 %).
 
 Search: one field at a time (log-spaced scan over its bounds, passing intervals
 refined by bisection, the point nearest the current value that keeps the margin),
-then, only if no single field works, pairs of fields on a coarse 2-D grid. The
-change is measured as |ln(x/x0)| (sum in quadrature for pairs). With tolerances
+then, only if no single field works, pairs of the :data:`PAIR_FIELDS` fields that
+came closest, on a coarse 2-D grid. The change is measured as |ln(x/x0)| (in
+quadrature for pairs); changes equal to 0.01 in that measure rank operating fields
+(drive) before geometry (the order of :data:`DEFAULT_BOUNDS`). With tolerances
 (``tol``), each passing candidate is also run through a Monte Carlo of the spreads
 and must keep P(intended mode) ≥ ``p_min``; moving further into the passing
 interval is tried before a candidate is given up (the robust optimum).
@@ -37,9 +39,11 @@ from betvdesign.studies.tolerance import _replace, _targets, _value_at
 #: Relative distance a chosen value keeps from the edge of its passing interval.
 FIELD_MARGIN = 0.05
 #: Scan points per field and bisection steps per interval edge.
-SCAN_POINTS = 41
-BISECT_STEPS = 10
+SCAN_POINTS = 31
+BISECT_STEPS = 9
 PAIR_POINTS = 9
+#: Pairs are searched among this many fields, those that came closest on their own.
+PAIR_FIELDS = 4
 
 #: Default search bounds of the fields a designer can change: (factor low, factor high)
 #: on the current value, or absolute bounds in the given unit.
@@ -239,12 +243,11 @@ class Evaluator:
         self.evaluations = 0
 
     def spec_at(self, changes: dict[str, float]) -> Any:
-        return with_values(
-            self.spec, {f: self.varies[f].quantity(x) for f, x in changes.items()}
-        )
+        return with_values(self.spec, {f: self.varies[f].quantity(x) for f, x in changes.items()})
 
     def quick(self, changes: dict[str, float]) -> tuple[bool, list[str], Any]:
-        """(passes, failing rule ids, check) without the margin corners."""
+        """(passes, failing rule ids, check) without the margin corners and settling
+        (both are required of every candidate by :meth:`full`)."""
         key = tuple(sorted(changes.items()))
         if key not in self.cache:
             self.cache[key] = self._run(changes, full=False)
@@ -260,15 +263,20 @@ class Evaluator:
         from betvdesign.nondim import derive
 
         self.evaluations += 1
-        if "contact.impact_angle" in changes and self.varies["contact.impact_angle"].quantity(
-            changes["contact.impact_angle"]
-        ).to("deg").magnitude >= 90.0:
+        if (
+            "contact.impact_angle" in changes
+            and self.varies["contact.impact_angle"]
+            .quantity(changes["contact.impact_angle"])
+            .to("deg")
+            .magnitude
+            >= 90.0
+        ):
             return False, ["impact angle ≥ 90°"], None
         try:
             res = check_derivation(
                 derive(self.spec_at(changes)),
                 margin=full,
-                settle=True,
+                settle=full,
                 target_speed_m_s=self.target,
             )
         except (ParameterError, BetvError, ValueError) as exc:
@@ -323,14 +331,16 @@ def _edge(ev: Evaluator, name: str, good: float, bad: float) -> float:
     return good
 
 
-def single_field(ev: Evaluator, v: Vary) -> tuple[list[tuple[float, float, float]], str]:
+def single_field(ev: Evaluator, v: Vary) -> tuple[list[tuple[float, float, float]], str, float]:
     """Passing intervals of one field as (lo, hi, chosen value nearest x0 with margin),
-    nearest first, and the rule that blocks most often where it fails."""
+    nearest first; the rule that blocks most often where it fails; and how close the
+    field came (the fewest failing rules over the scan, for choosing pairs)."""
     xs = np.geomspace(v.lo, v.hi, SCAN_POINTS)
     res = [ev.quick({v.field: float(x)}) for x in xs]
     ok = np.array([r[0] for r in res])
     fails = [rid for r in res if not r[0] for rid in r[1]]
     blocking = max(set(fails), key=fails.count) if fails else ""
+    closest = min(len(r[1]) for r in res) + _shortfall(ev, res)
     out = []
     for i, j in _intervals(xs, ok):
         lo = xs[i] if i == 0 else _edge(ev, v.field, float(xs[i]), float(xs[i - 1]))
@@ -341,7 +351,26 @@ def single_field(ev: Evaluator, v: Vary) -> tuple[list[tuple[float, float, float
         x = min(max(v.x0, a), b)
         out.append((float(lo), float(hi), float(x)))
     out.sort(key=lambda t: abs(math.log(t[2] / v.x0)))
-    return out, blocking
+    return out, blocking, closest
+
+
+def _shortfall(ev: Evaluator, res: list[tuple[bool, list[str], Any]]) -> float:
+    """In [0, 1): how far the best scan point stays from the intended mode and the
+    target speed (0: reached), as a tie-break between fields with equal rule counts."""
+    best = 1.0
+    for _, _, check in res:
+        if check is None:
+            continue
+        worst = 0.0
+        for sc in check.sets:
+            ds = getattr(sc.periodic, "delta_s", None) if sc.mode else None
+            if ds is None:
+                worst = max(worst, 0.99)
+                continue
+            want = 1.0 if sc.derivation.intended_mode == "push" else -1.0
+            worst = max(worst, 0.5 - 0.5 * math.tanh(want * ds))
+        best = min(best, worst)
+    return min(best, 0.999)
 
 
 def _why(ev: Evaluator, before: list[str], changes: dict[str, float], check: Any) -> str:
@@ -379,25 +408,28 @@ def find_fixes(
         return FixResult("already_passes", "the device already passes", [], vmap, {}, 1, spec)
     cands: list[Candidate] = []
     blocking: dict[str, str] = {}
+    closeness: dict[str, float] = {}
     for v in varies:
-        intervals, block = single_field(ev, v)
+        intervals, block, closeness[v.field] = single_field(ev, v)
         if not intervals:
             blocking[v.field] = block or "no passing value within the bounds"
         for lo, hi, x in intervals:
             margin = min(math.log(x / lo), math.log(hi / x))
-            cands.append(
-                Candidate({v.field: x}, abs(math.log(x / v.x0)), None, None, margin, "")
-            )
+            cands.append(Candidate({v.field: x}, abs(math.log(x / v.x0)), None, None, margin, ""))
     if pairs and not cands and len(varies) >= 2:
-        cands = _pairs(ev, varies)
-    cands.sort(key=lambda c: c.size)
+        near = sorted(varies, key=lambda v: closeness[v.field])[:PAIR_FIELDS]
+        cands = _pairs(ev, near)
+    order = {f: i for i, f in enumerate(DEFAULT_BOUNDS)}  # ties: operating fields first
+    cands.sort(key=lambda c: (round(c.size, 2), min(order.get(f, 99) for f in c.changes)))
     verified: list[Candidate] = []
     for c in cands:
-        if len(verified) >= max_candidates:
+        if len(verified) >= max_candidates or (robust and sum(v.passed for v in verified) >= 2):
             break
         c = _verify(ev, c, failing0, robust, p_min, vmap)
         verified.append(c)
-    verified.sort(key=lambda c: (not c.passed, c.size))
+    verified.sort(
+        key=lambda c: (not c.passed, round(c.size, 2), min(order.get(f, 99) for f in c.changes))
+    )
     best = verified[0] if verified and verified[0].passed else None
     if best is None:
         why = "; ".join(f"{f}: {b}" for f, b in blocking.items()) or "no candidate verified"
@@ -457,3 +489,48 @@ def _pairs(ev: Evaluator, varies: Sequence[Vary]) -> list[Candidate]:
                 size = math.hypot(math.log(x / a.x0), math.log(y / b.x0))
                 out.append(Candidate(ch, size, None, None, 0.0, ""))
     return out
+
+
+# --- robustness under fabrication spread -------------------------------------------------
+
+
+def robust_probability(
+    spec: Any, items: Sequence[str], *, n: int = 400, seed: int = 0
+) -> Callable[[Any], float]:
+    """P(every set in its intended mode) under the spreads ``items`` (``betv tolerance``
+    syntax), by a seeded Monte Carlo of ``n`` exact orbits per candidate. Validates the
+    spreads against ``spec`` now (:class:`UsageError`)."""
+    from betvdesign.studies.tolerance import draw, nominal_values, parse_tolerance
+
+    tols = [parse_tolerance(t) for t in items]
+    nominal_values(spec, tols)  # unknown or non-numeric fields: UsageError now
+
+    def probability(candidate: Any) -> float:
+        from betvdesign.checker import load_solver
+        from betvdesign.domain import mode_of
+        from betvdesign.nondim import derive
+        from betvdesign.units import ureg
+
+        solver = load_solver()
+        nominal = nominal_values(candidate, tols)
+        x = draw(tols, nominal, n, seed)
+        good = 0
+        for row in x:
+            values = {
+                t.field: (ureg.Quantity(v, nominal[t.field][1]) if nominal[t.field][1] else v)
+                for t, v in zip(tols, row, strict=True)
+            }
+            try:
+                d = derive(with_values(candidate, values))
+            except (ParameterError, BetvError, ValueError):
+                continue  # an unphysical draw counts as a failure
+            ok = True
+            for s in d.sets:
+                po = solver(s.params)
+                if not (po.success and mode_of(po.delta_s) == s.intended_mode):
+                    ok = False
+                    break
+            good += ok
+        return good / n
+
+    return probability
