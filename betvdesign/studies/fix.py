@@ -34,7 +34,7 @@ import numpy as np
 import pint
 
 from betvdesign.errors import BetvError, ParameterError, UsageError
-from betvdesign.studies.tolerance import _replace, _targets, _value_at
+from betvdesign.studies.specpaths import targets, value_at, with_values
 
 #: Relative distance a chosen value keeps from the edge of its passing interval.
 FIELD_MARGIN = 0.05
@@ -154,7 +154,7 @@ class FixResult:
 
 
 def _current(spec: Any, name: str) -> tuple[float, str] | None:
-    values = [_value_at(spec, t) for t in _targets(spec, name)]
+    values = [value_at(spec, t) for t in targets(spec, name)]
     present = [v for v in values if v is not None]
     if not present:
         return None
@@ -218,15 +218,6 @@ def _magnitude(q: Any, unit: str) -> float:
     if not unit:
         return float(q.to("dimensionless").magnitude)
     return float(q.to(unit).magnitude)
-
-
-def with_values(spec: Any, values: dict[str, Any]) -> Any:
-    """``spec`` with each field set to its value (set fields: every actuator set)."""
-    for name, value in values.items():
-        for target in _targets(spec, name):
-            if _value_at(spec, target) is not None:
-                spec = _replace(spec, target, value)
-    return spec
 
 
 # --- evaluation ------------------------------------------------------------------------

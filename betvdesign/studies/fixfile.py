@@ -9,8 +9,7 @@ from pathlib import Path
 from typing import Any
 
 from betvdesign.errors import BetvError
-
-SET_PREFIXES = ("head.", "contact.", "actuator.", "drive.")
+from betvdesign.studies.specpaths import SET_PREFIXES
 
 
 def _nodes(data: Any, field: str) -> list[tuple[Any, str]]:

@@ -42,8 +42,8 @@ from typing import Any, Literal
 
 import numpy as np
 import pint
-from pydantic import BaseModel
 
+from betvdesign.domain import in_window
 from betvdesign.errors import BetvError, UsageError
 from betvdesign.studies.pushpull import (
     MODEL_STATEMENT,
@@ -52,11 +52,10 @@ from betvdesign.studies.pushpull import (
     solver_error,
 )
 from betvdesign.studies.runner import Study, StudyRun, run_study, split_run_args
+from betvdesign.studies.specpaths import numeric, replace, targets, value_at
 
 Dist = Literal["normal", "uniform"]
 Fidelity = Literal["periodic", "lambda"]
-SET_PREFIXES = ("head.", "contact.", "actuator.", "drive.")
-VARPI_WINDOW = (0.5, 2.0)
 PERCENTILES = (5.0, 25.0, 50.0, 75.0, 95.0)
 
 
@@ -141,60 +140,15 @@ def load_tolerances(path: str | os.PathLike[str]) -> list[Tolerance]:
     return out
 
 
-# -- spec access -----------------------------------------------------------------
-def _get(obj: Any, path: Sequence[str]) -> Any:
-    for name in path:
-        if not isinstance(obj, BaseModel) or name not in type(obj).model_fields:
-            return None
-        obj = getattr(obj, name)
-    return obj
-
-
-def _set(obj: Any, path: Sequence[str], value: Any) -> Any:
-    if not path:
-        return value
-    child = getattr(obj, path[0])
-    return obj.model_copy(update={path[0]: _set(child, path[1:], value)})
-
-
-def _targets(spec: Any, field: str) -> list[tuple[str, ...]]:
-    """Full attribute paths a field path addresses in ``spec`` (several for set fields)."""
-    parts = tuple(field.split("."))
-    if field.startswith(SET_PREFIXES):
-        return [("actuator_sets", str(i), *parts) for i in range(len(spec.actuator_sets))]
-    return [parts]
-
-
-def _value_at(spec: Any, target: tuple[str, ...]) -> Any:
-    if target[0] == "actuator_sets":
-        return _get(spec.actuator_sets[int(target[1])], target[2:])
-    return _get(spec, target)
-
-
-def _replace(spec: Any, target: tuple[str, ...], value: Any) -> Any:
-    if target[0] == "actuator_sets":
-        i = int(target[1])
-        sets = list(spec.actuator_sets)
-        sets[i] = _set(sets[i], target[2:], value)
-        return spec.model_copy(update={"actuator_sets": sets})
-    return _set(spec, target, value)
-
-
-def _numeric(value: Any) -> bool:
-    return isinstance(value, pint.Quantity) or (
-        isinstance(value, float) and not isinstance(value, bool)
-    )
-
-
 def nominal_values(spec: Any, tolerances: Sequence[Tolerance]) -> dict[str, tuple[float, str]]:
     """Nominal magnitude and unit of each toleranced field (checked against the spec)."""
     out: dict[str, tuple[float, str]] = {}
     for tol in tolerances:
         if tol.field in out:
             raise UsageError(f"{tol.source}: {tol.field}: given twice")
-        values = [_value_at(spec, t) for t in _targets(spec, tol.field)]
+        values = [value_at(spec, t) for t in targets(spec, tol.field)]
         present = [v for v in values if v is not None]
-        if not present or not all(_numeric(v) for v in present):
+        if not present or not all(numeric(v) for v in present):
             raise UsageError(
                 f"{tol.source}: {tol.field}: not a numeric field of device {spec.name!r} "
                 "(write it as in the device file, e.g. slider.beam_width, head.mass, "
@@ -266,33 +220,48 @@ def _perturbed(task: Mapping[str, Any]) -> Any:
             raise BetvError(f"{field} sampled non-positive ({mag:g} {unit})")
         if field == "contact.impact_angle" and value.to("deg").magnitude >= 90.0:
             raise BetvError(f"{field} sampled at or above 90° ({mag:g} {unit})")
-        for target in _targets(spec, field):
-            if _value_at(spec, target) is not None:
-                spec = _replace(spec, target, value)
+        for target in targets(spec, field):
+            if value_at(spec, target) is not None:
+                spec = replace(spec, target, value)
     return spec
 
 
 def tolerance_point(task: Mapping[str, Any]) -> dict[str, Any]:
-    """One (sample, actuator set): perturb, derive (units stripped), solve."""
-    from betvdesign.nondim import derive_set
+    """One (sample, actuator set): perturb, derive (units stripped), solve.
+
+    Tasks built by :func:`tolerance_study` usually carry the sample's derived
+    parameters already (``derived``: the whole sample derived at once by
+    :func:`betvdesign.nondim.derive_samples`, the same formulas vectorised); otherwise
+    the sample is derived here with :func:`betvdesign.nondim.derive_set`.
+    """
+    from betvdesign.params import ModelParams
 
     row: dict[str, Any] = {c: None for c in task["columns"]}
     row.update(key=task["key"], sample=task["sample"], set=task["set_name"])
     for field, (mag, _) in task["values"].items():
         row[f"in:{field}"] = mag
+    derived = task.get("derived")
     try:
-        spec = _perturbed(task)
-        d = derive_set(spec, spec.actuator_sets[task["set_index"]])
+        if derived is None:
+            from betvdesign.nondim import derive_set
+
+            spec = _perturbed(task)
+            d = derive_set(spec, spec.actuator_sets[task["set_index"]])
+            p, intended = d.params, d.intended_mode
+            length_m, f_act = d.scales.length_m, d.scales.f_act_hz
+        else:
+            _check_sample(task["values"])
+            p = ModelParams(*(derived[k] for k in ("varpi", "alpha", "beta", "kappa")))
+            intended, length_m, f_act = task["intended"], derived["length_m"], derived["f_act_hz"]
     except BetvError as exc:
         row.update(status="invalid-sample", converged=False, message=str(exc))
         return row
-    p = d.params
     row.update(
         **p.as_dict(),
         lam=p.lam,
         mode_predicted=p.mode_predicted,
-        intended=d.intended_mode,
-        in_window=bool(VARPI_WINDOW[0] <= p.varpi < VARPI_WINDOW[1]),
+        intended=intended,
+        in_window=in_window(p.varpi),
     )
     if task["fidelity"] == "lambda":
         row.update(status="lambda-only", converged=False, message="closed-form λ fit only")
@@ -306,12 +275,51 @@ def tolerance_point(task: Mapping[str, Any]) -> dict[str, Any]:
         return row
     row.update(status=str(res.status), converged=bool(res.success), message=str(res.message))
     if res.success and res.delta_s is not None and math.isfinite(res.delta_s):
-        row.update(
-            mode=res.mode,
-            delta_s=float(res.delta_s),
-            speed_um_s=d.scales.speed_m_s(float(res.delta_s)) * 1e6,
-        )
+        ds = float(res.delta_s)
+        row.update(mode=res.mode, delta_s=ds, speed_um_s=ds * length_m * f_act * 1e6)
     return row
+
+
+def _check_sample(values: Mapping[str, tuple[float, str]]) -> None:
+    """:class:`BetvError` for a sample the spec cannot take (non-positive, angle ≥ 90°)."""
+    for field, (mag, unit) in values.items():
+        if mag <= 0.0:
+            raise BetvError(f"{field} sampled non-positive ({mag:g} {unit})")
+        if field == "contact.impact_angle":
+            from betvdesign.units import ureg
+
+            if ureg.Quantity(mag, unit).to("deg").magnitude >= 90.0:
+                raise BetvError(f"{field} sampled at or above 90° ({mag:g} {unit})")
+
+
+def _derive_all(
+    spec: Any,
+    tolerances: Sequence[Tolerance],
+    nominal: Mapping[str, tuple[float, str]],
+    x: np.ndarray,
+    set_index: int,
+) -> dict[str, np.ndarray] | None:
+    """Every sample of one set derived at once (nondim.derive_samples); None when some
+    sample cannot be derived that way (then each is derived on its own)."""
+    from betvdesign.nondim import derive_samples
+    from betvdesign.units import ureg
+
+    values = {}
+    for j, t in enumerate(tolerances):
+        mag, unit = nominal[t.field][0], nominal[t.field][1]
+        col = np.where(x[:, j] > 0, x[:, j], mag)  # invalid draws: rejected per task
+        values[t.field] = ureg.Quantity(col, unit) if unit else col
+    arrays = spec
+    for field, value in values.items():
+        for target in targets(spec, field):
+            if value_at(spec, target) is not None:
+                arrays = replace(arrays, target, value)
+    try:
+        with np.errstate(all="ignore"):
+            d = derive_samples(arrays, arrays.actuator_sets[set_index])
+    except (BetvError, ValueError, ArithmeticError):
+        return None
+    return {k: getattr(d, k) for k in ("varpi", "alpha", "beta", "kappa", "length_m", "f_act_hz")}
 
 
 BASE_COLUMNS: dict[str, type] = {
@@ -364,10 +372,15 @@ def tolerance_study(
     x = draw(tolerances, nominal, samples, seed)
     columns = dict(BASE_COLUMNS) | {f"in:{t.field}": float for t in tolerances}
     mtime = os.stat(path).st_mtime_ns
+    derived = {
+        name: _derive_all(spec, tolerances, nominal, x, names.index(name)) for name in chosen
+    }
+    intended = {s.name: s.intended_mode for s in spec.actuator_sets}
     tasks = []
     for i in range(samples):
         values = {t.field: (float(x[i, j]), nominal[t.field][1]) for j, t in enumerate(tolerances)}
         for name in chosen:
+            arrays = derived[name]
             tasks.append(
                 {
                     "key": len(tasks),
@@ -380,6 +393,10 @@ def tolerance_study(
                     "fidelity": fidelity,
                     "tol": tol,
                     "columns": tuple(columns),
+                    "intended": intended[name],
+                    "derived": None
+                    if arrays is None
+                    else {k: float(v[i]) for k, v in arrays.items()},
                 }
             )
     params = {
@@ -410,7 +427,8 @@ def summarise(
     """Per actuator set: probabilities, speed percentiles, sensitivities."""
     out: dict[str, Any] = {
         "fidelity": fidelity,
-        "model": MODEL_STATEMENT[fidelity] + "; each sample through nondim.derive_set",
+        "model": MODEL_STATEMENT[fidelity]
+        + "; every sample derived by nondim.derive_samples (derive_set's formulas, vectorised)",
         "fidelity_reason": rung_reason(fidelity),
         "sets": {},
     }
