@@ -95,7 +95,16 @@ def derivation_rows(sd: SetDerivation) -> tuple[DerivationRow, ...]:
 
 def rule_rows(results: list[RuleResult]) -> tuple[RuleRow, ...]:
     return tuple(
-        RuleRow(r.id, r.severity, fmt_num(r.value), r.threshold, r.passed, r.message, r.source)
+        RuleRow(
+            r.id,
+            r.severity,
+            fmt_num(r.value),
+            r.threshold,
+            r.passed,
+            r.message,
+            r.source,
+            "" if r.passed else r.fix,
+        )
         for r in results
     )
 

@@ -47,6 +47,7 @@ class RuleRow:
     passed: bool
     message: str
     source: str
+    fix: str = ""
 
 
 @dataclass(frozen=True)
