@@ -22,10 +22,15 @@ from markupsafe import Markup
 from betvdesign import plots
 from betvdesign.plots import validation as vplots
 from betvdesign.report.render import _css, _environment, render_pdf, write_atomic
+from betvdesign.studies.regime import LONG_PERIOD
 from betvdesign.studies.validation import ValidationStudy, run_validation
 from betvdesign.studies.validation_common import STOP_RTOL, Comparison
+from betvdesign.studies.validation_maps import FIG12_ALPHA
+from betvdesign.studies.validation_vertical import FIG3_VARPI, MAX_CYCLES
 
 TEMPLATE = "validation.html.j2"
+#: Δs range drawn in Fig. 12 (near the resonance |Δs| grows far beyond it).
+FIG12_YLIM = (-40.0, 60.0)
 COMMAND = "betv report --validation --no-pdf -o docs/validation"
 
 
@@ -104,7 +109,12 @@ def _fig3(st: ValidationStudy, axes: Any) -> None:
 
 
 def _clip_period(rows: list[dict[str, Any]]) -> list[int | None]:
-    return [r["period_cycles"] if (r["period_cycles"] or 99) <= 8 else None for r in rows]
+    return [
+        r["period_cycles"]
+        if r["period_cycles"] is not None and r["period_cycles"] <= LONG_PERIOD
+        else None
+        for r in rows
+    ]
 
 
 def _fig4(st: ValidationStudy, ax: Any) -> None:
@@ -204,7 +214,7 @@ def _fig12(st: ValidationStudy, ax: Any) -> None:
     plots.robustness_vs_lambda(
         [r["lam"] for r in rows], [r["delta_s"] if r["converged"] else None for r in rows], ax=ax
     )
-    ax.set_ylim(-40.0, 60.0)
+    ax.set_ylim(*FIG12_YLIM)
 
 
 #: (key, number, title, what the paper shows, size, grid, draw, caption)
@@ -217,7 +227,8 @@ _FIGURES: tuple[tuple[str, str, str, str, tuple[float, float], dict, Callable, s
         (7.0, 2.8),
         {"ncols": 2},
         _fig3,
-        "One impact period from the first contact end, ϖ = 0.9. Model: exact vertical motion.",
+        f"One impact period from the first contact end, ϖ = {FIG3_VARPI:g}. Model: exact "
+        "vertical motion.",
     ),
     (
         "fig4",
@@ -227,9 +238,9 @@ _FIGURES: tuple[tuple[str, str, str, str, tuple[float, float], dict, Callable, s
         (7.0, 3.0),
         {},
         _fig4,
-        "Impact period (dots; periods > 8 cycles drawn as crosses on top) and hits per cycle "
-        "(squares) on the ϖ grid, 400 cycles from rest. Dotted: computed edges of the period-1 "
-        "interval; dashed: published. Model: exact vertical motion.",
+        f"Impact period (dots; periods > {LONG_PERIOD} cycles drawn as crosses on top) and hits "
+        f"per cycle (squares) on the ϖ grid, {MAX_CYCLES} cycles from rest. Dotted: computed "
+        "edges of the period-1 interval; dashed: published. Model: exact vertical motion.",
     ),
     (
         "fig5",
@@ -302,7 +313,8 @@ _FIGURES: tuple[tuple[str, str, str, str, tuple[float, float], dict, Callable, s
         (7.0, 3.0),
         {},
         _fig11,
-        "β = 9, ϖ = 0.9, u = 0.01375 µm/V·V, f_act = 1 kHz. Model: exact periodic orbit.",
+        "β = 9, ϖ = 0.9, u proportional to V through the device's calibration, f_act from the "
+        "device file (values in the table row). Model: exact periodic orbit.",
     ),
     (
         "fig12",
@@ -312,7 +324,8 @@ _FIGURES: tuple[tuple[str, str, str, str, tuple[float, float], dict, Callable, s
         (7.0, 3.0),
         {},
         _fig12,
-        "Periodic Δs, ϖ varied at α = 1 (y axis clipped to [−40, 60]). Model: exact periodic "
+        f"Periodic Δs, ϖ varied at α = {FIG12_ALPHA:g} (y axis clipped to "
+        f"[{FIG12_YLIM[0]:g}, {FIG12_YLIM[1]:g}]). Model: exact periodic "
         "orbit.",
     ),
 )

@@ -23,6 +23,9 @@ PAPER = "Shin, Pai, Lin, Hui and Tien, J. Appl. Phys. 96 (2004)"
 #: successive Δs agree to 1e-4 (relative).
 STOP_RTOL = 1e-4
 
+#: Explanation of a row that agrees (replaced by "not explained" if the verdict does not).
+AS_PUBLISHED = "as published"
+
 Verdict = Literal["reproduced", "differs", "holds", "partly holds", "does not hold"]
 
 
@@ -46,6 +49,10 @@ class Comparison:
     explanation: str
     published_value: float | None = None
     computed_value: float | None = None
+
+    def __post_init__(self) -> None:
+        if self.explanation == AS_PUBLISHED and self.verdict not in ("reproduced", "holds"):
+            object.__setattr__(self, "explanation", "not explained: no measured cause found")
 
     @property
     def rel_diff(self) -> float | None:
