@@ -211,4 +211,6 @@ def test_cli_bad_input_exits_2_and_writes_nothing(tmp_path):
     assert r.exit_code == 2 and "not a directory" in r.output
     r = runner.invoke(app, ["report", "--validation", str(tmp_path / "nope.yaml"), "-o", str(out)])
     assert r.exit_code == 2 and "Traceback" not in r.output
+    r = runner.invoke(app, ["report", "--validation", "--methods", "-o", str(out)])
+    assert r.exit_code == 2 and "--methods" in r.output
     assert not out.exists()
