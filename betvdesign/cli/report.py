@@ -60,7 +60,6 @@ def report_cmd(
         from betvdesign.cli.validation import validation_report
 
         other = {"--methods": methods, "--strict": strict, "--timestamp": timestamp}
-        other["--fidelity"] = fidelity is not None
         raise typer.Exit(validation_report(files or [], outdir, pdf=pdf, other=other))
     if methods:
         from betvdesign.cli.bench import methods_report
