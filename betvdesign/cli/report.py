@@ -36,6 +36,12 @@ def report_cmd(
         help="Write the methods report (speed/accuracy chart, failure map, fidelity ladder) "
         "instead; FILE may then be a work-precision JSON from `betv bench -o`.",
     ),
+    validation: bool = typer.Option(
+        False,
+        "--validation",
+        help="Write the validation page against the published paper (Figs 3-12 recomputed) "
+        "instead; FILE may then be the published device (default devices/shin2004.yaml).",
+    ),
 ) -> None:
     """Write NAME.html (self-contained) and NAME.pdf for every device file.
 
@@ -44,6 +50,11 @@ def report_cmd(
     """
     from betvdesign.report import ReportOptions, write_reports
 
+    if validation:
+        from betvdesign.cli.validation import validation_report
+
+        other = {"--methods": methods, "--strict": strict, "--timestamp": timestamp}
+        raise typer.Exit(validation_report(files or [], outdir, pdf=pdf, other=other))
     if methods:
         from betvdesign.cli.bench import methods_report
 
