@@ -44,7 +44,7 @@ MAX_UNIT_FACTORS = 8
 #: Parallel slider beams (a BETV slider has 2; more than 16 is not a slider).
 MAX_BEAM_COUNT = 16
 #: Cycles of one transient (``simulate --cycles``) and cycle budget of a periodic solve.
-MAX_CYCLES = 10_000_000
+MAX_CYCLES = 1_000_000
 #: Monte Carlo samples of one tolerance study.
 MAX_SAMPLES = 1_000_000
 #: Points of one study (grid points, or samples × sets).
@@ -61,7 +61,20 @@ STUDY_HOURS_ENV = "BETV_MAX_STUDY_HOURS"
 MAX_STUDY_HOURS = 12.0
 #: Conservative cost of one study point by what it solves [s on one core] (the
 #: benchmarks give a periodic-orbit median of ~1.2 ms; tails and loading are added).
-POINT_COST_S = {"periodic": 5e-3, "lambda": 2e-4, "regime": 2e-2, "tolerance": 6e-3}
+POINT_COST_S = {"periodic": 5e-3, "lambda": 2e-4, "regime": 5e-3, "tolerance": 6e-3}
+#: Horizon [cycles] the regime cost above is quoted for.
+REGIME_CYCLES = 400
+
+
+def point_cost_s(study: str, parameters: dict[str, Any]) -> float:
+    """Conservative cost of one point of ``study`` [s on one core] (for estimates)."""
+    fidelity = parameters.get("fidelity")
+    if study == "regime":
+        cycles = parameters.get("max_cycles") or REGIME_CYCLES
+        return POINT_COST_S["regime"] * max(1.0, cycles / REGIME_CYCLES)
+    if fidelity == "lambda":
+        return POINT_COST_S["lambda"]
+    return POINT_COST_S["tolerance" if study == "tolerance" else "periodic"]
 
 
 def max_file_bytes() -> int:
