@@ -62,10 +62,15 @@ def load_device_text(text: str, filename: str = "<string>") -> DeviceSpec:
         if exc.problem and exc.context and cm is not None and cm is not mark:
             problem += f" ({exc.context} at line {cm.line + 1}, column {cm.column + 1})"
         raise SpecError([*issues, SpecIssue(loc, "", f"invalid YAML: {problem}")]) from None
-    except YAMLError as exc:
-        raise SpecError(
-            [*issues, SpecIssue(Location(filename), "", f"invalid YAML: {exc}")]
-        ) from None
+    except YAMLError as exc:  # a ReaderError (control character) knows only its offset
+        pos = getattr(exc, "position", None)
+        loc = Location(filename)
+        msg = str(exc).split("\n")[0]
+        if isinstance(pos, int) and 0 <= pos <= len(text):
+            line = text.count("\n", 0, pos) + 1
+            loc = Location(filename, line, pos - (text.rfind("\n", 0, pos) + 1) + 1)
+            msg = msg.split(":")[0].strip() + " (a control character in a text file)"
+        raise SpecError([*issues, SpecIssue(loc, "", f"invalid YAML: {msg}")]) from None
 
     if data is None:
         raise _one(
@@ -282,6 +287,13 @@ def _message(err: dict[str, Any]) -> str:
         return f"unknown field{hint} (see `betv schema` for the allowed fields)"
     if kind == "missing":
         return "missing required field"
+    ctx = err.get("ctx") or {}
+    if kind == "too_long" and "max_length" in ctx:
+        return f"{ctx.get('actual_length', 'too many')} items; the limit is {ctx['max_length']}"
+    if kind == "string_too_long" and "max_length" in ctx:
+        got = err.get("input")
+        n = f"{len(got):,} characters" if isinstance(got, str) else "too long"
+        return f"string of {n}; the limit is {ctx['max_length']:,}"
     if kind in _EXPECTED:
         return f"expected {_EXPECTED[kind]}, got {_kind_of(err.get('input'))}"
     if msg.startswith("Value error, "):

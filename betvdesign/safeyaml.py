@@ -143,8 +143,9 @@ def check_events(text: str, filename: str) -> None:
             fail(
                 event,
                 path,
-                f"more than {limits.MAX_YAML_NODES:,} YAML nodes once aliases are expanded; "
-                "a device file has a few hundred",
+                f"more than {limits.MAX_YAML_NODES:,} YAML nodes"
+                + (" once aliases are expanded" if sizes else "")
+                + "; a device file has a few hundred",
             )
         if len(stack) + depth > limits.MAX_YAML_DEPTH:
             fail(event, path, f"YAML nested deeper than {limits.MAX_YAML_DEPTH} levels")

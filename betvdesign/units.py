@@ -166,6 +166,12 @@ class QuantitySpec:
                 q = parse_quantity(value)
             except ValueError as exc:
                 raise PydanticCustomError("bad_quantity", str(exc)) from None
+            if _SHAPE.fullmatch(value).group("num") is None:  # parse_quantity matched it
+                raise PydanticCustomError(
+                    "missing_number",
+                    "missing number in {text!r}: write e.g. '{example}'",
+                    {"text": value, "example": self.example},
+                )
             if q.units == ureg.dimensionless:
                 raise PydanticCustomError(
                     "missing_unit",
