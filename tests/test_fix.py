@@ -129,8 +129,9 @@ def test_no_fix_within_bounds_is_exit_1_and_names_the_blocking_rule(tmp_path):
         (["--vary", "drive.frequency=100Hz"], "LO:HI"),
         (["--vary", "actuator.horizontal_resonance"], "not a numeric field"),  # shin has α
         (["--target-speed", "fast"], "--target-speed"),
-        (["--tol", "slider.nonsense=normal:1%"], "slider.nonsense"),
-        (["-o", "/nonexistent-dir/x.yaml"], "-o"),
+        (["--spread", "slider.nonsense=normal:1%"], "slider.nonsense"),
+        (["-o", "/nonexistent-dir/x.yaml"], "does not exist"),
+        (["-o", "/proc/x.yaml"], "/proc/x.yaml"),
     ],
 )
 def test_bad_input_is_exit_2_without_traceback(args, words):
@@ -147,7 +148,7 @@ def test_robust_fix_meets_the_mode_probability():
         SHIN,
         "--vary",
         "drive.frequency",
-        "--tol",
+        "--spread",
         "slider.beam_width=normal:5%",
         "-n",
         "60",

@@ -321,7 +321,7 @@ def provenance() -> dict[str, Any]:
 
 def write_measured(measured: dict[str, Any], path: Path) -> None:
     """Write the package data (JSON, with provenance) atomically."""
-    from betvdesign.report.render import write_atomic
+    from betvdesign.outputs import write_atomic
 
     plain = json.loads(json.dumps(measured, default=float))  # numpy scalars -> float
     doc = {"provenance": provenance(), "measured": plain}

@@ -16,7 +16,8 @@ from typing import Annotated
 import typer
 
 from betvdesign.cli import app
-from betvdesign.cli.common import EXIT_OK, EXIT_RULE_FAILED, user_errors
+from betvdesign.cli.common import EXIT_OK, EXIT_RULE_FAILED, seed_option, user_errors
+from betvdesign.outputs import check_output_file, write_atomic
 
 
 @app.command("fix")
@@ -41,9 +42,9 @@ def fix_cmd(
     spread: Annotated[
         list[str] | None,
         typer.Option(
-            "--tol",
+            "--spread",
             metavar="FIELD=DIST",
-            help="Fabrication spread (as in `betv tolerance`, e.g. "
+            help="Fabrication spread (as in `betv tolerance --spread`, e.g. "
             "slider.beam_width=normal:0.3um); the fix must keep P(intended mode) >= --p-min.",
         ),
     ] = None,
@@ -54,7 +55,9 @@ def fix_cmd(
         int,
         typer.Option("--samples", "-n", min=50, max=20000, help="Monte Carlo samples per fix."),
     ] = 400,
-    seed: Annotated[int, typer.Option(min=0, help="Seed of the spreads' Generator.")] = 0,
+    seed: Annotated[
+        int, typer.Option(callback=seed_option, help="Seed of the spreads' Generator.")
+    ] = 0,
     output: Annotated[
         Path | None,
         typer.Option("-o", "--output", help="Write the device file with the best fix applied."),
@@ -76,7 +79,7 @@ def fix_cmd(
         if spread:
             robust = fx.robust_probability(spec, list(spread), n=samples, seed=seed)
         if output is not None:
-            _check_writable(output)
+            check_output_file(output, suffixes=(".yaml", ".yml"))
         res = fx.find_fixes(spec, varies, target_speed_m_s=target, robust=robust, p_min=p_min)
         text = None
         if output is not None and res.best is not None:
@@ -89,20 +92,10 @@ def fix_cmd(
     else:
         _print(res, file)
     if text is not None and output is not None:
-        from betvdesign.report.render import write_atomic
-
         write_atomic(output, text)
         if not as_json:
             typer.echo(f"wrote {output} (betv check {output} passes)")
     raise typer.Exit(EXIT_OK if res.status in ("fixed", "already_passes") else EXIT_RULE_FAILED)
-
-
-def _check_writable(path: Path) -> None:
-    from betvdesign.errors import UsageError
-
-    parent = path.parent if str(path.parent) else Path(".")
-    if path.is_dir() or not parent.is_dir():
-        raise UsageError(f"-o {path}: not a writable file path (directory missing or a directory)")
 
 
 def _print(res, file: Path) -> None:

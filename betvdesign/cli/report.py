@@ -4,7 +4,9 @@ Thin: everything is :func:`betvdesign.report.write_reports`.
 
 Exit codes: 0 the reports were written (also for a device whose verdict is
 "fail": that is when a report is most needed); with ``--strict``, 1 when a
-device's verdict is "fail"; 2 bad input or usage (no file is written).
+device's verdict is "fail"; 2 bad input or usage, including an output directory
+that cannot be written (no file is written); 130 interrupted (Ctrl-C, SIGTERM:
+each device's HTML and PDF are written together or not at all).
 """
 
 from __future__ import annotations
@@ -14,7 +16,7 @@ from pathlib import Path
 import typer
 
 from betvdesign.cli import app
-from betvdesign.cli.common import EXIT_OK, EXIT_RULE_FAILED, user_errors
+from betvdesign.cli.common import EXIT_OK, EXIT_RULE_FAILED, interruptible, user_errors
 
 
 @app.command("report")
@@ -60,7 +62,7 @@ def report_cmd(
 
         raise typer.Exit(methods_report(files or [], outdir, pdf=pdf))
 
-    with user_errors():
+    with user_errors(), interruptible(resumable=False):
         options = ReportOptions()
         written = write_reports(files, outdir, pdf=pdf, timestamp=timestamp, options=options)
     for w in written:

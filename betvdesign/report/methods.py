@@ -25,7 +25,8 @@ from betvdesign.bench.chart import work_precision_figure
 from betvdesign.bench.failuremap import default_varpis, failure_map_figure, scan
 from betvdesign.bench.failures import FAILURES, Failure
 from betvdesign.bench.workprecision import DESIGNS, Row, summarise
-from betvdesign.report.render import _css, _environment, render_pdf, write_atomic
+from betvdesign.outputs import check_output_dir, write_group
+from betvdesign.report.render import _css, _environment, render_pdf
 
 TEMPLATE = "methods.html.j2"
 REGENERATE = "python benchmarks/work_precision.py && python benchmarks/work_precision.py --ladder"
@@ -221,10 +222,9 @@ def write_methods_report(
         rows, level = wp.run("quick"), "quick"
     if fm_rows is None:
         fm_rows = scan(default_varpis(8))
-    out = Path(outdir)
-    out.mkdir(parents=True, exist_ok=True)
+    out = check_output_dir(outdir)
     html = render_html(build(rows, fm_rows, level=level))
-    written = [write_atomic(out / "methods.html", html)]
+    files: dict[Path, str | bytes] = {out / "methods.html": html}
     if pdf:
-        written.append(write_atomic(out / "methods.pdf", render_pdf(html)))
-    return written
+        files[out / "methods.pdf"] = render_pdf(html)
+    return write_group(files)  # HTML and PDF together, or neither

@@ -20,8 +20,9 @@ import numpy as np
 from markupsafe import Markup
 
 from betvdesign import plots
+from betvdesign.outputs import write_atomic
 from betvdesign.plots import validation as vplots
-from betvdesign.report.render import _css, _environment, render_pdf, write_atomic
+from betvdesign.report.render import _css, _environment, render_pdf
 from betvdesign.studies.regime import LONG_PERIOD
 from betvdesign.studies.validation import ValidationStudy, run_validation
 from betvdesign.studies.validation_common import STOP_RTOL, Comparison

@@ -1,7 +1,8 @@
 """Write reports of device files: ``NAME.html`` and ``NAME.pdf`` per file (NAME = file stem).
 
 Every input is loaded and validated before anything is computed or written, so
-bad input leaves no file behind; each output is written atomically.
+bad input leaves no file behind; the output directory is checked for writability
+first, and each device's HTML and PDF are written as a pair (both or neither).
 """
 
 from __future__ import annotations
@@ -12,9 +13,10 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from betvdesign.errors import SpecError, UsageError
+from betvdesign.outputs import check_output_dir, write_group
 from betvdesign.report.analysis import ReportOptions
 from betvdesign.report.build import build_report, prepare
-from betvdesign.report.render import render_html, render_pdf, write_atomic
+from betvdesign.report.render import render_html, render_pdf
 
 
 @dataclass(frozen=True)
@@ -26,17 +28,6 @@ class Written:
     pdf: Path | None
     verdict: str
     figures: int
-
-
-def _outdir(outdir: str | Path) -> Path:
-    out = Path(outdir)
-    if out.exists() and not out.is_dir():
-        raise UsageError(f"output path {out} exists and is not a directory")
-    try:
-        out.mkdir(parents=True, exist_ok=True)
-    except OSError as exc:
-        raise UsageError(f"cannot create output directory {out}: {exc.strerror}") from None
-    return out
 
 
 def write_reports(
@@ -56,6 +47,7 @@ def write_reports(
     """
     if not paths:
         raise UsageError("give at least one device file")
+    check_output_dir(outdir, create=False)  # before any work: nothing is made yet
     stems: dict[str, Path] = {}
     for p in map(Path, paths):
         if p.stem in stems and stems[p.stem] != p:
@@ -69,7 +61,7 @@ def write_reports(
             issues.extend(exc.issues)
     if issues:
         raise SpecError(issues)
-    out = _outdir(outdir)
+    out = check_output_dir(outdir)
     generated = _dt.datetime.now(_dt.UTC).replace(microsecond=0).isoformat() if timestamp else None
     written: list[Written] = []
     for dev in prepared:
@@ -80,8 +72,12 @@ def write_reports(
             reproduce=f"betv report {dev.path} -o DIR",
         )
         html = render_html(report)
-        html_path = write_atomic(out / f"{dev.path.stem}.html", html)
-        pdf_path = write_atomic(out / f"{dev.path.stem}.pdf", render_pdf(html)) if pdf else None
+        html_path = out / f"{dev.path.stem}.html"
+        pdf_path = out / f"{dev.path.stem}.pdf" if pdf else None
+        files: dict[Path, str | bytes] = {html_path: html}
+        if pdf_path is not None:
+            files[pdf_path] = render_pdf(html)
+        write_group(files)  # HTML and PDF together, or neither
         written.append(
             Written(dev.path, html_path, pdf_path, report.verdict, len(report.figures()))
         )

@@ -11,7 +11,7 @@ read per-set results together).
 
 Distributions: ``normal`` (σ) or ``uniform`` (half-width), each relative
 (``2%``) or absolute (``0.2 um``, or a plain number for unit-less fields).
-Command-line form ``FIELD=[normal|uniform:]AMOUNT``; file form (YAML)::
+Command-line form ``--spread FIELD=[normal|uniform:]AMOUNT``; file form (YAML)::
 
     tolerances:
       slider.beam_width: {dist: normal, sigma: 0.2 um}
@@ -43,6 +43,7 @@ from typing import Any, Literal
 import numpy as np
 import pint
 
+from betvdesign import limits
 from betvdesign.domain import in_window
 from betvdesign.errors import BetvError, UsageError
 from betvdesign.studies.pushpull import (
@@ -55,6 +56,8 @@ from betvdesign.studies.runner import Study, StudyRun, run_study, split_run_args
 from betvdesign.studies.specpaths import numeric, replace, targets, value_at
 
 Dist = Literal["normal", "uniform"]
+#: Distributions a tolerance may name (lower case; names are case-insensitive).
+DISTRIBUTIONS: tuple[str, ...] = ("normal", "uniform")
 Fidelity = Literal["periodic", "lambda"]
 PERCENTILES = (5.0, 25.0, 50.0, 75.0, 95.0)
 
@@ -78,6 +81,15 @@ class Tolerance:
         }
 
 
+def check_seed(seed: int) -> int:
+    """A seed numpy's ``SeedSequence`` takes: an integer 0 <= seed < 2**128."""
+    if isinstance(seed, bool) or not isinstance(seed, int | np.integer):
+        raise UsageError(f"--seed must be an integer, got {seed!r}")
+    if not 0 <= int(seed) < limits.SEED_BOUND:
+        raise UsageError(f"--seed must be an integer with 0 <= seed < 2**128, got {seed}")
+    return int(seed)
+
+
 def _amount(text: str, field: str, source: str) -> tuple[float | None, str | None]:
     t = str(text).strip()
     if t.endswith("%"):
@@ -95,13 +107,18 @@ def _amount(text: str, field: str, source: str) -> tuple[float | None, str | Non
 
 def parse_tolerance(text: str, source: str = "command line") -> Tolerance:
     """``FIELD=[normal|uniform:]AMOUNT``, AMOUNT ``2%``, ``0.2 um`` or ``0.05``."""
-    m = re.fullmatch(r"\s*([A-Za-z_][\w.]*)\s*=\s*(?:(normal|uniform)\s*:)?\s*(.+?)\s*", text)
+    m = re.fullmatch(r"\s*([A-Za-z_][\w.]*)\s*=\s*(?:([A-Za-z_]\w*)\s*:)?\s*(.+?)\s*", text)
+    if m and m.group(2) and m.group(2).lower() not in DISTRIBUTIONS:
+        raise UsageError(
+            f"{source}: {m.group(1)}: unknown distribution {m.group(2)!r}; use "
+            f"{', '.join(DISTRIBUTIONS)} (e.g. {m.group(1)}=normal:{m.group(3)})"
+        )
     if not m:
         raise UsageError(
             f"{source}: tolerance {text!r} must read FIELD=[normal|uniform:]AMOUNT, "
             "e.g. slider.beam_width=normal:0.2um or contact.friction=uniform:10%"
         )
-    field, dist, amount = m.group(1), m.group(2) or "normal", m.group(3)
+    field, dist, amount = m.group(1), (m.group(2) or "normal").lower(), m.group(3)
     rel, absolute = _amount(amount, field, source)
     return Tolerance(field, dist, rel, absolute, source)  # type: ignore[arg-type]
 
@@ -110,11 +127,16 @@ def load_tolerances(path: str | os.PathLike[str]) -> list[Tolerance]:
     """Read a ``tolerances:`` mapping from YAML (see module doc)."""
     from ruamel.yaml import YAML, YAMLError
 
+    from betvdesign import safeyaml
+    from betvdesign.errors import SpecError
+
     p = Path(path)
     try:
-        data = YAML(typ="rt").load(p.read_text(encoding="utf-8"))
-    except OSError as exc:
-        raise UsageError(f"{p}: cannot read: {exc.strerror}") from None
+        text = safeyaml.read_text(p)  # size, encoding, nesting and alias limits
+        safeyaml.check_events(text, str(p))
+        data = YAML(typ="rt").load(text)
+    except SpecError as exc:
+        raise UsageError(str(exc)) from None
     except YAMLError as exc:
         raise UsageError(f"{p}: not valid YAML: {exc}") from None
     if not isinstance(data, Mapping) or set(data) != {"tolerances"}:
@@ -129,9 +151,12 @@ def load_tolerances(path: str | os.PathLike[str]) -> list[Tolerance]:
         if not isinstance(spec, Mapping):
             raise UsageError(f"{where}: {field}: expected {{dist: ..., sigma|half_width: ...}}")
         dist = spec.get("dist", "normal")
+        dist = dist.lower() if isinstance(dist, str) else dist
         key = "sigma" if dist == "normal" else "half_width"
-        if dist not in ("normal", "uniform"):
-            raise UsageError(f"{where}: {field}: dist must be normal or uniform, not {dist!r}")
+        if dist not in DISTRIBUTIONS:
+            raise UsageError(
+                f"{where}: {field}: unknown distribution {dist!r}; use {', '.join(DISTRIBUTIONS)}"
+            )
         unknown = set(spec) - {"dist", key}
         if unknown or key not in spec:
             raise UsageError(f"{where}: {field}: {dist} needs exactly '{key}' (and 'dist')")
@@ -178,8 +203,9 @@ def draw(
     One seeded ``Generator``; fields drawn in the order given: normal
     ``x0(1 + r·z)`` or ``x0 + a·z``; uniform with half-width r or a.
     """
-    from betvdesign.units import ureg
+    from betvdesign.units import parse_quantity
 
+    check_seed(seed)
     rng = np.random.default_rng(seed)
     cols = []
     for tol in tolerances:
@@ -189,7 +215,7 @@ def draw(
             cols.append(x0 * (1.0 + tol.relative * z))
             continue
         try:
-            q = ureg.Quantity(tol.absolute)
+            q = parse_quantity(str(tol.absolute))  # bounded: no unit-expression bombs
             a = float(q.to(unit).magnitude) if unit else float(q.to("dimensionless").magnitude)
         except (pint.PintError, ValueError, TypeError, AttributeError) as exc:
             raise UsageError(
@@ -356,11 +382,12 @@ def tolerance_study(
     """Draw the samples and build the study (tasks carry plain floats only)."""
     from betvdesign.loader import load_device
 
-    if samples < 1:
-        raise UsageError(f"--samples must be >= 1, got {samples}")
+    if not 1 <= samples <= limits.MAX_SAMPLES:
+        raise UsageError(f"--samples must be >= 1 and <= {limits.MAX_SAMPLES:,}, got {samples}")
+    check_seed(seed)
     require_fidelity(fidelity)
     if not tolerances:
-        raise UsageError("give at least one tolerance (--tol FIELD=AMOUNT or --tolerances FILE)")
+        raise UsageError("give at least one tolerance (--spread FIELD=AMOUNT or --tolerances FILE)")
     path = str(Path(device).resolve())
     spec = load_device(path)
     names = [s.name for s in spec.actuator_sets]
@@ -368,6 +395,11 @@ def tolerance_study(
     for name in chosen:
         if name not in names:
             raise UsageError(f"{device}: no actuator set {name!r} (sets: {', '.join(names)})")
+    if samples * len(chosen) > limits.MAX_STUDY_POINTS:  # before drawing anything
+        raise UsageError(
+            f"{samples:,} samples × {len(chosen)} sets = {samples * len(chosen):,} points "
+            f"exceed the limit of {limits.MAX_STUDY_POINTS:,} points per study"
+        )
     nominal = nominal_values(spec, tolerances)
     x = draw(tolerances, nominal, samples, seed)
     columns = dict(BASE_COLUMNS) | {f"in:{t.field}": float for t in tolerances}
