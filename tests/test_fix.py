@@ -160,3 +160,24 @@ def test_robust_fix_meets_the_mode_probability():
     doc = json.loads(r.stdout)
     best = next(c for c in doc["candidates"] if c["passed"])
     assert best["p_intended"] >= 0.95
+
+
+def test_unbounded_resonant_device_is_fixed(tmp_path):
+    """α·ϖ² = 1 exactly (α = 1 given, f_act = f_v = 5 kHz with a DC-biased drive): no
+    periodic orbit exists (the mode rule fails, status unbounded); the fix detunes it,
+    and the written file passes betv check."""
+    text = (DEVICES / "push_demo.yaml").read_text()
+    text = text.replace("horizontal_resonance: 3.5 kHz   # α = (5/3.5)² ≈ 2.04", "alpha: 1.0")
+    text = text.replace("waveform: ac ", "waveform: dc-biased ").replace(
+        "frequency: 3 kHz", "frequency: 5 kHz"
+    )
+    src = tmp_path / "resonant.yaml"
+    src.write_text(text)
+    r = run("check", src, "--json")
+    assert r.exit_code == 1
+    mode = next(x for x in json.loads(r.stdout)["rules"] if x["id"] == "mode")
+    assert "unbounded" in mode["message"]
+    out = tmp_path / "detuned.yaml"
+    r = run("fix", src, "--vary", "drive.frequency", "-o", out)
+    assert r.exit_code == 0, r.output
+    _check_passes(out)

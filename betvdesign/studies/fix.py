@@ -31,10 +31,12 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
-import pint
 
-from betvdesign.errors import BetvError, ParameterError, UsageError
-from betvdesign.studies.specpaths import targets, value_at, with_values
+from betvdesign.errors import BetvError, ParameterError
+from betvdesign.studies.fixfields import DEFAULT_BOUNDS, Vary, parse_vary
+from betvdesign.studies.specpaths import with_values
+
+__all__ = ["DEFAULT_BOUNDS", "FIELD_MARGIN", "Vary", "find_fixes", "parse_vary"]
 
 #: Relative distance a chosen value keeps from the edge of its passing interval.
 FIELD_MARGIN = 0.05
@@ -44,45 +46,6 @@ BISECT_STEPS = 9
 PAIR_POINTS = 9
 #: Pairs are searched among this many fields, those that came closest on their own.
 PAIR_FIELDS = 4
-
-#: Default search bounds of the fields a designer can change: (factor low, factor high)
-#: on the current value, or absolute bounds in the given unit.
-DEFAULT_BOUNDS: dict[str, tuple[float, float] | tuple[float, float, str]] = {
-    "drive.frequency": (0.25, 4.0),
-    "drive.voltage": (0.5, 2.0),
-    "actuator.amplitude": (0.5, 2.0),
-    "slider.beam_width": (0.5, 4.0),
-    "slider.beam_length": (0.5, 2.0),
-    "head.mass": (0.25, 4.0),
-    "head.geometry.diameter": (0.5, 2.0),
-    "head.geometry.length": (0.5, 2.0),
-    "head.geometry.width": (0.5, 2.0),
-    "actuator.vertical_resonance": (0.5, 2.0),
-    "actuator.horizontal_resonance": (0.5, 2.0),
-    "actuator.horizontal_stiffness": (0.25, 4.0),
-    "actuator.alpha": (0.25, 4.0),
-    "contact.impact_angle": (15.0, 75.0, "deg"),
-}
-
-
-@dataclass(frozen=True)
-class Vary:
-    """A field to vary and its bounds, in the field's own unit (``unit``)."""
-
-    field: str
-    x0: float
-    lo: float
-    hi: float
-    unit: str
-
-    def quantity(self, x: float) -> Any:
-        from betvdesign.units import ureg
-
-        return ureg.Quantity(x, self.unit) if self.unit else float(x)
-
-    def text(self, x: float) -> str:
-        return f"{x:.4g} {self.unit}".strip()
-
 
 @dataclass
 class Candidate:
@@ -148,76 +111,6 @@ class FixResult:
             "candidates": [c.as_dict(self.varies) for c in self.candidates],
             "blocking": self.blocking,
         }
-
-
-# --- fields ----------------------------------------------------------------------------
-
-
-def _current(spec: Any, name: str) -> tuple[float, str] | None:
-    values = [value_at(spec, t) for t in targets(spec, name)]
-    present = [v for v in values if v is not None]
-    if not present:
-        return None
-    first = present[0]
-    if any(v != first for v in present):
-        raise UsageError(f"--vary {name}: differs between actuator sets; vary one value")
-    if isinstance(first, pint.Quantity):
-        return float(first.magnitude), f"{first.units:~}"
-    if isinstance(first, float | int) and not isinstance(first, bool):
-        return float(first), ""
-    return None
-
-
-def parse_vary(spec: Any, items: Sequence[str]) -> list[Vary]:
-    """``FIELD`` or ``FIELD=LO:HI`` (quantities in any unit of the field, e.g.
-    ``drive.frequency=400Hz:3kHz``); without items, every default field the spec has.
-    :class:`UsageError` for unknown fields, unreadable or inverted bounds."""
-    from betvdesign.units import parse_quantity
-
-    out: list[Vary] = []
-    names = list(items) or [f for f in DEFAULT_BOUNDS if _current(spec, f) is not None]
-    for item in names:
-        name, _, rng = item.partition("=")
-        name = name.strip()
-        cur = _current(spec, name)
-        if cur is None:
-            known = ", ".join(f for f in DEFAULT_BOUNDS if _current(spec, f) is not None)
-            raise UsageError(
-                f"--vary {name}: not a numeric field of device {spec.name!r}; it has {known}"
-            )
-        x0, unit = cur
-        if x0 <= 0:
-            raise UsageError(f"--vary {name}: current value {x0:g} is not positive")
-        if rng:
-            lo_s, sep, hi_s = rng.partition(":")
-            if not sep:
-                raise UsageError(f"--vary {item}: bounds must be LO:HI, e.g. {name}=1um:8um")
-            try:
-                lo, hi = (_magnitude(parse_quantity(t.strip()), unit) for t in (lo_s, hi_s))
-            except (ValueError, pint.PintError) as exc:
-                raise UsageError(f"--vary {item}: {exc}") from None
-        else:
-            b = DEFAULT_BOUNDS.get(name, (0.5, 2.0))
-            if len(b) == 3:
-                from betvdesign.units import ureg
-
-                lo, hi = (float(ureg.Quantity(v, b[2]).to(unit).magnitude) for v in b[:2])
-            else:
-                lo, hi = x0 * b[0], x0 * b[1]
-        if not (math.isfinite(lo) and math.isfinite(hi) and 0 < lo < hi):
-            raise UsageError(f"--vary {item}: need 0 < LO < HI (got {lo:g} to {hi:g} {unit})")
-        out.append(Vary(name, x0, lo, hi, unit))
-    if len({v.field for v in out}) != len(out):
-        raise UsageError("--vary: a field is given twice")
-    return out
-
-
-def _magnitude(q: Any, unit: str) -> float:
-    if not isinstance(q, pint.Quantity):
-        return float(q)
-    if not unit:
-        return float(q.to("dimensionless").magnitude)
-    return float(q.to(unit).magnitude)
 
 
 # --- evaluation ------------------------------------------------------------------------
@@ -364,6 +257,19 @@ def _shortfall(ev: Evaluator, res: list[tuple[bool, list[str], Any]]) -> float:
     return min(best, 0.999)
 
 
+def _inward(x0: float, lo: float, hi: float, x: float) -> list[float]:
+    """The nearest point with margin, then points a quarter and half way into the
+    interval from that end (tried in turn when the full check, with its mode-margin
+    corners and settling, rejects the nearer one)."""
+    far = hi if abs(math.log(x / lo)) < abs(math.log(hi / x)) else lo
+    out = [x]
+    for frac in (0.25, 0.5):
+        y = math.exp(math.log(x) + frac * (math.log(far) - math.log(x)))
+        if all(abs(math.log(y / z)) > 1e-3 for z in out):
+            out.append(y)
+    return out
+
+
 def _why(ev: Evaluator, before: list[str], changes: dict[str, float], check: Any) -> str:
     fixed = [r for r in before if r]
     mode = _mode(check)
@@ -385,7 +291,7 @@ def find_fixes(
     pairs: bool = True,
     robust: Callable[[Any], float] | None = None,
     p_min: float = 0.99,
-    max_candidates: int = 8,
+    max_candidates: int = 12,
 ) -> FixResult:
     """Search the smallest passing change (see the module docstring).
 
@@ -405,8 +311,11 @@ def find_fixes(
         if not intervals:
             blocking[v.field] = block or "no passing value within the bounds"
         for lo, hi, x in intervals:
-            margin = min(math.log(x / lo), math.log(hi / x))
-            cands.append(Candidate({v.field: x}, abs(math.log(x / v.x0)), None, None, margin, ""))
+            for x_try in _inward(v.x0, lo, hi, x):
+                margin = min(math.log(x_try / lo), math.log(hi / x_try))
+                cands.append(
+                    Candidate({v.field: x_try}, abs(math.log(x_try / v.x0)), None, None, margin, "")
+                )
     if pairs and not cands and len(varies) >= 2:
         near = sorted(varies, key=lambda v: closeness[v.field])[:PAIR_FIELDS]
         cands = _pairs(ev, near)
@@ -491,7 +400,8 @@ def robust_probability(
     """P(every set in its intended mode) under the spreads ``items`` (``betv tolerance``
     syntax), by a seeded Monte Carlo of ``n`` exact orbits per candidate. Validates the
     spreads against ``spec`` now (:class:`UsageError`)."""
-    from betvdesign.studies.tolerance import draw, nominal_values, parse_tolerance
+    from betvdesign.studies.sampling import draw, nominal_values
+    from betvdesign.studies.tolerance import parse_tolerance
 
     tols = [parse_tolerance(t) for t in items]
     nominal_values(spec, tols)  # unknown or non-numeric fields: UsageError now

@@ -41,7 +41,6 @@ from pathlib import Path
 from typing import Any, Literal
 
 import numpy as np
-import pint
 
 from betvdesign import limits
 from betvdesign.domain import in_window
@@ -53,7 +52,14 @@ from betvdesign.studies.pushpull import (
     solver_error,
 )
 from betvdesign.studies.runner import Study, StudyRun, run_study, split_run_args
-from betvdesign.studies.specpaths import numeric, replace, targets, value_at
+from betvdesign.studies.sampling import (
+    check_sample,
+    check_seed,
+    derive_all,
+    draw,
+    nominal_values,
+)
+from betvdesign.studies.specpaths import replace, targets, value_at
 
 Dist = Literal["normal", "uniform"]
 #: Distributions a tolerance may name (lower case; names are case-insensitive).
@@ -79,15 +85,6 @@ class Tolerance:
             "relative": self.relative,
             "absolute": self.absolute,
         }
-
-
-def check_seed(seed: int) -> int:
-    """A seed numpy's ``SeedSequence`` takes: an integer 0 <= seed < 2**128."""
-    if isinstance(seed, bool) or not isinstance(seed, int | np.integer):
-        raise UsageError(f"--seed must be an integer, got {seed!r}")
-    if not 0 <= int(seed) < limits.SEED_BOUND:
-        raise UsageError(f"--seed must be an integer with 0 <= seed < 2**128, got {seed}")
-    return int(seed)
 
 
 def _amount(text: str, field: str, source: str) -> tuple[float | None, str | None]:
@@ -165,69 +162,6 @@ def load_tolerances(path: str | os.PathLike[str]) -> list[Tolerance]:
     return out
 
 
-def nominal_values(spec: Any, tolerances: Sequence[Tolerance]) -> dict[str, tuple[float, str]]:
-    """Nominal magnitude and unit of each toleranced field (checked against the spec)."""
-    out: dict[str, tuple[float, str]] = {}
-    for tol in tolerances:
-        if tol.field in out:
-            raise UsageError(f"{tol.source}: {tol.field}: given twice")
-        values = [value_at(spec, t) for t in targets(spec, tol.field)]
-        present = [v for v in values if v is not None]
-        if not present or not all(numeric(v) for v in present):
-            raise UsageError(
-                f"{tol.source}: {tol.field}: not a numeric field of device {spec.name!r} "
-                "(write it as in the device file, e.g. slider.beam_width, head.mass, "
-                "contact.friction, actuator.vertical_resonance, drive.frequency)"
-            )
-        first = present[0]
-        if any(v != first for v in present):
-            raise UsageError(
-                f"{tol.source}: {tol.field}: differs between actuator sets; "
-                "tolerances apply to fields with one nominal value"
-            )
-        if isinstance(first, pint.Quantity):
-            out[tol.field] = (float(first.magnitude), f"{first.units:~}")
-        else:
-            out[tol.field] = (float(first), "")
-    return out
-
-
-def draw(
-    tolerances: Sequence[Tolerance],
-    nominal: Mapping[str, tuple[float, str]],
-    n: int,
-    seed: int,
-) -> np.ndarray:
-    """Sampled magnitudes, shape (n, fields), in each field's nominal unit.
-
-    One seeded ``Generator``; fields drawn in the order given: normal
-    ``x0(1 + r·z)`` or ``x0 + a·z``; uniform with half-width r or a.
-    """
-    from betvdesign.units import parse_quantity
-
-    check_seed(seed)
-    rng = np.random.default_rng(seed)
-    cols = []
-    for tol in tolerances:
-        x0, unit = nominal[tol.field]
-        z = rng.standard_normal(n) if tol.dist == "normal" else rng.uniform(-1.0, 1.0, n)
-        if tol.relative is not None:
-            cols.append(x0 * (1.0 + tol.relative * z))
-            continue
-        try:
-            q = parse_quantity(str(tol.absolute))  # bounded: no unit-expression bombs
-            a = float(q.to(unit).magnitude) if unit else float(q.to("dimensionless").magnitude)
-        except (pint.PintError, ValueError, TypeError, AttributeError) as exc:
-            raise UsageError(
-                f"{tol.source}: {tol.field}: absolute tolerance {tol.absolute!r} "
-                f"not in units of {unit or 'a plain number'}: {exc}"
-            ) from None
-        if not (math.isfinite(a) and a > 0):
-            raise UsageError(f"{tol.source}: {tol.field}: tolerance must be > 0")
-        cols.append(x0 + a * z)
-    return np.column_stack(cols) if cols else np.empty((n, 0))
-
-
 # -- the worker ------------------------------------------------------------------
 @functools.lru_cache(maxsize=8)
 def _device(path: str, mtime_ns: int) -> Any:
@@ -276,7 +210,7 @@ def tolerance_point(task: Mapping[str, Any]) -> dict[str, Any]:
             p, intended = d.params, d.intended_mode
             length_m, f_act = d.scales.length_m, d.scales.f_act_hz
         else:
-            _check_sample(task["values"])
+            check_sample(task["values"])
             p = ModelParams(*(derived[k] for k in ("varpi", "alpha", "beta", "kappa")))
             intended, length_m, f_act = task["intended"], derived["length_m"], derived["f_act_hz"]
     except BetvError as exc:
@@ -304,48 +238,6 @@ def tolerance_point(task: Mapping[str, Any]) -> dict[str, Any]:
         ds = float(res.delta_s)
         row.update(mode=res.mode, delta_s=ds, speed_um_s=ds * length_m * f_act * 1e6)
     return row
-
-
-def _check_sample(values: Mapping[str, tuple[float, str]]) -> None:
-    """:class:`BetvError` for a sample the spec cannot take (non-positive, angle ≥ 90°)."""
-    for field, (mag, unit) in values.items():
-        if mag <= 0.0:
-            raise BetvError(f"{field} sampled non-positive ({mag:g} {unit})")
-        if field == "contact.impact_angle":
-            from betvdesign.units import ureg
-
-            if ureg.Quantity(mag, unit).to("deg").magnitude >= 90.0:
-                raise BetvError(f"{field} sampled at or above 90° ({mag:g} {unit})")
-
-
-def _derive_all(
-    spec: Any,
-    tolerances: Sequence[Tolerance],
-    nominal: Mapping[str, tuple[float, str]],
-    x: np.ndarray,
-    set_index: int,
-) -> dict[str, np.ndarray] | None:
-    """Every sample of one set derived at once (nondim.derive_samples); None when some
-    sample cannot be derived that way (then each is derived on its own)."""
-    from betvdesign.nondim import derive_samples
-    from betvdesign.units import ureg
-
-    values = {}
-    for j, t in enumerate(tolerances):
-        mag, unit = nominal[t.field][0], nominal[t.field][1]
-        col = np.where(x[:, j] > 0, x[:, j], mag)  # invalid draws: rejected per task
-        values[t.field] = ureg.Quantity(col, unit) if unit else col
-    arrays = spec
-    for field, value in values.items():
-        for target in targets(spec, field):
-            if value_at(spec, target) is not None:
-                arrays = replace(arrays, target, value)
-    try:
-        with np.errstate(all="ignore"):
-            d = derive_samples(arrays, arrays.actuator_sets[set_index])
-    except (BetvError, ValueError, ArithmeticError):
-        return None
-    return {k: getattr(d, k) for k in ("varpi", "alpha", "beta", "kappa", "length_m", "f_act_hz")}
 
 
 BASE_COLUMNS: dict[str, type] = {
@@ -405,7 +297,7 @@ def tolerance_study(
     columns = dict(BASE_COLUMNS) | {f"in:{t.field}": float for t in tolerances}
     mtime = os.stat(path).st_mtime_ns
     derived = {
-        name: _derive_all(spec, tolerances, nominal, x, names.index(name)) for name in chosen
+        name: derive_all(spec, tolerances, nominal, x, names.index(name)) for name in chosen
     }
     intended = {s.name: s.intended_mode for s in spec.actuator_sets}
     tasks = []

@@ -1,0 +1,124 @@
+"""Fields ``betv fix`` may change, their realistic default bounds, and ``--vary``.
+
+A field is a dotted path as in the device file (:mod:`betvdesign.studies.specpaths`);
+its bounds are factors of the current value, or absolute values in a unit.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import pint
+
+from betvdesign.errors import UsageError
+from betvdesign.studies.specpaths import targets, value_at
+
+#: Default search bounds of the fields a designer can change: (factor low, factor high)
+#: on the current value, or absolute bounds in the given unit.
+DEFAULT_BOUNDS: dict[str, tuple[float, float] | tuple[float, float, str]] = {
+    "drive.frequency": (0.25, 4.0),
+    "drive.voltage": (0.5, 2.0),
+    "actuator.amplitude": (0.5, 2.0),
+    "slider.beam_width": (0.5, 4.0),
+    "slider.beam_length": (0.5, 2.0),
+    "head.mass": (0.25, 4.0),
+    "head.geometry.diameter": (0.5, 2.0),
+    "head.geometry.length": (0.5, 2.0),
+    "head.geometry.width": (0.5, 2.0),
+    "actuator.vertical_resonance": (0.5, 2.0),
+    "actuator.horizontal_resonance": (0.5, 2.0),
+    "actuator.horizontal_stiffness": (0.25, 4.0),
+    "actuator.alpha": (0.25, 4.0),
+    "contact.impact_angle": (15.0, 75.0, "deg"),
+}
+
+
+@dataclass(frozen=True)
+class Vary:
+    """A field to vary and its bounds, in the field's own unit (``unit``)."""
+
+    field: str
+    x0: float
+    lo: float
+    hi: float
+    unit: str
+
+    def quantity(self, x: float) -> Any:
+        from betvdesign.units import ureg
+
+        return ureg.Quantity(x, self.unit) if self.unit else float(x)
+
+    def text(self, x: float) -> str:
+        return f"{x:.4g} {self.unit}".strip()
+
+
+def _current(spec: Any, name: str) -> tuple[float, str] | None:
+    values = [value_at(spec, t) for t in targets(spec, name)]
+    present = [v for v in values if v is not None]
+    if not present:
+        return None
+    first = present[0]
+    if any(v != first for v in present):
+        raise UsageError(f"--vary {name}: differs between actuator sets; vary one value")
+    if isinstance(first, pint.Quantity):
+        return float(first.magnitude), f"{first.units:~}"
+    if isinstance(first, float | int) and not isinstance(first, bool):
+        return float(first), ""
+    return None
+
+
+def parse_vary(spec: Any, items: Sequence[str]) -> list[Vary]:
+    """``FIELD`` or ``FIELD=LO:HI`` (quantities in any unit of the field, e.g.
+    ``drive.frequency=400Hz:3kHz``); without items, every default field the spec has.
+    :class:`UsageError` for unknown fields, unreadable or inverted bounds."""
+    from betvdesign.units import parse_quantity
+
+    out: list[Vary] = []
+    names = list(items) or [f for f in DEFAULT_BOUNDS if _current(spec, f) is not None]
+    for item in names:
+        name, _, rng = item.partition("=")
+        name = name.strip()
+        cur = _current(spec, name)
+        if cur is None:
+            known = ", ".join(f for f in DEFAULT_BOUNDS if _current(spec, f) is not None)
+            raise UsageError(
+                f"--vary {name}: not a numeric field of device {spec.name!r}; it has {known}"
+            )
+        x0, unit = cur
+        if x0 <= 0:
+            raise UsageError(f"--vary {name}: current value {x0:g} is not positive")
+        if rng:
+            lo_s, sep, hi_s = rng.partition(":")
+            if not sep:
+                raise UsageError(f"--vary {item}: bounds must be LO:HI, e.g. {name}=1um:8um")
+            try:
+                lo, hi = (_magnitude(parse_quantity(t.strip()), unit) for t in (lo_s, hi_s))
+            except (ValueError, pint.PintError) as exc:
+                raise UsageError(f"--vary {item}: {exc}") from None
+        else:
+            b = DEFAULT_BOUNDS.get(name, (0.5, 2.0))
+            if len(b) == 3:
+                from betvdesign.units import ureg
+
+                lo, hi = (float(ureg.Quantity(v, b[2]).to(unit).magnitude) for v in b[:2])
+            else:
+                lo, hi = x0 * b[0], x0 * b[1]
+        if not (math.isfinite(lo) and math.isfinite(hi) and 0 < lo < hi):
+            raise UsageError(f"--vary {item}: need 0 < LO < HI (got {lo:g} to {hi:g} {unit})")
+        out.append(Vary(name, x0, lo, hi, unit))
+    if len({v.field for v in out}) != len(out):
+        raise UsageError("--vary: a field is given twice")
+    return out
+
+
+def _magnitude(q: Any, unit: str) -> float:
+    if not isinstance(q, pint.Quantity):
+        return float(q)
+    if not unit:
+        return float(q.to("dimensionless").magnitude)
+    return float(q.to(unit).magnitude)
+
+
