@@ -23,9 +23,7 @@ Thresholds (one home: :mod:`betvdesign.domain`, except the two below):
 
 from __future__ import annotations
 
-import math
-from dataclasses import asdict, dataclass
-from typing import Any, Literal, Protocol
+from typing import Any
 
 from betvdesign.domain import (
     FIT_EDGE_RTOL,
@@ -38,75 +36,36 @@ from betvdesign.domain import (
     resonance_detuning,
 )
 from betvdesign.nondim import DeviceDerivation, SetDerivation
-
-Severity = Literal["error", "warning", "info"]
-
-PUBLISHED_RTOL = 0.1
-#: Relative perturbations of (ϖ, α) the mode must survive (fabrication spread).
-MARGIN_CORNERS: tuple[tuple[float, float], ...] = (
-    (0.95, 1.0),
-    (1.05, 1.0),
-    (1.0, 0.9),
-    (1.0, 1.1),
+from betvdesign.ruledata import (
+    MARGIN_CORNERS,
+    PUBLISHED_RTOL,
+    SETTLE_SHARE,
+    SRC_LAMBDA,
+    SRC_MARGIN,
+    SRC_PUBLISHED,
+    SRC_SOLVER,
+    SRC_TANG,
+    SRC_WINDOW,
+    OrbitLike,
+    RuleResult,
+    orbit_mode,
+    verdict,
 )
-#: Settling may take at most this share of the cycles that cross the travel range.
-SETTLE_SHARE = 0.25
+from betvdesign.rules_motion import format_speed, format_time, speed_rules
 
-SRC_WINDOW = "MODEL.md, What the model shows: Vertical motion (Shin et al. 2004)"
-SRC_LAMBDA = "MODEL.md, Push/pull criterion (empirical fit, Shin et al. 2004, eq. 9)"
-SRC_TANG = "MODEL.md, What the model shows: tangential vibration undamped off contact"
-SRC_SPEED = "MODEL.md, Displacement per cycle: speed = Δs·u·cosθ·f_act"
-SRC_PUBLISHED = "device file: published_fit"
-SRC_SOLVER = "betvdesign.dynamics.periodic_orbit (exact event-driven solver, shooting)"
-SRC_SETTLE = "betvdesign.studies.settling (exact transient from rest, MODEL.md: Slider)"
-SRC_MARGIN = "exact periodic orbits at ϖ·(1 ± 5 %) and α·(1 ± 10 %) (fabrication spread)"
-
-
-class OrbitLike(Protocol):
-    success: bool
-    status: str
-    message: str
-    delta_s: float | None
-
-
-@dataclass(frozen=True)
-class RuleResult:
-    """Outcome of one design rule.
-
-    value: the number checked, in ``unit`` (SI, or "" for dimensionless; None when
-    the rule could not be evaluated); threshold: the pass condition in words/maths;
-    set_name: the actuator set ("" for device-level rules); fix: what to change when
-    the rule fails ("" when it passes or no change is known).
-    """
-
-    id: str
-    severity: Severity
-    passed: bool
-    value: float | None
-    threshold: str
-    message: str
-    source: str
-    set_name: str = ""
-    fix: str = ""
-    unit: str = ""
-
-    def as_dict(self) -> dict[str, Any]:
-        d = asdict(self)
-        if d["value"] is not None and not math.isfinite(d["value"]):
-            d["value"] = str(d["value"])  # JSON has no inf/nan
-        return d
-
-
-def verdict(results: list[RuleResult]) -> Literal["pass", "fail"]:
-    """ "fail" when any error-severity rule fails, else "pass"."""
-    return "fail" if any(r.severity == "error" and not r.passed for r in results) else "pass"
-
-
-def orbit_mode(orbit: OrbitLike | None) -> str | None:
-    """Mode of a successful exact orbit ("push", "pull", "stalled"), else None."""
-    if orbit is None or not getattr(orbit, "success", False):
-        return None
-    return mode_of(orbit.delta_s)
+__all__ = [
+    "MARGIN_CORNERS",
+    "SETTLE_SHARE",
+    "RuleResult",
+    "evaluate",
+    "evaluate_device",
+    "format_speed",
+    "format_time",
+    "mode_hint",
+    "orbit_mode",
+    "travel_direction",
+    "verdict",
+]
 
 
 # --- per-set rules -----------------------------------------------------------------------
@@ -136,7 +95,7 @@ def evaluate(
         *([_margin(s, orbit, margin)] if margin is not None else []),
         _tangential_resonance(s),
         *_published(s),
-        *_speed(s, orbit, settling, target_speed_m_s),
+        *speed_rules(s, orbit, settling, target_speed_m_s),
     ]
     return [_with_set(r, s.name) for r in out]
 
@@ -348,125 +307,6 @@ def _published(s: SetDerivation) -> list[RuleResult]:
             )
         )
     return out
-
-
-def _speed(
-    s: SetDerivation,
-    orbit: OrbitLike | None,
-    settling: Any | None,
-    target: float | None,
-) -> list[RuleResult]:
-    """Speed (from the orbit, or from the transient when it has not settled by the time
-    it crosses the travel range), the settling rule and the optional target speed."""
-    mode = orbit_mode(orbit)
-    if mode not in ("push", "pull"):
-        why = "the slider does not move" if mode == "stalled" else "no exact periodic orbit"
-        out = [RuleResult("speed", "info", False, None, "needs a moving orbit", why, SRC_SPEED)]
-        if target is not None:
-            out.append(_target(None, target, why))
-        return out
-    ds = float(orbit.delta_s)
-    v_orbit = s.scales.speed_m_s(ds)
-    travel = s.travel_range_m
-    f = s.scales.f_act_hz
-    v, basis, out = v_orbit, "periodic orbit", []
-    if settling is not None and getattr(settling, "status", "") != "failed":
-        n_cross = settling.cycles_to_cross
-        n_settle = settling.settle_cycles  # a lower bound when not settled
-        share = n_settle / n_cross if n_cross else math.inf
-        ok = share <= SETTLE_SHARE
-        settle_txt = (
-            f"{n_settle:.4g} cycles ({format_time(n_settle / f)})"
-            if settling.cycles_to_settle is not None
-            else f"more than {settling.simulated_cycles} cycles (not settled)"
-        )
-        cross_txt = (
-            f"{n_cross} cycles ({format_time(n_cross / f)})"
-            if n_cross
-            else f"more than {settling.simulated_cycles} cycles"
-        )
-        out.append(
-            RuleResult(
-                "settling",
-                "warning",
-                ok,
-                n_settle / f,
-                f"settling ≤ {SETTLE_SHARE:.0%} of the cycles to cross the travel range",
-                f"from rest: within {settling.rtol:.0%} of the periodic Δs after {settle_txt}; "
-                f"crosses the {travel * 1e6:.4g} um travel range after {cross_txt}"
-                + ("" if ok else ": the periodic speed is not what the travel shows"),
-                SRC_SETTLE,
-                fix=""
-                if ok
-                else "quote the crossing speed from rest (the speed rule does), or choose a "
-                "design that settles faster (slowest Floquet multiplier |μ| further below 1; "
-                "near ϖ → 2 settling slows sharply)",
-                unit="s",
-            )
-        )
-        if not ok and settling.crossing_delta_s is not None:
-            v = s.scales.speed_m_s(float(settling.crossing_delta_s))
-            basis = (
-                f"transient from rest over the travel range (periodic: "
-                f"{format_speed(abs(v_orbit))})"
-            )
-    if abs(v) > 0:
-        t_cross = travel / abs(v)
-        msg = (
-            f"mean speed {format_speed(abs(v))} toward {_travel_direction(s, ds)} "
-            f"({'with' if ds > 0 else 'against'} the impact direction "
-            f"{s.actuator_set.impact_direction}), crosses the {travel * 1e6:.4g} um "
-            f"travel range in {format_time(t_cross)} [{basis}]"
-        )
-    else:
-        msg = "the slider does not advance over the travel range"
-    speed = RuleResult("speed", "info", True, v, "Δs·u·cosθ·f_act", msg, SRC_SPEED, unit="m/s")
-    out.insert(0, speed)
-    if target is not None:
-        out.append(_target(abs(v), target, ""))
-    return out
-
-
-def _target(v: float | None, target: float, why: str) -> RuleResult:
-    ok = v is not None and v >= target
-    msg = (
-        f"speed {format_speed(v)} {'≥' if ok else '<'} target {format_speed(target)}"
-        if v is not None
-        else f"no speed ({why}); target {format_speed(target)}"
-    )
-    return RuleResult(
-        "target-speed",
-        "error",
-        ok,
-        v,
-        f"speed >= {format_speed(target)}",
-        msg,
-        SRC_SPEED,
-        fix="" if ok else "raise the drive voltage (stroke u) or frequency; `betv fix FILE "
-        "--target-speed Q` finds the change",
-        unit="m/s",
-    )
-
-
-def _travel_direction(s: SetDerivation, delta_s: float) -> str:
-    """Direction the slider travels: Δs is along the set's impact direction."""
-    return "+x" if s.impact_sign * (1 if delta_s > 0 else -1) > 0 else "-x"
-
-
-def format_speed(v_m_s: float) -> str:
-    """Speed in engineering units: um/s below 1 mm/s, else mm/s."""
-    if abs(v_m_s) < 1e-3:
-        return f"{v_m_s * 1e6:.4g} um/s"
-    return f"{v_m_s * 1e3:.4g} mm/s"
-
-
-def format_time(t_s: float) -> str:
-    """Duration in engineering units (us, ms, s)."""
-    if t_s < 1e-3:
-        return f"{t_s * 1e6:.4g} us"
-    if t_s < 1.0:
-        return f"{t_s * 1e3:.4g} ms"
-    return f"{t_s:.4g} s"
 
 
 # --- device-level ------------------------------------------------------------------------

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping, Sequence
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 import pint
@@ -19,9 +19,6 @@ import pint
 from betvdesign import limits
 from betvdesign.errors import BetvError, UsageError
 from betvdesign.studies.specpaths import numeric, replace, targets, value_at
-
-if TYPE_CHECKING:
-    from betvdesign.studies.tolerance import Tolerance
 
 
 def check_seed(seed: int) -> int:
@@ -33,7 +30,7 @@ def check_seed(seed: int) -> int:
     return int(seed)
 
 
-def nominal_values(spec: Any, tolerances: Sequence[Tolerance]) -> dict[str, tuple[float, str]]:
+def nominal_values(spec: Any, tolerances: Sequence[Any]) -> dict[str, tuple[float, str]]:
     """Nominal magnitude and unit of each toleranced field (checked against the spec)."""
     out: dict[str, tuple[float, str]] = {}
     for tol in tolerances:
@@ -61,7 +58,7 @@ def nominal_values(spec: Any, tolerances: Sequence[Tolerance]) -> dict[str, tupl
 
 
 def draw(
-    tolerances: Sequence[Tolerance],
+    tolerances: Sequence[Any],
     nominal: Mapping[str, tuple[float, str]],
     n: int,
     seed: int,
@@ -110,7 +107,7 @@ def check_sample(values: Mapping[str, tuple[float, str]]) -> None:
 
 def derive_all(
     spec: Any,
-    tolerances: Sequence[Tolerance],
+    tolerances: Sequence[Any],
     nominal: Mapping[str, tuple[float, str]],
     x: np.ndarray,
     set_index: int,
