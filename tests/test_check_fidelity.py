@@ -97,9 +97,9 @@ def test_pull_demo_without_solver_states_the_fallback(monkeypatch):
     """pull_demo lies within the measured margin: without a solver λ's guess stands in,
     the λ-margin warning cites the measurement, the error rules still pass."""
     monkeypatch.setattr(checker, "load_solver", lambda: None)
-    r = run("check", "--json", PULL)
+    r = run("check", "--json", "--verbose", PULL)
     assert r.exit_code == 0, r.stdout
-    s = json.loads(r.stdout)["sets"][0]
+    s = json.loads(r.stdout)["devices"][0]["details"]["sets"][0]
     f = s["fidelity"]
     assert (f["rung"], f["chosen"], f["forced"]) == ("lambda", "periodic", False)
     assert "not available" in f["reason"] and "mispredict" in f["reason"]
@@ -142,10 +142,11 @@ def test_forced_rungs_answer_with_their_own_solver():
 def test_fidelity_cli_table_json_and_usage_errors():
     """Table and JSON name the rung; bad rungs and contradicting flags exit 2 naming the
     rungs; nothing reaches stdout then."""
-    r = run("check", "--fidelity", "full", PULL)
+    r = run("check", "--verbose", "--fidelity", "full", PULL)
     assert r.exit_code == 0, r.output
     assert "fidelity: rung full, forced" in r.stdout
-    d = json.loads(run("check", "--json", "--fidelity", "lambda", PUSH).stdout)
+    d = json.loads(run("check", "--json", "-v", "--fidelity", "lambda", PUSH).stdout)
+    d = d["devices"][0]["details"]
     assert d["fidelity"]["rung"] == "lambda" and d["fidelity"]["forced"]
     assert d["sets"][0]["simulation"] is None
     bad = run("check", "--fidelity", "exact", PUSH)

@@ -34,31 +34,72 @@ def test_shin2004_fails_the_window_and_shows_fit_mismatch(no_solver):
     assert "FAIL" in out and "frequency-window" in out
     assert "below the window" in out
     assert "published-fit.varpi" in out and "disagree" in out
-    assert "cannot decide" in out  # β = 9.09 outside the λ fit range
+    r = run("check", "--verbose", SHIN)
+    assert "cannot decide" in r.stdout  # β = 9.09 outside the λ fit range
+
+
+def _device(stdout: str) -> dict:
+    d = json.loads(stdout)
+    assert (d["schema"], d["version"]) == ("betv-check", 1)
+    assert len(d["devices"]) == 1
+    return d["devices"][0]
 
 
 def test_shin2004_json_contract(no_solver):
+    """Version 1: SI floats under unit-named keys; hand-computed shin2004 parameters."""
     r = run("check", SHIN, "--json")
     assert r.exit_code == 1
-    d = json.loads(r.stdout)
-    assert set(d) >= {"device", "params", "derived", "mode_predicted", "rules", "verdict"}
+    d = _device(r.stdout)
     assert d["device"] == "shin2004" and d["verdict"] == "fail"
-    assert set(d["params"]) == {"varpi", "alpha", "beta", "kappa", "lambda"}
-    assert d["params"]["varpi"] == pytest.approx(1000 / 2940)
-    assert d["params"]["beta"] == pytest.approx(3.6e-11 / (2330 * 170e-6 * 5e-6 * 2e-6))
-    assert d["derived"]["f_act"] == "1000 Hz"
-    assert all(isinstance(v, str) and " " in v for v in d["derived"].values())
-    assert d["mode_predicted"] == "pull"
-    for rule in d["rules"]:
-        assert set(rule) >= {"id", "severity", "passed", "value", "threshold", "message"}
+    assert d["failed"] == ["frequency-window"]
+    s = d["sets"][0]
+    assert set(s["params"]) == {"varpi", "alpha", "beta", "kappa"}
+    assert s["params"]["varpi"] == pytest.approx(1000 / 2940)
+    assert s["params"]["beta"] == pytest.approx(3.6e-11 / (2330 * 170e-6 * 5e-6 * 2e-6))
+    assert s["derived"]["f_act_hz"] == pytest.approx(1000.0)
+    assert s["derived"]["head_mass_kg"] == pytest.approx(3.6e-11)  # 0.036 ug
+    assert s["derived"]["amplitude_m"] == pytest.approx(0.11e-6)
+    assert s["travel_range_m"] == pytest.approx(40e-6)
+    assert s["lambda"]["predicts"] == "pull" and s["mode"] == "pull"
+    for rule in s["rules"]:
+        assert set(rule) == {
+            "id",
+            "severity",
+            "passed",
+            "value",
+            "value_unit",
+            "threshold",
+            "message",
+            "fix",
+            "source",
+        }
         assert rule["severity"] in ("error", "warning", "info")
-    win = [x for x in d["rules"] if x["id"] == "frequency-window"]
+    win = [x for x in s["rules"] if x["id"] == "frequency-window"]
     assert win and not any(x["passed"] for x in win)
-    fit = d["sets"][0]["published_fit"]
+    assert "details" not in d
+    full = _device(run("check", SHIN, "--json", "--verbose").stdout)["details"]
+    fit = full["sets"][0]["published_fit"]
     assert {f["param"] for f in fit} == {"varpi", "alpha", "beta", "kappa"}
-    assert next(f for f in d["sets"][0]["record"] if f["symbol"] == "f_act")["formula"] == (
+    assert next(f for f in full["sets"][0]["record"] if f["symbol"] == "f_act")["formula"] == (
         "2·f_drive"
     )
+
+
+def test_json_conforms_to_its_published_schema():
+    """Every device's --json output validates against `betv schema check` (a generic
+    draft-2020-12 walk of the schema written by hand below, not pydantic itself)."""
+    schema = json.loads(run("schema", "check").stdout)
+    assert schema["properties"]["version"]["const"] == 1
+    r = run("check", "--json", *(str(p) for p in sorted(DEVICES.glob("*.yaml"))))
+    doc = json.loads(r.stdout)
+    assert [x["device"] for x in doc["devices"]] == [
+        "bidir_demo",
+        "pull_demo",
+        "push_demo",
+        "shin2004",
+    ]
+    assert doc["verdict"] == "fail" and r.exit_code == 1
+    _assert_conforms(doc, schema, schema)
 
 
 @pytest.mark.parametrize("name", OWN)
@@ -67,31 +108,32 @@ def test_own_designs_pass(name):
     trust margin), while pull_demo (ϖ = 0.8, β = 1.2, λ = 5.2) lies within the measured
     margin there (λ mispredicted at ϖ = 0.78, β = 1.2, λ = 4.4), so the fidelity ladder
     sends it to the periodic orbit."""
-    r = run("check", str(DEVICES / f"{name}.yaml"), "--json")
+    r = run("check", str(DEVICES / f"{name}.yaml"), "--json", "--verbose")
     assert r.exit_code == 0, r.stdout
-    d = json.loads(r.stdout)
-    assert d["verdict"] == "pass"
-    assert all(x["passed"] for x in d["rules"] if x["severity"] != "info"), d["rules"]
-    for s in d["sets"]:
-        assert s["mode_predicted"] == s["intended_mode"]
-        assert abs(s["params"]["lambda"] - 1) >= 0.5  # "clear" designs
+    d = _device(r.stdout)
+    assert d["verdict"] == "pass" and d["failed"] == []
+    full = d["details"]
+    assert all(x["passed"] for x in full["rules"] if x["severity"] != "info"), full["rules"]
+    for s, sfull in zip(d["sets"], full["sets"], strict=True):
+        assert s["mode"] == s["intended_mode"] and s["passed"]
+        assert s["lambda"]["margin"] >= 0.5  # "clear" designs
         rung = "periodic" if name == "pull_demo" else "lambda"
-        assert s["fidelity"]["rung"] == s["fidelity"]["chosen"] == rung
-        assert "measured" in s["fidelity"]["reason"]
-    assert d["fidelity"] == d["sets"][0]["fidelity"]
+        assert sfull["fidelity"]["rung"] == sfull["fidelity"]["chosen"] == rung
+        assert "measured" in sfull["fidelity"]["reason"]
 
 
-def test_several_files_give_a_list_and_worst_exit(no_solver):
+def test_several_files_give_one_shape_and_worst_exit(no_solver):
     r = run("check", "--json", str(DEVICES / "push_demo.yaml"), SHIN)
     assert r.exit_code == 1
     d = json.loads(r.stdout)
-    assert [x["device"] for x in d] == ["push_demo", "shin2004"]
+    assert [x["device"] for x in d["devices"]] == ["push_demo", "shin2004"]
+    assert d["verdict"] == "fail"
     r = run("check", "--json", *(str(DEVICES / f"{n}.yaml") for n in OWN))
-    assert r.exit_code == 0 and len(json.loads(r.stdout)) == 3
+    assert r.exit_code == 0 and len(json.loads(r.stdout)["devices"]) == 3
 
 
 def test_tables_and_derivation(no_solver):
-    r = run("check", "--derivation", str(DEVICES / "bidir_demo.yaml"))
+    r = run("check", "--verbose", str(DEVICES / "bidir_demo.yaml"))
     assert r.exit_code == 0
     assert "PASS" in r.stdout and "set east" in r.stdout and "set west" in r.stdout
     assert "derivation of set east" in r.stdout and "(f_v/f_h)²" in r.stdout
@@ -208,17 +250,21 @@ def test_simulated_check_reports_orbit_speed_and_json(monkeypatch):
     )
     monkeypatch.setattr(checker, "load_solver", lambda: lambda p: orbit)
     path = str(DEVICES / "push_demo.yaml")
-    r = run("check", "--simulate", path)
+    r = run("check", "--simulate", "--verbose", path)
     assert r.exit_code == 0, r.stdout
     assert "exact orbit (requested (--simulate))" in r.stdout
     assert "from simulation" in r.stdout
-    d = json.loads(run("check", "--simulate", "--json", path).stdout)
+    v = 0.25 * 0.14e-6 * math.cos(math.radians(20.56)) * 6000.0  # [m/s] = 196.6 µm/s
+    r = run("check", "--simulate", path)
+    assert "197 µm/s toward +x, 50 µm in 254 ms" in r.stdout  # 50 µm / v = 0.2543 s
+    d = _device(run("check", "--simulate", "--json", path).stdout)
     s = d["sets"][0]
-    assert s["simulated"] and s["mode_source"] == "simulation"
-    assert s["simulation"]["delta_s"] == 0.25 and s["simulation"]["stable"] is True
-    v = 0.25 * 0.14e-6 * math.cos(math.radians(20.56)) * 6000.0  # [m/s]
-    assert d["derived"]["speed"] == f"{v * 1e6:.4g} um/s"
-    assert d["derived"]["time_to_cross"] == f"{50e-6 / v * 1e3:.4g} ms"  # 0.254 s
+    assert s["mode_source"] == "exact periodic orbit" and s["delta_s"] == 0.25
+    assert s["speed_m_s"] == pytest.approx(v, rel=1e-12)
+    assert s["time_to_cross_s"] == pytest.approx(50e-6 / v, rel=1e-12)
+    assert s["travel_direction"] == "+x"
+    speed = next(x for x in s["rules"] if x["id"] == "speed")
+    assert speed["value_unit"] == "m/s" and speed["value"] == pytest.approx(v)
 
 
 # --- with the exact solver (betvdesign.dynamics) ------------------------------------------
@@ -233,9 +279,10 @@ def test_auto_simulation_where_the_closed_form_cannot_decide():
     from betvdesign.dynamics import periodic_orbit
     from betvdesign.params import ModelParams
 
-    r = run("check", "--json", SHIN)
+    r = run("check", "--json", "--verbose", SHIN)
     assert r.exit_code == 1  # still the frequency-window error
-    d = json.loads(r.stdout)
+    dev = _device(r.stdout)
+    d = dev["details"]
     assert any("ran the exact solver" in n and "beta" in n for n in d["notes"])
     s = d["sets"][0]
     assert s["simulated"] and s["mode_source"] == "simulation"
@@ -245,8 +292,8 @@ def test_auto_simulation_where_the_closed_form_cannot_decide():
     assert orbit.success
     assert s["simulation"]["delta_s"] == pytest.approx(orbit.delta_s, rel=1e-12)
     v = orbit.delta_s * 0.11e-6 * math.cos(math.pi / 4) * 1000.0
-    assert d["derived"]["speed"] == f"{v * 1e6:.4g} um/s"
-    assert d["mode_predicted"] == ("push" if orbit.delta_s > 0 else "pull")
+    assert dev["sets"][0]["speed_m_s"] == pytest.approx(abs(v), rel=1e-12)
+    assert dev["sets"][0]["mode"] == ("push" if orbit.delta_s > 0 else "pull")
     # the second, mirrored set reuses the orbit
     assert d["sets"][1]["simulation"] == s["simulation"]
 
@@ -258,32 +305,32 @@ def test_decided_design_is_not_simulated_unless_asked():
     from betvdesign.params import ModelParams
 
     path = str(DEVICES / "push_demo.yaml")
-    d = json.loads(run("check", "--json", path).stdout)
-    assert not d["sets"][0]["simulated"] and "speed" not in d["derived"]
-    r = run("check", "--json", "--simulate", path)
+    d = _device(run("check", "--json", "-v", path).stdout)
+    assert not d["details"]["sets"][0]["simulated"] and d["sets"][0]["speed_m_s"] is None
+    r = run("check", "--json", "-v", "--simulate", path)
     assert r.exit_code == 0
-    d = json.loads(r.stdout)
-    s = d["sets"][0]
+    top = _device(r.stdout)
+    s = top["details"]["sets"][0]
     assert s["mode_source"] == "simulation" and s["mode_predicted"] == "push"
     assert next(x for x in s["rules"] if x["id"] == "lambda-vs-simulation")["passed"]
     p = ModelParams(**{k: s["params"][k] for k in ("varpi", "alpha", "beta", "kappa")})
     transient = simulate(p, 400)  # second method: settle from rest, read the last cycle
     assert transient.success
     assert transient.delta_s[-1] == pytest.approx(s["simulation"]["delta_s"], rel=1e-6)
-    assert "um/s" in d["derived"]["speed"] or "mm/s" in d["derived"]["speed"]
+    assert top["sets"][0]["speed_m_s"] > 0
 
 
 def test_check_quotes_vertical_motion_consistently():
     """The window rule quotes dynamics.vertical_motion(ϖ) for the set's own ϖ."""
     from betvdesign.dynamics import vertical_motion
 
-    d = json.loads(run("check", "--json", SHIN).stdout)
+    d = _device(run("check", "--json", "-v", SHIN).stdout)["details"]
     s = d["sets"][0]
     vm = vertical_motion(s["params"]["varpi"])
     assert s["vertical"]["regime"] == vm.regime
     win = next(x for x in s["rules"] if x["id"] == "frequency-window")
     assert f"exact vertical motion: {vm.regime}" in win["message"]
-    d = json.loads(run("check", "--json", "--closed-form-only", SHIN).stdout)
+    d = _device(run("check", "--json", "-v", "--closed-form-only", SHIN).stdout)["details"]
     assert d["sets"][0]["vertical"] is None and d["sets"][0]["simulation"] is None
 
 
@@ -293,7 +340,8 @@ def test_markup_in_names_is_printed_literally(tmp_path, no_solver):
         (DEVICES / "push_demo.yaml").read_text().replace("name: forward", "name: '[red]fwd'")
     )
     r = run("check", str(f))
-    assert r.exit_code == 0 and "set [red]fwd" in r.stdout
+    assert r.exit_code == 0 and "[red]fwd: push" in r.stdout
+    assert "set [red]fwd" in run("check", "-v", str(f)).stdout
 
 
 def test_summary_line_for_several_files(no_solver):

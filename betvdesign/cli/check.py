@@ -1,4 +1,6 @@
-"""``betv check FILE...``: device files -> design verdict (tables, or ``--json``).
+"""``betv check FILE...``: device files -> design verdict (compact text, ``--verbose``
+tables, ``--quiet`` for CI, or versioned ``--json``; presentation in
+:mod:`betvdesign.checkview`).
 
 Thin: loading is :func:`betvdesign.loader.load_device`, numbers are
 :func:`betvdesign.nondim.derive`, rules and the optional exact solver are
@@ -9,7 +11,6 @@ Exit codes: 0 every error-severity rule passes, 1 a rule fails, 2 bad input or u
 
 from __future__ import annotations
 
-import json
 import sys
 from pathlib import Path
 
@@ -20,11 +21,21 @@ from rich.table import Table
 
 from betvdesign import fidelity as fid
 from betvdesign.checker import CheckResult, check_derivation, simulation_summary
+from betvdesign.checkview import (
+    RULE_VALUE_UNITS,
+    DeviceView,
+    RuleFilter,
+    compact_lines,
+    output_json,
+    quiet_line,
+)
 from betvdesign.cli import app
 from betvdesign.cli.common import EXIT_BAD_INPUT, EXIT_OK, EXIT_RULE_FAILED, user_errors
+from betvdesign.cli.config import load_config
 from betvdesign.errors import SpecError
-from betvdesign.nondim import derive_file
+from betvdesign.nondim import DERIVED_KEYS, derive_file
 from betvdesign.rules import DEFAULT_LAMBDA_MARGIN, RuleResult
+from betvdesign.siformat import format_q, format_si
 
 _STATUS = {
     (True, "error"): "[green]ok[/]",
@@ -39,7 +50,21 @@ _STATUS = {
 @app.command("check")
 def check_cmd(
     files: list[Path] = typer.Argument(..., help="Device YAML files (see devices/)."),
-    as_json: bool = typer.Option(False, "--json", help="Print JSON on stdout (a list if >1 file)."),
+    as_json: bool = typer.Option(
+        False, "--json", help="Print JSON (one versioned shape; `betv schema check`)."
+    ),
+    verbose: bool = typer.Option(
+        False, "--verbose", "-v", help="Full rule table, fidelity and derivation of every set."
+    ),
+    quiet: bool = typer.Option(
+        False, "--quiet", "-q", help="CI: print only failing devices, one line each."
+    ),
+    select: list[str] | None = typer.Option(
+        None, "--select", metavar="RULE", help="Only these rules count (repeatable; prefix ok)."
+    ),
+    ignore: list[str] | None = typer.Option(
+        None, "--ignore", metavar="RULE", help="These rules do not count (repeatable)."
+    ),
     simulate: bool = typer.Option(
         False, "--simulate", help="Run the exact periodic-orbit solver for every actuator set."
     ),
@@ -48,15 +73,14 @@ def check_cmd(
         "--closed-form-only",
         help="Never run the solver, even where the closed form cannot decide.",
     ),
-    lambda_margin: float = typer.Option(
-        DEFAULT_LAMBDA_MARGIN,
+    lambda_margin: float | None = typer.Option(
+        None,
         "--lambda-margin",
         min=0.0,
-        help="Required |λ − 1| (default 0.2: ±5 % on f_v or ±10 % on α move λ ~10 %).",
+        help=f"Required |λ − 1| (default {DEFAULT_LAMBDA_MARGIN:g}: ±5 % on f_v or ±10 % on α "
+        "move λ ~10 %).",
     ),
-    show_derivation: bool = typer.Option(
-        False, "--derivation", help="Also print every input, formula and intermediate value."
-    ),
+    show_derivation: bool = typer.Option(False, "--derivation", hidden=True),
     fidelity: str | None = typer.Option(
         None,
         "--fidelity",
@@ -65,20 +89,27 @@ def check_cmd(
         "(default: the cheapest the fidelity ladder trusts; see `betv ladder`).",
     ),
 ) -> None:
-    """Check device files: design window, push/pull mode, margin, resonance, fit range, speed.
+    """Check device files: design window, push/pull mode, speed, margin, resonance.
 
-    The exact solver runs by itself only where λ cannot decide (near 1, outside its fit,
-    or within the measured trust margin of the fidelity ladder); each set states which
-    rung decided its mode and why.
+    Prints one compact block per device (verdict; per actuator set its mode, speed and
+    margin; the failing rules with their fix). Defaults for --select, --ignore and
+    --lambda-margin may be set in a [tool.betv] table of pyproject.toml.
 
-    --simulate runs it for every set; --fidelity RUNG forces a rung.
     Exit 0 pass, 1 an error rule fails, 2 bad input/usage.
     """
     if simulate and closed_form_only:
         print("error: --simulate and --closed-form-only exclude each other", file=sys.stderr)
         raise typer.Exit(EXIT_BAD_INPUT)
+    if quiet and (verbose or show_derivation):
+        print("error: --quiet and --verbose exclude each other", file=sys.stderr)
+        raise typer.Exit(EXIT_BAD_INPUT)
     mode = "always" if simulate else ("never" if closed_form_only else "auto")
     with user_errors():
+        cfg = load_config()
+        flt = RuleFilter(
+            tuple(select if select else cfg.select), tuple(ignore if ignore else cfg.ignore)
+        )
+        margin = lambda_margin if lambda_margin is not None else cfg.lambda_margin
         derivations, issues = [], []
         for f in files:  # collect the issues of every file before giving up
             try:
@@ -92,28 +123,39 @@ def check_cmd(
             res = check_derivation(
                 d,
                 simulate=mode,
-                lambda_margin=lambda_margin,
+                lambda_margin=margin,
                 fidelity=fidelity,  # type: ignore[arg-type]  # validated: UsageError
             )
             res.source_file = str(f)
             results.append(res)
+        flt.validate(results)
+    views = [DeviceView(r, flt) for r in results]
     if as_json:
-        payload = [r.as_dict() for r in results]
-        out = payload[0] if len(payload) == 1 else payload
-        typer.echo(json.dumps(out, indent=2, ensure_ascii=False))
+        typer.echo(output_json(views, details=verbose or show_derivation))
+    elif quiet:
+        for v in views:
+            line = quiet_line(v)
+            if line is not None:
+                typer.echo(line)
     else:
-        console = Console(soft_wrap=False)
-        for r in results:
-            render(r, console, derivation=show_derivation)
-        if len(results) > 1:
-            failed_names = [r.derivation.name for r in results if r.verdict == "fail"]
+        console = Console(soft_wrap=True, highlight=False)
+        width = min(100, console.width) if console.is_terminal else 100
+        for i, v in enumerate(views):
+            if verbose or show_derivation:
+                render(v.result, Console(soft_wrap=False), derivation=True)
+            else:
+                if i:
+                    console.print()
+                for line in compact_lines(v, width=width):
+                    console.print(line)
+        if len(views) > 1:
+            failed_names = [v.result.derivation.name for v in views if v.verdict == "fail"]
             console.print(
-                f"[bold]summary:[/] {len(results) - len(failed_names)} pass, "
+                f"[bold]summary:[/] {len(views) - len(failed_names)} pass, "
                 f"{len(failed_names)} fail"
-                + (f" ({esc(', '.join(failed_names))})" if failed_names else ""),
-                highlight=False,
+                + (f" ({esc(', '.join(failed_names))})" if failed_names else "")
             )
-    failed = any(r.verdict == "fail" for r in results)
+    failed = any(v.verdict == "fail" for v in views)
     raise typer.Exit(EXIT_RULE_FAILED if failed else EXIT_OK)
 
 
@@ -142,8 +184,10 @@ def render(result: CheckResult, console: Console, *, derivation: bool = False) -
                 ),
                 highlight=False,
             )
+        derived = [st for st in s.record if st.key in DERIVED_KEYS]
         console.print(
-            "  " + esc(", ".join(f"{k} = {v}" for k, v in s.derived().items())), highlight=False
+            "  " + esc(", ".join(f"{st.symbol} = {format_q(st.value)}" for st in derived)),
+            highlight=False,
         )
         if sc.periodic is not None:
             sim = simulation_summary(sc.periodic)
@@ -171,7 +215,8 @@ def _rules_table(rules: list[RuleResult]) -> Table:
         t.add_column(col, no_wrap=True)
     t.add_column("threshold", overflow="fold")
     for r in rules:
-        value = "" if r.value is None else f"{r.value:.4g}"
+        unit = RULE_VALUE_UNITS.get(r.id, "")
+        value = "" if r.value is None else (format_si(r.value, unit) if unit else f"{r.value:.4g}")
         t.add_row(_STATUS[(r.passed, r.severity)], r.severity, r.id, value, esc(r.threshold))
     return t
 
@@ -191,5 +236,7 @@ def _record_table(sc) -> Table:
     for col in ("symbol", "description", "formula", "value"):
         t.add_column(col, overflow="fold")
     for st in sc.derivation.record:
-        t.add_row(*(esc(x) for x in (st.symbol, st.description, st.formula, st.value_str)))
+        t.add_row(
+            *(esc(x) for x in (st.symbol, st.description, st.formula, format_q(st.value, digits=4)))
+        )
     return t
