@@ -17,6 +17,7 @@ from __future__ import annotations
 import html
 import json
 import math
+import os
 import re
 import textwrap
 from collections.abc import Iterable, Sequence
@@ -443,3 +444,45 @@ def device_html(view: DeviceView) -> str:
         f"<b style='color:{colour}'>{view.verdict.upper()}</b>"
         f"<table>{''.join(rows)}</table></div>"
     )
+
+
+# --- Python entry point -------------------------------------------------------------------
+
+
+def check(
+    device: Any,
+    *,
+    select: Sequence[str] = (),
+    ignore: Sequence[str] = (),
+    lambda_margin: float | None = None,
+) -> DeviceView:
+    """Check a device the way ``betv check`` does and return its view.
+
+    Parameters
+    ----------
+    device : str, pathlib.Path or DeviceSpec
+        A device YAML file or an already loaded (e.g. ``spec.replace(...)``) spec.
+    select, ignore : sequence of str
+        Rule ids (or dotted prefixes) that count / do not count (``--select/--ignore``).
+    lambda_margin : float, optional
+        Required |λ − 1| [-] (default: the rules' default).
+
+    Returns
+    -------
+    DeviceView
+        ``repr`` is the compact block, ``_repr_html_`` a notebook table, ``.out`` the
+        JSON (:class:`DeviceOut`), ``.result`` the full :class:`CheckResult`.
+    """
+    from betvdesign.checker import check_derivation
+    from betvdesign.nondim import derive, derive_file
+
+    if isinstance(device, str | os.PathLike):
+        d, source = derive_file(device), str(device)
+    else:
+        d, source = derive(device), ""
+    kwargs = {} if lambda_margin is None else {"lambda_margin": lambda_margin}
+    res = check_derivation(d, **kwargs)
+    res.source_file = source
+    flt = RuleFilter(tuple(select), tuple(ignore))
+    flt.validate([res])
+    return DeviceView(res, flt)

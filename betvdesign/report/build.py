@@ -21,6 +21,7 @@ import pint
 from betvdesign import __version__
 from betvdesign import fidelity as fid
 from betvdesign.checker import CheckResult, SetCheck, SolverFailure, check_derivation
+from betvdesign.checkview import RULE_VALUE_UNITS
 from betvdesign.loader import load_device
 from betvdesign.nondim import DeviceDerivation, SetDerivation, derive
 from betvdesign.report import figures
@@ -36,7 +37,8 @@ from betvdesign.report.model import (
     SetReport,
     VerdictBox,
 )
-from betvdesign.rules import RuleResult, format_speed, format_time, verdict
+from betvdesign.rules import RuleResult, verdict
+from betvdesign.siformat import format_q, format_si
 
 MAX_WARNINGS = 5
 _SEVERITY_ORDER = {"error": 0, "warning": 1, "info": 2}
@@ -71,10 +73,9 @@ def fmt_num(x: float | None, digits: int = 4) -> str:
 
 
 def fmt_quantity(q: pint.Quantity) -> str:
-    """A quantity with 4 significant digits and a compact unit (µ, not u)."""
-    unit = format(q.units, "~P")
-    mag = fmt_num(float(q.magnitude))
-    return f"{mag} {unit}".strip() if unit else mag
+    """A quantity with 4 significant digits and an SI prefix by magnitude (µ, not u):
+    :func:`betvdesign.siformat.format_q`."""
+    return format_q(q, digits=4)
 
 
 # --------------------------------------------------------------------------- sections
@@ -91,7 +92,17 @@ def derivation_rows(sd: SetDerivation) -> tuple[DerivationRow, ...]:
 
 def rule_rows(results: list[RuleResult]) -> tuple[RuleRow, ...]:
     return tuple(
-        RuleRow(r.id, r.severity, fmt_num(r.value), r.threshold, r.passed, r.message, r.source)
+        RuleRow(
+            r.id,
+            r.severity,
+            format_si(r.value, RULE_VALUE_UNITS[r.id], digits=4)
+            if r.value is not None and r.id in RULE_VALUE_UNITS
+            else fmt_num(r.value),
+            r.threshold,
+            r.passed,
+            r.message,
+            r.source,
+        )
         for r in results
     )
 
@@ -130,10 +141,10 @@ def verdict_box(
         )
         v_m_s = sd.scales.speed_m_s(float(per.delta_s))
         direction = sd.impact_sign * (1 if float(per.delta_s) > 0 else -1)
-        speed = f"{format_speed(abs(v_m_s))} toward {'+x' if direction > 0 else '−x'}"
+        speed = f"{format_si(abs(v_m_s), 'm/s')} toward {'+x' if direction > 0 else '−x'}"
         crossing = (
-            format_time(sd.travel_range_m / abs(v_m_s)) + f" for the "
-            f"{sd.travel_range_m * 1e6:.4g} µm travel range at the periodic speed"
+            format_si(sd.travel_range_m / abs(v_m_s), "s") + f" for the "
+            f"{format_si(sd.travel_range_m, 'm')} travel range at the periodic speed"
             if v_m_s != 0
             else "never (the slider does not move)"
         )
