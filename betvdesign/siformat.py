@@ -101,6 +101,18 @@ def format_q(q: Any, *, digits: int = 3, ascii: bool = False) -> str:
     return f"{_mantissa(float(q.magnitude), digits)} {q.units:~P}".strip()
 
 
+def scale_for(max_abs: float, unit: str) -> tuple[float, str]:
+    """(factor, prefixed unit) for an axis whose largest |value| is ``max_abs`` [unit]:
+    ``scale_for(3e-4, "m/s") == (1e6, "µm/s")``; multiply the data by the factor."""
+    text = format_si(max_abs if max_abs and math.isfinite(max_abs) else 1.0, unit)
+    prefixed = text.split(" ", 1)[1] if " " in text else unit
+    base = "g" if unit == "kg" else unit
+    prefix = prefixed[: len(prefixed) - len(base)] if prefixed.endswith(base) else ""
+    exp = next((e for e, p in PREFIXES.items() if p == prefix), 0)
+    factor = 10.0 ** (-exp) * (1e3 if unit == "kg" else 1.0)
+    return factor, prefixed
+
+
 def format_dimensionless(x: float, digits: int = 3) -> str:
     """A dimensionless number to ``digits`` significant digits, never in ``e+`` notation
     below 10⁶ (``1.2``, ``87.4``, ``12300``)."""

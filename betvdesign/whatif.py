@@ -54,6 +54,14 @@ def replace(spec: DeviceSpec, path: str, value: Any, *more: tuple[str, Any]) -> 
     where = f"{spec.name} with {path} = {value!r}"
     for p, v in ((path, value), *more):
         _assign(data, p, _plain(v), where)
+    from pydantic import ValidationError
+
+    from betvdesign.spec import DeviceSpec
+
+    try:  # the loader's own validation of the same plain data (fast path)
+        return DeviceSpec.model_validate(data)
+    except ValidationError:
+        pass  # through the loader itself, for its messages (field path, did-you-mean)
     from ruamel.yaml import YAML
 
     from betvdesign.loader import load_device_text
@@ -61,11 +69,12 @@ def replace(spec: DeviceSpec, path: str, value: Any, *more: tuple[str, Any]) -> 
     buf = io.StringIO()
     YAML(typ="safe", pure=True).dump(data, buf)
     try:
-        return load_device_text(buf.getvalue(), f"<{where}>")
+        spec_ = load_device_text(buf.getvalue(), f"<{where}>")
     except SpecError as exc:  # lines of the generated YAML mean nothing to the caller
         raise SpecError(
             [SpecIssue(Location(i.location.file), i.field, i.message) for i in exc.issues]
         ) from None
+    return spec_  # pragma: no cover - model_validate and the loader agree
 
 
 def _plain(value: Any) -> Any:

@@ -37,6 +37,7 @@ from betvdesign.report.model import (
     SetReport,
     VerdictBox,
 )
+from betvdesign.report.variants import field_variants, relative_changes
 from betvdesign.rules import RuleResult, verdict
 from betvdesign.siformat import format_q, format_si
 
@@ -235,7 +236,13 @@ def provenance(an: SetAnalysis, opts: ReportOptions, timings: bool) -> tuple[Key
         g = an.regime.value.varpi
         rows.append(KeyValue("Regime strip", f"{len(g)} values of ϖ in [{g[0]:.3g}, {g[-1]:.3g}]"))
     if an.robustness.ok:
-        rows.append(KeyValue("Robustness sweep", f"{len(an.robustness.value.x)} periodic orbits"))
+        sweep = an.robustness.value
+        rows.append(
+            KeyValue(
+                "Robustness sweep",
+                f"{sweep.n_orbits} periodic orbits over {', '.join(sweep.fields)}",
+            )
+        )
     if timings:
         for name in ("periodic", "vertical", "regime", "transient", "orbit", "robustness"):
             rows.append(KeyValue(f"Run time: {name}", f"{getattr(an, name).elapsed_s:.3g} s"))
@@ -316,13 +323,15 @@ def build_report(
     der = prepared.derivation
     analyses: dict[tuple[Any, ...], tuple[str, SetAnalysis]] = {}
     per_set: list[tuple[SetDerivation, SetAnalysis, str | None]] = []
-    for sd in der.sets:
+    changes = relative_changes(opts.robustness_points, opts.robustness_span)
+    for i, sd in enumerate(der.sets):
         key = _set_key(sd)
         if key in analyses:
             first, an = analyses[key]
             per_set.append((sd, an, first))
             continue
-        an = analyse_set(sd.params, sd.travel_range_m, sd.scales.length_m, opts)
+        variants = field_variants(der.spec, i, changes)
+        an = analyse_set(sd.params, sd.travel_range_m, sd.scales.length_m, opts, variants)
         analyses[key] = (sd.name, an)
         per_set.append((sd, an, None))
     check = design_check(der, per_set, opts)
