@@ -306,10 +306,13 @@ def test_cli_writes_reports_and_exit_codes(tmp_path: Path) -> None:
     res = runner.invoke(app, ["report", shin, "-o", str(tmp_path / "a"), "--no-pdf"])
     assert res.exit_code == 0, res.output
     assert "verdict fail" in res.output
+    assert "writing reports" in res.stderr and "2/2" in res.stderr  # progress: build, HTML
     assert (tmp_path / "a" / "shin2004.html").is_file()
     assert not (tmp_path / "a" / "shin2004.pdf").exists()
-    res = runner.invoke(app, ["report", shin, "-o", str(tmp_path / "b"), "--no-pdf", "--strict"])
-    assert res.exit_code == 1
+    res = runner.invoke(
+        app, ["report", shin, "-o", str(tmp_path / "b"), "--no-pdf", "--strict", "-q"]
+    )
+    assert res.exit_code == 1 and "writing reports" not in res.stderr
     assert (tmp_path / "b" / "shin2004.html").is_file()  # written all the same
 
 

@@ -37,6 +37,7 @@ def report_cmd(
         help="Force the rung that decides each set's mode for the verdict: lambda, rigid, "
         "full or periodic (default: the periodic orbit the figures need anyway).",
     ),
+    quiet: bool = typer.Option(False, "--quiet", "-q", help="No progress bar."),
     methods: bool = typer.Option(
         False,
         "--methods",
@@ -55,9 +56,13 @@ def report_cmd(
 
         raise typer.Exit(methods_report(files or [], outdir, pdf=pdf))
 
-    with user_errors():
+    from betvdesign.cli.sweep import progress_bar
+
+    with user_errors(), progress_bar("writing reports", quiet) as progress:
         options = ReportOptions(fidelity=fidelity)
-        written = write_reports(files, outdir, pdf=pdf, timestamp=timestamp, options=options)
+        written = write_reports(
+            files, outdir, pdf=pdf, timestamp=timestamp, options=options, progress=progress
+        )
     for w in written:
         outputs = ", ".join(str(p) for p in (w.html, w.pdf) if p is not None)
         typer.echo(f"{w.source}: verdict {w.verdict}, {w.figures} figures -> {outputs}")

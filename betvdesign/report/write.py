@@ -7,7 +7,7 @@ bad input leaves no file behind; each output is written atomically.
 from __future__ import annotations
 
 import datetime as _dt
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -47,8 +47,12 @@ def write_reports(
     pdf: bool = True,
     timestamp: bool = False,
     options: ReportOptions | None = None,
+    progress: Callable[[int, int], None] | None = None,
 ) -> list[Written]:
     """Report every device file in ``paths`` into ``outdir``.
+
+    ``progress(done, total)`` is called after each step (per device: analysis and
+    figures, HTML, PDF), once inputs are valid; a report takes seconds per device.
 
     Raises :class:`~betvdesign.errors.SpecError` (bad device file) or
     :class:`~betvdesign.errors.UsageError` (no files, clashing names, unusable
@@ -75,6 +79,16 @@ def write_reports(
     out = _outdir(outdir)
     generated = _dt.datetime.now(_dt.UTC).replace(microsecond=0).isoformat() if timestamp else None
     written: list[Written] = []
+    steps, done = len(prepared) * (3 if pdf else 2), 0
+
+    def step() -> None:
+        nonlocal done
+        done += 1
+        if progress is not None:
+            progress(done, steps)
+
+    if progress is not None:
+        progress(0, steps)
     for dev in prepared:
         report = build_report(
             dev,
@@ -82,9 +96,13 @@ def write_reports(
             generated=generated,
             reproduce=f"betv report {dev.path} -o DIR",
         )
+        step()
         html = render_html(report)
         html_path = write_atomic(out / f"{dev.path.stem}.html", html)
+        step()
         pdf_path = write_atomic(out / f"{dev.path.stem}.pdf", render_pdf(html)) if pdf else None
+        if pdf:
+            step()
         written.append(
             Written(dev.path, html_path, pdf_path, report.verdict, len(report.figures()))
         )
