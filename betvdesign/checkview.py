@@ -314,7 +314,7 @@ def set_headline(sc: SetCheck) -> tuple[str, str]:
     p = s.params
     ds, v, direction = set_motion(sc)
     mode = sc.mode_predicted
-    agree = "as intended" if mode == s.intended_mode else f"intended {s.intended_mode}!"
+    agree = "as intended" if mode == s.intended_mode else f"instead of {s.intended_mode}"
     src = "exact orbit" if ds is not None else "λ only"
     if v is not None:
         cross = format_si(s.travel_range_m / v, "s") if v > 0 else "never"
@@ -364,7 +364,8 @@ def compact_lines(view: DeviceView, *, width: int = 100, markup: bool = True) ->
         groups.setdefault(key, []).append(r.set_name)
     for (sev, rid, msg, fix), names in sorted(groups.items(), key=lambda kv: kv[0][0] != "error"):
         tag, style = _TAG[sev]
-        where = f" [{', '.join(n for n in names if n)}]" if any(names) else ""
+        several = len(res.sets) > 1
+        where = f" [{', '.join(n for n in names if n)}]" if several and any(names) else ""
         tag_s = f"[{style}]{tag}[/]" if markup else tag
         text = f"{rid}{where}: {msg}"
         wrapped = _wrap("  " + tag + " " + text, width, 7, esc)
