@@ -17,19 +17,18 @@ as in tolerance studies.
 from __future__ import annotations
 
 import difflib
-import io
-from typing import TYPE_CHECKING, Any
+from typing import Any
+
+from pydantic import ValidationError
 
 from betvdesign.errors import Location, SpecError, SpecIssue
-
-if TYPE_CHECKING:
-    from betvdesign.spec import DeviceSpec
+from betvdesign.validation import dotted, known_fields, located
 
 #: Paths relative to an actuator set (applied to every set when no set is named).
 SET_PREFIXES = ("head", "contact", "actuator", "drive", "intended_mode", "impact_direction")
 
 
-def replace(spec: DeviceSpec, path: str, value: Any, *more: tuple[str, Any]) -> DeviceSpec:
+def replace(spec: Any, path: str, value: Any, *more: tuple[str, Any]) -> Any:
     """A copy of ``spec`` with ``path`` set to ``value`` (and each ``(path, value)`` of
     ``more``), validated like a device file.
 
@@ -54,27 +53,34 @@ def replace(spec: DeviceSpec, path: str, value: Any, *more: tuple[str, Any]) -> 
     where = f"{spec.name} with {path} = {value!r}"
     for p, v in ((path, value), *more):
         _assign(data, p, _plain(v), where)
-    from pydantic import ValidationError
+    model = type(spec)
+    try:  # the device file's own validation, on the same plain data the loader builds
+        return model.model_validate(data)
+    except ValidationError as exc:
+        raise SpecError(_issues(exc, data, model, f"<{where}>")) from None
 
-    from betvdesign.spec import DeviceSpec
 
-    try:  # the loader's own validation of the same plain data (fast path)
-        return DeviceSpec.model_validate(data)
-    except ValidationError:
-        pass  # through the loader itself, for its messages (field path, did-you-mean)
-    from ruamel.yaml import YAML
-
-    from betvdesign.loader import load_device_text
-
-    buf = io.StringIO()
-    YAML(typ="safe", pure=True).dump(data, buf)
-    try:
-        spec_ = load_device_text(buf.getvalue(), f"<{where}>")
-    except SpecError as exc:  # lines of the generated YAML mean nothing to the caller
-        raise SpecError(
-            [SpecIssue(Location(i.location.file), i.field, i.message) for i in exc.issues]
-        ) from None
-    return spec_  # pragma: no cover - model_validate and the loader agree
+def _issues(exc: ValidationError, data: Any, model: Any, where: str) -> list[SpecIssue]:
+    """The loader's messages (:mod:`betvdesign.validation`) with dotted field paths; union
+    tags pydantic adds to a location (not keys of the data) are left out, as there."""
+    out: list[SpecIssue] = []
+    for err in exc.errors():
+        loc, msg = located(err, known_fields(model))
+        kept, node = [], data
+        for i, el in enumerate(loc):
+            last = i == len(loc) - 1
+            if isinstance(node, dict) and el in node:
+                kept.append(el)
+                node = node[el]
+            elif isinstance(node, list) and isinstance(el, int) and 0 <= el < len(node):
+                kept.append(el)
+                node = node[el]
+            elif last and err["type"] in ("missing", "extra_forbidden"):
+                kept.append(el)
+        issue = SpecIssue(Location(where), dotted(tuple(kept)), msg)
+        if issue not in out:
+            out.append(issue)
+    return out
 
 
 def _plain(value: Any) -> Any:

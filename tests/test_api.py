@@ -50,6 +50,18 @@ def test_replace_equals_editing_the_file_by_hand():
 
 def test_replace_validates_like_the_loader():
     spec = bd.load_device(PUSH)
+    for path, value, old, new in [
+        ("slider.beam_width", "6 kg", "beam_width: 10 um", "beam_width: 6 kg"),
+        ("drive.voltage", "12 V", "voltage: 9 V", "voltage: 12 V"),  # outside calibration
+        ("contact.friction", "high", "friction: 0.4", "friction: high"),
+    ]:
+        with pytest.raises(SpecError) as by_hand:
+            load_device_text(PUSH.read_text().replace(old, new), "edited.yaml")
+        with pytest.raises(SpecError) as what_if:
+            spec.replace(path, value)
+        assert [(i.field, i.message) for i in what_if.value.issues] == [
+            (i.field, i.message) for i in by_hand.value.issues
+        ], path
     with pytest.raises(SpecError) as exc:
         spec.replace("slider.beam_width", "6 kg")
     (issue,) = exc.value.issues

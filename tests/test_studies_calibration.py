@@ -16,7 +16,8 @@ from betvdesign.dynamics import periodic_orbit, simulate
 from betvdesign.errors import UsageError
 from betvdesign.loader import load_device, load_device_text
 from betvdesign.nondim import derive_set
-from betvdesign.studies.calibration import Measurements, calibrate, fitted, read_measurements
+from betvdesign.studies.calibration import calibrate, fitted
+from betvdesign.studies.measurements import Measurements, read_measurements
 
 
 def test_reads_units_from_the_header(tmp_path):

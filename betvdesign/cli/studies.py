@@ -165,7 +165,8 @@ def calibrate_cmd(
 
     Prints R², χ²/dof, 1σ and warnings; exit 1 if the fit fails or sits at bound 0.
     """
-    from betvdesign.studies.calibration import calibrate, read_measurements
+    from betvdesign.studies.calibration import calibrate
+    from betvdesign.studies.measurements import read_measurements
     from betvdesign.studies.store import write_atomic
 
     with user_errors():
