@@ -127,7 +127,7 @@ def test_every_figure_function_draws_on_given_axes() -> None:
             w, w**2, travel_um=4.0, extrapolated=([3, 4], [9, 16]), ax=ax
         ),
         lambda ax: plots.speed_vs_voltage(
-            w, 2 * w, operating_v=1.0, operating_speed_um_s=2.0, ax=ax
+            w, 2 * w, operating_v=1.0, operating_speed_m_s=2e-3, ax=ax
         ),
         lambda ax: plots.speed_vs_field_change(
             [("drive.frequency", w, [1e-3] * 11 + [None], [False] * 11 + [True])], ax=ax

@@ -9,35 +9,36 @@ import numpy as np
 from matplotlib.axes import Axes
 
 from betvdesign.plots._figure import DEVICE_COLOR, MODE_COLORS, axes_or_new
-from betvdesign.siformat import scale_for
+from betvdesign.siformat import format_si, scale_for
 
 
 def speed_vs_voltage(
     volts: Sequence[float],
-    speed_um_s: Sequence[float],
+    speed_m_s: Sequence[float],
     *,
     operating_v: float | None = None,
-    operating_speed_um_s: float | None = None,
+    operating_speed_m_s: float | None = None,
     ax: Axes | None = None,
 ) -> Axes:
-    """Mean slider speed [µm/s] against drive voltage [V], operating point marked."""
+    """Mean slider speed [m/s, drawn with the SI prefix its magnitude calls for] against
+    drive voltage [V], operating point marked."""
     ax = axes_or_new(ax)
-    ax.plot(
-        np.asarray(volts, float), np.asarray(speed_um_s, float), color="black", label="mean speed"
-    )
-    if operating_v is not None and operating_speed_um_s is not None:
+    v = np.asarray(speed_m_s, float)
+    k, unit = scale_for(float(np.abs(v).max()) if v.size else 0.0, "m/s")
+    ax.plot(np.asarray(volts, float), v * k, color="black", label="mean speed")
+    if operating_v is not None and operating_speed_m_s is not None:
         ax.plot(
             [operating_v],
-            [operating_speed_um_s],
+            [operating_speed_m_s * k],
             marker="o",
             ms=6,
             color=DEVICE_COLOR,
             ls="none",
-            label=f"operating point {operating_v:g} V",
+            label=f"operating point {operating_v:g} V, {format_si(operating_speed_m_s, 'm/s')}",
         )
     ax.axhline(0.0, color="#7f7f7f", lw=0.5)
     ax.set_xlabel("drive voltage  [V]")
-    ax.set_ylabel("mean slider speed  [µm/s]")
+    ax.set_ylabel(f"mean slider speed  [{unit}]")
     ax.legend(loc="best", framealpha=0.9)
     return ax
 

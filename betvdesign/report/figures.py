@@ -342,9 +342,9 @@ def speed_voltage(
         volts = np.linspace(lo, hi, points)
         u_m = amplitude_at(aset, ureg.Quantity(volts, "V")).to("m").magnitude
         ds = float(per.value.delta_s)
-        speed = ds * np.asarray(u_m) * math.cos(sc.theta_rad) * sc.f_act_hz * 1e6
+        speed = ds * np.asarray(u_m) * math.cos(sc.theta_rad) * sc.f_act_hz  # [m/s]
         plots.speed_vs_voltage(
-            volts, speed, operating_v=v0, operating_speed_um_s=sc.speed_m_s(ds) * 1e6, ax=ax
+            volts, speed, operating_v=v0, operating_speed_m_s=sc.speed_m_s(ds), ax=ax
         )
 
     model = (
