@@ -36,7 +36,7 @@ _LAZY = {
     "DeviceSpec": "betvdesign.spec",
     "load_device": "betvdesign.loader",
     "derive": "betvdesign.nondim",
-    "check": "betvdesign.checkview",
+    "check": "betvdesign.api",
     "DeviceView": "betvdesign.checkview",
     "SpecError": "betvdesign.errors",
 }

@@ -2,7 +2,9 @@
 
 Built only from the public attributes of :class:`betvdesign.checker.CheckResult`
 (its sets, rules, derivations and periodic orbits), so the check itself stays in
-:mod:`betvdesign.checker`. Quantities are written by :func:`betvdesign.siformat.format_si`
+:mod:`betvdesign.checker`; this module does not import it (annotations say ``Any``), so
+``CheckResult`` may render itself through it (``__repr__``, ``_repr_html_``).
+Quantities are written by :func:`betvdesign.siformat.format_si`
 (text) or as SI floats under unit-named keys (JSON).
 
 The JSON shape (``betv check --json``, :data:`JSON_SCHEMA_VERSION`) is the same for
@@ -17,7 +19,6 @@ from __future__ import annotations
 import html
 import json
 import math
-import os
 import re
 import textwrap
 from collections.abc import Iterable, Sequence
@@ -26,7 +27,6 @@ from typing import Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Field
 
-from betvdesign.checker import CheckResult, SetCheck
 from betvdesign.errors import UsageError
 from betvdesign.rules import RuleResult
 from betvdesign.siformat import format_dimensionless as fmt_x
@@ -154,7 +154,7 @@ class RuleFilter:
             return False
         return not any(hit(s) for s in self.ignore)
 
-    def validate(self, results: Sequence[CheckResult]) -> None:
+    def validate(self, results: Sequence[Any]) -> None:
         """Raise :class:`UsageError` for a selector that matches no rule of ``results``."""
         ids = sorted({r.id for res in results for r in res.rules})
         known = set(ids) | {i.split(".")[0] for i in ids}
@@ -177,7 +177,7 @@ class DeviceView:
     (:class:`DeviceOut`); ``rules`` the rules that count under ``rule_filter``.
     """
 
-    result: CheckResult
+    result: Any  # betvdesign.checker.CheckResult
     rule_filter: RuleFilter = field(default_factory=RuleFilter)
 
     @property
@@ -242,7 +242,7 @@ def _rule_out(r: RuleResult) -> RuleOut:
     )
 
 
-def set_motion(sc: SetCheck) -> tuple[float | None, float | None, str | None]:
+def set_motion(sc: Any) -> tuple[float | None, float | None, str | None]:
     """(Δs [-], speed magnitude [m/s], travel direction) from the set's periodic orbit,
     or Nones when there is none."""
     p = sc.periodic
@@ -257,7 +257,7 @@ def set_motion(sc: SetCheck) -> tuple[float | None, float | None, str | None]:
     return ds, v, direction
 
 
-def _required_margin(sc: SetCheck) -> float | None:
+def _required_margin(sc: Any) -> float | None:
     r = next((r for r in sc.rules if r.id == "lambda-margin"), None)
     if r is None:
         return None
@@ -265,7 +265,7 @@ def _required_margin(sc: SetCheck) -> float | None:
     return float(m.group(1)) if m else None
 
 
-def _set_out(sc: SetCheck, flt: RuleFilter) -> SetOut:
+def _set_out(sc: Any, flt: RuleFilter) -> SetOut:
     s = sc.derivation
     ds, v, direction = set_motion(sc)
     derived: dict[str, float] = {}
@@ -308,7 +308,7 @@ def _set_out(sc: SetCheck, flt: RuleFilter) -> SetOut:
 _TAG = {"error": ("FAIL", "bold red"), "warning": ("warn", "yellow"), "info": ("note", "dim")}
 
 
-def set_headline(sc: SetCheck) -> tuple[str, str]:
+def set_headline(sc: Any) -> tuple[str, str]:
     """Two short lines for a set: mode and speed; parameters and margin (plain text)."""
     s = sc.derivation
     p = s.params
@@ -323,7 +323,7 @@ def set_headline(sc: SetCheck) -> tuple[str, str]:
             f"{format_si(s.travel_range_m, 'm')} in {cross}"
         )
     else:
-        motion = "speed needs the exact orbit"
+        motion = "speed needs the exact orbit (--simulate)"
     line1 = f"{mode} {agree} ({src}), {motion}"
     need = _required_margin(sc)
     d = abs(s.lam - 1.0)
@@ -445,45 +445,3 @@ def device_html(view: DeviceView) -> str:
         f"<b style='color:{colour}'>{view.verdict.upper()}</b>"
         f"<table>{''.join(rows)}</table></div>"
     )
-
-
-# --- Python entry point -------------------------------------------------------------------
-
-
-def check(
-    device: Any,
-    *,
-    select: Sequence[str] = (),
-    ignore: Sequence[str] = (),
-    lambda_margin: float | None = None,
-) -> DeviceView:
-    """Check a device the way ``betv check`` does and return its view.
-
-    Parameters
-    ----------
-    device : str, pathlib.Path or DeviceSpec
-        A device YAML file or an already loaded (e.g. ``spec.replace(...)``) spec.
-    select, ignore : sequence of str
-        Rule ids (or dotted prefixes) that count / do not count (``--select/--ignore``).
-    lambda_margin : float, optional
-        Required |λ − 1| [-] (default: the rules' default).
-
-    Returns
-    -------
-    DeviceView
-        ``repr`` is the compact block, ``_repr_html_`` a notebook table, ``.out`` the
-        JSON (:class:`DeviceOut`), ``.result`` the full :class:`CheckResult`.
-    """
-    from betvdesign.checker import check_derivation
-    from betvdesign.nondim import derive, derive_file
-
-    if isinstance(device, str | os.PathLike):
-        d, source = derive_file(device), str(device)
-    else:
-        d, source = derive(device), ""
-    kwargs = {} if lambda_margin is None else {"lambda_margin": lambda_margin}
-    res = check_derivation(d, **kwargs)
-    res.source_file = source
-    flt = RuleFilter(tuple(select), tuple(ignore))
-    flt.validate([res])
-    return DeviceView(res, flt)
