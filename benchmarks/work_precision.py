@@ -4,7 +4,7 @@
                                                         # -> docs/img/, reports/bench/
     python benchmarks/work_precision.py --quick         # a subset, seconds to a minute
     python benchmarks/work_precision.py --ladder        # λ disagreement, rigid envelope, rung
-                                                        # costs -> betvdesign/fidelity_measured.py
+                                                        # costs -> betvdesign/data/*.json
 
 Prints the cost ratios (exact at ≤ 1e-10 vs the cheapest alternative reaching 1e-6) and
 the ladder figures. CPU times depend on the machine and its load; errors do not.
@@ -49,36 +49,33 @@ def work_precision(level: str, out: Path, img: Path | None) -> None:
         )
 
 
-def ladder(out_module: Path, reuse_map: bool) -> None:
+def ladder(out_path: Path, reuse_map: bool) -> None:
     from betvdesign.bench.ladder import measure, write_measured
 
     previous = None
     if reuse_map:
-        from betvdesign.fidelity_measured import MEASURED
+        from betvdesign.fidelity import _measured
 
-        previous = {k: v for k, v in MEASURED["lambda"].items() if k != "sample"}
+        previous = {k: v for k, v in _measured()["lambda"].items() if k != "held_out"}
     m = measure(reuse_map=previous)
-    write_measured(m, out_module)
+    write_measured(m, out_path)
     lam = m["lambda"]
-    print(f"wrote {out_module}")
+    print(f"wrote {out_path}")
     print(
-        f"λ rule vs periodic orbit on {lam['points']} points ({lam['converged']} converged): "
+        f"λ rule vs periodic orbit on {lam['points']} map points ({lam['converged']} converged): "
         f"{lam['mispredicted']} mispredicted ({100 * lam['rate']:.2f} %)"
     )
     print("  by |λ−1| band:", json.dumps(lam["bands"]))
-    print("  trust margin by β (map only):", lam["trust_margin_by_beta"])
-    for w in lam["mispredictions"]:
-        print("  ", w)
-    val = lam["sample"]
+    val = lam["held_out"]
     print(
-        f"λ rule on {val['points']} random off-grid designs ({val['converged']} converged): "
-        f"{val['mispredicted']} mispredicted ({100 * val['rate']:.2f} %)"
+        f"λ rule on {val['points']} held-out random designs ({val['converged']} with a moving "
+        f"orbit, {val['stalled']} stalled): {val['mispredicted']} mispredicted "
+        f"({100 * val['rate']:.2f} %, 95 % upper bound {100 * val['upper_95']:.2f} %)"
     )
-    for w in val["mispredictions"]:
+    for band in val["bands"]:
+        print("   ", band)
+    for w in val["mispredictions"][:20]:
         print("  ", w)
-    print(f"  trust table (ϖ bins {lam['varpi_bins']} × β bins {lam['beta_bins']}):")
-    for row in lam["trust_table"]:
-        print("   ", [round(x, 3) for x in row])
     print(f"rigid limit: error ≈ {m['rigid']['coef']:.3g}·α^{m['rigid']['power']:.2f}")
     print(f"rigid limit mode disagreement on the map: {100 * lam['rigid_mode_disagreement']:.1f} %")
     print("rung cost (median CPU s):", json.dumps(m["costs_cpu_s"]))
@@ -94,7 +91,7 @@ def main() -> None:
     ap.add_argument("-o", "--output", type=Path, default=ROOT / "reports" / "bench")
     args = ap.parse_args()
     if args.ladder:
-        ladder(ROOT / "betvdesign" / "fidelity_measured.py", args.reuse_map)
+        ladder(ROOT / "betvdesign" / "data" / "fidelity_measured.json", args.reuse_map)
         return
     level = "quick" if args.quick else "full"
     work_precision(level, args.output, None if args.quick else ROOT / "docs" / "img")

@@ -1,95 +1,79 @@
-"""The whole design check of a device: rules, plus the exact solver where it is needed.
+"""The whole design check of a device: the exact answer for every set, then the rules.
 
-"Model no more than a scene needs": the closed-form rules (:mod:`betvdesign.rules`)
-decide unless λ is within the margin of 1, the parameters lie outside the λ fit
-range, or the fidelity ladder (:func:`betvdesign.fidelity.choose_rung`, question
-"mode") does not trust λ there (outside the window, or within the measured trust
-margin at (ϖ, β)); only then (or when asked) is the exact periodic orbit computed
-(``betvdesign.dynamics.periodic_orbit``, imported lazily). ``fidelity=`` (``betv
-check --fidelity RUNG``) forces the rung that decides the mode. Every set records
-which rung answered and why (:class:`ModeFidelity`). :class:`CheckResult` is what
-``betv check`` prints, and ``CheckResult.as_dict()`` is its JSON contract.
+A design-rule tool must never say PASS for a device that moves the wrong way, so the
+verdict never rests on a fit: every actuator set gets
+
+1. its exact vertical motion (:func:`betvdesign.dynamics.vertical_motion`, quoted by
+   the window rule);
+2. its exact periodic orbit (:func:`betvdesign.dynamics.periodic_orbit`), which gives
+   the mode (push, pull, or stalled when |Δs| is at round-off: one place,
+   :func:`betvdesign.domain.mode_of`) and the speed; period-k orbits give their mean
+   drift per actuation cycle; ``not_converged``, ``unbounded`` and ``not_driven``
+   fail with their reason;
+3. with ``margin=True``, the exact orbits at ϖ·(1 ± 5 %) and α·(1 ± 10 %)
+   (the mode-margin rule);
+4. with ``settle=True``, the transient from rest
+   (:func:`betvdesign.studies.settling.settling`): cycles to settle and to cross the
+   travel range, and the speed a designer sees when it does not settle in time.
+
+The paper's λ fit is shown beside the exact mode ("agrees"/"disagrees") and never
+decides. Identical parameter sets (mirrored actuator sets) are solved once.
+:class:`CheckResult` is what ``betv check`` prints; ``CheckResult.as_dict()`` is its
+JSON contract.
 """
 
 from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any, Literal
 
-from betvdesign import fidelity as fid
-from betvdesign.errors import UsageError
+from betvdesign.domain import mode_of
 from betvdesign.nondim import DeviceDerivation, SetDerivation
+from betvdesign.params import ModelParams
 from betvdesign.rules import (
-    DEFAULT_LAMBDA_MARGIN,
+    MARGIN_CORNERS,
     RuleResult,
     evaluate_device,
     format_speed,
     format_time,
-    undecided_reasons,
+    orbit_mode,
     verdict,
 )
-
-# --- the whole check: rules + (optional) exact solver --------------------------------------
-
-SimulateWhen = Literal["auto", "always", "never"]
-
-
-@dataclass(frozen=True)
-class ModeFidelity:
-    """Which rung of the fidelity ladder answered "which mode?" for a set, and why.
-
-    rung: the rung whose answer was used; chosen: the rung the ladder (or
-    ``--fidelity``/``--simulate``) chose; they differ when the chosen solver could not
-    run or failed and λ's guess stands in (the reason then says so).
-    """
-
-    rung: fid.Rung
-    reason: str
-    chosen: fid.Rung
-    forced: bool = False
-
-    def as_dict(self) -> dict[str, Any]:
-        return {
-            "question": "mode",
-            "rung": self.rung,
-            "reason": self.reason,
-            "chosen": self.chosen,
-            "forced": self.forced,
-            "model": fid.RUNG_INFO[self.rung].model,
-        }
 
 
 @dataclass
 class SetCheck:
-    """Check outcome of one actuator set."""
+    """Check outcome of one actuator set (``periodic`` is the exact orbit)."""
 
     derivation: SetDerivation
     rules: list[RuleResult]
     periodic: Any | None = None
-    simulated_because: str = ""
     vertical: Any | None = None
-    fidelity: ModeFidelity | None = None
-    mode_answer: fid.Answer | None = None
+    settling: Any | None = None
+    margin: dict[str, str | None] | None = None
+
+    @property
+    def mode(self) -> str | None:
+        """Exact mode: "push", "pull", "stalled", or None when no orbit was found."""
+        return orbit_mode(self.periodic)
 
     @property
     def mode_predicted(self) -> str:
-        p, a = self.periodic, self.mode_answer
-        if p is not None and getattr(p, "success", False):
-            return "push" if float(p.delta_s) > 0 else "pull"
-        if a is not None and a.success and a.mode in ("push", "pull"):
-            return str(a.mode)
+        """The mode the check reports: the exact one, "unknown" without an orbit."""
+        return self.mode or "unknown"
+
+    @property
+    def lambda_mode(self) -> str:
+        """The paper's λ prediction (shown beside the exact mode, never decisive)."""
         return self.derivation.mode_predicted
 
     @property
-    def mode_source(self) -> str:
-        """ "simulation" when a solver rung decided the mode, else "lambda"."""
-        rung = self.fidelity.rung if self.fidelity is not None else None
-        if rung is None:  # built by hand: infer from the results
-            p = self.periodic
-            return "simulation" if p is not None and getattr(p, "success", False) else "lambda"
-        return "lambda" if rung == "lambda" else "simulation"
+    def speed_m_s(self) -> float | None:
+        """Speed the speed rule reports [m/s] (signed along the impact direction)."""
+        r = next((r for r in self.rules if r.id == "speed"), None)
+        return None if r is None else r.value
 
 
 @dataclass
@@ -99,7 +83,7 @@ class CheckResult:
     derivation: DeviceDerivation
     sets: list[SetCheck]
     rules: list[RuleResult]
-    notes: list[str]
+    notes: list[str] = field(default_factory=list)
     source_file: str = ""
 
     @property
@@ -107,9 +91,7 @@ class CheckResult:
         return verdict(self.rules)
 
     def as_dict(self) -> dict[str, Any]:
-        """The JSON contract of ``betv check --json`` (issue 2): top-level ``params``,
-        ``derived`` and ``mode_predicted`` describe the first actuator set; ``sets``
-        has every set in full, with its derivation record."""
+        """The JSON contract of ``betv check --json`` for one device."""
         sets = [_set_dict(sc) for sc in self.sets]
         first = sets[0]
         return {
@@ -118,177 +100,15 @@ class CheckResult:
             "params": first["params"],
             "derived": first["derived"],
             "mode_predicted": first["mode_predicted"],
-            "fidelity": first["fidelity"],
             "rules": [r.as_dict() for r in self.rules],
             "verdict": self.verdict,
             "notes": list(self.notes),
             "sets": sets,
         }
 
-
-def load_solver() -> Any | None:
-    """The exact solver's ``periodic_orbit`` or None while it is not available (lazy import)."""
-    try:
-        from betvdesign.dynamics import periodic_orbit  # type: ignore[attr-defined]
-    except ImportError:
-        return None
-    return periodic_orbit
-
-
-def load_vertical() -> Any | None:
-    """The exact vertical-motion fast path ``dynamics.vertical_motion`` or None."""
-    try:
-        from betvdesign.dynamics import vertical_motion  # type: ignore[attr-defined]
-    except ImportError:
-        return None
-    return vertical_motion
-
-
-def _vertical(fn: Any, varpi: float) -> Any:
-    try:
-        return fn(varpi)
-    except Exception as exc:  # reported in the window rule, never a crash
-        return SolverFailure(f"{type(exc).__name__}: {exc}")
-
-
-def check_derivation(
-    derivation: DeviceDerivation,
-    *,
-    simulate: SimulateWhen = "auto",
-    lambda_margin: float = DEFAULT_LAMBDA_MARGIN,
-    solver: Any | None = None,
-    fidelity: fid.Rung | None = None,
-    vertical: Callable[[float], Any] | None = None,
-    simulate_reason: str = "requested (--simulate)",
-) -> CheckResult:
-    """Evaluate every rule of a device ("Model no more than a scene needs").
-
-    simulate: "never" closed form only; "always" run the exact periodic orbit for
-    every set (``simulate_reason`` says why); "auto" (default) run it only where the
-    closed form cannot decide (:func:`betvdesign.rules.undecided_reasons`: λ within
-    the margin of 1, parameters outside the λ fit range, or a rung other than λ chosen
-    by :func:`betvdesign.fidelity.choose_rung`) and the solver exists.
-    fidelity: force the rung that decides the mode ("lambda", "rigid", "full",
-    "periodic"; ``betv check --fidelity``). ``solver`` overrides the lazily imported
-    ``periodic_orbit``; ``vertical`` the lazily imported ``vertical_motion`` (ϖ ->
-    result, or None to leave it out). Raises :class:`~betvdesign.errors.UsageError`
-    for an unknown rung, a rung that cannot tell the mode, a rung contradicting
-    ``simulate``, or a periodic orbit required without a solver.
-    """
-    if fidelity is not None:
-        fid.choose_rung(derivation.sets[0].params, "mode", force=fidelity)  # validates
-        clash = {"always": ("periodic", "--simulate"), "never": ("lambda", "--closed-form-only")}
-        if simulate in clash and fidelity != clash[simulate][0]:
-            raise UsageError(f"--fidelity {fidelity} contradicts {clash[simulate][1]}")
-    needs_orbit = simulate == "always" or fidelity == "periodic"
-    if solver is None and (needs_orbit or (simulate == "auto" and fidelity is None)):
-        solver = load_solver()
-    if needs_orbit and solver is None:
-        raise UsageError(
-            "--simulate needs the exact solver (betvdesign.dynamics.periodic_orbit), which is "
-            "not available in this installation yet; run `betv check` without --simulate"
-        )
-    notes: list[str] = []
-    periodic: dict[str, Any] = {}
-    answers: dict[str, fid.Answer] = {}
-    why: dict[str, str] = {}
-    used: dict[str, ModeFidelity] = {}
-    solved: dict[Any, Any] = {}
-    for s in derivation.sets:
-        reasons = undecided_reasons(s, lambda_margin=lambda_margin)
-        cannot = f"the closed form cannot decide ({'; '.join(reasons)})"
-        if fidelity is not None:
-            choice = fid.choose_rung(s.params, "mode", force=fidelity)
-            if fidelity == "lambda" and reasons:
-                notes.append(f"set {s.name}: --fidelity lambda forced although {cannot}")
-            elif fidelity == "rigid":
-                est = fid.rigid_error_estimate(s.params.alpha)
-                notes.append(
-                    f"set {s.name}: --fidelity rigid: measured bound on the α → 0 limit's "
-                    f"relative Δs error at α = {s.params.alpha:.3g}: {est:.2g}; its mode is "
-                    "always pull (MODEL.md)"
-                )
-        elif simulate == "always":
-            choice = fid.Choice("periodic", "mode", simulate_reason, forced=True)
-        elif reasons:
-            because = "the closed form cannot decide: " + "; ".join(reasons)
-            choice = fid.Choice("periodic", "mode", because)
-        else:
-            choice = fid.choose_rung(s.params, "mode")  # the λ rung, with its measured reason
-        used[s.name] = ModeFidelity(choice.rung, choice.reason, choice.rung, choice.forced)
-        if choice.rung == "lambda":
-            continue
-        if choice.rung != "periodic":  # rigid or full, forced
-            key = (s.params, choice.rung)
-            if key not in solved:
-                solved[key] = fid.evaluate(s.params, choice)
-            answers[s.name] = ans = solved[key]
-            if not (ans.success and ans.mode in ("push", "pull")):
-                used[s.name] = _fallback(choice, f"the {choice.rung} rung gave no mode")
-            continue
-        if simulate == "never":
-            notes.append(f"set {s.name}: {cannot}; run with --simulate")
-            used[s.name] = _fallback(choice, "--closed-form-only")
-            continue
-        if solver is None:
-            notes.append(
-                f"set {s.name}: {cannot}; the exact solver is not available yet, so the "
-                "mode is λ's guess"
-            )
-            used[s.name] = _fallback(choice, "the exact solver is not available")
-            continue
-        why[s.name] = choice.reason
-        if s.params in solved:  # mirrored sets share parameters: solve once
-            periodic[s.name] = solved[s.params]
-            notes.append(f"set {s.name}: same parameters as an already solved set, reused")
-        else:
-            periodic[s.name] = solved[s.params] = _run_solver(solver, s)
-            notes.append(f"set {s.name}: ran the exact solver ({why[s.name]})")
-        if not getattr(periodic[s.name], "success", False):
-            unbounded = getattr(periodic[s.name], "status", "") == "unbounded"
-            what = (
-                "no periodic orbit exists (the head's tangential motion grows without bound)"
-                if unbounded
-                else "the periodic orbit was not found"
-            )
-            used[s.name] = _fallback(choice, what)
-    vertical_of: dict[str, Any] = {}
-    vm = vertical if vertical is not None else (load_vertical() if simulate != "never" else None)
-    if vm is not None:  # cheap (closed-form vertical schedule): quoted by the window rule
-        for s in derivation.sets:
-            v = _vertical(vm, s.params.varpi)
-            if v is not None:
-                vertical_of[s.name] = v
-    rules = evaluate_device(
-        derivation,
-        lambda_margin=lambda_margin,
-        periodic=periodic,
-        vertical=vertical_of,
-        mode_answers=answers,
-    )
-    sets = [
-        SetCheck(
-            s,
-            [r for r in rules if r.set_name == s.name],
-            periodic.get(s.name),
-            why.get(s.name, ""),
-            vertical_of.get(s.name),
-            used[s.name],
-            answers.get(s.name),
-        )
-        for s in derivation.sets
-    ]
-    return CheckResult(derivation, sets, rules, notes)
-
-
-def _fallback(choice: fid.Choice, what: str) -> ModeFidelity:
-    """λ stands in for the chosen rung, which could not answer (``what``)."""
-    return ModeFidelity(
-        "lambda",
-        f"{what}: λ's guess stands in for the {choice.rung} rung ({choice.reason})",
-        choice.rung,
-        choice.forced,
-    )
+    def __repr__(self) -> str:
+        modes = ", ".join(f"{sc.derivation.name}: {sc.mode_predicted}" for sc in self.sets)
+        return f"<CheckResult {self.derivation.name!r}: {self.verdict.upper()} ({modes})>"
 
 
 @dataclass
@@ -297,27 +117,135 @@ class SolverFailure:
 
     message: str
     success: bool = False
-    status: int = -1
+    status: str = "failed"
     delta_s: float = math.nan
     mode: str = ""
 
 
-def _run_solver(solver: Any, s: SetDerivation) -> Any:
+def load_solver() -> Callable[[ModelParams], Any]:
+    """The exact solver's ``periodic_orbit`` (imported lazily)."""
+    from betvdesign.dynamics import periodic_orbit
+
+    return periodic_orbit
+
+
+def load_vertical() -> Callable[[float], Any]:
+    """The exact vertical-motion fast path ``dynamics.vertical_motion`` (lazy import)."""
+    from betvdesign.dynamics import vertical_motion
+
+    return vertical_motion
+
+
+def _guarded(fn: Callable[[Any], Any], arg: Any) -> Any:
     try:
-        return solver(s.params)
-    except Exception as exc:  # a failing solver must not crash the check; reported as a rule
+        return fn(arg)
+    except Exception as exc:  # a failing solver must not crash the check: a failed rule
         return SolverFailure(f"{type(exc).__name__}: {exc}")
+
+
+def corner_params(p: ModelParams) -> dict[str, ModelParams]:
+    """The perturbed parameter sets of the mode-margin rule, by label."""
+    out = {}
+    for fw, fa in MARGIN_CORNERS:
+        label = f"ϖ×{fw:g}" if fa == 1.0 else f"α×{fa:g}"
+        out[label] = ModelParams(p.varpi * fw, p.alpha * fa, p.beta, p.kappa)
+    return out
+
+
+def check_derivation(
+    derivation: DeviceDerivation,
+    *,
+    solver: Callable[[ModelParams], Any] | None = None,
+    vertical: Callable[[float], Any] | None = None,
+    margin: bool = True,
+    settle: bool = True,
+    target_speed_m_s: float | None = None,
+) -> CheckResult:
+    """Check every actuator set with its exact orbit (see the module docstring).
+
+    solver / vertical: override ``dynamics.periodic_orbit`` / ``dynamics.vertical_motion``
+    (tests, studies); margin: run the mode-margin corners; settle: run the transient
+    from rest; target_speed_m_s: a required speed [m/s] (adds the error rule
+    ``target-speed``).
+    """
+    solver = solver or load_solver()
+    vertical = vertical or load_vertical()
+    solved: dict[ModelParams, Any] = {}
+
+    def orbit(p: ModelParams) -> Any:
+        if p not in solved:
+            solved[p] = _guarded(solver, p)
+        return solved[p]
+
+    notes: list[str] = []
+    orbits, verticals, settlings, margins = {}, {}, {}, {}
+    settled: dict[Any, Any] = {}
+    vert_of: dict[float, Any] = {}
+    for s in derivation.sets:
+        p = s.params
+        seen = p in solved
+        orbits[s.name] = po = orbit(p)
+        if seen:
+            notes.append(f"set {s.name}: same parameters as an already solved set, reused")
+        if p.varpi not in vert_of:
+            vert_of[p.varpi] = _guarded(vertical, p.varpi)
+        if vert_of[p.varpi] is not None:
+            verticals[s.name] = vert_of[p.varpi]
+        if margin and orbit_mode(po) in ("push", "pull"):
+            margins[s.name] = {k: orbit_mode(orbit(q)) for k, q in corner_params(p).items()}
+        if settle and orbit_mode(po) in ("push", "pull"):
+            key = (p, s.travel_range_m / s.scales.length_m)
+            if key not in settled:
+                settled[key] = _settling(p, po, key[1])
+            settlings[s.name] = settled[key]
+    rules = evaluate_device(
+        derivation,
+        orbits=orbits,
+        vertical=verticals,
+        settling=settlings,
+        margins=margins if margin else None,
+        target_speed_m_s=target_speed_m_s,
+    )
+    sets = [
+        SetCheck(
+            s,
+            [r for r in rules if r.set_name == s.name],
+            orbits.get(s.name),
+            verticals.get(s.name),
+            settlings.get(s.name),
+            margins.get(s.name),
+        )
+        for s in derivation.sets
+    ]
+    return CheckResult(derivation, sets, rules, notes)
+
+
+def _settling(p: ModelParams, po: Any, travel_s: float) -> Any:
+    from betvdesign.studies.settling import settling
+
+    moduli = getattr(po, "floquet_moduli", None)
+    try:
+        return settling(
+            p,
+            float(po.delta_s),
+            period_cycles=int(getattr(po, "period_cycles", 1) or 1),
+            travel_s=travel_s,
+            mu_max=max(moduli) if moduli else None,
+        )
+    except Exception as exc:  # reported, never a crash
+        return SolverFailure(f"settling: {type(exc).__name__}: {exc}")
 
 
 def _set_dict(sc: SetCheck) -> dict[str, Any]:
     s = sc.derivation
     params = {**s.params.as_dict(), "lambda": s.lam}
     derived = s.derived()
-    speed = next((r for r in sc.rules if r.id == "speed" and r.value is not None), None)
-    if speed is not None and speed.passed:
-        derived["speed"] = format_speed(speed.value)
-        derived["time_to_cross"] = format_time(s.travel_range_m / abs(speed.value))
+    v = sc.speed_m_s
+    if v is not None and v != 0:
+        derived["speed"] = format_speed(abs(v))
+        derived["time_to_cross"] = format_time(s.travel_range_m / abs(v))
     p = sc.periodic
+    st = sc.settling
     return {
         "name": s.name,
         "intended_mode": s.intended_mode,
@@ -325,11 +253,13 @@ def _set_dict(sc: SetCheck) -> dict[str, Any]:
         "params": params,
         "derived": derived,
         "mode_predicted": sc.mode_predicted,
-        "mode_source": sc.mode_source,
-        "fidelity": None if sc.fidelity is None else sc.fidelity.as_dict(),
-        "simulated": p is not None,
-        "simulated_because": sc.simulated_because,
+        "mode_source": "exact periodic orbit",
+        "lambda_mode": sc.lambda_mode,
+        "lambda_agrees": sc.mode in (None, "stalled") or sc.mode == sc.lambda_mode,
+        "speed_m_s": v,
         "simulation": None if p is None else simulation_summary(p),
+        "settling": None if st is None or not hasattr(st, "as_dict") else st.as_dict(),
+        "margin": sc.margin,
         "vertical": None if sc.vertical is None else _vertical_summary(sc.vertical),
         "published_fit": [
             {
@@ -361,6 +291,7 @@ def simulation_summary(p: Any) -> dict[str, Any]:
         "status": str(getattr(p, "status", "")),
         "success": bool(getattr(p, "success", False)),
         "message": str(getattr(p, "message", "")),
+        "mode": mode_of(getattr(p, "delta_s", None)) if getattr(p, "success", False) else None,
     }
     for name in ("delta_s", "residual", "impacts_per_cycle", "contact_fraction", "elapsed_s"):
         if hasattr(p, name):
@@ -369,8 +300,9 @@ def simulation_summary(p: Any) -> dict[str, Any]:
         v = getattr(p, name, None)
         if v is not None:
             out[name] = int(v)
-    if getattr(p, "stable", None) is not None:
-        out["stable"] = bool(p.stable)
+    moduli = getattr(p, "floquet_moduli", None)
+    if moduli:
+        out["mu_max"] = float(max(moduli))
     return out
 
 

@@ -16,10 +16,10 @@ version.
 
 from __future__ import annotations
 
+import difflib
 import html
 import json
 import math
-import re
 import textwrap
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
@@ -27,14 +27,18 @@ from typing import Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Field
 
-from betvdesign.errors import UsageError
 from betvdesign.rules import RuleResult
 from betvdesign.siformat import format_dimensionless as fmt_x
 from betvdesign.siformat import format_si, si_key
 
 JSON_SCHEMA_VERSION = 1
-#: SI unit of a rule's ``value`` where it is not dimensionless.
-RULE_VALUE_UNITS: dict[str, str] = {"speed": "m/s"}
+
+
+def rule_unit(r: Any) -> str:
+    """SI unit of a rule's ``value`` ("" when dimensionless): the rule's own ``unit``."""
+    return str(getattr(r, "unit", "") or "")
+
+
 #: Record symbols reported as SI floats: (record symbol, JSON name, SI unit).
 _DERIVED_SI: tuple[tuple[str, str, str], ...] = (
     ("M", "slider_mass", "kg"),
@@ -71,12 +75,18 @@ class RuleOut(_Out):
 
 
 class LambdaOut(_Out):
-    """The paper's λ criterion beside the exact answer."""
+    """The paper's λ criterion beside the exact answer (never decisive)."""
 
     value: float
     predicts: Literal["push", "pull"]
-    margin: float = Field(description="|λ − 1|")
-    margin_required: float | None = Field(description="|λ − 1| the lambda-margin rule asks")
+    agrees: bool | None = Field(description="λ's mode equals the exact one (None: no mode)")
+
+
+class MarginOut(_Out):
+    """Does the exact mode survive fabrication spread (rule mode-margin)?"""
+
+    holds: bool | None = Field(description="same mode at every corner (None: not computed)")
+    corners: dict[str, str | None] = Field(description="exact mode at each perturbed corner")
 
 
 class SetOut(_Out):
@@ -85,16 +95,19 @@ class SetOut(_Out):
     name: str
     intended_mode: Literal["push", "pull"]
     impact_direction: Literal["+x", "-x"]
-    mode: str = Field(description="push or pull (the mode the check decided)")
-    mode_source: str = Field(description="'exact periodic orbit' or 'lambda'")
+    mode: str = Field(description="push, pull, stalled or unknown (from the exact orbit)")
     passed: bool = Field(description="every error-severity rule of the set passes")
     delta_s: float | None = Field(description="periodic slider increment per cycle [-]")
-    speed_m_s: float | None = Field(description="mean slider speed magnitude [m/s]")
+    speed_m_s: float | None = Field(
+        description="mean slider speed magnitude [m/s] (the speed rule's: periodic, or "
+        "from rest over the travel range when it has not settled by then)"
+    )
     travel_direction: Literal["+x", "-x"] | None
     time_to_cross_s: float | None = Field(description="time to cross travel_range_m [s]")
     travel_range_m: float
     params: dict[str, float] = Field(description="varpi, alpha, beta, kappa [-]")
     lambda_: LambdaOut = Field(alias="lambda")
+    margin: MarginOut
     derived: dict[str, float] = Field(description="SI floats, unit-named keys (f_act_hz, ...)")
     rules: list[RuleOut]
 
@@ -147,23 +160,28 @@ class RuleFilter:
     ignore: tuple[str, ...] = ()
 
     def keeps(self, rule_id: str) -> bool:
-        def hit(sel: str) -> bool:
-            return rule_id == sel or rule_id.startswith(sel + ".")
-
-        if self.select and not any(hit(s) for s in self.select):
+        if self.select and not any(self._hit(rule_id, s) for s in self.select):
             return False
-        return not any(hit(s) for s in self.ignore)
+        return not any(self._hit(rule_id, s) for s in self.ignore)
 
-    def validate(self, results: Sequence[Any]) -> None:
-        """Raise :class:`UsageError` for a selector that matches no rule of ``results``."""
+    def unmatched(self, results: Sequence[Any]) -> list[str]:
+        """A warning per selector that matches no rule of ``results`` (a typo, or a rule
+        these devices do not have, e.g. published-fit without a published fit), with the
+        closest rule id."""
         ids = sorted({r.id for res in results for r in res.rules})
-        known = set(ids) | {i.split(".")[0] for i in ids}
+        known = sorted(set(ids) | {i.split(".")[0] for i in ids})
+        out = []
         for opt, sels in (("--select", self.select), ("--ignore", self.ignore)):
             for s in sels:
-                if s not in known:
-                    raise UsageError(
-                        f"{opt} {s}: no such rule; rules are: {', '.join(sorted(known))}"
-                    )
+                if not any(self._hit(i, s) for i in ids):
+                    close = difflib.get_close_matches(s, known, n=1)
+                    hint = f"; did you mean {close[0]!r}?" if close else ""
+                    out.append(f"{opt} {s}: matches no rule of these devices{hint}")
+        return out
+
+    @staticmethod
+    def _hit(rule_id: str, sel: str) -> bool:
+        return rule_id == sel or rule_id.startswith(sel + ".")
 
 
 # --- the view of one device ---------------------------------------------------------------
@@ -234,7 +252,7 @@ def _rule_out(r: RuleResult) -> RuleOut:
         severity=r.severity,
         passed=r.passed,
         value=None if v is None or not math.isfinite(v) else float(v),
-        value_unit=RULE_VALUE_UNITS.get(r.id, ""),
+        value_unit=rule_unit(r),
         threshold=r.threshold,
         message=r.message,
         fix=str(getattr(r, "fix", "") or ""),
@@ -243,26 +261,29 @@ def _rule_out(r: RuleResult) -> RuleOut:
 
 
 def set_motion(sc: Any) -> tuple[float | None, float | None, str | None]:
-    """(Δs [-], speed magnitude [m/s], travel direction) from the set's periodic orbit,
-    or Nones when there is none."""
+    """(Δs [-], speed magnitude [m/s], travel direction) of a set: Δs of its exact periodic
+    orbit, the speed its speed rule reports; Nones where there is none."""
     p = sc.periodic
-    if p is None or not getattr(p, "success", False):
-        return None, None, None
-    ds = float(p.delta_s)
-    if not math.isfinite(ds):
-        return None, None, None
-    s = sc.derivation
-    v = abs(s.scales.speed_m_s(ds))
-    direction = "+x" if s.impact_sign * (1 if ds > 0 else -1) > 0 else "-x"
-    return ds, v, direction
+    ds = None
+    if p is not None and getattr(p, "success", False) and p.delta_s is not None:
+        ds = float(p.delta_s) if math.isfinite(float(p.delta_s)) else None
+    v = getattr(sc, "speed_m_s", None)
+    if v is None or not math.isfinite(v) or v == 0.0:
+        return ds, (0.0 if v == 0.0 else None), None
+    direction = "+x" if sc.derivation.impact_sign * (1 if v > 0 else -1) > 0 else "-x"
+    return ds, abs(float(v)), direction
 
 
-def _required_margin(sc: Any) -> float | None:
-    r = next((r for r in sc.rules if r.id == "lambda-margin"), None)
+def _margin(sc: Any) -> tuple[bool | None, str]:
+    """(holds, short text) of the set's mode-margin rule."""
+    r = next((r for r in sc.rules if r.id == "mode-margin"), None)
     if r is None:
-        return None
-    m = re.search(r">=\s*([-+0-9.eE]+)", r.threshold)
-    return float(m.group(1)) if m else None
+        return None, "margin not computed"
+    if r.passed:
+        return True, "mode holds at ϖ ±5 %, α ±10 %"
+    flips = r.value if r.value is not None and math.isfinite(r.value) else None
+    n = f"{flips:g} of 4 corners" if flips is not None else "some corners"
+    return False, f"mode flips at {n} of ϖ ±5 %, α ±10 %!"
 
 
 def _set_out(sc: Any, flt: RuleFilter) -> SetOut:
@@ -277,12 +298,14 @@ def _set_out(sc: Any, flt: RuleFilter) -> SetOut:
         derived[si_key(name, unit)] = float(q.to(unit).magnitude)
     rules = [r for r in sc.rules if flt.keeps(r.id)]
     p = s.params
+    lam_mode = "push" if s.lam < 1.0 else "pull"
+    exact = sc.mode_predicted
+    holds, _ = _margin(sc)
     return SetOut(
         name=s.name,
         intended_mode=s.intended_mode,
         impact_direction=s.actuator_set.impact_direction,
-        mode=sc.mode_predicted,
-        mode_source="exact periodic orbit" if ds is not None else sc.mode_source,
+        mode=exact,
         passed=not any(r.severity == "error" and not r.passed for r in rules),
         delta_s=ds,
         speed_m_s=v,
@@ -293,11 +316,11 @@ def _set_out(sc: Any, flt: RuleFilter) -> SetOut:
         **{
             "lambda": LambdaOut(
                 value=s.lam,
-                predicts="push" if s.lam < 1.0 else "pull",
-                margin=abs(s.lam - 1.0),
-                margin_required=_required_margin(sc),
+                predicts=lam_mode,
+                agrees=(lam_mode == exact) if exact in ("push", "pull") else None,
             )
         },
+        margin=MarginOut(holds=holds, corners=dict(getattr(sc, "margin", None) or {})),
         derived=derived,
         rules=[_rule_out(r) for r in rules],
     )
@@ -309,31 +332,30 @@ _TAG = {"error": ("FAIL", "bold red"), "warning": ("warn", "yellow"), "info": ("
 
 
 def set_headline(sc: Any) -> tuple[str, str]:
-    """Two short lines for a set: mode and speed; parameters and margin (plain text)."""
+    """Two short lines for a set: mode, speed and margin; drive and parameters (plain)."""
     s = sc.derivation
     p = s.params
-    ds, v, direction = set_motion(sc)
+    _, v, direction = set_motion(sc)
     mode = sc.mode_predicted
-    agree = "as intended" if mode == s.intended_mode else f"instead of {s.intended_mode}"
-    src = "exact orbit" if ds is not None else "λ only"
-    if v is not None:
-        cross = format_si(s.travel_range_m / v, "s") if v > 0 else "never"
+    if mode in ("push", "pull"):
+        agree = "as intended" if mode == s.intended_mode else f"instead of {s.intended_mode}"
+        head = f"{mode} {agree}"
+    else:
+        head = f"{mode} (intended {s.intended_mode})"
+    if v:
         motion = (
             f"{format_si(v, 'm/s')} toward {direction}, "
-            f"{format_si(s.travel_range_m, 'm')} in {cross}"
+            f"{format_si(s.travel_range_m, 'm')} in {format_si(s.travel_range_m / v, 's')}"
         )
     else:
-        motion = "speed needs the exact orbit (--simulate)"
-    line1 = f"{mode} {agree} ({src}), {motion}"
-    need = _required_margin(sc)
-    d = abs(s.lam - 1.0)
-    margin = f"margin |λ−1| {fmt_x(d)}" + (
-        "" if need is None else (f" ≥ {fmt_x(need)}" if d >= need else f" < {fmt_x(need)}!")
-    )
+        motion = "the slider does not move" if v == 0.0 else "no speed (no exact orbit)"
+    line1 = f"{head}, {motion}; {_margin(sc)[1]}"
+    lam_mode = "push" if s.lam < 1.0 else "pull"
+    word = "" if mode not in ("push", "pull") else (" agrees" if lam_mode == mode else " disagrees")
     line2 = (
         f"f_act {format_si(s.scales.f_act_hz, 'Hz')}, u {format_si(s.scales.u_m, 'm')} | "
         f"ϖ {fmt_x(p.varpi)} α {fmt_x(p.alpha)} β {fmt_x(p.beta)} κ {fmt_x(p.kappa)} | "
-        f"λ {fmt_x(s.lam)}, {margin}"
+        f"λ {fmt_x(s.lam)} → {lam_mode}{word}"
     )
     return line1, line2
 

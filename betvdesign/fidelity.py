@@ -3,7 +3,8 @@
 Rungs, cheapest first (docs/MODEL.md sections in brackets):
 
 1. ``lambda``   closed-form λ rule ["Push/pull criterion"]: mode only, an empirical
-   fit, trustworthy only away from λ = 1 and inside the window and fit range;
+   fit; only ever used when forced (``--fidelity lambda`` on sweeps and tolerance
+   studies), and then its held-out error rate is stated;
 2. ``vertical`` vertical-only impact map ["Vertical motion"]: hits per cycle, contact
    fraction, regime; exact, because the head's vertical motion ignores the slider;
 3. ``rigid``    α → 0 rigid tangential contact (:mod:`betvdesign.dynamics.rigid`):
@@ -16,19 +17,26 @@ Rungs, cheapest first (docs/MODEL.md sections in brackets):
 
 :func:`choose_rung` picks the cheapest rung that answers a question to the accuracy
 asked and returns the reason; ``force=`` (the CLI's ``--fidelity``) overrides it, and
-is refused when the forced rung cannot answer the question at all. The trust limits
-used (how far from λ = 1 the λ rule never mispredicted, how the rigid limit's error
-grows with α, what each rung costs) are *measured* by ``benchmarks/work_precision.py
---ladder`` and stored in :mod:`betvdesign.fidelity_measured`.
+is refused when the forced rung cannot answer the question at all. A *mode* is never
+chosen from a fit: the question "mode" is always answered by the periodic orbit
+(about 1 ms). What the ladder states about the cheaper rungs (the λ fit's
+misprediction rate on a held-out random sample with its 95 % bound, the rigid limit's
+error envelope over α, indicative costs) is *measured* by
+``benchmarks/work_precision.py --ladder`` and stored as package data
+``betvdesign/data/fidelity_measured.json`` with its provenance; :func:`stale` says
+when the stored numbers no longer match the solver.
 """
 
 from __future__ import annotations
 
+import functools
+import json
 import math
 import time
 from dataclasses import dataclass, field
 from typing import Any, Literal
 
+from betvdesign import domain
 from betvdesign.errors import UsageError
 from betvdesign.params import ModelParams
 
@@ -39,8 +47,7 @@ Question = Literal["mode", "regime", "delta_s", "transient", "stability"]
 RUNGS: tuple[Rung, ...] = ("lambda", "vertical", "rigid", "full", "periodic")
 QUESTIONS: tuple[Question, ...] = ("mode", "regime", "delta_s", "transient", "stability")
 
-#: Design window of the frequency (docs/MODEL.md "Vertical motion").
-WINDOW = (0.5, 2.0)
+WINDOW = domain.VARPI_WINDOW
 
 
 @dataclass(frozen=True)
@@ -126,51 +133,64 @@ class Answer:
     extra: dict[str, Any] = field(default_factory=dict)
 
 
+MEASURED_DATA = "data/fidelity_measured.json"
+
+
+@functools.lru_cache(maxsize=1)
+def measured_document() -> dict[str, Any]:
+    """The stored measurements with their provenance (package data, JSON)."""
+    from importlib.resources import files
+
+    text = files("betvdesign").joinpath(MEASURED_DATA).read_text("utf-8")
+    return json.loads(text)
+
+
 def _measured() -> dict[str, Any]:
-    from betvdesign import fidelity_measured
-
-    return fidelity_measured.MEASURED
+    return measured_document()["measured"]
 
 
-def _bin(x: float, edges: list[float]) -> int | None:
-    for i in range(len(edges) - 1):
-        last = i == len(edges) - 2
-        if edges[i] * (1 - 1e-9) <= x < edges[i + 1] or (last and x <= edges[i + 1] * (1 + 1e-9)):
-            return i
-    return None
+def lambda_error() -> dict[str, Any]:
+    """The λ rule's measured misprediction rate on the held-out random sample:
+    ``{"n", "mispredicted", "rate", "upper_95", "bands"}`` (one-sided 95 %
+    Clopper–Pearson bound; per |λ − 1| band too)."""
+    h = _measured()["lambda"]["held_out"]
+    return {
+        "n": h["converged"],
+        "mispredicted": h["mispredicted"],
+        "rate": h["rate"],
+        "upper_95": h["upper_95"],
+        "bands": h["bands"],
+    }
 
 
-def lambda_trust_margin(varpi: float, beta: float) -> float:
-    """|λ − 1| beyond which the λ rule is trusted at this (ϖ, β) [-]; inf: never.
+def lambda_error_statement() -> str:
+    """One sentence a study prints when it answers "mode" with λ."""
+    e = lambda_error()
+    return (
+        f"the λ fit named the wrong mode for {e['mispredicted']} of {e['n']} held-out random "
+        f"designs ({100 * e['rate']:.2f} %, ≤ {100 * e['upper_95']:.2f} % at 95 % confidence)"
+    )
 
-    Measured (``benchmarks/work_precision.py --ladder``): the largest |λ − 1| at which
-    the rule mispredicted, on the push/pull map and on a seeded random off-grid sample,
-    per (ϖ, β) bin, times a safety factor; never below the same quantity taken over
-    all mispredictions within |λ − 1| < 0.5 (the boundary band everywhere).
-    Outside the measured bins: inf.
-    """
-    lam = _measured()["lambda"]
-    i, j = _bin(varpi, lam["varpi_bins"]), _bin(beta, lam["beta_bins"])
-    if i is None or j is None:
-        return math.inf
-    every = lam["mispredictions"] + lam["sample"]["mispredictions"]
-    near = [abs(m["lam"] - 1.0) for m in every if abs(m["lam"] - 1.0) < 0.5]
-    floor = lam["safety"] * max(near, default=0.0)
-    return float(max(lam["trust_table"][i][j], floor))
+
+def stale(rtol: float = 1e-9) -> list[str]:
+    """Why the stored measurements no longer describe the current solver ([] if they do):
+    the periodic Δs of the fingerprint designs recomputed now against the stored ones."""
+    from betvdesign import dynamics
+
+    out = []
+    for f in _measured().get("fingerprint", []):
+        p = ModelParams(f["varpi"], f["alpha"], f["beta"], f["kappa"])
+        now = dynamics.periodic_orbit(p).delta_s
+        old = f["delta_s"]
+        if now is None or old is None or abs(now - old) > rtol * max(abs(old), 1e-300):
+            out.append(f"Δs at {p.as_dict()}: stored {old}, now {now}")
+    return out
 
 
 def rigid_error_estimate(alpha: float) -> float:
     """Measured bound on the rigid limit's relative Δs error at this α [-]."""
     fit = _measured()["rigid"]
     return float(fit["coef"] * alpha ** fit["power"])
-
-
-def _in_fit_range(p: ModelParams) -> bool:
-    from betvdesign.rules import FIT_RANGE
-
-    return all(
-        lo * (1 - 1e-9) <= getattr(p, k) <= hi * (1 + 1e-9) for k, (lo, hi) in FIT_RANGE.items()
-    )
 
 
 def choose_rung(
@@ -201,8 +221,16 @@ def choose_rung(
                 f"fidelity {force!r} ({info.model}) cannot answer {question!r}; "
                 f"use one of {', '.join(able)}"
             )
-        return Choice(force, question, f"forced by --fidelity {force} ({info.exact})", True)
-    in_window = WINDOW[0] <= p.varpi < WINDOW[1]
+        why = f"forced by --fidelity {force} ({info.exact})"
+        if force == "lambda":
+            why += f"; {lambda_error_statement()}"
+        elif force == "rigid" and question in ("mode", "delta_s"):
+            why += (
+                f"; measured relative Δs error ≤ {rigid_error_estimate(p.alpha):.2g} at "
+                f"α = {p.alpha:.3g}, and its mode is always pull"
+            )
+        return Choice(force, question, why, True)
+    in_window = domain.in_window(p.varpi)
     if question == "regime":
         return Choice("vertical", question, "the vertical motion does not depend on the slider")
     if question == "transient":
@@ -217,26 +245,11 @@ def choose_rung(
             "the rigid limit do not apply there",
         )
     if question == "mode":
-        margin = lambda_trust_margin(p.varpi, p.beta)
-        dist = abs(p.lam - 1.0)
-        if not _in_fit_range(p) or math.isinf(margin):
-            return Choice(
-                "periodic", question, "parameters outside the λ fit range / the measured map"
-            )
-        if dist >= margin:
-            return Choice(
-                "lambda",
-                question,
-                f"|λ − 1| = {dist:.3g} ≥ {margin:.3g}: beyond the largest misprediction "
-                f"distance measured near ϖ = {p.varpi:.3g}, β = {p.beta:.3g} (push/pull map "
-                "and random sample, with a safety factor)",
-            )
         return Choice(
             "periodic",
             question,
-            f"|λ − 1| = {dist:.3g} < {margin:.3g}: the λ rule was measured to mispredict "
-            f"this far from λ = 1 near ϖ = {p.varpi:.3g}, β = {p.beta:.3g}, so the periodic "
-            "orbit decides",
+            "a mode is only ever taken from the exact periodic orbit (≈ 1 ms); the λ fit "
+            f"is a prediction ({lambda_error_statement()}), never a verdict",
         )
     # delta_s
     est = rigid_error_estimate(p.alpha)
@@ -264,7 +277,8 @@ def evaluate(p: ModelParams, choice: Choice, *, cycles: int = 100) -> Answer:
     if rung == "lambda":
         lam = p.lam
         mode = "push" if lam < 1.0 else "pull"
-        return Answer(choice, "success", True, f"λ = {lam:.6g}", lam, mode, _dt(t0))
+        msg = f"λ = {lam:.6g} (a fit: {lambda_error_statement()})"
+        return Answer(choice, "success", True, msg, lam, mode, _dt(t0))
     if rung == "vertical" or (q == "regime" and rung != "periodic"):
         v = dynamics.vertical_motion(p.varpi)
         value = {
@@ -280,7 +294,7 @@ def evaluate(p: ModelParams, choice: Choice, *, cycles: int = 100) -> Answer:
     if rung == "full":
         tr = dynamics.simulate(p, cycles, log_events=False)
         last = float(tr.delta_s[-1]) if len(tr.delta_s) else math.nan
-        mode = None if not tr.success or last == 0 else ("push" if last > 0 else "pull")
+        mode = domain.mode_of(last) if tr.success else None
         value = tr.s if q == "transient" else last
         msg = tr.message if q == "transient" else f"{tr.message}; Δs of the last cycle only"
         return Answer(choice, tr.status, tr.success, msg, value, mode, _dt(t0))
@@ -294,7 +308,8 @@ def evaluate(p: ModelParams, choice: Choice, *, cycles: int = 100) -> Answer:
             "contact_fraction": po.contact_fraction,
             "period_cycles": po.period_cycles,
         }
-    return Answer(choice, po.status, po.success, po.message, value, po.mode, _dt(t0))
+    mode = domain.mode_of(po.delta_s) if po.success else None
+    return Answer(choice, po.status, po.success, po.message, value, mode, _dt(t0))
 
 
 def answer(

@@ -18,36 +18,38 @@ from ruamel.yaml.comments import CommentedMap, CommentedSeq
 from ruamel.yaml.error import MarkedYAMLError, YAMLError, YAMLWarning
 from ruamel.yaml.nodes import MappingNode, Node, SequenceNode
 
+from betvdesign import limits, safeyaml
 from betvdesign.errors import Location, SpecError, SpecIssue
 from betvdesign.spec import DeviceSpec
 from betvdesign.validation import known_fields, located, message
 
 
 def load_device(path: str | Path) -> DeviceSpec:
-    """Read and validate one device file. Raises :class:`SpecError` listing every issue."""
+    """Read and validate one device file. Raises :class:`SpecError` listing every issue.
+
+    The file is read within the size limit of :mod:`betvdesign.limits` (UTF-8, with or
+    without BOM, or UTF-16 with a BOM) and checked by :func:`load_device_text`.
+    """
     path = Path(path)
-    fname = str(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise _one(fname, "file not found") from None
-    except IsADirectoryError:
-        raise _one(fname, "is a directory, expected a YAML device file") from None
-    except UnicodeDecodeError as exc:
-        raise _one(fname, f"not UTF-8 text ({exc.reason} at byte {exc.start})") from None
-    except OSError as exc:
-        raise _one(fname, f"cannot read file: {exc.strerror}") from None
-    return load_device_text(text, fname)
+    return load_device_text(safeyaml.read_text(path), str(path))
 
 
 def load_device_text(text: str, filename: str = "<string>") -> DeviceSpec:
     """Validate device YAML given as text; ``filename`` is used in messages."""
+    cap = limits.max_file_bytes()
+    if len(text) > cap:
+        raise _one(
+            filename,
+            f"text of {len(text):,} characters; the limit is {cap:,} "
+            f"(set {limits.FILE_BYTES_ENV} to raise it)",
+        )
     issues: list[SpecIssue] = []
     yaml = YAML(typ="rt")
     yaml.allow_duplicate_keys = True  # duplicates are found on the node tree, all at once
     try:
         with warnings.catch_warnings():  # a re-defined anchor is legal YAML: the last wins
             warnings.simplefilter("ignore", YAMLWarning)
+            safeyaml.check_events(text, filename)  # bounded: before composing anything
             root_node = yaml.compose(text)
             issues.extend(_duplicate_keys(root_node, filename))
             data = yaml.load(text)
@@ -59,10 +61,15 @@ def load_device_text(text: str, filename: str = "<string>") -> DeviceSpec:
         if exc.problem and exc.context and cm is not None and cm is not mark:
             problem += f" ({exc.context} at line {cm.line + 1}, column {cm.column + 1})"
         raise SpecError([*issues, SpecIssue(loc, "", f"invalid YAML: {problem}")]) from None
-    except YAMLError as exc:
-        raise SpecError(
-            [*issues, SpecIssue(Location(filename), "", f"invalid YAML: {exc}")]
-        ) from None
+    except YAMLError as exc:  # a ReaderError (control character) knows only its offset
+        pos = getattr(exc, "position", None)
+        loc = Location(filename)
+        msg = str(exc).split("\n")[0]
+        if isinstance(pos, int) and 0 <= pos <= len(text):
+            line = text.count("\n", 0, pos) + 1
+            loc = Location(filename, line, pos - (text.rfind("\n", 0, pos) + 1) + 1)
+            msg = msg.split(":")[0].strip() + " (a control character in a text file)"
+        raise SpecError([*issues, SpecIssue(loc, "", f"invalid YAML: {msg}")]) from None
 
     if data is None:
         raise _one(

@@ -1,26 +1,23 @@
 """Design rules as data: each check of a derived design gives a :class:`RuleResult`.
 
 The rules turn docs/MODEL.md, "What the model shows", into checks a designer can act
-on. They use the closed-form knowledge (design window, λ criterion and its fit range,
-tangential resonance) and, when given, the exact periodic orbit of the solver
-(``periodic``: an object with ``success``, ``message``, ``delta_s``, ``mode``), which
-decides the mode and gives the speed.
+on. **The mode and the speed always come from the exact periodic orbit** (an object
+with ``success``, ``status``, ``message``, ``delta_s``, ``period_cycles``,
+``floquet_moduli``, as :class:`betvdesign.dynamics.PeriodicResult`); the paper's λ
+fit is shown beside it ("agrees"/"disagrees"), never used for a verdict. Each failed
+rule carries a ``fix``: what to change, in the designer's quantities.
 
-Defaults (module constants, all stated in the rule messages):
+Thresholds (one home: :mod:`betvdesign.domain`, except the two below):
 
-- frequency window 0.5 ≤ ϖ < 2 (one hit per cycle, finite contact); 2 ≤ ϖ < 2.6
-  impulsive hits; ϖ ≥ 2.6 period doubling / aperiodic.
-- λ margin: |λ − 1| ≥ 0.2. λ ∝ 1/ϖ² and its leading term ∝ 1/(αϖ²), so ±5 % on
-  the resonance frequency or ±10 % on the tangential compliance (typical
-  fabrication spread) each move λ by about 10 %; 0.2 covers both together.
-  Where the mode rests on λ alone, the margin is at least the *measured* trust
-  margin of the fidelity ladder at the design's (ϖ, β)
-  (:func:`betvdesign.fidelity.lambda_trust_margin`, measured by
-  ``benchmarks/work_precision.py --ladder``): below ϖ ≈ 0.9 the λ fit was seen to
-  mispredict even at λ ≈ 4–18, so 0.2 is not enough there.
-- tangential resonance: |a·ϖ² − 1| ≥ 0.1 for a = α (free flight) and
-  a = α(1 + 1/β) (stick).
-- λ fit range: α 0.1–4, β 0.1–1.5, κ 0.1–0.4; outside it λ is an extrapolation.
+- frequency window 0.5 ≤ ϖ < 2 (one hit per cycle, finite contact);
+- mode: the intended one, |Δs| above round-off (else "stalled");
+- mode margin: the exact orbit keeps its mode at ϖ·(1 ± 5 %) and α·(1 ± 10 %)
+  (:data:`MARGIN_CORNERS`: ±5 % on the resonance frequency or ±10 % on the tangential
+  compliance is a typical fabrication spread);
+- tangential resonance |a·ϖ² − 1| ≥ 0.1 for a = α and a = α(1 + 1/β);
+- settling: from rest the slider is within 1 % of its periodic Δs before
+  :data:`SETTLE_SHARE` of the cycles that cross the travel range are spent;
+- speed ≥ the target, when one is given;
 - published fit: computed parameters within 10 % of a published value.
 """
 
@@ -30,51 +27,56 @@ import math
 from dataclasses import asdict, dataclass
 from typing import Any, Literal, Protocol
 
-from betvdesign import fidelity
+from betvdesign.domain import (
+    FIT_EDGE_RTOL,
+    FIT_RANGE,
+    TANGENTIAL_DETUNING,
+    VARPI_IMPULSIVE_END,
+    VARPI_WINDOW,
+    in_fit_range,
+    mode_of,
+    resonance_detuning,
+)
 from betvdesign.nondim import DeviceDerivation, SetDerivation
 
 Severity = Literal["error", "warning", "info"]
 
-VARPI_WINDOW = (0.5, 2.0)
-VARPI_IMPULSIVE_END = 2.6
-DEFAULT_LAMBDA_MARGIN = 0.2
-TANGENTIAL_DETUNING = 0.1
-FIT_RANGE: dict[str, tuple[float, float]] = {
-    "alpha": (0.1, 4.0),
-    "beta": (0.1, 1.5),
-    "kappa": (0.1, 0.4),
-}
 PUBLISHED_RTOL = 0.1
-#: |Δs| below this [-] counts as "the slider does not move" for speed purposes.
-DELTA_S_ZERO = 1e-9
-_FIT_TOL = 1e-9  # relative tolerance at the fit-range edges (κ = 0.4·tan45° = 0.39999...)
+#: Relative perturbations of (ϖ, α) the mode must survive (fabrication spread).
+MARGIN_CORNERS: tuple[tuple[float, float], ...] = (
+    (0.95, 1.0),
+    (1.05, 1.0),
+    (1.0, 0.9),
+    (1.0, 1.1),
+)
+#: Settling may take at most this share of the cycles that cross the travel range.
+SETTLE_SHARE = 0.25
 
 SRC_WINDOW = "MODEL.md, What the model shows: Vertical motion (Shin et al. 2004)"
-SRC_LAMBDA = "MODEL.md, Push/pull criterion (empirical fit, Shin et al. 2004)"
+SRC_LAMBDA = "MODEL.md, Push/pull criterion (empirical fit, Shin et al. 2004, eq. 9)"
 SRC_TANG = "MODEL.md, What the model shows: tangential vibration undamped off contact"
 SRC_SPEED = "MODEL.md, Displacement per cycle: speed = Δs·u·cosθ·f_act"
 SRC_PUBLISHED = "device file: published_fit"
-SRC_SOLVER = "betvdesign.dynamics.periodic_orbit (exact event-driven solver)"
-SRC_TRUST = (
-    "λ trust margin per (ϖ, β) measured against the exact periodic orbit "
-    "(benchmarks/work_precision.py --ladder -> betvdesign/fidelity_measured.py)"
-)
+SRC_SOLVER = "betvdesign.dynamics.periodic_orbit (exact event-driven solver, shooting)"
+SRC_SETTLE = "betvdesign.studies.settling (exact transient from rest, MODEL.md: Slider)"
+SRC_MARGIN = "exact periodic orbits at ϖ·(1 ± 5 %) and α·(1 ± 10 %) (fabrication spread)"
 
 
-class PeriodicLike(Protocol):
+class OrbitLike(Protocol):
     success: bool
+    status: str
     message: str
-    delta_s: float
-    mode: str
+    delta_s: float | None
 
 
 @dataclass(frozen=True)
 class RuleResult:
     """Outcome of one design rule.
 
-    value: the number checked (None when the rule could not be evaluated);
-    threshold: the pass condition in words/maths; set_name: the actuator set
-    ("" for device-level rules).
+    value: the number checked, in ``unit`` (SI, or "" for dimensionless; None when
+    the rule could not be evaluated); threshold: the pass condition in words/maths;
+    set_name: the actuator set ("" for device-level rules); fix: what to change when
+    the rule fails ("" when it passes or no change is known).
     """
 
     id: str
@@ -85,6 +87,8 @@ class RuleResult:
     message: str
     source: str
     set_name: str = ""
+    fix: str = ""
+    unit: str = ""
 
     def as_dict(self) -> dict[str, Any]:
         d = asdict(self)
@@ -98,109 +102,81 @@ def verdict(results: list[RuleResult]) -> Literal["pass", "fail"]:
     return "fail" if any(r.severity == "error" and not r.passed for r in results) else "pass"
 
 
-# --- closed-form decidability ------------------------------------------------------------
-
-
-def undecided_reasons(
-    s: SetDerivation, *, lambda_margin: float = DEFAULT_LAMBDA_MARGIN
-) -> list[str]:
-    """Why the closed-form λ criterion cannot decide the mode ([] when it can).
-
-    λ decides only when |λ − 1| ≥ ``lambda_margin`` (fabrication spread), every
-    parameter lies in the fit range, and the fidelity ladder
-    (:func:`betvdesign.fidelity.choose_rung`, question "mode") accepts the λ rung:
-    inside the design window and beyond the measured trust margin at (ϖ, β).
-    """
-    reasons = []
-    if abs(s.lam - 1.0) < lambda_margin:
-        reasons.append(f"λ = {s.lam:.3g} lies within ±{lambda_margin:g} of 1")
-    for name, (lo, hi) in FIT_RANGE.items():
-        v = getattr(s.params, name)
-        if not _in_range(v, lo, hi):
-            reasons.append(f"{name} = {v:.3g} outside the λ fit range {lo:g}–{hi:g}")
-    if not reasons:
-        choice = fidelity.choose_rung(s.params, "mode")
-        if choice.rung != "lambda":
-            reasons.append(choice.reason)
-    return reasons
-
-
-def required_lambda_margin(
-    s: SetDerivation, *, lambda_margin: float = DEFAULT_LAMBDA_MARGIN
-) -> float:
-    """|λ − 1| the mode needs when it rests on λ alone [-]: the larger of
-    ``lambda_margin`` and the measured trust margin at (ϖ, β) (where one was measured)."""
-    trust = fidelity.lambda_trust_margin(s.params.varpi, s.params.beta)
-    return max(lambda_margin, trust) if math.isfinite(trust) else lambda_margin
-
-
-def _in_range(v: float, lo: float, hi: float) -> bool:
-    return lo * (1 - _FIT_TOL) <= v <= hi * (1 + _FIT_TOL)
+def orbit_mode(orbit: OrbitLike | None) -> str | None:
+    """Mode of a successful exact orbit ("push", "pull", "stalled"), else None."""
+    if orbit is None or not getattr(orbit, "success", False):
+        return None
+    return mode_of(orbit.delta_s)
 
 
 # --- per-set rules -----------------------------------------------------------------------
 
 
 def evaluate(
-    derivation_set: SetDerivation,
+    s: SetDerivation,
     *,
-    lambda_margin: float = DEFAULT_LAMBDA_MARGIN,
-    periodic: PeriodicLike | None = None,
+    orbit: OrbitLike | None = None,
     vertical: Any | None = None,
-    mode_answer: fidelity.Answer | None = None,
+    settling: Any | None = None,
+    margin: dict[str, str | None] | None = None,
+    target_speed_m_s: float | None = None,
 ) -> list[RuleResult]:
     """Every rule for one actuator set (see the module docstring for thresholds).
 
-    periodic: exact periodic orbit (decides the mode, gives the speed); vertical: the
-    exact vertical motion (``dynamics.vertical_motion``), quoted by the window rule;
-    mode_answer: the mode from another rung of the fidelity ladder ("rigid" or "full",
-    forced with ``--fidelity``), used when there is no periodic orbit.
+    orbit: exact periodic orbit (decides the mode, gives the speed); vertical: exact
+    vertical motion (quoted by the window rule); settling: a
+    :class:`betvdesign.studies.settling.Settling` from rest; margin: mode of the exact
+    orbit at each perturbed corner (label -> mode or None); target_speed_m_s: the
+    speed the design must reach [m/s] (adds an error rule).
     """
-    s = derivation_set
-    decided = _decided_by(periodic, mode_answer)
     out = [
         _frequency_window(s, vertical),
-        *_mode_rules(s, periodic, lambda_margin, mode_answer),
+        _mode(s, orbit),
+        _lambda(s, orbit),
+        *([_margin(s, orbit, margin)] if margin is not None else []),
         _tangential_resonance(s),
-        *_fit_range(s, simulated=decided is not None),
         *_published(s),
-        *_speed(s, periodic),
+        *_speed(s, orbit, settling, target_speed_m_s),
     ]
     return [_with_set(r, s.name) for r in out]
 
 
-def _decided_by(periodic: PeriodicLike | None, answer: Any | None) -> str | None:
-    """The solver rung that decided the mode ("periodic", "rigid", "full") or None (λ)."""
-    if periodic is not None and getattr(periodic, "success", False):
-        return "periodic"
-    if answer is not None and answer.success and answer.mode in ("push", "pull"):
-        return str(answer.choice.rung)
-    return None
-
-
 def _with_set(r: RuleResult, name: str) -> RuleResult:
-    return RuleResult(r.id, r.severity, r.passed, r.value, r.threshold, r.message, r.source, name)
+    return RuleResult(
+        r.id, r.severity, r.passed, r.value, r.threshold, r.message, r.source, name, r.fix, r.unit
+    )
+
+
+def _hz(f: float) -> str:
+    return f"{f / 1e3:.4g} kHz" if f >= 1e3 else f"{f:.4g} Hz"
+
+
+def _drive_range(s: SetDerivation, lo_varpi: float, hi_varpi: float) -> str:
+    """Drive frequencies giving lo ≤ ϖ < hi (ϖ = f_act/f_v; AC doubling applied)."""
+    f_v = s.scales.f_act_hz / s.params.varpi
+    k = 2.0 if s.actuator_set.drive.doubled else 1.0
+    note = " (AC drive: f_act = 2·f_drive)" if k == 2.0 else ""
+    return f"{_hz(lo_varpi * f_v / k)}–{_hz(hi_varpi * f_v / k)}{note}"
 
 
 def _frequency_window(s: SetDerivation, vertical: Any | None = None) -> RuleResult:
     v = s.params.varpi
     lo, hi = VARPI_WINDOW
-    thr = f"{lo:g} <= varpi < {hi:g}"
+    f_v = s.scales.f_act_hz / v
+    fix = ""
     if v < lo:
-        msg = (
-            f"ϖ = {v:.3g} below the window: the head hits several times per cycle; "
-            f"raise f_act/f_v (f_act = {s.scales.f_act_hz:.4g} Hz)"
-        )
+        msg = f"ϖ = {v:.3g} below the window: the head hits several times per cycle"
     elif v < hi:
         msg = f"ϖ = {v:.3g} inside the window: one hit per cycle, finite contact"
     elif v < VARPI_IMPULSIVE_END:
-        msg = (
-            f"ϖ = {v:.3g} above the window: contact is impulsive (zero duration), "
-            "the slider is not driven; lower f_act/f_v"
-        )
+        msg = f"ϖ = {v:.3g} above the window: impulsive hits, the slider is not driven"
     else:
-        msg = (
-            f"ϖ = {v:.3g} far above the window: period doubling or aperiodic hits; lower f_act/f_v"
+        msg = f"ϖ = {v:.3g} far above the window: period doubling or aperiodic hits"
+    if not lo <= v < hi:
+        fix = (
+            f"set drive.frequency within {_drive_range(s, lo, hi)}, or move the head's "
+            f"vertical resonance (now {_hz(f_v)}) to {_hz(s.scales.f_act_hz / hi)}–"
+            f"{_hz(s.scales.f_act_hz / lo)}; `betv fix` finds the smallest change"
         )
     if vertical is not None and getattr(vertical, "success", False):
         msg += (
@@ -210,163 +186,130 @@ def _frequency_window(s: SetDerivation, vertical: Any | None = None) -> RuleResu
         )
     elif vertical is not None:
         msg += f" [exact vertical motion: {getattr(vertical, 'message', '')}]"
-    return RuleResult("frequency-window", "error", lo <= v < hi, v, thr, msg, SRC_WINDOW)
+    thr = f"{lo:g} <= varpi < {hi:g}"
+    return RuleResult("frequency-window", "error", lo <= v < hi, v, thr, msg, SRC_WINDOW, fix=fix)
 
 
-def _mode_rules(
-    s: SetDerivation,
-    periodic: PeriodicLike | None,
-    margin: float,
-    answer: fidelity.Answer | None = None,
-) -> list[RuleResult]:
+def mode_hint(intended: str) -> str:
+    """Which way to move the designer's fields for ``intended`` (MODEL.md: larger ϖ and
+    α favour push; larger β and κ favour pull)."""
+    if intended == "push":
+        return (
+            "toward push: raise ϖ (higher drive frequency, or a lower head vertical resonance) "
+            "or α (softer tangential contact), lower β (lighter head, wider or longer slider "
+            "beams) or κ (smaller impact angle)"
+        )
+    return (
+        "toward pull: lower ϖ (lower drive frequency) or α (stiffer tangential contact), "
+        "raise β (heavier head, narrower or shorter beams) or κ (larger impact angle)"
+    )
+
+
+_STATUS_FIX = {
+    "unbounded": "detune the tangential resonance (|α·ϖ² − 1| ≥ 0.1: change the drive "
+    "frequency or the horizontal resonance)",
+    "not_driven": "bring ϖ into 0.5–2 (the head does not stay in contact beyond ϖ ≈ 2)",
+    "not_converged": "move away from the window edges or the tangential resonance; "
+    "`betv simulate FILE --cycles N` shows the transient",
+}
+
+
+def _mode(s: SetDerivation, orbit: OrbitLike | None) -> RuleResult:
+    want = f"intended {s.intended_mode}: Δs {'> 0' if s.intended_mode == 'push' else '< 0'}"
+    if orbit is None:
+        return RuleResult(
+            "mode", "error", False, None, want, "no exact periodic orbit was computed", SRC_SOLVER
+        )
+    if not getattr(orbit, "success", False):
+        status = str(getattr(orbit, "status", "failed"))
+        msg = getattr(orbit, "message", "")
+        what = {
+            "unbounded": "no periodic orbit exists: the head's tangential motion grows "
+            "without bound",
+            "not_driven": "the slider is not driven: no contact recurs",
+            "not_converged": "the exact solver found no periodic orbit within its budget",
+        }.get(status, "the exact solver failed")
+        fix = _STATUS_FIX.get(status, "report this design; `betv simulate` shows the transient")
+        return RuleResult(
+            "mode", "error", False, None, want, f"{what} ({status}): {msg}", SRC_SOLVER, fix=fix
+        )
+    ds = float(orbit.delta_s)
+    mode = mode_of(ds)
+    k = getattr(orbit, "period_cycles", 1) or 1
+    per = f" (mean of a {k}-cycle orbit)" if k > 1 else ""
+    if mode == "stalled":
+        msg = f"exact periodic orbit: Δs = {ds:.3g} per cycle{per}: the slider does not move"
+        fix = mode_hint(s.intended_mode) + "; `betv fix FILE` finds the smallest change"
+        return RuleResult("mode", "error", False, ds, want, msg, SRC_SOLVER, fix=fix)
+    ok = mode == s.intended_mode
+    msg = (
+        f"exact periodic orbit: Δs = {ds:.4g} per cycle{per} -> {mode} mode "
+        f"(intended {s.intended_mode})"
+    )
+    fix = "" if ok else mode_hint(s.intended_mode) + "; `betv fix FILE` finds the smallest change"
+    return RuleResult("mode", "error", ok, ds, want, msg, SRC_SOLVER, fix=fix)
+
+
+def _lambda(s: SetDerivation, orbit: OrbitLike | None) -> RuleResult:
+    """The paper's λ prediction beside the exact answer (information only)."""
     lam = s.lam
     lam_mode = "push" if lam < 1.0 else "pull"
-    out: list[RuleResult] = []
-    decided = _decided_by(periodic, answer)
-    sim_ok = decided == "periodic"
-    want = f"intended {s.intended_mode}: Δs {'> 0' if s.intended_mode == 'push' else '< 0'}"
-    if sim_ok:
-        ds = float(periodic.delta_s)
-        mode = "push" if ds > 0 else "pull"
-        out.append(
-            RuleResult(
-                "mode",
-                "error",
-                mode == s.intended_mode,
-                ds,
-                want,
-                f"exact periodic orbit: Δs = {ds:.4g} per cycle -> {mode} mode "
-                f"(intended {s.intended_mode})",
-                SRC_SOLVER,
-            )
-        )
-        out.append(
-            RuleResult(
-                "lambda-vs-simulation",
-                "info",
-                mode == lam_mode,
-                lam,
-                "λ fit and exact orbit agree",
-                f"λ = {lam:.3g} predicts {lam_mode}, the exact orbit gives {mode}",
-                SRC_LAMBDA,
-            )
-        )
-    elif decided is not None:  # another rung, forced with --fidelity
-        info = fidelity.RUNG_INFO[answer.choice.rung]
-        value = answer.value if isinstance(answer.value, int | float) else None
-        shown = f"Δs = {value:.4g} -> " if value is not None else ""
-        out.append(
-            RuleResult(
-                "mode",
-                "error",
-                answer.mode == s.intended_mode,
-                value,
-                want,
-                f"{info.model}: {shown}{answer.mode} mode (intended {s.intended_mode}); "
-                f"{info.exact}",
-                info.source,
-            )
-        )
+    exact = orbit_mode(orbit)
+    outside = [
+        f"{k} = {getattr(s.params, k):.3g} outside {lo:g}–{hi:g}"
+        for k, (lo, hi) in FIT_RANGE.items()
+        if not lo * (1 - FIT_EDGE_RTOL) <= getattr(s.params, k) <= hi * (1 + FIT_EDGE_RTOL)
+    ]
+    caveat = f"; λ extrapolates here ({', '.join(outside)})" if not in_fit_range(s.params) else ""
+    if exact in ("push", "pull"):
+        agrees = exact == lam_mode
+        word = "agrees" if agrees else "disagrees"
+        msg = f"λ = {lam:.3g} predicts {lam_mode}; the exact orbit gives {exact}: {word}{caveat}"
     else:
-        reasons = undecided_reasons(s, lambda_margin=margin)
-        caveat = f" (closed form cannot decide: {'; '.join(reasons)})" if reasons else ""
-        out.append(
-            RuleResult(
-                "mode",
-                "error",
-                lam_mode == s.intended_mode,
-                lam,
-                f"intended {s.intended_mode}: λ {'< 1' if s.intended_mode == 'push' else '> 1'}",
-                f"λ = {lam:.3g} predicts {lam_mode} mode (intended {s.intended_mode}){caveat}",
-                SRC_LAMBDA,
-            )
-        )
-    if sim_ok and getattr(periodic, "stable", None) is not None:
-        stable = bool(periodic.stable)
-        out.append(
-            RuleResult(
-                "orbit-stability",
-                "warning",
-                stable,
-                None,
-                "all Floquet multipliers |μ| < 1",
-                "the periodic orbit is stable: the slider settles to it"
-                if stable
-                else "the periodic orbit is unstable (a Floquet multiplier |μ| >= 1): the "
-                "slider may never settle to this Δs",
-                SRC_SOLVER,
-            )
-        )
-    failed: tuple[str, str, str] | None = None  # (threshold, message, source)
-    severity = "warning"
-    if periodic is not None and not sim_ok:
-        msg = getattr(periodic, "message", "")
-        failed = (
-            "exact periodic orbit found",
-            f"exact solver did not find the periodic orbit: {msg}",
-            SRC_SOLVER,
-        )
-        if getattr(periodic, "status", "") == "unbounded":  # proven: no steady motion at all
-            severity = "error"
-            failed = ("bounded tangential motion", f"no periodic orbit exists: {msg}", SRC_SOLVER)
-    elif answer is not None and decided is None:
-        info = fidelity.RUNG_INFO[answer.choice.rung]
-        failed = (
-            f"{answer.choice.rung} rung gives a mode",
-            f"{info.model} gave no mode ({answer.status}): {answer.message}",
-            info.source,
-        )
-    if failed is not None:
-        out.append(RuleResult("simulation", severity, False, None, *failed))
-    out.append(_lambda_margin(s, margin, decided))
-    return out
-
-
-def _lambda_margin(s: SetDerivation, margin: float, decided: str | None) -> RuleResult:
-    """|λ − 1| against the fabrication margin and, where the mode rests on λ alone
-    (``decided`` None), the measured trust margin of the λ rung at (ϖ, β)."""
-    p = s.params
-    d = abs(s.lam - 1.0)
-    trust = fidelity.lambda_trust_margin(p.varpi, p.beta)
-    need = margin if decided else required_lambda_margin(s, lambda_margin=margin)
-    where = f"near ϖ = {p.varpi:.3g}, β = {p.beta:.3g}"
-    if d < margin:
-        msg = "near the push/pull boundary: fabrication spread can flip the mode"
-    elif d < need:
-        msg = (
-            f"the λ fit was measured to mispredict the mode this far from λ = 1 {where} "
-            f"(trust margin {trust:.3g}): λ alone cannot decide; run with --simulate"
-        )
-    elif decided and d < trust:
-        msg = (
-            f"enough margin to λ = 1 for fabrication spread; λ itself is not trusted {where} "
-            f"(measured trust margin {trust:.3g}), so the {decided} rung decided the mode"
-        )
-    else:
-        msg = "enough margin to the push/pull boundary"
-    measured = need > margin
+        agrees = True
+        msg = f"λ = {lam:.3g} predicts {lam_mode}; no exact mode to compare{caveat}"
     return RuleResult(
-        "lambda-margin",
-        "warning",
-        d >= need,
-        d,
-        f"|λ − 1| >= {need:.3g}" + (f" (measured trust margin {where})" if measured else ""),
-        f"|λ − 1| = {d:.3g}: {msg}",
-        f"{SRC_LAMBDA}; {SRC_TRUST}",
+        "lambda", "info", agrees, lam, "λ < 1 push, λ > 1 pull (a fit)", msg, SRC_LAMBDA
+    )
+
+
+def _margin(
+    s: SetDerivation, orbit: OrbitLike | None, corners: dict[str, str | None]
+) -> RuleResult:
+    mode = orbit_mode(orbit)
+    thr = "same mode at ϖ·(1 ± 5 %) and α·(1 ± 10 %)"
+    if mode not in ("push", "pull"):
+        return RuleResult(
+            "mode-margin", "warning", False, None, thr, "no exact mode to perturb", SRC_MARGIN
+        )
+    flips = {k: v for k, v in corners.items() if v != mode}
+    ok = not flips
+    listing = ", ".join(f"{k}: {v or 'no orbit'}" for k, v in flips.items())
+    msg = (
+        f"the {mode} mode holds at every corner ({', '.join(corners)})"
+        if ok
+        else f"the mode changes within fabrication spread ({listing})"
+    )
+    fix = "" if ok else mode_hint(mode) + " to gain margin; `betv fix FILE` finds the change"
+    return RuleResult(
+        "mode-margin", "warning", ok, float(len(flips)), thr, msg, SRC_MARGIN, fix=fix
     )
 
 
 def _tangential_resonance(s: SetDerivation) -> RuleResult:
-    p = s.params
-    w2 = p.varpi**2
-    cases = {"free flight a = α": p.alpha, "stick a = α(1 + 1/β)": p.alpha * (1 + 1 / p.beta)}
-    worst_label, worst = min(((k, abs(a * w2 - 1.0)) for k, a in cases.items()), key=lambda t: t[1])
+    label, worst = resonance_detuning(s.params)
     ok = worst >= TANGENTIAL_DETUNING
-    msg = f"min |a·ϖ² − 1| = {worst:.3g} ({worst_label}): " + (
+    msg = f"min |a·ϖ² − 1| = {worst:.3g} ({label}): " + (
         "tangential head vibration is off resonance"
         if ok
         else "near tangential resonance: the head's tangential vibration is undamped off "
-        "contact and can grow without bound; change α or ϖ"
+        "contact and can grow without bound"
+    )
+    fix = (
+        ""
+        if ok
+        else "change the drive frequency by ≥ 10 % or the tangential compliance "
+        "(actuator.alpha / horizontal resonance) so that |a·ϖ² − 1| ≥ 0.1"
     )
     return RuleResult(
         "tangential-resonance",
@@ -376,36 +319,8 @@ def _tangential_resonance(s: SetDerivation) -> RuleResult:
         f"|a·ϖ² − 1| >= {TANGENTIAL_DETUNING:g}",
         msg,
         SRC_TANG,
+        fix=fix,
     )
-
-
-def _fit_range(s: SetDerivation, *, simulated: bool = False) -> list[RuleResult]:
-    out = []
-    for name, (lo, hi) in FIT_RANGE.items():
-        v = getattr(s.params, name)
-        ok = _in_range(v, lo, hi)
-        msg = (
-            f"{name} = {v:.3g} inside the λ fit range"
-            if ok
-            else f"{name} = {v:.3g} outside the λ fit range {lo:g}–{hi:g}: λ is an "
-            + (
-                "extrapolation; the exact orbit decided the mode"
-                if simulated
-                else "extrapolation, confirm with --simulate"
-            )
-        )
-        out.append(
-            RuleResult(
-                f"fit-range.{name}",
-                "warning",
-                ok,
-                v,
-                f"{lo:g} <= {name} <= {hi:g}",
-                msg,
-                SRC_LAMBDA,
-            )
-        )
-    return out
 
 
 def _published(s: SetDerivation) -> list[RuleResult]:
@@ -429,53 +344,110 @@ def _published(s: SetDerivation) -> list[RuleResult]:
                 f"within {PUBLISHED_RTOL:.0%} of {pub}",
                 msg,
                 SRC_PUBLISHED,
+                fix="" if ok else "check the device data against the publication",
             )
         )
     return out
 
 
-def _speed(s: SetDerivation, periodic: PeriodicLike | None) -> list[RuleResult]:
-    if periodic is None or not getattr(periodic, "success", False):
-        return [
+def _speed(
+    s: SetDerivation,
+    orbit: OrbitLike | None,
+    settling: Any | None,
+    target: float | None,
+) -> list[RuleResult]:
+    """Speed (from the orbit, or from the transient when it has not settled by the time
+    it crosses the travel range), the settling rule and the optional target speed."""
+    mode = orbit_mode(orbit)
+    if mode not in ("push", "pull"):
+        why = "the slider does not move" if mode == "stalled" else "no exact periodic orbit"
+        out = [RuleResult("speed", "info", False, None, "needs a moving orbit", why, SRC_SPEED)]
+        if target is not None:
+            out.append(_target(None, target, why))
+        return out
+    ds = float(orbit.delta_s)
+    v_orbit = s.scales.speed_m_s(ds)
+    travel = s.travel_range_m
+    f = s.scales.f_act_hz
+    v, basis, out = v_orbit, "periodic orbit", []
+    if settling is not None and getattr(settling, "status", "") != "failed":
+        n_cross = settling.cycles_to_cross
+        n_settle = settling.settle_cycles  # a lower bound when not settled
+        share = n_settle / n_cross if n_cross else math.inf
+        ok = share <= SETTLE_SHARE
+        settle_txt = (
+            f"{n_settle:.4g} cycles ({format_time(n_settle / f)})"
+            if settling.cycles_to_settle is not None
+            else f"more than {settling.simulated_cycles} cycles (not settled)"
+        )
+        cross_txt = (
+            f"{n_cross} cycles ({format_time(n_cross / f)})"
+            if n_cross
+            else f"more than {settling.simulated_cycles} cycles"
+        )
+        out.append(
             RuleResult(
-                "speed",
-                "info",
-                True,
-                None,
-                "needs the periodic Δs",
-                "speed and time to cross need the exact periodic Δs: run with --simulate",
-                SRC_SPEED,
+                "settling",
+                "warning",
+                ok,
+                n_settle / f,
+                f"settling ≤ {SETTLE_SHARE:.0%} of the cycles to cross the travel range",
+                f"from rest: within {settling.rtol:.0%} of the periodic Δs after {settle_txt}; "
+                f"crosses the {travel * 1e6:.4g} um travel range after {cross_txt}"
+                + ("" if ok else ": the periodic speed is not what the travel shows"),
+                SRC_SETTLE,
+                fix=""
+                if ok
+                else "quote the crossing speed from rest (the speed rule does), or choose a "
+                "design that settles faster (slowest Floquet multiplier |μ| further below 1; "
+                "near ϖ → 2 settling slows sharply)",
+                unit="s",
             )
-        ]
-    ds = float(periodic.delta_s)
-    v = s.scales.speed_m_s(ds)
-    if abs(ds) < DELTA_S_ZERO:
-        return [
-            RuleResult(
-                "speed",
-                "info",
-                False,
-                v,
-                f"|Δs| >= {DELTA_S_ZERO:g}",
-                f"Δs = {ds:.3g}: the slider does not move",
-                SRC_SPEED,
+        )
+        if not ok and settling.crossing_delta_s is not None:
+            v = s.scales.speed_m_s(float(settling.crossing_delta_s))
+            basis = (
+                f"transient from rest over the travel range (periodic: "
+                f"{format_speed(abs(v_orbit))})"
             )
-        ]
-    t_cross = s.travel_range_m / abs(v)
-    return [
-        RuleResult(
-            "speed",
-            "info",
-            True,
-            v,
-            "Δs·u·cosθ·f_act [m/s]",
+    if abs(v) > 0:
+        t_cross = travel / abs(v)
+        msg = (
             f"mean speed {format_speed(abs(v))} toward {_travel_direction(s, ds)} "
             f"({'with' if ds > 0 else 'against'} the impact direction "
-            f"{s.actuator_set.impact_direction}), crosses the {s.travel_range_m * 1e6:.4g} um "
-            f"travel range in {format_time(t_cross)}",
-            SRC_SPEED,
+            f"{s.actuator_set.impact_direction}), crosses the {travel * 1e6:.4g} um "
+            f"travel range in {format_time(t_cross)} [{basis}]"
         )
-    ]
+    else:
+        msg = "the slider does not advance over the travel range"
+    speed = RuleResult("speed", "info", True, v, "Δs·u·cosθ·f_act", msg, SRC_SPEED, unit="m/s")
+    out.insert(0, speed)
+    if target is not None:
+        out.append(_target(abs(v), target, ""))
+    return out
+
+
+def _target(v: float | None, target: float, why: str) -> RuleResult:
+    ok = v is not None and v >= target
+    msg = (
+        f"speed {format_speed(v)} {'≥' if ok else '<'} target {format_speed(target)}"
+        if v is not None
+        else f"no speed ({why}); target {format_speed(target)}"
+    )
+    return RuleResult(
+        "target-speed",
+        "error",
+        ok,
+        v,
+        f"speed >= {format_speed(target)}",
+        msg,
+        SRC_SPEED,
+        fix=""
+        if ok
+        else "raise the drive voltage (stroke u) or frequency; `betv fix FILE "
+        "--target-speed Q` finds the change",
+        unit="m/s",
+    )
 
 
 def _travel_direction(s: SetDerivation, delta_s: float) -> str:
@@ -510,40 +482,37 @@ def travel_direction(s: SetDerivation, mode: str) -> int:
 def evaluate_device(
     derivation: DeviceDerivation,
     *,
-    lambda_margin: float = DEFAULT_LAMBDA_MARGIN,
-    periodic: dict[str, PeriodicLike] | None = None,
+    orbits: dict[str, OrbitLike] | None = None,
     vertical: dict[str, Any] | None = None,
-    mode_answers: dict[str, fidelity.Answer] | None = None,
+    settling: dict[str, Any] | None = None,
+    margins: dict[str, dict[str, str | None]] | None = None,
+    target_speed_m_s: float | None = None,
 ) -> list[RuleResult]:
-    """Rules of every set (``periodic``, ``vertical``, ``mode_answers`` keyed by set name)
-    plus device rules."""
-    periodic = periodic or {}
-    vertical = vertical or {}
-    mode_answers = mode_answers or {}
+    """Rules of every set (dicts keyed by set name) plus the device rule
+    ``bidirectional`` (two or more sets must move the slider both ways)."""
+    orbits, vertical = orbits or {}, vertical or {}
+    settling, margins = settling or {}, margins or {}
     out: list[RuleResult] = []
-    predicted: dict[str, int] = {}
+    travel: dict[str, int | None] = {}
     for s in derivation.sets:
-        per, ans = periodic.get(s.name), mode_answers.get(s.name)
+        orbit = orbits.get(s.name)
         out.extend(
             evaluate(
                 s,
-                lambda_margin=lambda_margin,
-                periodic=per,
+                orbit=orbit,
                 vertical=vertical.get(s.name),
-                mode_answer=ans,
+                settling=settling.get(s.name),
+                margin=margins.get(s.name),
+                target_speed_m_s=target_speed_m_s,
             )
         )
-        decided = _decided_by(per, ans)
-        if decided == "periodic":
-            mode = "push" if float(per.delta_s) > 0 else "pull"
-        elif decided is not None:
-            mode = str(ans.mode)
-        else:
-            mode = s.mode_predicted
-        predicted[s.name] = travel_direction(s, mode)
+        mode = orbit_mode(orbit)
+        travel[s.name] = travel_direction(s, mode) if mode in ("push", "pull") else None
     if len(derivation.sets) >= 2:
-        dirs = set(predicted.values())
-        listing = ", ".join(f"{k}: {'+x' if v > 0 else '-x'}" for k, v in predicted.items())
+        dirs = set(travel.values())
+        listing = ", ".join(
+            f"{k}: {'none' if v is None else '+x' if v > 0 else '-x'}" for k, v in travel.items()
+        )
         ok = dirs == {1, -1}
         out.append(
             RuleResult(
@@ -552,9 +521,10 @@ def evaluate_device(
                 ok,
                 None,
                 "the sets move the slider both ways",
-                f"predicted travel per set ({listing})"
-                + ("" if ok else ": every set moves the slider the same way"),
+                f"exact travel per set ({listing})"
+                + ("" if ok else ": the sets do not move the slider both ways"),
                 "MODEL.md: opposing actuator sets give the two directions of travel",
+                fix="" if ok else "give the opposing set the opposite impact direction or mode",
             )
         )
     return out

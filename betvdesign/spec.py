@@ -16,6 +16,7 @@ import numpy as np
 import pint
 from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
 
+from betvdesign import limits
 from betvdesign.errors import ParameterError
 from betvdesign.units import (
     Density,
@@ -65,7 +66,7 @@ class _Model(BaseModel):
 class Material(_Model):
     """A structural material [density in mass/length³]."""
 
-    name: str = Field(min_length=1)
+    name: str = Field(min_length=1, max_length=limits.MAX_NAME_CHARS)
     """Material name (free text)."""
     density: Density
     """Density ρ, e.g. '2330 kg/m^3'."""
@@ -76,6 +77,23 @@ MATERIALS: dict[str, Material] = {
     "polysilicon": Material(name="polysilicon", density=parse_quantity("2330 kg/m^3")),
 }
 POLYSILICON = MATERIALS["polysilicon"]
+
+
+def _lower(value: Any) -> Any:
+    """Enum words are case-insensitive in files (``AC``, ``Push``, ``+X``): lower-cased
+    before validation, so the model holds the canonical spelling."""
+    return value.strip().lower() if isinstance(value, str) else value
+
+
+def _lower_tag(tag: str) -> Any:
+    """A before-validator lower-casing the discriminator ``tag`` of a mapping."""
+
+    def fix(value: Any) -> Any:
+        if isinstance(value, dict) and isinstance(value.get(tag), str):
+            return {**value, tag: _lower(value[tag])}
+        return value
+
+    return fix
 
 
 def _named_material(value: Any) -> Any:
@@ -103,7 +121,7 @@ class Slider(_Model):
     """Width w of one slider beam."""
     beam_thickness: Length
     """Thickness t of one slider beam (structural layer)."""
-    beam_count: int = Field(default=2, ge=1, le=16)
+    beam_count: int = Field(default=2, ge=1, le=limits.MAX_BEAM_COUNT)
     """Number of parallel beams (2 for the usual BETV slider)."""
     extra_mass: NonNegativeMass = Field(default_factory=lambda: parse_quantity("0 ug"))
     """Mass of connectors/extras on top of the beams; '0 ug' by default."""
@@ -143,6 +161,7 @@ class ImpactHead(_Model):
     """Head material with geometry; the device material by default."""
 
     _material = field_validator("material", mode="before")(_named_material)
+    _shape = field_validator("geometry", mode="before")(_lower_tag("shape"))
 
     @model_validator(mode="after")
     def _one_source(self) -> ImpactHead:
@@ -194,7 +213,7 @@ class MeasuredCalibration(_Model):
     """Measured (V, u) points, linearly interpolated; no extrapolation."""
 
     law: Literal["measured"]
-    points: list[CalibrationPoint] = Field(min_length=2)
+    points: list[CalibrationPoint] = Field(min_length=2, max_length=limits.MAX_CALIBRATION_POINTS)
 
     @model_validator(mode="after")
     def _increasing(self) -> MeasuredCalibration:
@@ -240,6 +259,8 @@ class Actuator(_Model):
     calibration: Calibration | None = None
     """u as a function of the drive voltage: linear, quadratic or measured points."""
 
+    _law = field_validator("calibration", mode="before")(_lower_tag("law"))
+
     @model_validator(mode="after")
     def _exactly_one(self) -> Actuator:
         given = [
@@ -274,6 +295,8 @@ class Drive(_Model):
     voltage: Voltage | None = None
     """Drive voltage amplitude; required with a calibration."""
 
+    _waveform = field_validator("waveform", mode="before")(_lower)
+
     @property
     def doubled(self) -> bool:
         """True when the actuation frequency is twice the drive frequency."""
@@ -287,7 +310,7 @@ class ActuatorSet(_Model):
     set moves the slider that way, a pull set the other way.
     """
 
-    name: str = Field(min_length=1)
+    name: str = Field(min_length=1, max_length=limits.MAX_NAME_CHARS)
     """Name of the set (unique in the device)."""
     intended_mode: Mode
     """The mode the design relies on: 'push' (slider moves with the impacts) or 'pull'."""
@@ -297,6 +320,8 @@ class ActuatorSet(_Model):
     contact: Contact
     actuator: Actuator
     drive: Drive
+
+    _enums = field_validator("intended_mode", "impact_direction", mode="before")(_lower)
 
     @model_validator(mode="after")
     def _drive_matches_calibration(self) -> ActuatorSet:
@@ -349,15 +374,15 @@ class PublishedFit(_Model):
 class DeviceSpec(_Model):
     """A BETV device: material, slider, one or more actuator sets."""
 
-    name: str = Field(min_length=1)
+    name: str = Field(min_length=1, max_length=limits.MAX_NAME_CHARS)
     """Device name (shipped files use the file stem)."""
-    description: str | None = None
+    description: str | None = Field(default=None, max_length=limits.MAX_STRING_CHARS)
     """Free text."""
     material: Material = POLYSILICON
     """Slider (and default head) material: a name ('polysilicon') or {name, density}."""
     slider: Slider
     """The slider beams and travel range."""
-    actuator_sets: list[ActuatorSet] = Field(min_length=1)
+    actuator_sets: list[ActuatorSet] = Field(min_length=1, max_length=limits.MAX_ACTUATOR_SETS)
     """One set per direction of travel (two opposing sets for a bidirectional device)."""
     published_fit: PublishedFit | None = None
     """Optional: parameters a publication fitted; `betv check` compares, never uses them."""

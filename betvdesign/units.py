@@ -12,6 +12,7 @@ pint quantities or unit-free model parameters.
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass
 from typing import Annotated, Any
 
@@ -19,6 +20,8 @@ import pint
 from pydantic import GetCoreSchemaHandler, GetJsonSchemaHandler
 from pydantic.json_schema import JsonSchemaValue
 from pydantic_core import PydanticCustomError, core_schema
+
+from betvdesign import limits
 
 #: The one unit registry of the package. Quantities from another registry cannot mix.
 ureg = pint.UnitRegistry()
@@ -30,20 +33,102 @@ Quantity = ureg.Quantity
 ANGLE = "angle"
 
 
+#: A number: decimal or scientific, or nan/inf (refused later as not finite, by name).
+_NUMBER = r"[+-]?(?:(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?|nan|inf(?:inity)?)"
+#: One unit factor: a name with at most one numeric power (``m^3``, ``V**-2``).
+_NAME = re.compile(r"[^\W\d]\w*")
+_POWER = re.compile(r"(?:\*\*|\^)\s*([+-]?\d+(?:\.\d+)?)")
+_SHAPE = re.compile(
+    rf"\s*(?P<num>{_NUMBER})?\s*"
+    r"(?P<units>(?:[%°µμΩ]|[^\W\d])[\w°µμΩ]*(?:\s*(?:\*\*|\^)\s*[+-]?\d+(?:\.\d+)?)?"
+    r"(?:\s*(?:[*/]\s*|\s)\s*(?:[%°µμΩ]|[^\W\d])[\w°µμΩ]*"
+    r"(?:\s*(?:\*\*|\^)\s*[+-]?\d+(?:\.\d+)?)?)*)?\s*",
+    re.IGNORECASE,
+)
+
+
+def _check_shape(text: str) -> None:
+    """Bound the work pint may do on ``text`` before it sees it: a number and at most
+    :data:`~betvdesign.limits.MAX_UNIT_FACTORS` unit names joined by ``*``, ``/`` or
+    spaces, each with at most one integer power of modest size. No parentheses, no
+    powers of powers, no arithmetic on numbers: a quantity is written "2330 kg/m^3"."""
+    if len(text) > limits.MAX_QUANTITY_CHARS:
+        raise ValueError(
+            f"quantity string of {len(text)} characters; the limit is "
+            f"{limits.MAX_QUANTITY_CHARS} (expected e.g. '5 um')"
+        )
+    m = _SHAPE.fullmatch(text)
+    if m is None or (m.group("num") is None and m.group("units") is None):
+        raise ValueError(
+            f"cannot read {text!r} as a quantity: write a number and units such as "
+            "'5 um' or '2330 kg/m^3' (one power per unit, no parentheses or arithmetic)"
+        )
+    units = m.group("units") or ""
+    n_factors = len(_NAME.findall(_POWER.sub("", units)))
+    if n_factors > limits.MAX_UNIT_FACTORS:
+        raise ValueError(
+            f"{text!r} has {n_factors} unit factors; the limit is {limits.MAX_UNIT_FACTORS}"
+        )
+    for exp in _POWER.findall(units):
+        if abs(float(exp)) > limits.MAX_UNIT_EXPONENT:
+            raise ValueError(
+                f"unit power {exp} in {text!r} exceeds the limit of ±{limits.MAX_UNIT_EXPONENT}"
+            )
+
+
 def parse_quantity(text: str) -> pint.Quantity:
     """Parse ``"5 um"`` into a quantity of :data:`ureg`.
 
-    Raises ``ValueError`` with a user-facing message for text pint cannot read.
+    The text is first checked against a bounded shape (:func:`_check_shape`: length,
+    number of unit factors, one modest power each), so a hostile string cannot make
+    pint evaluate towers of powers. Raises ``ValueError`` with a user-facing message
+    for text that fails the check or that pint cannot read.
     """
+    _check_shape(text)
     try:
         q = ureg.Quantity(text)
     except pint.UndefinedUnitError as exc:
         raise ValueError(f"unknown unit in {text!r}: {exc}") from None
+    except pint.OffsetUnitCalculusError:
+        raise ValueError(
+            f"{text!r}: offset units (degC, degF) have no meaning here; use kelvin or a "
+            "unit of the field's dimension"
+        ) from None
     except Exception:  # pint's tokenizer raises assorted errors for malformed text
         raise ValueError(f"cannot read {text!r} as a quantity (expected e.g. '5 um')") from None
     if not isinstance(q, pint.Quantity):  # e.g. a bare unit name parses to a Unit
         q = ureg.Quantity(1.0, q)
     return q
+
+
+def parse_positive(text: str, unit: str, what: str) -> float:
+    """Magnitude in ``unit`` of a user-given quantity such as ``"1 mm/s"`` (a CLI option
+    named ``what``); :class:`~betvdesign.errors.UsageError` unless it parses, has the
+    dimension of ``unit`` and is finite and > 0."""
+    from betvdesign.errors import UsageError
+
+    try:
+        q = parse_quantity(text)
+        v = float(q.to(unit).magnitude)
+    except (ValueError, pint.DimensionalityError, pint.PintError) as exc:
+        raise UsageError(f"{what}: {exc} (expected a quantity in units of {unit})") from None
+    if not (math.isfinite(v) and v > 0):
+        raise UsageError(f"{what}: must be finite and > 0, got {text!r}")
+    return v
+
+
+def parse_speed(text: str, what: str = "speed") -> float:
+    """A speed such as ``"1 mm/s"`` in m/s (see :func:`parse_positive`)."""
+    return parse_positive(text, "m/s", what)
+
+
+def parse_units(text: str) -> pint.Unit:
+    """Parse a unit expression such as ``"um/s"`` with the same bounds as
+    :func:`parse_quantity`; ``ValueError`` with a user-facing message otherwise."""
+    q = parse_quantity(text)
+    if q.magnitude != 1:
+        raise ValueError(f"{text!r} is not a unit (it has the factor {q.magnitude:g})")
+    return q.units
 
 
 def format_quantity(q: pint.Quantity, fmt: str = "") -> str:
@@ -102,6 +187,12 @@ class QuantitySpec:
                 q = parse_quantity(value)
             except ValueError as exc:
                 raise PydanticCustomError("bad_quantity", str(exc)) from None
+            if _SHAPE.fullmatch(value).group("num") is None:  # parse_quantity matched it
+                raise PydanticCustomError(
+                    "missing_number",
+                    "missing number in {text!r}: write e.g. '{example}'",
+                    {"text": value, "example": self.example},
+                )
             if q.units == ureg.dimensionless:
                 raise PydanticCustomError(
                     "missing_unit",

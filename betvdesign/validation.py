@@ -82,6 +82,13 @@ def message(err: dict[str, Any], fields: tuple[str, ...] = ()) -> str:
         return f"unknown field{hint} (see `betv schema` for the allowed fields)"
     if kind == "missing":
         return "missing required field"
+    ctx = err.get("ctx") or {}
+    if kind == "too_long" and "max_length" in ctx:
+        return f"{ctx.get('actual_length', 'too many')} items; the limit is {ctx['max_length']}"
+    if kind == "string_too_long" and "max_length" in ctx:
+        got = err.get("input")
+        n = f"{len(got):,} characters" if isinstance(got, str) else "too long"
+        return f"string of {n}; the limit is {ctx['max_length']:,}"
     if kind in _EXPECTED:
         return f"expected {_EXPECTED[kind]}, got {_kind_of(err.get('input'))}"
     if msg.startswith("Value error, "):

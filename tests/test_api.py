@@ -8,7 +8,7 @@ import pint
 import pytest
 
 import betvdesign as bd
-from betvdesign.errors import SpecError, UsageError
+from betvdesign.errors import SpecError
 from betvdesign.loader import load_device_text
 from betvdesign.nondim import derive
 
@@ -90,8 +90,9 @@ def test_check_in_python_and_reprs():
     assert "<table>" in view._repr_html_()
     slow = bd.check(spec.replace("drive.frequency", "1 kHz"))  # ϖ = 0.4: below the window
     assert slow.verdict == "fail" and "frequency-window" in slow.failed
-    assert bd.check(PUSH, ignore=["fit-range"]).verdict == "pass"
-    with pytest.raises(UsageError, match="no such rule"):
+    assert bd.check(PUSH, ignore=["tangential-resonance"]).verdict == "pass"
+    assert bd.check(PUSH, target_speed="10 mm/s").failed == ["target-speed"]
+    with pytest.warns(UserWarning, match="matches no rule"):
         bd.check(PUSH, select=["no-such-rule"])
 
 

@@ -19,8 +19,18 @@ OWN = ["push_demo", "pull_demo", "bidir_demo"]
 
 @pytest.fixture
 def no_solver(monkeypatch):
-    """Closed form only, whether or not the exact solver is installed."""
-    monkeypatch.setattr(checker, "load_solver", lambda: None)
+    """A stand-in solver (Δs = ±1 per cycle, with the sign λ predicts) instead of the exact
+    one: the CLI's presentation is tested apart from the dynamics."""
+    from types import SimpleNamespace
+
+    def orbit(p):
+        ds = 1.0 if p.lam < 1 else -1.0
+        return SimpleNamespace(
+            status="success", success=True, message="stand-in", delta_s=ds, period_cycles=1
+        )
+
+    monkeypatch.setattr(checker, "load_solver", lambda: orbit)
+    monkeypatch.setattr("betvdesign.checker._settling", lambda p, po, travel: None)
 
 
 def run(*args):
@@ -34,8 +44,8 @@ def test_shin2004_fails_the_window_and_shows_fit_mismatch(no_solver):
     assert "FAIL" in out and "frequency-window" in out
     assert "below the window" in out
     assert "published-fit.varpi" in out and "disagree" in out
-    r = run("check", "--verbose", SHIN)
-    assert "cannot decide" in r.stdout  # β = 9.09 outside the λ fit range
+    assert "fix:" in out and "drive.frequency" in out
+    assert "extrapolates" in run("check", "--verbose", SHIN).stdout  # β = 9.09 outside
 
 
 def _device(stdout: str) -> dict:
@@ -60,7 +70,7 @@ def test_shin2004_json_contract(no_solver):
     assert s["derived"]["head_mass_kg"] == pytest.approx(3.6e-11)  # 0.036 ug
     assert s["derived"]["amplitude_m"] == pytest.approx(0.11e-6)
     assert s["travel_range_m"] == pytest.approx(40e-6)
-    assert s["lambda"]["predicts"] == "pull" and s["mode"] == "pull"
+    assert s["mode"] == "pull" and s["lambda"]["predicts"] == "pull"
     for rule in s["rules"]:
         assert set(rule) == {
             "id",
@@ -75,7 +85,7 @@ def test_shin2004_json_contract(no_solver):
         }
         assert rule["severity"] in ("error", "warning", "info")
     win = [x for x in s["rules"] if x["id"] == "frequency-window"]
-    assert win and not any(x["passed"] for x in win)
+    assert win and not any(x["passed"] for x in win) and "drive.frequency" in win[0]["fix"]
     assert "details" not in d
     full = _device(run("check", SHIN, "--json", "--verbose").stdout)["details"]
     fit = full["sets"][0]["published_fit"]
@@ -85,9 +95,9 @@ def test_shin2004_json_contract(no_solver):
     )
 
 
-def test_json_conforms_to_its_published_schema():
+def test_json_conforms_to_its_published_schema(no_solver):
     """Every device's --json output validates against `betv schema check` (a generic
-    draft-2020-12 walk of the schema written by hand below, not pydantic itself)."""
+    draft-2020-12 walk of the schema, written below, not pydantic itself)."""
     schema = json.loads(run("schema", "check").stdout)
     assert schema["properties"]["version"]["const"] == 1
     r = run("check", "--json", *(str(p) for p in sorted(DEVICES.glob("*.yaml"))))
@@ -104,10 +114,8 @@ def test_json_conforms_to_its_published_schema():
 
 @pytest.mark.parametrize("name", OWN)
 def test_own_designs_pass(name):
-    """Every rule passes; λ decides push_demo and bidir_demo (ϖ ≥ 0.9, beyond the measured
-    trust margin), while pull_demo (ϖ = 0.8, β = 1.2, λ = 5.2) lies within the measured
-    margin there (λ mispredicted at ϖ = 0.78, β = 1.2, λ = 4.4), so the fidelity ladder
-    sends it to the periodic orbit."""
+    """Every error and warning rule passes with the exact solver; the mode is the
+    exact orbit's, and the λ fit agrees for these clear designs."""
     r = run("check", str(DEVICES / f"{name}.yaml"), "--json", "--verbose")
     assert r.exit_code == 0, r.stdout
     d = _device(r.stdout)
@@ -115,11 +123,9 @@ def test_own_designs_pass(name):
     full = d["details"]
     assert all(x["passed"] for x in full["rules"] if x["severity"] != "info"), full["rules"]
     for s, sfull in zip(d["sets"], full["sets"], strict=True):
-        assert s["mode"] == s["intended_mode"] and s["passed"]
-        assert s["lambda"]["margin"] >= 0.5  # "clear" designs
-        rung = "periodic" if name == "pull_demo" else "lambda"
-        assert sfull["fidelity"]["rung"] == sfull["fidelity"]["chosen"] == rung
-        assert "measured" in sfull["fidelity"]["reason"]
+        assert s["mode"] == s["intended_mode"] and s["passed"] and s["lambda"]["agrees"]
+        assert sfull["settling"]["status"] == "settled"
+        assert s["margin"]["holds"] and set(s["margin"]["corners"].values()) == {s["mode"]}
 
 
 def test_several_files_give_one_shape_and_worst_exit(no_solver):
@@ -139,16 +145,13 @@ def test_tables_and_derivation(no_solver):
     assert "derivation of set east" in r.stdout and "(f_v/f_h)²" in r.stdout
 
 
-def test_simulate_without_solver_is_exit_2(no_solver):
-    r = run("check", "--simulate", SHIN)
-    assert r.exit_code == 2
-    assert "exact solver" in r.stderr and "Traceback" not in r.output
-
-
 def test_usage_errors_exit_2():
     assert run("check").exit_code == 2
-    assert run("check", "--simulate", "--closed-form-only", SHIN).exit_code == 2
-    assert run("check", "--lambda-margin", "-1", SHIN).exit_code == 2
+    for gone in ("--simulate", "--closed-form-only", "--fidelity"):  # no verdict from a fit
+        assert run("check", gone, SHIN).exit_code == 2
+    r = run("check", "--target-speed", "3 kg", SHIN)
+    assert r.exit_code == 2 and "--target-speed" in r.stderr and "Traceback" not in r.output
+    assert run("check", "--target-speed", "-1 mm/s", SHIN).exit_code == 2
 
 
 def test_bad_file_exit_2_names_file_line_field(tmp_path, no_solver):
@@ -229,95 +232,74 @@ def _assert_conforms(data, sch, root):
     return None
 
 
-def test_simulated_check_reports_orbit_speed_and_json(monkeypatch):
-    """With a solver (here a test double returning Δs = 0.25), --simulate takes the mode
-    from the orbit and derives the speed Δs·u·cosθ·f_act (push_demo: u = 0.14 um,
-    θ = 20.56°, f_act = 6 kHz)."""
+def test_check_reports_orbit_speed_and_json(monkeypatch):
+    """With a stand-in solver returning Δs = 0.25, the mode is the orbit's and the speed
+    is Δs·u·cosθ·f_act (push_demo: u = 0.14 um, θ = 20.56°, f_act = 6 kHz)."""
     import math
     from types import SimpleNamespace
 
     orbit = SimpleNamespace(
-        status="converged",
+        status="success",
         success=True,
         message="ok",
         delta_s=0.25,
-        mode="push",
         period_cycles=1,
         residual=1e-12,
-        stable=True,
         n_cycles=300,
         elapsed_s=0.01,
     )
     monkeypatch.setattr(checker, "load_solver", lambda: lambda p: orbit)
+    monkeypatch.setattr("betvdesign.checker._settling", lambda p, po, travel: None)
     path = str(DEVICES / "push_demo.yaml")
-    r = run("check", "--simulate", "--verbose", path)
-    assert r.exit_code == 0, r.stdout
-    assert "exact orbit (requested (--simulate))" in r.stdout
-    assert "from simulation" in r.stdout
     v = 0.25 * 0.14e-6 * math.cos(math.radians(20.56)) * 6000.0  # [m/s] = 196.6 µm/s
-    r = run("check", "--simulate", path)
-    assert "197 µm/s toward +x, 50 µm in 254 ms" in r.stdout  # 50 µm / v = 0.2543 s
-    d = _device(run("check", "--simulate", "--json", path).stdout)
-    s = d["sets"][0]
-    assert s["mode_source"] == "exact periodic orbit" and s["delta_s"] == 0.25
-    assert s["speed_m_s"] == pytest.approx(v, rel=1e-12)
-    assert s["time_to_cross_s"] == pytest.approx(50e-6 / v, rel=1e-12)
-    assert s["travel_direction"] == "+x"
-    speed = next(x for x in s["rules"] if x["id"] == "speed")
+    r = run("check", path)
+    assert r.exit_code == 0, r.stdout
+    assert "push as intended, 197 µm/s toward +x, 50 µm in 254 ms" in r.stdout  # 50 µm / v
+    top = _device(run("check", "--json", "-v", path).stdout)
+    s = top["details"]["sets"][0]
+    assert s["simulation"]["delta_s"] == 0.25 and s["simulation"]["mode"] == "push"
+    out = top["sets"][0]
+    assert out["delta_s"] == 0.25 and out["speed_m_s"] == pytest.approx(v, rel=1e-9)
+    assert out["time_to_cross_s"] == pytest.approx(50e-6 / v, rel=1e-9)
+    assert out["travel_direction"] == "+x"
+    speed = next(x for x in out["rules"] if x["id"] == "speed")
     assert speed["value_unit"] == "m/s" and speed["value"] == pytest.approx(v)
 
 
 # --- with the exact solver (betvdesign.dynamics) ------------------------------------------
 
 
-def test_auto_simulation_where_the_closed_form_cannot_decide():
-    """shin2004: β = 9.09 lies outside the λ fit range, so `check` runs the exact solver by
-    itself and says so; the speed is Δs·u·cosθ·f_act with Δs from periodic_orbit
-    (u = 0.11 um, θ = 45°, f_act = 1 kHz)."""
+def test_shin2004_orbit_and_speed_from_the_exact_solver():
+    """shin2004: the speed is Δs·u·cosθ·f_act with Δs from periodic_orbit (u = 0.11 um,
+    θ = 45°, f_act = 1 kHz) unless settling takes a large share of the crossing, in
+    which case it is the crossing mean from rest (checked against a plain transient)."""
     import math
 
-    from betvdesign.dynamics import periodic_orbit
+    from betvdesign.dynamics import periodic_orbit, simulate
     from betvdesign.params import ModelParams
 
-    r = run("check", "--json", "--verbose", SHIN)
-    assert r.exit_code == 1  # still the frequency-window error
-    dev = _device(r.stdout)
-    d = dev["details"]
-    assert any("ran the exact solver" in n and "beta" in n for n in d["notes"])
+    r = run("check", "--json", "-v", SHIN)
+    assert r.exit_code == 1  # the frequency-window error
+    top = _device(r.stdout)
+    d = top["details"]
     s = d["sets"][0]
-    assert s["simulated"] and s["mode_source"] == "simulation"
-    assert "cannot decide" in s["simulated_because"]
     p = ModelParams(**{k: s["params"][k] for k in ("varpi", "alpha", "beta", "kappa")})
     orbit = periodic_orbit(p)
     assert orbit.success
     assert s["simulation"]["delta_s"] == pytest.approx(orbit.delta_s, rel=1e-12)
-    v = orbit.delta_s * 0.11e-6 * math.cos(math.pi / 4) * 1000.0
-    assert dev["sets"][0]["speed_m_s"] == pytest.approx(abs(v), rel=1e-12)
-    assert dev["sets"][0]["mode"] == ("push" if orbit.delta_s > 0 else "pull")
-    # the second, mirrored set reuses the orbit
-    assert d["sets"][1]["simulation"] == s["simulation"]
-
-
-def test_decided_design_is_not_simulated_unless_asked():
-    """push_demo: λ = 0.33 inside the fit range -> closed form only; --simulate runs the
-    solver, whose orbit agrees with λ (push) and with a plain transient from rest."""
-    from betvdesign.dynamics import simulate
-    from betvdesign.params import ModelParams
-
-    path = str(DEVICES / "push_demo.yaml")
-    d = _device(run("check", "--json", "-v", path).stdout)
-    assert not d["details"]["sets"][0]["simulated"] and d["sets"][0]["speed_m_s"] is None
-    r = run("check", "--json", "-v", "--simulate", path)
-    assert r.exit_code == 0
-    top = _device(r.stdout)
-    s = top["details"]["sets"][0]
-    assert s["mode_source"] == "simulation" and s["mode_predicted"] == "push"
-    assert next(x for x in s["rules"] if x["id"] == "lambda-vs-simulation")["passed"]
-    p = ModelParams(**{k: s["params"][k] for k in ("varpi", "alpha", "beta", "kappa")})
-    transient = simulate(p, 400)  # second method: settle from rest, read the last cycle
-    assert transient.success
-    assert transient.delta_s[-1] == pytest.approx(s["simulation"]["delta_s"], rel=1e-6)
-    assert top["sets"][0]["speed_m_s"] > 0
+    assert d["mode_predicted"] == ("push" if orbit.delta_s > 0 else "pull")
+    length = 0.11e-6 * math.cos(math.pi / 4)
+    n = s["settling"]["cycles_to_cross"]
+    tr = simulate(p, n, log_events=False)  # second method: the transient from rest
+    assert abs(tr.s) * length >= 40e-6 > abs(tr.section[-2, 4]) * length
+    settle = next(x for x in s["rules"] if x["id"] == "settling")
+    speed = s["speed_m_s"]
+    assert top["sets"][0]["speed_m_s"] == pytest.approx(abs(speed), rel=1e-12)
+    if settle["passed"]:
+        assert speed == pytest.approx(orbit.delta_s * length * 1000.0, rel=1e-9)
+    else:
+        assert speed == pytest.approx(tr.s / n * length * 1000.0, rel=1e-9)
+    assert d["sets"][1]["simulation"] == s["simulation"]  # the mirrored set reuses it
 
 
 def test_check_quotes_vertical_motion_consistently():
@@ -330,8 +312,6 @@ def test_check_quotes_vertical_motion_consistently():
     assert s["vertical"]["regime"] == vm.regime
     win = next(x for x in s["rules"] if x["id"] == "frequency-window")
     assert f"exact vertical motion: {vm.regime}" in win["message"]
-    d = _device(run("check", "--json", "-v", "--closed-form-only", SHIN).stdout)["details"]
-    assert d["sets"][0]["vertical"] is None and d["sets"][0]["simulation"] is None
 
 
 def test_markup_in_names_is_printed_literally(tmp_path, no_solver):

@@ -145,9 +145,9 @@ def test_pushpull_summary_lists_unbounded_points_separately():
     assert row["status"] == "unbounded" and row["mode"] is None and not row["converged"]
 
 
-def test_unbounded_orbit_fails_the_simulation_rule_as_an_error():
-    """rules: an unbounded result is an error (no steady motion, so the verdict fails); a
-    plain solver failure stays a warning (as in tests/test_rules.py)."""
+def test_unbounded_orbit_fails_the_mode_rule_with_its_reason():
+    """rules: an unbounded result fails the mode rule (no steady motion, so the verdict
+    fails) and says what to change; a plain solver failure fails it too."""
     from betvdesign.loader import load_device
     from betvdesign.nondim import derive
     from betvdesign.rules import evaluate, verdict
@@ -157,10 +157,11 @@ def test_unbounded_orbit_fails_the_simulation_rule_as_an_error():
     s = dataclasses.replace(base.sets[0], params=p, lam=p.lam, published=[])
     po = periodic_orbit(p)
     assert po.status == "unbounded"
-    res = evaluate(s, periodic=po)
-    (r,) = [r for r in res if r.id == "simulation"]
+    res = evaluate(s, orbit=po)
+    (r,) = [r for r in res if r.id == "mode"]
     assert not r.passed and r.severity == "error" and "no periodic orbit exists" in r.message
+    assert "unbounded" in r.message and "detune" in r.fix
     assert verdict(res) == "fail"
     plain = SimpleNamespace(success=False, status="not_converged", message="x", mode=None)
-    (r,) = [r for r in evaluate(s, periodic=plain) if r.id == "simulation"]
-    assert r.severity == "warning"
+    (r,) = [r for r in evaluate(s, orbit=plain) if r.id == "mode"]
+    assert r.severity == "error" and not r.passed and "not_converged" in r.message

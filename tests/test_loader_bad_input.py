@@ -75,7 +75,7 @@ CASES: dict[str, list[tuple[int | None, int | None, str, str]]] = {
     "tab_indent.yaml": [(4, 1, "", "invalid YAML: found character '\\t'")],
     "top_level_list.yaml": [(1, 1, "", "expected a mapping at the top level, got a list")],
     "empty.yaml": [(None, None, "", "empty file")],
-    "not_utf8.yaml": [(None, None, "", "not UTF-8 text")],
+    "not_utf8.yaml": [(2, 10, "", "not UTF-8 text")],
     "merge_key_error.yaml": [
         (12, 38, "actuator_sets[0].drive.frequency", "wrong dimension"),
         (12, 38, "actuator_sets[1].drive.frequency", "wrong dimension"),

@@ -183,3 +183,30 @@ def test_published_values_in_record():
     assert "62% away" in s.step("ϖ_pub").description
     assert s.step("β_pub[0]").magnitude == 0.9 and s.step("β_pub[1]").magnitude == 9.0
     assert s.step("β_pub[1]").key == "beta_pub[1]"
+
+
+def test_derive_samples_vectorises_derive_set_by_hand_formulas():
+    """Monte Carlo path: β = m/M with M = (n·ρ·L·w·t)/2 and κ = μ·tanθ per sample,
+    computed by hand with numpy, against nondim.derive_samples on array-valued fields."""
+    import numpy as np
+
+    from betvdesign.nondim import derive_samples
+    from betvdesign.studies.specpaths import with_values
+    from betvdesign.units import ureg
+
+    spec = load_device(DEVICES / "shin2004.yaml")
+    w = np.array([4.0, 5.0, 6.5])  # um
+    theta = np.array([30.0, 45.0, 60.0])  # deg
+    s = with_values(
+        spec,
+        {
+            "slider.beam_width": ureg.Quantity(w, "um"),
+            "contact.impact_angle": ureg.Quantity(theta, "deg"),
+        },
+    )
+    d = derive_samples(s, s.actuator_sets[0])
+    M = 2 * 2330 * 170e-6 * w * 1e-6 * 2e-6 / 2  # kg
+    np.testing.assert_allclose(d.beta, 3.6e-11 / M, rtol=1e-12)  # m = 0.036 ug
+    np.testing.assert_allclose(d.kappa, 0.4 * np.tan(np.radians(theta)), rtol=1e-12)
+    np.testing.assert_allclose(d.length_m, 0.11e-6 * np.cos(np.radians(theta)), rtol=1e-12)
+    np.testing.assert_allclose(d.varpi, 1000 / 2940, rtol=1e-12)

@@ -118,12 +118,12 @@ def test_report_content(reports_dir: Path, device: Path) -> None:
 
 @pytest.mark.parametrize("device", device_files(), ids=lambda p: p.stem)
 def test_verdict_and_rules_agree_with_betv_check(reports_dir: Path, device: Path) -> None:
-    """Second path: ``betv check --simulate`` (checker.check_derivation, which runs the
-    solver itself) gives the same verdict and the same rule outcomes as the report."""
+    """Second path: ``betv check`` (checker.check_derivation, which runs the solver
+    itself) gives the same verdict and the same rule outcomes as the report."""
     from betvdesign.checker import check_derivation
 
     html = (reports_dir / f"{device.stem}.html").read_text("utf-8")
-    check = check_derivation(derive(load_device(device)), simulate="always")
+    check = check_derivation(derive(load_device(device)))
     assert f"Device verdict: <strong>{check.verdict.upper()}</strong>" in html
     rows = re.findall(
         r"<tr class=\"[^\"]*\"><td><code>([^<]+)</code></td><td>(\w+)</td>"
@@ -228,7 +228,8 @@ def test_missing_solver_is_stated_not_invented(monkeypatch: pytest.MonkeyPatch) 
     report = build_report(prepare(DEVICES / "push_demo.yaml"))
     box = report.sets[0].verdict
     assert box.speed.startswith("not available") and "(test)" in box.speed
-    assert "λ fit only" in box.predicted_by
+    assert "not available" in box.predicted_by and box.predicted_mode == "unknown"
+    assert box.verdict == "fail"  # no verdict without the exact orbit
     figs = report.figures()
     assert figs[0].svg is not None  # the λ map needs no solver
     assert all(f.svg is None and "(test)" in (f.unavailable or "") for f in figs[1:])

@@ -1,16 +1,13 @@
-"""Design reports state the fidelity rung of every figure and of every verdict, and
-`betv report --fidelity RUNG` forces the rung that decides the mode.
+"""Design reports state the fidelity rung of every figure and of every verdict; the
+verdict's mode is always the exact periodic orbit's (no rung can be forced for it).
 
 Sources: :func:`betvdesign.fidelity.choose_rung` (the ladder's reasons, restated per
-figure question); the verdict and rule outcomes against ``betv check --fidelity``
-(:func:`betvdesign.checker.check_derivation`, second path that solves for itself);
-pull_demo (ϖ = 0.8, β = 1.2, λ = 5.2) lies within the measured λ trust margin, so a
-forced λ rung must show the λ-margin warning. One small device only (reports are slow).
+figure question); the verdict against ``betv check`` (:func:`betvdesign.checker.
+check_derivation`, a second path that solves for itself). One small device only.
 """
 
 from __future__ import annotations
 
-import re
 from pathlib import Path
 
 from conftest import DEVICES
@@ -41,37 +38,23 @@ def test_every_figure_and_verdict_states_its_rung() -> None:
     assert by_key["displacement"].rung_reason == choose_rung(p, "transient").reason
     assert by_key["speed"].rung_reason == choose_rung(p, "delta_s", tol=1e-10).reason
     box = report.sets[0].verdict
-    assert box.rung == "periodic" and "figures" in box.rung_reason
+    assert box.rung == "periodic" and "exact periodic orbit" in box.rung_reason
     assert box.predicted_mode == "pull"
     text = text_of(render_html(report))
     assert text.count("Fidelity rung: ") == len(figs)
     assert "Decided by (fidelity rung) periodic" in text
 
 
-def test_cli_fidelity_forces_the_verdict_rung(tmp_path: Path) -> None:
-    """--fidelity lambda: the verdict box says λ decided (forced) and the rule outcomes
-    equal `betv check --fidelity lambda`'s, including the measured λ-margin warning; a
-    rung that cannot tell the mode is exit 2 with nothing written."""
-    runner = CliRunner()
-    bad = runner.invoke(
-        app, ["report", str(PULL), "-o", str(tmp_path / "x"), "--fidelity", "vertical"]
+def test_report_verdict_equals_the_check_and_refuses_a_forced_rung(tmp_path: Path) -> None:
+    """The report's rules (fed its own orbits) equal `betv check`'s (solving for itself);
+    `--fidelity` no longer exists on `betv report` (exit 2, nothing written)."""
+    report = build_report(prepare(PULL), options=SMALL)
+    check = check_derivation(derive_file(PULL))
+    text = text_of(render_html(report))
+    for r in check.sets[0].rules:
+        assert r.id in text
+    assert report.sets[0].verdict.verdict == check.verdict
+    bad = CliRunner().invoke(
+        app, ["report", str(PULL), "-o", str(tmp_path / "x"), "--fidelity", "lambda"]
     )
-    assert bad.exit_code == 2 and "cannot answer 'mode'" in bad.output
-    assert not (tmp_path / "x").exists()
-    out = tmp_path / "o"
-    res = runner.invoke(
-        app, ["report", str(PULL), "-o", str(out), "--no-pdf", "--fidelity", "lambda"]
-    )
-    assert res.exit_code == 0, res.output
-    html = (out / "pull_demo.html").read_text("utf-8")
-    text = text_of(html)
-    assert "Decided by (fidelity rung) lambda (forced by --fidelity lambda" in text
-    check = check_derivation(derive_file(PULL), fidelity="lambda")
-    rows = re.findall(
-        r"<tr class=\"[^\"]*\"><td><code>([^<]+)</code></td><td>(\w+)</td>"
-        r"<td class=\"num\">[^<]*</td><td>[^<]*</td><td>(pass|FAIL)</td>",
-        html,
-    )
-    shown = sorted((rid, sev, res == "pass") for rid, sev, res in rows)
-    assert shown == sorted((r.id, r.severity, r.passed) for r in check.rules)
-    assert ("lambda-margin", "warning", False) in shown
+    assert bad.exit_code == 2 and not (tmp_path / "x").exists()

@@ -1,6 +1,8 @@
 """Executors give identical results (source: the serial executor as reference;
 dask against an in-test distributed.LocalCluster with 2 worker processes)."""
 
+import json
+
 import pytest
 
 from betvdesign.errors import UsageError
@@ -93,4 +95,13 @@ def test_cli_runs_on_a_dask_scheduler(cluster, tmp_path):
     )
     assert r1.exit_code == 0 and r2.exit_code == 0, r2.stderr
     assert (tmp_path / "a.csv").read_bytes() == (tmp_path / "b.csv").read_bytes()
-    assert '"backend": "dask"' in (tmp_path / "b.json").read_text()
+    sidecar = json.loads((tmp_path / "b.json").read_text())
+    assert sidecar["executor"]["backend"] == "dask"
+    # the cluster's real size (2 workers × 1 thread), not 0 (issue 13)
+    assert sidecar["executor"]["workers"] == 2
+    r3 = CliRunner().invoke(
+        app,
+        [*base, "--scheduler", cluster.scheduler_address, "--json", "-o", str(tmp_path / "c.csv")],
+    )
+    assert r3.exit_code == 0, r3.stderr
+    assert json.loads(r3.stdout)["workers"] == 2

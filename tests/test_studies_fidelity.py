@@ -14,7 +14,7 @@ from betvdesign.params import ModelParams
 
 MAP = ["sweep", "pushpull", "--alpha", "1", "--beta", "0.5", "--kappa", "0.4", "-x", "serial"]
 LAMBDA = ["sweep", "lambda", "--kappa", "0.4", "--beta", "0.5", "--alpha", "1", "-x", "serial"]
-TOL = ["tolerance", "devices/push_demo.yaml", "--tol", "drive.frequency=2%", "-n", "2"]
+TOL = ["tolerance", "devices/push_demo.yaml", "--spread", "drive.frequency=2%", "-n", "2"]
 
 
 def _run(*args):

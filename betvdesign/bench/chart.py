@@ -20,9 +20,9 @@ from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
 from betvdesign.bench.workprecision import Row
+from betvdesign.outputs import write_atomic
 from betvdesign.plots._figure import figure_style, new_figure
 from betvdesign.plots.studies import save_figure
-from betvdesign.report.render import write_atomic
 
 #: Plotted in place of a zero error (exact agreement) so it stays on a log axis.
 ERROR_FLOOR = 1e-17

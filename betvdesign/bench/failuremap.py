@@ -145,8 +145,8 @@ def write_failure_map(rows: Sequence[dict[str, Any]], out_dir: Any, stem: str = 
     import json
     from pathlib import Path
 
+    from betvdesign.outputs import write_atomic
     from betvdesign.plots.studies import save_figure
-    from betvdesign.report.render import write_atomic
 
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)

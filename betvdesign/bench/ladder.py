@@ -2,15 +2,17 @@
 
 * :func:`lambda_disagreement`: the λ < 1 rule against the simulated periodic mode on
   the push/pull map (issue 5's grid by default, run by
-  :func:`betvdesign.studies.pushpull.run_pushpull`): rate, every misprediction, and
-  the trust margin (largest |λ − 1| at which it mispredicted).
+  :func:`betvdesign.studies.pushpull.run_pushpull`): rate and every misprediction;
+* :func:`validation_sample` / :func:`sample_summary`: the same on a held-out seeded
+  random sample, with a Clopper–Pearson bound (the rate ``--fidelity lambda`` states);
 * :func:`rigid_envelope`: relative Δs error of the α → 0 rigid limit against the
   full model's periodic orbit, over α, and an envelope C·α^q bounding it.
 * :func:`rung_costs`: CPU time of each rung on sample designs (median).
 
 :func:`write_measured` stores the numbers the ladder relies on as the generated
-module ``betvdesign/fidelity_measured.py`` (regenerate with
-``python benchmarks/work_precision.py --ladder``).
+package data ``betvdesign/data/fidelity_measured.json`` with its provenance (regenerate
+with ``python benchmarks/work_precision.py --ladder``; :func:`betvdesign.fidelity.stale`
+says when the stored numbers no longer match the solver).
 """
 
 from __future__ import annotations
@@ -18,7 +20,6 @@ from __future__ import annotations
 import itertools
 import json
 import math
-import pprint
 import statistics
 import time
 from collections.abc import Sequence
@@ -145,15 +146,8 @@ def rung_costs(designs: Sequence[ModelParams], cycles: int = 100) -> dict[str, f
     }
 
 
-#: Bins of the λ trust table: ϖ edges and β edges (mispredictions cluster at low ϖ).
-VARPI_BINS = (0.5, 0.7, 0.9, 1.2, 1.6, 2.0)
-BETA_BINS = (0.1, 0.3, 0.75, 1.25, 1.5)
-#: Safety factor on the largest misprediction distance seen in a bin (a judgement,
-#: stated in the reason the ladder prints).
-SAFETY = 1.25
-
-
 def _periodic_row(args: tuple[float, float, float, float]) -> dict[str, Any]:
+    from betvdesign.domain import mode_of
     from betvdesign.dynamics import periodic_orbit
 
     p = ModelParams(*args)
@@ -163,16 +157,23 @@ def _periodic_row(args: tuple[float, float, float, float]) -> dict[str, Any]:
         "lam": p.lam,
         "mode_predicted": p.mode_predicted,
         "status": po.status,
-        "mode": po.mode if po.success else None,
+        "mode": mode_of(po.delta_s) if po.success else None,
         "delta_s": po.delta_s if po.success else None,
     }
 
 
+#: Seed of the held-out sample: never used for anything the toolkit decides with.
+HELD_OUT_SEED = 20261123
+HELD_OUT_N = 5000
+
+
 def validation_sample(
-    n: int = 1500, seed: int = 20261122, workers: int = 2
+    n: int = HELD_OUT_N, seed: int = HELD_OUT_SEED, workers: int = 2
 ) -> list[dict[str, Any]]:
-    """Periodic mode at ``n`` seeded random designs in the window and the λ fit range
-    (ϖ ∈ [0.5, 2), α ∈ [0.1, 4], β ∈ [0.1, 1.5], κ ∈ [0.1, 0.4]), off the map's grid."""
+    """Periodic mode at ``n`` seeded random designs, uniform in the window and the λ fit
+    range (ϖ ∈ [0.5, 2), α ∈ [0.1, 4], β ∈ [0.1, 1.5], κ ∈ [0.1, 0.4]), off the map's
+    grid. Held out: the λ fit (the paper's) was not made on them, and no threshold of
+    the toolkit is tuned on them."""
     from concurrent.futures import ProcessPoolExecutor
 
     rng = np.random.default_rng(seed)
@@ -187,40 +188,72 @@ def validation_sample(
         )
     ]
     with ProcessPoolExecutor(max_workers=workers) as ex:
-        return list(ex.map(_periodic_row, pts, chunksize=16))
+        return list(ex.map(_periodic_row, pts, chunksize=64))
 
 
-def _bin(x: float, edges: Sequence[float]) -> int | None:
-    for i, (lo, hi) in enumerate(itertools.pairwise(edges)):
-        if lo * (1 - 1e-9) <= x < hi or (i == len(edges) - 2 and x <= hi * (1 + 1e-9)):
-            return i
-    return None
+def upper_bound(errors: int, n: int, confidence: float = 0.95) -> float:
+    """One-sided Clopper–Pearson upper confidence bound on a rate from ``errors``/``n``."""
+    from scipy.stats import beta
 
-
-def trust_table(mispredictions: Sequence[dict[str, Any]]) -> list[list[float]]:
-    """margin[i_ϖ][i_β] = SAFETY × largest |λ − 1| of a misprediction in that bin
-    (0 where none was seen)."""
-    table = [[0.0] * (len(BETA_BINS) - 1) for _ in range(len(VARPI_BINS) - 1)]
-    for m in mispredictions:
-        i, j = _bin(m["varpi"], VARPI_BINS), _bin(m["beta"], BETA_BINS)
-        if i is not None and j is not None:
-            table[i][j] = max(table[i][j], SAFETY * abs(m["lam"] - 1.0))
-    return table
+    if n == 0:
+        return 1.0
+    if errors >= n:
+        return 1.0
+    return float(beta.ppf(confidence, errors + 1, n - errors))
 
 
 def sample_summary(rows: Sequence[dict[str, Any]]) -> dict[str, Any]:
+    """λ against the exact mode on a sample: rate, 95 % upper bound, per |λ − 1| band."""
     conv = [r for r in rows if r["mode"] in ("push", "pull")]
     wrong = [r for r in conv if r["mode"] != r["mode_predicted"]]
     keys = ("kappa", "beta", "alpha", "varpi", "lam", "mode", "delta_s")
+    bands = []
+    edges = [0.0, 0.2, 0.5, 1.0, 2.0, 5.0, math.inf]
+    for lo, hi in itertools.pairwise(edges):
+        inside = [r for r in conv if lo <= abs(r["lam"] - 1.0) < hi]
+        bad = sum(1 for r in inside if r["mode_predicted"] != r["mode"])
+        bands.append(
+            {
+                "lo": lo,
+                "hi": hi if math.isfinite(hi) else None,
+                "points": len(inside),
+                "mispredicted": bad,
+                "upper_95": upper_bound(bad, len(inside)),
+            }
+        )
     return {
         "points": len(rows),
         "converged": len(conv),
+        "stalled": sum(1 for r in rows if r["mode"] == "stalled"),
         "mispredicted": len(wrong),
         "rate": len(wrong) / len(conv) if conv else None,
+        "upper_95": upper_bound(len(wrong), len(conv)),
+        "bands": bands,
         "mispredictions": sorted(
             ({k: r[k] for k in keys} for r in wrong), key=lambda d: -abs(d["lam"] - 1.0)
         ),
     }
+
+
+#: Designs whose periodic Δs fingerprint the solver that produced the data.
+FINGERPRINT = (
+    (1.5, 2.5, 1.5, 0.4),
+    (0.6, 0.5, 1.5, 0.4),
+    (1.2, 2.0408163265306123, 0.5089380098815465, 0.1500314929875933),
+    (0.8, 0.3, 1.2, 0.3),
+    (1.024, 0.234, 1.31, 0.249),
+)
+
+
+def fingerprint() -> list[dict[str, float]]:
+    """Periodic Δs of :data:`FINGERPRINT` with today's solver (the staleness check)."""
+    from betvdesign.dynamics import periodic_orbit
+
+    out = []
+    for w, a, b, k in FINGERPRINT:
+        po = periodic_orbit(ModelParams(w, a, b, k))
+        out.append({"varpi": w, "alpha": a, "beta": b, "kappa": k, "delta_s": po.delta_s})
+    return out
 
 
 def measure(
@@ -228,41 +261,68 @@ def measure(
     executor: Any = None,
     grid: dict[str, Sequence[float]] | None = None,
     reuse_map: dict[str, Any] | None = None,
-    sample: int = 1500,
+    sample: int = HELD_OUT_N,
 ) -> dict[str, Any]:
     """Everything :mod:`betvdesign.fidelity` relies on, measured now (``reuse_map``: a
     previous ``lambda`` entry, to skip re-solving the map)."""
     from betvdesign.bench.workprecision import DESIGNS
 
     lam = reuse_map or lambda_disagreement(grid, executor=executor)
-    val = sample_summary(validation_sample(sample))
-    lam = {
-        **lam,
-        "sample": val,
-        "varpi_bins": list(VARPI_BINS),
-        "beta_bins": list(BETA_BINS),
-        "safety": SAFETY,
-        "trust_table": trust_table(lam["mispredictions"] + val["mispredictions"]),
-    }
+    lam = {**lam, "held_out": sample_summary(validation_sample(sample))}
     rig = rigid_envelope()
     costs = rung_costs([d.params for d in DESIGNS.values()])
-    return {"lambda": lam, "rigid": rig, "costs_cpu_s": costs, "full_cycles": 100}
+    return {
+        "lambda": lam,
+        "rigid": rig,
+        "costs_cpu_s": costs,
+        "full_cycles": 100,
+        "fingerprint": fingerprint(),
+    }
 
 
-HEADER = '''"""Measured trust limits and costs of the fidelity ladder (GENERATED, do not edit).
+COMMAND = "python benchmarks/work_precision.py --ladder"
 
-Regenerate: ``python benchmarks/work_precision.py --ladder``
-(betvdesign.bench.ladder.measure). Read by betvdesign.fidelity.
-"""
 
-# fmt: off
-MEASURED = '''
+def provenance() -> dict[str, Any]:
+    """Where the data come from: commit (and whether the tree was dirty), package
+    version, date, command, library versions."""
+    import datetime
+    import platform
+    import subprocess
+
+    import numba
+    import scipy
+
+    from betvdesign import __version__
+
+    root = Path(__file__).resolve().parents[2]
+
+    def git(*args: str) -> str:
+        try:
+            return subprocess.run(
+                ["git", *args], cwd=root, capture_output=True, text=True, timeout=10
+            ).stdout.strip()
+        except (OSError, subprocess.SubprocessError):
+            return ""
+
+    return {
+        "commit": git("rev-parse", "HEAD") or "unknown",
+        "dirty": bool(git("status", "--porcelain", "--untracked-files=no")),
+        "betvdesign": __version__,
+        "date": datetime.datetime.now(datetime.UTC).strftime("%Y-%m-%dT%H:%M:%SZ"),
+        "command": COMMAND,
+        "python": platform.python_version(),
+        "numpy": np.__version__,
+        "scipy": scipy.__version__,
+        "numba": numba.__version__,
+        "note": "machine timings (costs_cpu_s) are indicative only; no decision uses them",
+    }
 
 
 def write_measured(measured: dict[str, Any], path: Path) -> None:
-    """Write the generated module (atomically)."""
-    from betvdesign.report.render import write_atomic
+    """Write the package data (JSON, with provenance) atomically."""
+    from betvdesign.outputs import write_atomic
 
     plain = json.loads(json.dumps(measured, default=float))  # numpy scalars -> float
-    text = HEADER + pprint.pformat(plain, width=99, sort_dicts=True) + "\n"
-    write_atomic(Path(path), text)
+    doc = {"provenance": provenance(), "measured": plain}
+    write_atomic(Path(path), json.dumps(doc, indent=1, sort_keys=True) + "\n")

@@ -44,7 +44,16 @@ def _root(
 
 
 # Sub-command modules, imported for their side effect of registering on ``app``.
-_COMMANDS: tuple[str, ...] = ("sweep", "studies", "check", "schema", "report", "bench", "simulate")
+_COMMANDS: tuple[str, ...] = (
+    "sweep",
+    "studies",
+    "check",
+    "fix",
+    "schema",
+    "report",
+    "bench",
+    "simulate",
+)
 
 for _name in _COMMANDS:
     importlib.import_module(f"{__name__}.{_name}")

@@ -19,23 +19,23 @@ from rich.console import Console
 from rich.markup import escape as esc
 from rich.table import Table
 
-from betvdesign import fidelity as fid
 from betvdesign.checker import CheckResult, check_derivation, simulation_summary
 from betvdesign.checkview import (
-    RULE_VALUE_UNITS,
     DeviceView,
     RuleFilter,
     compact_lines,
     output_json,
     quiet_line,
+    rule_unit,
 )
 from betvdesign.cli import app
-from betvdesign.cli.common import EXIT_BAD_INPUT, EXIT_OK, EXIT_RULE_FAILED, user_errors
+from betvdesign.cli.common import EXIT_OK, EXIT_RULE_FAILED, user_errors
 from betvdesign.cli.config import load_config
-from betvdesign.errors import SpecError
+from betvdesign.errors import SpecError, UsageError
 from betvdesign.nondim import DERIVED_KEYS, derive_file
-from betvdesign.rules import DEFAULT_LAMBDA_MARGIN, RuleResult
+from betvdesign.rules import RuleResult
 from betvdesign.siformat import format_q, format_si
+from betvdesign.units import parse_speed
 
 _STATUS = {
     (True, "error"): "[green]ok[/]",
@@ -54,7 +54,7 @@ def check_cmd(
         False, "--json", help="Print JSON (one versioned shape; `betv schema check`)."
     ),
     verbose: bool = typer.Option(
-        False, "--verbose", "-v", help="Full rule table, fidelity and derivation of every set."
+        False, "--verbose", "-v", help="Every rule in a table, and the derivation of every set."
     ),
     quiet: bool = typer.Option(
         False, "--quiet", "-q", help="CI: print only failing devices, one line each."
@@ -65,51 +65,35 @@ def check_cmd(
     ignore: list[str] | None = typer.Option(
         None, "--ignore", metavar="RULE", help="These rules do not count (repeatable)."
     ),
-    simulate: bool = typer.Option(
-        False, "--simulate", help="Run the exact periodic-orbit solver for every actuator set."
-    ),
-    closed_form_only: bool = typer.Option(
-        False,
-        "--closed-form-only",
-        help="Never run the solver, even where the closed form cannot decide.",
-    ),
-    lambda_margin: float | None = typer.Option(
+    target_speed: str | None = typer.Option(
         None,
-        "--lambda-margin",
-        min=0.0,
-        help=f"Required |λ − 1| (default {DEFAULT_LAMBDA_MARGIN:g}: ±5 % on f_v or ±10 % on α "
-        "move λ ~10 %).",
+        "--target-speed",
+        metavar="Q",
+        help="Required slider speed with its unit, e.g. '1 mm/s' (adds the error rule "
+        "target-speed).",
     ),
     show_derivation: bool = typer.Option(False, "--derivation", hidden=True),
-    fidelity: str | None = typer.Option(
-        None,
-        "--fidelity",
-        metavar="RUNG",
-        help="Force the rung that decides the mode: lambda, rigid, full or periodic "
-        "(default: the cheapest the fidelity ladder trusts; see `betv ladder`).",
-    ),
 ) -> None:
-    """Check device files: design window, push/pull mode, speed, margin, resonance.
+    """Check device files: design window, push/pull mode, speed, margin, resonance, settling.
 
-    Prints one compact block per device (verdict; per actuator set its mode, speed and
-    margin; the failing rules with their fix). Defaults for --select, --ignore and
-    --lambda-margin may be set in a [tool.betv] table of pyproject.toml.
+    Prints one compact block per device: the verdict; per actuator set its mode, speed
+    and margin (from the exact periodic orbit; the paper's λ fit beside it) and the
+    failing rules, each with what to change (`betv fix FILE` finds the smallest change).
+    Defaults for --select, --ignore and --target-speed may be set in a [tool.betv] table
+    of pyproject.toml.
 
     Exit 0 pass, 1 an error rule fails, 2 bad input/usage.
     """
-    if simulate and closed_form_only:
-        print("error: --simulate and --closed-form-only exclude each other", file=sys.stderr)
-        raise typer.Exit(EXIT_BAD_INPUT)
-    if quiet and (verbose or show_derivation):
-        print("error: --quiet and --verbose exclude each other", file=sys.stderr)
-        raise typer.Exit(EXIT_BAD_INPUT)
-    mode = "always" if simulate else ("never" if closed_form_only else "auto")
+    verbose = verbose or show_derivation
     with user_errors():
+        if quiet and verbose:
+            raise UsageError("--quiet and --verbose exclude each other")
         cfg = load_config()
         flt = RuleFilter(
             tuple(select if select else cfg.select), tuple(ignore if ignore else cfg.ignore)
         )
-        margin = lambda_margin if lambda_margin is not None else cfg.lambda_margin
+        speed_text = target_speed if target_speed is not None else cfg.target_speed
+        target = None if speed_text is None else parse_speed(speed_text, "--target-speed")
         derivations, issues = [], []
         for f in files:  # collect the issues of every file before giving up
             try:
@@ -120,18 +104,14 @@ def check_cmd(
             raise SpecError(issues)
         results = []
         for f, d in derivations:
-            res = check_derivation(
-                d,
-                simulate=mode,
-                lambda_margin=margin,
-                fidelity=fidelity,  # type: ignore[arg-type]  # validated: UsageError
-            )
+            res = check_derivation(d, target_speed_m_s=target)
             res.source_file = str(f)
             results.append(res)
-        flt.validate(results)
+    for warning in flt.unmatched(results):
+        print(f"warning: {warning}", file=sys.stderr)
     views = [DeviceView(r, flt) for r in results]
     if as_json:
-        typer.echo(output_json(views, details=verbose or show_derivation))
+        typer.echo(output_json(views, details=verbose))
     elif quiet:
         for v in views:
             line = quiet_line(v)
@@ -141,13 +121,13 @@ def check_cmd(
         console = Console(soft_wrap=True, highlight=False)
         width = min(100, console.width) if console.is_terminal else 100
         for i, v in enumerate(views):
-            if verbose or show_derivation:
+            if verbose:
                 render(v.result, Console(soft_wrap=False), derivation=True)
-            else:
-                if i:
-                    console.print()
-                for line in compact_lines(v, width=width):
-                    console.print(line)
+                continue
+            if i:
+                console.print()
+            for line in compact_lines(v, width=width):
+                console.print(line)
         if len(views) > 1:
             failed_names = [v.result.derivation.name for v in views if v.verdict == "fail"]
             console.print(
@@ -172,18 +152,9 @@ def render(result: CheckResult, console: Console, *, derivation: bool = False) -
         console.print(
             f"[bold]set {esc(s.name)}[/]: intended {s.intended_mode}, impacts "
             f"{s.actuator_set.impact_direction}; ϖ = {p.varpi:.4g}, α = {p.alpha:.4g}, "
-            f"β = {p.beta:.4g}, κ = {p.kappa:.4g}, λ = {s.lam:.4g} -> predicted "
-            f"[bold]{sc.mode_predicted}[/] (from {sc.mode_source})"
+            f"β = {p.beta:.4g}, κ = {p.kappa:.4g} -> exact orbit: [bold]{sc.mode_predicted}[/] "
+            f"(λ = {s.lam:.4g} predicts {sc.lambda_mode})"
         )
-        if sc.fidelity is not None:
-            f = sc.fidelity
-            forced = ", forced" if f.forced else ""
-            console.print(
-                esc(
-                    f"  fidelity: rung {f.rung}{forced} ({fid.RUNG_INFO[f.rung].model}): {f.reason}"
-                ),
-                highlight=False,
-            )
         derived = [st for st in s.record if st.key in DERIVED_KEYS]
         console.print(
             "  " + esc(", ".join(f"{st.symbol} = {format_q(st.value)}" for st in derived)),
@@ -196,7 +167,7 @@ def render(result: CheckResult, console: Console, *, derivation: bool = False) -
                 for k, v in sim.items()
                 if k not in ("success", "message")
             )
-            console.print(esc(f"  exact orbit ({sc.simulated_because}): {extra}"), highlight=False)
+            console.print(esc(f"  exact orbit: {extra}"), highlight=False)
         if derivation:
             console.print(_record_table(sc))
         _print_rules(sc.rules, console)
@@ -215,7 +186,7 @@ def _rules_table(rules: list[RuleResult]) -> Table:
         t.add_column(col, no_wrap=True)
     t.add_column("threshold", overflow="fold")
     for r in rules:
-        unit = RULE_VALUE_UNITS.get(r.id, "")
+        unit = rule_unit(r)
         value = "" if r.value is None else (format_si(r.value, unit) if unit else f"{r.value:.4g}")
         t.add_row(_STATUS[(r.passed, r.severity)], r.severity, r.id, value, esc(r.threshold))
     return t
@@ -229,6 +200,8 @@ def _print_rules(rules: list[RuleResult], console: Console) -> None:
             console.print(
                 f"  {_STATUS[(r.passed, r.severity)]} {r.id}: {esc(r.message)}", highlight=False
             )
+            if r.fix and not r.passed:
+                console.print(f"      [cyan]fix:[/] {esc(r.fix)}", highlight=False)
 
 
 def _record_table(sc) -> Table:
@@ -236,7 +209,6 @@ def _record_table(sc) -> Table:
     for col in ("symbol", "description", "formula", "value"):
         t.add_column(col, overflow="fold")
     for st in sc.derivation.record:
-        t.add_row(
-            *(esc(x) for x in (st.symbol, st.description, st.formula, format_q(st.value, digits=4)))
-        )
+        value = format_q(st.value, digits=4)
+        t.add_row(*(esc(x) for x in (st.symbol, st.description, st.formula, value)))
     return t

@@ -6,22 +6,20 @@ current directory or its parents; options given on the command line win::
     [tool.betv]
     select = ["frequency-window", "mode"]   # rules that count (default: all)
     ignore = ["published-fit"]              # rules that do not count
-    lambda-margin = 0.3                     # required |λ − 1| [-]
+    target-speed = "1 mm/s"                 # required slider speed (adds a rule)
 
 An unknown key, a wrong type or a file that is not TOML is bad input (exit 2).
 """
 
 from __future__ import annotations
 
-import math
 import tomllib
 from dataclasses import dataclass
 from pathlib import Path
 
 from betvdesign.errors import UsageError
-from betvdesign.rules import DEFAULT_LAMBDA_MARGIN
 
-KEYS = ("select", "ignore", "lambda-margin")
+KEYS = ("select", "ignore", "target-speed")
 
 
 @dataclass(frozen=True)
@@ -30,7 +28,7 @@ class Config:
 
     select: tuple[str, ...] = ()
     ignore: tuple[str, ...] = ()
-    lambda_margin: float = DEFAULT_LAMBDA_MARGIN
+    target_speed: str | None = None
     source: str = ""
 
 
@@ -71,9 +69,7 @@ def load_config(path: Path | None = None) -> Config:
         if not isinstance(v, list) or not all(isinstance(x, str) and x for x in v):
             raise UsageError(f'{where}: {key} must be a list of rule ids, e.g. ["mode"]')
         lists[key] = tuple(v)
-    margin = table.get("lambda-margin", DEFAULT_LAMBDA_MARGIN)
-    if isinstance(margin, bool) or not isinstance(margin, int | float):
-        raise UsageError(f"{where}: lambda-margin must be a number, got {margin!r}")
-    if not (math.isfinite(margin) and margin >= 0):
-        raise UsageError(f"{where}: lambda-margin must be >= 0, got {margin!r}")
-    return Config(lists["select"], lists["ignore"], float(margin), str(path))
+    speed = table.get("target-speed")
+    if speed is not None and not isinstance(speed, str):
+        raise UsageError(f"{where}: target-speed must be a string with a unit, e.g. '1 mm/s'")
+    return Config(lists["select"], lists["ignore"], speed, str(path))

@@ -4,7 +4,9 @@ Thin: everything is :func:`betvdesign.report.write_reports`.
 
 Exit codes: 0 the reports were written (also for a device whose verdict is
 "fail": that is when a report is most needed); with ``--strict``, 1 when a
-device's verdict is "fail"; 2 bad input or usage (no file is written).
+device's verdict is "fail"; 2 bad input or usage, including an output directory
+that cannot be written (no file is written); 130 interrupted (Ctrl-C, SIGTERM:
+each device's HTML and PDF are written together or not at all).
 """
 
 from __future__ import annotations
@@ -14,7 +16,7 @@ from pathlib import Path
 import typer
 
 from betvdesign.cli import app
-from betvdesign.cli.common import EXIT_OK, EXIT_RULE_FAILED, user_errors
+from betvdesign.cli.common import EXIT_OK, EXIT_RULE_FAILED, interruptible, user_errors
 
 
 @app.command("report")
@@ -30,13 +32,6 @@ def report_cmd(
         "--timestamp",
         help="Print the generation time and run times (reports then differ between runs).",
     ),
-    fidelity: str | None = typer.Option(
-        None,
-        "--fidelity",
-        metavar="RUNG",
-        help="Force the rung that decides each set's mode for the verdict: lambda, rigid, "
-        "full or periodic (default: the periodic orbit the figures need anyway).",
-    ),
     quiet: bool = typer.Option(False, "--quiet", "-q", help="No progress bar."),
     methods: bool = typer.Option(
         False,
@@ -44,13 +39,25 @@ def report_cmd(
         help="Write the methods report (speed/accuracy chart, failure map, fidelity ladder) "
         "instead; FILE may then be a work-precision JSON from `betv bench -o`.",
     ),
+    validation: bool = typer.Option(
+        False,
+        "--validation",
+        help="Write the validation page against the published paper (Figs 3-12 recomputed) "
+        "instead; FILE may then be the published device (default devices/shin2004.yaml).",
+    ),
 ) -> None:
     """Write NAME.html (self-contained) and NAME.pdf for every device file.
 
-    Every figure caption and verdict box states its fidelity rung and why.
+    The verdict always rests on the exact periodic orbit of every set; every figure
+    caption states which model drew it and why.
     """
     from betvdesign.report import ReportOptions, write_reports
 
+    if validation:
+        from betvdesign.cli.validation import validation_report
+
+        other = {"--methods": methods, "--strict": strict, "--timestamp": timestamp}
+        raise typer.Exit(validation_report(files or [], outdir, pdf=pdf, other=other))
     if methods:
         from betvdesign.cli.bench import methods_report
 
@@ -58,8 +65,12 @@ def report_cmd(
 
     from betvdesign.cli.sweep import progress_bar
 
-    with user_errors(), progress_bar("writing reports", quiet) as progress:
-        options = ReportOptions(fidelity=fidelity)
+    with (
+        user_errors(),
+        interruptible(resumable=False),
+        progress_bar("writing reports", quiet) as progress,
+    ):
+        options = ReportOptions()
         written = write_reports(
             files, outdir, pdf=pdf, timestamp=timestamp, options=options, progress=progress
         )

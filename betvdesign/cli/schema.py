@@ -1,18 +1,19 @@
-"""``betv schema [device|check]``: JSON schema of device files (pydantic ``DeviceSpec``) or
-of ``betv check --json`` (:func:`betvdesign.checkview.check_json_schema`)."""
+"""``betv schema [device|check]``: JSON schema of device files (pydantic ``DeviceSpec``, with
+the input limits of :mod:`betvdesign.limits` under ``x-betv-limits`` and in the
+description) or of ``betv check --json`` (:func:`betvdesign.checkview.check_json_schema`)."""
 
 from __future__ import annotations
 
 import json
-import os
-import tempfile
 from pathlib import Path
 
 import typer
 
+from betvdesign import limits
 from betvdesign.cli import app
 from betvdesign.cli.common import user_errors
 from betvdesign.errors import UsageError
+from betvdesign.outputs import check_output_file, write_atomic
 from betvdesign.spec import DeviceSpec
 
 
@@ -21,6 +22,12 @@ def device_schema() -> dict:
     schema = DeviceSpec.model_json_schema(mode="validation")
     schema["$schema"] = "https://json-schema.org/draft/2020-12/schema"
     schema["title"] = "BETV device file (betvdesign)"
+    schema["x-betv-limits"] = limits.describe()
+    schema["description"] = (
+        (schema.get("description") or "").rstrip()
+        + "\n\nInput limits (refused with exit 2, naming the field and the limit): "
+        + "; ".join(f"{k} {v['value']} ({v['what']})" for k, v in limits.describe().items())
+    ).strip()
     return schema
 
 
@@ -53,22 +60,4 @@ def schema_cmd(
         typer.echo(text, nl=False)
         return
     with user_errors():
-        write_atomic(output, text)
-
-
-def write_atomic(path: Path, text: str) -> None:
-    """Write via a temporary file in the same directory and rename: never half a file."""
-    directory = path.parent if str(path.parent) else Path(".")
-    if not directory.is_dir():
-        raise UsageError(f"{path}: directory {directory} does not exist")
-    try:
-        fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", dir=directory)
-    except OSError as exc:
-        raise UsageError(f"{path}: cannot write: {exc.strerror}") from None
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8") as fh:
-            fh.write(text)
-        os.replace(tmp, path)
-    except OSError as exc:
-        Path(tmp).unlink(missing_ok=True)
-        raise UsageError(f"{path}: cannot write: {exc.strerror}") from None
+        write_atomic(check_output_file(output), text)

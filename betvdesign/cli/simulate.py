@@ -24,8 +24,17 @@ from typing import Any
 
 import typer
 
+from betvdesign import limits
 from betvdesign.cli import app
-from betvdesign.cli.common import EXIT_OK, EXIT_RULE_FAILED, user_errors
+from betvdesign.cli.common import (
+    EXIT_OK,
+    EXIT_RULE_FAILED,
+    float_option,
+    int_option,
+    interruptible,
+    renamed_option,
+    user_errors,
+)
 from betvdesign.errors import UsageError
 from betvdesign.params import ModelParams
 from betvdesign.siformat import format_si
@@ -93,17 +102,44 @@ def simulate_cmd(
     set_name: str | None = typer.Option(
         None, "--set", help="Actuator set of the device file (default: the first)."
     ),
-    varpi: float | None = typer.Option(None, "--varpi", help="ϖ = ω·sqrt(m/k_v) [-]."),
-    alpha: float | None = typer.Option(None, "--alpha", help="α = k_v/k_h [-]."),
-    beta: float | None = typer.Option(None, "--beta", help="β = m/M [-]."),
-    kappa: float | None = typer.Option(None, "--kappa", help="κ = μ·tanθ [-]."),
-    cycles: int = typer.Option(100, "--cycles", min=1, help="Transient cycles from rest."),
+    varpi: float | None = typer.Option(
+        None, "--varpi", help="ϖ = ω·sqrt(m/k_v) [-].", callback=float_option(gt=0.0)
+    ),
+    alpha: float | None = typer.Option(
+        None, "--alpha", help="α = k_v/k_h [-].", callback=float_option(gt=0.0)
+    ),
+    beta: float | None = typer.Option(
+        None, "--beta", help="β = m/M [-].", callback=float_option(gt=0.0)
+    ),
+    kappa: float | None = typer.Option(
+        None, "--kappa", help="κ = μ·tanθ [-].", callback=float_option(gt=0.0)
+    ),
+    cycles: int = typer.Option(
+        100,
+        "--cycles",
+        help=f"Transient cycles from rest (1 to {limits.MAX_CYCLES:,}).",
+        callback=int_option(1, limits.MAX_CYCLES, why="about 3 µs and 100 bytes per cycle"),
+    ),
     periodic: bool = typer.Option(
         False, "--periodic", help="Solve for the periodic state (Newton shooting)."
     ),
-    tol: float = typer.Option(1e-10, "--tol", help="Periodic residual accepted [-]."),
+    residual_tol: float = typer.Option(
+        1e-10,
+        "--residual-tol",
+        help="Periodic residual accepted [-], in (0, 0.1].",
+        callback=float_option(gt=0.0, le=0.1),
+    ),
     max_cycles: int = typer.Option(
-        100_000, "--max-cycles", min=1, help="Brute-force budget of --periodic [cycles]."
+        100_000,
+        "--max-cycles",
+        help=f"Brute-force budget of --periodic [cycles, 1 to {limits.MAX_CYCLES:,}].",
+        callback=int_option(1, limits.MAX_CYCLES),
+    ),
+    _tol: str | None = typer.Option(
+        None,
+        "--tol",
+        hidden=True,
+        callback=renamed_option("--residual-tol", "the periodic solver's residual"),
     ),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object on stdout."),
 ) -> None:
@@ -111,10 +147,10 @@ def simulate_cmd(
     from betvdesign.dynamics import periodic_orbit, simulate
 
     opts = {"varpi": varpi, "alpha": alpha, "beta": beta, "kappa": kappa}
-    with user_errors():
+    with user_errors(), interruptible(resumable=False):
         p, scales, ident = _params_from_options(file, set_name, opts)
         if periodic:
-            po = periodic_orbit(p, tol=tol, max_cycles=max_cycles)
+            po = periodic_orbit(p, tol=residual_tol, max_cycles=max_cycles)
             out: dict[str, Any] = {
                 "params": p.as_dict(),
                 "status": po.status,

@@ -8,12 +8,22 @@ from typing import Annotated
 
 import typer
 
+from betvdesign import limits
 from betvdesign.cli import app
-from betvdesign.cli.common import EXIT_RULE_FAILED, user_errors
+from betvdesign.cli.common import (
+    EXIT_RULE_FAILED,
+    int_option,
+    interruptible,
+    output_file,
+    renamed_option,
+    seed_option,
+    user_errors,
+)
 from betvdesign.cli.sweep import (
     ChunkOpt,
     Execution,
     ExecutorOpt,
+    FidelityOpt,
     JsonOpt,
     OutOpt,
     OverwriteOpt,
@@ -21,7 +31,6 @@ from betvdesign.cli.sweep import (
     SchedulerOpt,
     WorkersOpt,
     emit,
-    interruptible,
     run_block,
 )
 from betvdesign.errors import UsageError
@@ -30,25 +39,42 @@ from betvdesign.errors import UsageError
 @app.command("tolerance")
 def tolerance_cmd(
     device: Annotated[Path, typer.Argument(help="Device YAML file.")],
-    tol: Annotated[
+    spread: Annotated[
+        list[str] | None,
+        typer.Option(
+            "--spread",
+            help="Monte Carlo spread of one field: FIELD=[normal|uniform:]AMOUNT, e.g. "
+            "slider.beam_width=normal:0.2um, contact.friction=uniform:10%. Repeatable.",
+        ),
+    ] = None,
+    _tol: Annotated[
         list[str] | None,
         typer.Option(
             "--tol",
-            help="FIELD=[normal|uniform:]AMOUNT, e.g. slider.beam_width=normal:0.2um, "
-            "contact.friction=uniform:10%. Repeatable.",
+            hidden=True,
+            callback=renamed_option(
+                "--spread FIELD=[normal|uniform:]AMOUNT",
+                "the Monte Carlo spread; a solver residual is `--residual-tol`",
+            ),
         ),
     ] = None,
     tolerances: Annotated[
         Path | None, typer.Option("--tolerances", help="YAML file with a 'tolerances:' map.")
     ] = None,
-    samples: Annotated[int, typer.Option("--samples", "-n", help="Monte Carlo samples.")] = 1000,
-    seed: Annotated[int, typer.Option(help="Seed of the numpy Generator.")] = 0,
-    fidelity: Annotated[
-        str,
+    samples: Annotated[
+        int,
         typer.Option(
-            help="Fidelity rung: periodic (exact periodic orbit) or lambda (closed-form fit)."
+            "--samples",
+            "-n",
+            help=f"Monte Carlo samples (1 to {limits.MAX_SAMPLES:,}).",
+            callback=int_option(1, limits.MAX_SAMPLES),
         ),
-    ] = "periodic",
+    ] = 1000,
+    seed: Annotated[
+        int,
+        typer.Option(help="Seed of the numpy Generator, 0 <= seed < 2**128.", callback=seed_option),
+    ] = 0,
+    fidelity: FidelityOpt = "periodic",
     sets: Annotated[
         list[str] | None, typer.Option("--set", help="Actuator set(s) to study (default: all).")
     ] = None,
@@ -65,7 +91,7 @@ def tolerance_cmd(
     from betvdesign.studies.tolerance import load_tolerances, parse_tolerance, run_tolerance
 
     with user_errors(), interruptible(out):
-        tols = [parse_tolerance(t) for t in tol or []]
+        tols = [parse_tolerance(t) for t in spread or []]
         if tolerances is not None:
             tols += load_tolerances(tolerances)
         execution = Execution(executor, workers, chunksize, scheduler, out, overwrite, quiet)
@@ -76,7 +102,7 @@ def tolerance_cmd(
             tols,
             samples=samples,
             seed=seed,
-            fidelity=fidelity,
+            fidelity=fidelity.lower(),
             sets=sets,
         )
         data = {"study": "tolerance", "device": str(device), "seed": seed, **run_block(run)}
@@ -165,15 +191,16 @@ def calibrate_cmd(
 
     Prints R², χ²/dof, 1σ and warnings; exit 1 if the fit fails or sits at bound 0.
     """
+    from betvdesign.outputs import write_atomic
     from betvdesign.studies.calibration import calibrate
     from betvdesign.studies.measurements import read_measurements
-    from betvdesign.studies.store import write_atomic
 
-    with user_errors():
+    with user_errors(), interruptible(resumable=False):
+        kind, law = kind.lower(), law.lower()
         if kind not in ("speed", "displacement"):
             raise UsageError(f"--kind must be speed or displacement, not {kind!r}")
-        if out is not None and not out.parent.is_dir():
-            raise UsageError(f"{out}: directory {out.parent} does not exist")
+        if out is not None:
+            output_file(out)
         measured = read_measurements(data, kind)  # type: ignore[arg-type]
         result = calibrate(
             device,
@@ -185,10 +212,7 @@ def calibrate_cmd(
             direction=direction,
         )
         if out is not None:
-            try:
-                write_atomic(out, result.snippet)
-            except OSError as exc:
-                raise UsageError(f"{out}: cannot write: {exc.strerror}") from None
+            write_atomic(out, result.snippet)
         payload = {"study": "calibration", "device": str(device), "data": str(data)}
         payload |= result.as_dict()
         payload["out"] = str(out) if out else None

@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import contextlib
 import json
-import sys
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
@@ -20,14 +19,23 @@ from typing import Annotated, Any, TypeVar
 
 import typer
 
+from betvdesign import limits
 from betvdesign.cli import app
-from betvdesign.cli.common import user_errors
-from betvdesign.errors import UsageError
+from betvdesign.cli.common import (
+    EXIT_INTERRUPTED,
+    float_option,
+    int_option,
+    interruptible,
+    output_file,
+    renamed_option,
+    user_errors,
+)
+from betvdesign.outputs import atomic_path
 from betvdesign.studies.executors import make_executor
 from betvdesign.studies.grid import parse_range
 from betvdesign.studies.runner import StudyRun
 
-EXIT_INTERRUPTED = 130
+__all__ = ["EXIT_INTERRUPTED", "interruptible"]  # re-exported for older imports
 #: Disagreements/failures printed in the human summary (--json lists all).
 MAX_LISTED = 40
 T = TypeVar("T")
@@ -41,13 +49,27 @@ app.add_typer(sweep_app, name="sweep")
 
 # -- options shared by every study command (also used by cli/studies.py) -------
 ExecutorOpt = Annotated[
-    str, typer.Option("--executor", "-x", help="serial, process (all cores) or dask.")
+    str,
+    typer.Option(
+        "--executor", "-x", help="serial, process (all cores) or dask (case-insensitive)."
+    ),
 ]
 WorkersOpt = Annotated[
-    int | None, typer.Option("--workers", "-j", help="Worker processes (default: all cores).")
+    int | None,
+    typer.Option(
+        "--workers",
+        "-j",
+        help=f"Worker processes (default: all cores; 1 to {limits.MAX_WORKERS}).",
+        callback=int_option(1, limits.MAX_WORKERS),
+    ),
 ]
 ChunkOpt = Annotated[
-    int | None, typer.Option("--chunksize", help="Points per task sent to a worker.")
+    int | None,
+    typer.Option(
+        "--chunksize",
+        help=f"Points per task sent to a worker (1 to {limits.MAX_CHUNKSIZE:,}).",
+        callback=int_option(1, limits.MAX_CHUNKSIZE),
+    ),
 ]
 SchedulerOpt = Annotated[
     str | None, typer.Option("--scheduler", help="dask.distributed scheduler tcp://host:port.")
@@ -60,8 +82,36 @@ MaxCyclesOpt = Annotated[
     int | None,
     typer.Option(
         "--max-cycles",
-        help="Cycle budget per periodic solve (default: the solver's, 100000); points "
-        "that do not settle within it are listed as not converged.",
+        help="Cycle budget per periodic solve (default: the solver's, 100000; at most "
+        f"{limits.MAX_CYCLES:,}); points that do not settle within it are listed as not "
+        "converged.",
+        callback=int_option(1, limits.MAX_CYCLES),
+    ),
+]
+ResidualTolOpt = Annotated[
+    float,
+    typer.Option(
+        "--residual-tol",
+        help="Periodic solver: fixed-point residual accepted [-], in (0, 0.1].",
+        callback=float_option(gt=0.0, le=0.1),
+    ),
+]
+#: ``--tol`` meant a solver residual here but a Monte Carlo spread in ``betv tolerance``;
+#: both have their own names now, and the old one says so.
+RetiredTolOpt = Annotated[
+    str | None,
+    typer.Option(
+        "--tol",
+        hidden=True,
+        callback=renamed_option(
+            "--residual-tol", "the solver's residual; the Monte Carlo spread is `--spread`"
+        ),
+    ),
+]
+FidelityOpt = Annotated[
+    str,
+    typer.Option(
+        help="Fidelity rung: periodic (exact periodic orbits) or lambda (closed-form fit)."
     ),
 ]
 OverwriteOpt = Annotated[
@@ -85,6 +135,8 @@ class Execution:
 
     def run(self, label: str, fn: Callable[..., T], /, *args: Any, **kwargs: Any) -> T:
         """``fn(*args, **kwargs)`` with the executor, output and a progress bar."""
+        if self.out is not None:
+            output_file(self.out, create_parent=True)
         ex = make_executor(
             self.executor, workers=self.workers, chunksize=self.chunksize, scheduler=self.scheduler
         )
@@ -133,20 +185,6 @@ def progress_bar(label: str, quiet: bool) -> Iterator[Callable[[int, int], None]
             bar.stop()
 
 
-@contextlib.contextmanager
-def interruptible(out: Path | None) -> Iterator[None]:
-    """Ctrl-C: say what was kept and how to resume; exit 130 without a traceback."""
-    try:
-        yield
-    except KeyboardInterrupt:
-        where = f"finished points are kept in {out}; " if out else ""
-        print(
-            f"interrupted: {where}run the same command again to resume",
-            file=sys.stderr,
-        )
-        raise typer.Exit(EXIT_INTERRUPTED) from None
-
-
 def emit(summary: dict[str, Any], as_json: bool, human: Callable[[], None]) -> None:
     """Print the JSON summary on stdout, or the human-readable form (led by the fidelity
     rung the study used and why, when the summary states one)."""
@@ -182,14 +220,10 @@ def pushpull_cmd(
     alpha: Annotated[str, typer.Option(help="α range.")],
     beta: Annotated[str, typer.Option(help="β range.")],
     kappa: Annotated[str, typer.Option(help="κ range.")],
-    fidelity: Annotated[
-        str,
-        typer.Option(
-            help="Fidelity rung: periodic (exact periodic orbits) or lambda (closed-form fit)."
-        ),
-    ] = "periodic",
-    tol: Annotated[float, typer.Option(help="Fixed-point residual tolerance.")] = 1e-10,
+    fidelity: FidelityOpt = "periodic",
+    residual_tol: ResidualTolOpt = 1e-10,
     max_cycles: MaxCyclesOpt = None,
+    _tol: RetiredTolOpt = None,
     figure: Annotated[
         Path | None, typer.Option("--figure", help="Write the map figure (SVG/PNG/PDF).")
     ] = None,
@@ -208,23 +242,22 @@ def pushpull_cmd(
     with user_errors(), interruptible(out):
         axes = {n: axis(t, n) for n, t in (("varpi", varpi), ("alpha", alpha))}
         axes |= {n: axis(t, n) for n, t in (("beta", beta), ("kappa", kappa))}
-        if tol <= 0:
-            raise UsageError(f"--tol must be > 0, got {tol:g}")
         if figure is not None:
-            _check_figure_path(figure)
+            output_file(figure, suffixes=(".svg", ".png", ".pdf"))
         execution = Execution(executor, workers, chunksize, scheduler, out, overwrite, quiet)
         run, summary = execution.run(
             "push/pull map",
             run_pushpull,
             **axes,
-            fidelity=fidelity,
-            tol=tol,
+            fidelity=fidelity.lower(),
+            tol=residual_tol,
             max_cycles=max_cycles,
         )
         if figure is not None:
             from betvdesign.plots.studies import save_pushpull_figure
 
-            save_pushpull_figure(run.rows, figure)
+            with atomic_path(figure) as tmp:  # a whole figure or none
+                save_pushpull_figure(run.rows, tmp)
         data = {"study": "pushpull", **run_block(run), **summary.as_dict()}
         data["figure"] = str(figure) if figure else None
 
@@ -264,28 +297,25 @@ def pushpull_cmd(
         emit(data, as_json, human)
 
 
-def _check_figure_path(path: Path) -> None:
-    if path.suffix.lower() not in (".svg", ".png", ".pdf"):
-        raise UsageError(f"{path}: figure must be .svg, .png or .pdf")
-    parent = path.parent
-    if not parent.is_dir():
-        raise UsageError(f"{path}: directory {parent} does not exist")
-
-
 @sweep_app.command("lambda")
 def lambda_cmd(
-    kappa: Annotated[float, typer.Option(help="Fixed κ.")],
-    beta: Annotated[float, typer.Option(help="Fixed β.")],
+    kappa: Annotated[float, typer.Option(help="Fixed κ.", callback=float_option(gt=0.0))],
+    beta: Annotated[float, typer.Option(help="Fixed β.", callback=float_option(gt=0.0))],
     lam: Annotated[
         str, typer.Option("--lambda", help="λ targets, e.g. 0.5:1.5:0.05.")
     ] = "0.5:1.5:0.05",
     vary: Annotated[
         str, typer.Option(help="Parameter moved to reach λ: varpi or alpha.")
     ] = "varpi",
-    alpha: Annotated[float | None, typer.Option(help="Fixed α (when varying ϖ).")] = None,
-    varpi: Annotated[float | None, typer.Option(help="Fixed ϖ (when varying α).")] = None,
-    tol: Annotated[float, typer.Option(help="Fixed-point residual tolerance.")] = 1e-10,
+    alpha: Annotated[
+        float | None, typer.Option(help="Fixed α (when varying ϖ).", callback=float_option(gt=0.0))
+    ] = None,
+    varpi: Annotated[
+        float | None, typer.Option(help="Fixed ϖ (when varying α).", callback=float_option(gt=0.0))
+    ] = None,
+    residual_tol: ResidualTolOpt = 1e-10,
     max_cycles: MaxCyclesOpt = None,
+    _tol: RetiredTolOpt = None,
     out: OutOpt = None,
     overwrite: OverwriteOpt = False,
     executor: ExecutorOpt = "process",
@@ -300,9 +330,6 @@ def lambda_cmd(
 
     with user_errors(), interruptible(out):
         targets = axis(lam, "lambda")
-        for name, value in (("kappa", kappa), ("beta", beta), ("alpha", alpha), ("varpi", varpi)):
-            if value is not None and not value > 0:
-                raise UsageError(f"--{name} must be > 0, got {value:g}")
         execution = Execution(executor, workers, chunksize, scheduler, out, overwrite, quiet)
         run, summary = execution.run(
             "Δs against λ",
@@ -310,10 +337,10 @@ def lambda_cmd(
             targets,
             kappa=kappa,
             beta=beta,
-            vary=vary,
+            vary=vary.lower(),
             alpha=alpha,
             varpi=varpi,
-            tol=tol,
+            tol=residual_tol,
             max_cycles=max_cycles,
         )
         rows = [
@@ -347,7 +374,11 @@ def regime_cmd(
         str, typer.Option(help="ϖ grid in (0, 10], e.g. 0.005:10:0.005.")
     ] = "0.005:10:0.005",
     max_cycles: Annotated[
-        int, typer.Option(help="Horizon [cycles]; the second half is analysed.")
+        int,
+        typer.Option(
+            help=f"Horizon [cycles, 2 to {limits.MAX_CYCLES:,}]; the second half is analysed.",
+            callback=int_option(2, limits.MAX_CYCLES),
+        ),
     ] = 400,
     out: OutOpt = None,
     overwrite: OverwriteOpt = False,

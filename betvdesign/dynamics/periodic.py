@@ -43,6 +43,7 @@ import time
 
 import numpy as np
 
+from betvdesign.domain import mode_of
 from betvdesign.dynamics.flows import PhaseConstants
 from betvdesign.dynamics.result import PeriodicResult
 from betvdesign.dynamics.solver import SolverFailure, _Cycle
@@ -394,7 +395,7 @@ def periodic_orbit(
                 f"periodic orbit of {n} cycle(s), residual {r_final:.2e} ≤ {tol:.0e}, "
                 f"|μ|max = {abs(mu[0]):.6f}",
                 delta_s=ds,
-                mode="push" if ds > 0 else "pull" if ds < 0 else None,
+                mode=mode_of(ds),
                 period_cycles=n,
                 residual=r_final,
                 floquet=mu,

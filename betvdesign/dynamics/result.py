@@ -16,7 +16,7 @@ import numpy as np
 
 from betvdesign.params import ModelParams
 
-Mode = Literal["push", "pull"]
+Mode = Literal["push", "pull", "stalled"]
 
 
 class Event(NamedTuple):
@@ -87,8 +87,9 @@ class PeriodicResult:
 
     ``state``: section state (ξ, ξ', ζ, ζ', s, s') at τ = 2m*π/ϖ on the orbit (s = 0);
     ``delta_s`` [-]: slider increment per actuation cycle on the orbit (the orbit's
-    increment over ``period_cycles`` divided by it); ``mode``: "push" (Δs > 0) or
-    "pull" (Δs < 0); ``residual``: max-norm of (map(state) − state) over the whole
+    increment over ``period_cycles`` divided by it); ``mode``: "push" (Δs > 0), "pull"
+    (Δs < 0) or "stalled" (|Δs| at round-off; :func:`betvdesign.domain.mode_of`);
+    ``residual``: max-norm of (map(state) − state) over the whole
     section state, slider position excepted (it drifts by design); ``floquet``:
     multipliers of the section map (ζ, ζ', s'), complex, sorted by decreasing modulus;
     ``stable``: all |μ| < 1; ``transient_cycles``, ``transient_s``: cycles iterated from

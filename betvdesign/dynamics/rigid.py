@@ -40,6 +40,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.optimize import brentq
 
+from betvdesign.domain import mode_of
 from betvdesign.dynamics.vertical import VerticalSchedule
 from betvdesign.params import ModelParams
 
@@ -309,7 +310,7 @@ def rigid_periodic(p: ModelParams, *, max_cycles: int = 200) -> RigidPeriodic:
     v_star = brentq(gap, -bound, bound, xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=200)
     ds_period, v_out = one_period(v_star)
     delta_s = ds_period / n_cyc
-    mode = "push" if delta_s > 0 else ("pull" if delta_s < 0 else None)
+    mode = mode_of(delta_s)
     duration = cycle_contact.end - cycle_contact.start
     return RigidPeriodic(
         status="success",

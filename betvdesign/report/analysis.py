@@ -55,8 +55,6 @@ class ReportOptions:
     periodic_tol: fixed-point residual accepted for a periodic orbit [-];
     periodic_max_cycles: cycle budget of the device's periodic orbit (settling can take
     ~10⁵ cycles, MODEL.md "Slider"); sweep_max_cycles: the same for each λ-sweep orbit;
-    fidelity: the rung forced for the verdict's mode decision (``betv report --fidelity``;
-    None: the periodic orbit the figures need anyway decides).
     """
 
     regime_points: int = 111
@@ -70,7 +68,6 @@ class ReportOptions:
     periodic_tol: float = 1e-10
     periodic_max_cycles: int = 100_000
     sweep_max_cycles: int = 20_000
-    fidelity: str | None = None
 
 
 @dataclass

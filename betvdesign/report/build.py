@@ -2,8 +2,7 @@
 
 load (spec) -> derive (nondim) -> analyse each distinct actuator set (dynamics)
 -> the design check (:func:`betvdesign.checker.check_derivation`, fed the periodic
-orbits and vertical motions already computed; its mode-deciding rung is the
-periodic orbit, or the one forced with ``ReportOptions.fidelity``) -> format
+orbits and vertical motions already computed; the exact orbit decides the mode) -> format
 everything into a :class:`~betvdesign.report.model.Report`. Bad input raises the loader's
 :class:`~betvdesign.errors.SpecError` before anything is computed or written.
 """
@@ -19,9 +18,14 @@ from typing import Any
 import pint
 
 from betvdesign import __version__
-from betvdesign import fidelity as fid
-from betvdesign.checker import CheckResult, SetCheck, SolverFailure, check_derivation
-from betvdesign.checkview import RULE_VALUE_UNITS
+from betvdesign.checker import (
+    CheckResult,
+    SetCheck,
+    SolverFailure,
+    check_derivation,
+    load_solver,
+)
+from betvdesign.checkview import rule_unit
 from betvdesign.loader import load_device
 from betvdesign.nondim import DeviceDerivation, SetDerivation, derive
 from betvdesign.report import figures
@@ -96,13 +100,14 @@ def rule_rows(results: list[RuleResult]) -> tuple[RuleRow, ...]:
         RuleRow(
             r.id,
             r.severity,
-            format_si(r.value, RULE_VALUE_UNITS[r.id], digits=4)
-            if r.value is not None and r.id in RULE_VALUE_UNITS
+            format_si(r.value, rule_unit(r), digits=4)
+            if r.value is not None and rule_unit(r)
             else fmt_num(r.value),
             r.threshold,
             r.passed,
             r.message,
             r.source,
+            "" if r.passed else r.fix,
         )
         for r in results
     )
@@ -128,33 +133,24 @@ def verdict_box(
         else f"{len(errors)} error-severity rule(s) fail: " + ", ".join(r.id for r in errors)
     )
     per = an.periodic.value
-    predicted = sc.mode_predicted if sc is not None else sd.params.mode_predicted
-    rung, rung_reason = ("lambda", "")
-    if sc is not None and sc.fidelity is not None:
-        rung, rung_reason = sc.fidelity.rung, sc.fidelity.reason
-    if per is not None:
-        if sc is None:
-            predicted = str(per.mode)
-        by = (
-            "exact periodic orbit"
-            if sc is None or rung == "periodic"
-            else fid.RUNG_INFO[rung].model
-        )
-        v_m_s = sd.scales.speed_m_s(float(per.delta_s))
+    predicted = sc.mode_predicted if sc is not None else "unknown"
+    rung, rung_reason = "periodic", "the verdict always rests on the exact periodic orbit"
+    speed_rule = next((r for r in results if r.id == "speed"), None)
+    v_m_s = speed_rule.value if speed_rule is not None else None
+    if per is not None and v_m_s:
+        by = "exact periodic orbit"
         direction = sd.impact_sign * (1 if float(per.delta_s) > 0 else -1)
         speed = f"{format_si(abs(v_m_s), 'm/s')} toward {'+x' if direction > 0 else '−x'}"
+        basis = speed_rule.message.rsplit("[", 1)[-1].rstrip("]") if speed_rule else ""
         crossing = (
-            format_si(sd.travel_range_m / abs(v_m_s), "s") + f" for the "
-            f"{format_si(sd.travel_range_m, 'm')} travel range at the periodic speed"
-            if v_m_s != 0
-            else "never (the slider does not move)"
+            format_si(sd.travel_range_m / abs(v_m_s), "s")
+            + f" for the {format_si(sd.travel_range_m, 'm')} travel range ({basis})"
         )
+    elif per is not None:
+        by = "exact periodic orbit"
+        speed = crossing = "the slider does not move (stalled)"
     else:
-        by = (
-            "λ fit only; the exact periodic orbit is not available: " + str(an.periodic.reason)
-            if rung == "lambda"
-            else fid.RUNG_INFO[rung].model
-        )
+        by = "exact periodic orbit not available: " + str(an.periodic.reason)
         speed = crossing = f"not available ({an.periodic.reason})"
     vr = an.vertical.value
     vertical = (
@@ -272,39 +268,28 @@ def _set_key(sd: SetDerivation) -> tuple[Any, ...]:
     )
 
 
-#: Why the report's own periodic orbit decides the mode unless a rung is forced.
-REPORT_REASON = (
-    "the report computes the exact periodic orbit for its figures anyway, so the orbit "
-    "decides the mode (no cheaper rung is needed)"
-)
-
-
 def design_check(
     der: DeviceDerivation,
     per_set: list[tuple[SetDerivation, SetAnalysis, str | None]],
     opts: ReportOptions,
 ) -> CheckResult:
-    """The design check of ``betv check --simulate`` (or ``--fidelity``), fed the
-    report's periodic orbits and vertical motions instead of solving again."""
+    """The design check of ``betv check``, fed the report's periodic orbits and vertical
+    motions instead of solving them again (the mode-margin corners are solved here)."""
     orbits = {sd.params: an.periodic for sd, an, _ in per_set}
     verticals = {sd.params.varpi: an.vertical for sd, an, _ in per_set}
+    exact = load_solver()
 
     def solver(p: Any) -> Any:
-        piece = orbits[p]
+        piece = orbits.get(p)
+        if piece is None:
+            return exact(p)
         return piece.value if piece.ok else SolverFailure(str(piece.reason))
 
     def vertical(varpi: float) -> Any:
         piece = verticals[varpi]
         return piece.value if piece.ok else None
 
-    return check_derivation(
-        der,
-        simulate="always" if opts.fidelity is None else "auto",
-        solver=solver,
-        vertical=vertical,
-        fidelity=opts.fidelity,  # type: ignore[arg-type]  # checked: UsageError
-        simulate_reason=REPORT_REASON,
-    )
+    return check_derivation(der, solver=solver, vertical=vertical)
 
 
 def build_report(

@@ -48,6 +48,7 @@ class RuleRow:
     passed: bool
     message: str
     source: str
+    fix: str = ""
 
 
 @dataclass(frozen=True)

@@ -9,17 +9,16 @@ WeasyPrint's PDF is deterministic for the same HTML and fonts.
 
 from __future__ import annotations
 
-import contextlib
 import logging
-import os
-import tempfile
 from importlib import resources
-from pathlib import Path
 
 import jinja2
 from markupsafe import Markup
 
+from betvdesign.outputs import write_atomic
 from betvdesign.report.model import Report
+
+__all__ = ["render_html", "render_pdf", "write_atomic"]
 
 _TEMPLATE = "report.html.j2"
 _CSS = "report.css"
@@ -68,26 +67,3 @@ def render_pdf(html: str) -> bytes:
         return doc.write_pdf()
     finally:
         logger.setLevel(level)
-
-
-def write_atomic(path: str | Path, data: bytes | str) -> Path:
-    """Write ``data`` to ``path`` via a temporary file in the same directory + rename.
-
-    A reader never sees a half-written file; on any failure the temporary file is
-    removed and ``path`` is left as it was.
-    """
-    path = Path(path)
-    payload = data.encode("utf-8") if isinstance(data, str) else data
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-    try:
-        with os.fdopen(fd, "wb") as fh:
-            fh.write(payload)
-            fh.flush()
-            os.fsync(fh.fileno())
-        os.chmod(tmp, 0o644)
-        os.replace(tmp, path)
-    except BaseException:
-        with contextlib.suppress(FileNotFoundError):
-            os.unlink(tmp)
-        raise
-    return path

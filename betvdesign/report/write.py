@@ -1,7 +1,8 @@
 """Write reports of device files: ``NAME.html`` and ``NAME.pdf`` per file (NAME = file stem).
 
 Every input is loaded and validated before anything is computed or written, so
-bad input leaves no file behind; each output is written atomically.
+bad input leaves no file behind; the output directory is checked for writability
+first, and each device's HTML and PDF are written as a pair (both or neither).
 """
 
 from __future__ import annotations
@@ -12,10 +13,10 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from betvdesign.errors import SpecError, UsageError
-from betvdesign.fidelity import choose_rung
+from betvdesign.outputs import check_output_dir, write_group
 from betvdesign.report.analysis import ReportOptions
 from betvdesign.report.build import build_report, prepare
-from betvdesign.report.render import render_html, render_pdf, write_atomic
+from betvdesign.report.render import render_html, render_pdf
 
 
 @dataclass(frozen=True)
@@ -27,17 +28,6 @@ class Written:
     pdf: Path | None
     verdict: str
     figures: int
-
-
-def _outdir(outdir: str | Path) -> Path:
-    out = Path(outdir)
-    if out.exists() and not out.is_dir():
-        raise UsageError(f"output path {out} exists and is not a directory")
-    try:
-        out.mkdir(parents=True, exist_ok=True)
-    except OSError as exc:
-        raise UsageError(f"cannot create output directory {out}: {exc.strerror}") from None
-    return out
 
 
 def write_reports(
@@ -56,11 +46,12 @@ def write_reports(
 
     Raises :class:`~betvdesign.errors.SpecError` (bad device file) or
     :class:`~betvdesign.errors.UsageError` (no files, clashing names, unusable
-    output directory, a ``options.fidelity`` rung that cannot tell the mode) before
+    output directory) before
     writing anything.
     """
     if not paths:
         raise UsageError("give at least one device file")
+    check_output_dir(outdir, create=False)  # before any work: nothing is made yet
     stems: dict[str, Path] = {}
     for p in map(Path, paths):
         if p.stem in stems and stems[p.stem] != p:
@@ -74,9 +65,7 @@ def write_reports(
             issues.extend(exc.issues)
     if issues:
         raise SpecError(issues)
-    if options is not None and options.fidelity is not None:  # a bad rung: before any output
-        choose_rung(prepared[0].derivation.sets[0].params, "mode", force=options.fidelity)  # type: ignore[arg-type]
-    out = _outdir(outdir)
+    out = check_output_dir(outdir)
     generated = _dt.datetime.now(_dt.UTC).replace(microsecond=0).isoformat() if timestamp else None
     written: list[Written] = []
     steps, done = len(prepared) * (3 if pdf else 2), 0
@@ -98,11 +87,14 @@ def write_reports(
         )
         step()
         html = render_html(report)
-        html_path = write_atomic(out / f"{dev.path.stem}.html", html)
+        html_path = out / f"{dev.path.stem}.html"
+        pdf_path = out / f"{dev.path.stem}.pdf" if pdf else None
+        files: dict[Path, str | bytes] = {html_path: html}
         step()
-        pdf_path = write_atomic(out / f"{dev.path.stem}.pdf", render_pdf(html)) if pdf else None
-        if pdf:
+        if pdf_path is not None:
+            files[pdf_path] = render_pdf(html)
             step()
+        write_group(files)  # HTML and PDF together, or neither
         written.append(
             Written(dev.path, html_path, pdf_path, report.verdict, len(report.figures()))
         )

@@ -26,15 +26,21 @@ All three run the same worker code, so they return bitwise-identical floats.
 
 from __future__ import annotations
 
+import contextlib
 import itertools
 import math
 import multiprocessing
 import os
+import select
+import signal
+import threading
+import time
 from collections.abc import Callable, Iterator, Sequence
 from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
 from dataclasses import dataclass, field
 from typing import Any, Protocol
 
+from betvdesign import limits
 from betvdesign.errors import UsageError
 
 Task = Any
@@ -55,6 +61,42 @@ _CHUNKS_PER_WORKER = 16
 
 #: In-flight chunks per worker (keeps workers busy without flooding the queue).
 _WINDOW_PER_WORKER = 4
+
+
+def _watch_parent(pid: int) -> None:
+    """Exit this worker as soon as process ``pid`` (the study's main process) is gone.
+
+    Workers are children of the fork server, not of the main process, so neither
+    their parent's exit nor a closed queue tells them that the main process was
+    killed (SIGKILL runs no clean-up): without this they would wait for work for
+    ever. A ``pidfd`` (Linux >= 5.3) wakes the thread the moment ``pid`` exits;
+    elsewhere it polls every 0.2 s.
+    """
+    try:
+        fd = os.pidfd_open(pid)
+    except (AttributeError, OSError):
+        fd = None
+    if fd is not None:
+        select.select([fd], [], [])
+        os._exit(1)
+    while True:
+        try:
+            os.kill(pid, 0)
+        except ProcessLookupError:
+            os._exit(1)
+        except PermissionError:  # pid reused by another user's process: ours is gone
+            os._exit(1)
+        time.sleep(0.2)
+
+
+def _init_worker(main_pid: int) -> None:
+    """Worker start-up: Ctrl-C is the main process's to handle (it stops the pool;
+    a worker printing its own KeyboardInterrupt traceback would only be noise), and
+    a watchdog ends the worker when the main process is gone."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    threading.Thread(
+        target=_watch_parent, args=(main_pid,), name="betv-parent-watch", daemon=True
+    ).start()
 
 
 def apply_chunk(fn: Worker, chunk: Sequence[Task]) -> list[Row]:
@@ -163,7 +205,13 @@ class ProcessExecutor:
         ctx = multiprocessing.get_context("forkserver")
         # Import the heavy modules once in the fork server, not in every worker.
         ctx.set_forkserver_preload([*_PRELOAD, fn.__module__])
-        pool = ProcessPoolExecutor(max_workers=workers, mp_context=ctx)
+        pool = ProcessPoolExecutor(
+            max_workers=workers,
+            mp_context=ctx,
+            initializer=_init_worker,
+            initargs=(os.getpid(),),
+        )
+        finished = False
         try:
             yield from _drain(
                 lambda chunk: pool.submit(apply_chunk, fn, chunk),
@@ -173,8 +221,22 @@ class ProcessExecutor:
                 Future.result,
                 Future.cancel,
             )
+            finished = True
         finally:
+            if not finished:  # interrupted (signal, error): stop now, not after the chunks
+                _terminate(pool)
             pool.shutdown(wait=True, cancel_futures=True)
+
+
+def _terminate(pool: ProcessPoolExecutor) -> None:
+    """Terminate the pool's worker processes (their finished rows are already ours)."""
+    procs = list((getattr(pool, "_processes", None) or {}).values())
+    for proc in procs:
+        with contextlib.suppress(Exception):
+            proc.terminate()
+    for proc in procs:
+        with contextlib.suppress(Exception):
+            proc.join(timeout=5)
 
 
 def _wait_first(pending: set[Future]) -> tuple[set[Future], set[Future]]:
@@ -203,6 +265,8 @@ class DaskExecutor:
         self.address = address
         self._client = client
         self.chunksize = chunksize
+        #: Threads the cluster gave the last run (0 until a run has connected).
+        self.workers = 0
 
     def _connect(self) -> tuple[Any, bool]:
         if self._client is not None:
@@ -218,7 +282,7 @@ class DaskExecutor:
         address = self.address
         if address is None and self._client is not None:
             address = self._client.scheduler.address
-        return ExecutorInfo("dask", 0, self.chunksize, scheduler=address)
+        return ExecutorInfo("dask", self.workers, self.chunksize, scheduler=address)
 
     def run(self, fn: Worker, tasks: Sequence[Task]) -> Iterator[list[Row]]:
         if not tasks:
@@ -228,6 +292,7 @@ class DaskExecutor:
         client, owned = self._connect()
         try:
             workers = max(1, sum(client.nthreads().values()))
+            self.workers = workers
             size = self.chunksize or default_chunksize(len(tasks), workers)
 
             def wait_any(pending: set[Any]) -> tuple[set[Any], set[Any]]:
@@ -258,8 +323,13 @@ def make_executor(
 
     A ``scheduler`` address implies ``dask``.
     """
-    if chunksize is not None and chunksize < 1:
-        raise UsageError(f"chunk size must be >= 1, got {chunksize}")
+    backend = backend.strip().lower()
+    if chunksize is not None and not 1 <= chunksize <= limits.MAX_CHUNKSIZE:
+        raise UsageError(
+            f"chunk size must be >= 1 and <= {limits.MAX_CHUNKSIZE:,}, got {chunksize}"
+        )
+    if workers is not None and not 1 <= workers <= limits.MAX_WORKERS:
+        raise UsageError(f"workers must be >= 1 and <= {limits.MAX_WORKERS:,}, got {workers}")
     if scheduler is not None:
         if backend not in ("dask", "process"):
             raise UsageError(f"--scheduler needs the dask executor, not {backend!r}")

@@ -21,6 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from betvdesign.errors import UsageError
+from betvdesign.limits import MAX_STUDY_POINTS
 
 #: Largest number of points one axis may have (guards against typos like ``0:10:1e-9``).
 MAX_POINTS_PER_AXIS = 1_000_000
@@ -111,6 +112,13 @@ class Grid:
             if arr.size == 0:
                 raise UsageError(f"{name}: empty axis")
             self.axes[name] = arr
+        size = math.prod(a.size for a in self.axes.values())
+        if size > MAX_STUDY_POINTS:
+            shape = " × ".join(f"{a.size:,}" for a in self.axes.values())
+            raise UsageError(
+                f"grid of {shape} = {size:,} points exceeds the limit of "
+                f"{MAX_STUDY_POINTS:,} points per study; use coarser or fewer axes"
+            )
 
     @property
     def names(self) -> tuple[str, ...]:

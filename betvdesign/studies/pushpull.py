@@ -38,14 +38,22 @@ MODEL_STATEMENT: dict[str, str] = {
     "lambda": "closed-form λ fit only (no simulation): microseconds per point, but a fit that "
     "can name the wrong mode near λ = 1",
 }
-#: Why a study runs on each rung (``fidelity_reason`` next to ``fidelity`` and ``model`` in
-#: every summary; rung names are those of :data:`betvdesign.fidelity.RUNGS`).
-RUNG_REASON: dict[str, str] = {
-    "periodic": "the default: every point's mode and Δs from the exact periodic orbit, the "
-    "reference the λ rule is measured against",
-    "lambda": "chosen with --fidelity lambda: λ alone, which the fidelity ladder trusts only "
-    "beyond the measured margin at (ϖ, β) (betv ladder mode); its mode can be wrong",
-}
+
+
+def rung_reason(fidelity: str) -> str:
+    """Why a study runs on ``fidelity`` (``fidelity_reason`` next to ``fidelity`` and
+    ``model`` in every summary); for λ it states the fit's held-out error rate."""
+    if fidelity == "lambda":
+        from betvdesign.fidelity import lambda_error_statement
+
+        return (
+            "chosen with --fidelity lambda: λ alone, a fit whose mode can be wrong: "
+            + lambda_error_statement()
+        )
+    return (
+        "the default: every point's mode and Δs from the exact periodic orbit, the "
+        "reference the λ rule is measured against"
+    )
 
 
 def require_fidelity(fidelity: str, offered: Sequence[str] = ("periodic", "lambda")) -> None:
@@ -245,7 +253,7 @@ class PushPullSummary:
         return {
             "fidelity": self.fidelity,
             "model": MODEL_STATEMENT[self.fidelity],
-            "fidelity_reason": RUNG_REASON[self.fidelity],
+            "fidelity_reason": rung_reason(self.fidelity),
             "points": self.n_points,
             "converged": self.n_converged,
             "push": self.n_push,

@@ -5,9 +5,10 @@ that define its results (recorded in the sidecar and checked on resume), a
 list of tasks (dicts with an integer ``key``) and a module-level worker
 ``fn(task) -> row``. :func:`run_study` skips keys already on disk, sends the
 rest to an executor, appends rows as chunks finish, and reports progress
-through a callback ``progress(done, total)``. If anything interrupts the run
-(an exception, Ctrl-C), the rows finished so far stay on disk and the sidecar
-says ``interrupted``; running again resumes.
+through a callback ``progress(done, total)``. A study whose estimated time exceeds
+the budget of :mod:`betvdesign.limits` is refused before anything is written.
+If anything interrupts the run (an exception, Ctrl-C, SIGTERM), the rows finished
+so far stay on disk and the sidecar says ``interrupted``; running again resumes.
 """
 
 from __future__ import annotations
@@ -19,6 +20,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, TypedDict
 
+from betvdesign import limits
 from betvdesign.studies.executors import Executor, ExecutorInfo, Row, SerialExecutor, Worker
 from betvdesign.studies.store import ColumnType, ResultStore
 
@@ -79,6 +81,11 @@ def run_study(
     """Run ``study`` (serially unless an executor is given), streaming to ``out``."""
     executor = executor or SerialExecutor()
     total = len(study.tasks)
+    workers = executor.info().workers
+    if workers:  # 0: a dask cluster not reached yet, of unknown size
+        limits.refuse_long_study(
+            f"{study.name} study", total, limits.point_cost_s(study.name, study.parameters), workers
+        )
     store: ResultStore | None = None
     done: dict[int, Row] = {}
     if out is not None:
@@ -115,7 +122,13 @@ def run_study(
         raise
     elapsed = time.perf_counter() - t0
     if store is not None:
-        store.close("complete", computed_this_run=computed, elapsed_s=elapsed)
+        # the executor again: a dask cluster's size is known only once it has run
+        store.close(
+            "complete",
+            computed_this_run=computed,
+            elapsed_s=elapsed,
+            executor=executor.info().__dict__,
+        )
     return StudyRun(
         study=study.name,
         rows=[done[k] for k in sorted(done)],

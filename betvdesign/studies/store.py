@@ -19,19 +19,18 @@ back are bitwise the values computed.
 
 from __future__ import annotations
 
-import contextlib
 import csv
 import io
 import json
 import os
 import platform
 import sys
-import tempfile
 from collections.abc import Iterable, Mapping
 from pathlib import Path
 from typing import Any
 
 from betvdesign.errors import UsageError
+from betvdesign.outputs import check_output_file, write_atomic
 
 FORMAT = "betvdesign-study/1"
 
@@ -82,21 +81,6 @@ def decode(text: str, kind: ColumnType) -> Any:
     return kind(text)
 
 
-def write_atomic(path: Path, text: str) -> None:
-    """Write ``text`` to ``path`` through a temporary file and a rename."""
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8", newline="") as fh:
-            fh.write(text)
-            fh.flush()
-            os.fsync(fh.fileno())
-        os.replace(tmp, path)
-    except BaseException:
-        with contextlib.suppress(OSError):
-            os.unlink(tmp)
-        raise
-
-
 def _csv_line(values: Iterable[str]) -> str:
     buf = io.StringIO()
     csv.writer(buf, lineterminator="\n").writerow(list(values))
@@ -141,16 +125,11 @@ class ResultStore:
 
     # -- opening and resuming -------------------------------------------------
     def _check_writable(self) -> None:
-        parent = self.path.parent
-        try:
-            parent.mkdir(parents=True, exist_ok=True)
-        except OSError as exc:
-            raise UsageError(f"{self.path}: cannot create output directory: {exc}") from None
-        if not os.access(parent, os.W_OK | os.X_OK):
-            raise UsageError(f"{self.path}: output directory {parent} is not writable")
+        check_output_file(self.path, create_parent=True)
+        check_output_file(self.sidecar)
         for p in (self.path, self.sidecar):
-            if p.exists() and (p.is_dir() or not os.access(p, os.W_OK)):
-                raise UsageError(f"{p}: exists and is not a writable file")
+            if p.exists() and not os.access(p, os.W_OK):
+                raise UsageError(f"{p}: exists and is not writable")
 
     def _open(self, overwrite: bool) -> None:
         self._check_writable()

@@ -11,7 +11,7 @@ read per-set results together).
 
 Distributions: ``normal`` (σ) or ``uniform`` (half-width), each relative
 (``2%``) or absolute (``0.2 um``, or a plain number for unit-less fields).
-Command-line form ``FIELD=[normal|uniform:]AMOUNT``; file form (YAML)::
+Command-line form ``--spread FIELD=[normal|uniform:]AMOUNT``; file form (YAML)::
 
     tolerances:
       slider.beam_width: {dist: normal, sigma: 0.2 um}
@@ -42,21 +42,23 @@ from typing import Any, Literal
 
 import numpy as np
 import pint
-from pydantic import BaseModel
 
+from betvdesign import limits
+from betvdesign.domain import in_window
 from betvdesign.errors import BetvError, UsageError
 from betvdesign.studies.pushpull import (
     MODEL_STATEMENT,
-    RUNG_REASON,
     require_fidelity,
+    rung_reason,
     solver_error,
 )
 from betvdesign.studies.runner import Study, StudyRun, run_study, split_run_args
+from betvdesign.studies.specpaths import numeric, replace, targets, value_at
 
 Dist = Literal["normal", "uniform"]
+#: Distributions a tolerance may name (lower case; names are case-insensitive).
+DISTRIBUTIONS: tuple[str, ...] = ("normal", "uniform")
 Fidelity = Literal["periodic", "lambda"]
-SET_PREFIXES = ("head.", "contact.", "actuator.", "drive.")
-VARPI_WINDOW = (0.5, 2.0)
 PERCENTILES = (5.0, 25.0, 50.0, 75.0, 95.0)
 
 
@@ -79,6 +81,15 @@ class Tolerance:
         }
 
 
+def check_seed(seed: int) -> int:
+    """A seed numpy's ``SeedSequence`` takes: an integer 0 <= seed < 2**128."""
+    if isinstance(seed, bool) or not isinstance(seed, int | np.integer):
+        raise UsageError(f"--seed must be an integer, got {seed!r}")
+    if not 0 <= int(seed) < limits.SEED_BOUND:
+        raise UsageError(f"--seed must be an integer with 0 <= seed < 2**128, got {seed}")
+    return int(seed)
+
+
 def _amount(text: str, field: str, source: str) -> tuple[float | None, str | None]:
     t = str(text).strip()
     if t.endswith("%"):
@@ -96,13 +107,18 @@ def _amount(text: str, field: str, source: str) -> tuple[float | None, str | Non
 
 def parse_tolerance(text: str, source: str = "command line") -> Tolerance:
     """``FIELD=[normal|uniform:]AMOUNT``, AMOUNT ``2%``, ``0.2 um`` or ``0.05``."""
-    m = re.fullmatch(r"\s*([A-Za-z_][\w.]*)\s*=\s*(?:(normal|uniform)\s*:)?\s*(.+?)\s*", text)
+    m = re.fullmatch(r"\s*([A-Za-z_][\w.]*)\s*=\s*(?:([A-Za-z_]\w*)\s*:)?\s*(.+?)\s*", text)
+    if m and m.group(2) and m.group(2).lower() not in DISTRIBUTIONS:
+        raise UsageError(
+            f"{source}: {m.group(1)}: unknown distribution {m.group(2)!r}; use "
+            f"{', '.join(DISTRIBUTIONS)} (e.g. {m.group(1)}=normal:{m.group(3)})"
+        )
     if not m:
         raise UsageError(
             f"{source}: tolerance {text!r} must read FIELD=[normal|uniform:]AMOUNT, "
             "e.g. slider.beam_width=normal:0.2um or contact.friction=uniform:10%"
         )
-    field, dist, amount = m.group(1), m.group(2) or "normal", m.group(3)
+    field, dist, amount = m.group(1), (m.group(2) or "normal").lower(), m.group(3)
     rel, absolute = _amount(amount, field, source)
     return Tolerance(field, dist, rel, absolute, source)  # type: ignore[arg-type]
 
@@ -111,11 +127,16 @@ def load_tolerances(path: str | os.PathLike[str]) -> list[Tolerance]:
     """Read a ``tolerances:`` mapping from YAML (see module doc)."""
     from ruamel.yaml import YAML, YAMLError
 
+    from betvdesign import safeyaml
+    from betvdesign.errors import SpecError
+
     p = Path(path)
     try:
-        data = YAML(typ="rt").load(p.read_text(encoding="utf-8"))
-    except OSError as exc:
-        raise UsageError(f"{p}: cannot read: {exc.strerror}") from None
+        text = safeyaml.read_text(p)  # size, encoding, nesting and alias limits
+        safeyaml.check_events(text, str(p))
+        data = YAML(typ="rt").load(text)
+    except SpecError as exc:
+        raise UsageError(str(exc)) from None
     except YAMLError as exc:
         raise UsageError(f"{p}: not valid YAML: {exc}") from None
     if not isinstance(data, Mapping) or set(data) != {"tolerances"}:
@@ -130,9 +151,12 @@ def load_tolerances(path: str | os.PathLike[str]) -> list[Tolerance]:
         if not isinstance(spec, Mapping):
             raise UsageError(f"{where}: {field}: expected {{dist: ..., sigma|half_width: ...}}")
         dist = spec.get("dist", "normal")
+        dist = dist.lower() if isinstance(dist, str) else dist
         key = "sigma" if dist == "normal" else "half_width"
-        if dist not in ("normal", "uniform"):
-            raise UsageError(f"{where}: {field}: dist must be normal or uniform, not {dist!r}")
+        if dist not in DISTRIBUTIONS:
+            raise UsageError(
+                f"{where}: {field}: unknown distribution {dist!r}; use {', '.join(DISTRIBUTIONS)}"
+            )
         unknown = set(spec) - {"dist", key}
         if unknown or key not in spec:
             raise UsageError(f"{where}: {field}: {dist} needs exactly '{key}' (and 'dist')")
@@ -141,60 +165,15 @@ def load_tolerances(path: str | os.PathLike[str]) -> list[Tolerance]:
     return out
 
 
-# -- spec access -----------------------------------------------------------------
-def _get(obj: Any, path: Sequence[str]) -> Any:
-    for name in path:
-        if not isinstance(obj, BaseModel) or name not in type(obj).model_fields:
-            return None
-        obj = getattr(obj, name)
-    return obj
-
-
-def _set(obj: Any, path: Sequence[str], value: Any) -> Any:
-    if not path:
-        return value
-    child = getattr(obj, path[0])
-    return obj.model_copy(update={path[0]: _set(child, path[1:], value)})
-
-
-def _targets(spec: Any, field: str) -> list[tuple[str, ...]]:
-    """Full attribute paths a field path addresses in ``spec`` (several for set fields)."""
-    parts = tuple(field.split("."))
-    if field.startswith(SET_PREFIXES):
-        return [("actuator_sets", str(i), *parts) for i in range(len(spec.actuator_sets))]
-    return [parts]
-
-
-def _value_at(spec: Any, target: tuple[str, ...]) -> Any:
-    if target[0] == "actuator_sets":
-        return _get(spec.actuator_sets[int(target[1])], target[2:])
-    return _get(spec, target)
-
-
-def _replace(spec: Any, target: tuple[str, ...], value: Any) -> Any:
-    if target[0] == "actuator_sets":
-        i = int(target[1])
-        sets = list(spec.actuator_sets)
-        sets[i] = _set(sets[i], target[2:], value)
-        return spec.model_copy(update={"actuator_sets": sets})
-    return _set(spec, target, value)
-
-
-def _numeric(value: Any) -> bool:
-    return isinstance(value, pint.Quantity) or (
-        isinstance(value, float) and not isinstance(value, bool)
-    )
-
-
 def nominal_values(spec: Any, tolerances: Sequence[Tolerance]) -> dict[str, tuple[float, str]]:
     """Nominal magnitude and unit of each toleranced field (checked against the spec)."""
     out: dict[str, tuple[float, str]] = {}
     for tol in tolerances:
         if tol.field in out:
             raise UsageError(f"{tol.source}: {tol.field}: given twice")
-        values = [_value_at(spec, t) for t in _targets(spec, tol.field)]
+        values = [value_at(spec, t) for t in targets(spec, tol.field)]
         present = [v for v in values if v is not None]
-        if not present or not all(_numeric(v) for v in present):
+        if not present or not all(numeric(v) for v in present):
             raise UsageError(
                 f"{tol.source}: {tol.field}: not a numeric field of device {spec.name!r} "
                 "(write it as in the device file, e.g. slider.beam_width, head.mass, "
@@ -224,8 +203,9 @@ def draw(
     One seeded ``Generator``; fields drawn in the order given: normal
     ``x0(1 + r·z)`` or ``x0 + a·z``; uniform with half-width r or a.
     """
-    from betvdesign.units import ureg
+    from betvdesign.units import parse_quantity
 
+    check_seed(seed)
     rng = np.random.default_rng(seed)
     cols = []
     for tol in tolerances:
@@ -235,7 +215,7 @@ def draw(
             cols.append(x0 * (1.0 + tol.relative * z))
             continue
         try:
-            q = ureg.Quantity(tol.absolute)
+            q = parse_quantity(str(tol.absolute))  # bounded: no unit-expression bombs
             a = float(q.to(unit).magnitude) if unit else float(q.to("dimensionless").magnitude)
         except (pint.PintError, ValueError, TypeError, AttributeError) as exc:
             raise UsageError(
@@ -266,33 +246,48 @@ def _perturbed(task: Mapping[str, Any]) -> Any:
             raise BetvError(f"{field} sampled non-positive ({mag:g} {unit})")
         if field == "contact.impact_angle" and value.to("deg").magnitude >= 90.0:
             raise BetvError(f"{field} sampled at or above 90° ({mag:g} {unit})")
-        for target in _targets(spec, field):
-            if _value_at(spec, target) is not None:
-                spec = _replace(spec, target, value)
+        for target in targets(spec, field):
+            if value_at(spec, target) is not None:
+                spec = replace(spec, target, value)
     return spec
 
 
 def tolerance_point(task: Mapping[str, Any]) -> dict[str, Any]:
-    """One (sample, actuator set): perturb, derive (units stripped), solve."""
-    from betvdesign.nondim import derive_set
+    """One (sample, actuator set): perturb, derive (units stripped), solve.
+
+    Tasks built by :func:`tolerance_study` usually carry the sample's derived
+    parameters already (``derived``: the whole sample derived at once by
+    :func:`betvdesign.nondim.derive_samples`, the same formulas vectorised); otherwise
+    the sample is derived here with :func:`betvdesign.nondim.derive_set`.
+    """
+    from betvdesign.params import ModelParams
 
     row: dict[str, Any] = {c: None for c in task["columns"]}
     row.update(key=task["key"], sample=task["sample"], set=task["set_name"])
     for field, (mag, _) in task["values"].items():
         row[f"in:{field}"] = mag
+    derived = task.get("derived")
     try:
-        spec = _perturbed(task)
-        d = derive_set(spec, spec.actuator_sets[task["set_index"]])
+        if derived is None:
+            from betvdesign.nondim import derive_set
+
+            spec = _perturbed(task)
+            d = derive_set(spec, spec.actuator_sets[task["set_index"]])
+            p, intended = d.params, d.intended_mode
+            length_m, f_act = d.scales.length_m, d.scales.f_act_hz
+        else:
+            _check_sample(task["values"])
+            p = ModelParams(*(derived[k] for k in ("varpi", "alpha", "beta", "kappa")))
+            intended, length_m, f_act = task["intended"], derived["length_m"], derived["f_act_hz"]
     except BetvError as exc:
         row.update(status="invalid-sample", converged=False, message=str(exc))
         return row
-    p = d.params
     row.update(
         **p.as_dict(),
         lam=p.lam,
         mode_predicted=p.mode_predicted,
-        intended=d.intended_mode,
-        in_window=bool(VARPI_WINDOW[0] <= p.varpi < VARPI_WINDOW[1]),
+        intended=intended,
+        in_window=in_window(p.varpi),
     )
     if task["fidelity"] == "lambda":
         row.update(status="lambda-only", converged=False, message="closed-form λ fit only")
@@ -306,12 +301,51 @@ def tolerance_point(task: Mapping[str, Any]) -> dict[str, Any]:
         return row
     row.update(status=str(res.status), converged=bool(res.success), message=str(res.message))
     if res.success and res.delta_s is not None and math.isfinite(res.delta_s):
-        row.update(
-            mode=res.mode,
-            delta_s=float(res.delta_s),
-            speed_um_s=d.scales.speed_m_s(float(res.delta_s)) * 1e6,
-        )
+        ds = float(res.delta_s)
+        row.update(mode=res.mode, delta_s=ds, speed_um_s=ds * length_m * f_act * 1e6)
     return row
+
+
+def _check_sample(values: Mapping[str, tuple[float, str]]) -> None:
+    """:class:`BetvError` for a sample the spec cannot take (non-positive, angle ≥ 90°)."""
+    for field, (mag, unit) in values.items():
+        if mag <= 0.0:
+            raise BetvError(f"{field} sampled non-positive ({mag:g} {unit})")
+        if field == "contact.impact_angle":
+            from betvdesign.units import ureg
+
+            if ureg.Quantity(mag, unit).to("deg").magnitude >= 90.0:
+                raise BetvError(f"{field} sampled at or above 90° ({mag:g} {unit})")
+
+
+def _derive_all(
+    spec: Any,
+    tolerances: Sequence[Tolerance],
+    nominal: Mapping[str, tuple[float, str]],
+    x: np.ndarray,
+    set_index: int,
+) -> dict[str, np.ndarray] | None:
+    """Every sample of one set derived at once (nondim.derive_samples); None when some
+    sample cannot be derived that way (then each is derived on its own)."""
+    from betvdesign.nondim import derive_samples
+    from betvdesign.units import ureg
+
+    values = {}
+    for j, t in enumerate(tolerances):
+        mag, unit = nominal[t.field][0], nominal[t.field][1]
+        col = np.where(x[:, j] > 0, x[:, j], mag)  # invalid draws: rejected per task
+        values[t.field] = ureg.Quantity(col, unit) if unit else col
+    arrays = spec
+    for field, value in values.items():
+        for target in targets(spec, field):
+            if value_at(spec, target) is not None:
+                arrays = replace(arrays, target, value)
+    try:
+        with np.errstate(all="ignore"):
+            d = derive_samples(arrays, arrays.actuator_sets[set_index])
+    except (BetvError, ValueError, ArithmeticError):
+        return None
+    return {k: getattr(d, k) for k in ("varpi", "alpha", "beta", "kappa", "length_m", "f_act_hz")}
 
 
 BASE_COLUMNS: dict[str, type] = {
@@ -348,11 +382,12 @@ def tolerance_study(
     """Draw the samples and build the study (tasks carry plain floats only)."""
     from betvdesign.loader import load_device
 
-    if samples < 1:
-        raise UsageError(f"--samples must be >= 1, got {samples}")
+    if not 1 <= samples <= limits.MAX_SAMPLES:
+        raise UsageError(f"--samples must be >= 1 and <= {limits.MAX_SAMPLES:,}, got {samples}")
+    check_seed(seed)
     require_fidelity(fidelity)
     if not tolerances:
-        raise UsageError("give at least one tolerance (--tol FIELD=AMOUNT or --tolerances FILE)")
+        raise UsageError("give at least one tolerance (--spread FIELD=AMOUNT or --tolerances FILE)")
     path = str(Path(device).resolve())
     spec = load_device(path)
     names = [s.name for s in spec.actuator_sets]
@@ -360,14 +395,24 @@ def tolerance_study(
     for name in chosen:
         if name not in names:
             raise UsageError(f"{device}: no actuator set {name!r} (sets: {', '.join(names)})")
+    if samples * len(chosen) > limits.MAX_STUDY_POINTS:  # before drawing anything
+        raise UsageError(
+            f"{samples:,} samples × {len(chosen)} sets = {samples * len(chosen):,} points "
+            f"exceed the limit of {limits.MAX_STUDY_POINTS:,} points per study"
+        )
     nominal = nominal_values(spec, tolerances)
     x = draw(tolerances, nominal, samples, seed)
     columns = dict(BASE_COLUMNS) | {f"in:{t.field}": float for t in tolerances}
     mtime = os.stat(path).st_mtime_ns
+    derived = {
+        name: _derive_all(spec, tolerances, nominal, x, names.index(name)) for name in chosen
+    }
+    intended = {s.name: s.intended_mode for s in spec.actuator_sets}
     tasks = []
     for i in range(samples):
         values = {t.field: (float(x[i, j]), nominal[t.field][1]) for j, t in enumerate(tolerances)}
         for name in chosen:
+            arrays = derived[name]
             tasks.append(
                 {
                     "key": len(tasks),
@@ -380,6 +425,10 @@ def tolerance_study(
                     "fidelity": fidelity,
                     "tol": tol,
                     "columns": tuple(columns),
+                    "intended": intended[name],
+                    "derived": None
+                    if arrays is None
+                    else {k: float(v[i]) for k, v in arrays.items()},
                 }
             )
     params = {
@@ -410,8 +459,9 @@ def summarise(
     """Per actuator set: probabilities, speed percentiles, sensitivities."""
     out: dict[str, Any] = {
         "fidelity": fidelity,
-        "model": MODEL_STATEMENT[fidelity] + "; each sample through nondim.derive_set",
-        "fidelity_reason": RUNG_REASON[fidelity],
+        "model": MODEL_STATEMENT[fidelity]
+        + "; every sample derived by nondim.derive_samples (derive_set's formulas, vectorised)",
+        "fidelity_reason": rung_reason(fidelity),
         "sets": {},
     }
     for name in dict.fromkeys(r["set"] for r in rows):

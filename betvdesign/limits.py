@@ -1,0 +1,177 @@
+"""Input limits: the one home of every bound the toolkit enforces on what it is given.
+
+A design tool runs in CI pipelines and on files from colleagues and foundries, so
+it bounds its work before the work grows: a device file is refused before it is
+parsed when it is too large, before it is composed when its YAML nests too deep,
+expands too far through aliases or holds an over-long string, and before it is
+validated when it has too many actuator sets; a study is refused before it starts
+when it would not finish in reasonable time. Every refusal names the field (or
+option) and the limit. README ("Limits") and ``betv schema`` (``x-betv-limits``)
+list these values; :func:`describe` is what both show.
+
+Nothing here imports from the rest of the package except :mod:`betvdesign.errors`.
+"""
+
+from __future__ import annotations
+
+import os
+from typing import Any
+
+from betvdesign.errors import UsageError
+
+#: Environment variable that raises (or lowers) :data:`MAX_FILE_BYTES`.
+FILE_BYTES_ENV = "BETV_MAX_FILE_BYTES"
+#: Largest device or tolerance file read [bytes] (a shipped device file is ~2 kB).
+MAX_FILE_BYTES = 1_000_000
+#: Deepest YAML nesting of mappings and sequences (a device file nests 6 deep).
+MAX_YAML_DEPTH = 32
+#: Most YAML nodes a file may hold once aliases are expanded (a device file has ~150).
+MAX_YAML_NODES = 20_000
+#: Longest string (YAML scalar) [characters]; also bounds a description.
+MAX_STRING_CHARS = 10_000
+#: Longest name (device, actuator set, material) [characters].
+MAX_NAME_CHARS = 200
+#: Most actuator sets in one device (a bidirectional device has 2).
+MAX_ACTUATOR_SETS = 64
+#: Most measured calibration points of one actuator.
+MAX_CALIBRATION_POINTS = 1_000
+#: Longest quantity string such as "2330 kg/m^3" [characters].
+MAX_QUANTITY_CHARS = 100
+#: Largest |exponent| of a unit in a quantity string (m^3, V^-2, ...).
+MAX_UNIT_EXPONENT = 12
+#: Most unit factors in one quantity string ("kg/m^3" has 2).
+MAX_UNIT_FACTORS = 8
+#: Parallel slider beams (a BETV slider has 2; more than 16 is not a slider).
+MAX_BEAM_COUNT = 16
+#: Cycles of one transient (``simulate --cycles``) and cycle budget of a periodic solve.
+MAX_CYCLES = 1_000_000
+#: Monte Carlo samples of one tolerance study.
+MAX_SAMPLES = 1_000_000
+#: Points of one study (grid points, or samples × sets).
+MAX_STUDY_POINTS = 10_000_000
+#: Worker processes of one study.
+MAX_WORKERS = 1_024
+#: Points per chunk sent to a worker.
+MAX_CHUNKSIZE = 100_000
+#: numpy's ``SeedSequence`` takes any integer 0 <= seed < 2**128 here.
+SEED_BOUND = 2**128
+#: Environment variable that raises (or lowers) :data:`MAX_STUDY_HOURS`.
+STUDY_HOURS_ENV = "BETV_MAX_STUDY_HOURS"
+#: Estimated wall time above which a study is refused up front [h].
+MAX_STUDY_HOURS = 12.0
+#: Conservative cost of one study point by what it solves [s on one core] (the
+#: benchmarks give a periodic-orbit median of ~1.2 ms; tails and loading are added).
+POINT_COST_S = {"periodic": 5e-3, "lambda": 2e-4, "regime": 5e-3, "tolerance": 6e-3}
+#: Horizon [cycles] the regime cost above is quoted for.
+REGIME_CYCLES = 400
+
+
+def point_cost_s(study: str, parameters: dict[str, Any]) -> float:
+    """Conservative cost of one point of ``study`` [s on one core] (for estimates)."""
+    fidelity = parameters.get("fidelity")
+    if study == "regime":
+        cycles = parameters.get("max_cycles") or REGIME_CYCLES
+        return POINT_COST_S["regime"] * max(1.0, cycles / REGIME_CYCLES)
+    if fidelity == "lambda":
+        return POINT_COST_S["lambda"]
+    return POINT_COST_S["tolerance" if study == "tolerance" else "periodic"]
+
+
+def max_file_bytes() -> int:
+    """:data:`MAX_FILE_BYTES`, or the value of ``$BETV_MAX_FILE_BYTES`` when set."""
+    return _env_number(FILE_BYTES_ENV, MAX_FILE_BYTES, int)
+
+
+def max_study_hours() -> float:
+    """:data:`MAX_STUDY_HOURS`, or the value of ``$BETV_MAX_STUDY_HOURS`` when set."""
+    return _env_number(STUDY_HOURS_ENV, MAX_STUDY_HOURS, float)
+
+
+def _env_number(name: str, default: Any, kind: type) -> Any:
+    raw = os.environ.get(name)
+    if raw is None or not raw.strip():
+        return default
+    try:
+        value = kind(raw)
+    except ValueError:
+        raise UsageError(f"${name}={raw!r} is not a number") from None
+    if not value > 0 or value != value or value == float("inf"):
+        raise UsageError(f"${name} must be a finite number > 0, got {raw!r}")
+    return value
+
+
+def format_duration(seconds: float) -> str:
+    """``"3.2 h"``, ``"12 min"``, ``"40 s"``, ``"21 days"``: for estimates in messages."""
+    if seconds >= 2 * 86400:
+        return f"{seconds / 86400:.3g} days"
+    if seconds >= 3600:
+        return f"{seconds / 3600:.3g} h"
+    if seconds >= 60:
+        return f"{seconds / 60:.3g} min"
+    return f"{seconds:.2g} s"
+
+
+def refuse_long_study(what: str, points: int, cost_s: float, workers: int) -> None:
+    """Raise :class:`UsageError` when ``points`` × ``cost_s`` / ``workers`` exceeds the
+    study budget (:func:`max_study_hours`) or the points exceed :data:`MAX_STUDY_POINTS`;
+    the message gives the estimate and how to split the work."""
+    if points > MAX_STUDY_POINTS:
+        raise UsageError(
+            f"{what}: {points:,} points exceed the limit of {MAX_STUDY_POINTS:,} points per "
+            f"study (≈ {format_duration(points * cost_s / max(1, workers))} on {workers} "
+            "worker(s)); split it into smaller studies"
+        )
+    estimate = points * cost_s / max(1, workers)
+    budget = max_study_hours() * 3600.0
+    if estimate > budget:
+        raise UsageError(
+            f"{what}: {points:,} points at ≈ {cost_s * 1e3:.3g} ms each on {workers} worker(s) "
+            f"would take ≈ {format_duration(estimate)}, more than the "
+            f"{format_duration(budget)} limit; use fewer points, more workers "
+            f"(--workers or a dask --scheduler) or set ${STUDY_HOURS_ENV}"
+        )
+
+
+def describe() -> dict[str, Any]:
+    """Every limit with its value and what it bounds (``betv schema``, README "Limits")."""
+    return {
+        "file_bytes": {
+            "value": MAX_FILE_BYTES,
+            "what": f"size of a device or tolerance file [bytes]; ${FILE_BYTES_ENV} overrides",
+        },
+        "yaml_depth": {"value": MAX_YAML_DEPTH, "what": "nesting of YAML mappings/sequences"},
+        "yaml_nodes": {
+            "value": MAX_YAML_NODES,
+            "what": "YAML nodes once aliases (&anchor/*alias, << merges) are expanded",
+        },
+        "string_chars": {"value": MAX_STRING_CHARS, "what": "characters of any YAML string"},
+        "name_chars": {"value": MAX_NAME_CHARS, "what": "characters of a device/set name"},
+        "actuator_sets": {"value": MAX_ACTUATOR_SETS, "what": "actuator sets of one device"},
+        "calibration_points": {
+            "value": MAX_CALIBRATION_POINTS,
+            "what": "measured calibration points of one actuator",
+        },
+        "quantity_chars": {
+            "value": MAX_QUANTITY_CHARS,
+            "what": "characters of a quantity string such as '2330 kg/m^3'",
+        },
+        "unit_factors": {
+            "value": MAX_UNIT_FACTORS,
+            "what": "unit factors of a quantity; one integer power each, no powers of powers",
+        },
+        "unit_exponent": {"value": MAX_UNIT_EXPONENT, "what": "|power| of one unit factor"},
+        "beam_count": {"value": MAX_BEAM_COUNT, "what": "slider.beam_count"},
+        "cycles": {
+            "value": MAX_CYCLES,
+            "what": "simulate --cycles and every --max-cycles budget [cycles]",
+        },
+        "samples": {"value": MAX_SAMPLES, "what": "tolerance --samples"},
+        "study_points": {"value": MAX_STUDY_POINTS, "what": "points of one sweep or tolerance"},
+        "study_hours": {
+            "value": MAX_STUDY_HOURS,
+            "what": f"estimated wall time of a study [h]; ${STUDY_HOURS_ENV} overrides",
+        },
+        "workers": {"value": MAX_WORKERS, "what": "--workers"},
+        "chunksize": {"value": MAX_CHUNKSIZE, "what": "--chunksize"},
+        "seed": {"value": "0 <= seed < 2**128", "what": "--seed (numpy SeedSequence)"},
+    }

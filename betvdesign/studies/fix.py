@@ -1,0 +1,527 @@
+"""``betv fix``: the smallest change to a device file that makes it pass, with margin.
+
+Every candidate goes through the same path as ``betv check``: spec (one field
+changed) -> :func:`betvdesign.nondim.derive` -> exact periodic orbit -> rules
+(:func:`betvdesign.checker.check_derivation`). There is no separate model.
+
+A candidate **passes** when every error-severity rule passes (window, intended mode,
+target speed when given), the tangential-resonance distance holds and the slider
+settles (within 1 % of its periodic Δs) before it has crossed its travel range; the
+chosen value must also lie at least :data:`FIELD_MARGIN` (relative) inside the
+passing interval of the field, and its full check must also pass the exact
+mode-margin corners (ϖ ± 5 %, α ± 10 %).
+
+Search: one field at a time (log-spaced scan over its bounds, passing intervals
+refined by bisection, the point nearest the current value that keeps the margin),
+then, only if no single field works, pairs of the :data:`PAIR_FIELDS` fields that
+came closest, on a coarse 2-D grid. The change is measured as |ln(x/x0)| (in
+quadrature for pairs); changes equal to 0.01 in that measure rank operating fields
+(drive) before geometry (the order of :data:`DEFAULT_BOUNDS`). With tolerances
+(``tol``), each passing candidate is also run through a Monte Carlo of the spreads
+and must keep P(intended mode) ≥ ``p_min``; moving further into the passing
+interval is tried before a candidate is given up (the robust optimum).
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+import pint
+
+from betvdesign.errors import BetvError, ParameterError, UsageError
+from betvdesign.studies.specpaths import targets, value_at, with_values
+
+#: Relative distance a chosen value keeps from the edge of its passing interval.
+FIELD_MARGIN = 0.05
+#: Scan points per field and bisection steps per interval edge.
+SCAN_POINTS = 31
+BISECT_STEPS = 9
+PAIR_POINTS = 9
+#: Pairs are searched among this many fields, those that came closest on their own.
+PAIR_FIELDS = 4
+
+#: Default search bounds of the fields a designer can change: (factor low, factor high)
+#: on the current value, or absolute bounds in the given unit.
+DEFAULT_BOUNDS: dict[str, tuple[float, float] | tuple[float, float, str]] = {
+    "drive.frequency": (0.25, 4.0),
+    "drive.voltage": (0.5, 2.0),
+    "actuator.amplitude": (0.5, 2.0),
+    "slider.beam_width": (0.5, 4.0),
+    "slider.beam_length": (0.5, 2.0),
+    "head.mass": (0.25, 4.0),
+    "head.geometry.diameter": (0.5, 2.0),
+    "head.geometry.length": (0.5, 2.0),
+    "head.geometry.width": (0.5, 2.0),
+    "actuator.vertical_resonance": (0.5, 2.0),
+    "actuator.horizontal_resonance": (0.5, 2.0),
+    "actuator.horizontal_stiffness": (0.25, 4.0),
+    "actuator.alpha": (0.25, 4.0),
+    "contact.impact_angle": (15.0, 75.0, "deg"),
+}
+
+
+@dataclass(frozen=True)
+class Vary:
+    """A field to vary and its bounds, in the field's own unit (``unit``)."""
+
+    field: str
+    x0: float
+    lo: float
+    hi: float
+    unit: str
+
+    def quantity(self, x: float) -> Any:
+        from betvdesign.units import ureg
+
+        return ureg.Quantity(x, self.unit) if self.unit else float(x)
+
+    def text(self, x: float) -> str:
+        return f"{x:.4g} {self.unit}".strip()
+
+
+@dataclass
+class Candidate:
+    """One proposed change and what the exact check says of it."""
+
+    changes: dict[str, float]
+    size: float
+    mode: str | None
+    speed_m_s: float | None
+    margin: float
+    why: str
+    passed: bool = False
+    check: Any = None
+    p_intended: float | None = None
+    blocking: list[str] = field(default_factory=list)
+
+    def as_dict(self, varies: dict[str, Vary]) -> dict[str, Any]:
+        return {
+            "changes": [
+                {
+                    "field": f,
+                    "from": varies[f].text(varies[f].x0),
+                    "to": varies[f].text(x),
+                    "relative_change": x / varies[f].x0 - 1.0,
+                }
+                for f, x in self.changes.items()
+            ],
+            "size": self.size,
+            "mode": self.mode,
+            "speed_m_s": self.speed_m_s,
+            "margin": self.margin,
+            "p_intended": self.p_intended,
+            "passed": self.passed,
+            "why": self.why,
+        }
+
+
+@dataclass
+class FixResult:
+    """Outcome of :func:`find_fixes`: ``status`` "already_passes", "fixed" or "none"."""
+
+    status: str
+    message: str
+    candidates: list[Candidate]
+    varies: dict[str, Vary]
+    blocking: dict[str, str]
+    evaluations: int
+    best_spec: Any = None
+
+    @property
+    def best(self) -> Candidate | None:
+        return next((c for c in self.candidates if c.passed), None)
+
+    def as_dict(self) -> dict[str, Any]:
+        return {
+            "status": self.status,
+            "message": self.message,
+            "evaluations": self.evaluations,
+            "varied": {
+                f: {"from": v.text(v.x0), "lo": v.text(v.lo), "hi": v.text(v.hi)}
+                for f, v in self.varies.items()
+            },
+            "candidates": [c.as_dict(self.varies) for c in self.candidates],
+            "blocking": self.blocking,
+        }
+
+
+# --- fields ----------------------------------------------------------------------------
+
+
+def _current(spec: Any, name: str) -> tuple[float, str] | None:
+    values = [value_at(spec, t) for t in targets(spec, name)]
+    present = [v for v in values if v is not None]
+    if not present:
+        return None
+    first = present[0]
+    if any(v != first for v in present):
+        raise UsageError(f"--vary {name}: differs between actuator sets; vary one value")
+    if isinstance(first, pint.Quantity):
+        return float(first.magnitude), f"{first.units:~}"
+    if isinstance(first, float | int) and not isinstance(first, bool):
+        return float(first), ""
+    return None
+
+
+def parse_vary(spec: Any, items: Sequence[str]) -> list[Vary]:
+    """``FIELD`` or ``FIELD=LO:HI`` (quantities in any unit of the field, e.g.
+    ``drive.frequency=400Hz:3kHz``); without items, every default field the spec has.
+    :class:`UsageError` for unknown fields, unreadable or inverted bounds."""
+    from betvdesign.units import parse_quantity
+
+    out: list[Vary] = []
+    names = list(items) or [f for f in DEFAULT_BOUNDS if _current(spec, f) is not None]
+    for item in names:
+        name, _, rng = item.partition("=")
+        name = name.strip()
+        cur = _current(spec, name)
+        if cur is None:
+            known = ", ".join(f for f in DEFAULT_BOUNDS if _current(spec, f) is not None)
+            raise UsageError(
+                f"--vary {name}: not a numeric field of device {spec.name!r}; it has {known}"
+            )
+        x0, unit = cur
+        if x0 <= 0:
+            raise UsageError(f"--vary {name}: current value {x0:g} is not positive")
+        if rng:
+            lo_s, sep, hi_s = rng.partition(":")
+            if not sep:
+                raise UsageError(f"--vary {item}: bounds must be LO:HI, e.g. {name}=1um:8um")
+            try:
+                lo, hi = (_magnitude(parse_quantity(t.strip()), unit) for t in (lo_s, hi_s))
+            except (ValueError, pint.PintError) as exc:
+                raise UsageError(f"--vary {item}: {exc}") from None
+        else:
+            b = DEFAULT_BOUNDS.get(name, (0.5, 2.0))
+            if len(b) == 3:
+                from betvdesign.units import ureg
+
+                lo, hi = (float(ureg.Quantity(v, b[2]).to(unit).magnitude) for v in b[:2])
+            else:
+                lo, hi = x0 * b[0], x0 * b[1]
+        if not (math.isfinite(lo) and math.isfinite(hi) and 0 < lo < hi):
+            raise UsageError(f"--vary {item}: need 0 < LO < HI (got {lo:g} to {hi:g} {unit})")
+        out.append(Vary(name, x0, lo, hi, unit))
+    if len({v.field for v in out}) != len(out):
+        raise UsageError("--vary: a field is given twice")
+    return out
+
+
+def _magnitude(q: Any, unit: str) -> float:
+    if not isinstance(q, pint.Quantity):
+        return float(q)
+    if not unit:
+        return float(q.to("dimensionless").magnitude)
+    return float(q.to(unit).magnitude)
+
+
+# --- evaluation ------------------------------------------------------------------------
+
+
+class Evaluator:
+    """Checks candidate specs through the same path as ``betv check`` (cached)."""
+
+    def __init__(self, spec: Any, varies: Sequence[Vary], target_speed_m_s: float | None):
+        self.spec = spec
+        self.varies = {v.field: v for v in varies}
+        self.target = target_speed_m_s
+        self.cache: dict[tuple[tuple[str, float], ...], tuple[bool, list[str], Any]] = {}
+        self.evaluations = 0
+
+    def spec_at(self, changes: dict[str, float]) -> Any:
+        return with_values(self.spec, {f: self.varies[f].quantity(x) for f, x in changes.items()})
+
+    def quick(self, changes: dict[str, float]) -> tuple[bool, list[str], Any]:
+        """(passes, failing rule ids, check) without the margin corners and settling
+        (both are required of every candidate by :meth:`full`)."""
+        key = tuple(sorted(changes.items()))
+        if key not in self.cache:
+            self.cache[key] = self._run(changes, full=False)
+        return self.cache[key]
+
+    def full(self, changes: dict[str, float]) -> tuple[bool, list[str], Any]:
+        """The complete check; also requires the mode-margin, settling and
+        tangential-resonance warnings to pass."""
+        return self._run(changes, full=True)
+
+    def _run(self, changes: dict[str, float], *, full: bool) -> tuple[bool, list[str], Any]:
+        from betvdesign.checker import check_derivation
+        from betvdesign.nondim import derive
+
+        self.evaluations += 1
+        if (
+            "contact.impact_angle" in changes
+            and self.varies["contact.impact_angle"]
+            .quantity(changes["contact.impact_angle"])
+            .to("deg")
+            .magnitude
+            >= 90.0
+        ):
+            return False, ["impact angle ≥ 90°"], None
+        try:
+            res = check_derivation(
+                derive(self.spec_at(changes)),
+                margin=full,
+                settle=full,
+                target_speed_m_s=self.target,
+            )
+        except (ParameterError, BetvError, ValueError) as exc:
+            return False, [f"invalid: {exc}"], None
+        need = {"tangential-resonance"} | ({"mode-margin"} if full else set())
+        failing = [
+            r.id for r in res.rules if not r.passed and (r.severity == "error" or r.id in need)
+        ]
+        for sc in res.sets:  # the slider must settle before it has crossed its travel
+            st = sc.settling
+            if st is not None and getattr(st, "cycles_to_cross", None):
+                if st.cycles_to_settle is None or st.cycles_to_settle > st.cycles_to_cross:
+                    failing.append("settling")
+        return not failing, sorted(set(failing)), res
+
+
+def _speed(check: Any) -> float | None:
+    speeds = [abs(v) for sc in check.sets if (v := sc.speed_m_s) is not None]
+    return min(speeds) if speeds else None
+
+
+def _mode(check: Any) -> str | None:
+    modes = {sc.mode for sc in check.sets}
+    return modes.pop() if len(modes) == 1 else ", ".join(sorted(str(m) for m in modes))
+
+
+# --- one field ---------------------------------------------------------------------------
+
+
+def _intervals(xs: np.ndarray, ok: np.ndarray) -> list[tuple[int, int]]:
+    """Index ranges [i, j] of consecutive passing scan points."""
+    out, start = [], None
+    for i, good in enumerate(ok):
+        if good and start is None:
+            start = i
+        if not good and start is not None:
+            out.append((start, i - 1))
+            start = None
+    if start is not None:
+        out.append((start, len(ok) - 1))
+    return out
+
+
+def _edge(ev: Evaluator, name: str, good: float, bad: float) -> float:
+    """Bisect (in log) between a passing and a failing value: the last passing one."""
+    for _ in range(BISECT_STEPS):
+        mid = math.sqrt(good * bad)
+        if ev.quick({name: mid})[0]:
+            good = mid
+        else:
+            bad = mid
+    return good
+
+
+def single_field(ev: Evaluator, v: Vary) -> tuple[list[tuple[float, float, float]], str, float]:
+    """Passing intervals of one field as (lo, hi, chosen value nearest x0 with margin),
+    nearest first; the rule that blocks most often where it fails; and how close the
+    field came (the fewest failing rules over the scan, for choosing pairs)."""
+    xs = np.geomspace(v.lo, v.hi, SCAN_POINTS)
+    res = [ev.quick({v.field: float(x)}) for x in xs]
+    ok = np.array([r[0] for r in res])
+    fails = [rid for r in res if not r[0] for rid in r[1]]
+    blocking = max(set(fails), key=fails.count) if fails else ""
+    closest = min(len(r[1]) for r in res) + _shortfall(ev, res)
+    out = []
+    for i, j in _intervals(xs, ok):
+        lo = xs[i] if i == 0 else _edge(ev, v.field, float(xs[i]), float(xs[i - 1]))
+        hi = xs[j] if j == len(xs) - 1 else _edge(ev, v.field, float(xs[j]), float(xs[j + 1]))
+        a, b = lo * (1 + FIELD_MARGIN), hi / (1 + FIELD_MARGIN)
+        if a > b:  # narrower than twice the margin: no robust point
+            continue
+        x = min(max(v.x0, a), b)
+        out.append((float(lo), float(hi), float(x)))
+    out.sort(key=lambda t: abs(math.log(t[2] / v.x0)))
+    return out, blocking, closest
+
+
+def _shortfall(ev: Evaluator, res: list[tuple[bool, list[str], Any]]) -> float:
+    """In [0, 1): how far the best scan point stays from the intended mode and the
+    target speed (0: reached), as a tie-break between fields with equal rule counts."""
+    best = 1.0
+    for _, _, check in res:
+        if check is None:
+            continue
+        worst = 0.0
+        for sc in check.sets:
+            ds = getattr(sc.periodic, "delta_s", None) if sc.mode else None
+            if ds is None:
+                worst = max(worst, 0.99)
+                continue
+            want = 1.0 if sc.derivation.intended_mode == "push" else -1.0
+            worst = max(worst, 0.5 - 0.5 * math.tanh(want * ds))
+        best = min(best, worst)
+    return min(best, 0.999)
+
+
+def _why(ev: Evaluator, before: list[str], changes: dict[str, float], check: Any) -> str:
+    fixed = [r for r in before if r]
+    mode = _mode(check)
+    speed = _speed(check)
+    from betvdesign.rules import format_speed
+
+    parts = [f"fixes {', '.join(fixed)}" if fixed else "keeps every rule passing"]
+    parts.append(f"exact mode {mode}")
+    if speed is not None:
+        parts.append(f"speed {format_speed(speed)}")
+    return "; ".join(parts)
+
+
+def find_fixes(
+    spec: Any,
+    varies: Sequence[Vary],
+    *,
+    target_speed_m_s: float | None = None,
+    pairs: bool = True,
+    robust: Callable[[Any], float] | None = None,
+    p_min: float = 0.99,
+    max_candidates: int = 8,
+) -> FixResult:
+    """Search the smallest passing change (see the module docstring).
+
+    robust: spec -> P(intended mode) under the user's spreads (a Monte Carlo); a
+    candidate must reach ``p_min``.
+    """
+    ev = Evaluator(spec, varies, target_speed_m_s)
+    vmap = {v.field: v for v in varies}
+    ok0, failing0, _ = ev.full({})
+    if ok0 and robust is None:
+        return FixResult("already_passes", "the device already passes", [], vmap, {}, 1, spec)
+    cands: list[Candidate] = []
+    blocking: dict[str, str] = {}
+    closeness: dict[str, float] = {}
+    for v in varies:
+        intervals, block, closeness[v.field] = single_field(ev, v)
+        if not intervals:
+            blocking[v.field] = block or "no passing value within the bounds"
+        for lo, hi, x in intervals:
+            margin = min(math.log(x / lo), math.log(hi / x))
+            cands.append(Candidate({v.field: x}, abs(math.log(x / v.x0)), None, None, margin, ""))
+    if pairs and not cands and len(varies) >= 2:
+        near = sorted(varies, key=lambda v: closeness[v.field])[:PAIR_FIELDS]
+        cands = _pairs(ev, near)
+    order = {f: i for i, f in enumerate(DEFAULT_BOUNDS)}  # ties: operating fields first
+    cands.sort(key=lambda c: (round(c.size, 2), min(order.get(f, 99) for f in c.changes)))
+    verified: list[Candidate] = []
+    for c in cands:
+        if len(verified) >= max_candidates or (robust and sum(v.passed for v in verified) >= 2):
+            break
+        c = _verify(ev, c, failing0, robust, p_min, vmap)
+        verified.append(c)
+    verified.sort(
+        key=lambda c: (not c.passed, round(c.size, 2), min(order.get(f, 99) for f in c.changes))
+    )
+    best = verified[0] if verified and verified[0].passed else None
+    if best is None:
+        why = "; ".join(f"{f}: {b}" for f, b in blocking.items()) or "no candidate verified"
+        return FixResult(
+            "none",
+            f"no change within the bounds passes ({why})",
+            verified,
+            vmap,
+            blocking,
+            ev.evaluations,
+        )
+    return FixResult(
+        "fixed",
+        f"{len([c for c in verified if c.passed])} passing change(s); best: "
+        + ", ".join(f"{f} -> {vmap[f].text(x)}" for f, x in best.changes.items()),
+        verified,
+        vmap,
+        blocking,
+        ev.evaluations,
+        ev.spec_at(best.changes),
+    )
+
+
+def _verify(
+    ev: Evaluator,
+    c: Candidate,
+    failing0: list[str],
+    robust: Callable[[Any], float] | None,
+    p_min: float,
+    vmap: dict[str, Vary],
+) -> Candidate:
+    ok, failing, check = ev.full(c.changes)
+    c.passed, c.blocking, c.check = ok, failing, check
+    if check is not None:
+        c.mode, c.speed_m_s = _mode(check), _speed(check)
+        c.why = _why(ev, failing0, c.changes, check)
+    if not ok:
+        c.why = f"fails the full check: {', '.join(failing)}"
+        return c
+    if robust is not None:
+        c.p_intended = robust(ev.spec_at(c.changes))
+        if c.p_intended < p_min:
+            c.passed = False
+            c.why += f"; P(intended mode) = {c.p_intended:.3f} < {p_min:g} under the spreads"
+    return c
+
+
+def _pairs(ev: Evaluator, varies: Sequence[Vary]) -> list[Candidate]:
+    """Coarse 2-D grids over every pair of fields: passing points, smallest change."""
+    out = []
+    for a, b in itertools.combinations(varies, 2):
+        xa = np.geomspace(a.lo, a.hi, PAIR_POINTS)
+        xb = np.geomspace(b.lo, b.hi, PAIR_POINTS)
+        for x, y in itertools.product(xa, xb):
+            ch = {a.field: float(x), b.field: float(y)}
+            if ev.quick(ch)[0]:
+                size = math.hypot(math.log(x / a.x0), math.log(y / b.x0))
+                out.append(Candidate(ch, size, None, None, 0.0, ""))
+    return out
+
+
+# --- robustness under fabrication spread -------------------------------------------------
+
+
+def robust_probability(
+    spec: Any, items: Sequence[str], *, n: int = 400, seed: int = 0
+) -> Callable[[Any], float]:
+    """P(every set in its intended mode) under the spreads ``items`` (``betv tolerance``
+    syntax), by a seeded Monte Carlo of ``n`` exact orbits per candidate. Validates the
+    spreads against ``spec`` now (:class:`UsageError`)."""
+    from betvdesign.studies.tolerance import draw, nominal_values, parse_tolerance
+
+    tols = [parse_tolerance(t) for t in items]
+    nominal_values(spec, tols)  # unknown or non-numeric fields: UsageError now
+
+    def probability(candidate: Any) -> float:
+        from betvdesign.checker import load_solver
+        from betvdesign.domain import mode_of
+        from betvdesign.nondim import derive
+        from betvdesign.units import ureg
+
+        solver = load_solver()
+        nominal = nominal_values(candidate, tols)
+        x = draw(tols, nominal, n, seed)
+        good = 0
+        for row in x:
+            values = {
+                t.field: (ureg.Quantity(v, nominal[t.field][1]) if nominal[t.field][1] else v)
+                for t, v in zip(tols, row, strict=True)
+            }
+            try:
+                d = derive(with_values(candidate, values))
+            except (ParameterError, BetvError, ValueError):
+                continue  # an unphysical draw counts as a failure
+            ok = True
+            for s in d.sets:
+                po = solver(s.params)
+                if not (po.success and mode_of(po.delta_s) == s.intended_mode):
+                    ok = False
+                    break
+            good += ok
+        return good / n
+
+    return probability

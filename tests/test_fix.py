@@ -1,0 +1,162 @@
+"""``betv fix``: every suggested fix, written out and re-run through ``betv check``, passes.
+
+Independent truths: the written file goes through the loader and ``betv check`` as a
+user's file would; the window edges are the closed form ϖ = f_act/f_v ∈ [0.5, 2)
+(computed by hand for shin2004: f_v = 2.94 kHz, AC drive, so f_drive ≥ 735 Hz plus the
+5 % margin); the target speed is checked on the written file's own check.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+from betvdesign.cli import app
+from betvdesign.loader import load_device
+from betvdesign.studies.fix import FIELD_MARGIN, find_fixes, parse_vary
+
+DEVICES = Path(__file__).resolve().parents[1] / "devices"
+SHIN = DEVICES / "shin2004.yaml"
+
+
+def run(*args):
+    return CliRunner().invoke(app, [str(a) for a in args])
+
+
+def _check_passes(path: Path) -> dict:
+    r = run("check", path, "--json")
+    assert r.exit_code == 0, r.stdout
+    return json.loads(r.stdout)
+
+
+def test_shin2004_fix_writes_a_file_that_passes(tmp_path):
+    out = tmp_path / "shin_fixed.yaml"
+    r = run("fix", SHIN, "--vary", "drive.frequency", "-o", out)
+    assert r.exit_code == 0, r.output
+    assert "drive.frequency: 500 Hz -> " in r.stdout and "frequency-window" in r.stdout
+    d = _check_passes(out)
+    f_drive = load_device(out).actuator_sets[0].drive.frequency.to("Hz").magnitude
+    edge = 0.5 * 2940.0 / 2  # ϖ = 2·f_drive/f_v = 0.5
+    assert edge * (1 + FIELD_MARGIN) * 0.999 <= f_drive <= edge * (1 + FIELD_MARGIN) * 1.01
+    assert all(s["mode_predicted"] == "pull" for s in d["sets"])
+    text = out.read_text()
+    assert "betv fix: was 500 Hz" in text and "# two parallel beams" in text  # comments kept
+
+
+def test_default_fields_rank_operating_changes_first():
+    """Raising f_drive and lowering f_v change ϖ by the same factor: the drive frequency
+    (no redesign) ranks first."""
+    spec = load_device(SHIN)
+    res = find_fixes(spec, parse_vary(spec, ["drive.frequency", "actuator.vertical_resonance"]))
+    assert res.status == "fixed"
+    assert list(res.best.changes) == ["drive.frequency"]
+    sizes = [round(c.size, 2) for c in res.candidates if c.passed]
+    assert sizes == sorted(sizes)
+
+
+def test_wrong_mode_device_is_fixed_by_the_exact_orbit(tmp_path):
+    """push_demo marked intended pull fails its mode rule; the fix found makes the
+    exact orbit pull, confirmed by `betv check` on the written file."""
+    src = tmp_path / "push_as_pull.yaml"
+    src.write_text(
+        (DEVICES / "push_demo.yaml")
+        .read_text()
+        .replace("intended_mode: push", "intended_mode: pull")
+    )
+    assert run("check", src).exit_code == 1
+    out = tmp_path / "fixed.yaml"
+    r = run(
+        "fix",
+        src,
+        "--vary",
+        "drive.frequency=500Hz:3kHz",
+        "--vary",
+        "contact.impact_angle",
+        "-o",
+        out,
+    )
+    if r.exit_code == 1:
+        assert "blocked by mode" in r.stdout  # a legitimate "none", naming the rule
+        return
+    assert r.exit_code == 0, r.output
+    d = _check_passes(out)
+    assert d["sets"][0]["mode_predicted"] == "pull"
+
+
+def test_target_speed_fix_reaches_the_speed(tmp_path):
+    out = tmp_path / "fast.yaml"
+    r = run(
+        "fix",
+        DEVICES / "push_demo.yaml",
+        "--target-speed",
+        "2.5 mm/s",
+        "--vary",
+        "actuator.horizontal_resonance",
+        "-o",
+        out,
+        "--json",
+    )
+    assert r.exit_code == 0, r.output
+    doc = json.loads(r.stdout)
+    assert doc["status"] == "fixed" and doc["output"] == str(out)
+    d = _check_passes(out)
+    assert abs(d["sets"][0]["speed_m_s"]) >= 2.5e-3
+
+
+def test_passing_device_needs_no_fix():
+    r = run("fix", DEVICES / "pull_demo.yaml", "--vary", "drive.frequency")
+    assert r.exit_code == 0 and "already passes" in r.stdout
+
+
+def test_no_fix_within_bounds_is_exit_1_and_names_the_blocking_rule(tmp_path):
+    out = tmp_path / "never.yaml"
+    r = run("fix", SHIN, "--vary", "slider.beam_width=4um:6um", "-o", out)
+    assert r.exit_code == 1
+    assert "blocked by frequency-window" in r.stdout
+    assert not out.exists()
+
+
+@pytest.mark.parametrize(
+    ("args", "words"),
+    [
+        (["--vary", "slider.nonsense"], "not a numeric field"),
+        (["--vary", "drive.frequency=1kHz:200Hz"], "need 0 < LO < HI"),
+        (["--vary", "drive.frequency=abc:2kHz"], "--vary drive.frequency=abc:2kHz"),
+        (["--vary", "drive.frequency=1kg:2kg"], "--vary drive.frequency"),
+        (["--vary", "drive.frequency=100Hz"], "LO:HI"),
+        (["--vary", "actuator.horizontal_resonance"], "not a numeric field"),  # shin has α
+        (["--target-speed", "fast"], "--target-speed"),
+        (["--spread", "slider.nonsense=normal:1%"], "slider.nonsense"),
+        (["-o", "/nonexistent-dir/x.yaml"], "does not exist"),
+        (["-o", "/proc/x.yaml"], "/proc/x.yaml"),
+    ],
+)
+def test_bad_input_is_exit_2_without_traceback(args, words):
+    r = run("fix", SHIN, *args)
+    assert r.exit_code == 2, r.output
+    assert words in r.stderr and "Traceback" not in r.output
+
+
+def test_robust_fix_meets_the_mode_probability():
+    """With a spread on the beam width, the best fix keeps P(intended) ≥ p_min, measured
+    by its own Monte Carlo of exact orbits."""
+    r = run(
+        "fix",
+        SHIN,
+        "--vary",
+        "drive.frequency",
+        "--spread",
+        "slider.beam_width=normal:5%",
+        "-n",
+        "60",
+        "--p-min",
+        "0.95",
+        "--json",
+    )
+    assert r.exit_code == 0, r.output
+    doc = json.loads(r.stdout)
+    best = next(c for c in doc["candidates"] if c["passed"])
+    assert best["p_intended"] >= 0.95
