@@ -4,13 +4,51 @@ Layers (each only imports from the ones before it):
 ``units``/``spec`` (pint, pydantic, YAML) -> ``nondim`` (the only place units are
 stripped) -> unit-free ``dynamics`` -> ``rules``, ``studies`` -> ``plots``,
 ``report``, ``cli``.
+
+Notebook use::
+
+    import betvdesign as bd
+    spec = bd.load_device("devices/push_demo.yaml")
+    bd.check(spec)                                  # compact verdict (HTML in Jupyter)
+    bd.check(spec.replace("drive.frequency", "2.5 kHz"))
+    q = bd.ureg.Quantity("6 um")                    # the package's pint registry
+
+The model: W. P. Shin, M. Pai, Y. Y. Lin, C. Y. Hui, N. C. Tien, "Impact dynamics of
+micromachined bidirectional electrothermal vibromotors", J. Appl. Phys. 96(12),
+7603–7611 (2004); restated in docs/MODEL.md.
+The names below are imported on first use, so ``import betvdesign`` stays cheap.
 """
 
+from __future__ import annotations
+
 from importlib.metadata import PackageNotFoundError, version
+from typing import Any
 
 try:
     __version__ = version("betvdesign")
 except PackageNotFoundError:  # pragma: no cover - running from a source tree
     __version__ = "0.0.0+unknown"
 
-__all__ = ["__version__"]
+#: Public names and the module each lives in (imported lazily by ``__getattr__``).
+_LAZY = {
+    "ureg": "betvdesign.units",
+    "Quantity": "betvdesign.units",
+    "DeviceSpec": "betvdesign.spec",
+    "load_device": "betvdesign.loader",
+    "derive": "betvdesign.nondim",
+    "check": "betvdesign.api",
+    "DeviceView": "betvdesign.checkview",
+    "SpecError": "betvdesign.errors",
+}
+
+__all__ = ["__version__", *_LAZY]
+
+
+def __getattr__(name: str) -> Any:
+    if name in _LAZY:
+        import importlib
+
+        value = getattr(importlib.import_module(_LAZY[name]), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module 'betvdesign' has no attribute {name!r}")

@@ -8,8 +8,6 @@ loader: ``yes``/``no`` stay strings, ``0.4`` is a float); duplicate keys are err
 
 from __future__ import annotations
 
-import difflib
-import functools
 import warnings
 from pathlib import Path
 from typing import Any
@@ -23,6 +21,7 @@ from ruamel.yaml.nodes import MappingNode, Node, SequenceNode
 from betvdesign import limits, safeyaml
 from betvdesign.errors import Location, SpecError, SpecIssue
 from betvdesign.spec import DeviceSpec
+from betvdesign.validation import known_fields, located, message
 
 
 def load_device(path: str | Path) -> DeviceSpec:
@@ -218,100 +217,12 @@ def _last_key_value_pos(root: CommentedMap, loc: tuple[Any, ...]) -> tuple[int, 
     return None if pos is None else (pos[0] + 1, pos[1] + 1)
 
 
-def _split_path(rel: str) -> tuple[Any, ...]:
-    """``"points[1].voltage"`` -> ``("points", 1, "voltage")``."""
-    out: list[Any] = []
-    for part in rel.split("."):
-        name, _, rest = part.partition("[")
-        if name:
-            out.append(name)
-        while rest:
-            idx, _, rest = rest.partition("]")
-            out.append(int(idx))
-            rest = rest.lstrip("[")
-    return tuple(out)
-
-
-@functools.cache
-def _known_fields() -> tuple[str, ...]:
-    names: set[str] = set()
-
-    def walk(obj: Any) -> None:
-        if isinstance(obj, dict):
-            props = obj.get("properties")
-            if isinstance(props, dict):
-                names.update(props)
-            for v in obj.values():
-                walk(v)
-        elif isinstance(obj, list):
-            for v in obj:
-                walk(v)
-
-    walk(DeviceSpec.model_json_schema())
-    return tuple(sorted(names))
-
-
-_EXPECTED = {
-    "model_type": "a mapping of fields",
-    "model_attributes_type": "a mapping of fields",
-    "dict_type": "a mapping",
-    "list_type": "a list",
-    "string_type": "a string",
-    "int_type": "an integer",
-    "float_type": "a number",
-    "bool_type": "true or false",
-}
-
-
-def _kind_of(value: Any) -> str:
-    if isinstance(value, bool):
-        return f"the boolean {str(value).lower()}"
-    if isinstance(value, dict):
-        return "a mapping"
-    if isinstance(value, list):
-        return "a list"
-    if value is None:
-        return "nothing (null)"
-    if isinstance(value, str):
-        return f"the string {value!r}"
-    return f"{value!r}"
-
-
-def _message(err: dict[str, Any]) -> str:
-    kind = err["type"]
-    msg = str(err["msg"])
-    if kind == "extra_forbidden":
-        key = err["loc"][-1] if err["loc"] else ""
-        close = difflib.get_close_matches(str(key), _known_fields(), n=1)
-        hint = f"; did you mean '{close[0]}'?" if close else ""
-        return f"unknown field{hint} (see `betv schema` for the allowed fields)"
-    if kind == "missing":
-        return "missing required field"
-    ctx = err.get("ctx") or {}
-    if kind == "too_long" and "max_length" in ctx:
-        return f"{ctx.get('actual_length', 'too many')} items; the limit is {ctx['max_length']}"
-    if kind == "string_too_long" and "max_length" in ctx:
-        got = err.get("input")
-        n = f"{len(got):,} characters" if isinstance(got, str) else "too long"
-        return f"string of {n}; the limit is {ctx['max_length']:,}"
-    if kind in _EXPECTED:
-        return f"expected {_EXPECTED[kind]}, got {_kind_of(err.get('input'))}"
-    if msg.startswith("Value error, "):
-        msg = msg[len("Value error, ") :]
-    if msg.startswith("Assertion failed, "):
-        msg = msg[len("Assertion failed, ") :]
-    return msg
-
-
 def _validation_issues(exc: ValidationError, root: CommentedMap, filename: str) -> list[SpecIssue]:
     grouped: dict[tuple[int, int, str], list[str]] = {}
     for err in exc.errors():
-        loc = tuple(err["loc"])
-        msg = _message(err)
-        relocated = msg.startswith("@") and ": " in msg
-        if relocated:  # spec.at(): the error belongs to a sub-field
-            rel, msg = msg[1:].split(": ", 1)
-            loc = loc + _split_path(rel)
+        msg = message(err, known_fields(DeviceSpec))
+        relocated = msg.startswith("@") and ": " in msg  # spec.at(): a sub-field's error
+        loc, msg = located(err, known_fields(DeviceSpec))
         # a last loc element absent from the data names a missing field; otherwise it is
         # a union tag (e.g. "measured", "float") and is left out of the path
         name_missing = relocated or err["type"] in ("missing", "extra_forbidden")

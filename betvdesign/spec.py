@@ -400,6 +400,15 @@ class DeviceSpec(_Model):
                 )
         return self
 
+    def replace(self, path: str, value: Any, *more: tuple[str, Any]) -> DeviceSpec:
+        """What-if: a copy with ``path`` (dotted, as in the device file) set to ``value``,
+        validated like a device file (raises the loader's SpecError); see
+        :func:`betvdesign.whatif.replace`. Example: ``spec.replace("slider.beam_width",
+        "6 um")``."""
+        from betvdesign.whatif import replace
+
+        return replace(self, path, value, *more)
+
 
 def amplitude_at(actuator_set: ActuatorSet, voltage: pint.Quantity | str | None = None):
     """Actuator amplitude u at a drive voltage [length, µm] (MODEL.md: u grows with V).

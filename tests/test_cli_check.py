@@ -44,61 +44,102 @@ def test_shin2004_fails_the_window_and_shows_fit_mismatch(no_solver):
     assert "FAIL" in out and "frequency-window" in out
     assert "below the window" in out
     assert "published-fit.varpi" in out and "disagree" in out
-    assert "extrapolates" in out  # β = 9.09 outside the λ fit range
     assert "fix:" in out and "drive.frequency" in out
+    assert "extrapolates" in run("check", "--verbose", SHIN).stdout  # β = 9.09 outside
+
+
+def _device(stdout: str) -> dict:
+    d = json.loads(stdout)
+    assert (d["schema"], d["version"]) == ("betv-check", 1)
+    assert len(d["devices"]) == 1
+    return d["devices"][0]
 
 
 def test_shin2004_json_contract(no_solver):
+    """Version 1: SI floats under unit-named keys; hand-computed shin2004 parameters."""
     r = run("check", SHIN, "--json")
     assert r.exit_code == 1
-    d = json.loads(r.stdout)
-    assert set(d) >= {"device", "params", "derived", "mode_predicted", "rules", "verdict"}
+    d = _device(r.stdout)
     assert d["device"] == "shin2004" and d["verdict"] == "fail"
-    assert set(d["params"]) == {"varpi", "alpha", "beta", "kappa", "lambda"}
-    assert d["params"]["varpi"] == pytest.approx(1000 / 2940)
-    assert d["params"]["beta"] == pytest.approx(3.6e-11 / (2330 * 170e-6 * 5e-6 * 2e-6))
-    assert d["derived"]["f_act"] == "1000 Hz"
-    assert all(isinstance(v, str) and " " in v for v in d["derived"].values())
-    assert d["mode_predicted"] == "pull"
-    for rule in d["rules"]:
-        assert set(rule) >= {"id", "severity", "passed", "value", "threshold", "message"}
+    assert d["failed"] == ["frequency-window"]
+    s = d["sets"][0]
+    assert set(s["params"]) == {"varpi", "alpha", "beta", "kappa"}
+    assert s["params"]["varpi"] == pytest.approx(1000 / 2940)
+    assert s["params"]["beta"] == pytest.approx(3.6e-11 / (2330 * 170e-6 * 5e-6 * 2e-6))
+    assert s["derived"]["f_act_hz"] == pytest.approx(1000.0)
+    assert s["derived"]["head_mass_kg"] == pytest.approx(3.6e-11)  # 0.036 ug
+    assert s["derived"]["amplitude_m"] == pytest.approx(0.11e-6)
+    assert s["travel_range_m"] == pytest.approx(40e-6)
+    assert s["mode"] == "pull" and s["lambda"]["predicts"] == "pull"
+    for rule in s["rules"]:
+        assert set(rule) == {
+            "id",
+            "severity",
+            "passed",
+            "value",
+            "value_unit",
+            "threshold",
+            "message",
+            "fix",
+            "source",
+        }
         assert rule["severity"] in ("error", "warning", "info")
-    win = [x for x in d["rules"] if x["id"] == "frequency-window"]
-    assert win and not any(x["passed"] for x in win)
-    fit = d["sets"][0]["published_fit"]
+    win = [x for x in s["rules"] if x["id"] == "frequency-window"]
+    assert win and not any(x["passed"] for x in win) and "drive.frequency" in win[0]["fix"]
+    assert "details" not in d
+    full = _device(run("check", SHIN, "--json", "--verbose").stdout)["details"]
+    fit = full["sets"][0]["published_fit"]
     assert {f["param"] for f in fit} == {"varpi", "alpha", "beta", "kappa"}
-    assert next(f for f in d["sets"][0]["record"] if f["symbol"] == "f_act")["formula"] == (
+    assert next(f for f in full["sets"][0]["record"] if f["symbol"] == "f_act")["formula"] == (
         "2·f_drive"
     )
+
+
+def test_json_conforms_to_its_published_schema(no_solver):
+    """Every device's --json output validates against `betv schema check` (a generic
+    draft-2020-12 walk of the schema, written below, not pydantic itself)."""
+    schema = json.loads(run("schema", "check").stdout)
+    assert schema["properties"]["version"]["const"] == 1
+    r = run("check", "--json", *(str(p) for p in sorted(DEVICES.glob("*.yaml"))))
+    doc = json.loads(r.stdout)
+    assert [x["device"] for x in doc["devices"]] == [
+        "bidir_demo",
+        "pull_demo",
+        "push_demo",
+        "shin2004",
+    ]
+    assert doc["verdict"] == "fail" and r.exit_code == 1
+    _assert_conforms(doc, schema, schema)
 
 
 @pytest.mark.parametrize("name", OWN)
 def test_own_designs_pass(name):
     """Every error and warning rule passes with the exact solver; the mode is the
     exact orbit's, and the λ fit agrees for these clear designs."""
-    r = run("check", str(DEVICES / f"{name}.yaml"), "--json")
+    r = run("check", str(DEVICES / f"{name}.yaml"), "--json", "--verbose")
     assert r.exit_code == 0, r.stdout
-    d = json.loads(r.stdout)
-    assert d["verdict"] == "pass"
-    assert all(x["passed"] for x in d["rules"] if x["severity"] != "info"), d["rules"]
-    for s in d["sets"]:
-        assert s["mode_predicted"] == s["intended_mode"]
-        assert s["mode_source"] == "exact periodic orbit" and s["lambda_agrees"]
-        assert s["settling"]["status"] == "settled"
-        assert set(s["margin"].values()) == {s["intended_mode"]}
+    d = _device(r.stdout)
+    assert d["verdict"] == "pass" and d["failed"] == []
+    full = d["details"]
+    assert all(x["passed"] for x in full["rules"] if x["severity"] != "info"), full["rules"]
+    for s, sfull in zip(d["sets"], full["sets"], strict=True):
+        assert s["mode"] == s["intended_mode"] and s["passed"] and s["lambda"]["agrees"]
+        assert sfull["settling"]["status"] == "settled"
+        assert s["margin"]["holds"] and set(s["margin"]["corners"].values()) == {s["mode"]}
 
 
-def test_several_files_give_a_list_and_worst_exit(no_solver):
+def test_several_files_give_one_shape_and_worst_exit(no_solver):
     r = run("check", "--json", str(DEVICES / "push_demo.yaml"), SHIN)
     assert r.exit_code == 1
     d = json.loads(r.stdout)
-    assert [x["device"] for x in d] == ["push_demo", "shin2004"]
+    assert [x["device"] for x in d["devices"]] == ["push_demo", "shin2004"]
+    assert d["verdict"] == "fail"
     r = run("check", "--json", *(str(DEVICES / f"{n}.yaml") for n in OWN))
-    assert r.exit_code == 0 and len(json.loads(r.stdout)) == 3
+    assert r.exit_code == 0 and len(json.loads(r.stdout)["devices"]) == 3
 
 
 def test_tables_and_derivation(no_solver):
-    r = run("check", "--derivation", str(DEVICES / "bidir_demo.yaml"))
+    r = run("check", "--verbose", str(DEVICES / "bidir_demo.yaml"))
     assert r.exit_code == 0
     assert "PASS" in r.stdout and "set east" in r.stdout and "set west" in r.stdout
     assert "derivation of set east" in r.stdout and "(f_v/f_h)²" in r.stdout
@@ -210,17 +251,19 @@ def test_check_reports_orbit_speed_and_json(monkeypatch):
     monkeypatch.setattr(checker, "load_solver", lambda: lambda p: orbit)
     monkeypatch.setattr("betvdesign.checker._settling", lambda p, po, travel: None)
     path = str(DEVICES / "push_demo.yaml")
+    v = 0.25 * 0.14e-6 * math.cos(math.radians(20.56)) * 6000.0  # [m/s] = 196.6 µm/s
     r = run("check", path)
     assert r.exit_code == 0, r.stdout
-    assert "exact orbit" in r.stdout
-    d = json.loads(run("check", "--json", path).stdout)
-    s = d["sets"][0]
-    assert s["mode_source"] == "exact periodic orbit"
+    assert "push as intended, 197 µm/s toward +x, 50 µm in 254 ms" in r.stdout  # 50 µm / v
+    top = _device(run("check", "--json", "-v", path).stdout)
+    s = top["details"]["sets"][0]
     assert s["simulation"]["delta_s"] == 0.25 and s["simulation"]["mode"] == "push"
-    v = 0.25 * 0.14e-6 * math.cos(math.radians(20.56)) * 6000.0  # [m/s]
-    assert d["derived"]["speed"] == f"{v * 1e6:.4g} um/s"
-    assert d["derived"]["time_to_cross"] == f"{50e-6 / v * 1e3:.4g} ms"  # 0.254 s
-    assert s["speed_m_s"] == pytest.approx(v, rel=1e-9)
+    out = top["sets"][0]
+    assert out["delta_s"] == 0.25 and out["speed_m_s"] == pytest.approx(v, rel=1e-9)
+    assert out["time_to_cross_s"] == pytest.approx(50e-6 / v, rel=1e-9)
+    assert out["travel_direction"] == "+x"
+    speed = next(x for x in out["rules"] if x["id"] == "speed")
+    assert speed["value_unit"] == "m/s" and speed["value"] == pytest.approx(v)
 
 
 # --- with the exact solver (betvdesign.dynamics) ------------------------------------------
@@ -235,9 +278,10 @@ def test_shin2004_orbit_and_speed_from_the_exact_solver():
     from betvdesign.dynamics import periodic_orbit, simulate
     from betvdesign.params import ModelParams
 
-    r = run("check", "--json", SHIN)
+    r = run("check", "--json", "-v", SHIN)
     assert r.exit_code == 1  # the frequency-window error
-    d = json.loads(r.stdout)
+    top = _device(r.stdout)
+    d = top["details"]
     s = d["sets"][0]
     p = ModelParams(**{k: s["params"][k] for k in ("varpi", "alpha", "beta", "kappa")})
     orbit = periodic_orbit(p)
@@ -250,6 +294,7 @@ def test_shin2004_orbit_and_speed_from_the_exact_solver():
     assert abs(tr.s) * length >= 40e-6 > abs(tr.section[-2, 4]) * length
     settle = next(x for x in s["rules"] if x["id"] == "settling")
     speed = s["speed_m_s"]
+    assert top["sets"][0]["speed_m_s"] == pytest.approx(abs(speed), rel=1e-12)
     if settle["passed"]:
         assert speed == pytest.approx(orbit.delta_s * length * 1000.0, rel=1e-9)
     else:
@@ -261,7 +306,7 @@ def test_check_quotes_vertical_motion_consistently():
     """The window rule quotes dynamics.vertical_motion(ϖ) for the set's own ϖ."""
     from betvdesign.dynamics import vertical_motion
 
-    d = json.loads(run("check", "--json", SHIN).stdout)
+    d = _device(run("check", "--json", "-v", SHIN).stdout)["details"]
     s = d["sets"][0]
     vm = vertical_motion(s["params"]["varpi"])
     assert s["vertical"]["regime"] == vm.regime
@@ -275,7 +320,8 @@ def test_markup_in_names_is_printed_literally(tmp_path, no_solver):
         (DEVICES / "push_demo.yaml").read_text().replace("name: forward", "name: '[red]fwd'")
     )
     r = run("check", str(f))
-    assert r.exit_code == 0 and "set [red]fwd" in r.stdout
+    assert r.exit_code == 0 and "[red]fwd: push" in r.stdout
+    assert "set [red]fwd" in run("check", "-v", str(f)).stdout
 
 
 def test_summary_line_for_several_files(no_solver):

@@ -2,6 +2,7 @@
 Python API it wraps and against the JSON contract of issue 3 / docs/ARCHITECTURE.md)."""
 
 import json
+import math
 from pathlib import Path
 
 import pytest
@@ -11,6 +12,7 @@ from betvdesign.cli import app
 from betvdesign.dynamics import periodic_orbit, simulate
 from betvdesign.nondim import derive_file
 from betvdesign.params import ModelParams
+from betvdesign.siformat import format_si
 
 DEVICES = Path(__file__).resolve().parents[1] / "devices"
 KEYS = {
@@ -63,10 +65,15 @@ def test_device_file_gives_physical_units():
     d = derive_file(path).sets[0]
     ph = out["physical"]
     assert out["set"] == d.name and out["params"] == d.params.as_dict()
-    assert ph["speed_um_s"] == pytest.approx(
-        out["delta_s"] * d.scales.length_m * d.scales.f_act_hz * 1e6, rel=1e-12
-    )
-    assert ph["delta_s_um"] == pytest.approx(out["delta_s"] * d.scales.length_m * 1e6)
+    # SI floats under unit-named keys; u = 0.14 µm, θ = 20.56°, f_act = 6 kHz by hand
+    ell = 0.14e-6 * math.cos(math.radians(20.56))
+    assert ph["length_scale_m"] == pytest.approx(ell, rel=1e-3)
+    assert ph["speed_m_s"] == pytest.approx(out["delta_s"] * ell * 6000.0, rel=1e-3)
+    assert ph["delta_s_m"] == pytest.approx(out["delta_s"] * d.scales.length_m, rel=1e-12)
+    assert ph["cycle_s"] == pytest.approx(1 / 6000.0)
+    text = _run([str(path), "--periodic"]).stdout
+    assert f"mean speed {format_si(ph['speed_m_s'], 'm/s', digits=4)}" in text
+    assert "mm/s" in text and "µm/s" not in text  # 1.84 mm/s, by magnitude
 
 
 def test_text_output():

@@ -127,10 +127,18 @@ def test_every_figure_function_draws_on_given_axes() -> None:
             w, w**2, travel_um=4.0, extrapolated=([3, 4], [9, 16]), ax=ax
         ),
         lambda ax: plots.speed_vs_voltage(
-            w, 2 * w, operating_v=1.0, operating_speed_um_s=2.0, ax=ax
+            w, 2 * w, operating_v=1.0, operating_speed_m_s=2e-3, ax=ax
         ),
-        lambda ax: plots.robustness_vs_lambda(w, [0.1] * 11 + [None], device_lam=0.9, ax=ax),
-        lambda ax: plots.robustness_vs_lambda(w, [0.1] * 12, device_lam=0.9, logx=True, ax=ax),
+        lambda ax: plots.speed_vs_field_change(
+            [("drive.frequency", w, [1e-3] * 11 + [None], [False] * 11 + [True])], ax=ax
+        ),
+        lambda ax: plots.pushpull_map_frequencies(
+            f_v_hz=5e3, kappa=0.15, beta=0.5, points=[("d", 6e3, 3.5e3)], ax=ax
+        ),
+        lambda ax: plots.slider_velocity(
+            w, w, time_scale=(0.1, "t [ms]"), velocity_scale=(2.0, "v [mm/s]"), ax=ax
+        ),
+        lambda ax: plots.orbit_plane(w, w, ["slip"] * 12, velocity_scale=(2.0, "mm/s"), ax=ax),
     ]
     for draw in cases:
         _fig, ax = plots.new_figure()
@@ -154,11 +162,84 @@ def test_plots_and_report_never_import_pyplot() -> None:
     assert out.stdout.strip() == "False"
 
 
-def test_robustness_rings_fit_misses() -> None:
-    """Points whose Δs sign disagrees with their side of λ = 1 are ringed, others not."""
-    lam = [0.5, 0.9, 1.1, 2.0, 3.0]
-    ds = [1.0, -0.5, 0.7, -1.0, -2.0]  # misses: λ = 0.9 (pull below 1), λ = 1.1 (push above)
-    ax = plots.robustness_vs_lambda(lam, ds)
-    rings = [ln for ln in ax.get_lines() if ln.get_label().startswith("fit misses")]
-    assert len(rings) == 1
-    np.testing.assert_allclose(sorted(rings[0].get_xdata()), [0.9, 1.1])
+def test_robustness_rings_fit_misses_and_prefixes_the_speed() -> None:
+    """Points flagged as λ-fit misses are ringed, others not; speeds in m/s are drawn with
+    the prefix their magnitude calls for (1.2e-3 m/s -> 1.2 mm/s)."""
+    change = [-20.0, -10.0, 0.0, 10.0, 20.0]
+    speed = [1.2e-3, 1.0e-3, 0.8e-3, -0.1e-3, None]
+    miss = [False, True, False, True, False]
+    ax = plots.speed_vs_field_change([("drive.frequency", change, speed, miss)])
+    rings = [ln for ln in ax.get_lines() if ln.get_marker() == "o" and ln.get_markersize() == 9]
+    assert len(rings) == 2  # the rings and their legend entry
+    np.testing.assert_allclose(sorted(rings[0].get_xdata()), [-10.0, 10.0])
+    np.testing.assert_allclose(rings[0].get_ydata(), [1.0, -0.1])
+    assert "[mm/s]" in ax.get_ylabel()
+
+
+def test_pushpull_frequency_map_boundary_is_lambda_one() -> None:
+    """The black curve f_h(f_act) of the frequency map is λ = 1 (λ from ModelParams with
+    ϖ = f_act/f_v, α = (f_v/f_h)², an independent formula)."""
+    from betvdesign.params import ModelParams
+
+    f_v, kappa, beta = 5e3, 0.15, 0.5
+    ax = plots.pushpull_map_frequencies(
+        f_v_hz=f_v, kappa=kappa, beta=beta, points=[("d", 6e3, 3.5e3)]
+    )
+    curve = next(ln for ln in ax.get_lines() if ln.get_label().startswith("λ = 1"))
+    x, y = curve.get_xdata(), curve.get_ydata()
+    for i in (50, 200, 350):
+        p = ModelParams(x[i] * 1e3 / f_v, (f_v / (y[i] * 1e3)) ** 2, beta, kappa)
+        assert p.lam == pytest.approx(1.0, rel=1e-9)
+    texts = [t.get_text() for t in ax.texts]
+    assert "λ = 1" in texts and "push (λ < 1)" in texts
+    assert ax.get_xlabel().endswith("[kHz]") and ax.get_ylabel().endswith("[kHz]")
+
+
+def test_displacement_stops_at_the_end_stop() -> None:
+    """x(t) = t µm/ms reaches the 4 µm travel at 4 ms: the curve ends there, marked."""
+    t = np.linspace(0.0, 10.0, 11)
+    ax = plots.slider_displacement(t, t, travel_um=4.0, extrapolated=([10, 12], [10, 12]))
+    sim = next(ln for ln in ax.get_lines() if ln.get_label().startswith("simulated"))
+    assert sim.get_xdata()[-1] == pytest.approx(4.0) and max(sim.get_ydata()) == 4.0
+    assert not any(ln.get_label().startswith("continued") for ln in ax.get_lines())
+    assert any("end stop at 4 ms" in t.get_text() for t in ax.texts)
+    ax = plots.slider_displacement(t, -t / 2, travel_um=-4.0, extrapolated=None)
+    sim = next(ln for ln in ax.get_lines() if ln.get_label().startswith("simulated"))
+    assert sim.get_xdata()[-1] == pytest.approx(8.0) and min(sim.get_ydata()) == -4.0
+
+
+def test_study_map_figure_is_readable(tmp_path) -> None:
+    """`sweep pushpull --figure` with one (κ, β): at least 960 × 720 px as PNG, the λ = 1
+    curve named on the plot, and the legend inside the saved figure."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    from betvdesign.plots.studies import pushpull_figure, save_figure
+
+    rows = [
+        {
+            "kappa": 0.4,
+            "beta": 0.5,
+            "varpi": w,
+            "alpha": a,
+            "status": "ok",
+            "converged": True,
+            "mode": m,
+            "mode_predicted": m,
+        }
+        for w, a, m in [(0.9, 0.1, "pull"), (1.3, 4.0, "push"), (1.3, 0.1, "pull")]
+    ]
+    fig = pushpull_figure(rows)
+    FigureCanvasAgg(fig).draw()
+    out = tmp_path / "map.png"
+    save_figure(fig, out)
+    from PIL import Image
+
+    w, h = Image.open(out).size
+    assert w >= 960 and h >= 720
+    ax = fig.axes[0]
+    assert any(t.get_text() == "λ = 1" for t in ax.texts)
+    (legend,) = fig.legends
+    renderer = fig.canvas.get_renderer()
+    box, page = legend.get_window_extent(renderer), fig.bbox
+    assert page.x0 <= box.x0 and box.x1 <= page.x1 and page.y0 <= box.y0 and box.y1 <= page.y1
+    assert "λ = 1 (fit boundary)" in [t.get_text() for t in legend.get_texts()]

@@ -24,7 +24,6 @@ from betvdesign.loader import load_device
 from betvdesign.nondim import derive
 from betvdesign.report import ReportOptions, build_report, prepare, render_html, write_reports
 from betvdesign.report import analysis as report_analysis
-from betvdesign.report.analysis import alpha_for_lambda, lambda_floor, lambda_targets
 from betvdesign.report.build import fmt_num
 from betvdesign.report.render import write_atomic
 
@@ -254,32 +253,47 @@ def test_amplitude_without_calibration_says_why_no_voltage_curve(tmp_path: Path)
     assert sum(x.svg is not None for x in figs) == len(figs) - 1
 
 
-def test_lambda_targets_and_alpha_inversion() -> None:
-    """The robustness sweep straddles λ = 1 and contains the device's λ; the α that
-    is solved for gives the target λ back (independent λ formula)."""
-    from betvdesign.params import ModelParams
+def test_robustness_varies_designer_fields_through_the_spec() -> None:
+    """The robustness sweep changes fields a designer sets, each through spec -> nondim:
+    +10 % drive frequency is ϖ·1.1 (ϖ = 2·f_drive/f_v), +10 % tangential resonance is
+    α/1.21 (α = (f_v/f_h)²), +10 % beam width is β/1.1 (β = m/M, M ∝ w without extra
+    mass), friction κ·1.1 (κ = μ·tanθ); the 0 % point is the device itself."""
+    from betvdesign.loader import load_device
+    from betvdesign.nondim import derive
+    from betvdesign.report.variants import field_variants, relative_changes
 
-    p = ModelParams(1.2, 2.0, 0.5, 0.15)
-    targets = lambda_targets(p.lam, 11)
-    assert targets.min() < 1 < targets.max() and p.lam in targets
-    for lam in targets:
-        a = alpha_for_lambda(float(lam), p)
-        assert a is not None
-        assert ModelParams(p.varpi, a, p.beta, p.kappa).lam == pytest.approx(lam, rel=1e-12)
+    spec = load_device(DEVICES / "push_demo.yaml")
+    p = derive(spec).sets[0].params
+    changes = relative_changes(5, 0.2)
+    assert list(changes) == pytest.approx([-0.2, -0.1, 0.0, 0.1, 0.2])
+    vs = {(v.field, round(v.change, 3)): v for v in field_variants(spec, 0, changes)}
+    assert {f for f, _ in vs} == {
+        "drive.frequency",
+        "actuator.horizontal_resonance",
+        "head.geometry.thickness",
+        "contact.friction",
+        "slider.beam_width",
+    }
+    assert vs[("drive.frequency", 0.1)].params.varpi == pytest.approx(1.1 * p.varpi, rel=1e-12)
+    assert vs[("actuator.horizontal_resonance", 0.1)].params.alpha == pytest.approx(
+        p.alpha / 1.21, rel=1e-12
+    )
+    assert vs[("slider.beam_width", 0.1)].params.beta == pytest.approx(p.beta / 1.1, rel=1e-12)
+    assert vs[("contact.friction", 0.1)].params.kappa == pytest.approx(1.1 * p.kappa, rel=1e-12)
+    assert vs[("head.geometry.thickness", 0.0)].params == p
+    assert vs[("drive.frequency", 0.0)].nominal == "3 kHz"
 
 
-def test_lambda_floor_is_the_large_alpha_limit() -> None:
-    """With β > 1 the fit's λ tends to −κc/ϖ² as α → ∞ (independent λ formula): targets
-    below it get no α, targets above it do."""
-    from betvdesign.params import ModelParams
-
-    p = ModelParams(0.34, 0.1, 9.09, 0.4)
-    floor = lambda_floor(p)
-    assert floor is not None
-    assert ModelParams(p.varpi, 1e12, p.beta, p.kappa).lam == pytest.approx(floor, rel=1e-9)
-    assert alpha_for_lambda(0.99 * floor, p) is None
-    assert alpha_for_lambda(1.01 * floor, p) is not None
-    assert lambda_floor(ModelParams(1.2, 2.0, 0.5, 0.15)) is None  # β < 1: any λ > 0
+def test_robustness_figure_speaks_designer_units() -> None:
+    """Speed at 0 % equals the device's periodic speed; the figure's axes are the field
+    change in % and the speed with an SI prefix, never α or λ."""
+    report = build_report(prepare(DEVICES / "push_demo.yaml"), options=SMALL)
+    fig = next(f for f in report.figures() if f.key.endswith("robustness"))
+    assert fig.svg is not None
+    text = " ".join(re.findall(r">([^<]+)<", fig.svg))
+    assert "change of the field from its specified value" in text and "mm/s" in text
+    assert "drive.frequency" in text and "λ  [-]" not in text
+    assert "Specified values: drive.frequency = 3 kHz" in fig.caption
 
 
 # --------------------------------------------------------------------------- CLI
@@ -293,10 +307,13 @@ def test_cli_writes_reports_and_exit_codes(tmp_path: Path) -> None:
     res = runner.invoke(app, ["report", shin, "-o", str(tmp_path / "a"), "--no-pdf"])
     assert res.exit_code == 0, res.output
     assert "verdict fail" in res.output
+    assert "writing reports" in res.stderr and "2/2" in res.stderr  # progress: build, HTML
     assert (tmp_path / "a" / "shin2004.html").is_file()
     assert not (tmp_path / "a" / "shin2004.pdf").exists()
-    res = runner.invoke(app, ["report", shin, "-o", str(tmp_path / "b"), "--no-pdf", "--strict"])
-    assert res.exit_code == 1
+    res = runner.invoke(
+        app, ["report", shin, "-o", str(tmp_path / "b"), "--no-pdf", "--strict", "-q"]
+    )
+    assert res.exit_code == 1 and "writing reports" not in res.stderr
     assert (tmp_path / "b" / "shin2004.html").is_file()  # written all the same
 
 

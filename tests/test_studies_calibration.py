@@ -16,7 +16,8 @@ from betvdesign.dynamics import periodic_orbit, simulate
 from betvdesign.errors import UsageError
 from betvdesign.loader import load_device, load_device_text
 from betvdesign.nondim import derive_set
-from betvdesign.studies.calibration import Measurements, calibrate, fitted, read_measurements
+from betvdesign.studies.calibration import calibrate, fitted
+from betvdesign.studies.measurements import Measurements, read_measurements
 
 
 def test_reads_units_from_the_header(tmp_path):
@@ -86,10 +87,11 @@ def test_linear_gain_recovered_from_noise_free_speeds():
     _, _, a = _truth()
     volts = np.array([4.0, 5.0, 6.0, 7.0, 8.0])
     g_true = 0.0123e-6  # m/V
-    data = Measurements("speed", volts, a * g_true * volts, None, "synthetic")
-    r = calibrate(DEVICE, data, law="linear")
+    data = Measurements("speed", volts, abs(a) * g_true * volts, None, "synthetic")
+    r = calibrate(DEVICE, data, law="linear")  # magnitudes, as a lab records them
     g, err = fitted(r, "gain")
-    assert r.status == "converged"
+    assert r.status == "converged" and r.direction == "-x" and r.warnings == []
+    assert r.r_squared == pytest.approx(1.0, abs=1e-12)
     assert g == pytest.approx(g_true, rel=1e-8)
     assert err is not None and err < 1e-8 * g_true  # no noise: no scatter
     assert r.delta_s < 0  # the pull design moves against its impact direction
@@ -107,8 +109,15 @@ def test_gain_uncertainty_matches_weighted_least_squares_closed_form():
     data = Measurements(
         "speed", volts, clean + sigma * rng.standard_normal(volts.size), sigma, "synthetic"
     )
-    g, err = fitted(calibrate(DEVICE, data, law="linear"), "gain")
+    r = calibrate(DEVICE, data, law="linear", signed=True)
+    g, err = fitted(r, "gain")
     closed = 1.0 / math.sqrt(np.sum((a * volts / sigma) ** 2))
+    # goodness of fit, written out: R² about the mean, χ²/dof with the given σ
+    resid = a * g * volts - data.y
+    assert r.r_squared == pytest.approx(
+        1 - np.sum(resid**2) / np.sum((data.y - data.y.mean()) ** 2), rel=1e-9
+    )
+    assert r.chi2_reduced == pytest.approx(np.sum((resid / sigma) ** 2) / (13 - 1), rel=1e-6)
     assert err == pytest.approx(closed, rel=1e-6)
     assert abs(g - g_true) < 4 * closed
 
@@ -119,7 +128,10 @@ def test_per_voltage_amplitudes_and_measured_snippet():
     u = {5.0: 0.06e-6, 7.0: 0.1e-6}
     speeds = np.array([a * u[v] for v in volts]) * np.array([1.01, 0.99, 1.02, 0.98])
     r = calibrate(
-        DEVICE, Measurements("speed", volts, speeds, None, "synthetic"), law="per-voltage"
+        DEVICE,
+        Measurements("speed", volts, speeds, None, "synthetic"),
+        law="per-voltage",
+        signed=True,
     )
     assert fitted(r, "u(5 V)")[0] == pytest.approx(0.06e-6, rel=1e-9)
     assert fitted(r, "u(7 V)")[0] == pytest.approx(0.1e-6, rel=1e-9)
@@ -134,7 +146,8 @@ def test_amplitude_recovered_from_displacement_against_time():
     traj = simulate(p, 14, dense=True)
     s = np.asarray(traj.sample(t / scales.time_s))[:, 4]
     x = s * u_true * math.cos(scales.theta_rad)
-    r = calibrate(DEVICE, Measurements("displacement", t, x, None, "synthetic"), law="per-voltage")
+    data = Measurements("displacement", t, x, None, "synthetic")
+    r = calibrate(DEVICE, data, law="per-voltage", signed=True)
     (name,) = r.names
     assert fitted(r, name)[0] == pytest.approx(u_true, rel=1e-8)
     assert "amplitude:" in r.snippet
@@ -148,7 +161,11 @@ def test_alpha_recovered_with_the_amplitude_held():
     volts = np.array([6.0, 6.0, 6.0])
     speeds = np.full(3, a * d.scales.u_m)
     r = calibrate(
-        DEVICE, Measurements("speed", volts, speeds, None, "synthetic"), law="fixed", fit_alpha=True
+        DEVICE,
+        Measurements("speed", volts, speeds, None, "synthetic"),
+        law="fixed",
+        fit_alpha=True,
+        signed=True,
     )
     assert fitted(r, "alpha")[0] == pytest.approx(0.36, rel=1e-6)
 
@@ -160,7 +177,8 @@ def test_cli_snippet_merges_into_the_device_file(tmp_path):
     f = _csv(tmp_path, ["voltage [V]", "speed [um/s]"], [volts, a * 0.0123 * volts])
     out = tmp_path / "cal.yaml"
     r = CliRunner().invoke(
-        app, ["calibrate", DEVICE, str(f), "--law", "linear", "-o", str(out), "--json"]
+        app,
+        ["calibrate", DEVICE, str(f), "--law", "linear", "--signed", "-o", str(out), "--json"],
     )
     assert r.exit_code == 0, r.stderr
     payload = json.loads(r.stdout)
@@ -187,3 +205,44 @@ def test_cli_bad_input(tmp_path):
     assert r.exit_code == 2 and "does not exist" in r.stderr
     r = CliRunner().invoke(app, ["calibrate", DEVICE, str(f), "--law", "linear", "--fit-alpha"])
     assert r.exit_code == 2 and "cannot determine 2 parameters" in r.stderr
+
+
+def test_positive_lab_speeds_fit_a_pull_device_and_the_wrong_sign_is_an_error(tmp_path):
+    """Issue 13: positive measured speeds on a pull design gave gain 6.8e-19 um/V,
+    "converged". Magnitudes are now read toward the set's travel direction (pull_demo:
+    impacts +x, pull -> -x) and give the true gain; the same numbers declared signed, or
+    observed moving +x, contradict the model (Δs < 0) and say so (exit 2, no snippet)."""
+    _, _, a = _truth()
+    volts = np.array([4.0, 6.0, 8.0])
+    f = _csv(tmp_path, ["voltage [V]", "speed [um/s]"], [volts, abs(a) * 0.0123 * volts])
+    out = tmp_path / "cal.yaml"
+    r = CliRunner().invoke(app, ["calibrate", DEVICE, str(f), "--json", "-o", str(out)])
+    assert r.exit_code == 0, r.stderr
+    d = json.loads(r.stdout)
+    assert d["parameters"][0]["value"] == pytest.approx(0.0123e-6, rel=1e-8)
+    assert d["direction"] == "-x" and d["r_squared"] == pytest.approx(1.0, abs=1e-12)
+    assert "R² 1" in out.read_text()
+    for extra in (["--signed"], ["--direction", "+x"]):
+        out.unlink(missing_ok=True)
+        r = CliRunner().invoke(app, ["calibrate", DEVICE, str(f), "-o", str(out), *extra])
+        assert r.exit_code == 2, r.stdout
+        assert "data and model disagree in sign" in r.stderr and "Traceback" not in r.stderr
+        assert "pull mode" in r.stderr and not out.exists()
+    neg = _csv(tmp_path, ["voltage [V]", "speed [um/s]"], [volts, a * 0.0123 * volts])
+    r = CliRunner().invoke(app, ["calibrate", DEVICE, str(neg)])
+    assert r.exit_code == 2 and "must be a magnitude" in r.stderr and "--signed" in r.stderr
+    r = CliRunner().invoke(app, ["calibrate", DEVICE, str(f), "--direction", "up"])
+    assert r.exit_code == 2 and "+x or -x" in r.stderr
+
+
+def test_poor_fit_is_flagged_and_help_shows_the_csv_format():
+    """Speeds that fall with voltage cannot follow u = g·V: R² < 0.9 is a warning; the help
+    keeps its "[unit]" cells (rich markup used to swallow them)."""
+    _, _, a = _truth()
+    volts = np.array([4.0, 6.0, 8.0, 10.0])
+    speeds = abs(a) * 0.0123e-6 * np.array([10.0, 6.0, 8.0, 4.0])
+    r = calibrate(DEVICE, Measurements("speed", volts, speeds, None, "synthetic"))
+    assert r.r_squared < 0.9 and any("explains the data poorly" in w for w in r.warnings)
+    assert "# warning:" in r.snippet
+    h = CliRunner().invoke(app, ["calibrate", "--help"], terminal_width=120)
+    assert "voltage [V], speed [um/s]" in h.stdout and "time [ms], displacement [um]" in h.stdout

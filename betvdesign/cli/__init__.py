@@ -22,8 +22,24 @@ app = typer.Typer(
 )
 
 
+def _print_version(value: bool) -> None:
+    if value:
+        from betvdesign import __version__
+
+        typer.echo(f"betvdesign {__version__}")
+        raise typer.Exit()
+
+
 @app.callback()
-def _root() -> None:
+def _root(
+    version: bool = typer.Option(
+        False,
+        "--version",
+        is_eager=True,
+        callback=_print_version,
+        help="Print the betvdesign version and exit.",
+    ),
+) -> None:
     """BETV design toolkit: check a layout, simulate, sweep, report, benchmark."""
 
 

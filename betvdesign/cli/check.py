@@ -1,4 +1,6 @@
-"""``betv check FILE...``: device files -> design verdict (tables, or ``--json``).
+"""``betv check FILE...``: device files -> design verdict (compact text, ``--verbose``
+tables, ``--quiet`` for CI, or versioned ``--json``; presentation in
+:mod:`betvdesign.checkview`).
 
 Thin: loading is :func:`betvdesign.loader.load_device`, numbers are
 :func:`betvdesign.nondim.derive`, rules and the optional exact solver are
@@ -9,7 +11,7 @@ Exit codes: 0 every error-severity rule passes, 1 a rule fails, 2 bad input or u
 
 from __future__ import annotations
 
-import json
+import sys
 from pathlib import Path
 
 import typer
@@ -18,11 +20,21 @@ from rich.markup import escape as esc
 from rich.table import Table
 
 from betvdesign.checker import CheckResult, check_derivation, simulation_summary
+from betvdesign.checkview import (
+    DeviceView,
+    RuleFilter,
+    compact_lines,
+    output_json,
+    quiet_line,
+    rule_unit,
+)
 from betvdesign.cli import app
 from betvdesign.cli.common import EXIT_OK, EXIT_RULE_FAILED, user_errors
-from betvdesign.errors import SpecError
-from betvdesign.nondim import derive_file
+from betvdesign.cli.config import load_config
+from betvdesign.errors import SpecError, UsageError
+from betvdesign.nondim import DERIVED_KEYS, derive_file
 from betvdesign.rules import RuleResult
+from betvdesign.siformat import format_q, format_si
 from betvdesign.units import parse_speed
 
 _STATUS = {
@@ -38,7 +50,21 @@ _STATUS = {
 @app.command("check")
 def check_cmd(
     files: list[Path] = typer.Argument(..., help="Device YAML files (see devices/)."),
-    as_json: bool = typer.Option(False, "--json", help="Print JSON on stdout (a list if >1 file)."),
+    as_json: bool = typer.Option(
+        False, "--json", help="Print JSON (one versioned shape; `betv schema check`)."
+    ),
+    verbose: bool = typer.Option(
+        False, "--verbose", "-v", help="Every rule in a table, and the derivation of every set."
+    ),
+    quiet: bool = typer.Option(
+        False, "--quiet", "-q", help="CI: print only failing devices, one line each."
+    ),
+    select: list[str] | None = typer.Option(
+        None, "--select", metavar="RULE", help="Only these rules count (repeatable; prefix ok)."
+    ),
+    ignore: list[str] | None = typer.Option(
+        None, "--ignore", metavar="RULE", help="These rules do not count (repeatable)."
+    ),
     target_speed: str | None = typer.Option(
         None,
         "--target-speed",
@@ -46,19 +72,28 @@ def check_cmd(
         help="Required slider speed with its unit, e.g. '1 mm/s' (adds the error rule "
         "target-speed).",
     ),
-    show_derivation: bool = typer.Option(
-        False, "--derivation", help="Also print every input, formula and intermediate value."
-    ),
+    show_derivation: bool = typer.Option(False, "--derivation", hidden=True),
 ) -> None:
-    """Check device files: design window, push/pull mode, margin, resonance, settling, speed.
+    """Check device files: design window, push/pull mode, speed, margin, resonance, settling.
 
-    Every set's mode and speed come from its exact periodic orbit (and the transient
-    from rest for settling); the paper's λ fit is shown beside it, never decisive.
-    Each failed rule says what to change; `betv fix FILE` finds the smallest change.
+    Prints one compact block per device: the verdict; per actuator set its mode, speed
+    and margin (from the exact periodic orbit; the paper's λ fit beside it) and the
+    failing rules, each with what to change (`betv fix FILE` finds the smallest change).
+    Defaults for --select, --ignore and --target-speed may be set in a [tool.betv] table
+    of pyproject.toml.
+
     Exit 0 pass, 1 an error rule fails, 2 bad input/usage.
     """
+    verbose = verbose or show_derivation
     with user_errors():
-        target = None if target_speed is None else parse_speed(target_speed, "--target-speed")
+        if quiet and verbose:
+            raise UsageError("--quiet and --verbose exclude each other")
+        cfg = load_config()
+        flt = RuleFilter(
+            tuple(select if select else cfg.select), tuple(ignore if ignore else cfg.ignore)
+        )
+        speed_text = target_speed if target_speed is not None else cfg.target_speed
+        target = None if speed_text is None else parse_speed(speed_text, "--target-speed")
         derivations, issues = [], []
         for f in files:  # collect the issues of every file before giving up
             try:
@@ -72,23 +107,35 @@ def check_cmd(
             res = check_derivation(d, target_speed_m_s=target)
             res.source_file = str(f)
             results.append(res)
+    for warning in flt.unmatched(results):
+        print(f"warning: {warning}", file=sys.stderr)
+    views = [DeviceView(r, flt) for r in results]
     if as_json:
-        payload = [r.as_dict() for r in results]
-        out = payload[0] if len(payload) == 1 else payload
-        typer.echo(json.dumps(out, indent=2, ensure_ascii=False))
+        typer.echo(output_json(views, details=verbose))
+    elif quiet:
+        for v in views:
+            line = quiet_line(v)
+            if line is not None:
+                typer.echo(line)
     else:
-        console = Console(soft_wrap=False)
-        for r in results:
-            render(r, console, derivation=show_derivation)
-        if len(results) > 1:
-            failed_names = [r.derivation.name for r in results if r.verdict == "fail"]
+        console = Console(soft_wrap=True, highlight=False)
+        width = min(100, console.width) if console.is_terminal else 100
+        for i, v in enumerate(views):
+            if verbose:
+                render(v.result, Console(soft_wrap=False), derivation=True)
+                continue
+            if i:
+                console.print()
+            for line in compact_lines(v, width=width):
+                console.print(line)
+        if len(views) > 1:
+            failed_names = [v.result.derivation.name for v in views if v.verdict == "fail"]
             console.print(
-                f"[bold]summary:[/] {len(results) - len(failed_names)} pass, "
+                f"[bold]summary:[/] {len(views) - len(failed_names)} pass, "
                 f"{len(failed_names)} fail"
-                + (f" ({esc(', '.join(failed_names))})" if failed_names else ""),
-                highlight=False,
+                + (f" ({esc(', '.join(failed_names))})" if failed_names else "")
             )
-    failed = any(r.verdict == "fail" for r in results)
+    failed = any(v.verdict == "fail" for v in views)
     raise typer.Exit(EXIT_RULE_FAILED if failed else EXIT_OK)
 
 
@@ -108,8 +155,10 @@ def render(result: CheckResult, console: Console, *, derivation: bool = False) -
             f"β = {p.beta:.4g}, κ = {p.kappa:.4g} -> exact orbit: [bold]{sc.mode_predicted}[/] "
             f"(λ = {s.lam:.4g} predicts {sc.lambda_mode})"
         )
+        derived = [st for st in s.record if st.key in DERIVED_KEYS]
         console.print(
-            "  " + esc(", ".join(f"{k} = {v}" for k, v in s.derived().items())), highlight=False
+            "  " + esc(", ".join(f"{st.symbol} = {format_q(st.value)}" for st in derived)),
+            highlight=False,
         )
         if sc.periodic is not None:
             sim = simulation_summary(sc.periodic)
@@ -137,7 +186,8 @@ def _rules_table(rules: list[RuleResult]) -> Table:
         t.add_column(col, no_wrap=True)
     t.add_column("threshold", overflow="fold")
     for r in rules:
-        value = "" if r.value is None else f"{r.value:.4g}"
+        unit = rule_unit(r)
+        value = "" if r.value is None else (format_si(r.value, unit) if unit else f"{r.value:.4g}")
         t.add_row(_STATUS[(r.passed, r.severity)], r.severity, r.id, value, esc(r.threshold))
     return t
 
@@ -159,5 +209,6 @@ def _record_table(sc) -> Table:
     for col in ("symbol", "description", "formula", "value"):
         t.add_column(col, overflow="fold")
     for st in sc.derivation.record:
-        t.add_row(*(esc(x) for x in (st.symbol, st.description, st.formula, st.value_str)))
+        value = format_q(st.value, digits=4)
+        t.add_row(*(esc(x) for x in (st.symbol, st.description, st.formula, value)))
     return t

@@ -32,6 +32,7 @@ def report_cmd(
         "--timestamp",
         help="Print the generation time and run times (reports then differ between runs).",
     ),
+    quiet: bool = typer.Option(False, "--quiet", "-q", help="No progress bar."),
     methods: bool = typer.Option(
         False,
         "--methods",
@@ -62,9 +63,17 @@ def report_cmd(
 
         raise typer.Exit(methods_report(files or [], outdir, pdf=pdf))
 
-    with user_errors(), interruptible(resumable=False):
+    from betvdesign.cli.sweep import progress_bar
+
+    with (
+        user_errors(),
+        interruptible(resumable=False),
+        progress_bar("writing reports", quiet) as progress,
+    ):
         options = ReportOptions()
-        written = write_reports(files, outdir, pdf=pdf, timestamp=timestamp, options=options)
+        written = write_reports(
+            files, outdir, pdf=pdf, timestamp=timestamp, options=options, progress=progress
+        )
     for w in written:
         outputs = ", ".join(str(p) for p in (w.html, w.pdf) if p is not None)
         typer.echo(f"{w.source}: verdict {w.verdict}, {w.figures} figures -> {outputs}")

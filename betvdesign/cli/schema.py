@@ -1,5 +1,6 @@
-"""``betv schema``: the JSON schema of device files (pydantic ``DeviceSpec``), with the
-input limits of :mod:`betvdesign.limits` under ``x-betv-limits`` and in the description."""
+"""``betv schema [device|check]``: JSON schema of device files (pydantic ``DeviceSpec``, with
+the input limits of :mod:`betvdesign.limits` under ``x-betv-limits`` and in the
+description) or of ``betv check --json`` (:func:`betvdesign.checkview.check_json_schema`)."""
 
 from __future__ import annotations
 
@@ -11,6 +12,7 @@ import typer
 from betvdesign import limits
 from betvdesign.cli import app
 from betvdesign.cli.common import user_errors
+from betvdesign.errors import UsageError
 from betvdesign.outputs import check_output_file, write_atomic
 from betvdesign.spec import DeviceSpec
 
@@ -29,14 +31,31 @@ def device_schema() -> dict:
     return schema
 
 
+SCHEMAS = ("device", "check")
+
+
 @app.command("schema")
 def schema_cmd(
+    kind: str = typer.Argument(
+        "device",
+        metavar="[device|check]",
+        help="device: device YAML files; check: the output of `betv check --json`.",
+    ),
     output: Path | None = typer.Option(
         None, "-o", "--output", help="Write to this file (atomically) instead of stdout."
     ),
 ) -> None:
-    """Print the JSON schema of device YAML files."""
-    text = json.dumps(device_schema(), indent=2, ensure_ascii=False) + "\n"
+    """Print a JSON schema: of device YAML files (default) or of `betv check --json`."""
+    with user_errors():
+        if kind.lower() not in SCHEMAS:
+            raise UsageError(f"unknown schema {kind!r}: use {' or '.join(SCHEMAS)}")
+    if kind.lower() == "check":
+        from betvdesign.checkview import check_json_schema
+
+        schema = check_json_schema()
+    else:
+        schema = device_schema()
+    text = json.dumps(schema, indent=2, ensure_ascii=False) + "\n"
     if output is None:
         typer.echo(text, nl=False)
         return

@@ -2,7 +2,8 @@
 
 Parameters come either from a device file (``betv simulate devices/x.yaml
 [--set NAME]``: loaded and made dimensionless by :func:`betvdesign.nondim.derive_file`,
-so results are also given in µm, ms and µm/s) or directly as
+so results are also given in physical units: SI prefixes by magnitude in text, SI
+floats under unit-named keys in JSON) or directly as
 ``--varpi --alpha --beta --kappa``. ``--cycles N`` runs a transient of N cycles
 from rest (:func:`betvdesign.dynamics.simulate`); ``--periodic`` solves for the
 periodic state (:func:`betvdesign.dynamics.periodic_orbit`).
@@ -36,6 +37,7 @@ from betvdesign.cli.common import (
 )
 from betvdesign.errors import UsageError
 from betvdesign.params import ModelParams
+from betvdesign.siformat import format_si
 
 
 def _params_from_options(
@@ -73,20 +75,20 @@ def _params_from_options(
 
 
 def _physical(scales: Any, s: float, delta_s: float | None, cycles: int) -> dict[str, Any]:
-    """Dimensional values [µm, µm/s, ms] from the device scales (MODEL.md "Displacement
-    per cycle": length u·cosθ, speed Δs·u·cosθ·f_act)."""
+    """Dimensional values as SI floats under unit-named keys, from the device scales
+    (MODEL.md "Displacement per cycle": length u·cosθ, speed Δs·u·cosθ·f_act)."""
     out: dict[str, Any] = {
-        "length_scale_um": scales.length_m * 1e6,
+        "length_scale_m": scales.length_m,
         "f_act_hz": scales.f_act_hz,
-        "cycle_ms": 1e3 / scales.f_act_hz,
-        "time_ms": cycles * 1e3 / scales.f_act_hz,
-        "s_um": s * scales.length_m * 1e6,
-        "delta_s_um": None,
-        "speed_um_s": None,
+        "cycle_s": 1.0 / scales.f_act_hz,
+        "time_s": cycles / scales.f_act_hz,
+        "s_m": s * scales.length_m,
+        "delta_s_m": None,
+        "speed_m_s": None,
     }
     if delta_s is not None:
-        out["delta_s_um"] = delta_s * scales.length_m * 1e6
-        out["speed_um_s"] = delta_s * scales.length_m * scales.f_act_hz * 1e6
+        out["delta_s_m"] = delta_s * scales.length_m
+        out["speed_m_s"] = delta_s * scales.length_m * scales.f_act_hz
     return out
 
 
@@ -206,11 +208,16 @@ def _print_text(out: dict[str, Any], periodic: bool) -> None:
     if ds is not None:
         line = f"{what} = {ds:.10g} per cycle [u·cosθ]"
         if ph:
-            line += f" = {ph['delta_s_um']:.6g} µm; mean speed {ph['speed_um_s']:.6g} µm/s"
+            line += (
+                f" = {format_si(ph['delta_s_m'], 'm', digits=4)}; mean speed "
+                f"{format_si(ph['speed_m_s'], 'm/s', digits=4)}"
+            )
         typer.echo(line + (f" -> {out['mode']}" if out["mode"] else ""))
     line = f"s after {out['cycles']} cycles = {out['s']:.10g} [u·cosθ]"
     if ph:
-        line += f" = {ph['s_um']:.6g} µm in {ph['time_ms']:.6g} ms"
+        line += (
+            f" = {format_si(ph['s_m'], 'm', digits=4)} in {format_si(ph['time_s'], 's', digits=4)}"
+        )
     typer.echo(line)
     if periodic and out["period_cycles"] is not None:
         fl = ", ".join(f"{m:.6g}" for m in out["floquet"] or [])

@@ -139,7 +139,9 @@ def tolerance_cmd(
 @app.command("calibrate")
 def calibrate_cmd(
     device: Annotated[Path, typer.Argument(help="Device YAML file.")],
-    data: Annotated[Path, typer.Argument(help="Measurements CSV (header 'name [unit]').")],
+    data: Annotated[
+        Path, typer.Argument(help="Measurements CSV, header cells 'name \\[unit]' (see below).")
+    ],
     kind: Annotated[
         str, typer.Option(help="speed (voltage, speed) or displacement (time, displacement).")
     ] = "speed",
@@ -152,14 +154,46 @@ def calibrate_cmd(
     set_name: Annotated[
         str | None, typer.Option("--set", help="Actuator set (default: the first).")
     ] = None,
+    signed: Annotated[
+        bool,
+        typer.Option(
+            "--signed", help="Values are signed along the set's impact direction (not magnitudes)."
+        ),
+    ] = False,
+    direction: Annotated[
+        str | None,
+        typer.Option(
+            "--direction",
+            metavar="+x|-x",
+            help="Direction the slider moved (magnitude data; default: the set's intended one).",
+        ),
+    ] = None,
     out: Annotated[
         Path | None, typer.Option("--out", "-o", help="Write the device-file snippet (YAML).")
     ] = None,
     as_json: JsonOpt = False,
 ) -> None:
-    """Fit the amplitude u (per voltage, or a law's gain) and optionally α to measurements."""
+    """Fit the amplitude u (per voltage, or a law's gain) and optionally α to measurements.
+
+    CSV: a header row of 'name \\[unit]' cells, one row per measurement, # comments.
+
+    --kind speed: voltage \\[V], speed \\[um/s], optional sigma \\[um/s] (1σ).
+
+    --kind displacement: time \\[ms], displacement \\[um], optional sigma \\[um].
+
+    Any unit of the right dimension works (mm/s, nm, s ...).
+
+    Values are magnitudes (>= 0) toward --direction (default: the set's intended travel).
+
+    --signed: values signed along the set's impact direction instead.
+
+    Data moving the other way than the model: error (exit 2), never a vanishing gain.
+
+    Prints R², χ²/dof, 1σ and warnings; exit 1 if the fit fails or sits at bound 0.
+    """
     from betvdesign.outputs import write_atomic
-    from betvdesign.studies.calibration import calibrate, read_measurements
+    from betvdesign.studies.calibration import calibrate
+    from betvdesign.studies.measurements import read_measurements
 
     with user_errors(), interruptible(resumable=False):
         kind, law = kind.lower(), law.lower()
@@ -168,13 +202,24 @@ def calibrate_cmd(
         if out is not None:
             output_file(out)
         measured = read_measurements(data, kind)  # type: ignore[arg-type]
-        result = calibrate(device, measured, law=law, fit_alpha=fit_alpha, set_name=set_name)  # type: ignore[arg-type]
+        result = calibrate(
+            device,
+            measured,
+            law=law,  # type: ignore[arg-type]
+            fit_alpha=fit_alpha,
+            set_name=set_name,
+            signed=signed,
+            direction=direction,
+        )
         if out is not None:
             write_atomic(out, result.snippet)
         payload = {"study": "calibration", "device": str(device), "data": str(data)}
         payload |= result.as_dict()
         payload["out"] = str(out) if out else None
         emit(payload, as_json, lambda: typer.echo(result.snippet, nl=False))
-        if result.status != "converged":
+        for w in result.warnings:
+            typer.echo(f"warning: {w}", err=True)
+        if result.status == "failed":
             typer.echo(f"error: fit did not converge: {result.message}", err=True)
+        if result.status != "converged":
             raise typer.Exit(EXIT_RULE_FAILED)

@@ -8,9 +8,9 @@ into byte-reproducible inline SVG.
 
 from betvdesign.plots._figure import figure_style, figure_svg, new_figure
 from betvdesign.plots.phase import orbit_plane, vertical_phase_portrait
-from betvdesign.plots.pushpull import lambda_one_curve, pushpull_map
+from betvdesign.plots.pushpull import lambda_one_curve, pushpull_map, pushpull_map_frequencies
 from betvdesign.plots.regime import contact_fraction_strip, impact_period_strip
-from betvdesign.plots.sweeps import robustness_vs_lambda, speed_vs_voltage
+from betvdesign.plots.sweeps import speed_vs_field_change, speed_vs_voltage
 from betvdesign.plots.timeseries import slider_displacement, slider_velocity
 
 __all__ = [
@@ -22,9 +22,10 @@ __all__ = [
     "new_figure",
     "orbit_plane",
     "pushpull_map",
-    "robustness_vs_lambda",
+    "pushpull_map_frequencies",
     "slider_displacement",
     "slider_velocity",
+    "speed_vs_field_change",
     "speed_vs_voltage",
     "vertical_phase_portrait",
 ]

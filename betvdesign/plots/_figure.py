@@ -86,6 +86,31 @@ def axes_or_new(ax: Axes | None, width_in: float = 6.4, height_in: float = 3.4) 
     return new_ax
 
 
+#: A physical axis: (physical units per dimensionless unit, axis label with the unit).
+Scale = tuple[float, str]
+
+
+def dimensionless_twin(ax: Axes, which: str, factor: float, label: str) -> Any:
+    """Secondary axis (top for "x", right for "y") giving the dimensionless value of a
+    physical primary axis whose data were multiplied by ``factor`` (physical first,
+    dimensionless second)."""
+
+    def fwd(v: Any) -> Any:
+        return v / factor
+
+    def inv(v: Any) -> Any:
+        return v * factor
+
+    if which == "x":
+        sec = ax.secondary_xaxis("top", functions=(fwd, inv))
+        sec.set_xlabel(label, fontsize=7.5, color="#555555")
+    else:
+        sec = ax.secondary_yaxis("right", functions=(fwd, inv))
+        sec.set_ylabel(label, fontsize=7.5, color="#555555")
+    sec.tick_params(labelsize=7, colors="#555555")
+    return sec
+
+
 _ID_RE = re.compile(r'\bid="([^"]+)"')
 
 

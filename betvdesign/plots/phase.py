@@ -11,7 +11,7 @@ from collections.abc import Sequence
 import numpy as np
 from matplotlib.axes import Axes
 
-from betvdesign.plots._figure import PHASE_COLORS, axes_or_new
+from betvdesign.plots._figure import PHASE_COLORS, Scale, axes_or_new, dimensionless_twin
 
 #: Legend text per contact phase.
 PHASE_LABELS: dict[str, str] = {
@@ -38,16 +38,23 @@ def vertical_phase_portrait(
     dxi: Sequence[float],
     *,
     steady_from: int = 0,
+    gap_scale: Scale | None = None,
+    rate_scale: Scale | None = None,
     ax: Axes | None = None,
 ) -> Axes:
     """The head's vertical phase portrait ξ' against ξ [-].
+
+    gap_scale, rate_scale: (physical units per unit ξ / ξ', label): draw the gap and its
+    rate in those units (nm, mm/s), with ξ and ξ' on secondary axes.
 
     Samples before ``steady_from`` (the transient) are drawn light; the rest dark.
     The contact line ξ = 0 is marked.
     """
     ax = axes_or_new(ax, 4.2, 3.4)
-    x = np.asarray(xi, dtype=float)
-    v = np.asarray(dxi, dtype=float)
+    kx, xlabel = gap_scale or (1.0, "ξ = gap / (u sinθ)  [-]")
+    kv, ylabel = rate_scale or (1.0, "ξ' = dξ/dτ  [-]")
+    x = np.asarray(xi, dtype=float) * kx
+    v = np.asarray(dxi, dtype=float) * kv
     if steady_from > 0:
         ax.plot(
             x[: steady_from + 1], v[: steady_from + 1], color="#bdbdbd", lw=0.8, label="transient"
@@ -59,9 +66,13 @@ def vertical_phase_portrait(
         lw=1.1,
         label="settled cycles" if steady_from > 0 else "trajectory",
     )
-    ax.axvline(0.0, color="#d62728", lw=1.0, ls=":", label="contact ξ = 0")
-    ax.set_xlabel("ξ = gap / (u sinθ)  [-]")
-    ax.set_ylabel("ξ' = dξ/dτ  [-]")
+    ax.axvline(0.0, color="#d62728", lw=1.0, ls=":", label="contact (gap 0)")
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    if gap_scale is not None:
+        dimensionless_twin(ax, "x", kx, "ξ = gap / (u sinθ)  [-]")
+    if rate_scale is not None:
+        dimensionless_twin(ax, "y", kv, "ξ'  [-]")
     ax.legend(loc="upper right", framealpha=0.9)
     return ax
 
@@ -71,16 +82,21 @@ def orbit_plane(
     ds: Sequence[float],
     phases: Sequence[str],
     *,
+    velocity_scale: Scale | None = None,
     ax: Axes | None = None,
 ) -> Axes:
     """Periodic orbit in the (ζ', s') plane, segments coloured by contact phase.
+
+    velocity_scale: (physical units per unit velocity, unit label such as "mm/s"): both
+    velocities in that unit (ζ and s share the scale u·cosθ), ζ', s' on secondary axes.
 
     phases: one of "free", "slip", "reverse", "stick" per sample.
     The diagonal ζ' = s' (where stick happens) is drawn for reference.
     """
     ax = axes_or_new(ax, 4.2, 3.4)
-    z = np.asarray(dzeta, dtype=float)
-    s = np.asarray(ds, dtype=float)
+    k, unit = velocity_scale or (1.0, "-")
+    z = np.asarray(dzeta, dtype=float) * k
+    s = np.asarray(ds, dtype=float) * k
     if not (len(z) == len(s) == len(phases)):
         raise ValueError("dzeta, ds and phases must have the same length")
     unknown = set(phases) - set(PHASE_COLORS)
@@ -101,7 +117,10 @@ def orbit_plane(
     lo = float(min(z.min(), s.min())) if z.size else -1.0
     hi = float(max(z.max(), s.max())) if z.size else 1.0
     ax.plot([lo, hi], [lo, hi], color="#7f7f7f", lw=0.6, ls="--", label="ζ' = s'")
-    ax.set_xlabel("ζ'  head tangential velocity [-]")
-    ax.set_ylabel("s'  slider velocity [-]")
+    ax.set_xlabel(f"head tangential velocity  [{unit}]")
+    ax.set_ylabel(f"slider velocity  [{unit}]")
+    if velocity_scale is not None:
+        dimensionless_twin(ax, "x", k, "ζ'  [-]")
+        dimensionless_twin(ax, "y", k, "s'  [-]")
     ax.legend(loc="best", framealpha=0.9)
     return ax

@@ -14,7 +14,13 @@ import numpy as np
 from matplotlib.axes import Axes
 
 from betvdesign.params import fit_offset
-from betvdesign.plots._figure import DEVICE_COLOR, MODE_COLORS, VARPI_WINDOW, axes_or_new
+from betvdesign.plots._figure import (
+    DEVICE_COLOR,
+    MODE_COLORS,
+    VARPI_WINDOW,
+    axes_or_new,
+    dimensionless_twin,
+)
 
 
 def lambda_one_curve(inv_varpi2: np.ndarray, kappa: float, beta: float) -> np.ndarray:
@@ -83,4 +89,88 @@ def pushpull_map(
     ax.set_xlabel("1/ϖ²  [-]")
     ax.set_ylabel("1/(ακ)  [-]")
     ax.legend(loc="upper center", framealpha=0.9)
+    return ax
+
+
+def pushpull_map_frequencies(
+    *,
+    f_v_hz: float,
+    kappa: float,
+    beta: float,
+    points: Sequence[tuple[str, float, float]],
+    ax: Axes | None = None,
+) -> Axes:
+    """The push/pull map in the frequencies a designer sets, for fixed f_v, κ, β.
+
+    x: actuation frequency f_act [kHz]; y: tangential resonance f_h = f_v/√α [kHz]
+    (α = (f_v/f_h)², so the map holds for a device given by α or k_h too). With
+    X = 1/ϖ² = (f_v/f_act)² and Y = 1/(ακ) = f_h²/(κ f_v²), λ < 1 (push) reads
+    f_h² < f_act² + κ·c·f_v² (c: :func:`betvdesign.params.fit_offset`): push lies below
+    the curve f_h = sqrt(f_act² + κ c f_v²). Secondary axes: ϖ = f_act/f_v (top) and α
+    (right). points: (label, f_act [Hz], f_h [Hz]).
+    """
+    ax = axes_or_new(ax)
+    c = fit_offset(kappa, beta)
+    fv = f_v_hz / 1e3
+    xs = [f / 1e3 for _, f, _ in points]
+    ys = [f / 1e3 for _, _, f in points]
+    x_max = max([VARPI_WINDOW[1] * fv * 1.15, *(1.25 * x for x in xs)])
+    x = np.linspace(0.0, x_max, 400)
+    arg = x**2 + kappa * c * fv**2
+    curve = np.sqrt(np.clip(arg, 0.0, None))
+    y_max = 1.3 * max([*ys, float(curve[np.searchsorted(x, VARPI_WINDOW[1] * fv)]), 1e-9])
+    clipped = np.where(arg > 0, np.minimum(curve, y_max), 0.0)
+    ax.fill_between(x, 0.0, clipped, color=MODE_COLORS["push"], alpha=0.13, lw=0)
+    ax.fill_between(x, clipped, y_max, color=MODE_COLORS["pull"], alpha=0.13, lw=0)
+    real = arg > 0
+    ax.plot(
+        x[real],
+        curve[real],
+        color="black",
+        lw=1.4,
+        label=f"λ = 1  (κ = {kappa:.3g}, β = {beta:.3g}, f_v = {fv:.3g} kHz)",
+    )
+    i = int(np.flatnonzero(real)[len(np.flatnonzero(real)) // 2]) if real.any() else None
+    if i is not None and curve[i] < y_max:
+        ax.annotate(
+            "λ = 1",
+            (x[i], curve[i]),
+            xytext=(4, -12),
+            textcoords="offset points",
+            fontsize=8,
+            fontweight="bold",
+        )
+    for k, (edge, label) in enumerate(
+        ((VARPI_WINDOW[0] * fv, "design window 0.5 ≤ ϖ < 2"), (VARPI_WINDOW[1] * fv, None))
+    ):
+        ax.axvline(edge, color="#b8860b", lw=1.0, ls="-.", label=label if k == 0 else None)
+    for (label, _, _), px, py in zip(points, xs, ys, strict=True):
+        ax.plot([px], [py], marker="o", ms=6, color=DEVICE_COLOR, zorder=5)
+        ax.annotate(label, (px, py), xytext=(6, 4), textcoords="offset points", fontsize=7.5)
+    ax.text(
+        0.98,
+        0.04,
+        "push (λ < 1)",
+        transform=ax.transAxes,
+        ha="right",
+        va="bottom",
+        color=MODE_COLORS["push"],
+        fontweight="bold",
+    )
+    ax.text(
+        0.98,
+        0.95,
+        "pull (λ > 1)",
+        transform=ax.transAxes,
+        ha="right",
+        va="top",
+        color=MODE_COLORS["pull"],
+        fontweight="bold",
+    )
+    ax.set_xlim(0.0, x_max)
+    ax.set_ylim(0.0, y_max)
+    ax.set_xlabel("actuation frequency f_act  [kHz]")
+    ax.set_ylabel("tangential resonance f_h = f_v/√α  [kHz]")
+    dimensionless_twin(ax, "x", fv, "ϖ = f_act/f_v  [-]")
+    ax.legend(loc="upper left", framealpha=0.9)
     return ax

@@ -12,14 +12,21 @@ from collections.abc import Sequence
 import numpy as np
 from matplotlib.axes import Axes
 
-from betvdesign.plots._figure import DEVICE_COLOR, VARPI_WINDOW, axes_or_new
+from betvdesign.plots._figure import (
+    DEVICE_COLOR,
+    VARPI_WINDOW,
+    Scale,
+    axes_or_new,
+    dimensionless_twin,
+)
 
 
-def _decorate(ax: Axes, device_varpi: float | None) -> None:
-    ax.axvspan(*VARPI_WINDOW, color="#ffbf00", alpha=0.15, lw=0, label="design window")
+def _decorate(ax: Axes, device_varpi: float | None, k: float = 1.0) -> None:
+    lo, hi = VARPI_WINDOW
+    ax.axvspan(lo * k, hi * k, color="#ffbf00", alpha=0.15, lw=0, label="design window")
     if device_varpi is not None:
         ax.axvline(
-            device_varpi,
+            device_varpi * k,
             color=DEVICE_COLOR,
             lw=1.2,
             ls="--",
@@ -33,6 +40,7 @@ def impact_period_strip(
     *,
     device_varpi: float | None = None,
     hits_per_cycle: Sequence[float | None] | None = None,
+    varpi_scale: Scale | None = None,
     ax: Axes | None = None,
 ) -> Axes:
     """Impact period [actuation cycles] against ϖ [-], optionally with the hits per cycle.
@@ -42,12 +50,15 @@ def impact_period_strip(
     the top edge, so a gap is never mistaken for a value. ``hits_per_cycle``
     (mean hits per actuation cycle, impulsive ones included) is drawn as open
     squares where known: more than one marks the multi-impact regime.
+    varpi_scale: (physical units per unit ϖ, label), e.g. f_v in kHz: the x axis in
+    actuation frequency with ϖ on a secondary (top) axis.
     """
     ax = axes_or_new(ax)
-    w = np.asarray(varpi, dtype=float)
+    k = varpi_scale[0] if varpi_scale else 1.0
+    w = np.asarray(varpi, dtype=float) * k
     known = np.array([p is not None for p in period_cycles], dtype=bool)
     per = np.array([p if p is not None else 0.0 for p in period_cycles], dtype=float)
-    _decorate(ax, device_varpi)
+    _decorate(ax, device_varpi, k)
     ax.plot(
         w[known], per[known], ls="none", marker="o", ms=2.5, color="black", label="impact period"
     )
@@ -78,6 +89,8 @@ def impact_period_strip(
         )
     ax.set_ylim(0.0, top + 0.6)
     ax.set_ylabel("impact period\n[cycles]")
+    if varpi_scale is not None:
+        dimensionless_twin(ax, "x", k, "ϖ = f_act/f_v  [-]")
     ax.legend(loc="upper left", framealpha=0.9, ncols=2)
     return ax
 
@@ -87,18 +100,21 @@ def contact_fraction_strip(
     contact_fraction: Sequence[float | None],
     *,
     device_varpi: float | None = None,
+    varpi_scale: Scale | None = None,
     ax: Axes | None = None,
 ) -> Axes:
-    """Share of the actuation cycle spent in contact [-] against ϖ [-].
+    """Share of the actuation cycle spent in contact [-] against ϖ [-] (or the physical
+    frequency of ``varpi_scale``, see :func:`impact_period_strip`).
 
     None entries (no periodic vertical motion found) are left out and drawn as
     crosses on the zero line.
     """
     ax = axes_or_new(ax)
-    w = np.asarray(varpi, dtype=float)
+    k = varpi_scale[0] if varpi_scale else 1.0
+    w = np.asarray(varpi, dtype=float) * k
     known = np.array([c is not None for c in contact_fraction], dtype=bool)
     frac = np.array([c if c is not None else 0.0 for c in contact_fraction], dtype=float)
-    _decorate(ax, device_varpi)
+    _decorate(ax, device_varpi, k)
     ax.plot(
         w[known], frac[known], ls="-", marker="o", ms=2.0, color="black", label="contact fraction"
     )
@@ -107,6 +123,6 @@ def contact_fraction_strip(
             w[~known], np.zeros(int((~known).sum())), ls="none", marker="x", ms=3.5, color="#7f7f7f"
         )
     ax.set_ylim(-0.03, max(0.6, float(frac.max()) * 1.15 if frac.size else 0.6))
-    ax.set_xlabel("ϖ  [-]")
+    ax.set_xlabel(varpi_scale[1] if varpi_scale else "ϖ  [-]")
     ax.set_ylabel("contact\nfraction [-]")
     return ax

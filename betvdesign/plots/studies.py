@@ -67,7 +67,8 @@ def pushpull_panel(
     if x.size:
         xs = np.linspace(x.min() * 0.9, x.max() * 1.1, 300)
         curve = lambda_one_curve(xs, kappa, beta)
-        ax.plot(xs, curve, color="black", lw=1.2, label="λ = 1")
+        ax.plot(xs, curve, color="black", lw=1.2, label="λ = 1 (fit boundary)")
+        label_lambda_one(ax, xs, curve)
         if y.min() > 0 and y.max() / y.min() > 20:  # α spanning decades: log axis
             ax.set_yscale("log")
             ax.set_ylim(y.min() / 1.5, y.max() * 1.5)
@@ -79,14 +80,35 @@ def pushpull_panel(
     return ax
 
 
+#: Smallest size of the map figure [inches]: one panel is still readable (6.4 × 4.8 in,
+#: 960 × 720 px at the PNG resolution below).
+MIN_FIGSIZE = (6.4, 4.8)
+#: PNG resolution [dots per inch].
+PNG_DPI = 150
+
+
+def label_lambda_one(ax: Axes, xs: np.ndarray, curve: np.ndarray) -> None:
+    """Write "λ = 1" on the boundary curve itself (at its middle point in view)."""
+    i = len(xs) // 2
+    ax.annotate(
+        "λ = 1",
+        (float(xs[i]), float(curve[i])),
+        xytext=(4, 4),
+        textcoords="offset points",
+        fontsize=8,
+        fontweight="bold",
+        bbox={"boxstyle": "round,pad=0.15", "fc": "white", "ec": "none", "alpha": 0.8},
+    )
+
+
 def pushpull_figure(rows: Sequence[Row]) -> Figure:
-    """One panel per (κ, β): rows κ, columns β."""
+    """One panel per (κ, β): rows κ, columns β; legend below the panels (never clipped)."""
     kappas = sorted({r["kappa"] for r in rows})
     betas = sorted({r["beta"] for r in rows})
     with figure_style():
         fig, axes = new_figure(
-            3.0 * len(betas) + 0.6,
-            2.6 * len(kappas) + 0.4,
+            max(MIN_FIGSIZE[0], 3.2 * len(betas) + 0.6),
+            max(MIN_FIGSIZE[1], 2.8 * len(kappas) + 1.0),
             nrows=len(kappas),
             ncols=len(betas),
         )
@@ -94,8 +116,16 @@ def pushpull_figure(rows: Sequence[Row]) -> Figure:
         for i, kappa in enumerate(kappas):
             for j, beta in enumerate(betas):
                 pushpull_panel(rows, kappa=kappa, beta=beta, ax=axes[i][j])
-        handles, labels = axes[0][0].get_legend_handles_labels()
-        fig.legend(handles, labels, loc="outside lower center", ncols=max(1, len(labels)))
+        seen: dict[str, Any] = {}
+        for ax in axes.flat:  # every label once, from whichever panel has it
+            for h, lab in zip(*ax.get_legend_handles_labels(), strict=True):
+                seen.setdefault(lab, h)
+        fig.legend(
+            list(seen.values()),
+            list(seen),
+            loc="outside lower center",
+            ncols=min(3, max(1, len(seen))),
+        )
     return fig
 
 
@@ -107,7 +137,7 @@ def save_figure(fig: Figure, path: str | os.PathLike[str]) -> None:
     meta: dict[str, Any] = {"svg": {"Date": None}, "pdf": {"CreationDate": None, "ModDate": None}}
     meta["png"] = {"Software": None}
     with matplotlib.rc_context(rc={**STYLE, "svg.hashsalt": "betvdesign-studies"}):
-        fig.savefig(tmp, format=fmt, metadata=meta[fmt])
+        fig.savefig(tmp, format=fmt, metadata=meta[fmt], dpi=PNG_DPI)
     os.replace(tmp, p)
 
 

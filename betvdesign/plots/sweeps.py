@@ -1,4 +1,5 @@
-"""Sweep figures: slider speed against drive voltage, and robustness against λ."""
+"""Sweep figures: slider speed against drive voltage, and against changes of the designer's
+fields (robustness)."""
 
 from __future__ import annotations
 
@@ -8,102 +9,88 @@ import numpy as np
 from matplotlib.axes import Axes
 
 from betvdesign.plots._figure import DEVICE_COLOR, MODE_COLORS, axes_or_new
+from betvdesign.siformat import format_si, scale_for
 
 
 def speed_vs_voltage(
     volts: Sequence[float],
-    speed_um_s: Sequence[float],
+    speed_m_s: Sequence[float],
     *,
     operating_v: float | None = None,
-    operating_speed_um_s: float | None = None,
+    operating_speed_m_s: float | None = None,
     ax: Axes | None = None,
 ) -> Axes:
-    """Mean slider speed [µm/s] against drive voltage [V], operating point marked."""
+    """Mean slider speed [m/s, drawn with the SI prefix its magnitude calls for] against
+    drive voltage [V], operating point marked."""
     ax = axes_or_new(ax)
-    ax.plot(
-        np.asarray(volts, float), np.asarray(speed_um_s, float), color="black", label="mean speed"
-    )
-    if operating_v is not None and operating_speed_um_s is not None:
+    v = np.asarray(speed_m_s, float)
+    k, unit = scale_for(float(np.abs(v).max()) if v.size else 0.0, "m/s")
+    ax.plot(np.asarray(volts, float), v * k, color="black", label="mean speed")
+    if operating_v is not None and operating_speed_m_s is not None:
         ax.plot(
             [operating_v],
-            [operating_speed_um_s],
+            [operating_speed_m_s * k],
             marker="o",
             ms=6,
             color=DEVICE_COLOR,
             ls="none",
-            label=f"operating point {operating_v:g} V",
+            label=f"operating point {operating_v:g} V, {format_si(operating_speed_m_s, 'm/s')}",
         )
     ax.axhline(0.0, color="#7f7f7f", lw=0.5)
     ax.set_xlabel("drive voltage  [V]")
-    ax.set_ylabel("mean slider speed  [µm/s]")
+    ax.set_ylabel(f"mean slider speed  [{unit}]")
     ax.legend(loc="best", framealpha=0.9)
     return ax
 
 
-def robustness_vs_lambda(
-    lam: Sequence[float],
-    delta_s: Sequence[float | None],
+def speed_vs_field_change(
+    series: Sequence[tuple[str, Sequence[float], Sequence[float | None], Sequence[bool]]],
     *,
-    device_lam: float | None = None,
-    logx: bool = False,
+    unit: str = "m/s",
     ax: Axes | None = None,
 ) -> Axes:
-    """Periodic slider increment Δs per cycle [-] against the λ fit [-].
+    """Mean slider speed against the relative change [%] of each designer field.
 
-    The fit's mode boundary λ = 1 is drawn; Δs > 0 is push, Δs < 0 pull, so a
-    point whose sign disagrees with its side of λ = 1 is a fit miss (ringed). None
-    entries (no periodic orbit found) are drawn as crosses on Δs = 0.
-    logx: logarithmic λ axis (for sweeps spanning decades).
+    series: per field (label, change [%], speed [``unit``, positive: the intended
+    direction of travel] or None where no periodic orbit exists, λ-fit miss flags). The
+    speed axis takes an SI prefix by magnitude; None points are crosses on zero; points
+    where the λ fit predicts the other mode are ringed.
     """
     ax = axes_or_new(ax)
-    if logx:
-        ax.set_xscale("log")
-    x = np.asarray(lam, dtype=float)
-    ok = np.array([d is not None for d in delta_s], dtype=bool)
-    y = np.array([d if d is not None else 0.0 for d in delta_s], dtype=float)
-    order = np.argsort(x[ok])
-    ax.plot(
-        x[ok][order],
-        y[ok][order],
-        color="black",
-        lw=1.0,
-        marker="o",
-        ms=3,
-        label="periodic Δs (exact model)",
-    )
-    miss = ok & (((x < 1.0) & (y < 0.0)) | ((x > 1.0) & (y > 0.0)))
-    if miss.any():
+    vals = [abs(v) for _, _, ys, _ in series for v in ys if v is not None]
+    factor, label_unit = scale_for(max(vals, default=0.0), unit)
+    markers = "osD^v<>"
+    missed = False
+    for k, (label, xs, ys, misses) in enumerate(series):
+        x = np.asarray(xs, dtype=float)
+        ok = np.array([y is not None for y in ys], dtype=bool)
+        y = np.array([y * factor if y is not None else 0.0 for y in ys], dtype=float)
+        (line,) = ax.plot(
+            x[ok], y[ok], marker=markers[k % len(markers)], ms=3.5, lw=1.1, label=label
+        )
+        if (~ok).any():
+            ax.plot(x[~ok], y[~ok], ls="none", marker="x", ms=6, color=line.get_color())
+        miss = ok & np.asarray(misses, dtype=bool)
+        if miss.any():
+            missed = True
+            ax.plot(x[miss], y[miss], ls="none", marker="o", ms=9, mfc="none", color=DEVICE_COLOR)
+    if missed:
         ax.plot(
-            x[miss],
-            y[miss],
+            [],
+            [],
             ls="none",
             marker="o",
-            ms=8,
+            ms=9,
             mfc="none",
             color=DEVICE_COLOR,
-            label="fit misses (sign of Δs ≠ side of λ = 1)",
+            label="λ fit predicts the other mode",
         )
-    if (~ok).any():
-        ax.plot(
-            x[~ok],
-            y[~ok],
-            ls="none",
-            marker="x",
-            ms=5,
-            color="#7f7f7f",
-            label="no periodic orbit found",
-        )
-    ax.axvline(1.0, color="black", ls="--", lw=1.0, label="λ = 1 (fit boundary)")
-    ax.axhline(0.0, color="#7f7f7f", lw=0.5)
-    if device_lam is not None:
-        ax.axvline(
-            device_lam, color=DEVICE_COLOR, lw=1.2, ls=":", label=f"device λ = {device_lam:.3g}"
-        )
-    lo, hi = ax.get_xlim()
-    ax.axvspan(lo, 1.0, color=MODE_COLORS["push"], alpha=0.08, lw=0)
-    ax.axvspan(1.0, hi, color=MODE_COLORS["pull"], alpha=0.08, lw=0)
-    ax.set_xlim(lo, hi)
-    ax.set_xlabel("λ  [-]")
-    ax.set_ylabel("Δs per cycle  [-]")
-    ax.legend(loc="best", framealpha=0.9)
+    ax.axhline(0.0, color="#7f7f7f", lw=0.8)
+    ax.axvline(0.0, color=DEVICE_COLOR, lw=1.0, ls=":", label="the device as specified")
+    lo, hi = ax.get_ylim()
+    ax.axhspan(min(lo, 0.0), 0.0, color=MODE_COLORS["pull"], alpha=0.07, lw=0)
+    ax.set_ylim(lo, hi)
+    ax.set_xlabel("change of the field from its specified value  [%]")
+    ax.set_ylabel(f"mean slider speed  [{label_unit}]\n(< 0: wrong way)")
+    ax.legend(loc="best", framealpha=0.9, fontsize=7)
     return ax

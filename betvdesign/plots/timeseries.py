@@ -7,7 +7,7 @@ from collections.abc import Sequence
 import numpy as np
 from matplotlib.axes import Axes
 
-from betvdesign.plots._figure import DEVICE_COLOR, axes_or_new
+from betvdesign.plots._figure import DEVICE_COLOR, Scale, axes_or_new, dimensionless_twin
 
 
 def slider_velocity(
@@ -17,9 +17,15 @@ def slider_velocity(
     cycle_mean: tuple[Sequence[float], Sequence[float]] | None = None,
     periodic_mean: float | None = None,
     logx: bool = False,
+    time_scale: Scale | None = None,
+    velocity_scale: Scale | None = None,
     ax: Axes | None = None,
 ) -> Axes:
     """Slider velocity s' [-] against time [actuation cycles].
+
+    time_scale, velocity_scale: (physical units per cycle / per unit s', label): draw
+    time and velocity in those units (e.g. ms, mm/s) with the dimensionless values on
+    secondary axes.
 
     logx: logarithmic time axis (t = 0 is then left out), to show the first
     cycles and a long settling in one panel.
@@ -29,28 +35,41 @@ def slider_velocity(
     velocity Δs·ϖ/(2π) [-], drawn as a dashed line (the settled state).
     """
     ax = axes_or_new(ax)
+    kt, xlabel = time_scale or (1.0, "t / T_act  [cycles]")
+    kv, ylabel = velocity_scale or (1.0, "s'  [-]")
     t = np.asarray(t_cycles, float)
     v = np.asarray(ds, float)
     if logx:
         ax.set_xscale("log")
         t, v = t[t > 0], v[t > 0]
-    ax.plot(t, v, color="#1f77b4", lw=0.7, label="s'(τ)")
+    ax.plot(t * kt, v * kv, color="#1f77b4", lw=0.7, label="instantaneous")
     if cycle_mean is not None:
         m, v = (np.asarray(a, float) for a in cycle_mean)
         ax.plot(
-            m + 0.5, v, ls="none", marker="o", ms=2.5, color="black", label="cycle mean Δsₘ·ϖ/2π"
+            (m + 0.5) * kt,
+            v * kv,
+            ls="none",
+            marker="o",
+            ms=2.5,
+            color="black",
+            label="mean over each cycle",
         )
     if periodic_mean is not None:
         ax.axhline(
-            periodic_mean,
+            periodic_mean * kv,
             color=DEVICE_COLOR,
             ls="--",
             lw=1.1,
-            label=f"periodic state {periodic_mean:.3g}",
+            label=f"periodic state {periodic_mean * kv:.3g}"
+            + (f" {ylabel.rsplit('[', 1)[1].rstrip(']')}" if velocity_scale else ""),
         )
     ax.axhline(0.0, color="#7f7f7f", lw=0.5)
-    ax.set_xlabel("t / T_act  [cycles]")
-    ax.set_ylabel("s'  [-]")
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    if time_scale is not None:
+        dimensionless_twin(ax, "x", kt, "t / T_act  [cycles]")
+    if velocity_scale is not None:
+        dimensionless_twin(ax, "y", kv, "s'  [-]")
     ax.legend(loc="best", framealpha=0.9)
     return ax
 
@@ -71,16 +90,26 @@ def slider_displacement(
     drawn dashed and labelled as such (never blended into the simulated curve).
     """
     ax = axes_or_new(ax)
-    ax.plot(
-        np.asarray(t_ms, float),
-        np.asarray(x_um, float),
-        color="black",
-        lw=1.2,
-        label="simulated (exact model)",
-    )
-    if extrapolated is not None:
+    t, x = np.asarray(t_ms, float), np.asarray(x_um, float)
+    stop: float | None = None
+    if travel_um is not None:
+        t, x, stop = _until_end_stop(t, x, travel_um)
+    ax.plot(t, x, color="black", lw=1.2, label="simulated (exact model)")
+    if extrapolated is not None and stop is None:
         te, xe = (np.asarray(a, float) for a in extrapolated)
+        if travel_um is not None:
+            te, xe, stop = _until_end_stop(te, xe, travel_um)
         ax.plot(te, xe, color="#7f7f7f", lw=1.2, ls="--", label="continued at periodic speed")
+    if stop is not None:
+        ax.plot([stop], [travel_um], marker="o", ms=6, color=DEVICE_COLOR, zorder=5)
+        ax.annotate(
+            f"end stop at {stop:.3g} ms",
+            (stop, travel_um),
+            xytext=(-8, -14 if travel_um > 0 else 8),
+            textcoords="offset points",
+            ha="right",
+            fontsize=7.5,
+        )
     if travel_um is not None:
         ax.axhline(
             travel_um,
@@ -93,3 +122,20 @@ def slider_displacement(
     ax.set_ylabel("slider displacement  [µm]")
     ax.legend(loc="best", framealpha=0.9)
     return ax
+
+
+def _until_end_stop(
+    t: np.ndarray, x: np.ndarray, travel: float
+) -> tuple[np.ndarray, np.ndarray, float | None]:
+    """The samples up to where x first reaches ``travel`` (crossing time interpolated
+    linearly between the two samples around it) and that time [same unit as t], or the
+    samples unchanged and None when x never reaches it."""
+    beyond = np.flatnonzero(x * np.sign(travel) >= abs(travel))
+    if beyond.size == 0:
+        return t, x, None
+    i = int(beyond[0])
+    if i == 0:
+        return t[:1], np.array([travel]), float(t[0])
+    f = (travel - x[i - 1]) / (x[i] - x[i - 1])
+    t_stop = float(t[i - 1] + f * (t[i] - t[i - 1]))
+    return np.append(t[:i], t_stop), np.append(x[:i], travel), t_stop

@@ -29,10 +29,9 @@ from typing import Any, Generic, TypeVar
 
 import numpy as np
 
-from betvdesign.errors import BetvError, UsageError
-from betvdesign.params import ModelParams, fit_offset
+from betvdesign.errors import BetvError
+from betvdesign.params import ModelParams
 from betvdesign.plots._figure import VARPI_WINDOW
-from betvdesign.studies.lambda_scan import params_for_lambda
 
 T = TypeVar("T")
 
@@ -46,7 +45,8 @@ class ReportOptions:
 
     regime_points: ϖ values of the vertical regime strip;
     regime_range: (ϖ_min, ϖ_max) of the strip, widened to include the device;
-    robustness_points: λ values of the robustness sweep (one periodic orbit each);
+    robustness_points: values per designer field of the robustness sweep (relative
+    changes spread evenly over ±robustness_span, one periodic orbit each);
     dense_cycles: cycles sampled densely for the velocity and phase portrait;
     samples_per_cycle: dense samples per actuation cycle, or per natural period 2π of
     the head (τ units) when ϖ < 1 makes a cycle hold several of them;
@@ -59,7 +59,8 @@ class ReportOptions:
 
     regime_points: int = 111
     regime_range: tuple[float, float] = (0.2, 2.95)
-    robustness_points: int = 21
+    robustness_points: int = 7
+    robustness_span: float = 0.3
     dense_cycles: int = 30
     samples_per_cycle: int = 64
     max_transient_cycles: int = 4000
@@ -162,17 +163,6 @@ class OrbitData:
     period_cycles: int
 
 
-@dataclass(frozen=True)
-class SweepData:
-    """A 1-D sweep: x values and y values (None where no result), plus the varied knob."""
-
-    x: np.ndarray
-    y: list[float | None]
-    knob: str
-    failures: list[str] = field(default_factory=list)
-    skipped: int = 0
-
-
 # --------------------------------------------------------------------------- pieces
 
 
@@ -187,20 +177,32 @@ def periodic(p: ModelParams, opts: ReportOptions) -> Any:
 #: Horizon [cycles] within which a contact must recur for the regime strip (beyond
 #: it the ϖ is drawn as "aperiodic / not found").
 REGIME_HORIZON = 200
+#: Horizon [cycles] of the second look at a ϖ whose impulsive hits did not repeat within
+#: REGIME_HORIZON (long transients next to a period doubling, e.g. ϖ ≈ 2.7).
+REGIME_LONG_HORIZON = 2000
 
 
 @functools.lru_cache(maxsize=4096)
 def _vertical(varpi: float) -> tuple[float | None, float | None, float | None, str]:
-    """(impact period [cycles], contact fraction [-], hits per cycle, regime) of the
-    vertical-only model; None where no contact recurs within the horizon."""
-    res = dynamics_api("vertical_motion")(varpi, max_cycles=REGIME_HORIZON)
-    if not res.success or res.period_cycles is None:
-        return None, None, None, str(res.regime)
+    """(impact period [cycles], contact fraction [-], hits per cycle, label) of the
+    vertical-only model, classified by :func:`betvdesign.studies.regime.regime_point` (the
+    one classification: impulsive-only motion that repeats every k cycles has period k, not
+    "aperiodic"); period None only where no period is found within the horizon."""
+    from betvdesign.studies.regime import regime_point
+
+    dynamics_api("vertical_motion")  # Missing (stated in the figure) without the solver
+    row = regime_point({"key": 0, "varpi": varpi, "max_cycles": REGIME_HORIZON})
+    if row["period_cycles"] is None and row["label"] == "aperiodic":
+        # near a period doubling the transient outlasts the short horizon: look longer
+        row = regime_point({"key": 0, "varpi": varpi, "max_cycles": REGIME_LONG_HORIZON})
+    k = row["period_cycles"]
+    if row["status"] == "error":
+        return None, None, None, str(row["label"])
     return (
-        float(res.period_cycles),
-        float(res.contact_fraction),
-        float(res.hits_per_cycle),
-        str(res.regime),
+        None if k is None else float(k),
+        None if k is None else float(row["contact_fraction"]),
+        None if row["hits_per_cycle"] is None else float(row["hits_per_cycle"]),
+        str(row["label"]),
     )
 
 
@@ -283,60 +285,78 @@ def orbit(p: ModelParams, per: Any, opts: ReportOptions) -> OrbitData:
     return OrbitData(states[:, 3], states[:, 5], phases, n)
 
 
-def lambda_targets(lam0: float, n: int) -> np.ndarray:
-    """λ values around the device's λ0 that always straddle the boundary λ = 1:
-    geometric spacing from min(λ0, 1)/2 to max(λ0, 1)·2, plus λ0 itself and points
-    at ±5, 10, 20 % of 1 where Δs changes fastest (MODEL.md, "Push/pull criterion")."""
-    lo = min(lam0, 1.0) / 2.0
-    hi = max(lam0, 1.0) * 2.0
-    near_one = [0.8, 0.9, 0.95, 1.05, 1.1, 1.2]
-    grid = np.geomspace(lo, hi, max(n - len(near_one) - 1, 2))
-    return np.unique(np.concatenate([grid, near_one, [lam0]]))
+@dataclass(frozen=True)
+class FieldVariant:
+    """The device with one designer field changed by a relative amount.
+
+    field: dotted spec path ("drive.frequency"); nominal: its value as the file gives it;
+    change: relative change [-]; params: the model parameters of the changed device
+    (None when the spec rejects the value: ``reason``); speed_per_ds: ℓ·f_act [m/s per
+    unit Δs] of the changed device (MODEL.md, "Displacement per cycle").
+    """
+
+    field: str
+    nominal: str
+    change: float
+    params: ModelParams | None
+    speed_per_ds: float = math.nan
+    reason: str = ""
 
 
-def alpha_for_lambda(lam: float, p: ModelParams) -> float | None:
-    """α that gives ``lam`` at fixed ϖ, β, κ (inverse of the λ fit, MODEL.md "Push/pull
-    criterion", via :func:`betvdesign.studies.lambda_scan.params_for_lambda`); None when
-    no positive α exists."""
-    try:
-        point = params_for_lambda(
-            lam, kappa=p.kappa, beta=p.beta, vary="alpha", alpha=None, varpi=p.varpi
-        )
-    except UsageError:
-        return None
-    return point["alpha"]
+@dataclass(frozen=True)
+class FieldPoint:
+    """One point of the robustness sweep: speed [m/s] along the impact direction (None: no
+    periodic orbit, ``reason``) and λ of the changed device."""
+
+    field: str
+    nominal: str
+    change: float
+    speed_m_s: float | None
+    lam: float | None
+    reason: str = ""
 
 
-def lambda_floor(p: ModelParams) -> float | None:
-    """Smallest λ reachable with α > 0 at fixed ϖ, β, κ (α → ∞): −κ·c/ϖ² when the fit's
-    offset c = (1/β − β)/(22(κ+1)) is negative (β > 1), else None (λ → 0 is reachable)."""
-    c = fit_offset(p.kappa, p.beta)
-    return -p.kappa * c / p.varpi**2 if c < 0 else None
+@dataclass(frozen=True)
+class FieldSweep:
+    """Periodic speed as each designer field varies around the device (others fixed)."""
+
+    points: list[FieldPoint]
+    n_orbits: int
+
+    @property
+    def fields(self) -> list[str]:
+        return list(dict.fromkeys(p.field for p in self.points))
+
+    @property
+    def failures(self) -> list[str]:
+        return [
+            f"{p.field} {p.change:+.0%}: {p.reason}" for p in self.points if p.speed_m_s is None
+        ]
 
 
-def robustness(p: ModelParams, opts: ReportOptions) -> SweepData:
-    """Periodic Δs at λ values around the device's, varying α only (ϖ, β, κ fixed)."""
+def robustness(variants: list[FieldVariant], opts: ReportOptions) -> FieldSweep:
+    """Periodic speed of every variant (one periodic orbit per distinct parameter set)."""
+    if not variants:
+        raise Missing("the device has none of the designer fields the sweep varies")
     periodic_orbit = dynamics_api("periodic_orbit")
-    xs: list[float] = []
-    ys: list[float | None] = []
-    failures: list[str] = []
-    skipped = 0
-    for lam in lambda_targets(p.lam, opts.robustness_points):
-        alpha = alpha_for_lambda(float(lam), p)
-        if alpha is None:
-            skipped += 1
+    solved: dict[ModelParams, Any] = {}
+    points: list[FieldPoint] = []
+    for v in variants:
+        if v.params is None:
+            points.append(FieldPoint(v.field, v.nominal, v.change, None, None, v.reason))
             continue
-        q = ModelParams(p.varpi, alpha, p.beta, p.kappa)
-        res = periodic_orbit(q, tol=opts.periodic_tol, max_cycles=opts.sweep_max_cycles)
-        xs.append(q.lam)
+        if v.params not in solved:
+            solved[v.params] = periodic_orbit(
+                v.params, tol=opts.periodic_tol, max_cycles=opts.sweep_max_cycles
+            )
+        res = solved[v.params]
         if getattr(res, "success", False):
-            ys.append(float(res.delta_s))
+            speed = float(res.delta_s) * v.speed_per_ds
+            points.append(FieldPoint(v.field, v.nominal, v.change, speed, v.params.lam))
         else:
-            ys.append(None)
-            failures.append(f"λ = {q.lam:.3g} (α = {alpha:.3g}): {getattr(res, 'message', '')}")
-    if not xs:
-        raise Missing("no positive α reaches the λ range around the device")
-    return SweepData(np.asarray(xs), ys, "α", failures, skipped)
+            why = f"{getattr(res, 'status', '?')}: {getattr(res, 'message', '')}"
+            points.append(FieldPoint(v.field, v.nominal, v.change, None, v.params.lam, why))
+    return FieldSweep(points, len(solved))
 
 
 # --------------------------------------------------------------------------- one set
@@ -352,7 +372,7 @@ class SetAnalysis:
     regime: Piece[RegimeData]
     transient: Piece[TransientData]
     orbit: Piece[OrbitData]
-    robustness: Piece[SweepData]
+    robustness: Piece[FieldSweep]
 
 
 def transient_cycles(per: Piece[Any], travel_m: float, length_m: float, opts: ReportOptions) -> int:
@@ -366,9 +386,14 @@ def transient_cycles(per: Piece[Any], travel_m: float, length_m: float, opts: Re
 
 
 def analyse_set(
-    p: ModelParams, travel_m: float, length_m: float, opts: ReportOptions
+    p: ModelParams,
+    travel_m: float,
+    length_m: float,
+    opts: ReportOptions,
+    variants: list[FieldVariant] | None = None,
 ) -> SetAnalysis:
-    """Run every computation of one set's report (seconds, not minutes)."""
+    """Run every computation of one set's report (seconds, not minutes); ``variants``:
+    the device with designer fields changed (:mod:`betvdesign.report.variants`)."""
     per = attempt(lambda: periodic(p, opts))
     n = transient_cycles(per, travel_m, length_m, opts)
     orb: Piece[OrbitData] = (
@@ -383,5 +408,5 @@ def analyse_set(
         regime=attempt(lambda: regime_strip(p.varpi, opts)),
         transient=attempt(lambda: transient(p, n, opts)),
         orbit=orb,
-        robustness=attempt(lambda: robustness(p, opts)),
+        robustness=attempt(lambda: robustness(variants or [], opts)),
     )

@@ -25,6 +25,7 @@ from betvdesign.checker import (
     check_derivation,
     load_solver,
 )
+from betvdesign.checkview import rule_unit
 from betvdesign.loader import load_device
 from betvdesign.nondim import DeviceDerivation, SetDerivation, derive
 from betvdesign.report import figures
@@ -40,7 +41,9 @@ from betvdesign.report.model import (
     SetReport,
     VerdictBox,
 )
-from betvdesign.rules import RuleResult, format_speed, format_time, verdict
+from betvdesign.report.variants import field_variants, relative_changes
+from betvdesign.rules import RuleResult, verdict
+from betvdesign.siformat import format_q, format_si
 
 MAX_WARNINGS = 5
 _SEVERITY_ORDER = {"error": 0, "warning": 1, "info": 2}
@@ -75,10 +78,9 @@ def fmt_num(x: float | None, digits: int = 4) -> str:
 
 
 def fmt_quantity(q: pint.Quantity) -> str:
-    """A quantity with 4 significant digits and a compact unit (µ, not u)."""
-    unit = format(q.units, "~P")
-    mag = fmt_num(float(q.magnitude))
-    return f"{mag} {unit}".strip() if unit else mag
+    """A quantity with 4 significant digits and an SI prefix by magnitude (µ, not u):
+    :func:`betvdesign.siformat.format_q`."""
+    return format_q(q, digits=4)
 
 
 # --------------------------------------------------------------------------- sections
@@ -98,7 +100,9 @@ def rule_rows(results: list[RuleResult]) -> tuple[RuleRow, ...]:
         RuleRow(
             r.id,
             r.severity,
-            fmt_num(r.value),
+            format_si(r.value, rule_unit(r), digits=4)
+            if r.value is not None and rule_unit(r)
+            else fmt_num(r.value),
             r.threshold,
             r.passed,
             r.message,
@@ -136,11 +140,11 @@ def verdict_box(
     if per is not None and v_m_s:
         by = "exact periodic orbit"
         direction = sd.impact_sign * (1 if float(per.delta_s) > 0 else -1)
-        speed = f"{format_speed(abs(v_m_s))} toward {'+x' if direction > 0 else '−x'}"
+        speed = f"{format_si(abs(v_m_s), 'm/s')} toward {'+x' if direction > 0 else '−x'}"
         basis = speed_rule.message.rsplit("[", 1)[-1].rstrip("]") if speed_rule else ""
         crossing = (
-            format_time(sd.travel_range_m / abs(v_m_s))
-            + f" for the {sd.travel_range_m * 1e6:.4g} µm travel range ({basis})"
+            format_si(sd.travel_range_m / abs(v_m_s), "s")
+            + f" for the {format_si(sd.travel_range_m, 'm')} travel range ({basis})"
         )
     elif per is not None:
         by = "exact periodic orbit"
@@ -228,7 +232,13 @@ def provenance(an: SetAnalysis, opts: ReportOptions, timings: bool) -> tuple[Key
         g = an.regime.value.varpi
         rows.append(KeyValue("Regime strip", f"{len(g)} values of ϖ in [{g[0]:.3g}, {g[-1]:.3g}]"))
     if an.robustness.ok:
-        rows.append(KeyValue("Robustness sweep", f"{len(an.robustness.value.x)} periodic orbits"))
+        sweep = an.robustness.value
+        rows.append(
+            KeyValue(
+                "Robustness sweep",
+                f"{sweep.n_orbits} periodic orbits over {', '.join(sweep.fields)}",
+            )
+        )
     if timings:
         for name in ("periodic", "vertical", "regime", "transient", "orbit", "robustness"):
             rows.append(KeyValue(f"Run time: {name}", f"{getattr(an, name).elapsed_s:.3g} s"))
@@ -298,13 +308,15 @@ def build_report(
     der = prepared.derivation
     analyses: dict[tuple[Any, ...], tuple[str, SetAnalysis]] = {}
     per_set: list[tuple[SetDerivation, SetAnalysis, str | None]] = []
-    for sd in der.sets:
+    changes = relative_changes(opts.robustness_points, opts.robustness_span)
+    for i, sd in enumerate(der.sets):
         key = _set_key(sd)
         if key in analyses:
             first, an = analyses[key]
             per_set.append((sd, an, first))
             continue
-        an = analyse_set(sd.params, sd.travel_range_m, sd.scales.length_m, opts)
+        variants = field_variants(der.spec, i, changes)
+        an = analyse_set(sd.params, sd.travel_range_m, sd.scales.length_m, opts, variants)
         analyses[key] = (sd.name, an)
         per_set.append((sd, an, None))
     check = design_check(der, per_set, opts)

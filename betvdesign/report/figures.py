@@ -17,8 +17,10 @@ import numpy as np
 
 from betvdesign import fidelity, plots
 from betvdesign.nondim import SetDerivation
-from betvdesign.report.analysis import REGIME_HORIZON, Piece, SetAnalysis, lambda_floor
+from betvdesign.plots._figure import VARPI_WINDOW
+from betvdesign.report.analysis import REGIME_LONG_HORIZON, Piece, SetAnalysis
 from betvdesign.report.model import FigureBlock
+from betvdesign.siformat import format_si, scale_for
 from betvdesign.spec import amplitude_at
 from betvdesign.units import ureg
 
@@ -30,6 +32,14 @@ def _svg(key: str, draw: Callable[[Any], None], *, size=(6.4, 3.4), **grid: Any)
         fig, axes = plots.new_figure(*size, **grid)
         draw(axes)
         return plots.figure_svg(fig, key)
+
+
+def _scale(max_abs: float, unit: str, per_unit: float, what: str) -> tuple[float, str]:
+    """(factor, axis label) turning dimensionless data into ``what [prefixed unit]``:
+    ``per_unit`` is the SI value of one dimensionless unit, ``max_abs`` the largest SI
+    value shown (it picks the prefix)."""
+    factor, label = scale_for(max_abs, unit)
+    return per_unit * factor, f"{what}  [{label}]"
 
 
 def ladder(
@@ -73,16 +83,23 @@ def _block(
 
 def pushpull(key: str, sd: SetDerivation) -> FigureBlock:
     p = sd.params
+    f_act = sd.scales.f_act_hz
+    f_v = f_act / p.varpi
+    f_h = f_v / math.sqrt(p.alpha)
     caption = (
-        f"Device point (1/ϖ², 1/(ακ)) = ({1 / p.varpi**2:.3g}, {1 / (p.alpha * p.kappa):.3g}) "
-        f"against the λ = 1 boundary 1/(ακ) = ϖ²/κ + (1/β − β)/(22(κ+1)) for the device's "
-        f"κ = {p.kappa:.3g}, β = {p.beta:.3g}; λ = {p.lam:.4g} predicts {p.mode_predicted} mode. "
-        "Below the curve λ < 1 (push), above λ > 1 (pull); the dash-dotted lines bound the "
-        "vertical design window 0.5 ≤ ϖ < 2."
+        f"The device (f_act = {format_si(f_act, 'Hz')}, f_h = f_v/√α = {format_si(f_h, 'Hz')}) "
+        f"against the λ = 1 boundary of the fit for its f_v = {format_si(f_v, 'Hz')}, "
+        f"κ = {p.kappa:.3g}, β = {p.beta:.3g}: f_h² = f_act² + κ·c·f_v² with "
+        "c = (1/β − β)/(22(κ+1)) (MODEL.md, eq. 9 rewritten in frequencies). "
+        f"λ = {p.lam:.4g} predicts {p.mode_predicted} mode. Below the curve λ < 1 (push), "
+        "above λ > 1 (pull); the dash-dotted lines bound the vertical design window "
+        "0.5 ≤ ϖ < 2 (top axis: ϖ = f_act/f_v)."
     )
 
     def draw(ax: Any) -> None:
-        plots.pushpull_map(kappa=p.kappa, beta=p.beta, points=[(sd.name, p.varpi, p.alpha)], ax=ax)
+        plots.pushpull_map_frequencies(
+            f_v_hz=f_v, kappa=p.kappa, beta=p.beta, points=[(sd.name, f_act, f_h)], ax=ax
+        )
 
     return _block(
         key,
@@ -99,13 +116,18 @@ def regime(key: str, sd: SetDerivation, an: SetAnalysis) -> FigureBlock:
     p = sd.params
     data = an.regime.value
     n = len(data.varpi) if data is not None else 0
+    f_v = sd.scales.f_act_hz / p.varpi
+    k, unit = scale_for(VARPI_WINDOW[1] * f_v, "Hz")
     caption = (
         f"Impact period (actuation cycles per period of the head's vertical motion), mean hits "
-        f"per cycle (impulsive included; above 1: multi-impact) and share "
-        f"of the cycle in contact, against ϖ ({n} values, from rest; crosses: no contact "
-        f"recurring within {REGIME_HORIZON} cycles, hits impulsive only); design window "
-        f"0.5 ≤ ϖ < 2 shaded, device ϖ = {p.varpi:.3g} dashed."
+        f"per cycle (impulsive included; above 1: multi-impact) and share of the cycle in "
+        f"contact, against the actuation frequency f_act for this head (f_v = "
+        f"{format_si(f_v, 'Hz')}; top axis ϖ = f_act/f_v; {n} values, from rest; crosses: no "
+        f"period found within {REGIME_LONG_HORIZON} cycles; impulsive-only hits that repeat "
+        f"every k cycles have period k); design window 0.5 ≤ ϖ < 2 shaded, the device "
+        f"(f_act = {format_si(sd.scales.f_act_hz, 'Hz')}, ϖ = {p.varpi:.3g}) dashed."
     )
+    scale = (f_v * k, f"actuation frequency f_act  [{unit}]")
 
     def draw(axes: Any) -> None:
         plots.impact_period_strip(
@@ -113,10 +135,11 @@ def regime(key: str, sd: SetDerivation, an: SetAnalysis) -> FigureBlock:
             data.period_cycles,
             device_varpi=p.varpi,
             hits_per_cycle=data.hits_per_cycle,
+            varpi_scale=scale,
             ax=axes[0],
         )
         plots.contact_fraction_strip(
-            data.varpi, data.contact_fraction, device_varpi=p.varpi, ax=axes[1]
+            data.varpi, data.contact_fraction, device_varpi=p.varpi, varpi_scale=scale, ax=axes[1]
         )
 
     model = "vertical-only exact model (the head's vertical motion does not depend on the slider)"
@@ -138,13 +161,28 @@ def vertical_portrait(key: str, sd: SetDerivation, an: SetAnalysis) -> FigureBlo
     data = an.transient.value
     cycles = int(data.t_cycles[-1]) if data is not None else 0
     caption = (
-        f"Head gap ξ and its rate ξ' at ϖ = {sd.params.varpi:.3g} over the first {cycles} "
-        "actuation cycles from rest (light: first half, dark: second half); ξ = 0 is contact."
+        f"Head gap and its rate of change at f_act = {format_si(sd.scales.f_act_hz, 'Hz')} "
+        f"(ϖ = {sd.params.varpi:.3g}) over the first {cycles} actuation cycles from rest "
+        "(light: first half, dark: second half); gap 0 is contact. Secondary axes: the "
+        "dimensionless ξ = gap/(u sinθ) and ξ' = dξ/dτ."
     )
 
     def draw(ax: Any) -> None:
+        sc = sd.scales
+        gap_m = sc.u_m * math.sin(sc.theta_rad)  # ξ = gap/(u sinθ), MODEL.md
+        xi, dxi = data.states[:, 0], data.states[:, 1]
         plots.vertical_phase_portrait(
-            data.states[:, 0], data.states[:, 1], steady_from=len(data.t_cycles) // 2, ax=ax
+            xi,
+            dxi,
+            steady_from=len(data.t_cycles) // 2,
+            gap_scale=_scale(float(np.abs(xi).max()) * gap_m, "m", gap_m, "head gap"),
+            rate_scale=_scale(
+                float(np.abs(dxi).max()) * gap_m / sc.time_s,
+                "m/s",
+                gap_m / sc.time_s,
+                "gap rate",
+            ),
+            ax=ax,
         )
 
     return _block(
@@ -170,14 +208,19 @@ def settling(key: str, sd: SetDerivation, an: SetAnalysis) -> FigureBlock:
     run = f"{tr.n_cycles}-cycle run" if tr is not None else "run"
     first = f"first {int(tr.t_cycles[-1])}" if tr is not None else "first"
     caption = (
-        f"(a) Slider velocity s' over the {first} cycles from rest and the per-cycle mean "
-        f"Δsₘ·ϖ/2π over the whole {run} (log time axis), settling toward the periodic "
-        "state (dashed). "
-        "(b) The periodic orbit in the (ζ', s') plane; colour marks no contact, slip, "
-        "reverse slip and stick."
+        f"(a) Slider velocity over the {first} cycles from rest and its mean over each cycle "
+        f"of the whole {run} (log time axis), settling toward the periodic state (dashed). "
+        "(b) The periodic orbit: slider against head tangential velocity; colour marks no "
+        "contact, slip, reverse slip and stick. Secondary axes: cycles and the "
+        "dimensionless velocities s', ζ' (velocity scale u·cosθ/t_s = "
+        f"{format_si(sd.scales.length_m / sd.scales.time_s, 'm/s')})."
     )
     if per is not None:
-        caption += f" Periodic Δs = {float(per.delta_s):.4g} per cycle ({per.mode} mode)."
+        v = sd.scales.speed_m_s(float(per.delta_s))
+        caption += (
+            f" Periodic mean speed {format_si(v, 'm/s')} along the impact direction "
+            f"(Δs = {float(per.delta_s):.4g} per cycle, {per.mode} mode)."
+        )
         if tr is not None and len(tr.delta_s) and float(per.delta_s) != 0.0:
             k = int(per.period_cycles or 1)
             last = float(np.mean(tr.delta_s[-k:]))
@@ -188,16 +231,30 @@ def settling(key: str, sd: SetDerivation, an: SetAnalysis) -> FigureBlock:
             )
 
     def draw(axes: Any) -> None:
+        sc = sd.scales
         mean = tr.delta_s * p.varpi / (2 * math.pi)
+        per_cycle_s = 1.0 / sc.f_act_hz
+        v_unit = sc.length_m / sc.time_s  # [m/s] per unit s' (s = x/ℓ, τ = t/t_s)
+        vmax = float(max(np.abs(tr.states[:, 5]).max(), np.abs(orb.ds).max(), 1e-300))
+        velocity = _scale(vmax * v_unit, "m/s", v_unit, "slider velocity")
         plots.slider_velocity(
             tr.t_cycles,
             tr.states[:, 5],
             cycle_mean=(np.arange(len(mean)), mean),
             periodic_mean=float(per.delta_s) * p.varpi / (2 * math.pi),
             logx=True,
+            time_scale=_scale(len(mean) * per_cycle_s, "s", per_cycle_s, "time from rest"),
+            velocity_scale=velocity,
             ax=axes[0],
         )
-        plots.orbit_plane(orb.dzeta, orb.ds, orb.phases, ax=axes[1])
+        k, label = velocity
+        plots.orbit_plane(
+            orb.dzeta,
+            orb.ds,
+            orb.phases,
+            velocity_scale=(k, label.split("[")[1][:-1]),
+            ax=axes[1],
+        )
 
     return _block(
         key,
@@ -221,9 +278,10 @@ def displacement(key: str, sd: SetDerivation, an: SetAnalysis) -> FigureBlock:
     sc = sd.scales
     travel_um = sd.travel_range_m * 1e6
     caption = (
-        f"Slider position x = s·u·cosθ (ℓ = {sc.length_m * 1e9:.4g} nm) in the device's x "
+        f"Slider position x = s·u·cosθ (ℓ = {format_si(sc.length_m, 'm')}) in the device's x "
         f"direction against time t = τ·sqrt(m/k_v), sampled once per actuation cycle "
-        f"(f_act = {sc.f_act_hz:.4g} Hz), with the {travel_um:g} µm travel range."
+        f"(f_act = {format_si(sc.f_act_hz, 'Hz')}), until the slider reaches the end of its "
+        f"{format_si(sd.travel_range_m, 'm')} travel range (the end stop)."
     )
     ext_note = ""
     if tr is not None:
@@ -284,9 +342,9 @@ def speed_voltage(
         volts = np.linspace(lo, hi, points)
         u_m = amplitude_at(aset, ureg.Quantity(volts, "V")).to("m").magnitude
         ds = float(per.value.delta_s)
-        speed = ds * np.asarray(u_m) * math.cos(sc.theta_rad) * sc.f_act_hz * 1e6
+        speed = ds * np.asarray(u_m) * math.cos(sc.theta_rad) * sc.f_act_hz  # [m/s]
         plots.speed_vs_voltage(
-            volts, speed, operating_v=v0, operating_speed_um_s=sc.speed_m_s(ds) * 1e6, ax=ax
+            volts, speed, operating_v=v0, operating_speed_m_s=sc.speed_m_s(ds), ax=ax
         )
 
     model = (
@@ -298,43 +356,50 @@ def speed_voltage(
 
 def robustness(key: str, sd: SetDerivation, an: SetAnalysis) -> FigureBlock:
     data = an.robustness.value
-    p = sd.params
+    toward = "+x" if sd.actuator_set.travel_sign > 0 else "−x"
     caption = (
-        f"Periodic Δs per cycle against λ, varying α only (ϖ = {p.varpi:.3g}, β = {p.beta:.3g},"
-        f" κ = {p.kappa:.3g} fixed); the fit's boundary λ = 1 dashed, device λ = {p.lam:.3g} "
-        "dotted. Δs > 0 is push, Δs < 0 pull: where the sign disagrees with the side of λ = 1 "
-        "the fit misses."
+        "Mean slider speed (periodic orbit of the exact model) when one designer field "
+        "changes and every other stays as specified; positive: the intended direction "
+        f"({sd.intended_mode} mode, toward {toward}), negative: the slider runs the wrong "
+        "way. A line crossing zero near 0 % means a fabrication or drive error of that size "
+        "flips the mode. Ringed points: the λ fit predicts the other mode there."
     )
     if data is not None:
-        caption += f" {len(data.x)} periodic orbits."
-        floor = lambda_floor(p)
-        if data.skipped and floor is not None:
-            caption += (
-                f" {data.skipped} target(s) below λ = {floor:.3g} left out: with β > 1 the fit "
-                "gives λ above that for every positive α (its limit α → ∞), so α alone cannot "
-                "bring λ lower."
-            )
+        nominal = "; ".join(
+            f"{f} = {next(p.nominal for p in data.points if p.field == f)}" for f in data.fields
+        )
+        caption += f" Specified values: {nominal}. {data.n_orbits} periodic orbits."
         if data.failures:
-            caption += " No periodic orbit at: " + "; ".join(data.failures) + "."
+            caption += " No periodic orbit or invalid value at: " + "; ".join(data.failures) + "."
+    sign = 1.0 if sd.intended_mode == "push" else -1.0  # Δs > 0 is push
 
     def draw(ax: Any) -> None:
-        logx = bool(data.x.max() / data.x.min() > 20)
-        plots.robustness_vs_lambda(data.x, data.y, device_lam=p.lam, logx=logx, ax=ax)
+        series = []
+        for f in data.fields:
+            pts = [p for p in data.points if p.field == f]
+            speeds = [None if p.speed_m_s is None else sign * p.speed_m_s for p in pts]
+            misses = [
+                p.speed_m_s is not None and p.lam is not None and (p.lam < 1.0) != (p.speed_m_s > 0)
+                for p in pts
+            ]
+            series.append((f, [100.0 * p.change for p in pts], speeds, misses))
+        plots.speed_vs_field_change(series, ax=ax)
 
-    model = f"periodic orbits of the {EXACT}"
+    model = f"periodic orbits of the {EXACT}, one per changed device (spec -> nondim -> orbit)"
     rung = (
         "periodic",
-        "the sweep checks where the λ fit misses the exact mode, so every point needs the "
-        "periodic orbit (λ cannot check itself)",
+        "the sweep shows where the mode flips, so every point needs the exact periodic orbit "
+        "(λ cannot check itself)",
     )
     return _block(
         key,
-        "Robustness of the mode near the operating point",
+        "Robustness: speed when one designer field changes",
         caption,
         model,
         rung,
         an.robustness,
         draw,
+        size=(6.4, 3.8),
     )
 
 

@@ -10,6 +10,7 @@ computed is never replaced by a number: the field carries the reason instead
 
 from __future__ import annotations
 
+import html
 from dataclasses import dataclass, field
 from typing import Literal
 
@@ -117,9 +118,10 @@ class SetReport:
     notes: tuple[str, ...] = ()
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class Report:
-    """A whole device report."""
+    """A whole device report (``repr``: a few lines; ``_repr_html_``: a notebook summary;
+    the full page is :func:`betvdesign.report.render_html`)."""
 
     title: str
     device_name: str
@@ -137,3 +139,29 @@ class Report:
     def figures(self) -> list[FigureBlock]:
         """All figures of the report in reading order."""
         return [f for s in self.sets for f in s.figures]
+
+    def _set_lines(self) -> list[tuple[str, str]]:
+        return [
+            (
+                s.name,
+                f"{s.verdict.verdict.upper()}: {s.verdict.predicted_mode} "
+                f"(intended {s.intended_mode}), {s.verdict.speed}",
+            )
+            for s in self.sets
+        ]
+
+    def __repr__(self) -> str:
+        head = (
+            f"<Report {self.device_name}: {self.verdict.upper()}, {len(self.sets)} set(s), "
+            f"{len(self.figures())} figure(s), from {self.source_file or '?'}>"
+        )
+        return "\n".join([head, *(f"  {n}: {t}" for n, t in self._set_lines())])
+
+    def _repr_html_(self) -> str:
+        e = html.escape
+        rows = "".join(f"<tr><th>{e(n)}</th><td>{e(t)}</td></tr>" for n, t in self._set_lines())
+        return (
+            f"<div><b>{e(self.title)}</b>: {e(self.verdict.upper())} "
+            f"<small>({e(self.source_file)}; {len(self.figures())} figures)</small>"
+            f"<table>{rows}</table></div>"
+        )

@@ -8,7 +8,7 @@ first, and each device's HTML and PDF are written as a pair (both or neither).
 from __future__ import annotations
 
 import datetime as _dt
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -37,8 +37,12 @@ def write_reports(
     pdf: bool = True,
     timestamp: bool = False,
     options: ReportOptions | None = None,
+    progress: Callable[[int, int], None] | None = None,
 ) -> list[Written]:
     """Report every device file in ``paths`` into ``outdir``.
+
+    ``progress(done, total)`` is called after each step (per device: analysis and
+    figures, HTML, PDF), once inputs are valid; a report takes seconds per device.
 
     Raises :class:`~betvdesign.errors.SpecError` (bad device file) or
     :class:`~betvdesign.errors.UsageError` (no files, clashing names, unusable
@@ -64,6 +68,16 @@ def write_reports(
     out = check_output_dir(outdir)
     generated = _dt.datetime.now(_dt.UTC).replace(microsecond=0).isoformat() if timestamp else None
     written: list[Written] = []
+    steps, done = len(prepared) * (3 if pdf else 2), 0
+
+    def step() -> None:
+        nonlocal done
+        done += 1
+        if progress is not None:
+            progress(done, steps)
+
+    if progress is not None:
+        progress(0, steps)
     for dev in prepared:
         report = build_report(
             dev,
@@ -71,12 +85,15 @@ def write_reports(
             generated=generated,
             reproduce=f"betv report {dev.path} -o DIR",
         )
+        step()
         html = render_html(report)
         html_path = out / f"{dev.path.stem}.html"
         pdf_path = out / f"{dev.path.stem}.pdf" if pdf else None
         files: dict[Path, str | bytes] = {html_path: html}
+        step()
         if pdf_path is not None:
             files[pdf_path] = render_pdf(html)
+            step()
         write_group(files)  # HTML and PDF together, or neither
         written.append(
             Written(dev.path, html_path, pdf_path, report.verdict, len(report.figures()))

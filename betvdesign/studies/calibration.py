@@ -14,8 +14,16 @@ not depend on u, so
 * displacement    x(t) = s(t / t_s) · u · cosθ   (transient from rest),
 
 with Δs from the exact periodic orbit and s(τ) from the exact transient.
-Speeds and displacements count positive in the direction the model's s
-counts (along the impact direction); pull mode gives negative values.
+
+Direction. A lab records how fast and how far the slider moved, and which way. By
+default (``signed=False``) speeds and displacements are *magnitudes* (>= 0) of motion
+in the set's direction of travel: ``direction`` ("+x"/"-x"), by default the direction
+the set is designed to move the slider (its intended mode and impact direction). With
+``signed=True`` they are signed along the set's impact direction, the way the model's
+s counts (pull mode gives negative values). Either way the amplitude cannot change the
+sign of the motion: when the model (Δs, or s(t) at the last data time) moves the
+slider the other way, :class:`CalibrationMismatch` says so instead of fitting a
+vanishing gain.
 
 Fitted parameters (``scipy.optimize.least_squares``):
 
@@ -28,95 +36,35 @@ Fitted parameters (``scipy.optimize.least_squares``):
 Uncertainty: covariance (JᵀJ)⁻¹ from the Jacobian at the optimum, scaled by the
 residual variance SSR/(n − p) unless σ is given; with no σ and no spare data
 points (n = p) the uncertainty is unknown and reported as None, not invented.
+
+Goodness of fit: R² = 1 − SSR/SST (SST about the mean of the data; None when the
+data do not vary), χ²/dof with σ given, and the residual rms; ``warnings`` lists
+what a designer should not overlook (a poor fit, a parameter at its bound 0, an
+unknown uncertainty), and ``status`` is "at_bound" when a fitted value sits on 0.
 """
 
 from __future__ import annotations
 
-import csv
 import dataclasses
 import math
 import os
-import re
 from dataclasses import dataclass
-from pathlib import Path
 from typing import Any, Literal
 
 import numpy as np
-import pint
 
 from betvdesign.errors import BetvError, UsageError
+from betvdesign.studies.measurements import Kind, Measurements
+
+#: R² below which a fit is flagged as poor.
+POOR_FIT_R2 = 0.9
+
+
+class CalibrationMismatch(BetvError):
+    """Data and model disagree on the direction of motion: no amplitude can fit them."""
+
 
 Law = Literal["per-voltage", "linear", "quadratic", "fixed"]
-Kind = Literal["speed", "displacement"]
-
-_COLUMNS: dict[Kind, tuple[tuple[str, str], tuple[str, str]]] = {
-    "speed": (("voltage", "V"), ("speed", "um/s")),
-    "displacement": (("time", "s"), ("displacement", "um")),
-}
-
-
-@dataclass(frozen=True)
-class Measurements:
-    """Measured data in SI floats: x (V or s), y (m/s or m), sigma (same as y) or None."""
-
-    kind: Kind
-    x: np.ndarray
-    y: np.ndarray
-    sigma: np.ndarray | None
-    source: str
-
-
-def read_measurements(path: str | os.PathLike[str], kind: Kind) -> Measurements:
-    """Read a calibration CSV (see module doc); errors name file, line and column."""
-    from betvdesign.units import ureg
-
-    p = Path(path)
-    try:
-        text = p.read_text(encoding="utf-8")
-    except OSError as exc:
-        raise UsageError(f"{p}: cannot read: {exc.strerror}") from None
-    rows = [r for r in csv.reader(text.splitlines()) if r and not r[0].lstrip().startswith("#")]
-    if len(rows) < 2:
-        raise UsageError(f"{p}: needs a header and at least one data row")
-    (xname, xunit), (yname, yunit) = _COLUMNS[kind]
-    header: dict[str, tuple[int, pint.Unit]] = {}
-    for j, cell in enumerate(rows[0]):
-        m = re.fullmatch(r"\s*(\w+)\s*\[(.+)\]\s*", cell)
-        if not m:
-            raise UsageError(f"{p}:1: column {j + 1}: header {cell!r} must read 'name [unit]'")
-        try:
-            header[m.group(1)] = (j, ureg.Unit(m.group(2)))
-        except (pint.PintError, ValueError) as exc:
-            raise UsageError(f"{p}:1: column {j + 1}: unknown unit {m.group(2)!r}: {exc}") from None
-    expected = (xname, yname)
-    if not set(expected) <= set(header) or not set(header) <= {*expected, "sigma"}:
-        raise UsageError(
-            f"{p}:1: {kind} data needs columns {xname} [{xunit}], {yname} [{yunit}] "
-            f"and optionally sigma [{yunit}]; got {', '.join(header)}"
-        )
-    si = {xname: xunit, yname: yunit, "sigma": yunit}
-    cols: dict[str, list[float]] = {name: [] for name in header}
-    for lineno, cells in enumerate(rows[1:], start=2):
-        if len(cells) != len(header):
-            raise UsageError(f"{p}:{lineno}: expected {len(header)} fields, got {len(cells)}")
-        for name, (j, unit) in header.items():
-            try:
-                value = float(cells[j])
-                q = ureg.Quantity(value, unit).to(si[name])
-            except ValueError:
-                raise UsageError(f"{p}:{lineno}: {name}: {cells[j]!r} is not a number") from None
-            except pint.DimensionalityError:
-                raise UsageError(f"{p}:1: {name}: unit {unit} is not a {si[name]} unit") from None
-            if not math.isfinite(q.magnitude):
-                raise UsageError(f"{p}:{lineno}: {name}: not finite")
-            cols[name].append(float(q.to_base_units().magnitude))
-    x = np.array(cols[xname])
-    sigma = np.array(cols["sigma"]) if "sigma" in cols else None
-    if sigma is not None and np.any(sigma <= 0):
-        raise UsageError(f"{p}: sigma must be > 0 on every row")
-    if np.any(x < 0):
-        raise UsageError(f"{p}: {xname} must be >= 0")
-    return Measurements(kind, x, np.array(cols[yname]), sigma, str(p))
 
 
 @dataclass
@@ -137,6 +85,11 @@ class CalibrationResult:
     message: str
     nfev: int
     snippet: str = ""
+    r_squared: float | None = None
+    chi2_reduced: float | None = None
+    direction: str = ""
+    signed: bool = False
+    warnings: list[str] = dataclasses.field(default_factory=list)
 
     def as_dict(self) -> dict[str, Any]:
         d = dataclasses.asdict(self)
@@ -234,8 +187,43 @@ def calibrate(
     law: Law = "linear",
     fit_alpha: bool = False,
     set_name: str | None = None,
+    signed: bool = False,
+    direction: str | None = None,
 ) -> CalibrationResult:
-    """Fit the amplitude law (and optionally α) of one actuator set to ``data``."""
+    """Fit the amplitude law (and optionally α) of one actuator set to ``data``.
+
+    Parameters
+    ----------
+    device : path
+        Device YAML file.
+    data : Measurements
+        Speeds [m/s] against voltage [V], or displacements [m] against time [s].
+    law : {"linear", "quadratic", "per-voltage", "fixed"}
+        Amplitude law fitted: u = g·V [m/V], u = g·V² [m/V²], one u [m] per voltage,
+        or u from the device (``fixed``, with ``fit_alpha``).
+    fit_alpha : bool
+        Also fit α = k_v/k_h [-] (re-solves the periodic orbit per step).
+    set_name : str, optional
+        Actuator set (default: the first).
+    signed : bool
+        False (default): the data are magnitudes (>= 0) of motion toward ``direction``;
+        True: signed along the set's impact direction (the model's s).
+    direction : {"+x", "-x"}, optional
+        Observed direction of travel for magnitudes (default: the set's intended one).
+
+    Returns
+    -------
+    CalibrationResult
+        Fitted values with 1σ, R², χ²/dof, residual rms [m/s or m], warnings, snippet.
+
+    Raises
+    ------
+    CalibrationMismatch
+        The model moves the slider the other way than the data (amplitude cannot fix a
+        sign).
+    UsageError
+        Bad arguments or data (negative magnitudes, unknown set or law, too few points).
+    """
     from scipy.optimize import least_squares
 
     from betvdesign.loader import load_device
@@ -250,11 +238,15 @@ def calibrate(
         raise UsageError(f"unknown law {law!r} (per-voltage, linear, quadratic or fixed)")
     if law == "fixed" and not fit_alpha:
         raise UsageError("law 'fixed' keeps u from the device: fit alpha (--fit-alpha) then")
+    aset = spec.actuator_sets[names.index(set_name)]
+    data, direction = _along_impacts(data, aset, signed, direction)
     model = _Model(spec, names.index(set_name), data, law, fit_alpha)
     x0, labels, units = _start(model, law, fit_alpha)
     n, p = len(data.y), len(x0)
     if n < p:
         raise UsageError(f"{data.source}: {n} data points cannot determine {p} parameters")
+    if not fit_alpha:  # the sign of the motion does not depend on u: check before fitting
+        _check_sign(model, data, None, aset, direction, signed)
     w = 1.0 / data.sigma if data.sigma is not None else np.full(n, 1.0 / _yscale(data))
     scale = np.abs(x0)
 
@@ -274,8 +266,26 @@ def calibrate(
             stderr = [float(x) for x in np.sqrt(var)] if np.all(var >= 0) else None
         except np.linalg.LinAlgError:
             stderr = None
-    rms = float(np.sqrt(np.mean((model.predict(theta) - data.y) ** 2)))
     alpha = float(theta[-1]) if fit_alpha else None
+    if fit_alpha:  # α can flip the mode: check the optimum
+        _check_sign(model, data, alpha, aset, direction, signed)
+    resid = model.predict(theta) - data.y
+    rms = float(np.sqrt(np.mean(resid**2)))
+    sst = float(np.sum((data.y - data.y.mean()) ** 2))
+    r2 = 1.0 - float(np.sum(resid**2)) / sst if sst > 0 else None
+    chi2 = float(2.0 * res.cost / (n - p)) if data.sigma is not None and n > p else None
+    warns: list[str] = []
+    status = "converged" if res.success else "failed"
+    at_bound = [lab for lab, t, x in zip(labels, theta, x0, strict=True) if t <= 1e-9 * abs(x)]
+    if at_bound:
+        status = "at_bound"
+        warns.append(f"{', '.join(at_bound)} at the lower bound 0: the fit is not usable")
+    if r2 is not None and r2 < POOR_FIT_R2:
+        warns.append(f"R² = {r2:.3g} < {POOR_FIT_R2:g}: the model explains the data poorly")
+    if chi2 is not None and not 0.2 < chi2 < 5.0:
+        warns.append(f"χ²/dof = {chi2:.3g}: residuals and the given σ do not match")
+    if stderr is None:
+        warns.append(f"uncertainty unknown: {n} points for {p} parameters and no sigma column")
     out = CalibrationResult(
         set_name=set_name,
         kind=data.kind,
@@ -287,12 +297,74 @@ def calibrate(
         residual_rms=rms,
         n_data=n,
         delta_s=model.delta_s(alpha) if data.kind == "speed" else None,
-        status="converged" if res.success else "failed",
+        status=status,
         message=str(res.message),
         nfev=int(res.nfev),
+        r_squared=r2,
+        chi2_reduced=chi2,
+        direction=direction,
+        signed=signed,
+        warnings=warns,
     )
     out.snippet = snippet(out, data)
     return out
+
+
+def _along_impacts(
+    data: Measurements, aset: Any, signed: bool, direction: str | None
+) -> tuple[Measurements, str]:
+    """The data signed along the set's impact direction (the model's s), and the
+    observed travel direction ("+x"/"-x"; for signed data, the one the data show)."""
+    impact = 1 if aset.impact_direction == "+x" else -1
+    if signed:
+        if direction is not None:
+            raise UsageError("--direction is for magnitudes; signed data carry their sign")
+        mean = float(np.mean(data.y))
+        return data, ("+x" if impact * mean > 0 else "-x") if mean else ""
+    if direction is None:
+        direction = "+x" if aset.travel_sign > 0 else "-x"
+    if direction not in ("+x", "-x"):
+        raise UsageError(f"direction must be +x or -x, not {direction!r}")
+    neg = np.flatnonzero(data.y < 0)
+    if neg.size:
+        raise UsageError(
+            f"{data.source}: {data.kind} must be a magnitude (>= 0) with the direction given "
+            f"separately; row {int(neg[0]) + 1} of the data is negative (for values signed "
+            "along the impact direction use --signed)"
+        )
+    along = 1 if (direction == "+x") == (impact > 0) else -1
+    return dataclasses.replace(data, y=data.y * along), direction
+
+
+def _check_sign(
+    model: _Model,
+    data: Measurements,
+    alpha: float | None,
+    aset: Any,
+    direction: str,
+    signed: bool,
+) -> None:
+    """Raise :class:`CalibrationMismatch` when the model moves the slider against the data."""
+    if data.kind == "speed":
+        ds = model.delta_s(alpha)
+        shown = f"Δs = {ds:.3g} per cycle"
+    else:
+        ds = float(model.s_of_t(alpha)[int(np.argmax(data.x))])
+        shown = f"s = {ds:.3g} at the last data time"
+    want = float(np.sum(data.y))
+    if want == 0.0 or ds * want > 0:
+        return
+    impact = 1 if aset.impact_direction == "+x" else -1
+    model_dir = "+x" if impact * ds > 0 else "-x"
+    mode = "push" if ds > 0 else "pull"
+    told = "signed data" if signed else "the given direction"
+    raise CalibrationMismatch(
+        f"{data.source}: data and model disagree in sign: the slider moved {direction} "
+        f"({told}), the model of set {aset.name!r} moves it {model_dir} ({mode} mode, "
+        f"{shown}); no amplitude can fit that. Check the direction (--direction, --signed), "
+        "the actuator set (--set) or the device parameters"
+        + ("" if alpha is None else f" (fitted α = {alpha:.3g})")
+    )
 
 
 def _power(law: str) -> int:
@@ -329,13 +401,17 @@ def _start(model: _Model, law: Law, fit_alpha: bool) -> tuple[np.ndarray, list[s
 
 def snippet(result: CalibrationResult, data: Measurements) -> str:
     """A device-file fragment (YAML) carrying the fitted calibration."""
+    from betvdesign.siformat import format_si
     from betvdesign.units import ureg
 
     lines = [
         f"# betv calibrate: fitted to {data.source} ({data.kind}, {result.n_data} points), "
         f"actuator set {result.set_name!r}",
-        f"# status {result.status}; residual rms {result.residual_rms:.4g} "
-        + ("m/s" if data.kind == "speed" else "m"),
+        f"# status {result.status}; residual rms "
+        + format_si(result.residual_rms, "m/s" if data.kind == "speed" else "m")
+        + ("" if result.r_squared is None else f"; R² {result.r_squared:.4g}")
+        + ("" if result.chi2_reduced is None else f"; χ²/dof {result.chi2_reduced:.3g}"),
+        *(f"# warning: {w}" for w in result.warnings),
         "actuator:",
     ]
 

@@ -38,6 +38,8 @@ MODEL_STATEMENT: dict[str, str] = {
     "lambda": "closed-form λ fit only (no simulation): microseconds per point, but a fit that "
     "can name the wrong mode near λ = 1",
 }
+
+
 def rung_reason(fidelity: str) -> str:
     """Why a study runs on ``fidelity`` (``fidelity_reason`` next to ``fidelity`` and
     ``model`` in every summary); for λ it states the fit's held-out error rate."""

@@ -75,5 +75,3 @@ def with_values(spec: Any, values: dict[str, Any]) -> Any:
             if value_at(spec, target) is not None:
                 spec = replace(spec, target, value)
     return spec
-
-

@@ -1,0 +1,57 @@
+"""Notebook and script entry points: check a device file or an edited spec in one call.
+
+``betvdesign.check`` is :func:`check`; the command line's ``betv check`` shows the same
+view (:class:`betvdesign.checkview.DeviceView`).
+"""
+
+from __future__ import annotations
+
+import os
+import warnings
+from collections.abc import Sequence
+from typing import Any
+
+from betvdesign.checkview import DeviceView, RuleFilter
+
+
+def check(
+    device: Any,
+    *,
+    select: Sequence[str] = (),
+    ignore: Sequence[str] = (),
+    target_speed: str | None = None,
+) -> DeviceView:
+    """Check a device the way ``betv check`` does and return its view.
+
+    Parameters
+    ----------
+    device : str, pathlib.Path or DeviceSpec
+        A device YAML file or an already loaded (e.g. ``spec.replace(...)``) spec.
+    select, ignore : sequence of str
+        Rule ids (or dotted prefixes) that count / do not count (``--select/--ignore``).
+    target_speed : str, optional
+        Required slider speed with its unit, e.g. ``"1 mm/s"`` (adds the rule
+        ``target-speed``).
+
+    Returns
+    -------
+    DeviceView
+        ``repr`` is the compact block, ``_repr_html_`` a notebook table, ``.out`` the
+        JSON (:class:`~betvdesign.checkview.DeviceOut`), ``.result`` the full
+        :class:`~betvdesign.checker.CheckResult`.
+    """
+    from betvdesign.checker import check_derivation
+    from betvdesign.nondim import derive, derive_file
+    from betvdesign.units import parse_speed
+
+    if isinstance(device, str | os.PathLike):
+        d, source = derive_file(device), str(device)
+    else:
+        d, source = derive(device), ""
+    target = None if target_speed is None else parse_speed(target_speed, "target_speed")
+    res = check_derivation(d, target_speed_m_s=target)
+    res.source_file = source
+    flt = RuleFilter(tuple(select), tuple(ignore))
+    for message in flt.unmatched([res]):
+        warnings.warn(message, stacklevel=2)
+    return DeviceView(res, flt)
