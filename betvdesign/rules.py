@@ -52,6 +52,7 @@ from betvdesign.ruledata import (
     verdict,
 )
 from betvdesign.rules_motion import format_speed, format_time, speed_rules
+from betvdesign.siformat import format_si
 
 __all__ = [
     "MARGIN_CORNERS",
@@ -107,7 +108,7 @@ def _with_set(r: RuleResult, name: str) -> RuleResult:
 
 
 def _hz(f: float) -> str:
-    return f"{f / 1e3:.4g} kHz" if f >= 1e3 else f"{f:.4g} Hz"
+    return format_si(f, "Hz")
 
 
 def _drive_range(s: SetDerivation, lo_varpi: float, hi_varpi: float) -> str:

@@ -19,6 +19,7 @@ from betvdesign.ruledata import (
     RuleResult,
     orbit_mode,
 )
+from betvdesign.siformat import format_si
 
 
 def speed_rules(
@@ -64,7 +65,7 @@ def speed_rules(
                 n_settle / f,
                 f"settling ≤ {SETTLE_SHARE:.0%} of the cycles to cross the travel range",
                 f"from rest: within {settling.rtol:.0%} of the periodic Δs after {settle_txt}; "
-                f"crosses the {travel * 1e6:.4g} um travel range after {cross_txt}"
+                f"crosses the {format_si(travel, 'm')} travel range after {cross_txt}"
                 + ("" if ok else ": the periodic speed is not what the travel shows"),
                 SRC_SETTLE,
                 fix=""
@@ -86,7 +87,7 @@ def speed_rules(
         msg = (
             f"mean speed {format_speed(abs(v))} toward {_travel_direction(s, ds)} "
             f"({'with' if ds > 0 else 'against'} the impact direction "
-            f"{s.actuator_set.impact_direction}), crosses the {travel * 1e6:.4g} um "
+            f"{s.actuator_set.impact_direction}), crosses the {format_si(travel, 'm')} "
             f"travel range in {format_time(t_cross)} [{basis}]"
         )
     else:
@@ -127,16 +128,10 @@ def _travel_direction(s: SetDerivation, delta_s: float) -> str:
 
 
 def format_speed(v_m_s: float) -> str:
-    """Speed in engineering units: um/s below 1 mm/s, else mm/s."""
-    if abs(v_m_s) < 1e-3:
-        return f"{v_m_s * 1e6:.4g} um/s"
-    return f"{v_m_s * 1e3:.4g} mm/s"
+    """A speed [m/s] with its SI prefix (:func:`betvdesign.siformat.format_si`)."""
+    return format_si(v_m_s, "m/s")
 
 
 def format_time(t_s: float) -> str:
-    """Duration in engineering units (us, ms, s)."""
-    if t_s < 1e-3:
-        return f"{t_s * 1e6:.4g} us"
-    if t_s < 1.0:
-        return f"{t_s * 1e3:.4g} ms"
-    return f"{t_s:.4g} s"
+    """A duration [s] with its SI prefix (:func:`betvdesign.siformat.format_si`)."""
+    return format_si(t_s, "s")

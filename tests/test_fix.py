@@ -27,9 +27,11 @@ def run(*args):
 
 
 def _check_passes(path: Path) -> dict:
+    """`betv check --json` on the file passes; its device entry."""
     r = run("check", path, "--json")
     assert r.exit_code == 0, r.stdout
-    return json.loads(r.stdout)
+    (dev,) = json.loads(r.stdout)["devices"]
+    return dev
 
 
 def test_shin2004_fix_writes_a_file_that_passes(tmp_path):
@@ -41,7 +43,7 @@ def test_shin2004_fix_writes_a_file_that_passes(tmp_path):
     f_drive = load_device(out).actuator_sets[0].drive.frequency.to("Hz").magnitude
     edge = 0.5 * 2940.0 / 2  # ϖ = 2·f_drive/f_v = 0.5
     assert edge * (1 + FIELD_MARGIN) * 0.999 <= f_drive <= edge * (1 + FIELD_MARGIN) * 1.01
-    assert all(s["mode_predicted"] == "pull" for s in d["sets"])
+    assert all(s["mode"] == "pull" for s in d["sets"])
     text = out.read_text()
     assert "betv fix: was 500 Hz" in text and "# two parallel beams" in text  # comments kept
 
@@ -83,7 +85,7 @@ def test_wrong_mode_device_is_fixed_by_the_exact_orbit(tmp_path):
         return
     assert r.exit_code == 0, r.output
     d = _check_passes(out)
-    assert d["sets"][0]["mode_predicted"] == "pull"
+    assert d["sets"][0]["mode"] == "pull"
 
 
 def test_target_speed_fix_reaches_the_speed(tmp_path):
@@ -175,7 +177,8 @@ def test_unbounded_resonant_device_is_fixed(tmp_path):
     src.write_text(text)
     r = run("check", src, "--json")
     assert r.exit_code == 1
-    mode = next(x for x in json.loads(r.stdout)["rules"] if x["id"] == "mode")
+    (dev,) = json.loads(r.stdout)["devices"]
+    mode = next(x for x in dev["sets"][0]["rules"] if x["id"] == "mode")
     assert "unbounded" in mode["message"]
     out = tmp_path / "detuned.yaml"
     r = run("fix", src, "--vary", "drive.frequency", "-o", out)
