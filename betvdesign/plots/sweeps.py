@@ -94,3 +94,71 @@ def speed_vs_field_change(
     ax.set_ylabel(f"mean slider speed  [{label_unit}]\n(< 0: wrong way)")
     ax.legend(loc="best", framealpha=0.9, fontsize=7)
     return ax
+
+
+def robustness_vs_lambda(
+    lam: Sequence[float],
+    delta_s: Sequence[float | None],
+    *,
+    device_lam: float | None = None,
+    logx: bool = False,
+    ax: Axes | None = None,
+) -> Axes:
+    """Periodic slider increment Δs per cycle [-] against the λ fit [-].
+
+    The fit's mode boundary λ = 1 is drawn; Δs > 0 is push, Δs < 0 pull, so a
+    point whose sign disagrees with its side of λ = 1 is a fit miss (ringed). None
+    entries (no periodic orbit found) are drawn as crosses on Δs = 0.
+    logx: logarithmic λ axis (for sweeps spanning decades).
+    """
+    ax = axes_or_new(ax)
+    if logx:
+        ax.set_xscale("log")
+    x = np.asarray(lam, dtype=float)
+    ok = np.array([d is not None for d in delta_s], dtype=bool)
+    y = np.array([d if d is not None else 0.0 for d in delta_s], dtype=float)
+    order = np.argsort(x[ok])
+    ax.plot(
+        x[ok][order],
+        y[ok][order],
+        color="black",
+        lw=1.0,
+        marker="o",
+        ms=3,
+        label="periodic Δs (exact model)",
+    )
+    miss = ok & (((x < 1.0) & (y < 0.0)) | ((x > 1.0) & (y > 0.0)))
+    if miss.any():
+        ax.plot(
+            x[miss],
+            y[miss],
+            ls="none",
+            marker="o",
+            ms=8,
+            mfc="none",
+            color=DEVICE_COLOR,
+            label="fit misses (sign of Δs ≠ side of λ = 1)",
+        )
+    if (~ok).any():
+        ax.plot(
+            x[~ok],
+            y[~ok],
+            ls="none",
+            marker="x",
+            ms=5,
+            color="#7f7f7f",
+            label="no periodic orbit found",
+        )
+    ax.axvline(1.0, color="black", ls="--", lw=1.0, label="λ = 1 (fit boundary)")
+    ax.axhline(0.0, color="#7f7f7f", lw=0.5)
+    if device_lam is not None:
+        ax.axvline(
+            device_lam, color=DEVICE_COLOR, lw=1.2, ls=":", label=f"device λ = {device_lam:.3g}"
+        )
+    lo, hi = ax.get_xlim()
+    ax.axvspan(lo, 1.0, color=MODE_COLORS["push"], alpha=0.08, lw=0)
+    ax.axvspan(1.0, hi, color=MODE_COLORS["pull"], alpha=0.08, lw=0)
+    ax.set_xlim(lo, hi)
+    ax.set_xlabel("λ  [-]")
+    ax.set_ylabel("Δs per cycle  [-]")
+    ax.legend(loc="best", framealpha=0.9)
