@@ -240,7 +240,8 @@ _FIGURES: tuple[tuple[str, str, str, str, tuple[float, float], dict, Callable, s
         {},
         _fig4,
         f"Impact period (dots; periods > {LONG_PERIOD} cycles drawn as crosses on top) and hits "
-        f"per cycle (squares) on the ϖ grid, {MAX_CYCLES} cycles from rest. Dotted: computed "
+        f"per cycle (squares) on the ϖ grid, {MAX_CYCLES} cycles "
+        "from rest. Dotted: computed "
         "edges of the period-1 interval; dashed: published. Model: exact vertical motion.",
     ),
     (
