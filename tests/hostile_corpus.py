@@ -481,7 +481,6 @@ def _run_subprocess(case: Case, workdir: Path, legacy: bool) -> tuple[list[str],
 
 def main() -> None:  # pragma: no cover - a reporting script
     import argparse
-    import collections
     import shutil
     import tempfile
     from concurrent.futures import ThreadPoolExecutor
@@ -503,27 +502,52 @@ def main() -> None:  # pragma: no cover - a reporting script
 
     with ThreadPoolExecutor(opts.j) as pool:
         results = list(pool.map(one, cases))
-    table: dict[str, collections.Counter] = collections.defaultdict(collections.Counter)
+    rows = []
     for case, problems, dt in results:
-        kinds = {p.split(" ")[0] for p in problems}
-        table[case.category]["cases"] += 1
-        table[case.category]["pass"] += not problems
-        table[case.category]["timeout"] += "did" in kinds
-        table[case.category]["traceback"] += "traceback" in kinds
-        table[case.category]["stray"] += "stray" in kinds
-        table[case.category]["other"] += bool(problems) and not (
-            {"did", "traceback", "stray"} & kinds
-        )
         status = "ok" if not problems else "; ".join(problems)
+        rows.append((case.category, case.id, dt, status))
         print(f"{case.category:12} {case.id:32} {dt:6.1f} s  {status}")
-    cols = ("cases", "pass", "timeout", "traceback", "stray", "other")
-    print("\n| category | " + " | ".join(cols) + " |")
-    print("|---" * (len(cols) + 1) + "|")
+    print()
+    print(table(rows))
+
+
+#: Columns of the table: what went wrong first, most serious first.
+COLUMNS = ("cases", "pass", "timeout", "traceback", "wrong exit", "stray output", "message")
+
+
+def classify(status: str) -> str:
+    """The table column of one case's status line (see :data:`COLUMNS`)."""
+    if status == "ok":
+        return "pass"
+    for key, col in (
+        ("did not end", "timeout"),
+        ("traceback", "traceback"),
+        ("exit ", "wrong exit"),
+        ("stray", "stray output"),
+        ("unescaped", "stray output"),
+        ("missing output", "stray output"),
+    ):
+        if key in status:
+            return col
+    return "message"  # right exit, but the message lacks the field, limit or position
+
+
+def table(rows: list[tuple[str, str, float, str]]) -> str:
+    """Markdown table by category from (category, id, seconds, status) rows."""
+    import collections
+
+    counts: dict[str, collections.Counter] = {}
+    for cat, _, _, status in rows:
+        c = counts.setdefault(cat, collections.Counter())
+        c["cases"] += 1
+        c[classify(status)] += 1
     total: collections.Counter = collections.Counter()
-    for cat, cnt in table.items():
-        total.update(cnt)
-        print(f"| {cat} | " + " | ".join(str(cnt[k]) for k in cols) + " |")
-    print("| **all** | " + " | ".join(str(total[k]) for k in cols) + " |")
+    lines = ["| category | " + " | ".join(COLUMNS) + " |", "|---" * (len(COLUMNS) + 1) + "|"]
+    for cat, c in counts.items():
+        total.update(c)
+        lines.append(f"| {cat} | " + " | ".join(str(c[k]) for k in COLUMNS) + " |")
+    lines.append("| **all** | " + " | ".join(str(total[k]) for k in COLUMNS) + " |")
+    return "\n".join(lines)
 
 
 if __name__ == "__main__":  # pragma: no cover

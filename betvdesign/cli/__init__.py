@@ -68,5 +68,11 @@ def version_cmd() -> None:
 
 
 def main() -> None:
-    """Console-script entry point."""
+    """Console-script entry point. SIGTERM is handled like Ctrl-C from here on (the
+    long commands then stop cleanly with exit 130, see ``common.interruptible``)."""
+    import signal
+
+    from betvdesign.cli.common import raise_terminated
+
+    signal.signal(signal.SIGTERM, raise_terminated)
     app()

@@ -66,7 +66,8 @@ class Terminated(KeyboardInterrupt):
     """SIGTERM, raised where Ctrl-C would be, so both take the same clean-up path."""
 
 
-def _raise_terminated(signum: int, frame: Any) -> None:
+def raise_terminated(signum: int, frame: Any) -> None:
+    """SIGTERM handler: raise :class:`Terminated` where the program is."""
     raise Terminated()
 
 
@@ -81,7 +82,7 @@ def interruptible(kept: str | Path | None = None, *, resumable: bool = True) -> 
     """
     previous = None
     if threading.current_thread() is threading.main_thread():
-        previous = signal.signal(signal.SIGTERM, _raise_terminated)
+        previous = signal.signal(signal.SIGTERM, raise_terminated)
     try:
         yield
     except KeyboardInterrupt as exc:

@@ -36,7 +36,13 @@ import signal
 import threading
 import time
 from collections.abc import Callable, Iterator, Sequence
-from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
+from concurrent.futures import (
+    FIRST_COMPLETED,
+    Future,
+    InvalidStateError,
+    ProcessPoolExecutor,
+    wait,
+)
 from dataclasses import dataclass, field
 from typing import Any, Protocol
 
@@ -229,14 +235,32 @@ class ProcessExecutor:
 
 
 def _terminate(pool: ProcessPoolExecutor) -> None:
-    """Terminate the pool's worker processes (their finished rows are already ours)."""
+    """Terminate the pool's worker processes and shut the pool down (the rows they
+    finished are already ours; what they were computing is recomputed on resume).
+
+    The pool's manager thread then marks the futures it still holds as broken; on
+    Python < 3.12 it raises ``InvalidStateError`` for those already cancelled
+    (CPython gh-94777), which would print a thread traceback: that one exception
+    from that thread is silenced while the pool shuts down.
+    """
     procs = list((getattr(pool, "_processes", None) or {}).values())
-    for proc in procs:
-        with contextlib.suppress(Exception):
-            proc.terminate()
-    for proc in procs:
-        with contextlib.suppress(Exception):
-            proc.join(timeout=5)
+    previous = threading.excepthook
+
+    def quiet(args: threading.ExceptHookArgs) -> None:
+        if not isinstance(args.exc_value, InvalidStateError):
+            previous(args)
+
+    threading.excepthook = quiet
+    try:
+        for proc in procs:
+            with contextlib.suppress(Exception):
+                proc.terminate()
+        for proc in procs:
+            with contextlib.suppress(Exception):
+                proc.join(timeout=5)
+        pool.shutdown(wait=True, cancel_futures=True)  # joins the manager thread
+    finally:
+        threading.excepthook = previous
 
 
 def _wait_first(pending: set[Future]) -> tuple[set[Future], set[Future]]:
