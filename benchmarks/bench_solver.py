@@ -15,7 +15,7 @@ warm; exact vs reference ≤ 1e-8 in s after 100 cycles on 20 designs spread ove
 the window; periodic Δs from shooting vs long brute force ≤ 1e-9.
 
 Times are CPU seconds of this process (``time.process_time``, best of 5 for the exact
-solver's compiled kernel, of 3 for its pure-Python path and for solve_ivp):
+solver's compiled kernel, of 3 for solve_ivp):
 the machines are shared, and CPU time is what load does not inflate much. Wall
 times are printed next to them. Writes benchmarks/out/bench_solver.json.
 """
@@ -83,17 +83,11 @@ def bench_speed(designs: dict[str, ModelParams], n_exact: int = 200, n_ref: int 
     for name, p in designs.items():
         simulate(p, 3, log_events=False)  # warm imports, caches and the compiled kernel
         ce, we, ex = _timed(lambda p=p: simulate(p, n_exact, log_events=False), 5)
-        os.environ["BETV_KERNELS"] = "0"  # the pure-Python path of the same solver
-        try:
-            cp, _, _ = _timed(lambda p=p: simulate(p, n_exact, log_events=False), 3)
-        finally:
-            del os.environ["BETV_KERNELS"]
         cr, wr, rf = _timed(lambda p=p: reference.simulate(p, n_ref, rtol=1e-10, atol=1e-12), 3)
         row = {
             "design": name,
             "params": p.as_dict(),
             "engine": ex.engine,
-            "python_us_per_cycle_cpu": cp / n_exact * 1e6,
             "exact_us_per_cycle_cpu": ce / n_exact * 1e6,
             "exact_us_per_cycle_wall": we / n_exact * 1e6,
             "ref_ms_per_cycle_cpu": cr / n_ref * 1e3,
@@ -107,7 +101,7 @@ def bench_speed(designs: dict[str, ModelParams], n_exact: int = 200, n_ref: int 
         rows.append(row)
         print(
             f"  {name:16s} exact {row['exact_us_per_cycle_cpu']:7.1f} µs/cycle "
-            f"[{ex.engine}; python {row['python_us_per_cycle_cpu']:5.1f}] "
+            f"[{ex.engine}] "
             f"({row['exact_root_evals_per_cycle']:.1f} evals)  solve_ivp "
             f"{row['ref_ms_per_cycle_cpu']:6.2f} ms/cycle  -> {row['speedup_cpu']:6.0f}×",
             flush=True,
@@ -235,7 +229,6 @@ def bench_compile(repeats: int = 3) -> dict:
     for _ in range(repeats):
         with tempfile.TemporaryDirectory() as d:
             env = dict(os.environ, XDG_CACHE_HOME=d)
-            env.pop("BETV_KERNELS", None)
             for kind in ("cold", "cached"):
                 res = subprocess.run(
                     [sys.executable, "-c", _COLD], env=env, capture_output=True, text=True

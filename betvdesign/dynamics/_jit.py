@@ -1,24 +1,82 @@
-"""Marks the scalar helpers that the compiled kernels (:mod:`kernels`) share with the
-pure-Python path, without importing numba here.
+"""The one decorator of the compiled dynamics: :func:`kernel` (numba ``njit``, cached).
 
-:func:`jitable` returns the function unchanged (so the Python path calls it at full
-interpreter speed and numba is imported only when a kernel is first needed) and records
-it; :mod:`kernels` registers every recorded function with
-``numba.extending.register_jitable`` before compiling, so one source serves both paths.
+Every function of the contact loop, the certified event search, the phase rule, the
+closed-form flows and the vertical schedule is written once, as plain Python that numba
+can compile, and decorated with :func:`kernel`. Under ``NUMBA_DISABLE_JIT=1`` numba
+returns the functions unchanged: the very same source then runs as Python (debugging,
+coverage).
+
+Compiled code is cached on disk in a directory named after a hash of every source file
+of this package that defines kernels and of numba's version, so that an edit of any
+shared helper can never leave a stale compiled kernel in use. :func:`compile_note`
+tells a user on stderr when a command has to compile (empty cache), and how long it took.
 """
 
 from __future__ import annotations
 
+import hashlib
+import os
+import sys
+import time
 from collections.abc import Callable
+from pathlib import Path
 from typing import TypeVar
+
+import numba
 
 F = TypeVar("F", bound=Callable)
 
-#: functions marked with :func:`jitable`, in definition order
-JITABLE: list[Callable] = []
+#: modules whose functions are kernels (the cache key covers all of them)
+KERNEL_MODULES = ("_jit", "flows", "bounds", "evaluators", "search", "contact", "schedule")
 
 
-def jitable(fn: F) -> F:
-    """Record ``fn`` as callable from compiled kernels; return it unchanged."""
-    JITABLE.append(fn)
-    return fn
+def cache_dir() -> str:
+    """Per-source cache directory of the compiled kernels [path]."""
+    h = hashlib.sha256()
+    here = Path(__file__).resolve().parent
+    for name in KERNEL_MODULES:
+        h.update((here / f"{name}.py").read_bytes())
+    h.update(numba.__version__.encode())
+    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+    return os.path.join(base, "betvdesign", "numba", h.hexdigest()[:16])
+
+
+_CACHE_DIR = numba.config.CACHE_DIR or cache_dir()
+
+
+def kernel(fn: F) -> F:
+    """``numba.njit(cache=True, nogil=True)`` with the cache in :func:`cache_dir`."""
+    saved = numba.config.CACHE_DIR
+    numba.config.CACHE_DIR = _CACHE_DIR  # read when a cached function is decorated
+    try:
+        return numba.njit(cache=True, nogil=True)(fn)
+    finally:
+        numba.config.CACHE_DIR = saved
+
+
+def jit_enabled() -> bool:
+    """True unless ``NUMBA_DISABLE_JIT`` makes the kernels run as plain Python."""
+    return not numba.config.DISABLE_JIT
+
+
+def is_cached() -> bool:
+    """Whether the compiled kernels of this source version are already on disk."""
+    d = Path(_CACHE_DIR)
+    return d.is_dir() and any(d.rglob("*.nbc"))
+
+
+def compile_note(what: str, run: Callable[[], object]) -> object:
+    """Run ``run()``; when the kernels must be compiled first (no cache yet), say so in
+    one line on stderr (what, and how long it took) instead of compiling silently."""
+    if not jit_enabled() or is_cached():
+        return run()
+    print(
+        f"betv: compiling the solver kernels for {what} (once per install)...",
+        file=sys.stderr,
+        end="",
+        flush=True,
+    )
+    t0 = time.perf_counter()
+    out = run()
+    print(f" done in {time.perf_counter() - t0:.1f} s", file=sys.stderr, flush=True)
+    return out

@@ -43,9 +43,10 @@ import time
 
 import numpy as np
 
-from betvdesign.dynamics.flows import PhaseConstants
+from betvdesign.dynamics._jit import compile_note
+from betvdesign.dynamics.flows import PhaseTable, phase_table
 from betvdesign.dynamics.result import PeriodicResult
-from betvdesign.dynamics.solver import SolverFailure, _Cycle
+from betvdesign.dynamics.solver import CycleRunner, SolverFailure
 from betvdesign.dynamics.vertical import VerticalSchedule
 from betvdesign.errors import ParameterError
 from betvdesign.params import ModelParams
@@ -81,14 +82,14 @@ def resonance_growth_bound(p: ModelParams) -> float | None:
 class _Map:
     """Φⁿ: section state (ζ, ζ', s') at the first periodic cycle → n cycles later."""
 
-    def __init__(self, k: PhaseConstants, vs: VerticalSchedule, m0: int):
-        self.cyc = _Cycle(k, vs, None, None)
+    def __init__(self, c: PhaseTable, vs: VerticalSchedule, m0: int):
+        self.cyc = CycleRunner(c, vs)
         self.m0 = m0
         self.n_cycles = 0
 
     def __call__(self, x: np.ndarray, n: int) -> tuple[np.ndarray, float]:
         z, zd, s, sd = float(x[0]), float(x[1]), 0.0, float(x[2])
-        z, zd, s, sd = self.cyc.run_many(self.m0, n, z, zd, s, sd, check_finite=False)
+        z, zd, s, sd = self.cyc.run(self.m0, n, z, zd, s, sd, check_finite=False)
         self.n_cycles += n
         return np.array([z, zd, sd]), s
 
@@ -278,8 +279,16 @@ def periodic_orbit(
         raise ParameterError(f"p must be a ModelParams, got {type(p).__name__}")
     if not (math.isfinite(tol) and tol > 0.0):
         raise ParameterError(f"tol must be finite and > 0, got {tol!r}")
+    return compile_note(  # type: ignore[return-value]
+        "periodic_orbit", lambda: _periodic_orbit(p, tol, max_cycles, max_period, transient)
+    )
+
+
+def _periodic_orbit(
+    p: ModelParams, tol: float, max_cycles: int, max_period: int, transient: int
+) -> PeriodicResult:
     t0 = time.perf_counter()
-    k = PhaseConstants.from_params(p)
+    k = phase_table(p)
     vs = VerticalSchedule(p.varpi, horizon=1000)
     hits, frac = vs.hits_per_cycle(), vs.contact_fraction()
 
@@ -306,7 +315,7 @@ def periodic_orbit(
             contact_fraction=frac,
             n_cycles=phi.n_cycles if phi else 0,
             n_events=phi.cyc.n_events if phi else 0,
-            n_root_evals=(phi.cyc.counter[0] if phi else 0) + vs.n_root_evals,
+            n_root_evals=(phi.cyc.n_evals if phi else 0) + vs.n_root_evals,
             elapsed_s=time.perf_counter() - t0,
             **base,  # type: ignore[arg-type]
         )
@@ -315,7 +324,7 @@ def periodic_orbit(
     if vs.period is None:
         return result(
             "not_driven",
-            f"no contact recurs within {len(vs.prefix)} cycles at ϖ = {p.varpi:g}: hits are "
+            f"no contact recurs within {vs.n_prefix} cycles at ϖ = {p.varpi:g}: hits are "
             "impulsive only and the slider is not driven (MODEL.md design window 0.5 ≤ ϖ < 2)",
         )
     kv = vs.period
@@ -427,7 +436,7 @@ def _measure_growth(
     sqrt(ζ² + (ζ'/ϖ)²) [-], s gained [-]) when every step's fall is at least ``kv`` times
     the proven per-cycle ``bound`` (up to round-off), else None (the bound is not borne
     out, e.g. a solver defect: then the normal search decides)."""
-    varpi = phi.cyc.k.varpi
+    varpi = phi.cyc.c.varpi
     z0 = float(x[0])
     steps = max(1, window // kv)
     s_total = 0.0
