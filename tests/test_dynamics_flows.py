@@ -81,7 +81,7 @@ def test_sinc_small_and_large():
 def test_phase_flow_matches_model_equations(phase):
     """Each phase of the MODEL.md table integrated by DOP853 agrees with flow()."""
     p = ModelParams(0.9, 0.3, 0.8, 0.4)
-    k = phase_table(p)
+    k = phase_table(p)[0]
     al, be, ka, w = p.alpha, p.beta, p.kappa, p.varpi
     phi0 = 0.3
     z0, zd0, s0, sd0 = 0.1, 0.2, -0.3, 0.2 if phase == STICK else -0.1

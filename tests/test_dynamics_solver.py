@@ -31,9 +31,9 @@ def test_simulate_result_contract():
 def test_initial_contact_phase_from_the_band_limit():
     """At τ = 0 (sin = 0, state at rest) the band is decided on first derivatives:
     ζ' = 0 < (1 − b)ϖ → slip when b < 1; (1 − b)ϖ < 0 < (1 + b)ϖ → stick when b > 1."""
-    k = phase_table(ModelParams(1.0, 0.5, 1.0, 0.4))  # b = 0.4
+    k = phase_table(ModelParams(1.0, 0.5, 1.0, 0.4))[0]  # b = 0.4
     assert decide_phase(k, 0.0, 0.0, 0.0, 0.0, 1.0, -1) == SLIP
-    k = phase_table(ModelParams(1.0, 2.0, 1.0, 0.4))  # b = 1.6
+    k = phase_table(ModelParams(1.0, 2.0, 1.0, 0.4))[0]  # b = 1.6
     assert decide_phase(k, 0.0, 0.0, 0.0, 0.0, 1.0, -1) == STICK
     assert simulate(ModelParams(1.0, 2.0, 1.0, 0.4), 1).events[0].phase_after == "stick"
 

@@ -27,7 +27,16 @@ import numba
 F = TypeVar("F", bound=Callable)
 
 #: modules whose functions are kernels (the cache key covers all of them)
-KERNEL_MODULES = ("_jit", "flows", "bounds", "evaluators", "search", "contact", "schedule")
+KERNEL_MODULES = (
+    "_jit",
+    "flows",
+    "bounds",
+    "evaluators",
+    "search",
+    "contact",
+    "schedule",
+    "shooting",
+)
 
 
 def cache_dir() -> str:
@@ -59,10 +68,16 @@ def jit_enabled() -> bool:
     return not numba.config.DISABLE_JIT
 
 
+_cached: list[bool] = []
+
+
 def is_cached() -> bool:
-    """Whether the compiled kernels of this source version are already on disk."""
-    d = Path(_CACHE_DIR)
-    return d.is_dir() and any(d.rglob("*.nbc"))
+    """Whether the compiled kernels of this source version are already on disk (looked up
+    once per process; a process that compiled them has them from then on)."""
+    if not _cached:
+        d = Path(_CACHE_DIR)
+        _cached.append(d.is_dir() and any(d.rglob("*.nbc")))
+    return _cached[0]
 
 
 def compile_note(what: str, run: Callable[[], object]) -> object:
@@ -79,4 +94,5 @@ def compile_note(what: str, run: Callable[[], object]) -> object:
     t0 = time.perf_counter()
     out = run()
     print(f" done in {time.perf_counter() - t0:.1f} s", file=sys.stderr, flush=True)
+    _cached[:] = [True]
     return out

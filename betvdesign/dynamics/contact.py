@@ -213,10 +213,10 @@ def contact(c, m, tc, z, zd, s, sd, ws, log, nlog, segs, nseg):
 
 
 @kernel
-def run_cycles(c, tab, idx, imp, m0, z, zd, s, sd, rows, check_finite, log, nlog, segs, nseg):
+def run_cycles(table, tab, idx, imp, m0, z, zd, s, sd, rows, check_finite, log, nlog, segs, nseg):
     """Cycles m0 + j, j = 0..n−1 (n = idx.size) of the exact solver from (ζ, ζ', s, s').
 
-    c: :class:`flows.PhaseTable`; tab: the vertical schedule's distinct cycles
+    table: :func:`flows.phase_table`; tab: the vertical schedule's distinct cycles
     (:data:`schedule.CYCLE_DTYPE`), idx[j] the row of cycle m0 + j; imp: impulsive-hit
     local times (rows index them). rows (n + 1, 4), when it has rows, receives the state
     at every cycle start and at the end. nlog / nseg: entries already in log / segs, −1
@@ -225,6 +225,7 @@ def run_cycles(c, tab, idx, imp, m0, z, zd, s, sd, rows, check_finite, log, nlog
     m0 + j, or BUFFER_FULL (go on from cycle m0 + j with the state returned, which is
     then the one at its start).
     """
+    c = table[0]
     ws = workspace()
     wf = c.varpi
     T = 2.0 * math.pi / wf
@@ -275,9 +276,10 @@ def run_cycles(c, tab, idx, imp, m0, z, zd, s, sd, rows, check_finite, log, nlog
 
 
 @kernel
-def sample_segments(c, segs, which, h, out) -> None:
+def sample_segments(table, segs, which, h, out) -> None:
     """Tangential states (ζ, ζ', s, s') at local offsets h[k] into segment which[k]
-    (dense output) into out[k, 2:6]."""
+    (dense output) into out[k, 2:6]; table: :func:`flows.phase_table`."""
+    c = table[0]
     for k in range(which.size):
         r = segs[which[k]]
         z, zd, s, sd = flow(c, r["phase"], r["z"], r["zd"], r["s"], r["sd"], r["sp"], r["cp"], h[k])

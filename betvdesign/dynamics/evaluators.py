@@ -219,7 +219,7 @@ def stick_evaluator(
     re-entered on that edge (0 lower, 1 upper), whose distance is 0 exactly."""
     st = c.stick
     w0, F, P, fast, w3 = st.w0, st.F, st.P, st.fast, st.w3
-    ql, qh = st.q
+    ql, qh = st.q[0], st.q[1]
     wf = c.varpi
     yh = yhd = 0.0
     if P != P:  # exact resonance: no split
@@ -315,7 +315,7 @@ def stick_evaluator(
         (m2s0, m2s1),
         (mode0, mode1),
         (acs0, acs1),
-        st.K,
+        (st.K[0], st.K[1]),
         (r / w0 + abs(ql), r / w0 + abs(qh)),
         start,
         noise,

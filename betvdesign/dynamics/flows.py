@@ -39,9 +39,10 @@ so w0 = 1/sqrt(a) and F = c/a for a ζ'' + ζ = c sin ϖτ.
 from __future__ import annotations
 
 import math
-from typing import NamedTuple
 
-from betvdesign.dynamics._jit import kernel
+import numpy as np
+
+from betvdesign.dynamics._jit import jit_enabled, kernel
 from betvdesign.params import ModelParams
 
 # Phase codes (ints: they sit in the inner loops).
@@ -53,63 +54,63 @@ REVERSE = -1
 PHASE_NAMES = {FREE: "free", SLIP: "slip", STICK: "stick", REVERSE: "reverse"}
 
 
-class SlipPhase(NamedTuple):
-    """Constants of slip (σ = +1) or reverse slip (σ = −1) for one parameter set.
-
-    α ζ'' + ζ = (1 − σακ) sin ϖτ, i.e. ζ'' + w0² ζ = F sin ϖτ; s'' = ds sin ϖτ with
-    ds = σβκ. ``q`` = 1 − σb: the stick-band edge whose derivative f' = σ(q sin φ − ζ)/α
-    the event ζ' = s' has. ``P`` [-]: amplitude of the forced part P sin φ (NaN at exact
-    resonance), ``fast``: |1 − αϖ²| ≥ 0.1 (the split bounds of :mod:`evaluators` hold);
-    ``apq`` = |P − q|ϖ and ``K`` = σ(Pϖ + ds/ϖ): the slow envelope of ζ' − s'.
-    """
-
-    sig: float
-    q: float
-    w0: float
-    F: float
-    ds: float
-    P: float
-    apq: float
-    K: float
-    fast: bool
-
-
-class StickPhase(NamedTuple):
-    """Constants of stick: α(1 + 1/β) ζ'' + ζ = sin ϖτ, band edges q = (1 − b, 1 + b).
-
-    ``a2``, ``a3`` = |P − q|ϖ², |P − q|ϖ³ per edge (bounds), ``K`` = ±(P − q) (slow
-    envelopes of the band distances), ``w3`` = ϖ³.
-    """
-
-    w0: float
-    F: float
-    q: tuple[float, float]
-    P: float
-    a2: tuple[float, float]
-    a3: tuple[float, float]
-    K: tuple[float, float]
-    w3: float
-    fast: bool
-
-
-class PhaseTable(NamedTuple):
-    """Everything the contact loop needs of one parameter set (MODEL.md phase table).
-
-    ``b`` = ακ(1 + β): half-width of the stick band; ``a_stick`` = α(1 + 1/β): stick
-    inertia; ``w_free``, ``F_free``: free flight ζ'' + w² ζ = F sin ϖτ.
-    """
-
-    varpi: float
-    alpha: float
-    beta: float
-    kappa: float
-    b: float
-    a_stick: float
-    w_free: float
-    F_free: float
-    slip: SlipPhase
-    reverse: SlipPhase
-    stick: StickPhase
+#: Constants of slip (σ = +1) or reverse slip (σ = −1) for one parameter set:
+#: α ζ'' + ζ = (1 − σακ) sin ϖτ, i.e. ζ'' + w0² ζ = F sin ϖτ; s'' = ds sin ϖτ with
+#: ds = σβκ. ``q`` = 1 − σb: the stick-band edge whose derivative f' = σ(q sin φ − ζ)/α
+#: the event ζ' = s' has. ``P`` [-]: amplitude of the forced part P sin φ (NaN at exact
+#: resonance), ``fast``: |1 − αϖ²| ≥ 0.1 (the split bounds of :mod:`evaluators` hold);
+#: ``apq`` = |P − q|ϖ and ``K`` = σ(Pϖ + ds/ϖ): the slow envelope of ζ' − s'.
+SLIP_DTYPE = np.dtype(
+    [
+        ("sig", np.float64),
+        ("q", np.float64),
+        ("w0", np.float64),
+        ("F", np.float64),
+        ("ds", np.float64),
+        ("P", np.float64),
+        ("apq", np.float64),
+        ("K", np.float64),
+        ("fast", np.bool_),
+    ]
+)
+#: Constants of stick: α(1 + 1/β) ζ'' + ζ = sin ϖτ, band edges q = (1 − b, 1 + b);
+#: ``a2``, ``a3`` = |P − q|ϖ², |P − q|ϖ³ per edge (bounds), ``K`` = ±(P − q) (slow
+#: envelopes of the band distances), ``w3`` = ϖ³.
+STICK_DTYPE = np.dtype(
+    [
+        ("w0", np.float64),
+        ("F", np.float64),
+        ("q", np.float64, (2,)),
+        ("P", np.float64),
+        ("a2", np.float64, (2,)),
+        ("a3", np.float64, (2,)),
+        ("K", np.float64, (2,)),
+        ("w3", np.float64),
+        ("fast", np.bool_),
+    ]
+)
+#: Everything the contact loop needs of one parameter set (MODEL.md phase table), one
+#: record: ``b`` = ακ(1 + β) half-width of the stick band, ``a_stick`` = α(1 + 1/β) stick
+#: inertia, ``w_free``, ``F_free``: free flight ζ'' + w² ζ = F sin ϖτ; per contact phase
+#: ``slip``, ``reverse`` (:data:`SLIP_DTYPE`) and ``stick`` (:data:`STICK_DTYPE`).
+#: A record array (cheap to hand to compiled code); kernels read it as ``c = table[0]``.
+TABLE_DTYPE = np.dtype(
+    [
+        ("varpi", np.float64),
+        ("alpha", np.float64),
+        ("beta", np.float64),
+        ("kappa", np.float64),
+        ("b", np.float64),
+        ("a_stick", np.float64),
+        ("w_free", np.float64),
+        ("F_free", np.float64),
+        ("slip", SLIP_DTYPE),
+        ("reverse", SLIP_DTYPE),
+        ("stick", STICK_DTYPE),
+    ]
+)
+#: a record of :data:`TABLE_DTYPE` (``phase_table(p)[0]``), as the kernels see it
+PhaseTable = np.void
 
 
 def _forced_amplitude(w0: float, F: float, wf: float) -> float:
@@ -123,17 +124,19 @@ def _split_ok(P: float, w0: float, F: float) -> bool:
     return P == P and abs(P) * w0 * w0 <= 10.0 * abs(F)
 
 
-def _slip_phase(sig: float, b: float, w0: float, F: float, wf: float, ds: float) -> SlipPhase:
+def _slip_phase(sig: float, b: float, w0: float, F: float, wf: float, ds: float) -> tuple:
     q = 1.0 - sig * b
     P = _forced_amplitude(w0, F, wf)
     fast = _split_ok(P, w0, F)
     apq = 0.0 if P != P else abs(P - q) * wf
     K = sig * (P * wf + ds / wf) if fast else 0.0
-    return SlipPhase(sig, q, w0, F, ds, P, apq, K, fast)
+    return (sig, q, w0, F, ds, P, apq, K, fast)
 
 
-def phase_table(p: ModelParams) -> PhaseTable:
-    """The :class:`PhaseTable` of parameters p (w0 = 1/sqrt(a), F = c/a per phase)."""
+def phase_table(p: ModelParams) -> np.ndarray:
+    """The constants of parameters p, a one-record array of :data:`TABLE_DTYPE`
+    (w0 = 1/sqrt(a), F = c/a per phase); a record array (attribute access in plain
+    Python) when the kernels run as Python (``NUMBA_DISABLE_JIT=1``)."""
     al, be, ka, wf = p.alpha, p.beta, p.kappa, p.varpi
     a_st = al * (1.0 + 1.0 / be)
     w_free = 1.0 / math.sqrt(al)
@@ -148,8 +151,10 @@ def phase_table(p: ModelParams) -> PhaseTable:
     a2 = (0.0, 0.0) if P != P else (abs(P - qs[0]) * wf * wf, abs(P - qs[1]) * wf * wf)
     a3 = (abs(P - qs[0]) * wf**3, abs(P - qs[1]) * wf**3) if fast else (0.0, 0.0)
     K = (P - qs[0], -1.0 * (P - qs[1])) if fast else (0.0, 0.0)
-    stick = StickPhase(w_st, F_st, qs, P, a2, a3, K, wf**3, fast)
-    return PhaseTable(wf, al, be, ka, b, a_st, w_free, 1.0 / al, slip, reverse, stick)
+    stick = (w_st, F_st, qs, P, a2, a3, K, wf**3, fast)
+    row = (wf, al, be, ka, b, a_st, w_free, 1.0 / al, slip, reverse, stick)
+    table = np.array([row], dtype=TABLE_DTYPE)
+    return table if jit_enabled() else table.view(np.recarray)
 
 
 @kernel

@@ -16,7 +16,7 @@ import numpy as np
 
 from betvdesign.dynamics import contact
 from betvdesign.dynamics._jit import compile_note, jit_enabled
-from betvdesign.dynamics.flows import PHASE_NAMES, PhaseTable, phase_table
+from betvdesign.dynamics.flows import PHASE_NAMES, phase_table
 from betvdesign.dynamics.inputs import check_cycles, check_state0
 from betvdesign.dynamics.result import Event, Trajectory
 from betvdesign.dynamics.search import search_failure_message
@@ -47,10 +47,10 @@ class CycleRunner:
     """Advances the tangential state through whole cycles of one parameter set with the
     compiled contact loop; keeps the event log / segments when asked."""
 
-    def __init__(self, c: PhaseTable, vs: VerticalSchedule, log: bool = False, dense: bool = False):
+    def __init__(self, c: np.ndarray, vs: VerticalSchedule, log: bool = False, dense: bool = False):
         self.c = c
         self.vs = vs
-        self.T = 2.0 * math.pi / c.varpi
+        self.T = 2.0 * math.pi / float(c["varpi"][0])
         self.n_events = 0
         self.n_evals = 0
         self.log = np.empty(64 if log else 0, contact.LOG_DTYPE)
@@ -214,9 +214,9 @@ def _simulate(p: ModelParams, n: int, st: tuple, dense: bool, log_events: bool) 
 class _Sampler:
     """Dense output: the closed form of the segment holding each τ."""
 
-    def __init__(self, c: PhaseTable, vs: VerticalSchedule, segs: np.ndarray, starts: np.ndarray):
+    def __init__(self, c: np.ndarray, vs: VerticalSchedule, segs: np.ndarray, starts: np.ndarray):
         self.c, self.vs, self.segs, self.starts = c, vs, segs, starts
-        self.T = 2.0 * math.pi / c.varpi
+        self.T = 2.0 * math.pi / float(c["varpi"][0])
         last = segs[-1] if segs.size else None
         self.end = (
             -1.0

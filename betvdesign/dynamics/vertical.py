@@ -104,11 +104,11 @@ class VerticalSchedule:
         return [self._cycle(i) for i in range(self.n_prefix, len(self.table))]
 
     def row(self, m: np.ndarray) -> np.ndarray:
-        """Row of ``table`` of cycles m (int array, 0-based)."""
+        """Row of ``table`` of cycles m (int array, 0-based, increasing)."""
         k = self.n_prefix
-        if m.size and int(m.max()) >= k:
+        if m.size and m[-1] >= k:
             if self.period is None:
-                raise IndexError(f"cycle {int(m.max())} beyond the computed vertical horizon")
+                raise IndexError(f"cycle {int(m[-1])} beyond the computed vertical horizon")
             m = np.where(m < k, m, k + (m - k) % self.period)
         return m
 
@@ -134,19 +134,25 @@ class VerticalSchedule:
         return out
 
     def period_rows(self) -> np.ndarray:
+        """The table's rows of one period (or of the whole horizon when there is none)."""
         return self.table[self.n_prefix :] if self.period else self.table[: self.n_prefix]
+
+    @cached_property
+    def _per_period(self) -> tuple[float, float]:
+        rows = self.period_rows()
+        tcs, imps = rows["tc"].tolist(), rows["imp_count"].tolist()
+        n = max(len(tcs), 1)
+        hits = sum(k + (t == t) for t, k in zip(tcs, imps, strict=True))
+        tc = sum(self.te - t for t in tcs if t == t)
+        return hits / n, tc / (self.T * n)
 
     def hits_per_cycle(self) -> float:
         """Hits (contact starts + impulsive) per cycle over one period (or the horizon)."""
-        rows = self.period_rows()
-        n = int(rows["imp_count"].sum()) + int(np.count_nonzero(~np.isnan(rows["tc"])))
-        return n / max(len(rows), 1)
+        return self._per_period[0]
 
     def contact_fraction(self) -> float:
         """Fraction of time in contact over one period (or the computed horizon)."""
-        rows = self.period_rows()
-        tc = sum(self.te - float(t) for t in rows["tc"] if t == t)
-        return tc / (self.T * max(len(rows), 1))
+        return self._per_period[1]
 
 
 @dataclass(frozen=True, slots=True)
