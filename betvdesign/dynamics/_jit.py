@@ -9,7 +9,8 @@ coverage).
 Compiled code is cached on disk in a directory named after a hash of every source file
 of this package that defines kernels and of numba's version, so that an edit of any
 shared helper can never leave a stale compiled kernel in use. :func:`compile_note`
-tells a user on stderr when a command has to compile (empty cache), and how long it took.
+tells a user on stderr when a command has to compile (no cached machine code), and how
+long it took.
 """
 
 from __future__ import annotations
@@ -17,6 +18,7 @@ from __future__ import annotations
 import hashlib
 import os
 import sys
+import threading
 import time
 from collections.abc import Callable
 from pathlib import Path
@@ -53,14 +55,21 @@ def cache_dir() -> str:
 _CACHE_DIR = numba.config.CACHE_DIR or cache_dir()
 
 
+#: every kernel's dispatcher (their compile statistics tell when a call compiled)
+KERNELS: list = []
+
+
 def kernel(fn: F) -> F:
     """``numba.njit(cache=True, nogil=True)`` with the cache in :func:`cache_dir`."""
     saved = numba.config.CACHE_DIR
     numba.config.CACHE_DIR = _CACHE_DIR  # read when a cached function is decorated
     try:
-        return numba.njit(cache=True, nogil=True)(fn)
+        disp = numba.njit(cache=True, nogil=True)(fn)
     finally:
         numba.config.CACHE_DIR = saved
+    if hasattr(disp, "stats"):
+        KERNELS.append(disp)
+    return disp
 
 
 def jit_enabled() -> bool:
@@ -68,31 +77,41 @@ def jit_enabled() -> bool:
     return not numba.config.DISABLE_JIT
 
 
-_cached: list[bool] = []
-
-
-def is_cached() -> bool:
-    """Whether the compiled kernels of this source version are already on disk (looked up
-    once per process; a process that compiled them has them from then on)."""
-    if not _cached:
-        d = Path(_CACHE_DIR)
-        _cached.append(d.is_dir() and any(d.rglob("*.nbc")))
-    return _cached[0]
+def _misses() -> int:
+    """Compilations so far in this process (cache misses of every kernel)."""
+    return sum(sum(d.stats.cache_misses.values()) for d in KERNELS)
 
 
 def compile_note(what: str, run: Callable[[], object]) -> object:
-    """Run ``run()``; when the kernels must be compiled first (no cache yet), say so in
-    one line on stderr (what, and how long it took) instead of compiling silently."""
-    if not jit_enabled() or is_cached():
+    """Run ``run()``; when it has to compile kernels (no cached machine code for this
+    solver version yet), say so on stderr in one line, with what and how long, instead of
+    compiling silently (``make demo`` compiles them ahead: :mod:`warm`)."""
+    if not jit_enabled():
         return run()
-    print(
-        f"betv: compiling the solver kernels for {what} (once per install)...",
-        file=sys.stderr,
-        end="",
-        flush=True,
-    )
+    before = _misses()
+    done = threading.Event()
+    said: list[float] = []
     t0 = time.perf_counter()
-    out = run()
-    print(f" done in {time.perf_counter() - t0:.1f} s", file=sys.stderr, flush=True)
-    _cached[:] = [True]
-    return out
+
+    def watch() -> None:
+        while not done.wait(0.25):
+            if _misses() > before:
+                print(
+                    f"betv: compiling the solver kernels for {what} (once per install or "
+                    "solver version; `make demo` does it ahead)...",
+                    file=sys.stderr,
+                    end="",
+                    flush=True,
+                )
+                said.append(time.perf_counter())
+                return
+
+    watcher = threading.Thread(target=watch, daemon=True)
+    watcher.start()
+    try:
+        return run()
+    finally:
+        done.set()
+        watcher.join()
+        if said:
+            print(f" done in {time.perf_counter() - t0:.1f} s", file=sys.stderr, flush=True)

@@ -168,13 +168,14 @@ def _simulate(p: ModelParams, n: int, st: tuple, dense: bool, log_events: bool) 
     c = phase_table(p)
     vs = VerticalSchedule(p.varpi, st[0], st[1], horizon=max(1000, n + 1))
     cyc = CycleRunner(c, vs, log_events, dense)
-    section = np.empty((n + 1, 6))
+    rows = np.empty((n + 1, 4))  # contiguous: the kernel's one signature
     status, message, done = "success", f"{n} cycles simulated", n
     try:
-        cyc.run(0, n, *st[2:], rows=section[:, 2:])
+        cyc.run(0, n, *st[2:], rows=rows)
     except SolverFailure as exc:
         status, message, done = "failed", f"{exc}; results up to cycle {exc.cycle} kept", exc.cycle
-        section = section[: done + 1]
+    section = np.empty((done + 1, 6))
+    section[:, 2:] = rows[: done + 1]
     section[:, 0], section[:, 1] = vs.arrays(0, done + 1)[:2]
     segs = cyc.segs[: max(cyc.nseg, 0)]
     T = cyc.T

@@ -18,6 +18,7 @@ from functools import cached_property
 import numpy as np
 
 from betvdesign.dynamics import schedule
+from betvdesign.dynamics._jit import compile_note
 from betvdesign.dynamics.search import search_failure_message
 from betvdesign.errors import ParameterError
 
@@ -201,7 +202,9 @@ def vertical_motion_schedule(
     if not math.isfinite(v) or v <= 0.0:
         raise ParameterError(f"varpi must be finite and > 0, got {varpi!r}")
     t0 = time.perf_counter()
-    vs = VerticalSchedule(v, horizon=max_cycles)
+    vs: VerticalSchedule = compile_note(  # type: ignore[assignment]
+        "vertical_motion", lambda: VerticalSchedule(v, horizon=max_cycles)
+    )
     el = time.perf_counter() - t0
     if vs.period is None:
         imp = vs.hits_per_cycle()
