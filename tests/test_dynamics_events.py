@@ -25,7 +25,9 @@ def _xi(x0, v0, h):
 
 def _first_hit(x0: float, v0: float, H: float) -> float | None:
     """First h in [0, H] with ξ = 0 by the certified search, or None."""
-    code, h, _, _ = first_root(gap_evaluator(W, x0, v0, SP0, CP0, H), H, workspace())
+    ws = workspace()
+    gap_evaluator(W, x0, v0, SP0, CP0, H, ws.ev[0])
+    code, h, _, _ = first_root(ws.ev[0], H, ws)
     return h if code == ROOT else None
 
 

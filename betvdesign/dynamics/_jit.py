@@ -34,6 +34,7 @@ KERNEL_MODULES = (
     "flows",
     "bounds",
     "evaluators",
+    "values",
     "search",
     "contact",
     "schedule",
@@ -59,12 +60,17 @@ _CACHE_DIR = numba.config.CACHE_DIR or cache_dir()
 KERNELS: list = []
 
 
-def kernel(fn: F) -> F:
-    """``numba.njit(cache=True, nogil=True)`` with the cache in :func:`cache_dir`."""
+def kernel(fn: F | None = None, *, inline: bool = False):
+    """``numba.njit(cache=True, nogil=True)`` with the cache in :func:`cache_dir`;
+    ``inline=True``: inlined into its callers by numba (hot helpers taking an
+    :class:`evaluators.Evaluator`, which would otherwise be passed field by field)."""
+    if fn is None:
+        return lambda f: kernel(f, inline=inline)
     saved = numba.config.CACHE_DIR
     numba.config.CACHE_DIR = _CACHE_DIR  # read when a cached function is decorated
     try:
-        disp = numba.njit(cache=True, nogil=True)(fn)
+        opts = {"inline": "always"} if inline else {}
+        disp = numba.njit(cache=True, nogil=True, **opts)(fn)
     finally:
         numba.config.CACHE_DIR = saved
     if hasattr(disp, "stats"):

@@ -170,11 +170,12 @@ def contact(c, m, tc, z, zd, s, sd, ws, log, nlog, segs, nseg):
     zero_len, n_switch, on_edge, from_edge = 0, 0, -1, False
     while True:
         H = te - t
+        e = ws.ev[0]
         if phase == STICK:
-            e = stick_evaluator(c, z, zd, sp, cp, H, on_edge)
+            stick_evaluator(c, z, zd, sp, cp, H, on_edge, e)
             on_edge = -1
         else:
-            e = slip_evaluator(c, phase, z, zd, s, sd, sp, cp, H, from_edge)
+            slip_evaluator(c, phase, z, zd, s, sd, sp, cp, H, from_edge, e)
         from_edge = False
         code, hr, idx, k = first_root(e, H, ws)
         evals += k

@@ -1,7 +1,8 @@
 """The model's event functions, as evaluators for the certified search (unit-free).
 
 docs/MODEL.md, "Impacts and separation" and the stick/slip rules. An
-:class:`Evaluator` holds one phase's event functions (one or two) in closed form:
+evaluator (a record of :data:`EVALUATOR_DTYPE`) holds one phase's event functions (one
+or two) in closed form:
 
 - gap (no contact): f = ξ with ξ'' + ξ = −sin φ; the head hits when f reaches 0.
 - slip (σ = +1) / reverse slip (σ = −1): f = σ(ζ' − s'), f' = σ(q sin φ − ζ)/α with
@@ -24,82 +25,174 @@ windows of one radian of the fastest frequency.
 from __future__ import annotations
 
 import math
-from typing import NamedTuple
+
+import numpy as np
 
 from betvdesign.dynamics._jit import kernel
 from betvdesign.dynamics.bounds import (
-    cos_range_prep,
-    cos_range_to,
-    derivative_bound,
-    envelope_at,
     envelope_prep,
-    local_m2,
 )
-from betvdesign.dynamics.flows import SLIP, PhaseTable, oscillator, slider
+from betvdesign.dynamics.flows import SLIP, PhaseTable
 
 #: evaluator kinds
 SLIP_KIND, STICK_KIND, GAP_KIND = 0, 1, 2
 
-T2 = tuple[float, float]
+#: One phase's event functions f_i, i < n, on the window h ∈ [0, H] (see module doc).
+#:
+#: Start state (ζ, ζ', s, s') = (z, zd, s, sd) (gap: (ξ, ξ') in z, zd), forcing phase
+#: φ0 (sin, cos) = (sp0, cp0); oscillator y'' + w0² y = F sin φ, φ = φ0 + ϖh (wf = ϖ).
+#: Split (fast mode): y = P sin φ + ac cos w0h + as_ sin w0h, energy E_h = ``Eh``.
+#: Per function i: ``q`` band coefficient, ``m2b``/``m3b`` global bounds on |f''|/|f'''|,
+#: ``env_*`` slow envelope, ``K`` envelope amplitude, ``scale`` round-off scale,
+#: ``start``/``noise`` Taylor coefficients 0..3 (entries 4i..4i+3), ``m2s`` first-step
+#: |f''| bound. Clearance: min σ(K cos(φ − ``off``) − ``cc``) > ``ct`` on [h, H].
+#: Start bounds: |f⁽ʲ⁾| from :func:`start_bound` with j = order + ``bj``, / ``bdiv``.
+#: One record per search, reused (kernels: ``e = ws.ev[0]``; fields by name, ``e["w0"]``).
+EVALUATOR_DTYPE = np.dtype(
+    [
+        ("kind", np.int64),
+        ("n", np.int64),
+        ("H", np.float64),
+        ("W", np.float64),
+        ("fast", np.bool_),
+        ("clearable", np.bool_),
+        ("phi0", np.float64),
+        ("off", np.float64),
+        ("wf", np.float64),
+        ("w0", np.float64),
+        ("F", np.float64),
+        ("sp0", np.float64),
+        ("cp0", np.float64),
+        ("P", np.float64),
+        ("ac", np.float64),
+        ("as_", np.float64),
+        ("pwf", np.float64),
+        ("sdc", np.float64),
+        ("ds", np.float64),
+        ("sig", np.float64),
+        ("al", np.float64),
+        ("z", np.float64),
+        ("zd", np.float64),
+        ("s", np.float64),
+        ("sd", np.float64),
+        ("Eh", np.float64),
+        ("R0", np.float64),
+        ("bdiv", np.float64),
+        ("bj", np.int64),
+        ("cc", np.float64),
+        ("ct", np.float64),
+        ("w02", np.float64),
+        ("wf2", np.float64),
+        ("q", np.float64, (2,)),
+        ("qw", np.float64, (2,)),
+        ("m2b", np.float64, (2,)),
+        ("m3b", np.float64, (2,)),
+        ("m2s", np.float64, (2,)),
+        ("env_mode", np.int64, (2,)),
+        ("env_acos", np.float64, (2,)),
+        ("K", np.float64, (2,)),
+        ("scale", np.float64, (2,)),
+        ("start", np.float64, (8,)),
+        ("noise", np.float64, (8,)),
+    ]
+)
 
 
-class Evaluator(NamedTuple):
-    """One phase's event functions f_i, i < n, on the window h ∈ [0, H] (see module doc).
-
-    Start state (ζ, ζ', s, s') = (z, zd, s, sd) (gap: (ξ, ξ') in z, zd), forcing phase
-    φ0 (sin, cos) = (sp0, cp0); oscillator y'' + w0² y = F sin φ, φ = φ0 + ϖh (wf = ϖ).
-    Split (fast mode): y = P sin φ + ac cos w0h + as_ sin w0h, energy E_h = ``Eh``.
-    Per function i: ``q`` band coefficient, ``m2b``/``m3b`` global bounds on |f''|/|f'''|,
-    ``env_*`` slow envelope, ``K`` envelope amplitude, ``scale`` round-off scale,
-    ``start``/``noise`` Taylor coefficients 0..3 (entries 4i..4i+3), ``m2s`` first-step
-    |f''| bound. Clearance: min σ(K cos(φ − ``off``) − ``cc``) > ``ct`` on [h, H].
-    Start bounds: |f⁽ʲ⁾| from :func:`start_bound` with j = order + ``bj``, / ``bdiv``.
-    """
-
-    kind: int
-    n: int
-    H: float
-    W: float
-    fast: bool
-    clearable: bool
-    phi0: float
-    off: float
-    wf: float
-    w0: float
-    F: float
-    sp0: float
-    cp0: float
-    P: float
-    ac: float
-    as_: float
-    pwf: float
-    sdc: float
-    ds: float
-    sig: float
-    al: float
-    z: float
-    zd: float
-    s: float
-    sd: float
-    Eh: float
-    R0: float
-    bdiv: float
-    bj: int
-    cc: float
-    ct: float
-    w02: float
-    wf2: float
-    q: T2
-    qw: T2
-    m2b: T2
-    m3b: T2
-    m2s: T2
-    env_mode: tuple[int, int]
-    env_acos: T2
-    K: T2
-    scale: T2
-    start: tuple[float, float, float, float, float, float, float, float]
-    noise: tuple[float, float, float, float, float, float, float, float]
+@kernel
+def _store(
+    e,
+    kind,
+    n,
+    H,
+    W,
+    fast,
+    clearable,
+    phi0,
+    off,
+    wf,
+    w0,
+    F,
+    sp0,
+    cp0,
+    P,
+    ac,
+    as_,
+    pwf,
+    sdc,
+    ds,
+    sig,
+    al,
+    z,
+    zd,
+    s,
+    sd,
+    Eh,
+    R0,
+    bdiv,
+    bj,
+    cc,
+    ct,
+    w02,
+    wf2,
+    q,
+    qw,
+    m2b,
+    m3b,
+    m2s,
+    env_mode,
+    env_acos,
+    K,
+    scale,
+    start,
+    noise,
+):
+    """Write an evaluator's fields into the record e."""
+    e["kind"] = kind
+    e["n"] = n
+    e["H"] = H
+    e["W"] = W
+    e["fast"] = fast
+    e["clearable"] = clearable
+    e["phi0"] = phi0
+    e["off"] = off
+    e["wf"] = wf
+    e["w0"] = w0
+    e["F"] = F
+    e["sp0"] = sp0
+    e["cp0"] = cp0
+    e["P"] = P
+    e["ac"] = ac
+    e["as_"] = as_
+    e["pwf"] = pwf
+    e["sdc"] = sdc
+    e["ds"] = ds
+    e["sig"] = sig
+    e["al"] = al
+    e["z"] = z
+    e["zd"] = zd
+    e["s"] = s
+    e["sd"] = sd
+    e["Eh"] = Eh
+    e["R0"] = R0
+    e["bdiv"] = bdiv
+    e["bj"] = bj
+    e["cc"] = cc
+    e["ct"] = ct
+    e["w02"] = w02
+    e["wf2"] = wf2
+    e["q"][0], e["q"][1] = q
+    e["qw"][0], e["qw"][1] = qw
+    e["m2b"][0], e["m2b"][1] = m2b
+    e["m3b"][0], e["m3b"][1] = m3b
+    e["m2s"][0], e["m2s"][1] = m2s
+    e["env_mode"][0], e["env_mode"][1] = env_mode
+    e["env_acos"][0], e["env_acos"][1] = env_acos
+    e["K"][0], e["K"][1] = K
+    e["scale"][0], e["scale"][1] = scale
+    for k in range(8):
+        e["start"][k] = start[k]
+    for k in range(8):
+        e["noise"][k] = noise[k]
 
 
 @kernel
@@ -114,7 +207,8 @@ def slip_evaluator(
     cp0: float,
     H: float,
     from_edge: bool,
-) -> Evaluator:
+    e,
+) -> None:
     """f = σ(ζ' − s') in slip/reverse slip from (ζ, ζ', s, s') at φ0, window H.
     ``from_edge``: entered at a band edge, where f' = σ(q sin φ − ζ)/α is 0 exactly."""
     ph = c.slip if phase == SLIP else c.reverse
@@ -163,7 +257,8 @@ def slip_evaluator(
     )
     R0 = math.sqrt(zd * zd + w0 * w0 * z * z) + abs(F) * W  # energy radius over W
     m2s = m2b if fast else min((abs(q) * wf + R0) / al, m2b)
-    return Evaluator(
+    _store(
+        e,
         SLIP_KIND,
         1,
         H,
@@ -213,8 +308,8 @@ def slip_evaluator(
 
 @kernel
 def stick_evaluator(
-    c: PhaseTable, z: float, zd: float, sp0: float, cp0: float, H: float, on_edge: int
-) -> Evaluator:
+    c: PhaseTable, z: float, zd: float, sp0: float, cp0: float, H: float, on_edge: int, e
+) -> None:
     """Stick-band distances g_lo, g_hi from (ζ, ζ') at φ0, window H. ``on_edge``: stick
     re-entered on that edge (0 lower, 1 upper), whose distance is 0 exactly."""
     st = c.stick
@@ -274,7 +369,8 @@ def stick_evaluator(
     else:
         m2s0 = min(w0 * R0 + abs(F) + abs(ql) * wf * wf, m2b0)
         m2s1 = min(w0 * R0 + abs(F) + abs(qh) * wf * wf, m2b1)
-    return Evaluator(
+    _store(
+        e,
         STICK_KIND,
         2,
         H,
@@ -323,7 +419,7 @@ def stick_evaluator(
 
 
 @kernel
-def gap_evaluator(wf: float, xi: float, xid: float, sp0: float, cp0: float, H: float) -> Evaluator:
+def gap_evaluator(wf: float, xi: float, xid: float, sp0: float, cp0: float, H: float, e) -> None:
     """The gap ξ in free flight (ξ'' + ξ = −sin φ) from (ξ, ξ') at φ0, window H."""
     w0, F = 1.0, -1.0
     den = w0 * w0 - wf * wf
@@ -341,7 +437,8 @@ def gap_evaluator(wf: float, xi: float, xid: float, sp0: float, cp0: float, H: f
     R0 = math.sqrt(xid * xid + w0 * w0 * xi * xi) + abs(F) * W  # energy radius over W
     start = (xi, xid, -sp0 - xi, -wf * cp0 - xid, 0.0, 0.0, 0.0, 0.0)
     noise = (sc, sc, sc, sc, 0.0, 0.0, 0.0, 0.0)
-    return Evaluator(
+    _store(
+        e,
         GAP_KIND,
         1,
         H,
@@ -387,110 +484,3 @@ def gap_evaluator(wf: float, xi: float, xid: float, sp0: float, cp0: float, H: f
         start,
         noise,
     )
-
-
-@kernel
-def _evaluate_uniform(e: Evaluator, h: float, out) -> tuple[float, float]:
-    """:func:`evaluate` near resonance (uniform closed form; f'' not given: 0)."""
-    wf, sp0, cp0 = e.wf, e.sp0, e.cp0
-    y, yd, sp, cp = oscillator(e.w0, wf, e.F, e.z, e.zd, sp0, cp0, h)
-    out[4] = out[5] = 0.0
-    if e.kind == SLIP_KIND:
-        _, sdn = slider(e.ds, wf, e.s, e.sd, sp0, cp0, sp, cp, h)
-        out[0] = e.sig * (yd - sdn)
-        out[2] = e.sig * (e.q[0] * sp - y) / e.al
-    elif e.kind == STICK_KIND:
-        ql, qh = e.q
-        out[0], out[1] = y - ql * sp, qh * sp - y
-        out[2], out[3] = yd - e.qw[0] * cp, e.qw[1] * cp - yd
-    else:
-        out[0], out[2] = y, yd
-    return y, yd
-
-
-@kernel
-def evaluate(e: Evaluator, h: float, out) -> tuple[float, float]:
-    """(f_i, f_i', f_i'') at h into out[0:2], out[2:4], out[4:6]; returns (y, y') of the
-    oscillator."""
-    if not e.fast:
-        return _evaluate_uniform(e, h, out)
-    wf, w0, sp0, cp0 = e.wf, e.w0, e.sp0, e.cp0
-    P, ac, as_ = e.P, e.ac, e.as_
-    cw, sw = math.cos(wf * h), math.sin(wf * h)
-    sp, cp = sp0 * cw + cp0 * sw, cp0 * cw - sp0 * sw
-    c0, s0 = math.cos(w0 * h), math.sin(w0 * h)
-    y = P * sp + ac * c0 + as_ * s0
-    yd = e.pwf * cp + w0 * (as_ * c0 - ac * s0)
-    if e.kind == SLIP_KIND:
-        sig, al = e.sig, e.al
-        sdn = e.sdc - e.ds * cp / wf
-        out[0] = sig * (yd - sdn)
-        out[2] = sig * (e.q[0] * sp - y) / al
-        out[4] = sig * (e.qw[0] * cp - yd) / al
-        return y, yd
-    ql, qh = e.q
-    out[0], out[1] = y - ql * sp, qh * sp - y
-    out[2], out[3] = yd - e.qw[0] * cp, e.qw[1] * cp - yd
-    ydd = e.F * sp - e.w02 * y
-    w2sp = e.wf2 * sp
-    out[4], out[5] = ydd + ql * w2sp, -ydd - qh * w2sp
-    return y, yd
-
-
-@kernel
-def probe(e: Evaluator, h: float, out) -> None:
-    """One search step's look at h: f, f', a local |f''| bound and the envelope's
-    certified no-root length of each function into out[0:2], [2:4], [4:6], [6:8]."""
-    y, yd = evaluate(e, h, out)
-    wf = e.wf
-    if not e.fast:  # energy-growth bounds
-        w0, F = e.w0, e.F
-        r = math.sqrt(yd * yd + w0 * w0 * y * y) + abs(F) * e.W  # energy radius over W
-        if e.kind == SLIP_KIND:
-            out[4] = min((abs(e.q[0]) * wf + r) / e.al, e.m2b[0])
-        elif e.kind == STICK_KIND:
-            bzz = w0 * r + abs(F)
-            w2 = wf * wf
-            out[4] = min(bzz + abs(e.q[0]) * w2, e.m2b[0])
-            out[5] = min(bzz + e.q[1] * w2, e.m2b[1])
-        else:
-            out[4] = min(r + 1.0, e.m2b[0])
-        out[6] = out[7] = 0.0
-        return
-    th = e.phi0 + wf * h - e.off
-    for i in range(e.n):
-        out[4 + i] = local_m2(out[i], out[2 + i], out[4 + i], e.m2b[i], e.m3b[i])
-        out[6 + i] = envelope_at(e.env_mode[i], e.env_acos[i], th, wf)
-
-
-@kernel
-def clear(e: Evaluator, h: float, end) -> bool:
-    """Every function provably positive on [h, H] (slow envelope minus the free
-    oscillation's amplitude). ``end``: 4 floats, cos_range_prep of the window's end,
-    filled on first use (end[3] = 1)."""
-    if not e.clearable:
-        return False
-    wf = e.wf
-    if end[3] == 0.0:
-        end[0], end[1], end[2] = cos_range_prep(e.phi0 + wf * e.H - e.off)
-        end[3] = 1.0
-    lo, hi = cos_range_to(e.phi0 + wf * h - e.off, end[0], end[1], end[2])
-    for i in range(e.n):
-        K = e.K[i]
-        if not (K * lo if K >= 0.0 else K * hi) - e.cc > e.ct:
-            return False
-    return True
-
-
-@kernel
-def start_bound(e: Evaluator, i: int, order: int) -> float:
-    """Bound on |f_i⁽ᵒʳᵈᵉʳ⁺¹⁾| over the window: the smaller of the energy-growth bound
-    (plus |q|ϖʲ) and the split bound |P − q|ϖʲ + w0^(j−1) E_h (j = order + bj)."""
-    j = order + e.bj
-    w0, wf, q = e.w0, e.wf, e.q[i]
-    ba = derivative_bound(w0, e.F, wf, e.R0, j) + abs(q) * wf ** float(j)
-    P = e.P
-    if P == P:  # the split bound exists (not at exact resonance)
-        bb = abs(P - q) * wf ** float(j) + w0 ** float(j - 1) * e.Eh
-        ba = min(ba, bb)
-    return ba / e.bdiv

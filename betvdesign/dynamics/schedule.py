@@ -126,7 +126,9 @@ def vertical_run(wf, xi, xid, horizon, cyc, imp, pieces):
                 period = m - first_end
                 break
         H = T - t
-        code, h, _, k = first_root(gap_evaluator(wf, xi, xid, sp, cp, H), H, ws)
+        e = ws.ev[0]
+        gap_evaluator(wf, xi, xid, sp, cp, H, e)
+        code, h, _, k = first_root(e, H, ws)
         evals += k
         if code == SEARCH_FAILED:
             return FAILED, n, first_end, period, ni, nf, evals, h

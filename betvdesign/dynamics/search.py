@@ -1,14 +1,14 @@
 """Certified location of the first event of a phase (unit-free).
 
-docs/MODEL.md, "Impacts and separation" and the stick/slip rules; the bounds are those of
-:mod:`bounds`, the event functions those of :mod:`evaluators`. :func:`first_root` walks
-the window [0, H] by certified safe steps (or longer envelope steps) and can never jump
-over a crossing, even a grazing one; a whole remaining window is cleared at once when
-every function's slow part stays above its free oscillation. A bracket is accepted once
-f' provably keeps its sign on it (4·M2·d ≤ |f'| with d the Newton step): then
-[l, l + 2d] holds exactly one root, refined to round-off by :func:`refine`. A phase that
-starts *on* its event surface (f = 0) is started from the first Taylor coefficient above
-its round-off floor and the matching derivative bound.
+docs/MODEL.md, "Impacts and separation" and the stick/slip rules; the bounds are those
+of :mod:`bounds`, the event functions those of :mod:`evaluators` (evaluated by
+:mod:`values`). :func:`first_root` walks the window [0, H] by certified safe steps (or
+longer envelope steps) and can never jump over a crossing, even a grazing one; a whole
+remaining window is cleared at once when every function's slow part stays above its free
+oscillation. A bracket is accepted once f' provably keeps its sign on it (4·M2·d ≤ |f'|
+with d the Newton step): then [l, l + 2d] holds exactly one root, refined to round-off by
+:func:`refine`. A phase that starts *on* its event surface (f = 0) is started from the
+first Taylor coefficient above its round-off floor and the matching derivative bound.
 """
 
 from __future__ import annotations
@@ -20,7 +20,8 @@ import numpy as np
 
 from betvdesign.dynamics._jit import kernel
 from betvdesign.dynamics.bounds import EPS, MAX_STEPS, NOISE, safe_step
-from betvdesign.dynamics.evaluators import Evaluator, clear, evaluate, probe, start_bound
+from betvdesign.dynamics.evaluators import EVALUATOR_DTYPE
+from betvdesign.dynamics.values import clear, evaluate, probe, start_bound
 
 #: :func:`first_root` codes
 NO_ROOT, ROOT, SEARCH_FAILED = 0, 1, -1
@@ -31,9 +32,11 @@ class Workspace(NamedTuple):
 
     ``look``: f, f', M2, envelope length per function (8); ``fine``: f, f', f'' of the
     refinement (6); ``steps``: certified step per function (2); ``active``: functions not
-    yet settled (2); ``end``: the clearance test's window-end preparation (4).
+    yet settled (2); ``end``: the clearance test's window-end preparation (4); ``ev``: the
+    current phase's evaluator, one record of :data:`evaluators.EVALUATOR_DTYPE`.
     """
 
+    ev: np.ndarray
     look: np.ndarray
     fine: np.ndarray
     steps: np.ndarray
@@ -45,7 +48,12 @@ class Workspace(NamedTuple):
 def workspace() -> Workspace:
     """A fresh :class:`Workspace`."""
     return Workspace(
-        np.zeros(8), np.zeros(6), np.zeros(2), np.zeros(2, dtype=np.bool_), np.zeros(4)
+        np.zeros(1, dtype=EVALUATOR_DTYPE),
+        np.zeros(8),
+        np.zeros(6),
+        np.zeros(2),
+        np.zeros(2, dtype=np.bool_),
+        np.zeros(4),
     )
 
 
@@ -56,7 +64,7 @@ def search_failure_message(H: float) -> str:
 
 @kernel
 def refine(
-    e: Evaluator,
+    e,
     i: int,
     lo: float,
     hi: float,
@@ -79,7 +87,7 @@ def refine(
     f_lo, f_hi = flo, fhi
     secant = True
     tol = 4.0 * EPS * max(1.0, abs(hi))
-    floor = 4.0 * EPS * e.scale[i]  # |f| at round-off level: converged
+    floor = 4.0 * EPS * e["scale"][i]  # |f| at round-off level: converged
     n = 0
     for _ in range(200):
         if fp != 0.0:
@@ -113,26 +121,26 @@ def refine(
 
 
 @kernel
-def first_root(e: Evaluator, H: float, ws: Workspace) -> tuple[int, float, int, int]:
+def first_root(e, H: float, ws: Workspace) -> tuple[int, float, int, int]:
     """First h in [0, H] where one of e's functions reaches 0, certified:
     (code, h, index, evaluations), code NO_ROOT, ROOT at (h, index) or SEARCH_FAILED."""
     look, steps, act = ws.look, ws.steps, ws.active
     ws.end[3] = 0.0
-    n = e.n
-    W = e.W
+    n = e["n"]
+    W = e["W"]
     x = H if H < W else W
     for i in range(n):
         order = -1
         for j in range(4):
-            if abs(e.start[4 * i + j]) > NOISE * e.noise[4 * i + j]:
+            if abs(e["start"][4 * i + j]) > NOISE * e["noise"][4 * i + j]:
                 order = j
                 break
-        if order < 0 or e.start[4 * i + order] < 0.0:
+        if order < 0 or e["start"][4 * i + order] < 0.0:
             return ROOT, 0.0, i, 0  # vanishes to every order, or leaves at once
         if order == 0:
-            xi = safe_step(e.start[4 * i], e.start[4 * i + 1], e.m2s[i])
+            xi = safe_step(e["start"][4 * i], e["start"][4 * i + 1], e["m2s"][i])
         else:
-            xi = 0.5 * (order + 1) * e.start[4 * i + order] / start_bound(e, i, order)
+            xi = 0.5 * (order + 1) * e["start"][4 * i + order] / start_bound(e, i, order)
         if xi < x:
             x = xi
     if x >= H or clear(e, 0.0, ws.end):
@@ -151,7 +159,7 @@ def first_root(e: Evaluator, H: float, ws: Workspace) -> tuple[int, float, int, 
             if not act[i]:
                 continue
             f, fp = look[i], look[2 + i]
-            if f <= 0.0 or (f <= NOISE * e.scale[i] and fp <= 0.0):
+            if f <= 0.0 or (f <= NOISE * e["scale"][i] and fp <= 0.0):
                 return ROOT, x0, i, evals  # at the root to round-off, heading down
             m2 = look[4 + i]
             if m2 <= 0.0:  # safe_step(f, fp, m2), inlined (the hot path)
