@@ -18,6 +18,7 @@ an event log (:data:`LOG_DTYPE`) and the phase segments of dense output
 from __future__ import annotations
 
 import math
+from typing import NamedTuple
 
 import numpy as np
 
@@ -79,6 +80,44 @@ SEG_DTYPE = np.dtype(
 )
 #: log / segment entries one cycle can need beyond its impulsive hits
 PER_CYCLE = MAX_SWITCHES + 4
+
+
+class ContactEnd(NamedTuple):
+    """What :func:`contact` returns: ``code`` (OK, SEARCH_FAILED_CODE, CHATTER), the state
+    (ζ, ζ', s, s') reached, events and root evaluations counted, ``where`` (the search
+    window on SEARCH_FAILED_CODE, the local time on CHATTER), ``switches`` (CHATTER) and the
+    log / segment counters."""
+
+    code: int
+    z: float
+    zd: float
+    s: float
+    sd: float
+    events: int
+    evals: int
+    where: float
+    switches: int
+    nlog: int
+    nseg: int
+
+
+class CyclesRun(NamedTuple):
+    """What :func:`run_cycles` returns: ``code`` and the cycle offset ``j`` it refers to,
+    events and root evaluations counted, ``where`` / ``switches`` as in
+    :class:`ContactEnd`, the log / segment counters and the state (ζ, ζ', s, s') reached."""
+
+    code: int
+    j: int
+    events: int
+    evals: int
+    where: float
+    switches: int
+    nlog: int
+    nseg: int
+    z: float
+    zd: float
+    s: float
+    sd: float
 
 
 @kernel
@@ -147,10 +186,9 @@ def _seg(segs, k, m, t0, t1, phase, z, zd, s, sd, sp, cp) -> int:
 
 @kernel
 def contact(c, m, tc, z, zd, s, sd, ws, log, nlog, segs, nseg):
-    """Cycle m from the contact-opening hit at local time tc to the contact end π/ϖ:
-    (code, ζ, ζ', s, s', events, evaluations, a, b, nlog, nseg) with code OK, or
-    SEARCH_FAILED_CODE (a: window) or CHATTER (a: local time, b: switches). Logs
-    (nlog ≥ 0) and records segments (nseg ≥ 0) when those counters are not −1."""
+    """Cycle m from the contact-opening hit at local time tc to the contact end π/ϖ
+    (a :class:`ContactEnd`). Logs (nlog ≥ 0) and records segments (nseg ≥ 0) when those
+    counters are not −1."""
     wf, beta = c.varpi, c.beta
     te = math.pi / wf
     if tc > 0.0:
@@ -180,7 +218,7 @@ def contact(c, m, tc, z, zd, s, sd, ws, log, nlog, segs, nseg):
         code, hr, idx, k = first_root(e, H, ws)
         evals += k
         if code == SEARCH_FAILED:
-            return SEARCH_FAILED_CODE, z, zd, s, sd, nev, evals, hr, 0, nlog, nseg
+            return ContactEnd(SEARCH_FAILED_CODE, z, zd, s, sd, nev, evals, hr, 0, nlog, nseg)
         h = hr if code == ROOT else H
         if nseg >= 0:
             nseg = _seg(segs, nseg, m, t, t + h, phase, z, zd, s, sd, sp, cp)
@@ -206,11 +244,11 @@ def contact(c, m, tc, z, zd, s, sd, ws, log, nlog, segs, nseg):
         zero_len = zero_len + 1 if h <= 64.0 * EPS * max(1.0, t) else 0
         n_switch += 1
         if zero_len > MAX_ZERO_LENGTH or n_switch > MAX_SWITCHES:
-            return CHATTER, z, zd, s, sd, nev, evals, t, n_switch, nlog, nseg
+            return ContactEnd(CHATTER, z, zd, s, sd, nev, evals, t, n_switch, nlog, nseg)
         phase = new
     if nlog >= 0:
         nlog = _log(log, nlog, m, te, SEPARATION, phase, FREE)
-    return OK, z, zd, s, sd, nev + 1, evals, 0.0, 0, nlog, nseg
+    return ContactEnd(OK, z, zd, s, sd, nev + 1, evals, 0.0, 0, nlog, nseg)
 
 
 @kernel
@@ -241,7 +279,7 @@ def run_cycles(table, tab, idx, imp, m0, z, zd, s, sd, rows, check_finite, log, 
         if (nlog >= 0 and nlog + ni + PER_CYCLE > log.shape[0]) or (
             nseg >= 0 and nseg + PER_CYCLE > segs.shape[0]
         ):
-            return BUFFER_FULL, j, nev, evals, 0.0, 0, nlog, nseg, z, zd, s, sd
+            return CyclesRun(BUFFER_FULL, j, nev, evals, 0.0, 0, nlog, nseg, z, zd, s, sd)
         if keep:
             rows[j, 0], rows[j, 1], rows[j, 2], rows[j, 3] = z, zd, s, sd
         nev += ni
@@ -254,14 +292,15 @@ def run_cycles(table, tab, idx, imp, m0, z, zd, s, sd, rows, check_finite, log, 
                 nseg = _seg(segs, nseg, m, 0.0, T, FREE, z, zd, s, sd, 0.0, 1.0)
             z, zd, s, sd = free_flight(c, z, zd, s, sd, 1.0, T)
         else:
-            code, z1, zd1, s1, sd1, k, ev, a, b, nlog, nseg = contact(
-                c, m, tc, z, zd, s, sd, ws, log, nlog, segs, nseg
-            )
-            nev += k
-            evals += ev
-            if code != OK:
-                return code, j, nev, evals, a, b, nlog, nseg, z, zd, s, sd
-            z, zd, s, sd = z1, zd1, s1, sd1
+            end = contact(c, m, tc, z, zd, s, sd, ws, log, nlog, segs, nseg)
+            nev += end.events
+            evals += end.evals
+            nlog, nseg = end.nlog, end.nseg
+            if end.code != OK:  # the state returned is the one at the cycle's start
+                return CyclesRun(
+                    end.code, j, nev, evals, end.where, end.switches, nlog, nseg, z, zd, s, sd
+                )
+            z, zd, s, sd = end.z, end.zd, end.s, end.sd
             if nlog >= 0:  # impulsive hits after the separation
                 for k in range(i0, i0 + ni):
                     if imp[k] > te:
@@ -270,10 +309,10 @@ def run_cycles(table, tab, idx, imp, m0, z, zd, s, sd, rows, check_finite, log, 
                 nseg = _seg(segs, nseg, m, te, T, FREE, z, zd, s, sd, 0.0, -1.0)
             z, zd, s, sd = free_flight(c, z, zd, s, sd, -1.0, te)
         if check_finite and (z - z) + (zd - zd) + (s - s) + (sd - sd) != 0.0:
-            return NON_FINITE, j, nev, evals, 0.0, 0, nlog, nseg, z, zd, s, sd
+            return CyclesRun(NON_FINITE, j, nev, evals, 0.0, 0, nlog, nseg, z, zd, s, sd)
     if keep:
         rows[n, 0], rows[n, 1], rows[n, 2], rows[n, 3] = z, zd, s, sd
-    return OK, n, nev, evals, 0.0, 0, nlog, nseg, z, zd, s, sd
+    return CyclesRun(OK, n, nev, evals, 0.0, 0, nlog, nseg, z, zd, s, sd)
 
 
 @kernel

@@ -17,6 +17,7 @@ times and their free-flight pieces (:data:`PIECE_DTYPE`, for dense output).
 from __future__ import annotations
 
 import math
+from typing import NamedTuple
 
 import numpy as np
 
@@ -53,6 +54,23 @@ PIECE_DTYPE = np.dtype(
 DONE, FULL, FAILED = 0, 1, 2
 
 
+class VerticalRun(NamedTuple):
+    """What :func:`vertical_run` returns: ``code`` (DONE, FULL: a table is too small,
+    enlarge and call again, FAILED: the gap search did not terminate on window ``H``),
+    rows used in the tables (``cycles``, ``hits``: impulsive, ``pieces``), ``first_end``
+    (cycle of the first contact end, −1: none), ``period`` (cycles between contact ends,
+    −1: none recurred within the horizon) and root ``evals``."""
+
+    code: int
+    cycles: int
+    first_end: int
+    period: int
+    hits: int
+    pieces: int
+    evals: int
+    H: float
+
+
 @kernel
 def plastic_hit(xid: float) -> float:
     """Normal velocity just after a hit of velocity ξ' < 0: plastic impact, ξ' → 0 (no
@@ -80,10 +98,7 @@ def _piece(cyc, m, pieces, nf, t, xi, xid, sp, cp) -> int:
 def vertical_run(wf, xi, xid, horizon, cyc, imp, pieces):
     """Vertical motion from (ξ, ξ') at τ = 0 (see module doc) into cyc, imp, pieces.
 
-    Returns (code, cycles, first_end, period, impulsive hits, pieces, evaluations, H):
-    code DONE, FULL (a table is too small: enlarge and call again) or FAILED (the gap
-    search did not terminate on a window H); first_end: cycle of the first contact end
-    (−1: none); period: cycles between contact ends (−1: none recurred within horizon).
+    Returns a :class:`VerticalRun`.
     """
     T = 2.0 * math.pi / wf
     te = math.pi / wf
@@ -98,7 +113,7 @@ def vertical_run(wf, xi, xid, horizon, cyc, imp, pieces):
     while True:
         m = n - 1
         if ni + 2 > imp.size or nf + 3 > pieces.size:
-            return FULL, n, first_end, period, ni, nf, evals, 0.0
+            return VerticalRun(FULL, n, first_end, period, ni, nf, evals, 0.0)
         if contact:
             cyc[m]["tc"] = t
             t, xi, xid, sp, cp = te, 0.0, 0.0, 0.0, -1.0
@@ -113,7 +128,7 @@ def vertical_run(wf, xi, xid, horizon, cyc, imp, pieces):
                 ref = cyc[first_end]
                 need_f, need_i = ref["free_count"], ref["imp_count"]
                 if nf + need_f > pieces.size or ni + need_i > imp.size:
-                    return FULL, n, first_end, period, ni, nf, evals, 0.0
+                    return VerticalRun(FULL, n, first_end, period, ni, nf, evals, 0.0)
                 for k in range(ref["free_start"], ref["free_start"] + need_f):
                     if pieces[k]["t"] > te:
                         p = pieces[k]
@@ -131,7 +146,7 @@ def vertical_run(wf, xi, xid, horizon, cyc, imp, pieces):
         code, h, _, k = first_root(e, H, ws)
         evals += k
         if code == SEARCH_FAILED:
-            return FAILED, n, first_end, period, ni, nf, evals, h
+            return VerticalRun(FAILED, n, first_end, period, ni, nf, evals, h)
         if code == NO_ROOT:
             xi, xid, _, _ = vertical_flight(wf, xi, xid, sp, cp, H)
             if xi < 0.0:
@@ -140,7 +155,7 @@ def vertical_run(wf, xi, xid, horizon, cyc, imp, pieces):
             if n >= limit:
                 break
             if n >= cyc.size:
-                return FULL, n, first_end, period, ni, nf, evals, 0.0
+                return VerticalRun(FULL, n, first_end, period, ni, nf, evals, 0.0)
             n = _new_cycle(cyc, n, xi, xid, ni, nf)
             t, sp, cp = 0.0, 0.0, 1.0
             if xi == 0.0 and xid <= 0.0:
@@ -152,7 +167,7 @@ def vertical_run(wf, xi, xid, horizon, cyc, imp, pieces):
         if t >= T * (1.0 - 8.0 * EPS):  # hit at the section itself: contact from t = 0
             _, xid, _, _ = vertical_flight(wf, xi, xid, sp, cp, h)
             if n >= cyc.size:
-                return FULL, n, first_end, period, ni, nf, evals, 0.0
+                return VerticalRun(FULL, n, first_end, period, ni, nf, evals, 0.0)
             n = _new_cycle(cyc, n, 0.0, 0.0 if 0.0 < xid else xid, ni, nf)
             t, contact = 0.0, True
             continue
@@ -165,7 +180,7 @@ def vertical_run(wf, xi, xid, horizon, cyc, imp, pieces):
         cyc[m]["imp_count"] += 1
         xi, xid = 0.0, plastic_hit(xid)
         nf = _piece(cyc, m, pieces, nf, t, 0.0, 0.0, sp, cp)
-    return DONE, n, first_end, period, ni, nf, evals, 0.0
+    return VerticalRun(DONE, n, first_end, period, ni, nf, evals, 0.0)
 
 
 @kernel

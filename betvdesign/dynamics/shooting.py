@@ -37,14 +37,15 @@ SHOT = ("table", "tab", "idx", "imp", "m0", "rows", "log", "segs", "count")
 def section_map(table, tab, idx, imp, m0, rows, log, segs, count, x):
     """Φⁿ(x): (ok, (ζ, ζ', s') after n cycles, slider increment s); ok False when a
     contact could not be advanced."""
-    code, _, nev, evals, _, _, _, _, z, zd, s, sd = run_cycles(
+    run = run_cycles(
         table, tab, idx, imp, m0, x[0], x[1], 0.0, x[2], rows, False, log, -1, segs, -1
     )
-    count[1] += nev
-    count[2] += evals
+    count[1] += run.events
+    count[2] += run.evals
     y = np.empty(3)
-    y[0], y[1], y[2] = z, zd, sd
-    if code != OK:
+    y[0], y[1], y[2] = run.z, run.zd, run.sd
+    s = run.s
+    if run.code != OK:
         return False, y, s
     count[0] += idx.size
     return True, y, s

@@ -90,7 +90,7 @@ class CycleRunner:
         vs = self.vs
         j0 = 0
         while True:
-            code, j, nev, evals, a, b, self.nlog, self.nseg, z, zd, s, sd = contact.run_cycles(
+            run = contact.run_cycles(
                 self.c,
                 vs.table,
                 idx[j0:],
@@ -107,22 +107,24 @@ class CycleRunner:
                 self.segs,
                 self.nseg,
             )
-            self.n_events += int(nev)
-            self.n_evals += int(evals)
-            if code != contact.BUFFER_FULL:
+            self.nlog, self.nseg = int(run.nlog), int(run.nseg)
+            self.n_events += int(run.events)
+            self.n_evals += int(run.evals)
+            z, zd, s, sd = run.z, run.zd, run.s, run.sd
+            if run.code != contact.BUFFER_FULL:
                 break
-            j0 += int(j)
+            j0 += int(run.j)
             if self.nlog >= 0 and self.nlog + contact.PER_CYCLE + 64 > self.log.size:
                 self.log = _grown(self.log, self.nlog, 4 * (n - j0) + contact.PER_CYCLE)
             if self.nseg >= 0 and self.nseg + contact.PER_CYCLE + 64 > self.segs.size:
                 self.segs = _grown(self.segs, self.nseg, 6 * (n - j0) + contact.PER_CYCLE)
-        if code == contact.OK:
+        if run.code == contact.OK:
             return z, zd, s, sd
-        m = m0 + j0 + int(j)
-        if code == contact.SEARCH_FAILED_CODE:
-            msg = search_failure_message(a)
-        elif code == contact.CHATTER:
-            msg = chatter_message(m * self.T + a, m, int(b))
+        m = m0 + j0 + int(run.j)
+        if run.code == contact.SEARCH_FAILED_CODE:
+            msg = search_failure_message(run.where)
+        elif run.code == contact.CHATTER:
+            msg = chatter_message(m * self.T + run.where, m, int(run.switches))
         else:
             msg = f"non-finite state in cycle {m}"
         raise SolverFailure(msg, m)

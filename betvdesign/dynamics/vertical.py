@@ -65,21 +65,21 @@ class VerticalSchedule:
             cyc = np.empty(n_cyc, schedule.CYCLE_DTYPE)
             imp = np.empty(n_imp)
             pieces = np.empty(2 * n_imp, schedule.PIECE_DTYPE)
-            code, n, first, period, ni, nf, evals, H = schedule.vertical_run(
+            run = schedule.vertical_run(
                 float(varpi), float(xi0), float(xid0), int(horizon), cyc, imp, pieces
             )
-            if code != schedule.FULL:
+            if run.code != schedule.FULL:
                 break
             n_cyc, n_imp = 2 * n_cyc, 2 * n_imp
-        if code == schedule.FAILED:
-            raise VerticalSearchError(search_failure_message(H))
-        self.table = cyc[:n]
-        self.impulsive = imp[:ni]
-        self.pieces = pieces[:nf]
-        self.first_end: int | None = None if first < 0 else int(first)
-        self.period: int | None = None if period < 0 else int(period)
-        self.n_root_evals = int(evals)
-        self.n_prefix = n if self.period is None else int(first) + 1
+        if run.code == schedule.FAILED:
+            raise VerticalSearchError(search_failure_message(run.H))
+        self.table = cyc[: run.cycles]
+        self.impulsive = imp[: run.hits]
+        self.pieces = pieces[: run.pieces]
+        self.first_end: int | None = None if run.first_end < 0 else int(run.first_end)
+        self.period: int | None = None if run.period < 0 else int(run.period)
+        self.n_root_evals = int(run.evals)
+        self.n_prefix = int(run.cycles) if self.period is None else int(run.first_end) + 1
 
     # -- queries ------------------------------------------------------------------
     def _cycle(self, i: int) -> VerticalCycle:
