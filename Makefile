@@ -1,5 +1,5 @@
 # betvdesign: two commands do all set-up (see README).
-#   make demo  -> .venv, install, design reports (HTML + PDF) of shin2004 and push_demo under reports/
+#   make demo  -> .venv, install, compiled solver kernels (cached), design reports (HTML + PDF) of shin2004 and push_demo under reports/
 #   make test  -> .venv with test extras, system packages (when root), whole suite
 PYTHON ?= python3
 VENV   := .venv
@@ -24,6 +24,7 @@ sysdeps:
 	@bash scripts/sysdeps.sh test
 
 demo: sysdeps-runtime $(VENV)/.stamp-run
+	$(BIN)/python -m betvdesign.dynamics.warm
 	$(BIN)/betv report devices/shin2004.yaml devices/push_demo.yaml -o reports/
 
 test: sysdeps $(VENV)/.stamp-test

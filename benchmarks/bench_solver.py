@@ -7,6 +7,9 @@
                                                              # vs brute force
     .venv/bin/python benchmarks/bench_solver.py compile      # numba kernel: cold compile
                                                              # and cached load, per process
+    .venv/bin/python benchmarks/bench_solver.py targets [--baseline DIR]
+                                                             # issue 10 targets, this tree
+                                                             # and DIR side by side
 
 Targets: ≥ 100× faster per simulated cycle than the project's own solve_ivp
 reference (``betvdesign.dynamics.reference``, DOP853, rtol 1e-10, atol 1e-12)
@@ -15,7 +18,7 @@ warm; exact vs reference ≤ 1e-8 in s after 100 cycles on 20 designs spread ove
 the window; periodic Δs from shooting vs long brute force ≤ 1e-9.
 
 Times are CPU seconds of this process (``time.process_time``, best of 5 for the exact
-solver's compiled kernel, of 3 for its pure-Python path and for solve_ivp):
+solver's compiled kernel, of 3 for solve_ivp):
 the machines are shared, and CPU time is what load does not inflate much. Wall
 times are printed next to them. Writes benchmarks/out/bench_solver.json.
 """
@@ -83,17 +86,11 @@ def bench_speed(designs: dict[str, ModelParams], n_exact: int = 200, n_ref: int 
     for name, p in designs.items():
         simulate(p, 3, log_events=False)  # warm imports, caches and the compiled kernel
         ce, we, ex = _timed(lambda p=p: simulate(p, n_exact, log_events=False), 5)
-        os.environ["BETV_KERNELS"] = "0"  # the pure-Python path of the same solver
-        try:
-            cp, _, _ = _timed(lambda p=p: simulate(p, n_exact, log_events=False), 3)
-        finally:
-            del os.environ["BETV_KERNELS"]
         cr, wr, rf = _timed(lambda p=p: reference.simulate(p, n_ref, rtol=1e-10, atol=1e-12), 3)
         row = {
             "design": name,
             "params": p.as_dict(),
             "engine": ex.engine,
-            "python_us_per_cycle_cpu": cp / n_exact * 1e6,
             "exact_us_per_cycle_cpu": ce / n_exact * 1e6,
             "exact_us_per_cycle_wall": we / n_exact * 1e6,
             "ref_ms_per_cycle_cpu": cr / n_ref * 1e3,
@@ -107,7 +104,7 @@ def bench_speed(designs: dict[str, ModelParams], n_exact: int = 200, n_ref: int 
         rows.append(row)
         print(
             f"  {name:16s} exact {row['exact_us_per_cycle_cpu']:7.1f} µs/cycle "
-            f"[{ex.engine}; python {row['python_us_per_cycle_cpu']:5.1f}] "
+            f"[{ex.engine}] "
             f"({row['exact_root_evals_per_cycle']:.1f} evals)  solve_ivp "
             f"{row['ref_ms_per_cycle_cpu']:6.2f} ms/cycle  -> {row['speedup_cpu']:6.0f}×",
             flush=True,
@@ -235,7 +232,6 @@ def bench_compile(repeats: int = 3) -> dict:
     for _ in range(repeats):
         with tempfile.TemporaryDirectory() as d:
             env = dict(os.environ, XDG_CACHE_HOME=d)
-            env.pop("BETV_KERNELS", None)
             for kind in ("cold", "cached"):
                 res = subprocess.run(
                     [sys.executable, "-c", _COLD], env=env, capture_output=True, text=True
@@ -251,10 +247,100 @@ def bench_compile(repeats: int = 3) -> dict:
     return out
 
 
+def _inner_targets() -> dict:
+    """Per-cycle cost and warm periodic solve of the 26 designs, in this process."""
+    designs = {**NAMED, **window_sets()}
+    per_cycle, periodic = [], []
+    for p in designs.values():
+        simulate(p, 3, log_events=False)
+        best = math.inf
+        for _ in range(5):
+            c0 = time.process_time()
+            simulate(p, 2000, log_events=False)
+            best = min(best, time.process_time() - c0)
+        per_cycle.append(best / 2000 * 1e6)
+        periodic_orbit(p)
+        ts = []
+        for _ in range(7):
+            c0 = time.process_time()
+            periodic_orbit(p)
+            ts.append(time.process_time() - c0)
+        periodic.append(statistics.median(ts) * 1e3)
+    return {
+        "cycle_us_median": statistics.median(per_cycle),
+        "cycle_us_min": min(per_cycle),
+        "cycle_us_max": max(per_cycle),
+        "periodic_ms_median": statistics.median(periodic),
+        "periodic_ms_max": max(periodic),
+    }
+
+
+_CLI = "from betvdesign.cli import main; main()"
+
+
+def _wall(cmd: list[str], env: dict, repeats: int) -> float:
+    """Best wall time [s] of a command in a fresh interpreter (warm caches)."""
+    best = math.inf
+    for _ in range(repeats):
+        w0 = time.perf_counter()
+        res = subprocess.run(cmd, env=env, capture_output=True, text=True, cwd=ROOT)
+        best = min(best, time.perf_counter() - w0)
+        if res.returncode not in (0, 1):  # 1: a design rule fails (a verdict, not an error)
+            raise RuntimeError(f"{cmd}: {res.stderr[-2000:]}")
+    return best
+
+
+def bench_targets(trees: dict[str, Path], repeats: int = 3) -> dict:
+    """Issue 10's targets, each source tree (name -> repository root whose ``betvdesign``
+    is imported) measured in the same run: per-cycle cost and warm periodic solve (CPU,
+    in one process per tree), then device report (HTML + PDF), ``betv check`` and
+    ``betv --help`` (wall, fresh processes, warm compile cache), the trees alternating
+    within every repeat so that the machine's load drifts onto both; best of repeats."""
+    envs = {name: dict(os.environ, PYTHONPATH=str(root)) for name, root in trees.items()}
+    out: dict[str, dict] = {name: {} for name in trees}
+    with tempfile.TemporaryDirectory() as tmp:
+        cmds = {
+            "report_s": ["report", "devices/shin2004.yaml", "-o", tmp],
+            "check_s": ["check", "devices/push_demo.yaml"],
+            "help_s": ["--help"],
+        }
+        for name, env in envs.items():  # compile or load each tree's kernels once
+            _wall(
+                [sys.executable, "-c", _CLI, "check", "devices/push_demo.yaml", "--simulate"],
+                env,
+                1,
+            )
+            inner = subprocess.run(
+                [sys.executable, str(Path(__file__).resolve()), "_inner"],
+                env=env,
+                capture_output=True,
+                text=True,
+                cwd=ROOT,
+                check=True,
+            )
+            out[name].update(json.loads(inner.stdout.strip().splitlines()[-1]))
+        for _ in range(repeats):
+            for key, args in cmds.items():
+                for name, env in envs.items():
+                    t = _wall([sys.executable, "-c", _CLI, *args], env, 1)
+                    out[name][key] = min(out[name].get(key, math.inf), t)
+    for name, row in out.items():
+        print(f"  {name:10s} " + ", ".join(f"{k} {v:.3g}" for k, v in row.items()), flush=True)
+    return out
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("what", nargs="*", default=["speed", "periodic", "accuracy", "compile"])
+    ap.add_argument(
+        "--baseline",
+        type=Path,
+        help="targets: also measure this source tree (e.g. `git archive <commit>` unpacked)",
+    )
     args = ap.parse_args(argv)
+    if args.what == ["_inner"]:
+        print(json.dumps(_inner_targets()))
+        return 0
     designs = {**NAMED, **window_sets()}
     out: dict = {"python": sys.version.split()[0]}
     if "speed" in args.what:
@@ -266,6 +352,10 @@ def main(argv: list[str] | None = None) -> int:
     if "compile" in args.what:
         print("compiled kernel, first use per process (fresh interpreters):")
         out["compile"] = bench_compile()
+    if "targets" in args.what:
+        print("issue 10 targets (per cycle, periodic, report, check, --help), side by side:")
+        trees = {"this": ROOT} | ({"baseline": args.baseline} if args.baseline else {})
+        out["targets"] = bench_targets(trees)
     if "accuracy" in args.what:
         print("accuracy (reference: DOP853 rtol 1e-13, atol 1e-14):")
         out["accuracy"] = bench_accuracy(window_sets())

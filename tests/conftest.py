@@ -2,11 +2,13 @@
 
 External programs (chromium, poppler-utils) may be missing on a developer's
 machine: tests needing them skip there, printing why. Under CI (environment
-variable CI set, as .ci/run does) a missing program is a failure, never a skip.
+variable CI set, as .ci/run does) a missing program is a failure, never a skip; the
+same holds for optional test modules (:func:`require_module`, e.g. dask.distributed).
 """
 
 from __future__ import annotations
 
+import importlib
 import os
 import shutil
 from pathlib import Path
@@ -60,6 +62,18 @@ def require_program(name: str, *, candidates: tuple[str, ...] = ()) -> str:
         if found:
             return found
     reason = f"{name} not found (install it: bash scripts/sysdeps.sh test, as root)"
+    if os.environ.get("CI"):
+        pytest.fail(f"CI: {reason}")
+    print(f"SKIP reason: {reason}")
+    pytest.skip(reason)
+
+
+def require_module(name: str, *, extra: str = "test"):
+    """Import an optional test dependency; skip without it (outside CI) or fail (CI)."""
+    try:
+        return importlib.import_module(name)
+    except ImportError as exc:
+        reason = f"{name} not importable ({exc}); install the extra: pip install -e '.[{extra}]'"
     if os.environ.get("CI"):
         pytest.fail(f"CI: {reason}")
     print(f"SKIP reason: {reason}")

@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 
 from betvdesign.dynamics import periodic, periodic_orbit, simulate
-from betvdesign.dynamics.flows import PhaseConstants
+from betvdesign.dynamics.flows import phase_table
 from betvdesign.dynamics.vertical import VerticalSchedule
 from betvdesign.params import ModelParams
 
@@ -77,7 +77,7 @@ def test_same_orbit_as_the_fallback_in_fewer_cycles(name, monkeypatch):
 def _map(p: ModelParams) -> periodic._Map:
     vs = VerticalSchedule(p.varpi, horizon=1000)
     assert vs.period == 1 and vs.first_end is not None
-    return periodic._Map(PhaseConstants.from_params(p), vs, vs.first_end + 1)
+    return periodic._Map(phase_table(p), vs, vs.first_end + 1)
 
 
 @pytest.mark.parametrize("name", ["w14", "w12"])

@@ -4,6 +4,7 @@ dask against an in-test distributed.LocalCluster with 2 worker processes)."""
 import json
 
 import pytest
+from conftest import require_module
 
 from betvdesign.errors import UsageError
 from betvdesign.studies.executors import (
@@ -20,7 +21,7 @@ from betvdesign.studies.runner import run_study
 
 @pytest.fixture(scope="module")
 def cluster():
-    distributed = pytest.importorskip("distributed")
+    distributed = require_module("distributed")
     with distributed.LocalCluster(
         n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
     ) as cl:

@@ -3,7 +3,33 @@
 - :func:`simulate`: exact event-driven transient (:mod:`solver`).
 - :func:`periodic_orbit`: periodic state by Newton shooting (:mod:`periodic`).
 - :func:`vertical_motion`: vertical-only fast path (:mod:`vertical`).
-- :mod:`reference`: the same model with scipy ``solve_ivp`` (cross-checks, studies).
+- :mod:`reference`: the same model with scipy ``solve_ivp`` and its own switching rules
+  (cross-checks, studies); it shares no code with the exact solver.
+
+Where each piece of MODEL.md lives (one function each; all compiled by numba, one
+implementation, the same source runs as Python under ``NUMBA_DISABLE_JIT=1``):
+
+==============================================  ========================================
+MODEL.md                                        function
+==============================================  ========================================
+no contact, ξ'' + ξ = −sin ϖτ                   :func:`flows.vertical_flight`
+no contact, α ζ'' + ζ = sin ϖτ, s'' = 0          :func:`flows.free_flight`
+slip / reverse slip (ζ' ≷ s')                    :func:`flows.slip_flow`
+stick, α(1 + 1/β) ζ'' + ζ = sin ϖτ, s'' = ζ''    :func:`flows.stick_flow`
+closed form of y'' + w0² y = F sin ϖτ            :func:`flows.oscillator` (resonance exact)
+s'' = ds sin ϖτ                                  :func:`flows.slider`
+common velocity on entering stick                :func:`flows.stick_velocity`
+stick / slip / reverse-slip rule (band b)        :func:`contact.decide_phase`
+plastic hit ξ' → 0                               :func:`schedule.plastic_hit`
+contact while sin ϖτ ≥ 0, ends at (2j+1)π/ϖ;     :func:`schedule.vertical_run`
+impulsive hits when sin ϖτ < 0
+event functions (hit, ζ' = s', band exits)       :mod:`evaluators` (values: :mod:`values`)
+first event of a phase, certified                :func:`search.first_root`
+cycles of contact and free flight; Δs_m          :func:`contact.run_cycles`
+periodic orbit, Floquet multipliers              :func:`periodic.periodic_orbit`
+                                                 (Newton: :func:`shooting.newton`)
+unbounded growth at α·ϖ² = 1                     :func:`periodic.resonance_growth_bound`
+==============================================  ========================================
 """
 
 from betvdesign.dynamics.periodic import periodic_orbit

@@ -1,24 +1,140 @@
-"""Marks the scalar helpers that the compiled kernels (:mod:`kernels`) share with the
-pure-Python path, without importing numba here.
+"""The one decorator of the compiled dynamics: :func:`kernel` (numba ``njit``, cached).
 
-:func:`jitable` returns the function unchanged (so the Python path calls it at full
-interpreter speed and numba is imported only when a kernel is first needed) and records
-it; :mod:`kernels` registers every recorded function with
-``numba.extending.register_jitable`` before compiling, so one source serves both paths.
+Every function of the contact loop, the certified event search, the phase rule, the
+closed-form flows and the vertical schedule is written once, as plain Python that numba
+can compile, and decorated with :func:`kernel`. Under ``NUMBA_DISABLE_JIT=1`` numba
+returns the functions unchanged: the very same source then runs as Python (debugging,
+coverage).
+
+Compiled code is cached on disk in a directory named after a hash of every source file
+of this package that defines kernels and of numba's version, so that an edit of any
+shared helper can never leave a stale compiled kernel in use. :func:`compile_note`
+tells a user on stderr when a command has to compile (no cached machine code), and how
+long it took.
 """
 
 from __future__ import annotations
 
+import hashlib
+import os
+import sys
+import threading
+import time
 from collections.abc import Callable
+from pathlib import Path
 from typing import TypeVar
+
+import numba
 
 F = TypeVar("F", bound=Callable)
 
-#: functions marked with :func:`jitable`, in definition order
-JITABLE: list[Callable] = []
+#: modules whose functions are kernels (the cache key covers all of them)
+KERNEL_MODULES = (
+    "_jit",
+    "flows",
+    "bounds",
+    "evaluators",
+    "values",
+    "search",
+    "contact",
+    "schedule",
+    "shooting",
+)
 
 
-def jitable(fn: F) -> F:
-    """Record ``fn`` as callable from compiled kernels; return it unchanged."""
-    JITABLE.append(fn)
-    return fn
+def cache_dir() -> str:
+    """Per-source cache directory of the compiled kernels [path]."""
+    h = hashlib.sha256()
+    here = Path(__file__).resolve().parent
+    for name in KERNEL_MODULES:
+        h.update((here / f"{name}.py").read_bytes())
+    h.update(numba.__version__.encode())
+    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+    return os.path.join(base, "betvdesign", "numba", h.hexdigest()[:16])
+
+
+_CACHE_DIR = numba.config.CACHE_DIR or cache_dir()
+
+
+#: every kernel's dispatcher (their compile statistics tell when a call compiled)
+KERNELS: list = []
+
+
+def kernel(fn: F | None = None, *, inline: bool = False):
+    """``numba.njit(cache=True, nogil=True)`` with the cache in :func:`cache_dir`;
+    ``inline=True``: inlined into its callers by numba (hot helpers taking an
+    :class:`evaluators.Evaluator`, which would otherwise be passed field by field)."""
+    if fn is None:
+        return lambda f: kernel(f, inline=inline)
+    saved = numba.config.CACHE_DIR
+    numba.config.CACHE_DIR = _CACHE_DIR  # read when a cached function is decorated
+    try:
+        opts = {"inline": "always"} if inline else {}
+        disp = numba.njit(cache=True, nogil=True, **opts)(fn)
+    finally:
+        numba.config.CACHE_DIR = saved
+    if hasattr(disp, "stats"):
+        KERNELS.append(disp)
+    return disp
+
+
+def jit_enabled() -> bool:
+    """True unless ``NUMBA_DISABLE_JIT`` makes the kernels run as plain Python."""
+    return not numba.config.DISABLE_JIT
+
+
+def _misses() -> int:
+    """Compilations so far in this process (cache misses of every kernel)."""
+    return sum(sum(d.stats.cache_misses.values()) for d in KERNELS)
+
+
+#: entry points that have run once in this process (their kernels are loaded)
+_ready: set[str] = set()
+
+
+def compile_note(what: str, run: Callable[[], object]) -> object:
+    """Run ``run()``; when it has to compile kernels (no cached machine code for this
+    solver version yet), say so on stderr in one line, with what and how long, instead of
+    compiling silently (``make demo`` compiles them ahead: :mod:`warm`). The first call of
+    each entry point is watched from a thread (the note appears when compiling starts);
+    later calls only check afterwards (no thread: they cost nothing)."""
+    if not jit_enabled():
+        return run()
+    before = _misses()
+    t0 = time.perf_counter()
+    if what in _ready:
+        out = run()
+        if _misses() > before:
+            print(
+                f"betv: compiled solver kernels for {what} in {time.perf_counter() - t0:.1f} s",
+                file=sys.stderr,
+                flush=True,
+            )
+        return out
+    done = threading.Event()
+    said: list[float] = []
+
+    def watch() -> None:
+        while not done.wait(0.25):
+            if _misses() > before:
+                print(
+                    f"betv: compiling the solver kernels for {what} (once per install or "
+                    "solver version; `make demo` does it ahead)...",
+                    file=sys.stderr,
+                    end="",
+                    flush=True,
+                )
+                said.append(time.perf_counter())
+                return
+
+    watcher = threading.Thread(target=watch, daemon=True)
+    watcher.start()
+    try:
+        out = run()
+        _ready.add(what)
+        return out
+    finally:
+        done.set()
+        watcher.join()
+        if said:
+            print(f" done in {time.perf_counter() - t0:.1f} s", file=sys.stderr, flush=True)

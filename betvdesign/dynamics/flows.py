@@ -39,9 +39,10 @@ so w0 = 1/sqrt(a) and F = c/a for a ζ'' + ζ = c sin ϖτ.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
 
-from betvdesign.dynamics._jit import jitable
+import numpy as np
+
+from betvdesign.dynamics._jit import jit_enabled, kernel
 from betvdesign.params import ModelParams
 
 # Phase codes (ints: they sit in the inner loops).
@@ -53,7 +54,110 @@ REVERSE = -1
 PHASE_NAMES = {FREE: "free", SLIP: "slip", STICK: "stick", REVERSE: "reverse"}
 
 
-@jitable
+#: Constants of slip (σ = +1) or reverse slip (σ = −1) for one parameter set:
+#: α ζ'' + ζ = (1 − σακ) sin ϖτ, i.e. ζ'' + w0² ζ = F sin ϖτ; s'' = ds sin ϖτ with
+#: ds = σβκ. ``q`` = 1 − σb: the stick-band edge whose derivative f' = σ(q sin φ − ζ)/α
+#: the event ζ' = s' has. ``P`` [-]: amplitude of the forced part P sin φ (NaN at exact
+#: resonance), ``fast``: |1 − αϖ²| ≥ 0.1 (the split bounds of :mod:`evaluators` hold);
+#: ``apq`` = |P − q|ϖ and ``K`` = σ(Pϖ + ds/ϖ): the slow envelope of ζ' − s'.
+SLIP_DTYPE = np.dtype(
+    [
+        ("sig", np.float64),
+        ("q", np.float64),
+        ("w0", np.float64),
+        ("F", np.float64),
+        ("ds", np.float64),
+        ("P", np.float64),
+        ("apq", np.float64),
+        ("K", np.float64),
+        ("fast", np.bool_),
+    ]
+)
+#: Constants of stick: α(1 + 1/β) ζ'' + ζ = sin ϖτ, band edges q = (1 − b, 1 + b);
+#: ``a2``, ``a3`` = |P − q|ϖ², |P − q|ϖ³ per edge (bounds), ``K`` = ±(P − q) (slow
+#: envelopes of the band distances), ``w3`` = ϖ³.
+STICK_DTYPE = np.dtype(
+    [
+        ("w0", np.float64),
+        ("F", np.float64),
+        ("q", np.float64, (2,)),
+        ("P", np.float64),
+        ("a2", np.float64, (2,)),
+        ("a3", np.float64, (2,)),
+        ("K", np.float64, (2,)),
+        ("w3", np.float64),
+        ("fast", np.bool_),
+    ]
+)
+#: Everything the contact loop needs of one parameter set (MODEL.md phase table), one
+#: record: ``b`` = ακ(1 + β) half-width of the stick band, ``a_stick`` = α(1 + 1/β) stick
+#: inertia, ``w_free``, ``F_free``: free flight ζ'' + w² ζ = F sin ϖτ; per contact phase
+#: ``slip``, ``reverse`` (:data:`SLIP_DTYPE`) and ``stick`` (:data:`STICK_DTYPE`).
+#: A record array (cheap to hand to compiled code); kernels read it as ``c = table[0]``.
+TABLE_DTYPE = np.dtype(
+    [
+        ("varpi", np.float64),
+        ("alpha", np.float64),
+        ("beta", np.float64),
+        ("kappa", np.float64),
+        ("b", np.float64),
+        ("a_stick", np.float64),
+        ("w_free", np.float64),
+        ("F_free", np.float64),
+        ("slip", SLIP_DTYPE),
+        ("reverse", SLIP_DTYPE),
+        ("stick", STICK_DTYPE),
+    ]
+)
+#: a record of :data:`TABLE_DTYPE` (``phase_table(p)[0]``), as the kernels see it
+PhaseTable = np.void
+
+
+def _forced_amplitude(w0: float, F: float, wf: float) -> float:
+    """P = F/(w0² − ϖ²) of the forced response P sin φ; NaN at exact resonance."""
+    den = w0 * w0 - wf * wf
+    return math.nan if den == 0.0 else F / den
+
+
+def _split_ok(P: float, w0: float, F: float) -> bool:
+    """The split "P sin φ + free oscillation" is free of cancellation: |1 − aϖ²| ≥ 0.1."""
+    return P == P and abs(P) * w0 * w0 <= 10.0 * abs(F)
+
+
+def _slip_phase(sig: float, b: float, w0: float, F: float, wf: float, ds: float) -> tuple:
+    q = 1.0 - sig * b
+    P = _forced_amplitude(w0, F, wf)
+    fast = _split_ok(P, w0, F)
+    apq = 0.0 if P != P else abs(P - q) * wf
+    K = sig * (P * wf + ds / wf) if fast else 0.0
+    return (sig, q, w0, F, ds, P, apq, K, fast)
+
+
+def phase_table(p: ModelParams) -> np.ndarray:
+    """The constants of parameters p, a one-record array of :data:`TABLE_DTYPE`
+    (w0 = 1/sqrt(a), F = c/a per phase); a record array (attribute access in plain
+    Python) when the kernels run as Python (``NUMBA_DISABLE_JIT=1``)."""
+    al, be, ka, wf = p.alpha, p.beta, p.kappa, p.varpi
+    a_st = al * (1.0 + 1.0 / be)
+    w_free = 1.0 / math.sqrt(al)
+    w_st = 1.0 / math.sqrt(a_st)
+    b = al * ka * (1.0 + be)
+    slip = _slip_phase(1.0, b, w_free, (1.0 - al * ka) / al, wf, be * ka)
+    reverse = _slip_phase(-1.0, b, w_free, (1.0 + al * ka) / al, wf, -be * ka)
+    F_st = 1.0 / a_st
+    qs = (1.0 - b, 1.0 + b)
+    P = _forced_amplitude(w_st, F_st, wf)
+    fast = _split_ok(P, w_st, F_st)
+    a2 = (0.0, 0.0) if P != P else (abs(P - qs[0]) * wf * wf, abs(P - qs[1]) * wf * wf)
+    a3 = (abs(P - qs[0]) * wf**3, abs(P - qs[1]) * wf**3) if fast else (0.0, 0.0)
+    K = (P - qs[0], -1.0 * (P - qs[1])) if fast else (0.0, 0.0)
+    stick = (w_st, F_st, qs, P, a2, a3, K, wf**3, fast)
+    row = (wf, al, be, ka, b, a_st, w_free, 1.0 / al, slip, reverse, stick)
+    table = np.array([row], dtype=TABLE_DTYPE)
+    return table if jit_enabled() else table.view(np.recarray)
+
+
+@kernel
 def sinc(x: float) -> float:
     """sin(x)/x with the removable singularity filled in (Taylor for |x| < 1e-3)."""
     if -1e-3 < x < 1e-3:
@@ -62,7 +166,7 @@ def sinc(x: float) -> float:
     return math.sin(x) / x
 
 
-@jitable
+@kernel
 def oscillator(
     w0: float, wf: float, F: float, y0: float, v0: float, sp0: float, cp0: float, h: float
 ) -> tuple[float, float, float, float]:
@@ -88,85 +192,7 @@ def oscillator(
     return y, yd, sp0 * cw + cp0 * sw, cp0 * cw - sp0 * sw
 
 
-def split_eval(
-    P: float, ac: float, as_: float, w0: float, wf: float, sp0: float, cp0: float, h: float
-) -> tuple[float, float, float, float]:
-    """(y, y', sin φ, cos φ) at h from the split y = P sin φ + a_c cos w0h + a_s sin w0h.
-
-    The cheap form of :func:`oscillator` away from resonance (no cancellation there);
-    a_c = y0 − P sin φ0, a_s = (y0' − Pϖ cos φ0)/w0.
-    """
-    cw, sw = math.cos(wf * h), math.sin(wf * h)
-    sp, cp = sp0 * cw + cp0 * sw, cp0 * cw - sp0 * sw
-    c0, s0 = math.cos(w0 * h), math.sin(w0 * h)
-    return P * sp + ac * c0 + as_ * s0, P * wf * cp + w0 * (as_ * c0 - ac * s0), sp, cp
-
-
-def energy_radius(w0: float, F: float, y: float, yd: float, H: float) -> float:
-    """Bound R on sqrt(y'² + w0² y²) over the next H [-] of forcing |F sin| ≤ |F|.
-
-    d/dh (y'² + w0²y²) = 2 y' F sin φ ≤ 2|F| sqrt(E), hence sqrt(E(h)) ≤ sqrt(E0) + |F| h.
-    """
-    return math.sqrt(yd * yd + w0 * w0 * y * y) + abs(F) * H
-
-
-def derivative_bounds(w0: float, F: float, wf: float, R: float, n: int) -> list[float]:
-    """Bounds [|y|, |y'|, ..., |y^(n)|] over a window with energy radius R.
-
-    From y^(k) = −w0² y^(k−2) + F wf^(k−2) sin^(k−2)(φ): |y^(k)| ≤ w0²|y^(k−2)| + |F| wf^(k−2).
-    """
-    b = [R / w0, R]
-    for k in range(2, n + 1):
-        b.append(w0 * w0 * b[k - 2] + abs(F) * wf ** (k - 2))
-    return b
-
-
-@dataclass(frozen=True, slots=True)
-class PhaseConstants:
-    """Oscillator constants of every phase for one parameter set (MODEL.md table).
-
-    For phase P: ``w0[P]`` [-] natural frequency, ``F[P]`` [-] forcing amplitude of
-    y'' + w0² y = F sin ϖτ, ``ds[P]`` slider forcing (s'' = ds sin ϖτ; stick: s = ζ + c).
-    ``b`` = ακ(1+β) is the half-width of the stick band.
-    """
-
-    varpi: float
-    alpha: float
-    beta: float
-    kappa: float
-    b: float
-    a_stick: float
-    w0: dict[int, float]
-    F: dict[int, float]
-    ds: dict[int, float]
-    #: per-phase constants of the event searches (:mod:`events`), filled on first use
-    cache: dict = field(default_factory=dict, compare=False, repr=False)
-
-    @classmethod
-    def from_params(cls, p: ModelParams) -> PhaseConstants:
-        al, be, ka = p.alpha, p.beta, p.kappa
-        a_st = al * (1.0 + 1.0 / be)
-        w_free = 1.0 / math.sqrt(al)
-        w_st = 1.0 / math.sqrt(a_st)
-        return cls(
-            varpi=p.varpi,
-            alpha=al,
-            beta=be,
-            kappa=ka,
-            b=al * ka * (1.0 + be),
-            a_stick=a_st,
-            w0={FREE: w_free, SLIP: w_free, REVERSE: w_free, STICK: w_st},
-            F={
-                FREE: 1.0 / al,
-                SLIP: (1.0 - al * ka) / al,
-                REVERSE: (1.0 + al * ka) / al,
-                STICK: 1.0 / a_st,
-            },
-            ds={FREE: 0.0, SLIP: be * ka, REVERSE: -be * ka, STICK: 0.0},
-        )
-
-
-@jitable
+@kernel
 def slider(
     ds: float,
     wf: float,
@@ -190,8 +216,29 @@ def slider(
     return s, sd
 
 
-def flow(
-    k: PhaseConstants,
+@kernel
+def vertical_flight(
+    wf: float, xi: float, xid: float, sp0: float, cp0: float, h: float
+) -> tuple[float, float, float, float]:
+    """No contact, vertical: ξ'' + ξ = −sin ϖτ over h: (ξ, ξ', sin φ, cos φ)."""
+    return oscillator(1.0, wf, -1.0, xi, xid, sp0, cp0, h)
+
+
+@kernel
+def free_flight(
+    c: PhaseTable, z: float, zd: float, s: float, sd: float, cp0: float, h: float
+) -> tuple[float, float, float, float]:
+    """No contact, tangential: α ζ'' + ζ = sin ϖτ, s'' = 0, over h from a forcing phase
+    0 or π (cp0 = ±1: a section or a contact end): (ζ, ζ', s, s')."""
+    w0 = c.w_free
+    y0, v0, _, _ = oscillator(w0, c.varpi, c.F_free, 0.0, 0.0, 0.0, cp0, h)
+    c0, s0 = math.cos(w0 * h), math.sin(w0 * h)
+    return z * c0 + zd / w0 * s0 + y0, -z * w0 * s0 + zd * c0 + v0, s + sd * h, sd
+
+
+@kernel
+def slip_flow(
+    c: PhaseTable,
     phase: int,
     z: float,
     zd: float,
@@ -200,14 +247,49 @@ def flow(
     sp0: float,
     cp0: float,
     h: float,
-) -> tuple[float, float, float, float, float, float]:
-    """Tangential state (ζ, ζ', s, s') and (sin φ, cos φ) after h in ``phase``.
+) -> tuple[float, float, float, float]:
+    """Contact, slip (ζ' > s') or reverse slip (ζ' < s'): α ζ'' + ζ = (1 ∓ ακ) sin ϖτ,
+    s'' = ±βκ sin ϖτ, over h: (ζ, ζ', s, s')."""
+    ph = c.slip if phase == SLIP else c.reverse
+    zn, zdn, sp, cp = oscillator(ph.w0, c.varpi, ph.F, z, zd, sp0, cp0, h)
+    sn, sdn = slider(ph.ds, c.varpi, s, sd, sp0, cp0, sp, cp, h)
+    return zn, zdn, sn, sdn
 
-    In stick, s − ζ stays constant and s' = ζ' (the caller enters stick with ζ' = s').
-    """
-    wf = k.varpi
-    zn, zdn, sp, cp = oscillator(k.w0[phase], wf, k.F[phase], z, zd, sp0, cp0, h)
+
+@kernel
+def stick_flow(
+    c: PhaseTable, z: float, zd: float, s: float, sp0: float, cp0: float, h: float
+) -> tuple[float, float, float, float]:
+    """Contact, stick (ζ' = s'): α(1 + 1/β) ζ'' + ζ = sin ϖτ, s'' = ζ'' (s − ζ constant),
+    over h: (ζ, ζ', s, s')."""
+    st = c.stick
+    zn, zdn, _, _ = oscillator(st.w0, c.varpi, st.F, z, zd, sp0, cp0, h)
+    return zn, zdn, s + (zn - z), zdn
+
+
+@kernel
+def stick_velocity(zd: float, sd: float, beta: float) -> float:
+    """Common velocity on entering stick: the one conserving the momentum ζ' + s'/β."""
+    return (zd + sd / beta) / (1.0 + 1.0 / beta)
+
+
+@kernel
+def flow(
+    c: PhaseTable,
+    phase: int,
+    z: float,
+    zd: float,
+    s: float,
+    sd: float,
+    sp0: float,
+    cp0: float,
+    h: float,
+) -> tuple[float, float, float, float]:
+    """(ζ, ζ', s, s') after h in any ``phase`` from a forcing phase (sin, cos) =
+    (sp0, cp0); free flight from any phase (dense output) through the general form."""
     if phase == STICK:
-        return zn, zdn, s + (zn - z), zdn, sp, cp
-    sn, sdn = slider(k.ds[phase], wf, s, sd, sp0, cp0, sp, cp, h)
-    return zn, zdn, sn, sdn, sp, cp
+        return stick_flow(c, z, zd, s, sp0, cp0, h)
+    if phase == FREE:
+        zn, zdn, _, _ = oscillator(c.w_free, c.varpi, c.F_free, z, zd, sp0, cp0, h)
+        return zn, zdn, s + sd * h, sd
+    return slip_flow(c, phase, z, zd, s, sd, sp0, cp0, h)

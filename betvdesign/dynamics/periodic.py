@@ -44,16 +44,16 @@ import time
 import numpy as np
 
 from betvdesign.domain import mode_of
-from betvdesign.dynamics.flows import PhaseConstants
+from betvdesign.dynamics import contact, shooting
+from betvdesign.dynamics._jit import compile_note
+from betvdesign.dynamics.flows import phase_table
 from betvdesign.dynamics.result import PeriodicResult
-from betvdesign.dynamics.solver import SolverFailure, _Cycle
+from betvdesign.dynamics.shooting import TRUST
+from betvdesign.dynamics.solver import CycleRunner, SolverFailure
 from betvdesign.dynamics.vertical import VerticalSchedule
 from betvdesign.errors import ParameterError
 from betvdesign.params import ModelParams
 
-FD_STEP = 1e-7
-MAX_NEWTON = 25
-TRUST = 2.0
 POLISH = 1e-14
 #: |α·ϖ² − 1| at or below which the free-flight tangential resonance counts as exact.
 RESONANCE_RTOL = 1e-9
@@ -80,83 +80,72 @@ def resonance_growth_bound(p: ModelParams) -> float | None:
 
 
 class _Map:
-    """Φⁿ: section state (ζ, ζ', s') at the first periodic cycle → n cycles later."""
+    """Φⁿ: section state (ζ, ζ', s') at the first periodic cycle → n cycles later
+    (compiled: :mod:`shooting`); counts cycles, events and evaluations."""
 
-    def __init__(self, k: PhaseConstants, vs: VerticalSchedule, m0: int):
-        self.cyc = _Cycle(k, vs, None, None)
-        self.m0 = m0
-        self.n_cycles = 0
+    def __init__(self, c: np.ndarray, vs: VerticalSchedule, m0: int):
+        self.c, self.vs, self.m0 = c, vs, m0
+        self.count = np.zeros(3, dtype=np.int64)  # cycles, events, evaluations
+        self._shots: dict[int, tuple] = {}
+        self._rows = np.empty((0, 4))
+        self._log = np.empty(0, contact.LOG_DTYPE)
+        self._segs = np.empty(0, contact.SEG_DTYPE)
+
+    @property
+    def n_cycles(self) -> int:
+        return int(self.count[0])
+
+    @property
+    def n_events(self) -> int:
+        return int(self.count[1])
+
+    @property
+    def n_evals(self) -> int:
+        return int(self.count[2])
+
+    def shot(self, n: int) -> tuple:
+        """The map's arguments over n cycles (:data:`shooting.SHOT`)."""
+        sh = self._shots.get(n)
+        if sh is None:
+            idx = self.vs.row(np.arange(self.m0, self.m0 + n))
+            sh = (
+                self.c,
+                self.vs.table,
+                idx,
+                self.vs.impulsive,
+                self.m0,
+                self._rows,
+                self._log,
+                self._segs,
+                self.count,
+            )
+            if n <= 64:  # repeated calls of the periodic map; a long transient runs once
+                self._shots[n] = sh
+        return sh
 
     def __call__(self, x: np.ndarray, n: int) -> tuple[np.ndarray, float]:
-        z, zd, s, sd = float(x[0]), float(x[1]), 0.0, float(x[2])
-        z, zd, s, sd = self.cyc.run_many(self.m0, n, z, zd, s, sd, check_finite=False)
-        self.n_cycles += n
-        return np.array([z, zd, sd]), s
+        ok, y, s = shooting.section_map(*self.shot(n), np.asarray(x, dtype=float))
+        if not ok:  # run again where the failure is explained (rare path)
+            CycleRunner(self.c, self.vs).run(self.m0, n, x[0], x[1], 0.0, x[2], check_finite=False)
+            raise SolverFailure(f"a contact could not be advanced from cycle {self.m0}", self.m0)
+        return y, s
 
     def residual(self, x: np.ndarray, n: int) -> tuple[float, np.ndarray, float]:
-        try:
-            y, s = self(x, n)
-        except (SolverFailure, RuntimeError):
-            return math.inf, x, math.nan
-        g = y - x
-        r = float(np.max(np.abs(g)))
-        return (r if math.isfinite(r) else math.inf), y, s
+        return shooting.residual(*self.shot(n), np.asarray(x, dtype=float))
 
     def jacobian(self, x: np.ndarray, n: int, y: np.ndarray, central: bool = False) -> np.ndarray:
-        J = np.empty((3, 3))
-        for i in range(3):
-            h = FD_STEP * max(1.0, abs(x[i]))
-            xp = x.copy()
-            xp[i] += h
-            yp, _ = self(xp, n)
-            if central:
-                xm = x.copy()
-                xm[i] -= h
-                ym, _ = self(xm, n)
-                J[:, i] = (yp - ym) / (2.0 * h)
-            else:
-                J[:, i] = (yp - y) / h
+        ok, J = shooting.jacobian(*self.shot(n), x, y, central)
+        if not ok:
+            raise SolverFailure("a contact could not be advanced (Jacobian)", self.m0)
         return J
 
 
 def _newton(
     phi: _Map, x: np.ndarray, n: int, tol: float, polish: float = 0.0
 ) -> tuple[np.ndarray, float, float, int]:
-    """Newton on Φⁿ(x) − x = 0; returns (x, residual, s-increment, iterations).
-
-    Gives up after two iterations in a row that do not halve the residual (not in
-    Newton's basin yet: more brute force is cheaper). Once the residual is ≤ tol it
-    goes on while the residual keeps halving, down to ``polish`` (the fixed point's
-    error is about residual/(1 − |μ|max), so an accepted residual is polished).
-    """
-    r, y, s = phi.residual(x, n)
-    it = 0
-    slow = 0
-    while it < MAX_NEWTON and r > polish and math.isfinite(r) and slow < 2:
-        it += 1
-        r_prev = r
-        try:
-            J = phi.jacobian(x, n, y)
-            dx = np.linalg.solve(J - np.eye(3), -(y - x))
-        except (SolverFailure, RuntimeError, np.linalg.LinAlgError):
-            break
-        # trust region: a step far beyond the state's own size leaves the region where
-        # the linearisation holds (e.g. into all-reverse-slip, where s' is neutral)
-        size = float(np.max(np.abs(dx)))
-        lam = min(1.0, TRUST * (1.0 + float(np.max(np.abs(x)))) / size) if size > 0 else 1.0
-        for _ in range(12):
-            xn = x + lam * dx
-            rn, yn, sn = phi.residual(xn, n)
-            if rn < r:
-                x, r, y, s = xn, rn, yn, sn
-                break
-            lam *= 0.5
-        else:
-            break
-        slow = slow + 1 if r > 0.5 * r_prev else 0
-        if r <= tol and slow:
-            break  # accepted and no longer improving fast: polished as far as it goes
-    return x, r, s, it
+    """Newton on Φⁿ(x) − x = 0 (:func:`shooting.newton`): (x, residual, s, iterations)."""
+    x, r, s, it = shooting.newton(*phi.shot(n), np.asarray(x, dtype=float), tol, polish)
+    return x, r, s, int(it)
 
 
 def _anderson(phi: _Map, x: np.ndarray, n: int) -> np.ndarray | None:
@@ -279,8 +268,16 @@ def periodic_orbit(
         raise ParameterError(f"p must be a ModelParams, got {type(p).__name__}")
     if not (math.isfinite(tol) and tol > 0.0):
         raise ParameterError(f"tol must be finite and > 0, got {tol!r}")
+    return compile_note(  # type: ignore[return-value]
+        "periodic_orbit", lambda: _periodic_orbit(p, tol, max_cycles, max_period, transient)
+    )
+
+
+def _periodic_orbit(
+    p: ModelParams, tol: float, max_cycles: int, max_period: int, transient: int
+) -> PeriodicResult:
     t0 = time.perf_counter()
-    k = PhaseConstants.from_params(p)
+    k = phase_table(p)
     vs = VerticalSchedule(p.varpi, horizon=1000)
     hits, frac = vs.hits_per_cycle(), vs.contact_fraction()
 
@@ -306,8 +303,8 @@ def periodic_orbit(
             impacts_per_cycle=hits,
             contact_fraction=frac,
             n_cycles=phi.n_cycles if phi else 0,
-            n_events=phi.cyc.n_events if phi else 0,
-            n_root_evals=(phi.cyc.counter[0] if phi else 0) + vs.n_root_evals,
+            n_events=phi.n_events if phi else 0,
+            n_root_evals=(phi.n_evals if phi else 0) + vs.n_root_evals,
             elapsed_s=time.perf_counter() - t0,
             **base,  # type: ignore[arg-type]
         )
@@ -316,7 +313,7 @@ def periodic_orbit(
     if vs.period is None:
         return result(
             "not_driven",
-            f"no contact recurs within {len(vs.prefix)} cycles at ϖ = {p.varpi:g}: hits are "
+            f"no contact recurs within {vs.n_prefix} cycles at ϖ = {p.varpi:g}: hits are "
             "impulsive only and the slider is not driven (MODEL.md design window 0.5 ≤ ϖ < 2)",
         )
     kv = vs.period
@@ -382,14 +379,12 @@ def periodic_orbit(
             if np.max(np.abs(mu)) >= 1.0:
                 continue  # an unstable orbit: not where the device settles
             r_final, _, s = phi.residual(xs, n)
-            vert = abs(vs.cycle(m0 + n).xi0 - vs.cycle(m0).xi0) + abs(
-                vs.cycle(m0 + n).xid0 - vs.cycle(m0).xid0
-            )
+            a, b = vs.table[vs.row(np.array([m0, m0 + n]))].tolist()
+            vert = abs(b[0] - a[0]) + abs(b[1] - a[1])
             r_final = max(r_final, vert)
             if r_final > tol:
                 continue
             ds = s / n
-            vc = vs.cycle(m0)
             return result(
                 "success",
                 f"periodic orbit of {n} cycle(s), residual {r_final:.2e} ≤ {tol:.0e}, "
@@ -400,7 +395,7 @@ def periodic_orbit(
                 residual=r_final,
                 floquet=mu,
                 stable=True,
-                state=np.array([vc.xi0, vc.xid0, xs[0], xs[1], 0.0, xs[2]]),
+                state=np.array([a[0], a[1], xs[0], xs[1], 0.0, xs[2]]),
                 n_newton=n_newton,
                 transient_cycles=brute,
                 transient_s=s_total,
@@ -428,7 +423,7 @@ def _measure_growth(
     sqrt(ζ² + (ζ'/ϖ)²) [-], s gained [-]) when every step's fall is at least ``kv`` times
     the proven per-cycle ``bound`` (up to round-off), else None (the bound is not borne
     out, e.g. a solver defect: then the normal search decides)."""
-    varpi = phi.cyc.k.varpi
+    varpi = float(phi.c["varpi"][0])
     z0 = float(x[0])
     steps = max(1, window // kv)
     s_total = 0.0

@@ -4,9 +4,9 @@ docs/MODEL.md, "Dimensionless model". An independent second method for tests
 and the baseline of the work-precision study: the full state (ξ, ξ', ζ, ζ', s, s')
 is integrated numerically (no closed form), event functions are located by
 ``solve_ivp``'s own root finding, and the hybrid automaton (contact / free,
-slip / reverse / stick) is driven by the model's switching rules (the phase
-choice at ζ' = s' uses :func:`solver.decide_phase`, which *is* the model's rule,
-not a numerical method).
+slip / reverse / stick) is driven by the model's switching rules, written here
+again from docs/MODEL.md (:func:`choose_phase`); nothing of the exact solver is
+imported (no shared phase rule, closed form or event search).
 
 Friction models:
 
@@ -27,28 +27,73 @@ from __future__ import annotations
 
 import math
 import time
-from typing import Literal
+from typing import Literal, NamedTuple
 
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from betvdesign.dynamics.flows import FREE, PHASE_NAMES, REVERSE, SLIP, STICK, PhaseConstants
+from betvdesign.dynamics.inputs import check_cycles, check_state0
 from betvdesign.dynamics.result import Event, Trajectory
-from betvdesign.dynamics.solver import _check_cycles, _check_state0, decide_phase
 from betvdesign.errors import ParameterError
 from betvdesign.params import ModelParams
 
 Method = Literal["RK45", "DOP853", "Radau", "LSODA", "BDF", "RK23"]
 METHODS = ("RK45", "DOP853", "Radau", "LSODA", "BDF", "RK23")
 FRICTION = ("exact", "tanh")
-TANH = 3  # horizontal mode during contact with regularised friction
+FREE, SLIP, STICK, REVERSE = "free", "slip", "stick", "reverse"
+TANH = "slip-tanh"  # horizontal mode during contact with regularised friction
+#: relative velocity |ζ' − s'| below which ζ' = s' is taken as reached (scaled)
+VTOL = 1e-9
+#: look-ahead [fraction of a cycle] at which the stick band is tested when ζ' = s'
+LOOKAHEAD = 1e-6
+
+
+class _K(NamedTuple):
+    alpha: float
+    beta: float
+    kappa: float
+    varpi: float
+    b: float
+    a_stick: float
+
+
+def _constants(p: ModelParams) -> _K:
+    """MODEL.md: b = ακ(1 + β) stick-band half-width, α(1 + 1/β) stick inertia."""
+    al, be, ka = p.alpha, p.beta, p.kappa
+    return _K(al, be, ka, p.varpi, al * ka * (1.0 + be), al * (1.0 + 1.0 / be))
+
+
+def choose_phase(k: _K, tau: float, z: float, zd: float, sd: float, matched: bool) -> str:
+    """MODEL.md stick/slip rules: the sign of ζ' − s' when they differ (slip if ζ' > s',
+    reverse slip if ζ' < s'); when ζ' = s' (``matched``, or equal within VTOL) the
+    friction band (1 − b) sin ϖτ ≤ ζ ≤ (1 + b) sin ϖτ decides: stick inside, slip below,
+    reverse slip above. The band is tested a short look-ahead δ after τ on the stick
+    flow α(1 + 1/β) ζ'' + ζ = sin ϖτ (third-order Taylor), which settles the cases
+    where ζ sits on an edge (a band exit, or sin ϖτ = 0 at a contact opening)."""
+    v = zd - sd
+    if not matched and abs(v) > VTOL * (1.0 + abs(zd) + abs(sd)):
+        return SLIP if v > 0.0 else REVERSE
+    w, A = k.varpi, k.a_stick
+    vs = (zd + sd / k.beta) / (1.0 + 1.0 / k.beta)
+    d = LOOKAHEAD * 2.0 * math.pi / w
+    z2 = (math.sin(w * tau) - z) / A
+    z3 = (w * math.cos(w * tau) - vs) / A
+    zn = z + vs * d + z2 * d * d / 2.0 + z3 * d**3 / 6.0
+    sn = math.sin(w * (tau + d))
+    if zn < (1.0 - k.b) * sn:
+        return SLIP
+    if zn > (1.0 + k.b) * sn:
+        return REVERSE
+    return STICK
+
+
 MAX_ZERO_LENGTH = 20
 #: After an event at the very start of a phase (round-off), event detection is
 #: masked over MASK·(2π/ϖ) so that solve_ivp can leave the switching surface.
 MASK = 1e-9
 
 
-def _rhs_factory(k: PhaseConstants, contact: bool, hmode: int, eps: float):
+def _rhs_factory(k: _K, contact: bool, hmode: str, eps: float):
     al, be, ka, w, A = k.alpha, k.beta, k.kappa, k.varpi, k.a_stick
 
     def rhs(t: float, y: np.ndarray) -> list[float]:
@@ -74,7 +119,7 @@ def _rhs_factory(k: PhaseConstants, contact: bool, hmode: int, eps: float):
     return rhs
 
 
-def _events(k: PhaseConstants, contact: bool, hmode: int) -> list:
+def _events(k: _K, contact: bool, hmode: str) -> list:
     w, b = k.varpi, k.b
     evs = []
     if not contact:
@@ -127,8 +172,8 @@ def simulate(
     """
     if not isinstance(p, ModelParams):
         raise ParameterError(f"p must be a ModelParams, got {type(p).__name__}")
-    n = _check_cycles(cycles)
-    st = np.array(_check_state0(state0))
+    n = check_cycles(cycles)
+    st = np.array(check_state0(state0))
     if method not in METHODS:
         raise ParameterError(f"method must be one of {', '.join(METHODS)}, got {method!r}")
     if friction not in FRICTION:
@@ -137,7 +182,7 @@ def simulate(
         if not (isinstance(v, (int, float)) and v > 0 and not math.isnan(v)):
             raise ParameterError(f"{name} must be > 0, got {v!r}")
     t_start = time.perf_counter()
-    k = PhaseConstants.from_params(p)
+    k = _constants(p)
     w = p.varpi
     T = 2.0 * math.pi / w
     tau, y = 0.0, st.copy()
@@ -151,11 +196,10 @@ def simulate(
     zero_len = 0
     status, message, m = "success", f"{n} cycles integrated", 0
 
-    def open_contact(y: np.ndarray, on: int = -1) -> int:
+    def open_contact(y: np.ndarray, on: int = -1) -> str:
         if friction == "tanh":
             return TANH
-        sp, cp = math.sin(w * tau), math.cos(w * tau)
-        ph = decide_phase(k, y[2], y[3], y[5], sp, cp, on)
+        ph = choose_phase(k, tau, y[2], y[3], y[5], on >= 0)
         if ph == STICK or on == 0:
             y[3] = y[5] = (y[3] + y[5] / p.beta) / (1.0 + 1.0 / p.beta)
         return ph
@@ -163,7 +207,7 @@ def simulate(
     if contact:
         y[1] = 0.0
         hmode = open_contact(y)
-        events.append(Event(0.0, "impact", "free", _name(hmode)))
+        events.append(Event(0.0, "impact", "free", hmode))
     while m < n:
         t_sec = (m + 1) * T
         t_end = t_sec
@@ -218,15 +262,15 @@ def simulate(
                 if math.sin(w * tau) >= 0.0:
                     contact = True
                     hmode = open_contact(y)
-                    events.append(Event(tau, "impact", "free", _name(hmode)))
+                    events.append(Event(tau, "impact", "free", hmode))
                 else:
                     events.append(Event(tau, "impulsive", "free", "free"))
             elif hmode == STICK:
                 hmode = open_contact(y, 1 + i)
-                events.append(Event(tau, "band-exit", "stick", _name(hmode)))
+                events.append(Event(tau, "band-exit", "stick", hmode))
             else:
                 hmode = open_contact(y, 0)
-                events.append(Event(tau, "velocity-match", _name(before), _name(hmode)))
+                events.append(Event(tau, "velocity-match", before, hmode))
             continue
         if sol is not None:
             y = np.array(sol.y[:, -1], dtype=float)
@@ -236,7 +280,7 @@ def simulate(
             if t_end < t_sec and not (contact and _is_contact_end(tau, w)):
                 continue
         if (contact and t_end < t_sec) or (contact and t_end == t_sec and _is_contact_end(tau, w)):
-            events.append(Event(tau, "separation", _name(hmode), "free"))
+            events.append(Event(tau, "separation", hmode, "free"))
             contact, hmode = False, FREE
             y[0], y[1] = 0.0, 0.0
         if t_end == t_sec:
@@ -266,10 +310,6 @@ def simulate(
 def _is_contact_end(tau: float, w: float) -> bool:
     ph = (w * tau / math.pi) % 2.0
     return abs(ph - 1.0) < 1e-12
-
-
-def _name(h: int) -> str:
-    return "slip-tanh" if h == TANH else PHASE_NAMES[h]
 
 
 def _sampler(pieces: list):

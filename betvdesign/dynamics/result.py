@@ -43,8 +43,9 @@ class Trajectory:
     ``solver``: "exact" or the reference method (e.g. "solve_ivp:DOP853/exact");
     ``n_fev``: right-hand-side evaluations (reference solvers; 0 for the exact one);
     ``phases``: (τ_start, τ_end, tangential phase) pieces of the exact solution, each one
-    closed-form expression (filled when ``dense=True``); ``engine``: which implementation
-    of the exact solver advanced the cycles ("compiled" or "python", same algorithm).
+    closed-form expression (filled when ``dense=True``); ``engine``: how the exact
+    solver's one implementation ran: "compiled" (numba) or "python" (its source run
+    uncompiled under ``NUMBA_DISABLE_JIT=1``).
     """
 
     params: ModelParams
@@ -64,7 +65,7 @@ class Trajectory:
     impacts_per_cycle: float = float("nan")
     contact_fraction: float = float("nan")
     phases: list[tuple[float, float, str]] = field(default_factory=list, repr=False)
-    #: "compiled" (numba kernel, :mod:`betvdesign.dynamics.kernels`) or "python"
+    #: "compiled" (numba, :mod:`betvdesign.dynamics.contact`) or "python" (uncompiled)
     engine: str = "python"
     _sampler: Callable[[np.ndarray], np.ndarray] | None = field(default=None, repr=False)
 

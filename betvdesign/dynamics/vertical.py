@@ -1,18 +1,11 @@
 """The head's vertical motion, exactly, and the vertical-only fast path (unit-free).
 
-docs/MODEL.md, "Impacts and separation" and "What the model shows". The vertical
-motion does not depend on the slider: free flight ξ'' + ξ = −sin ϖτ (closed form,
-resonant ϖ = 1 included), plastic hits (ξ' → 0), contact while sin ϖτ ≥ 0, and
-impulsive hits (zero duration) when sin ϖτ < 0 at the hit.
-
-Every contact ends at τ = (2j+1)π/ϖ with ξ = ξ' = 0, so whatever happened
-before, the motion after a contact end is the same (shifted by whole cycles):
-it is *exactly* periodic from the first contact end, with a period of k cycles
-where k is the number of cycles between two contact ends. :class:`VerticalSchedule`
-computes the prefix up to the first contact end and one period after it, and
-answers "what happens vertically in cycle m" for any m without integrating
-again. When no contact recurs within the horizon (only impulsive hits, large ϖ)
-there is no period and the slider is not driven.
+docs/MODEL.md, "Impacts and separation" and "What the model shows". The motion itself
+is computed by the compiled :func:`schedule.vertical_run` (exactly periodic from the
+first contact end); :class:`VerticalSchedule` holds its tables and answers "what happens
+vertically in cycle m" for any m without integrating again. When no contact recurs
+within the horizon (only impulsive hits, large ϖ) there is no period and the slider is
+not driven.
 """
 
 from __future__ import annotations
@@ -20,14 +13,18 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 
-from betvdesign.dynamics.events import EPS, GapEvent, first_root
-from betvdesign.dynamics.flows import oscillator
+from betvdesign.dynamics import schedule
+from betvdesign.dynamics._jit import compile_note
+from betvdesign.dynamics.search import search_failure_message
 from betvdesign.errors import ParameterError
 
-TWO_PI = 2.0 * math.pi
+
+class VerticalSearchError(RuntimeError):
+    """The certified search for a hit did not terminate (a degenerate, non-isolated hit)."""
 
 
 @dataclass(slots=True)
@@ -46,147 +43,117 @@ class VerticalCycle:
     impulsive: list[float] = field(default_factory=list)
     free: list[tuple[float, float, float, float, float]] = field(default_factory=list)
 
-    def gap(self, varpi: float, t: float) -> tuple[float, float]:
-        """(ξ, ξ') at local time t (0 during contact)."""
-        te = math.pi / varpi
-        if self.contact_start is not None and self.contact_start <= t <= te:
-            return 0.0, 0.0
-        best = None
-        for piece in self.free:
-            if piece[0] <= t:
-                best = piece
-        if best is None:
-            return 0.0, 0.0
-        t0, xi, xid, sp, cp = best
-        y, yd, _, _ = oscillator(1.0, varpi, -1.0, xi, xid, sp, cp, t - t0)
-        return y, yd
-
 
 class VerticalSchedule:
     """Exact vertical motion from (ξ0, ξ0') at τ = 0, cycle by cycle.
 
-    ``prefix``: cycles 0..m1 (m1 = cycle of the first contact end); ``pattern``:
-    the k cycles after it, repeated for ever; ``period`` = k or None when no contact
-    recurred within the computed horizon (then ``prefix`` holds every computed cycle).
+    ``table``: the distinct cycles (:data:`schedule.CYCLE_DTYPE`): cycles 0..first_end
+    (the first contact end), then the ``period`` cycles after it, repeated for ever
+    (``period`` None when no contact recurred within the horizon: then the table holds
+    every computed cycle); ``impulsive`` and ``pieces`` the hit times and free-flight
+    pieces they index. ``prefix`` / ``pattern``: the same as :class:`VerticalCycle` lists.
     """
 
     def __init__(self, varpi: float, xi0: float = 0.0, xid0: float = 0.0, horizon: int = 1000):
         if not (math.isfinite(xi0) and math.isfinite(xid0)) or xi0 < 0.0:
             raise ParameterError(f"vertical state must be finite with ξ ≥ 0, got ({xi0}, {xid0})")
         self.varpi = varpi
-        self.T = TWO_PI / varpi
+        self.T = 2.0 * math.pi / varpi
         self.te = math.pi / varpi
-        self.prefix: list[VerticalCycle] = []
-        self.pattern: list[VerticalCycle] = []
-        self.first_end: int | None = None
-        self.period: int | None = None
-        self.n_root_evals = 0
-        self._counter = [0]
-        self._table: tuple[np.ndarray, ...] | None = None  # arrays(), built on first use
-        self._run(xi0, xid0, horizon)
-
-    # -- construction -------------------------------------------------------------
-    def _run(self, xi: float, xid: float, horizon: int) -> None:
-        wf, T, te = self.varpi, self.T, self.te
-        cycles: list[VerticalCycle] = [VerticalCycle(xi, xid)]
-        t, sp, cp = 0.0, 0.0, 1.0
-        contact = xi == 0.0 and xid <= 0.0  # a hit at phase 0: contact starts
-        if not contact:
-            cycles[0].free.append((0.0, xi, xid, sp, cp))
+        n_cyc, n_imp = 16, 64
         while True:
-            cur = cycles[-1]
-            m = len(cycles) - 1
-            if contact:
-                cur.contact_start = t
-                t, xi, xid, sp, cp = te, 0.0, 0.0, 0.0, -1.0
-                cur.free.append((te, 0.0, 0.0, 0.0, -1.0))
-                contact = False
-                if self.first_end is None:
-                    self.first_end = m
-                else:
-                    # From this contact end on, cycle m repeats cycle first_end's
-                    # post-contact flight (same state ξ = ξ' = 0 at π/ϖ): copy it, so
-                    # the pattern holds the impulsive hits after the separation too.
-                    ref = cycles[self.first_end]
-                    cur.free.extend(seg for seg in ref.free if seg[0] > te)
-                    cur.impulsive.extend(ti for ti in ref.impulsive if ti > te)
-                    self.period = m - self.first_end
-                    self.prefix = cycles[: self.first_end + 1]
-                    self.pattern = cycles[self.first_end + 1 :]
-                    break
-            H = T - t
-            res = first_root(GapEvent(wf, xi, xid, sp, cp, H), H, self._counter)
-            if res is None:
-                xi, xid, _, _ = oscillator(1.0, wf, -1.0, xi, xid, sp, cp, H)
-                xi = max(xi, 0.0)
-                limit = horizon if self.first_end is None else self.first_end + 1 + horizon
-                if len(cycles) >= limit:
-                    self.prefix = cycles
-                    break
-                cycles.append(VerticalCycle(xi, xid))
-                t, sp, cp = 0.0, 0.0, 1.0
-                if xi == 0.0 and xid <= 0.0:
-                    contact = True
-                else:
-                    cycles[-1].free.append((0.0, xi, xid, sp, cp))
-                continue
-            t += res[0]
-            if t >= T * (1.0 - 8.0 * EPS):  # hit at the section itself: contact from t = 0
-                _, xid, _, _ = oscillator(1.0, wf, -1.0, xi, xid, sp, cp, res[0])
-                cycles.append(VerticalCycle(0.0, min(xid, 0.0)))
-                t, contact = 0.0, True
-                continue
-            if t < te:  # sin ϖt ≥ 0 at the hit: contact until π/ϖ
-                contact = True
-                continue
-            sp, cp = math.sin(wf * t), math.cos(wf * t)
-            cur.impulsive.append(t)
-            xi, xid = 0.0, 0.0
-            cur.free.append((t, 0.0, 0.0, sp, cp))
-        self.n_root_evals = self._counter[0]
+            cyc = np.empty(n_cyc, schedule.CYCLE_DTYPE)
+            imp = np.empty(n_imp)
+            pieces = np.empty(2 * n_imp, schedule.PIECE_DTYPE)
+            run = schedule.vertical_run(
+                float(varpi), float(xi0), float(xid0), int(horizon), cyc, imp, pieces
+            )
+            if run.code != schedule.FULL:
+                break
+            n_cyc, n_imp = 2 * n_cyc, 2 * n_imp
+        if run.code == schedule.FAILED:
+            raise VerticalSearchError(search_failure_message(run.H))
+        self.table = cyc[: run.cycles]
+        self.impulsive = imp[: run.hits]
+        self.pieces = pieces[: run.pieces]
+        self.first_end: int | None = None if run.first_end < 0 else int(run.first_end)
+        self.period: int | None = None if run.period < 0 else int(run.period)
+        self.n_root_evals = int(run.evals)
+        self.n_prefix = int(run.cycles) if self.period is None else int(run.first_end) + 1
 
     # -- queries ------------------------------------------------------------------
+    def _cycle(self, i: int) -> VerticalCycle:
+        r = self.table[i]
+        tc = float(r["tc"])
+        i0, ni, f0, nf = (int(r[k]) for k in ("imp_start", "imp_count", "free_start", "free_count"))
+        return VerticalCycle(
+            float(r["xi0"]),
+            float(r["xid0"]),
+            None if tc != tc else tc,
+            [float(t) for t in self.impulsive[i0 : i0 + ni]],
+            [tuple(float(x) for x in p) for p in self.pieces[f0 : f0 + nf]],  # type: ignore[misc]
+        )
+
+    @cached_property
+    def prefix(self) -> list[VerticalCycle]:
+        """Cycles 0..first_end (or every computed cycle when there is no period)."""
+        return [self._cycle(i) for i in range(self.n_prefix)]
+
+    @cached_property
+    def pattern(self) -> list[VerticalCycle]:
+        """The period's cycles after the first contact end (empty: no period)."""
+        return [self._cycle(i) for i in range(self.n_prefix, len(self.table))]
+
+    def row(self, m: np.ndarray) -> np.ndarray:
+        """Row of ``table`` of cycles m (int array, 0-based, increasing)."""
+        k = self.n_prefix
+        if m.size and m[-1] >= k:
+            if self.period is None:
+                raise IndexError(f"cycle {int(m[-1])} beyond the computed vertical horizon")
+            m = np.where(m < k, m, k + (m - k) % self.period)
+        return m
+
     def cycle(self, m: int) -> VerticalCycle:
         """Vertical events of cycle m (0-based)."""
-        if m < len(self.prefix):
-            return self.prefix[m]
-        if self.period is None:
-            raise IndexError(f"cycle {m} beyond the computed vertical horizon")
-        assert self.first_end is not None
-        return self.pattern[(m - self.first_end - 1) % self.period]
+        return self._cycle(int(self.row(np.array([m]))[0]))
 
     def arrays(self, m0: int, n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """Cycles m0..m0+n−1 as arrays: section state ξ0, ξ0' [-], contact-opening local
-        time [-] (NaN: none) and number of impulsive hits; each distinct cycle (prefix
-        and one period) is read once, the rest by index."""
-        if self._table is None:
-            cyc = self.prefix + self.pattern
-            tc = [math.nan if c.contact_start is None else c.contact_start for c in cyc]
-            self._table = (
-                np.array([c.xi0 for c in cyc]),
-                np.array([c.xid0 for c in cyc]),
-                np.array(tc),
-                np.array([len(c.impulsive) for c in cyc], dtype=np.int64),
+        time [-] (NaN: none) and number of impulsive hits."""
+        rows = self.table[self.row(np.arange(m0, m0 + n))]
+        return rows["xi0"], rows["xid0"], rows["tc"], rows["imp_count"]
+
+    def gap(self, m: np.ndarray, t: np.ndarray) -> np.ndarray:
+        """(ξ, ξ') [-] at local times t of cycles m, shape (n, 2) (0 during contact)."""
+        out = np.empty((t.size, 2))
+        rows = self.table[self.row(m)]
+        for j in range(t.size):
+            r = rows[j]
+            out[j] = schedule.gap_at(
+                self.varpi, r["tc"], self.pieces, r["free_start"], r["free_count"], t[j]
             )
-        m = np.arange(m0, m0 + n)
-        k = len(self.prefix)
-        if n and m[-1] >= k:
-            if self.period is None:
-                raise IndexError(f"cycle {m[-1]} beyond the computed vertical horizon")
-            m = np.where(m < k, m, k + (m - k) % self.period)
-        return tuple(col[m] for col in self._table)  # type: ignore[return-value]
+        return out
+
+    def period_rows(self) -> np.ndarray:
+        """The table's rows of one period (or of the whole horizon when there is none)."""
+        return self.table[self.n_prefix :] if self.period else self.table[: self.n_prefix]
+
+    @cached_property
+    def _per_period(self) -> tuple[float, float]:
+        rows = self.period_rows()
+        tcs, imps = rows["tc"].tolist(), rows["imp_count"].tolist()
+        n = max(len(tcs), 1)
+        hits = sum(k + (t == t) for t, k in zip(tcs, imps, strict=True))
+        tc = sum(self.te - t for t in tcs if t == t)
+        return hits / n, tc / (self.T * n)
 
     def hits_per_cycle(self) -> float:
         """Hits (contact starts + impulsive) per cycle over one period (or the horizon)."""
-        cyc = self.pattern if self.period else self.prefix
-        n = sum(len(c.impulsive) + (c.contact_start is not None) for c in cyc)
-        return n / max(len(cyc), 1)
+        return self._per_period[0]
 
     def contact_fraction(self) -> float:
         """Fraction of time in contact over one period (or the computed horizon)."""
-        cyc = self.pattern if self.period else self.prefix
-        tc = sum(self.te - c.contact_start for c in cyc if c.contact_start is not None)
-        return tc / (self.T * max(len(cyc), 1))
+        return self._per_period[1]
 
 
 @dataclass(frozen=True, slots=True)
@@ -235,7 +202,9 @@ def vertical_motion_schedule(
     if not math.isfinite(v) or v <= 0.0:
         raise ParameterError(f"varpi must be finite and > 0, got {varpi!r}")
     t0 = time.perf_counter()
-    vs = VerticalSchedule(v, horizon=max_cycles)
+    vs: VerticalSchedule = compile_note(  # type: ignore[assignment]
+        "vertical_motion", lambda: VerticalSchedule(v, horizon=max_cycles)
+    )
     el = time.perf_counter() - t0
     if vs.period is None:
         imp = vs.hits_per_cycle()
@@ -252,13 +221,13 @@ def vertical_motion_schedule(
             imp,
             0.0,
             None,
-            len(vs.prefix),
+            vs.n_prefix,
             vs.n_root_evals,
             el,
         )
         return res, vs
     k = vs.period
-    imp = sum(len(c.impulsive) for c in vs.pattern) / k
+    imp = int(vs.period_rows()["imp_count"].sum()) / k
     hits = vs.hits_per_cycle()
     if k > 1:
         regime = f"period-{k}"
@@ -266,8 +235,8 @@ def vertical_motion_schedule(
         regime = "multi-impact"
     else:
         regime = "single-impact"
-    tc = next(c.contact_start for c in vs.pattern if c.contact_start is not None)
-    assert tc is not None
+    tcs = vs.period_rows()["tc"]
+    tc = float(tcs[~np.isnan(tcs)][0])
     res = VerticalResult(
         v,
         "success",

@@ -1,0 +1,326 @@
+"""The contact loop: whole actuation cycles of the exact solver (compiled, unit-free).
+
+docs/MODEL.md, "Dimensionless model" and "Impacts and separation". The vertical motion
+(:mod:`schedule`) fixes in every cycle the contact window [t_c, π/ϖ] (local time
+t = τ − 2mπ/ϖ). Horizontally, free flight has no event and is one closed-form step
+(:func:`flows.free_flight`); a contact is a sequence of slip / reverse slip / stick phases,
+each advanced in closed form (:mod:`flows`) to its first event located by the certified
+search (:mod:`search`): ζ' = s' in slip, a stick-band exit in stick, or the contact end
+at t = π/ϖ (known exactly). The phase at a contact start and whenever ζ' = s' is
+:func:`decide_phase`; entering stick, the common velocity is
+:func:`flows.stick_velocity` (momentum-conserving).
+
+This is the only implementation of the cycle loop. :func:`run_cycles` fills, when asked,
+an event log (:data:`LOG_DTYPE`) and the phase segments of dense output
+(:data:`SEG_DTYPE`); with ``NUMBA_DISABLE_JIT=1`` the same source runs as Python.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import NamedTuple
+
+import numpy as np
+
+from betvdesign.dynamics._jit import kernel
+from betvdesign.dynamics.bounds import EPS, NOISE
+from betvdesign.dynamics.evaluators import slip_evaluator, stick_evaluator
+from betvdesign.dynamics.flows import (
+    FREE,
+    REVERSE,
+    SLIP,
+    STICK,
+    PhaseTable,
+    flow,
+    free_flight,
+    slip_flow,
+    stick_flow,
+    stick_velocity,
+)
+from betvdesign.dynamics.search import ROOT, SEARCH_FAILED, first_root, workspace
+
+#: Zero-length phases in a row before a contact is declared chattering.
+MAX_ZERO_LENGTH = 8
+#: Phase switches within one contact before it is declared chattering (Zeno).
+MAX_SWITCHES = 1000
+
+#: :func:`run_cycles` codes: done; a search did not terminate; chattering contact;
+#: non-finite state; log or segment buffer full (grow it and go on from ``cycle``).
+OK, SEARCH_FAILED_CODE, CHATTER, NON_FINITE, BUFFER_FULL = 0, 1, 2, 3, 4
+
+#: event kinds of the log
+IMPACT, IMPULSIVE, SEPARATION, VELOCITY_MATCH, BAND_EXIT = 0, 1, 2, 3, 4
+KIND_NAMES = ("impact", "impulsive", "separation", "velocity-match", "band-exit")
+
+#: one event: cycle m, local time t [-], kind, phase before and after
+LOG_DTYPE = np.dtype(
+    [
+        ("cycle", np.int64),
+        ("t", np.float64),
+        ("kind", np.int64),
+        ("before", np.int64),
+        ("after", np.int64),
+    ]
+)
+#: one closed-form piece: cycle m, local times [t0, t1], phase, state and (sin, cos) of the
+#: forcing phase at t0
+SEG_DTYPE = np.dtype(
+    [
+        ("cycle", np.int64),
+        ("t0", np.float64),
+        ("t1", np.float64),
+        ("phase", np.int64),
+        ("z", np.float64),
+        ("zd", np.float64),
+        ("s", np.float64),
+        ("sd", np.float64),
+        ("sp", np.float64),
+        ("cp", np.float64),
+    ]
+)
+#: log / segment entries one cycle can need beyond its impulsive hits
+PER_CYCLE = MAX_SWITCHES + 4
+
+
+class ContactEnd(NamedTuple):
+    """What :func:`contact` returns: ``code`` (OK, SEARCH_FAILED_CODE, CHATTER), the state
+    (ζ, ζ', s, s') reached, events and root evaluations counted, ``where`` (the search
+    window on SEARCH_FAILED_CODE, the local time on CHATTER), ``switches`` (CHATTER) and the
+    log / segment counters."""
+
+    code: int
+    z: float
+    zd: float
+    s: float
+    sd: float
+    events: int
+    evals: int
+    where: float
+    switches: int
+    nlog: int
+    nseg: int
+
+
+class CyclesRun(NamedTuple):
+    """What :func:`run_cycles` returns: ``code`` and the cycle offset ``j`` it refers to,
+    events and root evaluations counted, ``where`` / ``switches`` as in
+    :class:`ContactEnd`, the log / segment counters and the state (ζ, ζ', s, s') reached."""
+
+    code: int
+    j: int
+    events: int
+    evals: int
+    where: float
+    switches: int
+    nlog: int
+    nseg: int
+    z: float
+    zd: float
+    s: float
+    sd: float
+
+
+@kernel
+def decide_phase(
+    c: PhaseTable, z: float, zd: float, sd: float, sp: float, cp: float, on: int
+) -> int:
+    """Contact phase at a contact start or at ζ' = s' (MODEL.md stick/slip rules).
+
+    The sign of ζ' − s' decides when it is above round-off; otherwise the band
+    (1 − b) sin ϖτ ≤ ζ ≤ (1 + b) sin ϖτ (b = ακ(1 + β)), compared lexicographically on
+    the Taylor coefficients of ζ − q sin ϖτ under the stick flow α(1 + 1/β) ζ'' + ζ =
+    sin ϖτ: stick inside, slip below, reverse slip above (this also settles the limit
+    sin ϖτ → 0⁺ at a contact opening at τ = 0). ``on``: the event just located (0: ζ' = s'
+    in slip, 1: lower band edge, 2: upper band edge), zero by construction whatever its
+    round-off; −1 at a contact start.
+    """
+    if on < 0:
+        v = zd - sd
+        nv = NOISE * (abs(zd) + abs(sd))
+        if v > nv:
+            return SLIP
+        if v < -nv:
+            return REVERSE
+    A, wf, b = c.a_stick, c.varpi, c.b
+    vs = stick_velocity(zd, sd, c.beta)
+    z2 = (sp - z) / A
+    z3 = (wf * cp - vs) / A
+    s1 = wf * cp
+    s2 = -wf * wf * sp
+    s3 = -(wf * wf * wf) * cp
+    for edge in range(1, 3):
+        sig, q, phase = (1.0, 1.0 - b, SLIP) if edge == 1 else (-1.0, 1.0 + b, REVERSE)
+        for j in range(4):
+            if j == 0:
+                zj, sj = z, sp
+            elif j == 1:
+                zj, sj = vs, s1
+            elif j == 2:
+                zj, sj = z2, s2
+            else:
+                zj, sj = z3, s3
+            qs = q * sj
+            dj = 0.0 if j == 0 and on == edge else sig * (zj - qs)
+            nz = NOISE * (abs(zj) + abs(qs))
+            if dj > nz:
+                break  # leaves the band on the admissible side: not this edge
+            if dj < -nz:
+                return phase
+    return STICK
+
+
+@kernel
+def _log(log, k, m, t, kind, before, after) -> int:
+    r = log[k]
+    r["cycle"], r["t"], r["kind"], r["before"], r["after"] = m, t, kind, before, after
+    return k + 1
+
+
+@kernel
+def _seg(segs, k, m, t0, t1, phase, z, zd, s, sd, sp, cp) -> int:
+    r = segs[k]
+    r["cycle"], r["t0"], r["t1"], r["phase"] = m, t0, t1, phase
+    r["z"], r["zd"], r["s"], r["sd"], r["sp"], r["cp"] = z, zd, s, sd, sp, cp
+    return k + 1
+
+
+@kernel
+def contact(c, m, tc, z, zd, s, sd, ws, log, nlog, segs, nseg):
+    """Cycle m from the contact-opening hit at local time tc to the contact end π/ϖ
+    (a :class:`ContactEnd`). Logs (nlog ≥ 0) and records segments (nseg ≥ 0) when those
+    counters are not −1."""
+    wf, beta = c.varpi, c.beta
+    te = math.pi / wf
+    if tc > 0.0:
+        if nseg >= 0:
+            nseg = _seg(segs, nseg, m, 0.0, tc, FREE, z, zd, s, sd, 0.0, 1.0)
+        z, zd, s, sd = free_flight(c, z, zd, s, sd, 1.0, tc)
+        sp, cp = math.sin(wf * tc), math.cos(wf * tc)
+    else:
+        sp, cp = 0.0, 1.0
+    t = tc
+    phase = decide_phase(c, z, zd, sd, sp, cp, -1)
+    if phase == STICK:
+        zd = sd = stick_velocity(zd, sd, beta)
+    if nlog >= 0:
+        nlog = _log(log, nlog, m, t, IMPACT, FREE, phase)
+    nev, evals = 1, 0
+    zero_len, n_switch, on_edge, from_edge = 0, 0, -1, False
+    while True:
+        H = te - t
+        e = ws.ev[0]
+        if phase == STICK:
+            stick_evaluator(c, z, zd, sp, cp, H, on_edge, e)
+            on_edge = -1
+        else:
+            slip_evaluator(c, phase, z, zd, s, sd, sp, cp, H, from_edge, e)
+        from_edge = False
+        code, hr, idx, k = first_root(e, H, ws)
+        evals += k
+        if code == SEARCH_FAILED:
+            return ContactEnd(SEARCH_FAILED_CODE, z, zd, s, sd, nev, evals, hr, 0, nlog, nseg)
+        h = hr if code == ROOT else H
+        if nseg >= 0:
+            nseg = _seg(segs, nseg, m, t, t + h, phase, z, zd, s, sd, sp, cp)
+        if phase == STICK:
+            z, zd, s, sd = stick_flow(c, z, zd, s, sp, cp, h)
+        else:
+            z, zd, s, sd = slip_flow(c, phase, z, zd, s, sd, sp, cp, h)
+        if code != ROOT:
+            break
+        t += h
+        sp, cp = math.sin(wf * t), math.cos(wf * t)
+        new = decide_phase(c, z, zd, sd, sp, cp, 1 + idx if phase == STICK else 0)
+        if phase != STICK:  # ζ' = s' exactly (momentum-conserving common velocity)
+            zd = sd = stick_velocity(zd, sd, beta)
+        elif new == STICK:
+            on_edge = idx
+        else:
+            from_edge = True
+        if nlog >= 0:
+            kind = BAND_EXIT if phase == STICK else VELOCITY_MATCH
+            nlog = _log(log, nlog, m, t, kind, phase, new)
+        nev += 1
+        zero_len = zero_len + 1 if h <= 64.0 * EPS * max(1.0, t) else 0
+        n_switch += 1
+        if zero_len > MAX_ZERO_LENGTH or n_switch > MAX_SWITCHES:
+            return ContactEnd(CHATTER, z, zd, s, sd, nev, evals, t, n_switch, nlog, nseg)
+        phase = new
+    if nlog >= 0:
+        nlog = _log(log, nlog, m, te, SEPARATION, phase, FREE)
+    return ContactEnd(OK, z, zd, s, sd, nev + 1, evals, 0.0, 0, nlog, nseg)
+
+
+@kernel
+def run_cycles(table, tab, idx, imp, m0, z, zd, s, sd, rows, check_finite, log, nlog, segs, nseg):
+    """Cycles m0 + j, j = 0..n−1 (n = idx.size) of the exact solver from (ζ, ζ', s, s').
+
+    table: :func:`flows.phase_table`; tab: the vertical schedule's distinct cycles
+    (:data:`schedule.CYCLE_DTYPE`), idx[j] the row of cycle m0 + j; imp: impulsive-hit
+    local times (rows index them). rows (n + 1, 4), when it has rows, receives the state
+    at every cycle start and at the end. nlog / nseg: entries already in log / segs, −1
+    to keep none. Returns (code, j, events, evaluations, a, b, nlog, nseg, ζ, ζ', s, s'):
+    code OK, SEARCH_FAILED_CODE, CHATTER or NON_FINITE (with check_finite) in cycle
+    m0 + j, or BUFFER_FULL (go on from cycle m0 + j with the state returned, which is
+    then the one at its start).
+    """
+    c = table[0]
+    ws = workspace()
+    wf = c.varpi
+    T = 2.0 * math.pi / wf
+    te = math.pi / wf
+    keep = rows.shape[0] > 0
+    nev, evals = 0, 0
+    n = idx.size
+    for j in range(n):
+        v = tab[idx[j]]
+        m = m0 + j
+        tc, i0, ni = v["tc"], v["imp_start"], v["imp_count"]
+        if (nlog >= 0 and nlog + ni + PER_CYCLE > log.shape[0]) or (
+            nseg >= 0 and nseg + PER_CYCLE > segs.shape[0]
+        ):
+            return CyclesRun(BUFFER_FULL, j, nev, evals, 0.0, 0, nlog, nseg, z, zd, s, sd)
+        if keep:
+            rows[j, 0], rows[j, 1], rows[j, 2], rows[j, 3] = z, zd, s, sd
+        nev += ni
+        if nlog >= 0:  # impulsive hits before the contact, in time order
+            for k in range(i0, i0 + ni):
+                if tc != tc or imp[k] < tc:
+                    nlog = _log(log, nlog, m, imp[k], IMPULSIVE, FREE, FREE)
+        if tc != tc:  # NaN: no contact in this cycle
+            if nseg >= 0:
+                nseg = _seg(segs, nseg, m, 0.0, T, FREE, z, zd, s, sd, 0.0, 1.0)
+            z, zd, s, sd = free_flight(c, z, zd, s, sd, 1.0, T)
+        else:
+            end = contact(c, m, tc, z, zd, s, sd, ws, log, nlog, segs, nseg)
+            nev += end.events
+            evals += end.evals
+            nlog, nseg = end.nlog, end.nseg
+            if end.code != OK:  # the state returned is the one at the cycle's start
+                return CyclesRun(
+                    end.code, j, nev, evals, end.where, end.switches, nlog, nseg, z, zd, s, sd
+                )
+            z, zd, s, sd = end.z, end.zd, end.s, end.sd
+            if nlog >= 0:  # impulsive hits after the separation
+                for k in range(i0, i0 + ni):
+                    if imp[k] > te:
+                        nlog = _log(log, nlog, m, imp[k], IMPULSIVE, FREE, FREE)
+            if nseg >= 0:
+                nseg = _seg(segs, nseg, m, te, T, FREE, z, zd, s, sd, 0.0, -1.0)
+            z, zd, s, sd = free_flight(c, z, zd, s, sd, -1.0, te)
+        if check_finite and (z - z) + (zd - zd) + (s - s) + (sd - sd) != 0.0:
+            return CyclesRun(NON_FINITE, j, nev, evals, 0.0, 0, nlog, nseg, z, zd, s, sd)
+    if keep:
+        rows[n, 0], rows[n, 1], rows[n, 2], rows[n, 3] = z, zd, s, sd
+    return CyclesRun(OK, n, nev, evals, 0.0, 0, nlog, nseg, z, zd, s, sd)
+
+
+@kernel
+def sample_segments(table, segs, which, h, out) -> None:
+    """Tangential states (ζ, ζ', s, s') at local offsets h[k] into segment which[k]
+    (dense output) into out[k, 2:6]; table: :func:`flows.phase_table`."""
+    c = table[0]
+    for k in range(which.size):
+        r = segs[which[k]]
+        z, zd, s, sd = flow(c, r["phase"], r["z"], r["zd"], r["s"], r["sd"], r["sp"], r["cp"], h[k])
+        out[k, 2], out[k, 3], out[k, 4], out[k, 5] = z, zd, s, sd

@@ -1,0 +1,486 @@
+"""The model's event functions, as evaluators for the certified search (unit-free).
+
+docs/MODEL.md, "Impacts and separation" and the stick/slip rules. An
+evaluator (a record of :data:`EVALUATOR_DTYPE`) holds one phase's event functions (one
+or two) in closed form:
+
+- gap (no contact): f = ξ with ξ'' + ξ = −sin φ; the head hits when f reaches 0.
+- slip (σ = +1) / reverse slip (σ = −1): f = σ(ζ' − s'), f' = σ(q sin φ − ζ)/α with
+  q = 1 − σb; it ends (ζ' = s') when f reaches 0.
+- stick: g_lo = ζ − (1 − b) sin φ and g_hi = (1 + b) sin φ − ζ; stick ends when one
+  reaches 0 (below: slip, above: reverse slip).
+
+Away from resonance (``fast``: |1 − aϖ²| ≥ 0.1) the oscillator is split into its forced
+part P sin φ and a free oscillation of constant energy E_h, which gives cheap exact
+values and f'', tight derivative bounds (|P − q|ϖʲ + w0^(j−1) E_h), slow envelopes and a
+whole-window clearance test. Near resonance (exact resonance included: P is NaN) the
+uniform closed form (:func:`flows.oscillator`) and energy-growth bounds are used, over
+windows of one radian of the fastest frequency.
+
+``start`` holds each function's first four Taylor coefficients at the phase start and
+``noise`` their round-off floors (a phase entered *on* its event surface, e.g. slip at
+ζ' = s', starts from the first non-vanishing one); ``m2s`` bounds |f''| for the first step.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from betvdesign.dynamics._jit import kernel
+from betvdesign.dynamics.bounds import (
+    envelope_prep,
+)
+from betvdesign.dynamics.flows import SLIP, PhaseTable
+
+#: evaluator kinds
+SLIP_KIND, STICK_KIND, GAP_KIND = 0, 1, 2
+
+#: One phase's event functions f_i, i < n, on the window h ∈ [0, H] (see module doc).
+#:
+#: Start state (ζ, ζ', s, s') = (z, zd, s, sd) (gap: (ξ, ξ') in z, zd), forcing phase
+#: φ0 (sin, cos) = (sp0, cp0); oscillator y'' + w0² y = F sin φ, φ = φ0 + ϖh (wf = ϖ).
+#: Split (fast mode): y = P sin φ + ac cos w0h + as_ sin w0h, energy E_h = ``Eh``.
+#: Per function i: ``q`` band coefficient, ``m2b``/``m3b`` global bounds on |f''|/|f'''|,
+#: ``env_*`` slow envelope, ``K`` envelope amplitude, ``scale`` round-off scale,
+#: ``start``/``noise`` Taylor coefficients 0..3 (entries 4i..4i+3), ``m2s`` first-step
+#: |f''| bound. Clearance: min σ(K cos(φ − ``off``) − ``cc``) > ``ct`` on [h, H].
+#: Start bounds: |f⁽ʲ⁾| from :func:`start_bound` with j = order + ``bj``, / ``bdiv``.
+#: One record per search, reused (kernels: ``e = ws.ev[0]``; fields by name, ``e["w0"]``).
+EVALUATOR_DTYPE = np.dtype(
+    [
+        ("kind", np.int64),
+        ("n", np.int64),
+        ("H", np.float64),
+        ("W", np.float64),
+        ("fast", np.bool_),
+        ("clearable", np.bool_),
+        ("phi0", np.float64),
+        ("off", np.float64),
+        ("wf", np.float64),
+        ("w0", np.float64),
+        ("F", np.float64),
+        ("sp0", np.float64),
+        ("cp0", np.float64),
+        ("P", np.float64),
+        ("ac", np.float64),
+        ("as_", np.float64),
+        ("pwf", np.float64),
+        ("sdc", np.float64),
+        ("ds", np.float64),
+        ("sig", np.float64),
+        ("al", np.float64),
+        ("z", np.float64),
+        ("zd", np.float64),
+        ("s", np.float64),
+        ("sd", np.float64),
+        ("Eh", np.float64),
+        ("R0", np.float64),
+        ("bdiv", np.float64),
+        ("bj", np.int64),
+        ("cc", np.float64),
+        ("ct", np.float64),
+        ("w02", np.float64),
+        ("wf2", np.float64),
+        ("q", np.float64, (2,)),
+        ("qw", np.float64, (2,)),
+        ("m2b", np.float64, (2,)),
+        ("m3b", np.float64, (2,)),
+        ("m2s", np.float64, (2,)),
+        ("env_mode", np.int64, (2,)),
+        ("env_acos", np.float64, (2,)),
+        ("K", np.float64, (2,)),
+        ("scale", np.float64, (2,)),
+        ("start", np.float64, (8,)),
+        ("noise", np.float64, (8,)),
+    ]
+)
+
+
+@kernel
+def _store(
+    e,
+    kind,
+    n,
+    H,
+    W,
+    fast,
+    clearable,
+    phi0,
+    off,
+    wf,
+    w0,
+    F,
+    sp0,
+    cp0,
+    P,
+    ac,
+    as_,
+    pwf,
+    sdc,
+    ds,
+    sig,
+    al,
+    z,
+    zd,
+    s,
+    sd,
+    Eh,
+    R0,
+    bdiv,
+    bj,
+    cc,
+    ct,
+    w02,
+    wf2,
+    q,
+    qw,
+    m2b,
+    m3b,
+    m2s,
+    env_mode,
+    env_acos,
+    K,
+    scale,
+    start,
+    noise,
+):
+    """Write an evaluator's fields into the record e."""
+    e["kind"] = kind
+    e["n"] = n
+    e["H"] = H
+    e["W"] = W
+    e["fast"] = fast
+    e["clearable"] = clearable
+    e["phi0"] = phi0
+    e["off"] = off
+    e["wf"] = wf
+    e["w0"] = w0
+    e["F"] = F
+    e["sp0"] = sp0
+    e["cp0"] = cp0
+    e["P"] = P
+    e["ac"] = ac
+    e["as_"] = as_
+    e["pwf"] = pwf
+    e["sdc"] = sdc
+    e["ds"] = ds
+    e["sig"] = sig
+    e["al"] = al
+    e["z"] = z
+    e["zd"] = zd
+    e["s"] = s
+    e["sd"] = sd
+    e["Eh"] = Eh
+    e["R0"] = R0
+    e["bdiv"] = bdiv
+    e["bj"] = bj
+    e["cc"] = cc
+    e["ct"] = ct
+    e["w02"] = w02
+    e["wf2"] = wf2
+    e["q"][0], e["q"][1] = q
+    e["qw"][0], e["qw"][1] = qw
+    e["m2b"][0], e["m2b"][1] = m2b
+    e["m3b"][0], e["m3b"][1] = m3b
+    e["m2s"][0], e["m2s"][1] = m2s
+    e["env_mode"][0], e["env_mode"][1] = env_mode
+    e["env_acos"][0], e["env_acos"][1] = env_acos
+    e["K"][0], e["K"][1] = K
+    e["scale"][0], e["scale"][1] = scale
+    for k in range(8):
+        e["start"][k] = start[k]
+    for k in range(8):
+        e["noise"][k] = noise[k]
+
+
+@kernel
+def slip_evaluator(
+    c: PhaseTable,
+    phase: int,
+    z: float,
+    zd: float,
+    s: float,
+    sd: float,
+    sp0: float,
+    cp0: float,
+    H: float,
+    from_edge: bool,
+    e,
+) -> None:
+    """f = σ(ζ' − s') in slip/reverse slip from (ζ, ζ', s, s') at φ0, window H.
+    ``from_edge``: entered at a band edge, where f' = σ(q sin φ − ζ)/α is 0 exactly."""
+    ph = c.slip if phase == SLIP else c.reverse
+    sig, q, w0, F, ds = ph.sig, ph.q, ph.w0, ph.F, ph.ds
+    P, apq, K, fast = ph.P, ph.apq, ph.K, ph.fast
+    wf, al = c.varpi, c.alpha
+    yh = yhd = 0.0
+    if P != P:  # exact resonance: no split
+        Eh = m2b = math.inf
+        W = min(H, 1.0 / max(w0, wf))
+    else:
+        yh, yhd = z - P * sp0, zd - P * wf * cp0
+        Eh = math.sqrt(yhd * yhd + w0 * w0 * yh * yh)
+        m2b = (apq + Eh) / al
+        W = H if fast else min(H, 1.0 / max(w0, wf))
+    ac = as_ = pwf = m3b = sdc = cc = ct = acs = 0.0
+    mode = 0
+    if fast:
+        ac, as_, pwf = yh, yhd / w0, P * wf
+        sdc = sd + ds * cp0 / wf
+        m3b = (apq * wf + w0 * Eh) / al
+        cc, ct = sig * sdc, Eh
+        mode, acs = envelope_prep(K, -cc, Eh)
+    azd, asd, aq = abs(zd), abs(sd), abs(q)
+    r = math.sqrt(zd * zd + w0 * w0 * z * z) + abs(F) * H  # energy radius over H
+    zdd = F * sp0 - w0 * w0 * z
+    noise = (
+        azd + asd,
+        (aq * abs(sp0) + abs(z)) / al,
+        (aq * wf * abs(cp0) + azd) / al,
+        (aq * wf * wf * abs(sp0) + abs(F * sp0 - w0 * w0 * z)) / al,
+        0.0,
+        0.0,
+        0.0,
+        0.0,
+    )
+    start = (
+        sig * (zd - sd),
+        0.0 if from_edge else sig * (q * sp0 - z) / al,
+        sig * (q * wf * cp0 - zd) / al,
+        sig * (-q * wf * wf * sp0 - zdd) / al,
+        0.0,
+        0.0,
+        0.0,
+        0.0,
+    )
+    R0 = math.sqrt(zd * zd + w0 * w0 * z * z) + abs(F) * W  # energy radius over W
+    m2s = m2b if fast else min((abs(q) * wf + R0) / al, m2b)
+    _store(
+        e,
+        SLIP_KIND,
+        1,
+        H,
+        W,
+        fast,
+        fast,
+        math.atan2(sp0, cp0),
+        0.0,
+        wf,
+        w0,
+        F,
+        sp0,
+        cp0,
+        P,
+        ac,
+        as_,
+        pwf,
+        sdc,
+        ds,
+        sig,
+        al,
+        z,
+        zd,
+        s,
+        sd,
+        Eh,
+        R0,
+        al,
+        0,
+        cc,
+        ct,
+        0.0,
+        0.0,
+        (q, 0.0),
+        (q * wf, 0.0),
+        (m2b, 0.0),
+        (m3b, 0.0),
+        (m2s, 0.0),
+        (mode, 0),
+        (acs, 0.0),
+        (K, 0.0),
+        (r + asd + azd + 1e-300, 0.0),
+        start,
+        noise,
+    )
+
+
+@kernel
+def stick_evaluator(
+    c: PhaseTable, z: float, zd: float, sp0: float, cp0: float, H: float, on_edge: int, e
+) -> None:
+    """Stick-band distances g_lo, g_hi from (ζ, ζ') at φ0, window H. ``on_edge``: stick
+    re-entered on that edge (0 lower, 1 upper), whose distance is 0 exactly."""
+    st = c.stick
+    w0, F, P, fast, w3 = st.w0, st.F, st.P, st.fast, st.w3
+    ql, qh = st.q[0], st.q[1]
+    wf = c.varpi
+    yh = yhd = 0.0
+    if P != P:  # exact resonance: no split
+        Eh = math.inf
+        W = min(H, 1.0 / max(w0, wf))
+        m2b0 = m2b1 = math.inf
+    else:
+        yh, yhd = z - P * sp0, zd - P * wf * cp0
+        Eh = math.sqrt(yhd * yhd + w0 * w0 * yh * yh)
+        W = H if fast else min(H, 1.0 / max(w0, wf))
+        wE = w0 * Eh
+        m2b0, m2b1 = st.a2[0] + wE, st.a2[1] + wE
+    ac = as_ = pwf = m3b0 = m3b1 = ct = acs0 = acs1 = w02 = wf2 = 0.0
+    mode0 = mode1 = 0
+    if fast:
+        ac, as_, pwf = yh, yhd / w0, P * wf
+        wwE = w0 * w0 * Eh
+        m3b0, m3b1 = st.a3[0] + wwE, st.a3[1] + wwE
+        ct = Eh / w0
+        mode0, acs0 = envelope_prep(st.K[0], 0.0, ct)
+        mode1, acs1 = envelope_prep(st.K[1], 0.0, ct)
+        w02, wf2 = w0 * w0, wf * wf
+    r = math.sqrt(zd * zd + w0 * w0 * z * z) + abs(F) * H  # energy radius over H
+    za0, za1 = abs(z), abs(zd)
+    za2, za3 = abs(F * sp0 - w0 * w0 * z), abs(F * wf * cp0 - w0 * w0 * zd)
+    n0, n1, n2, n3 = sp0, wf * cp0, wf * wf * sp0, w3 * cp0
+    z2, z3 = F * sp0 - w0 * w0 * z, F * wf * cp0 - w0 * w0 * zd
+    s1, s2, s3 = wf * cp0, -wf * wf * sp0, -w3 * cp0
+    noise = (
+        za0 + abs(ql * n0),
+        za1 + abs(ql * n1),
+        za2 + abs(ql * n2),
+        za3 + abs(ql * n3),
+        za0 + abs(qh * n0),
+        za1 + abs(qh * n1),
+        za2 + abs(qh * n2),
+        za3 + abs(qh * n3),
+    )
+    start = (
+        0.0 if on_edge == 0 else z - ql * sp0,
+        zd - ql * s1,
+        z2 - ql * s2,
+        z3 - ql * s3,
+        0.0 if on_edge == 1 else -(z - qh * sp0),
+        -(zd - qh * s1),
+        -(z2 - qh * s2),
+        -(z3 - qh * s3),
+    )
+    R0 = math.sqrt(zd * zd + w0 * w0 * z * z) + abs(F) * W  # energy radius over W
+    if fast:
+        m2s0, m2s1 = m2b0, m2b1
+    else:
+        m2s0 = min(w0 * R0 + abs(F) + abs(ql) * wf * wf, m2b0)
+        m2s1 = min(w0 * R0 + abs(F) + abs(qh) * wf * wf, m2b1)
+    _store(
+        e,
+        STICK_KIND,
+        2,
+        H,
+        W,
+        fast,
+        fast,
+        math.atan2(sp0, cp0),
+        0.5 * math.pi,
+        wf,
+        w0,
+        F,
+        sp0,
+        cp0,
+        P,
+        ac,
+        as_,
+        pwf,
+        0.0,
+        0.0,
+        1.0,
+        1.0,
+        z,
+        zd,
+        0.0,
+        0.0,
+        Eh,
+        R0,
+        1.0,
+        1,
+        0.0,
+        ct,
+        w02,
+        wf2,
+        (ql, qh),
+        (ql * wf, qh * wf),
+        (m2b0, m2b1),
+        (m3b0, m3b1),
+        (m2s0, m2s1),
+        (mode0, mode1),
+        (acs0, acs1),
+        (st.K[0], st.K[1]),
+        (r / w0 + abs(ql), r / w0 + abs(qh)),
+        start,
+        noise,
+    )
+
+
+@kernel
+def gap_evaluator(wf: float, xi: float, xid: float, sp0: float, cp0: float, H: float, e) -> None:
+    """The gap ξ in free flight (ξ'' + ξ = −sin φ) from (ξ, ξ') at φ0, window H."""
+    w0, F = 1.0, -1.0
+    den = w0 * w0 - wf * wf
+    if den == 0.0:  # vertical resonance ϖ = 1: no split
+        P, Eh = math.nan, math.inf
+    else:
+        P = F / den
+        yh, yhd = xi - P * sp0, xid - P * wf * cp0
+        Eh = math.sqrt(yhd * yhd + w0 * w0 * yh * yh)
+    clearable = P == P and abs(P) * w0 * w0 <= 10.0 * abs(F)
+    W = H if clearable else min(H, 1.0 / max(w0, wf))
+    m2b = math.inf if P != P else abs(P) * wf * wf + Eh
+    r = math.sqrt(xid * xid + w0 * w0 * xi * xi) + abs(F) * H  # energy radius over H
+    sc = abs(xi) + r + 1.0
+    R0 = math.sqrt(xid * xid + w0 * w0 * xi * xi) + abs(F) * W  # energy radius over W
+    start = (xi, xid, -sp0 - xi, -wf * cp0 - xid, 0.0, 0.0, 0.0, 0.0)
+    noise = (sc, sc, sc, sc, 0.0, 0.0, 0.0, 0.0)
+    _store(
+        e,
+        GAP_KIND,
+        1,
+        H,
+        W,
+        False,
+        clearable,
+        math.atan2(sp0, cp0),
+        0.5 * math.pi,
+        wf,
+        w0,
+        F,
+        sp0,
+        cp0,
+        P,
+        0.0,
+        0.0,
+        0.0,
+        0.0,
+        0.0,
+        1.0,
+        1.0,
+        xi,
+        xid,
+        0.0,
+        0.0,
+        Eh,
+        R0,
+        1.0,
+        1,
+        0.0,
+        Eh,
+        0.0,
+        0.0,
+        (0.0, 0.0),
+        (0.0, 0.0),
+        (m2b, 0.0),
+        (0.0, 0.0),
+        (min(R0 + 1.0, m2b), 0.0),
+        (0, 0),
+        (0.0, 0.0),
+        (P, 0.0),
+        (sc, 0.0),
+        start,
+        noise,
+    )

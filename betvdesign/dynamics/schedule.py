@@ -1,0 +1,201 @@
+"""The head's vertical motion, exactly, cycle by cycle (compiled, unit-free).
+
+docs/MODEL.md, "Impacts and separation". The vertical motion does not depend on the
+slider: free flight ξ'' + ξ = −sin ϖτ (:func:`flows.vertical_flight`, resonant ϖ = 1
+included), hits located by the certified search on the gap (:mod:`search`,
+:func:`evaluators.gap_evaluator`), plastic hits (:func:`plastic_hit`: ξ' → 0), contact
+while sin ϖτ ≥ 0 and impulsive hits (zero duration) when sin ϖτ < 0 at the hit.
+
+Every contact ends at τ = (2j+1)π/ϖ with ξ = ξ' = 0, so the motion after a contact end
+is the same whatever happened before: it is exactly periodic from the first contact end,
+with a period of k cycles between two contact ends. :func:`vertical_run` computes the
+prefix up to the first contact end and one period after it (or ``horizon`` cycles when
+no contact recurs) into a table of cycles (:data:`CYCLE_DTYPE`), their impulsive-hit
+times and their free-flight pieces (:data:`PIECE_DTYPE`, for dense output).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import NamedTuple
+
+import numpy as np
+
+from betvdesign.dynamics._jit import kernel
+from betvdesign.dynamics.bounds import EPS
+from betvdesign.dynamics.evaluators import gap_evaluator
+from betvdesign.dynamics.flows import vertical_flight
+from betvdesign.dynamics.search import NO_ROOT, SEARCH_FAILED, first_root, workspace
+
+#: one cycle: section state (ξ, ξ'), contact-opening local time (NaN: none), its
+#: impulsive hits imp[imp_start : imp_start + imp_count] and free-flight pieces
+CYCLE_DTYPE = np.dtype(
+    [
+        ("xi0", np.float64),
+        ("xid0", np.float64),
+        ("tc", np.float64),
+        ("imp_start", np.int64),
+        ("imp_count", np.int64),
+        ("free_start", np.int64),
+        ("free_count", np.int64),
+    ]
+)
+#: one free-flight piece from local time t with state (ξ, ξ') and forcing (sin, cos)
+PIECE_DTYPE = np.dtype(
+    [
+        ("t", np.float64),
+        ("xi", np.float64),
+        ("xid", np.float64),
+        ("sp", np.float64),
+        ("cp", np.float64),
+    ]
+)
+#: :func:`vertical_run` codes
+DONE, FULL, FAILED = 0, 1, 2
+
+
+class VerticalRun(NamedTuple):
+    """What :func:`vertical_run` returns: ``code`` (DONE, FULL: a table is too small,
+    enlarge and call again, FAILED: the gap search did not terminate on window ``H``),
+    rows used in the tables (``cycles``, ``hits``: impulsive, ``pieces``), ``first_end``
+    (cycle of the first contact end, −1: none), ``period`` (cycles between contact ends,
+    −1: none recurred within the horizon) and root ``evals``."""
+
+    code: int
+    cycles: int
+    first_end: int
+    period: int
+    hits: int
+    pieces: int
+    evals: int
+    H: float
+
+
+@kernel
+def plastic_hit(xid: float) -> float:
+    """Normal velocity just after a hit of velocity ξ' < 0: plastic impact, ξ' → 0 (no
+    rebound, MODEL.md "Impacts and separation")."""
+    return 0.0
+
+
+@kernel
+def _new_cycle(cyc, n, xi, xid, ni, nf) -> int:
+    r = cyc[n]
+    r["xi0"], r["xid0"], r["tc"] = xi, xid, math.nan
+    r["imp_start"], r["imp_count"], r["free_start"], r["free_count"] = ni, 0, nf, 0
+    return n + 1
+
+
+@kernel
+def _piece(cyc, m, pieces, nf, t, xi, xid, sp, cp) -> int:
+    r = pieces[nf]
+    r["t"], r["xi"], r["xid"], r["sp"], r["cp"] = t, xi, xid, sp, cp
+    cyc[m]["free_count"] += 1
+    return nf + 1
+
+
+@kernel
+def vertical_run(wf, xi, xid, horizon, cyc, imp, pieces):
+    """Vertical motion from (ξ, ξ') at τ = 0 (see module doc) into cyc, imp, pieces.
+
+    Returns a :class:`VerticalRun`.
+    """
+    T = 2.0 * math.pi / wf
+    te = math.pi / wf
+    ws = workspace()
+    n, ni, nf, evals = 0, 0, 0, 0
+    first_end, period = -1, -1
+    n = _new_cycle(cyc, n, xi, xid, ni, nf)
+    t, sp, cp = 0.0, 0.0, 1.0
+    contact = xi == 0.0 and xid <= 0.0  # a hit at phase 0: contact starts
+    if not contact:
+        nf = _piece(cyc, 0, pieces, nf, 0.0, xi, xid, sp, cp)
+    while True:
+        m = n - 1
+        if ni + 2 > imp.size or nf + 3 > pieces.size:
+            return VerticalRun(FULL, n, first_end, period, ni, nf, evals, 0.0)
+        if contact:
+            cyc[m]["tc"] = t
+            t, xi, xid, sp, cp = te, 0.0, 0.0, 0.0, -1.0
+            nf = _piece(cyc, m, pieces, nf, te, 0.0, 0.0, 0.0, -1.0)
+            contact = False
+            if first_end < 0:
+                first_end = m
+            else:
+                # From this contact end on, cycle m repeats cycle first_end's
+                # post-contact flight (same state ξ = ξ' = 0 at π/ϖ): copy it, so the
+                # period holds the impulsive hits after the separation too.
+                ref = cyc[first_end]
+                need_f, need_i = ref["free_count"], ref["imp_count"]
+                if nf + need_f > pieces.size or ni + need_i > imp.size:
+                    return VerticalRun(FULL, n, first_end, period, ni, nf, evals, 0.0)
+                for k in range(ref["free_start"], ref["free_start"] + need_f):
+                    if pieces[k]["t"] > te:
+                        p = pieces[k]
+                        nf = _piece(cyc, m, pieces, nf, p["t"], p["xi"], p["xid"], p["sp"], p["cp"])
+                for k in range(ref["imp_start"], ref["imp_start"] + need_i):
+                    if imp[k] > te:
+                        imp[ni] = imp[k]
+                        ni += 1
+                        cyc[m]["imp_count"] += 1
+                period = m - first_end
+                break
+        H = T - t
+        e = ws.ev[0]
+        gap_evaluator(wf, xi, xid, sp, cp, H, e)
+        code, h, _, k = first_root(e, H, ws)
+        evals += k
+        if code == SEARCH_FAILED:
+            return VerticalRun(FAILED, n, first_end, period, ni, nf, evals, h)
+        if code == NO_ROOT:
+            xi, xid, _, _ = vertical_flight(wf, xi, xid, sp, cp, H)
+            if xi < 0.0:
+                xi = 0.0
+            limit = horizon if first_end < 0 else first_end + 1 + horizon
+            if n >= limit:
+                break
+            if n >= cyc.size:
+                return VerticalRun(FULL, n, first_end, period, ni, nf, evals, 0.0)
+            n = _new_cycle(cyc, n, xi, xid, ni, nf)
+            t, sp, cp = 0.0, 0.0, 1.0
+            if xi == 0.0 and xid <= 0.0:
+                contact = True
+            else:
+                nf = _piece(cyc, n - 1, pieces, nf, 0.0, xi, xid, sp, cp)
+            continue
+        t += h
+        if t >= T * (1.0 - 8.0 * EPS):  # hit at the section itself: contact from t = 0
+            _, xid, _, _ = vertical_flight(wf, xi, xid, sp, cp, h)
+            if n >= cyc.size:
+                return VerticalRun(FULL, n, first_end, period, ni, nf, evals, 0.0)
+            n = _new_cycle(cyc, n, 0.0, 0.0 if 0.0 < xid else xid, ni, nf)
+            t, contact = 0.0, True
+            continue
+        if t < te:  # sin ϖt ≥ 0 at the hit: contact until π/ϖ
+            contact = True
+            continue
+        sp, cp = math.sin(wf * t), math.cos(wf * t)
+        imp[ni] = t
+        ni += 1
+        cyc[m]["imp_count"] += 1
+        xi, xid = 0.0, plastic_hit(xid)
+        nf = _piece(cyc, m, pieces, nf, t, 0.0, 0.0, sp, cp)
+    return VerticalRun(DONE, n, first_end, period, ni, nf, evals, 0.0)
+
+
+@kernel
+def gap_at(wf, cyc_row_tc, pieces, start, count, t):
+    """(ξ, ξ') at local time t of a cycle with contact opening at cyc_row_tc (NaN: none)
+    and free pieces pieces[start : start + count] (0 during contact)."""
+    te = math.pi / wf
+    if cyc_row_tc == cyc_row_tc and cyc_row_tc <= t <= te:
+        return 0.0, 0.0
+    best = -1
+    for k in range(start, start + count):
+        if pieces[k]["t"] <= t:
+            best = k
+    if best < 0:
+        return 0.0, 0.0
+    p = pieces[best]
+    y, yd, _, _ = vertical_flight(wf, p["xi"], p["xid"], p["sp"], p["cp"], t - p["t"])
+    return y, yd
