@@ -1,5 +1,6 @@
 """What a derivation produces (plain data): the record of every step, the scales, the
-comparison with a published fit, the derivation of one actuator set and of a device.
+comparison with a published fit, the derivation of one actuator set and of a device;
+and the :class:`Recorder` that builds the record.
 
 Computed by :mod:`betvdesign.nondim` (the only module that strips units); read by
 rules, studies, reports and the CLI.
@@ -7,14 +8,19 @@ rules, studies, reports and the CLI.
 
 from __future__ import annotations
 
+import functools
+import math
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 import pint
 
+from betvdesign import rolloff
+from betvdesign.errors import ParameterError
 from betvdesign.params import ModelParams
 from betvdesign.spec import ActuatorSet, DeviceSpec, Mode
-from betvdesign.units import format_quantity
+from betvdesign.units import format_quantity, ureg
 
 #: ASCII keys for JSON output of the symbols that are not ASCII already.
 _ASCII = {
@@ -30,6 +36,9 @@ _ASCII = {
     "λ": "lambda",
     "t_s": "time_scale",
     "ℓ": "length_scale",
+    "τ_th": "tau_th",
+    "H(f_act)": "H_act",
+    "H(f_cal)": "H_cal",
 }
 #: Keys of the dimensional values :meth:`SetDerivation.derived` reports.
 DERIVED_KEYS = ("M", "m", "k_v", "k_h", "f_act", "omega", "u", "time_scale", "length_scale")
@@ -71,7 +80,9 @@ class Scales:
 
     length_m: u·cosθ [m] (ζ and s scale); time_s: sqrt(m/k_v) [s] (τ = t/time_s);
     f_act_hz: actuation frequency [Hz]; omega_rad_s: 2π f_act [rad/s];
-    u_m: amplitude [m]; theta_rad: impact angle [rad].
+    u_m: amplitude at f_act [m] (after the thermal roll-off); theta_rad: impact angle [rad];
+    cutoff_hz: thermal cut-off f_c [Hz] (inf: no roll-off); calibration_hz: actuation
+    frequency f_cal of the amplitude calibration [Hz] (None without a cut-off).
     """
 
     length_m: float
@@ -80,6 +91,26 @@ class Scales:
     omega_rad_s: float
     u_m: float
     theta_rad: float
+    cutoff_hz: float = math.inf
+    calibration_hz: float | None = None
+
+    @property
+    def has_rolloff(self) -> bool:
+        """True when the device gives a thermal cut-off."""
+        return math.isfinite(self.cutoff_hz)
+
+    def amplitude_m(self, f_act_hz: Any) -> Any:
+        """Stroke u [m] at another actuation frequency [Hz] (float or array):
+        u·H(f)/H(f_act) (MODEL.md, "Thermal roll-off"); u itself without a cut-off."""
+        return self.u_m * rolloff.ratio(f_act_hz, self.f_act_hz, self.cutoff_hz)
+
+    @property
+    def rolloff_factor(self) -> float:
+        """H(f_act)/H(f_cal) [-]: the stroke at f_act relative to the calibrated one
+        (1 without a cut-off)."""
+        if self.calibration_hz is None:
+            return 1.0
+        return float(rolloff.ratio(self.f_act_hz, self.calibration_hz, self.cutoff_hz))
 
     def speed_m_s(self, delta_s: float) -> float:
         """Mean slider speed for a dimensionless per-cycle increment Δs [m/s]:
@@ -162,3 +193,42 @@ class SampleDerivation:
     f_act_hz: np.ndarray
 
 
+@functools.lru_cache(maxsize=64)
+def cached_unit(text: str) -> pint.Unit:
+    """A parsed unit of :data:`ureg` (parsing unit text dominates ``derive`` otherwise)."""
+    return ureg.Unit(text)
+
+
+class Recorder:
+    """Builds the record of a derivation: every step checked (finite, > 0 unless an
+    input or λ) and converted to the unit it is best read in."""
+
+    def __init__(self) -> None:
+        self.steps: list[DerivationStep] = []
+
+    def add(
+        self,
+        symbol: str,
+        description: str,
+        formula: str,
+        value: pint.Quantity,
+        inputs: tuple[str, ...] = (),
+        unit: str | None = None,
+    ) -> pint.Quantity:
+        if not isinstance(value, pint.Quantity):
+            value = ureg.Quantity(value, cached_unit(""))
+        if unit is not None:
+            value = value.to(cached_unit(unit))
+        if not formula.startswith("spec:") and symbol != "λ":
+            mag = np.asarray(value.magnitude, dtype=float)
+            if not np.all(np.isfinite(mag) & (mag > 0.0)):
+                shown = float(mag) if mag.ndim == 0 else "an invalid sample"
+                raise ParameterError(
+                    f"{symbol} = {formula} = {shown!r}: must be finite and > 0 "
+                    "(check the inputs for extreme or zero values)"
+                )
+        self.steps.append(DerivationStep(symbol, description, formula, value, inputs))
+        return value
+
+    def spec(self, symbol: str, description: str, path: str, value) -> pint.Quantity:
+        return self.add(symbol, description, f"spec: {path}", value)

@@ -9,7 +9,8 @@ The only module that strips units. For each actuator set it computes
 - k_v = m·(2π f_v)²               vertical contact stiffness [N/m]
 - α = k_v/k_h or (f_v/f_h)² or given
 - f_act = 2 f_drive (AC, zero DC bias) or f_drive;  ω = 2π f_act
-- u = amplitude or calibration(V)
+- u = amplitude or calibration(V); with a thermal cut-off f_c (or τ_th) this is u_cal
+  and u = u_cal·H(f_act)/H(f_cal), H(f) = 1/sqrt(1 + (f/f_c)²) (:mod:`betvdesign.rolloff`)
 - ϖ = ω·sqrt(m/k_v) = f_act/f_v,  β = m/M,  κ = μ·tanθ,  λ (MODEL.md, "Push/pull criterion")
 - scales: length u·cosθ [m], time sqrt(m/k_v) [s]
 
@@ -19,7 +20,6 @@ so a report can show how each number was obtained.
 
 from __future__ import annotations
 
-import functools
 import math
 from dataclasses import replace
 from pathlib import Path
@@ -28,6 +28,7 @@ from typing import Any
 import numpy as np
 import pint
 
+from betvdesign import rolloff
 from betvdesign.derivation import (
     DERIVED_KEYS,
     DerivationStep,
@@ -37,10 +38,13 @@ from betvdesign.derivation import (
     Scales,
     SetDerivation,
 )
+from betvdesign.derivation import Recorder as _Record
+from betvdesign.derivation import cached_unit as _unit
 from betvdesign.errors import Location, ParameterError, SpecError, SpecIssue
 from betvdesign.loader import load_device
 from betvdesign.params import ModelParams
 from betvdesign.spec import (
+    Actuator,
     ActuatorSet,
     BoxGeometry,
     DeviceSpec,
@@ -101,44 +105,6 @@ def derive_file(path: str | Path) -> DeviceDerivation:
         raise SpecError(
             [SpecIssue(Location(str(path)), "", f"derived parameters outside the model: {exc}")]
         ) from None
-
-
-@functools.lru_cache(maxsize=64)
-def _unit(text: str) -> pint.Unit:
-    """A parsed unit of :data:`ureg` (parsing unit text dominates ``derive`` otherwise)."""
-    return ureg.Unit(text)
-
-
-class _Record:
-    def __init__(self) -> None:
-        self.steps: list[DerivationStep] = []
-
-    def add(
-        self,
-        symbol: str,
-        description: str,
-        formula: str,
-        value: pint.Quantity,
-        inputs: tuple[str, ...] = (),
-        unit: str | None = None,
-    ) -> pint.Quantity:
-        if not isinstance(value, pint.Quantity):
-            value = ureg.Quantity(value, _unit(""))
-        if unit is not None:
-            value = value.to(_unit(unit))
-        if not formula.startswith("spec:") and symbol != "λ":
-            mag = np.asarray(value.magnitude, dtype=float)
-            if not np.all(np.isfinite(mag) & (mag > 0.0)):
-                shown = float(mag) if mag.ndim == 0 else "an invalid sample"
-                raise ParameterError(
-                    f"{symbol} = {formula} = {shown!r}: must be finite and > 0 "
-                    "(check the inputs for extreme or zero values)"
-                )
-        self.steps.append(DerivationStep(symbol, description, formula, value, inputs))
-        return value
-
-    def spec(self, symbol: str, description: str, path: str, value) -> pint.Quantity:
-        return self.add(symbol, description, f"spec: {path}", value)
 
 
 def _head_mass(rec: _Record, spec: DeviceSpec, aset: ActuatorSet) -> pint.Quantity:
@@ -301,8 +267,12 @@ def _derive_set(
         "ω", "angular actuation frequency", "2π·f_act", 2 * math.pi * f_act, ("f_act",), "rad/s"
     )
 
+    rolled = act.thermal_cutoff is not None or act.thermal_time_constant is not None
+    sym, at_cal = ("u_cal", " at the calibration frequency") if rolled else ("u", "")
     if act.amplitude is not None:
-        u = rec.spec("u", "actuator amplitude", "actuator.amplitude", act.amplitude.to(_unit("um")))
+        u = rec.spec(
+            sym, "actuator amplitude" + at_cal, "actuator.amplitude", act.amplitude.to(_unit("um"))
+        )
     else:
         rec.spec("V", "drive voltage", "drive.voltage", aset.drive.voltage)
         law = act.calibration.law
@@ -312,13 +282,16 @@ def _derive_set(
             "measured": "interp(V; measured points)",
         }[law]
         u = rec.add(
-            "u",
-            f"actuator amplitude ({law} calibration)",
+            sym,
+            f"actuator amplitude ({law} calibration){at_cal}",
             formula,
             amplitude_at(aset),
             ("V",),
             "um",
         )
+    roll: dict[str, float] = {}
+    if rolled:
+        u, roll = _rolloff(rec, act, f_act, u, samples)
     theta = rec.spec("θ", "impact angle", "contact.impact_angle", aset.contact.impact_angle)
     mu = rec.spec(
         "μ",
@@ -382,6 +355,7 @@ def _derive_set(
         omega_rad_s=float(omega.to(_unit("rad/s")).magnitude),
         u_m=float(u.to(_unit("m")).magnitude),
         theta_rad=float(theta.to(_unit("rad")).magnitude),
+        **roll,
     )
     return SetDerivation(
         name=aset.name,
@@ -394,6 +368,67 @@ def _derive_set(
         travel_range_m=float(sl.travel_range.to(_unit("m")).magnitude),
         published=published,
     )
+
+
+def _rolloff(
+    rec: _Record, act: Actuator, f_act: pint.Quantity, u_cal: pint.Quantity, samples: bool
+) -> tuple[pint.Quantity, dict[str, float]]:
+    """u = u_cal·H(f_act)/H(f_cal) (MODEL.md, "Thermal roll-off of the actuator"), every
+    quantity recorded; also the cut-off and calibration frequency [Hz] for the scales."""
+    if act.thermal_cutoff is not None:
+        f_c = rec.spec(
+            "f_c", "thermal cut-off of the stroke", "actuator.thermal_cutoff", act.thermal_cutoff
+        )
+    else:
+        tau = rec.spec(
+            "τ_th",
+            "thermal time constant of the actuator",
+            "actuator.thermal_time_constant",
+            act.thermal_time_constant.to(_unit("ms")),
+        )
+        f_c = rec.add(
+            "f_c",
+            "thermal cut-off of the stroke",
+            "1/(2π·τ_th)",
+            ureg.Quantity(rolloff.cutoff_from_time_constant(_mag(tau, "s")), _unit("Hz")),
+            ("τ_th",),
+            "Hz",
+        )
+    f_cal = rec.spec(
+        "f_cal",
+        "actuation frequency of the amplitude calibration",
+        "actuator.calibration_frequency",
+        act.calibration_frequency,
+    )
+    fc_hz = _mag(f_c, "Hz")
+    h_act, h_cal = (
+        rec.add(
+            f"H({name})",
+            f"first-order thermal roll-off at {name}",
+            f"1/sqrt(1 + ({name}/f_c)²)",
+            rolloff.gain(_mag(f, "Hz"), fc_hz),
+            (name, "f_c"),
+            "",
+        )
+        for name, f in (("f_act", f_act), ("f_cal", f_cal))
+    )
+    u = rec.add(
+        "u",
+        "actuator amplitude at f_act (thermal roll-off)",
+        "u_cal·H(f_act)/H(f_cal)",
+        u_cal * (h_act / h_cal),
+        ("u_cal", "H(f_act)", "H(f_cal)"),
+        "um",
+    )
+    if samples:
+        return u, {}
+    return u, {"cutoff_hz": float(fc_hz), "calibration_hz": _mag(f_cal, "Hz")}
+
+
+def _mag(q: pint.Quantity, unit: str) -> Any:
+    """Magnitude of ``q`` in ``unit``: a float, or an array of samples."""
+    m = q.to(_unit(unit)).magnitude
+    return float(m) if np.ndim(m) == 0 else np.asarray(m, dtype=float)
 
 
 def _compare(params: ModelParams, fit: PublishedFit | None) -> list[FitComparison]:

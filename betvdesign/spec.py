@@ -20,6 +20,7 @@ from betvdesign import limits
 from betvdesign.errors import ParameterError
 from betvdesign.units import (
     Density,
+    Duration,
     Frequency,
     ImpactAngle,
     Length,
@@ -244,6 +245,10 @@ class Actuator(_Model):
     devices' phenomenological value), ``horizontal_stiffness`` k_h or
     ``horizontal_resonance`` f_h (α = (f_v/f_h)²).
     Amplitude u: exactly one of ``amplitude`` or ``calibration`` (law of the drive voltage).
+    Thermal roll-off (optional, MODEL.md "Thermal roll-off of the actuator"): at most one of
+    ``thermal_cutoff`` f_c or ``thermal_time_constant`` τ_th (f_c = 1/(2π τ_th)), then
+    ``calibration_frequency`` f_cal is required and u(f) = u·H(f)/H(f_cal) with
+    H(f) = 1/sqrt(1 + (f/f_c)²) at the actuation frequency f. Absent: u does not depend on f.
     """
 
     vertical_resonance: Frequency
@@ -258,6 +263,13 @@ class Actuator(_Model):
     """Actuator deflection amplitude u at the drive voltage (or give a calibration)."""
     calibration: Calibration | None = None
     """u as a function of the drive voltage: linear, quadratic or measured points."""
+    thermal_cutoff: Frequency | None = None
+    """Thermal cut-off f_c of the stroke (first-order low-pass), e.g. '1.5 kHz'; optional."""
+    thermal_time_constant: Duration | None = None
+    """Thermal time constant τ_th, e.g. '0.2 ms' (f_c = 1/(2π τ_th)); or give thermal_cutoff."""
+    calibration_frequency: Frequency | None = None
+    """Actuation frequency (2 × drive frequency for AC) at which the amplitude or calibration
+    was measured; required with a thermal cut-off."""
 
     _law = field_validator("calibration", mode="before")(_lower_tag("law"))
 
@@ -277,6 +289,19 @@ class Actuator(_Model):
             raise ValueError("give exactly one of 'amplitude' or 'calibration'")
         if self.amplitude is not None and self.amplitude.to("m").magnitude <= 0:
             raise at("amplitude", "amplitude must be > 0")
+        if self.thermal_cutoff is not None and self.thermal_time_constant is not None:
+            raise at("thermal_time_constant", "give 'thermal_cutoff' or this, not both")
+        rolloff = self.thermal_cutoff is not None or self.thermal_time_constant is not None
+        if rolloff and self.calibration_frequency is None:
+            raise ValueError(
+                "'calibration_frequency' (the actuation frequency at which u was measured) "
+                "is required with a thermal cut-off"
+            )
+        if not rolloff and self.calibration_frequency is not None:
+            raise at(
+                "calibration_frequency",
+                "only applies with 'thermal_cutoff' or 'thermal_time_constant'",
+            )
         return self
 
 

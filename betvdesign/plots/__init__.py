@@ -10,7 +10,12 @@ from betvdesign.plots._figure import figure_style, figure_svg, new_figure
 from betvdesign.plots.phase import orbit_plane, vertical_phase_portrait
 from betvdesign.plots.pushpull import lambda_one_curve, pushpull_map, pushpull_map_frequencies
 from betvdesign.plots.regime import contact_fraction_strip, impact_period_strip
-from betvdesign.plots.sweeps import robustness_vs_lambda, speed_vs_field_change, speed_vs_voltage
+from betvdesign.plots.sweeps import (
+    robustness_vs_lambda,
+    speed_vs_field_change,
+    speed_vs_frequency,
+    speed_vs_voltage,
+)
 from betvdesign.plots.timeseries import slider_displacement, slider_velocity
 
 __all__ = [
@@ -27,6 +32,7 @@ __all__ = [
     "slider_displacement",
     "slider_velocity",
     "speed_vs_field_change",
+    "speed_vs_frequency",
     "speed_vs_voltage",
     "vertical_phase_portrait",
 ]

@@ -1,5 +1,5 @@
-"""Sweep figures: slider speed against drive voltage, and against changes of the designer's
-fields (robustness)."""
+"""Sweep figures: slider speed against drive voltage, against actuation frequency (with the
+actuator's thermal roll-off), and against changes of the designer's fields (robustness)."""
 
 from __future__ import annotations
 
@@ -8,7 +8,13 @@ from collections.abc import Sequence
 import numpy as np
 from matplotlib.axes import Axes
 
-from betvdesign.plots._figure import DEVICE_COLOR, MODE_COLORS, axes_or_new
+from betvdesign.plots._figure import (
+    DEVICE_COLOR,
+    MODE_COLORS,
+    VARPI_WINDOW,
+    axes_or_new,
+    dimensionless_twin,
+)
 from betvdesign.siformat import format_si, scale_for
 
 
@@ -40,6 +46,92 @@ def speed_vs_voltage(
     ax.set_xlabel("drive voltage  [V]")
     ax.set_ylabel(f"mean slider speed  [{unit}]")
     ax.legend(loc="best", framealpha=0.9)
+    return ax
+
+
+def speed_vs_frequency(
+    f_act_hz: Sequence[float],
+    speed_m_s: Sequence[float | None],
+    constant_stroke_m_s: Sequence[float | None],
+    *,
+    f_v_hz: float,
+    cutoff_hz: float | None = None,
+    operating: tuple[float, float] | None = None,
+    ax: Axes | None = None,
+) -> Axes:
+    """Mean slider speed [m/s, SI prefix by magnitude] against actuation frequency
+    [Hz, drawn with its prefix], with the stroke's thermal roll-off (solid) and with the
+    calibrated stroke held constant (dashed, the idealised model); None: no periodic orbit
+    there (crosses on zero). Top axis ϖ = f_act/f_v; the design window 0.5 ≤ ϖ < 2 is
+    shaded, the cut-off f_c drawn where it falls inside the plot; ``operating``:
+    (f_act [Hz], speed [m/s]) of the device."""
+    ax = axes_or_new(ax)
+    f = np.asarray(f_act_hz, float)
+    ok = np.array([v is not None for v in speed_m_s], dtype=bool)
+    v = np.array([x if x is not None else 0.0 for x in speed_m_s], float)
+    v0 = np.array([x if x is not None else np.nan for x in constant_stroke_m_s], float)
+    kf, f_unit = scale_for(float(f.max()) if f.size else 0.0, "Hz")
+    top = max(float(np.abs(v[ok]).max(initial=0.0)), float(np.nanmax(np.abs(v0), initial=0.0)))
+    kv, v_unit = scale_for(top, "m/s")
+    ax.plot(
+        f[ok] * kf,
+        v0[ok] * kv,
+        color="#7f7f7f",
+        ls="--",
+        marker="o",
+        ms=2.5,
+        label="calibrated stroke at every frequency (no roll-off)",
+    )
+    ax.plot(
+        f[ok] * kf,
+        v[ok] * kv,
+        color="black",
+        marker="o",
+        ms=3,
+        label="with the thermal roll-off of the stroke",
+    )
+    if (~ok).any():
+        ax.plot(
+            f[~ok] * kf,
+            v[~ok],
+            ls="none",
+            marker="x",
+            ms=6,
+            color="#7f7f7f",
+            label="no periodic orbit",
+        )
+    if operating is not None:
+        ax.plot(
+            [operating[0] * kf],
+            [operating[1] * kv],
+            marker="o",
+            ms=7,
+            ls="none",
+            color=DEVICE_COLOR,
+            label=f"the device: {format_si(operating[0], 'Hz')}, {format_si(operating[1], 'm/s')}",
+        )
+    lo, hi = ax.get_xlim()
+    ax.axvspan(
+        max(lo, VARPI_WINDOW[0] * f_v_hz * kf),
+        min(hi, VARPI_WINDOW[1] * f_v_hz * kf),
+        color=MODE_COLORS["push"],
+        alpha=0.06,
+        lw=0,
+    )
+    if cutoff_hz is not None and lo <= cutoff_hz * kf <= hi:
+        ax.axvline(
+            cutoff_hz * kf,
+            color="#1f77b4",
+            ls=":",
+            lw=1.2,
+            label=f"thermal cut-off f_c = {format_si(cutoff_hz, 'Hz')}",
+        )
+    ax.set_xlim(lo, hi)
+    ax.axhline(0.0, color="#7f7f7f", lw=0.5)
+    ax.set_xlabel(f"actuation frequency f_act  [{f_unit}]")
+    ax.set_ylabel(f"mean slider speed  [{v_unit}]")
+    dimensionless_twin(ax, "x", f_v_hz * kf, "ϖ = f_act/f_v  [-]")
+    ax.legend(loc="best", framealpha=0.9, fontsize=7)
     return ax
 
 

@@ -12,7 +12,10 @@ Model rungs, cheapest that answers each question (the captions say which):
   (:func:`betvdesign.dynamics.simulate`, :func:`~betvdesign.dynamics.periodic_orbit`);
 - speed against voltage: one periodic orbit. Every displacement of the model
   scales with u and ϖ, α, β, κ do not depend on u, so Δs is voltage-independent
-  and speed(V) = Δs·u(V)·cosθ·f_act with u(V) from the amplitude calibration.
+  and speed(V) = Δs·u(V)·cosθ·f_act with u(V) from the amplitude calibration
+  (times the thermal roll-off at f_act when the device gives a cut-off);
+- speed against actuation frequency (devices with a thermal cut-off): one periodic
+  orbit per frequency (:mod:`betvdesign.report.frequency`).
 
 Each piece is a :class:`Piece`: its value, or the reason it is missing (upstream
 API not available, solver failure with its message). Nothing is invented.
@@ -52,6 +55,8 @@ class ReportOptions:
     the head (τ units) when ϖ < 1 makes a cycle hold several of them;
     max_transient_cycles: cap of the exact run used for the displacement figure;
     voltage_points: drive voltages of the speed-voltage figure (no solver runs);
+    frequency_points: actuation frequencies of the speed-frequency figure of a device with
+    a thermal cut-off (one periodic orbit each, :mod:`betvdesign.report.frequency`);
     periodic_tol: fixed-point residual accepted for a periodic orbit [-];
     periodic_max_cycles: cycle budget of the device's periodic orbit (settling can take
     ~10⁵ cycles, MODEL.md "Slider"); sweep_max_cycles: the same for each λ-sweep orbit;
@@ -65,6 +70,7 @@ class ReportOptions:
     samples_per_cycle: int = 64
     max_transient_cycles: int = 4000
     voltage_points: int = 41
+    frequency_points: int = 21
     periodic_tol: float = 1e-10
     periodic_max_cycles: int = 100_000
     sweep_max_cycles: int = 20_000
@@ -373,6 +379,9 @@ class SetAnalysis:
     transient: Piece[TransientData]
     orbit: Piece[OrbitData]
     robustness: Piece[FieldSweep]
+    frequency: Piece[Any] = field(
+        default_factory=lambda: Piece(reason="the device gives no thermal cut-off")
+    )
 
 
 def transient_cycles(per: Piece[Any], travel_m: float, length_m: float, opts: ReportOptions) -> int:

@@ -28,8 +28,8 @@ from betvdesign.checker import (
 from betvdesign.checkview import rule_unit
 from betvdesign.loader import load_device
 from betvdesign.nondim import DeviceDerivation, SetDerivation, derive
-from betvdesign.report import figures
-from betvdesign.report.analysis import ReportOptions, SetAnalysis, analyse_set
+from betvdesign.report import figures, frequency
+from betvdesign.report.analysis import ReportOptions, SetAnalysis, analyse_set, attempt
 from betvdesign.report.inputs import device_inputs
 from betvdesign.report.model import (
     DerivationRow,
@@ -239,8 +239,18 @@ def provenance(an: SetAnalysis, opts: ReportOptions, timings: bool) -> tuple[Key
                 f"{sweep.n_orbits} periodic orbits over {', '.join(sweep.fields)}",
             )
         )
+    if an.frequency.ok:
+        fs = an.frequency.value
+        rows.append(
+            KeyValue(
+                "Speed-frequency sweep",
+                f"{fs.n_orbits} periodic orbits, f_act {format_si(fs.f_act_hz[0], 'Hz')} to "
+                f"{format_si(fs.f_act_hz[-1], 'Hz')} (thermal roll-off of the stroke)",
+            )
+        )
     if timings:
-        for name in ("periodic", "vertical", "regime", "transient", "orbit", "robustness"):
+        names = ("periodic", "vertical", "regime", "transient", "orbit", "robustness")
+        for name in names + (("frequency",) if an.frequency.ok else ()):
             rows.append(KeyValue(f"Run time: {name}", f"{getattr(an, name).elapsed_s:.3g} s"))
     else:
         rows.append(
@@ -317,6 +327,12 @@ def build_report(
             continue
         variants = field_variants(der.spec, i, changes)
         an = analyse_set(sd.params, sd.travel_range_m, sd.scales.length_m, opts, variants)
+        if sd.scales.has_rolloff:
+            an.frequency = attempt(
+                lambda sd=sd, an=an: frequency.frequency_sweep(
+                    sd.params, sd.scales.f_act_hz, an.periodic, opts
+                )
+            )
         analyses[key] = (sd.name, an)
         per_set.append((sd, an, None))
     check = design_check(der, per_set, opts)
@@ -328,6 +344,7 @@ def build_report(
             []
             if same_as
             else figures.set_figures(f"s{i}", sd, an, opts.voltage_points, opts.periodic_tol)
+            + frequency.figures(f"s{i}-frequency", sd, an.frequency, opts.periodic_tol)
         )
         p = sd.params
         params = (

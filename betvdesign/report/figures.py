@@ -333,6 +333,11 @@ def speed_voltage(
         f"Mean slider speed Δs·u(V)·cosθ·f_act along the impact direction (negative: against "
         f"it) with u(V) from the {law} amplitude calibration; operating point marked."
     )
+    if sc.has_rolloff:
+        caption += (
+            f" The calibrated stroke is scaled by the thermal roll-off H(f_act)/H(f_cal) = "
+            f"{sc.rolloff_factor:.3g} (f_c = {format_si(sc.cutoff_hz, 'Hz')})."
+        )
 
     def draw(ax: Any) -> None:
         if law == "measured":
@@ -341,6 +346,7 @@ def speed_voltage(
             lo, hi = 0.5 * v0, 1.5 * v0
         volts = np.linspace(lo, hi, points)
         u_m = amplitude_at(aset, ureg.Quantity(volts, "V")).to("m").magnitude
+        u_m = np.asarray(u_m) * sc.rolloff_factor  # H(f_act)/H(f_cal): 1 without a cut-off
         ds = float(per.value.delta_s)
         speed = ds * np.asarray(u_m) * math.cos(sc.theta_rad) * sc.f_act_hz  # [m/s]
         plots.speed_vs_voltage(

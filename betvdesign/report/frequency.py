@@ -1,0 +1,178 @@
+"""Speed against actuation frequency with the actuator's thermal roll-off (report figure
+for devices that give a thermal cut-off).
+
+Only ϖ = f_act/f_v depends on the actuation frequency; α, β and κ do not, and every
+displacement scales with the stroke u (MODEL.md, "Displacement per cycle"). So one
+periodic orbit per frequency gives Δs(ϖ), and the speed is
+v(f) = Δs(f/f_v)·u(f)·cosθ·f with u(f) = u·H(f)/H(f_act) from
+:meth:`betvdesign.derivation.Scales.amplitude_m` (the roll-off of
+:mod:`betvdesign.rolloff`, as derived by :mod:`betvdesign.nondim`); the idealised model
+keeps the calibrated stroke u_cal = u(f_cal) at every frequency.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from betvdesign import plots
+from betvdesign.derivation import SetDerivation
+from betvdesign.params import ModelParams
+from betvdesign.plots._figure import VARPI_WINDOW
+from betvdesign.report.analysis import Missing, Piece, ReportOptions, dynamics_api
+from betvdesign.report.figures import _block, ladder
+from betvdesign.report.model import FigureBlock
+from betvdesign.siformat import format_si
+
+#: Largest ϖ of the sweep relative to the window's upper edge (ϖ < 2: finite contact).
+_TOP = 0.98
+
+
+@dataclass(frozen=True)
+class FrequencySweep:
+    """Periodic Δs [-] per cycle at actuation frequencies ``f_act_hz`` [Hz] (None: no
+    periodic orbit, ``reasons``); ``n_orbits`` periodic orbits were solved."""
+
+    f_act_hz: np.ndarray
+    delta_s: list[float | None]
+    reasons: list[str]
+    n_orbits: int
+
+
+def frequency_grid(varpi: float, points: int) -> np.ndarray:
+    """ϖ values of the sweep: ``points`` evenly over the design window (widened to the
+    device's ϖ), the device's own ϖ included exactly."""
+    lo = min(VARPI_WINDOW[0], 0.9 * varpi)
+    hi = max(_TOP * VARPI_WINDOW[1], 1.1 * varpi)
+    grid = np.linspace(lo, hi, max(points, 3))
+    return np.unique(np.append(grid, varpi))
+
+
+def frequency_sweep(
+    p: ModelParams, f_act_hz: float, per: Piece[Any], opts: ReportOptions
+) -> FrequencySweep:
+    """Periodic Δs over :func:`frequency_grid` (α, β, κ fixed); the device's own orbit
+    ``per`` is reused."""
+    periodic_orbit = dynamics_api("periodic_orbit")
+    f_v = f_act_hz / p.varpi
+    grid = frequency_grid(p.varpi, opts.frequency_points)
+    delta_s: list[float | None] = []
+    reasons: list[str] = []
+    n = 0
+    for w in grid:
+        if w == p.varpi:
+            if not per.ok:
+                raise Missing(f"no periodic orbit at the device's own frequency: {per.reason}")
+            res = per.value
+        else:
+            res = periodic_orbit(
+                ModelParams(varpi=float(w), alpha=p.alpha, beta=p.beta, kappa=p.kappa),
+                tol=opts.periodic_tol,
+                max_cycles=opts.sweep_max_cycles,
+            )
+            n += 1
+        ok = bool(getattr(res, "success", False))
+        delta_s.append(float(res.delta_s) if ok else None)
+        reasons.append("" if ok else f"{getattr(res, 'status', '?')}: {res.message}")
+    return FrequencySweep(grid * f_v, delta_s, reasons, n)
+
+
+def speeds(sd: SetDerivation, sweep: FrequencySweep) -> tuple[list[float | None], ...]:
+    """(speed with the roll-off, speed with the calibrated stroke held constant) [m/s]
+    along the impact direction at each swept frequency (None where Δs is missing)."""
+    sc = sd.scales
+    cos = math.cos(sc.theta_rad)
+    u_f = sc.amplitude_m(sweep.f_act_hz)
+    u_cal = sc.amplitude_m(sc.calibration_hz) if sc.calibration_hz is not None else sc.u_m
+    rolled, constant = [], []
+    for f, u, ds in zip(sweep.f_act_hz, u_f, sweep.delta_s, strict=True):
+        rolled.append(None if ds is None else ds * float(u) * cos * float(f))
+        constant.append(None if ds is None else ds * u_cal * cos * float(f))
+    return rolled, constant
+
+
+def speed_frequency(
+    key: str, sd: SetDerivation, piece: Piece[FrequencySweep], tol: float
+) -> FigureBlock:
+    """The figure block (see the module docstring)."""
+    sc, p = sd.scales, sd.params
+    f_v = sc.f_act_hz / p.varpi
+    caption = (
+        "Mean slider speed along the impact direction against the actuation frequency "
+        f"f_act (top axis ϖ = f_act/f_v, f_v = {format_si(f_v, 'Hz')}; design window "
+        "shaded). Solid: with the stroke's first-order thermal roll-off "
+        f"u(f) = u_cal·H(f)/H(f_cal), H(f) = 1/sqrt(1 + (f/f_c)²), f_c = "
+        f"{format_si(sc.cutoff_hz, 'Hz')}, f_cal = {format_si(sc.calibration_hz or 0.0, 'Hz')}; "
+        "dashed: the calibrated stroke u_cal at every frequency (the idealised model). "
+        f"At the device's f_act = {format_si(sc.f_act_hz, 'Hz')} the stroke is "
+        f"{sc.rolloff_factor:.3g} × u_cal ({format_si(sc.u_m, 'm')})."
+    )
+    rolled: list[float | None] = []
+    constant: list[float | None] = []
+    if piece.ok:
+        sweep = piece.value
+        rolled, constant = speeds(sd, sweep)
+        caption += f" {sweep.n_orbits + 1} periodic orbits (α, β, κ fixed)."
+        sign = 1.0 if sd.intended_mode == "push" else -1.0
+        for label, vals in (("with roll-off", rolled), ("without", constant)):
+            best = max(
+                ((sign * v, f) for v, f in zip(vals, sweep.f_act_hz, strict=True) if v is not None),
+                default=None,
+            )
+            if best is not None and best[0] > 0:
+                caption += (
+                    f" Fastest swept frequency in the intended direction {label}: "
+                    f"{format_si(float(best[1]), 'Hz')} ({format_si(best[0], 'm/s')})."
+                )
+        missing = [
+            f"{format_si(float(f), 'Hz')} ({r})"
+            for f, r in zip(sweep.f_act_hz, sweep.reasons, strict=True)
+            if r
+        ]
+        if missing:
+            caption += " No periodic orbit at: " + "; ".join(missing) + "."
+
+    def draw(ax: Any) -> None:
+        plots.speed_vs_frequency(
+            piece.value.f_act_hz,
+            rolled,
+            constant,
+            f_v_hz=f_v,
+            cutoff_hz=sc.cutoff_hz,
+            operating=(sc.f_act_hz, sc.speed_m_s(_device_ds(piece.value, p.varpi, f_v))),
+            ax=ax,
+        )
+
+    model = (
+        "periodic orbits of the exact model, one per frequency; Δs does not depend on u, "
+        "so the roll-off enters through the stroke (length scale) only"
+    )
+    rung = ladder(p, "delta_s", "periodic", tol=tol)
+    return _block(
+        key,
+        "Mean speed against actuation frequency, with thermal roll-off",
+        caption,
+        model,
+        rung,
+        piece,
+        draw,
+    )
+
+
+def _device_ds(sweep: FrequencySweep, varpi: float, f_v: float) -> float:
+    """Δs at the device's own frequency (in the sweep by construction)."""
+    i = int(np.argmin(np.abs(sweep.f_act_hz / f_v - varpi)))
+    ds = sweep.delta_s[i]
+    return float(ds) if ds is not None else math.nan
+
+
+def figures(
+    key: str, sd: SetDerivation, piece: Piece[FrequencySweep], tol: float
+) -> list[FigureBlock]:
+    """The roll-off figure of a set that gives a thermal cut-off; none otherwise."""
+    if not sd.scales.has_rolloff:
+        return []
+    return [speed_frequency(key, sd, piece, tol)]
