@@ -293,9 +293,11 @@ class Actuator(_Model):
             raise at("thermal_time_constant", "give 'thermal_cutoff' or this, not both")
         rolloff = self.thermal_cutoff is not None or self.thermal_time_constant is not None
         if rolloff and self.calibration_frequency is None:
-            raise ValueError(
-                "'calibration_frequency' (the actuation frequency at which u was measured) "
-                "is required with a thermal cut-off"
+            given = "thermal_cutoff" if self.thermal_cutoff is not None else "thermal_time_constant"
+            raise at(
+                given,
+                "needs 'calibration_frequency' too (the actuation frequency at which the "
+                "amplitude or calibration was measured)",
             )
         if not rolloff and self.calibration_frequency is not None:
             raise at(

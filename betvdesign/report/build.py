@@ -26,8 +26,7 @@ from betvdesign.checker import (
     load_solver,
 )
 from betvdesign.checkview import rule_unit
-from betvdesign.loader import load_device
-from betvdesign.nondim import DeviceDerivation, SetDerivation, derive
+from betvdesign.nondim import DeviceDerivation, SetDerivation, derive_file
 from betvdesign.report import figures, frequency
 from betvdesign.report.analysis import ReportOptions, SetAnalysis, analyse_set, attempt
 from betvdesign.report.inputs import device_inputs
@@ -61,7 +60,7 @@ class PreparedDevice:
 def prepare(path: str | Path) -> PreparedDevice:
     """Load, validate and derive ``path`` (raises SpecError/ParameterError on bad input)."""
     path = Path(path)
-    derivation = derive(load_device(path))
+    derivation = derive_file(path)  # derived values outside the model: SpecError naming the file
     return PreparedDevice(path, derivation, device_inputs(path))
 
 
