@@ -47,6 +47,9 @@ _DERIVED_SI: tuple[tuple[str, str, str], ...] = (
     ("k_h", "k_h", "N/m"),
     ("f_v", "f_v", "Hz"),
     ("f_act", "f_act", "Hz"),
+    ("u_cal", "calibrated_amplitude", "m"),
+    ("f_c", "thermal_cutoff", "Hz"),
+    ("f_cal", "calibration_frequency", "Hz"),
     ("u", "amplitude", "m"),
     ("t_s", "time_scale", "s"),
     ("ℓ", "length_scale", "m"),
@@ -352,8 +355,10 @@ def set_headline(sc: Any) -> tuple[str, str]:
     line1 = f"{head}, {motion}; {_margin(sc)[1]}"
     lam_mode = "push" if s.lam < 1.0 else "pull"
     word = "" if mode not in ("push", "pull") else (" agrees" if lam_mode == mode else " disagrees")
+    sc_ = s.scales
+    rolled = f" (roll-off ×{sc_.rolloff_factor:.3g})" if sc_.has_rolloff else ""
     line2 = (
-        f"f_act {format_si(s.scales.f_act_hz, 'Hz')}, u {format_si(s.scales.u_m, 'm')} | "
+        f"f_act {format_si(sc_.f_act_hz, 'Hz')}, u {format_si(sc_.u_m, 'm')}{rolled} | "
         f"ϖ {fmt_x(p.varpi)} α {fmt_x(p.alpha)} β {fmt_x(p.beta)} κ {fmt_x(p.kappa)} | "
         f"λ {fmt_x(s.lam)} → {lam_mode}{word}"
     )

@@ -41,7 +41,20 @@ _ASCII = {
     "H(f_cal)": "H_cal",
 }
 #: Keys of the dimensional values :meth:`SetDerivation.derived` reports.
-DERIVED_KEYS = ("M", "m", "k_v", "k_h", "f_act", "omega", "u", "time_scale", "length_scale")
+DERIVED_KEYS = (
+    "M",
+    "m",
+    "k_v",
+    "k_h",
+    "f_act",
+    "omega",
+    "u_cal",
+    "f_c",
+    "f_cal",
+    "u",
+    "time_scale",
+    "length_scale",
+)
 
 
 @dataclass(frozen=True)

@@ -14,7 +14,7 @@ from betvdesign.spec import DeviceSpec
 
 DEVICES = Path(__file__).resolve().parents[1] / "devices"
 SHIN = str(DEVICES / "shin2004.yaml")
-OWN = ["push_demo", "pull_demo", "bidir_demo"]
+OWN = ["push_demo", "pull_demo", "bidir_demo", "rolloff_demo"]
 
 
 @pytest.fixture
@@ -106,6 +106,7 @@ def test_json_conforms_to_its_published_schema(no_solver):
         "bidir_demo",
         "pull_demo",
         "push_demo",
+        "rolloff_demo",
         "shin2004",
     ]
     assert doc["verdict"] == "fail" and r.exit_code == 1
@@ -135,7 +136,7 @@ def test_several_files_give_one_shape_and_worst_exit(no_solver):
     assert [x["device"] for x in d["devices"]] == ["push_demo", "shin2004"]
     assert d["verdict"] == "fail"
     r = run("check", "--json", *(str(DEVICES / f"{n}.yaml") for n in OWN))
-    assert r.exit_code == 0 and len(json.loads(r.stdout)["devices"]) == 3
+    assert r.exit_code == 0 and len(json.loads(r.stdout)["devices"]) == len(OWN)
 
 
 def test_tables_and_derivation(no_solver):
@@ -327,4 +328,4 @@ def test_markup_in_names_is_printed_literally(tmp_path, no_solver):
 def test_summary_line_for_several_files(no_solver):
     r = run("check", *(str(p) for p in sorted(DEVICES.glob("*.yaml"))))
     assert r.exit_code == 1
-    assert "summary: 3 pass, 1 fail (shin2004)" in r.stdout
+    assert "summary: 4 pass, 1 fail (shin2004)" in r.stdout

@@ -276,6 +276,13 @@ def test_check_speed_is_the_rolled_off_speed(tmp_path):
     ratio = closed_form_ratio(6000.0, 200.0, f_c)
     assert a["speed_m_s"] / b["speed_m_s"] == pytest.approx(ratio, rel=1e-12)
     assert a["time_to_cross_s"] / b["time_to_cross_s"] == pytest.approx(1 / ratio, rel=1e-12)
+    da, db = a["derived"], b["derived"]
+    assert da["calibrated_amplitude_m"] == db["amplitude_m"] == pytest.approx(0.14e-6)
+    assert da["thermal_cutoff_hz"] == pytest.approx(f_c) and da["calibration_frequency_hz"] == 200
+    assert da["amplitude_m"] == pytest.approx(0.14e-6 * ratio, rel=1e-14)
+    assert not {"calibrated_amplitude_m", "thermal_cutoff_hz"} & set(db)
+    text = run("check", DEMO).stdout
+    assert "u 19 nm (roll-off ×0.136)" in text and "249 µm/s" in text
 
 
 def test_fix_changing_the_drive_frequency_reports_the_rolled_off_speed(tmp_path):
