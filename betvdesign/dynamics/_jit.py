@@ -97,20 +97,15 @@ def compile_note(what: str, run: Callable[[], object]) -> object:
     solver version yet), say so on stderr in one line, with what and how long, instead of
     compiling silently (``make demo`` compiles them ahead: :mod:`warm`). The first call of
     each entry point is watched from a thread (the note appears when compiling starts);
-    later calls only check afterwards (no thread: they cost nothing)."""
+    later calls run directly (each entry point hands the kernels one signature, so
+    nothing is left to compile once it has run; counting compilations per call cost as
+    much as a periodic orbit)."""
     if not jit_enabled():
+        return run()
+    if what in _ready:  # loaded: every entry point has one signature, compiled once
         return run()
     before = _misses()
     t0 = time.perf_counter()
-    if what in _ready:
-        out = run()
-        if _misses() > before:
-            print(
-                f"betv: compiled solver kernels for {what} in {time.perf_counter() - t0:.1f} s",
-                file=sys.stderr,
-                flush=True,
-            )
-        return out
     done = threading.Event()
     said: list[float] = []
 
