@@ -160,5 +160,3 @@ class SampleDerivation:
     kappa: np.ndarray
     length_m: np.ndarray
     f_act_hz: np.ndarray
-
-

@@ -122,7 +122,8 @@ def check_cmd(
         width = min(100, console.width) if console.is_terminal else 100
         for i, v in enumerate(views):
             if verbose:
-                render(v.result, Console(soft_wrap=False), derivation=True)
+                wide = Console(soft_wrap=False, width=None if console.is_terminal else 100)
+                render(v.result, wide, derivation=True)
                 continue
             if i:
                 console.print()
