@@ -110,6 +110,12 @@ class CheckResult:
         modes = ", ".join(f"{sc.derivation.name}: {sc.mode_predicted}" for sc in self.sets)
         return f"<CheckResult {self.derivation.name!r}: {self.verdict.upper()} ({modes})>"
 
+    def _repr_html_(self) -> str:
+        """The one-screen check block, for notebooks (:class:`betvdesign.checkview.DeviceView`)."""
+        from betvdesign.checkview import DeviceView
+
+        return DeviceView(self)._repr_html_()
+
 
 @dataclass
 class SolverFailure:

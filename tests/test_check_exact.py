@@ -98,3 +98,10 @@ def test_unsettled_transient_gives_a_lower_bound_not_an_extrapolation():
     assert short.status == "not_settled" and short.settle_cycles == 2000
     assert full.status == "settled" and full.cycles_to_settle > short.settle_cycles
     assert math.log(0.01) / math.log(mu) < full.cycles_to_settle / 10
+
+
+def test_check_result_reprs_are_short_and_name_the_exact_mode():
+    res = check_derivation(_device(LIAR, "pull"), margin=False, settle=False)
+    assert repr(res) == "<CheckResult 'pull_demo': FAIL (main: push)>"
+    html = res._repr_html_()
+    assert "FAIL" in html and "push" in html and len(html) < 5000

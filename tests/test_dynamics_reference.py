@@ -86,3 +86,20 @@ def test_reference_dense_output_matches_sections():
 def test_reference_rejects_bad_options(kw):
     with pytest.raises(ParameterError):
         reference.simulate(ModelParams(1.2, 0.5, 1.0, 0.4), 2, **kw)
+
+
+def test_reference_shares_no_code_with_the_exact_solver():
+    """The reference is a second method only if it is written separately: it imports
+    nothing of the exact solver (flows, phase rule, search, kernels), only the shared
+    input checks and result types (house rule: independent truths in tests)."""
+    import ast
+    from pathlib import Path
+
+    src = Path(reference.__file__).read_text()
+    mods = {
+        node.module
+        for node in ast.walk(ast.parse(src))
+        if isinstance(node, ast.ImportFrom) and node.module
+    }
+    ours = {m for m in mods if m.startswith("betvdesign.dynamics")}
+    assert ours <= {"betvdesign.dynamics.inputs", "betvdesign.dynamics.result"}, ours

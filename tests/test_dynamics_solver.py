@@ -174,3 +174,28 @@ def test_long_logs_and_dense_output_grow_their_buffers():
     assert taus == sorted(taus)
     T = 2 * math.pi / p.varpi
     np.testing.assert_allclose(tr.sample(np.array([T * (n - 1)])), tr.section[[n - 1]], atol=1e-9)
+
+
+def test_a_call_that_compiles_says_so_on_stderr(monkeypatch, capsys):
+    """No silent compile: when a call compiles kernels (numba's cache misses grow while it
+    runs), one line on stderr says what and how long; a call that compiles nothing is
+    silent."""
+    import time
+
+    from betvdesign.dynamics import _jit
+
+    count = [0]
+    monkeypatch.setattr(_jit, "_misses", lambda: count[0])
+    monkeypatch.setattr(_jit, "_ready", set())
+
+    def compiling():
+        count[0] += 1
+        time.sleep(0.6)
+        return 7
+
+    assert _jit.compile_note("demo", compiling) == 7
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "compiling the solver kernels for demo" in err
+    assert "done in" in err
+    assert _jit.compile_note("demo", lambda: 8) == 8  # loaded, nothing compiled
+    assert capsys.readouterr().err == ""

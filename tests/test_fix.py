@@ -70,22 +70,13 @@ def test_wrong_mode_device_is_fixed_by_the_exact_orbit(tmp_path):
     )
     assert run("check", src).exit_code == 1
     out = tmp_path / "fixed.yaml"
-    r = run(
-        "fix",
-        src,
-        "--vary",
-        "drive.frequency=500Hz:3kHz",
-        "--vary",
-        "contact.impact_angle",
-        "-o",
-        out,
-    )
-    if r.exit_code == 1:
-        assert "blocked by mode" in r.stdout  # a legitimate "none", naming the rule
-        return
+    r = run("fix", src, "--vary", "drive.frequency", "-o", out)
     assert r.exit_code == 0, r.output
+    assert "fixes mode" in r.stdout
     d = _check_passes(out)
     assert d["sets"][0]["mode"] == "pull"
+    f_new = load_device(out).actuator_sets[0].drive.frequency.to("kHz").magnitude
+    assert f_new < 3.0  # lower ϖ favours pull (MODEL.md), the way the fix went
 
 
 def test_target_speed_fix_reaches_the_speed(tmp_path):

@@ -29,12 +29,12 @@ BETV = [sys.executable, "-c", "from betvdesign.cli import main; main()"]
 pytestmark = pytest.mark.skipif(not Path("/proc/self/environ").exists(), reason="needs /proc")
 
 MAP = [
-    "sweep", "pushpull", "--varpi", "0.6:1.9:0.1", "--alpha", "0.5,2", "--beta", "0.5",
+    "sweep", "pushpull", "--varpi", "0.6:1.9:0.025", "--alpha", "0.5,2", "--beta", "0.5",
     "--kappa", "0.15,0.3", "--chunksize", "1", "-q",
 ]  # fmt: skip
 TOL = [
     "tolerance", str(REPO / "devices" / "bidir_demo.yaml"), "--spread",
-    "drive.frequency=3%", "--spread", "contact.friction=uniform:10%", "-n", "30",
+    "drive.frequency=3%", "--spread", "contact.friction=uniform:10%", "-n", "200",
     "--seed", "7", "--chunksize", "1", "-q",
 ]  # fmt: skip
 
@@ -97,6 +97,22 @@ def _kill_all(pids: list[int]) -> None:  # clean-up after a failed assertion onl
             pass
 
 
+def _crash_text(text: str) -> str:
+    """``text`` without CPython's "Exception ignored in ..." reports: a signal that lands
+    inside a finalizer or weakref callback is reported there and swallowed by the
+    interpreter (the program goes on and exits cleanly); any other traceback stays."""
+    kept, skipping = [], False
+    for line in text.splitlines():
+        if line.startswith("Exception ignored in"):
+            skipping = True
+            continue
+        if skipping and (line.startswith((" ", "Traceback", "KeyboardInterrupt")) or not line):
+            continue
+        skipping = False
+        kept.append(line)
+    return "\n".join(kept)
+
+
 def _wait_rows(csv: Path, rows: int, proc: subprocess.Popen, timeout: float = 120) -> None:
     """Wait until ``csv`` holds ``rows`` data rows (so workers are busy), or the run ends."""
     end = time.monotonic() + timeout
@@ -139,12 +155,17 @@ def test_signals_stop_cleanly_leave_no_process_and_resume_identically(
     left = _wait_gone(marker)
     _kill_all(left)
     assert not left, f"{name} at {delay:.2f} s: {len(left)} processes remain"
-    assert "Traceback" not in out + err, err
-    if proc.returncode != 0:  # 0: the study finished before the signal
+    assert "Traceback" not in _crash_text(out + err), err
+    done = json.loads((tmp_path / "run.json").read_text())["status"] == "complete"
+    # 0: the study finished (and said so) before the signal; signals after that are
+    # ignored while the interpreter cleans up (cli.main)
+    if proc.returncode != 0 or not done:
         assert proc.returncode == 130, err
         word = "terminated" if soft == signal.SIGTERM else "interrupted"
         assert f"{word}: finished points are kept in run.csv" in err
-        assert json.loads((tmp_path / "run.json").read_text())["status"] == "interrupted"
+        status = json.loads((tmp_path / "run.json").read_text())["status"]
+        # "complete": the signal came after the last row was stored (while summarising)
+        assert status in ("interrupted", "complete")
         proc = _start(run, tmp_path, marker)
         delay = _signal_at_random(proc, csv, signal.SIGKILL)
         proc.communicate(timeout=120)
@@ -179,7 +200,7 @@ def test_interrupted_report_leaves_whole_pairs(tmp_path: Path) -> None:
         assert not (tmp_path / "out").exists()
         return
     assert proc.returncode in (0, 130), f"SIGTERM at {delay:.1f} s: {err}"
-    assert "Traceback" not in out + err
+    assert "Traceback" not in _crash_text(out + err)
     files = (
         sorted(p.name for p in (tmp_path / "out").glob("*")) if (tmp_path / "out").exists() else []
     )

@@ -243,3 +243,11 @@ def test_study_map_figure_is_readable(tmp_path) -> None:
     box, page = legend.get_window_extent(renderer), fig.bbox
     assert page.x0 <= box.x0 and box.x1 <= page.x1 and page.y0 <= box.y0 and box.y1 <= page.y1
     assert "λ = 1 (fit boundary)" in [t.get_text() for t in legend.get_texts()]
+
+
+def test_speed_vs_voltage_takes_si_and_prefixes() -> None:
+    """Speeds are given in m/s and drawn with the prefix their magnitude calls for."""
+    ax = plots.speed_vs_voltage([4.0, 8.0], [1e-4, 3e-4], operating_v=6.0, operating_speed_m_s=2e-4)
+    assert ax.get_ylabel() == "mean slider speed  [µm/s]"
+    np.testing.assert_allclose(ax.get_lines()[0].get_ydata(), [100.0, 300.0])
+    assert any("200 µm/s" in ln.get_label() for ln in ax.get_lines())

@@ -357,3 +357,14 @@ def test_cli_usage_errors(tmp_path: Path) -> None:
     afile.write_text("x")
     res = runner.invoke(app, ["report", str(DEVICES / "push_demo.yaml"), "-o", str(afile)])
     assert res.exit_code == 2 and "not a directory" in res.output
+
+
+def test_regime_strip_periods_follow_the_paper() -> None:
+    """Report figure 2 classifies like the regime study (PAPER.md Figs 4, 5): the impact
+    period equals the actuation period for 0.5 ≤ ϖ ≤ 2.6, impulsive hits included (they
+    were drawn as "aperiodic" before); period doubling at ϖ = 2.9; aperiodic at ϖ = 4.8
+    (no period of at most LONG_PERIOD cycles: a cross, never a dot at a long period)."""
+    for w in (0.6, 1.5, 2.05, 2.3, 2.55):
+        assert report_analysis._vertical(w)[0] == 1.0, w
+    assert report_analysis._vertical(2.9)[0] == 2.0
+    assert report_analysis._vertical(4.8)[0] is None

@@ -69,10 +69,17 @@ def version_cmd() -> None:
 
 def main() -> None:
     """Console-script entry point. SIGTERM is handled like Ctrl-C from here on (the
-    long commands then stop cleanly with exit 130, see ``common.interruptible``)."""
+    long commands then stop cleanly with exit 130, see ``common.interruptible``).
+    Once the command has finished (or stopped cleanly), a late Ctrl-C or SIGTERM is
+    ignored: it would otherwise interrupt the interpreter's own clean-up (worker pools,
+    semaphores) with a traceback; SIGKILL still ends the process."""
     import signal
 
     from betvdesign.cli.common import raise_terminated
 
     signal.signal(signal.SIGTERM, raise_terminated)
-    app()
+    try:
+        app()
+    finally:
+        signal.signal(signal.SIGINT, signal.SIG_IGN)
+        signal.signal(signal.SIGTERM, signal.SIG_IGN)

@@ -13,29 +13,21 @@ from __future__ import annotations
 
 import sys
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import typer
 from rich.console import Console
 from rich.markup import escape as esc
 from rich.table import Table
 
-from betvdesign.checker import CheckResult, check_derivation, simulation_summary
-from betvdesign.checkview import (
-    DeviceView,
-    RuleFilter,
-    compact_lines,
-    output_json,
-    quiet_line,
-    rule_unit,
-)
 from betvdesign.cli import app
 from betvdesign.cli.common import EXIT_OK, EXIT_RULE_FAILED, user_errors
 from betvdesign.cli.config import load_config
 from betvdesign.errors import SpecError, UsageError
-from betvdesign.nondim import DERIVED_KEYS, derive_file
-from betvdesign.rules import RuleResult
-from betvdesign.siformat import format_q, format_si
-from betvdesign.units import parse_speed
+
+if TYPE_CHECKING:  # the heavy layers load when a check runs, not for `betv --help`
+    from betvdesign.checker import CheckResult
+    from betvdesign.rules import RuleResult
 
 _STATUS = {
     (True, "error"): "[green]ok[/]",
@@ -84,6 +76,11 @@ def check_cmd(
 
     Exit 0 pass, 1 an error rule fails, 2 bad input/usage.
     """
+    from betvdesign.checker import check_derivation
+    from betvdesign.checkview import DeviceView, RuleFilter, compact_lines, output_json, quiet_line
+    from betvdesign.nondim import derive_file
+    from betvdesign.units import parse_speed
+
     verbose = verbose or show_derivation
     with user_errors():
         if quiet and verbose:
@@ -122,7 +119,8 @@ def check_cmd(
         width = min(100, console.width) if console.is_terminal else 100
         for i, v in enumerate(views):
             if verbose:
-                render(v.result, Console(soft_wrap=False), derivation=True)
+                wide = Console(soft_wrap=False, width=None if console.is_terminal else 100)
+                render(v.result, wide, derivation=True)
                 continue
             if i:
                 console.print()
@@ -141,6 +139,10 @@ def check_cmd(
 
 def render(result: CheckResult, console: Console, *, derivation: bool = False) -> None:
     """Rich tables for one device: per set parameters, derived values, rules; then notes."""
+    from betvdesign.checker import simulation_summary
+    from betvdesign.nondim import DERIVED_KEYS
+    from betvdesign.siformat import format_q
+
     colour = "green" if result.verdict == "pass" else "red"
     console.rule(
         f"[bold]{esc(result.derivation.name)}[/] ({esc(result.source_file)}): "
@@ -181,6 +183,9 @@ def render(result: CheckResult, console: Console, *, derivation: bool = False) -
 
 def _rules_table(rules: list[RuleResult]) -> Table:
     """Compact table (status, severity, rule, value, threshold); messages follow it."""
+    from betvdesign.checkview import rule_unit
+    from betvdesign.siformat import format_si
+
     t = Table(pad_edge=False, expand=False)
     for col in ("", "severity", "rule", "value"):
         t.add_column(col, no_wrap=True)
@@ -205,6 +210,8 @@ def _print_rules(rules: list[RuleResult], console: Console) -> None:
 
 
 def _record_table(sc) -> Table:
+    from betvdesign.siformat import format_q
+
     t = Table(title=f"derivation of set {esc(sc.derivation.name)}", pad_edge=False)
     for col in ("symbol", "description", "formula", "value"):
         t.add_column(col, overflow="fold")

@@ -14,11 +14,12 @@ from betvdesign.cli import app
 from betvdesign.cli.common import user_errors
 from betvdesign.errors import UsageError
 from betvdesign.outputs import check_output_file, write_atomic
-from betvdesign.spec import DeviceSpec
 
 
 def device_schema() -> dict:
     """JSON schema of a device file (quantities are strings with units)."""
+    from betvdesign.spec import DeviceSpec  # loaded on use: `betv --help` stays light
+
     schema = DeviceSpec.model_json_schema(mode="validation")
     schema["$schema"] = "https://json-schema.org/draft/2020-12/schema"
     schema["title"] = "BETV device file (betvdesign)"

@@ -22,6 +22,8 @@ import matplotlib
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
+from betvdesign import domain
+
 #: rcParams pinned for every figure of the package, independent of the user's
 #: matplotlibrc, so the same inputs give the same bytes on every machine.
 STYLE: dict[str, Any] = {
@@ -56,8 +58,8 @@ PHASE_COLORS: dict[str, str] = {
 #: Colours of the two slider modes.
 MODE_COLORS: dict[str, str] = {"push": "#2ca02c", "pull": "#9467bd"}
 
-#: The vertical design window of ϖ (docs/MODEL.md, "What the model shows").
-VARPI_WINDOW: tuple[float, float] = (0.5, 2.0)
+#: The design window (one home: betvdesign.domain), drawn on the figures.
+VARPI_WINDOW = domain.VARPI_WINDOW
 
 DEVICE_COLOR = "#d62728"
 

@@ -194,7 +194,7 @@ def _vertical(varpi: float) -> tuple[float | None, float | None, float | None, s
     vertical-only model, classified by :func:`betvdesign.studies.regime.regime_point` (the
     one classification: impulsive-only motion that repeats every k cycles has period k, not
     "aperiodic"); period None only where no period is found within the horizon."""
-    from betvdesign.studies.regime import regime_point
+    from betvdesign.studies.regime import LONG_PERIOD, regime_point
 
     dynamics_api("vertical_motion")  # Missing (stated in the figure) without the solver
     row = regime_point({"key": 0, "varpi": varpi, "max_cycles": REGIME_HORIZON})
@@ -202,6 +202,8 @@ def _vertical(varpi: float) -> tuple[float | None, float | None, float | None, s
         # near a period doubling the transient outlasts the short horizon: look longer
         row = regime_point({"key": 0, "varpi": varpi, "max_cycles": REGIME_LONG_HORIZON})
     k = row["period_cycles"]
+    if k is not None and k > LONG_PERIOD:  # shown as aperiodic, as in the regime study
+        k = None
     if row["status"] == "error":
         return None, None, None, str(row["label"])
     return (

@@ -22,6 +22,7 @@ from betvdesign.report.analysis import REGIME_LONG_HORIZON, Piece, SetAnalysis
 from betvdesign.report.model import FigureBlock
 from betvdesign.siformat import format_si, scale_for
 from betvdesign.spec import amplitude_at
+from betvdesign.studies.regime import LONG_PERIOD
 from betvdesign.units import ureg
 
 EXACT = "exact event-driven impact model (closed-form phases, MODEL.md)"
@@ -123,7 +124,8 @@ def regime(key: str, sd: SetDerivation, an: SetAnalysis) -> FigureBlock:
         f"per cycle (impulsive included; above 1: multi-impact) and share of the cycle in "
         f"contact, against the actuation frequency f_act for this head (f_v = "
         f"{format_si(f_v, 'Hz')}; top axis ϖ = f_act/f_v; {n} values, from rest; crosses: no "
-        f"period found within {REGIME_LONG_HORIZON} cycles; impulsive-only hits that repeat "
+        f"period of at most {LONG_PERIOD} cycles found within {REGIME_LONG_HORIZON} cycles "
+        "(aperiodic or a long period); impulsive-only hits that repeat "
         f"every k cycles have period k); design window 0.5 ≤ ϖ < 2 shaded, the device "
         f"(f_act = {format_si(sd.scales.f_act_hz, 'Hz')}, ϖ = {p.varpi:.3g}) dashed."
     )

@@ -20,8 +20,8 @@ import numpy as np
 
 from betvdesign import plots
 from betvdesign.derivation import SetDerivation
+from betvdesign.domain import VARPI_WINDOW
 from betvdesign.params import ModelParams
-from betvdesign.plots._figure import VARPI_WINDOW
 from betvdesign.report.analysis import Missing, Piece, ReportOptions, dynamics_api
 from betvdesign.report.figures import _block, ladder
 from betvdesign.report.model import FigureBlock

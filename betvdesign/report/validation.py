@@ -23,6 +23,7 @@ from betvdesign import plots
 from betvdesign.outputs import write_atomic
 from betvdesign.plots import validation as vplots
 from betvdesign.report.render import _css, _environment, render_pdf
+from betvdesign.siformat import scale_for
 from betvdesign.studies.regime import LONG_PERIOD
 from betvdesign.studies.validation import ValidationStudy, run_validation
 from betvdesign.studies.validation_common import STOP_RTOL, Comparison
@@ -196,10 +197,12 @@ def _fig10(st: ValidationStudy, axes: Any) -> None:
 
 def _fig11(st: ValidationStudy, ax: Any) -> None:
     d = st.slider.fig11
-    plots.speed_vs_voltage(d["voltage"], d["speed_um_s"], ax=ax)
+    speed_m_s = np.asarray(d["speed_um_s"], float) * 1e-6  # the plot takes SI [m/s]
+    plots.speed_vs_voltage(d["voltage"], speed_m_s, ax=ax)
+    k, _ = scale_for(float(np.abs(speed_m_s).max()), "m/s")  # the prefix the plot chose
     ax.plot(
         d["voltage"],
-        d["travel_um_s"],
+        np.asarray(d["travel_um_s"], float) * 1e-6 * k,
         ls="none",
         marker="s",
         ms=4,

@@ -47,6 +47,7 @@ PAIR_POINTS = 9
 #: Pairs are searched among this many fields, those that came closest on their own.
 PAIR_FIELDS = 4
 
+
 @dataclass
 class Candidate:
     """One proposed change and what the exact check says of it."""

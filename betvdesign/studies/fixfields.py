@@ -120,5 +120,3 @@ def _magnitude(q: Any, unit: str) -> float:
     if not unit:
         return float(q.to("dimensionless").magnitude)
     return float(q.to(unit).magnitude)
-
-

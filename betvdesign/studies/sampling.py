@@ -133,5 +133,3 @@ def derive_all(
     except (BetvError, ValueError, ArithmeticError):
         return None
     return {k: getattr(d, k) for k in ("varpi", "alpha", "beta", "kappa", "length_m", "f_act_hz")}
-
-

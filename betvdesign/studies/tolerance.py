@@ -296,9 +296,7 @@ def tolerance_study(
     x = draw(tolerances, nominal, samples, seed)
     columns = dict(BASE_COLUMNS) | {f"in:{t.field}": float for t in tolerances}
     mtime = os.stat(path).st_mtime_ns
-    derived = {
-        name: derive_all(spec, tolerances, nominal, x, names.index(name)) for name in chosen
-    }
+    derived = {name: derive_all(spec, tolerances, nominal, x, names.index(name)) for name in chosen}
     intended = {s.name: s.intended_mode for s in spec.actuator_sets}
     tasks = []
     for i in range(samples):
