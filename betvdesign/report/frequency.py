@@ -115,7 +115,7 @@ def speed_frequency(
     if piece.ok:
         sweep = piece.value
         rolled, constant = speeds(sd, sweep)
-        caption += f" {sweep.n_orbits + 1} periodic orbits (α, β, κ fixed)."
+        caption += f" {len(sweep.f_act_hz)} frequencies, one periodic orbit each (α, β, κ fixed)."
         sign = 1.0 if sd.intended_mode == "push" else -1.0
         for label, vals in (("with roll-off", rolled), ("without", constant)):
             best = max(
