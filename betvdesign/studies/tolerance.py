@@ -45,7 +45,7 @@ import pint
 from pydantic import BaseModel
 
 from betvdesign import limits
-from betvdesign.errors import BetvError, UsageError
+from betvdesign.errors import BetvError, SpecError, UsageError
 from betvdesign.studies.pushpull import (
     MODEL_STATEMENT,
     RUNG_REASON,
@@ -80,15 +80,6 @@ class Tolerance:
             "relative": self.relative,
             "absolute": self.absolute,
         }
-
-
-def check_seed(seed: int) -> int:
-    """A seed numpy's ``SeedSequence`` takes: an integer 0 <= seed < 2**128."""
-    if isinstance(seed, bool) or not isinstance(seed, int | np.integer):
-        raise UsageError(f"--seed must be an integer, got {seed!r}")
-    if not 0 <= int(seed) < limits.SEED_BOUND:
-        raise UsageError(f"--seed must be an integer with 0 <= seed < 2**128, got {seed}")
-    return int(seed)
 
 
 def _amount(text: str, field: str, source: str) -> tuple[float | None, str | None]:
@@ -129,7 +120,6 @@ def load_tolerances(path: str | os.PathLike[str]) -> list[Tolerance]:
     from ruamel.yaml import YAML, YAMLError
 
     from betvdesign import safeyaml
-    from betvdesign.errors import SpecError
 
     p = Path(path)
     try:
@@ -251,8 +241,7 @@ def draw(
     """
     from betvdesign.units import parse_quantity
 
-    check_seed(seed)
-    rng = np.random.default_rng(seed)
+    rng = np.random.default_rng(limits.check_seed(seed))
     cols = []
     for tol in tolerances:
         x0, unit = nominal[tol.field]
@@ -376,7 +365,7 @@ def tolerance_study(
 
     if not 1 <= samples <= limits.MAX_SAMPLES:
         raise UsageError(f"--samples must be >= 1 and <= {limits.MAX_SAMPLES:,}, got {samples}")
-    check_seed(seed)
+    limits.check_seed(seed)
     require_fidelity(fidelity)
     if not tolerances:
         raise UsageError("give at least one tolerance (--spread FIELD=AMOUNT or --tolerances FILE)")
@@ -387,11 +376,7 @@ def tolerance_study(
     for name in chosen:
         if name not in names:
             raise UsageError(f"{device}: no actuator set {name!r} (sets: {', '.join(names)})")
-    if samples * len(chosen) > limits.MAX_STUDY_POINTS:  # before drawing anything
-        raise UsageError(
-            f"{samples:,} samples × {len(chosen)} sets = {samples * len(chosen):,} points "
-            f"exceed the limit of {limits.MAX_STUDY_POINTS:,} points per study"
-        )
+    limits.refuse_long_study("tolerance", samples * len(chosen), 0.0, 1)  # before drawing
     nominal = nominal_values(spec, tolerances)
     x = draw(tolerances, nominal, samples, seed)
     columns = dict(BASE_COLUMNS) | {f"in:{t.field}": float for t in tolerances}
