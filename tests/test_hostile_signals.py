@@ -29,12 +29,12 @@ BETV = [sys.executable, "-c", "from betvdesign.cli import main; main()"]
 pytestmark = pytest.mark.skipif(not Path("/proc/self/environ").exists(), reason="needs /proc")
 
 MAP = [
-    "sweep", "pushpull", "--varpi", "0.6:1.9:0.1", "--alpha", "0.5,2", "--beta", "0.5",
+    "sweep", "pushpull", "--varpi", "0.6:1.9:0.05", "--alpha", "0.3,0.5,1,2,3", "--beta", "0.5,1",
     "--kappa", "0.15,0.3", "--chunksize", "1", "-q",
 ]  # fmt: skip
 TOL = [
     "tolerance", str(REPO / "devices" / "bidir_demo.yaml"), "--spread",
-    "drive.frequency=3%", "--spread", "contact.friction=uniform:10%", "-n", "30",
+    "drive.frequency=3%", "--spread", "contact.friction=uniform:10%", "-n", "60",
     "--seed", "7", "--chunksize", "1", "-q",
 ]  # fmt: skip
 
@@ -140,11 +140,18 @@ def test_signals_stop_cleanly_leave_no_process_and_resume_identically(
     _kill_all(left)
     assert not left, f"{name} at {delay:.2f} s: {len(left)} processes remain"
     assert "Traceback" not in out + err, err
-    if proc.returncode != 0:  # 0: the study finished before the signal
+    status = json.loads((tmp_path / "run.json").read_text())["status"]
+    if proc.returncode in (0, -soft):
+        # the study had finished: the signal came while the process was exiting (Python
+        # restores the default handlers at shut-down)
+        assert status == "complete", (proc.returncode, err)
+    else:
         assert proc.returncode == 130, err
         word = "terminated" if soft == signal.SIGTERM else "interrupted"
         assert f"{word}: finished points are kept in run.csv" in err
-        assert json.loads((tmp_path / "run.json").read_text())["status"] == "interrupted"
+        # "complete": the signal came after the last row, while the summary was printed
+        assert status in ("interrupted", "complete")
+    if status == "interrupted":
         proc = _start(run, tmp_path, marker)
         delay = _signal_at_random(proc, csv, signal.SIGKILL)
         proc.communicate(timeout=120)
