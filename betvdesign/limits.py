@@ -126,7 +126,7 @@ def refuse_long_study(what: str, points: int, cost_s: float, workers: int) -> No
     budget = max_study_hours() * 3600.0
     if estimate > budget:
         raise UsageError(
-            f"{what}: {points:,} points at ≈ {cost_s * 1e3:.3g} ms each on {workers} worker(s) "
+            f"{what}: {points:,} points at ≈ {format_duration(cost_s)} each on {workers} worker(s) "
             f"would take ≈ {format_duration(estimate)}, more than the "
             f"{format_duration(budget)} limit; use fewer points, more workers "
             f"(--workers or a dask --scheduler) or set ${STUDY_HOURS_ENV}"
