@@ -116,20 +116,30 @@ def refuse_long_study(what: str, points: int, cost_s: float, workers: int) -> No
     study budget (:func:`max_study_hours`) or the points exceed :data:`MAX_STUDY_POINTS`;
     the message gives the estimate and how to split the work."""
     if points > MAX_STUDY_POINTS:
+        took = points * cost_s / max(1, workers)
+        est = f" (≈ {format_duration(took)} on {workers} worker(s))" if took else ""
         raise UsageError(
             f"{what}: {points:,} points exceed the limit of {MAX_STUDY_POINTS:,} points per "
-            f"study (≈ {format_duration(points * cost_s / max(1, workers))} on {workers} "
-            "worker(s)); split it into smaller studies"
+            f"study{est}; split it into smaller studies"
         )
     estimate = points * cost_s / max(1, workers)
     budget = max_study_hours() * 3600.0
     if estimate > budget:
         raise UsageError(
-            f"{what}: {points:,} points at ≈ {cost_s * 1e3:.3g} ms each on {workers} worker(s) "
+            f"{what}: {points:,} points at ≈ {format_duration(cost_s)} each on {workers} worker(s) "
             f"would take ≈ {format_duration(estimate)}, more than the "
             f"{format_duration(budget)} limit; use fewer points, more workers "
             f"(--workers or a dask --scheduler) or set ${STUDY_HOURS_ENV}"
         )
+
+
+def check_seed(seed: Any) -> int:
+    """A seed numpy's ``SeedSequence`` takes: an integer 0 <= seed < 2**128."""
+    if isinstance(seed, bool) or not hasattr(seed, "__index__"):
+        raise UsageError(f"--seed must be an integer, got {seed!r}")
+    if not 0 <= int(seed) < SEED_BOUND:
+        raise UsageError(f"--seed must be an integer with 0 <= seed < 2**128, got {seed}")
+    return int(seed)
 
 
 def describe() -> dict[str, Any]:

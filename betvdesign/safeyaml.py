@@ -168,6 +168,13 @@ def check_events(text: str, filename: str) -> None:
             add(1, 0, event, path)
         elif isinstance(event, AliasEvent):
             path = child_path()
+            if any(f.anchor == event.anchor for f in stack):
+                fail(
+                    event,
+                    path,
+                    f"alias *{event.anchor} refers to a mapping or list that contains it "
+                    "(a recursive structure)",
+                )
             nodes, depth = sizes.get(event.anchor, (1, 0))
             if stack and stack[-1].is_map and stack[-1].index % 2 == 0:
                 stack[-1].key = f"*{event.anchor}"

@@ -153,6 +153,10 @@ def _yaml() -> list[Case]:
              expect="beam_length", where=True),
         Case("tag-binary", c, CHECK, _sub("name: push_demo", "name: !!binary aGVsbG8="),
              where=True),
+        Case("recursive-alias-list", c, CHECK, _sub("beam_count: 2", "beam_count: &r [*r]"),
+             expect="recursive", where=True),
+        Case("recursive-alias-map", c, CHECK, _sub("slider:\n", "slider: &s\n  self: *s\n"),
+             expect="recursive", where=True),
         Case("undefined-alias", c, CHECK, _sub("beam_length: 200 um", "beam_length: *nope"),
              expect="undefined alias", where=True),
         Case("duplicate-keys", c, CHECK, _sub("beam_count: 2", "beam_count: 2\n  beam_count: 3"),
@@ -224,6 +228,8 @@ def _units() -> list[Case]:
              exits=(0, 1)),
         Case("tiny-1e-300", c, CHECK, _sub("beam_length: 200 um", "beam_length: 1e-300 um"),
              exits=(0, 1, 2)),
+        Case("calibration-csv-unit-bomb", c, ("calibrate", str(BIDIR), "{f}"),
+             "voltage [V**9**9**9],speed [um/s]\n5,10\n", expect="V\\*\\*9"),
         Case("friction-nan", c, CHECK, _sub("friction: 0.4", "friction: .nan"),
              expect="friction", where=True),
         Case("friction-inf", c, CHECK, _sub("friction: 0.4", "friction: .inf"),
@@ -426,7 +432,7 @@ def verdict(
     """What is wrong with a finished run (empty: the case passes)."""
     problems = []
     if code is None:
-        return [f"did not end within {TIME_LIMIT_S} s"]
+        return ["did not end within the time limit"]
     if code not in case.exits:
         problems.append(f"exit {code}, expected {case.exits}")
     text = err + (out if code in (0, 1) else "")
@@ -454,14 +460,29 @@ def verdict(
     return problems
 
 
-def _run_subprocess(case: Case, workdir: Path, legacy: bool) -> tuple[list[str], float]:
+def _run_subprocess(
+    case: Case, workdir: Path, legacy: bool, timeout: float = TIME_LIMIT_S
+) -> tuple[list[str], float, float]:
+    """Run one case as a subprocess: (problems, wall seconds, CPU seconds or nan)."""
     import subprocess
     import sys
     import time
 
     args = prepare(case, workdir, legacy=legacy)
     before = inputs(case, workdir)
-    code = "import sys; from betvdesign.cli import main; sys.argv = ['betv', *sys.argv[1:]]; main()"
+    cpu_file = workdir.parent / f".{workdir.name}.cpu"
+    code = (
+        "import atexit, os, resource, sys\n"
+        "def cpu():\n"
+        "    r = [resource.getrusage(w)\n"
+        "         for w in (resource.RUSAGE_SELF, resource.RUSAGE_CHILDREN)]\n"
+        "    with open(os.environ['BETV_CPU_FILE'], 'w') as fh:\n"
+        "        fh.write(str(sum(u.ru_utime + u.ru_stime for u in r)))\n"
+        "atexit.register(cpu)\n"
+        "from betvdesign.cli import main\n"
+        "sys.argv = ['betv', *sys.argv[1:]]\n"
+        "main()\n"
+    )
     t0 = time.perf_counter()
     try:
         r = subprocess.run(
@@ -469,14 +490,19 @@ def _run_subprocess(case: Case, workdir: Path, legacy: bool) -> tuple[list[str],
             capture_output=True,
             text=True,
             errors="replace",
-            timeout=TIME_LIMIT_S,
+            timeout=timeout,
             cwd=workdir,
-            env=os.environ | {"COLUMNS": "200"},
+            env=os.environ | {"COLUMNS": "200", "BETV_CPU_FILE": str(cpu_file)},
         )
         res = verdict(case, workdir, before, r.returncode, r.stdout, r.stderr)
     except subprocess.TimeoutExpired:
         res = verdict(case, workdir, before, None, "", "")
-    return res, time.perf_counter() - t0
+    try:
+        cpu = float(cpu_file.read_text())
+        cpu_file.unlink()
+    except (OSError, ValueError):
+        cpu = float("nan")
+    return res, time.perf_counter() - t0, cpu
 
 
 def main() -> None:  # pragma: no cover - a reporting script
@@ -489,24 +515,25 @@ def main() -> None:  # pragma: no cover - a reporting script
     ap.add_argument("--legacy", action="store_true", help="spell --spread as --tol")
     ap.add_argument("-j", type=int, default=2)
     ap.add_argument("-k", default="", help="only cases whose id contains this")
+    ap.add_argument("--timeout", type=float, default=TIME_LIMIT_S, help="wall-clock limit [s]")
     opts = ap.parse_args()
     cases = [c for c in corpus() if opts.k in c.id]
 
-    def one(case: Case) -> tuple[Case, list[str], float]:
+    def one(case: Case) -> tuple[Case, list[str], float, float]:
         d = Path(tempfile.mkdtemp(prefix="betv-hostile-"))
         try:
-            problems, dt = _run_subprocess(case, d, opts.legacy)
+            problems, dt, cpu = _run_subprocess(case, d, opts.legacy, opts.timeout)
         finally:
             shutil.rmtree(d, ignore_errors=True)
-        return case, problems, dt
+        return case, problems, dt, cpu
 
     with ThreadPoolExecutor(opts.j) as pool:
         results = list(pool.map(one, cases))
     rows = []
-    for case, problems, dt in results:
+    for case, problems, dt, cpu in results:
         status = "ok" if not problems else "; ".join(problems)
         rows.append((case.category, case.id, dt, status))
-        print(f"{case.category:12} {case.id:32} {dt:6.1f} s  {status}")
+        print(f"{case.category:12} {case.id:32} {dt:6.1f} s  {status}  [cpu {cpu:.1f} s]")
     print()
     print(table(rows))
 

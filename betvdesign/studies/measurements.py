@@ -48,13 +48,11 @@ class Measurements:
 
 def read_measurements(path: str | os.PathLike[str], kind: Kind) -> Measurements:
     """Read a calibration CSV (see module doc); errors name file, line and column."""
-    from betvdesign.units import ureg
+    from betvdesign.safeyaml import read_text
+    from betvdesign.units import parse_units, ureg
 
     p = Path(path)
-    try:
-        text = p.read_text(encoding="utf-8")
-    except OSError as exc:
-        raise UsageError(f"{p}: cannot read: {exc.strerror}") from None
+    text = read_text(p)  # the input-size limit; errors name the file
     rows = [r for r in csv.reader(text.splitlines()) if r and not r[0].lstrip().startswith("#")]
     if len(rows) < 2:
         raise UsageError(f"{p}: needs a header and at least one data row")
@@ -65,7 +63,7 @@ def read_measurements(path: str | os.PathLike[str], kind: Kind) -> Measurements:
         if not m:
             raise UsageError(f"{p}:1: column {j + 1}: header {cell!r} must read 'name [unit]'")
         try:
-            header[m.group(1)] = (j, ureg.Unit(m.group(2)))
+            header[m.group(1)] = (j, parse_units(m.group(2)))  # bounded: no unit bombs
         except (pint.PintError, ValueError) as exc:
             raise UsageError(f"{p}:1: column {j + 1}: unknown unit {m.group(2)!r}: {exc}") from None
     expected = (xname, yname)

@@ -21,15 +21,6 @@ from betvdesign.errors import BetvError, UsageError
 from betvdesign.studies.specpaths import numeric, replace, targets, value_at
 
 
-def check_seed(seed: int) -> int:
-    """A seed numpy's ``SeedSequence`` takes: an integer 0 <= seed < 2**128."""
-    if isinstance(seed, bool) or not isinstance(seed, int | np.integer):
-        raise UsageError(f"--seed must be an integer, got {seed!r}")
-    if not 0 <= int(seed) < limits.SEED_BOUND:
-        raise UsageError(f"--seed must be an integer with 0 <= seed < 2**128, got {seed}")
-    return int(seed)
-
-
 def nominal_values(spec: Any, tolerances: Sequence[Any]) -> dict[str, tuple[float, str]]:
     """Nominal magnitude and unit of each toleranced field (checked against the spec)."""
     out: dict[str, tuple[float, str]] = {}
@@ -70,8 +61,7 @@ def draw(
     """
     from betvdesign.units import parse_quantity
 
-    check_seed(seed)
-    rng = np.random.default_rng(seed)
+    rng = np.random.default_rng(limits.check_seed(seed))
     cols = []
     for tol in tolerances:
         x0, unit = nominal[tol.field]

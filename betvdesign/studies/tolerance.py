@@ -52,13 +52,7 @@ from betvdesign.studies.pushpull import (
     solver_error,
 )
 from betvdesign.studies.runner import Study, StudyRun, run_study, split_run_args
-from betvdesign.studies.sampling import (
-    check_sample,
-    check_seed,
-    derive_all,
-    draw,
-    nominal_values,
-)
+from betvdesign.studies.sampling import check_sample, derive_all, draw, nominal_values
 from betvdesign.studies.specpaths import replace, targets, value_at
 
 Dist = Literal["normal", "uniform"]
@@ -276,7 +270,7 @@ def tolerance_study(
 
     if not 1 <= samples <= limits.MAX_SAMPLES:
         raise UsageError(f"--samples must be >= 1 and <= {limits.MAX_SAMPLES:,}, got {samples}")
-    check_seed(seed)
+    limits.check_seed(seed)
     require_fidelity(fidelity)
     if not tolerances:
         raise UsageError("give at least one tolerance (--spread FIELD=AMOUNT or --tolerances FILE)")
@@ -287,11 +281,7 @@ def tolerance_study(
     for name in chosen:
         if name not in names:
             raise UsageError(f"{device}: no actuator set {name!r} (sets: {', '.join(names)})")
-    if samples * len(chosen) > limits.MAX_STUDY_POINTS:  # before drawing anything
-        raise UsageError(
-            f"{samples:,} samples × {len(chosen)} sets = {samples * len(chosen):,} points "
-            f"exceed the limit of {limits.MAX_STUDY_POINTS:,} points per study"
-        )
+    limits.refuse_long_study("tolerance", samples * len(chosen), 0.0, 1)  # before drawing
     nominal = nominal_values(spec, tolerances)
     x = draw(tolerances, nominal, samples, seed)
     columns = dict(BASE_COLUMNS) | {f"in:{t.field}": float for t in tolerances}
