@@ -9,6 +9,7 @@ the issue's axes and draws the curve. Below it (smaller 1/(ακ)) λ < 1: push.
 from __future__ import annotations
 
 from collections.abc import Sequence
+from typing import Any
 
 import numpy as np
 from matplotlib.axes import Axes
@@ -61,29 +62,7 @@ def pushpull_map(
     ax.plot(x, curve, color="black", lw=1.4, label=f"λ = 1  (κ = {kappa:.3g}, β = {beta:.3g})")
     for edge, label in ((w_lo, "design window 0.5 ≤ ϖ < 2"), (w_hi, None)):
         ax.axvline(edge, color="#b8860b", lw=1.0, ls="-.", label=label)
-    for (label, _, _), px, py in zip(points, xs, ys, strict=True):
-        ax.plot([px], [py], marker="o", ms=6, color=DEVICE_COLOR, zorder=5)
-        ax.annotate(label, (px, py), xytext=(6, 4), textcoords="offset points", fontsize=7.5)
-    ax.text(
-        0.97,
-        0.04,
-        "push (λ < 1)",
-        transform=ax.transAxes,
-        ha="right",
-        va="bottom",
-        color=MODE_COLORS["push"],
-        fontweight="bold",
-    )
-    ax.text(
-        0.97,
-        0.95,
-        "pull (λ > 1)",
-        transform=ax.transAxes,
-        ha="right",
-        va="top",
-        color=MODE_COLORS["pull"],
-        fontweight="bold",
-    )
+    _devices_and_sides(ax, points, xs, ys, 0.97)
     ax.set_xlim(0.0, x_max)
     ax.set_ylim(y_min, y_max)
     ax.set_xlabel("1/ϖ²  [-]")
@@ -144,29 +123,7 @@ def pushpull_map_frequencies(
         ((VARPI_WINDOW[0] * fv, "design window 0.5 ≤ ϖ < 2"), (VARPI_WINDOW[1] * fv, None))
     ):
         ax.axvline(edge, color="#b8860b", lw=1.0, ls="-.", label=label if k == 0 else None)
-    for (label, _, _), px, py in zip(points, xs, ys, strict=True):
-        ax.plot([px], [py], marker="o", ms=6, color=DEVICE_COLOR, zorder=5)
-        ax.annotate(label, (px, py), xytext=(6, 4), textcoords="offset points", fontsize=7.5)
-    ax.text(
-        0.98,
-        0.04,
-        "push (λ < 1)",
-        transform=ax.transAxes,
-        ha="right",
-        va="bottom",
-        color=MODE_COLORS["push"],
-        fontweight="bold",
-    )
-    ax.text(
-        0.98,
-        0.95,
-        "pull (λ > 1)",
-        transform=ax.transAxes,
-        ha="right",
-        va="top",
-        color=MODE_COLORS["pull"],
-        fontweight="bold",
-    )
+    _devices_and_sides(ax, points, xs, ys, 0.98)
     ax.set_xlim(0.0, x_max)
     ax.set_ylim(0.0, y_max)
     ax.set_xlabel("actuation frequency f_act  [kHz]")
@@ -174,3 +131,24 @@ def pushpull_map_frequencies(
     dimensionless_twin(ax, "x", fv, "ϖ = f_act/f_v  [-]")
     ax.legend(loc="upper left", framealpha=0.9)
     return ax
+
+
+def _devices_and_sides(ax: Axes, points: Any, xs: Any, ys: Any, x_text: float) -> None:
+    """The devices as labelled dots, and the push/pull side labels of the λ = 1 map."""
+    for (label, _, _), px, py in zip(points, xs, ys, strict=True):
+        ax.plot([px], [py], marker="o", ms=6, color=DEVICE_COLOR, zorder=5)
+        ax.annotate(label, (px, py), xytext=(6, 4), textcoords="offset points", fontsize=7.5)
+    for text, y, va, mode in (
+        ("push (λ < 1)", 0.04, "bottom", "push"),
+        ("pull (λ > 1)", 0.95, "top", "pull"),
+    ):
+        ax.text(
+            x_text,
+            y,
+            text,
+            transform=ax.transAxes,
+            ha="right",
+            va=va,
+            color=MODE_COLORS[mode],
+            fontweight="bold",
+        )
