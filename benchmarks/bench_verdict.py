@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
+import functools
 import json
 import math
 import time
@@ -80,15 +81,22 @@ def brute_force(p) -> tuple[str | None, float | None, int]:
     return None, None, n
 
 
-def one(design: tuple[float, float, float, float, str]) -> dict:
-    from betvdesign.checker import check_derivation
+@functools.cache
+def _base():
+    """A device derivation whose one set's parameters each design replaces."""
     from betvdesign.loader import load_device
     from betvdesign.nondim import derive
+
+    return derive(load_device(ROOT / "devices" / "pull_demo.yaml"))
+
+
+def one(design: tuple[float, float, float, float, str]) -> dict:
+    from betvdesign.checker import check_derivation
     from betvdesign.params import ModelParams
 
     w, a, b, k, family = design
     p = ModelParams(w, a, b, k)
-    base = derive(load_device(ROOT / "devices" / "pull_demo.yaml"))
+    base = _base()
     s = dataclasses.replace(base.sets[0], params=p, lam=p.lam, published=[])
     t0 = time.perf_counter()
     res = check_derivation(dataclasses.replace(base, sets=[s]), margin=False, settle=False)

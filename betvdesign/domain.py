@@ -61,12 +61,14 @@ def in_window(varpi: float) -> bool:
     return VARPI_WINDOW[0] <= varpi < VARPI_WINDOW[1]
 
 
-def in_fit_range(p: ModelParams) -> bool:
-    """α, β and κ inside the range the λ fit was made on (edges with round-off)."""
-    return all(
-        lo * (1 - FIT_EDGE_RTOL) <= getattr(p, k) <= hi * (1 + FIT_EDGE_RTOL)
+def outside_fit_range(p: ModelParams) -> list[str]:
+    """The parameters (of α, β, κ) outside the range the λ fit was made on (edges with
+    round-off); [] when λ is not an extrapolation."""
+    return [
+        k
         for k, (lo, hi) in FIT_RANGE.items()
-    )
+        if not lo * (1 - FIT_EDGE_RTOL) <= getattr(p, k) <= hi * (1 + FIT_EDGE_RTOL)
+    ]
 
 
 def resonance_detuning(p: ModelParams) -> tuple[str, float]:

@@ -26,13 +26,12 @@ from __future__ import annotations
 from typing import Any
 
 from betvdesign.domain import (
-    FIT_EDGE_RTOL,
     FIT_RANGE,
     TANGENTIAL_DETUNING,
     VARPI_IMPULSIVE_END,
     VARPI_WINDOW,
-    in_fit_range,
     mode_of,
+    outside_fit_range,
     resonance_detuning,
 )
 from betvdesign.nondim import DeviceDerivation, SetDerivation
@@ -216,11 +215,10 @@ def _lambda(s: SetDerivation, orbit: OrbitLike | None) -> RuleResult:
     lam_mode = "push" if lam < 1.0 else "pull"
     exact = orbit_mode(orbit)
     outside = [
-        f"{k} = {getattr(s.params, k):.3g} outside {lo:g}–{hi:g}"
-        for k, (lo, hi) in FIT_RANGE.items()
-        if not lo * (1 - FIT_EDGE_RTOL) <= getattr(s.params, k) <= hi * (1 + FIT_EDGE_RTOL)
+        f"{k} = {getattr(s.params, k):.3g} outside {FIT_RANGE[k][0]:g}–{FIT_RANGE[k][1]:g}"
+        for k in outside_fit_range(s.params)
     ]
-    caveat = f"; λ extrapolates here ({', '.join(outside)})" if not in_fit_range(s.params) else ""
+    caveat = f"; λ extrapolates here ({', '.join(outside)})" if outside else ""
     if exact in ("push", "pull"):
         agrees = exact == lam_mode
         word = "agrees" if agrees else "disagrees"

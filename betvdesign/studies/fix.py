@@ -146,18 +146,11 @@ class Evaluator:
     def _run(self, changes: dict[str, float], *, full: bool) -> tuple[bool, list[str], Any]:
         from betvdesign.checker import check_derivation
         from betvdesign.nondim import derive
+        from betvdesign.studies.sampling import check_sample
 
         self.evaluations += 1
-        if (
-            "contact.impact_angle" in changes
-            and self.varies["contact.impact_angle"]
-            .quantity(changes["contact.impact_angle"])
-            .to("deg")
-            .magnitude
-            >= 90.0
-        ):
-            return False, ["impact angle ≥ 90°"], None
         try:
+            check_sample({f: (x, self.varies[f].unit) for f, x in changes.items()})
             res = check_derivation(
                 derive(self.spec_at(changes)),
                 margin=full,
@@ -271,14 +264,13 @@ def _inward(x0: float, lo: float, hi: float, x: float) -> list[float]:
     return out
 
 
-def _why(ev: Evaluator, before: list[str], changes: dict[str, float], check: Any) -> str:
-    fixed = [r for r in before if r]
-    mode = _mode(check)
-    speed = _speed(check)
+def _why(before: list[str], check: Any) -> str:
+    """What a passing candidate does: the rules it fixes, its exact mode and speed."""
     from betvdesign.rules import format_speed
 
-    parts = [f"fixes {', '.join(fixed)}" if fixed else "keeps every rule passing"]
-    parts.append(f"exact mode {mode}")
+    speed = _speed(check)
+    parts = [f"fixes {', '.join(before)}" if before else "keeps every rule passing"]
+    parts.append(f"exact mode {_mode(check)}")
     if speed is not None:
         parts.append(f"speed {format_speed(speed)}")
     return "; ".join(parts)
@@ -326,7 +318,7 @@ def find_fixes(
     for c in cands:
         if len(verified) >= max_candidates or (robust and sum(v.passed for v in verified) >= 2):
             break
-        c = _verify(ev, c, failing0, robust, p_min, vmap)
+        c = _verify(ev, c, failing0, robust, p_min)
         verified.append(c)
     verified.sort(
         key=lambda c: (not c.passed, round(c.size, 2), min(order.get(f, 99) for f in c.changes))
@@ -360,13 +352,12 @@ def _verify(
     failing0: list[str],
     robust: Callable[[Any], float] | None,
     p_min: float,
-    vmap: dict[str, Vary],
 ) -> Candidate:
     ok, failing, check = ev.full(c.changes)
     c.passed, c.blocking, c.check = ok, failing, check
     if check is not None:
         c.mode, c.speed_m_s = _mode(check), _speed(check)
-        c.why = _why(ev, failing0, c.changes, check)
+        c.why = _why(failing0, check)
     if not ok:
         c.why = f"fails the full check: {', '.join(failing)}"
         return c
@@ -410,29 +401,50 @@ def robust_probability(
     def probability(candidate: Any) -> float:
         from betvdesign.checker import load_solver
         from betvdesign.domain import mode_of
-        from betvdesign.nondim import derive
-        from betvdesign.units import ureg
+        from betvdesign.params import ModelParams
+        from betvdesign.studies.sampling import check_sample, derive_all
 
         solver = load_solver()
         nominal = nominal_values(candidate, tols)
         x = draw(tols, nominal, n, seed)
+        sets = candidate.actuator_sets
+        # every sample of every set derived at once, as in `betv tolerance`
+        arrays = [derive_all(candidate, tols, nominal, x, i) for i in range(len(sets))]
         good = 0
-        for row in x:
+        for j, row in enumerate(x):
             values = {
-                t.field: (ureg.Quantity(v, nominal[t.field][1]) if nominal[t.field][1] else v)
-                for t, v in zip(tols, row, strict=True)
+                t.field: (float(v), nominal[t.field][1]) for t, v in zip(tols, row, strict=True)
             }
             try:
-                d = derive(with_values(candidate, values))
+                check_sample(values)
+                params = [_sample_params(candidate, a, i, j, values) for i, a in enumerate(arrays)]
             except (ParameterError, BetvError, ValueError):
                 continue  # an unphysical draw counts as a failure
-            ok = True
-            for s in d.sets:
-                po = solver(s.params)
-                if not (po.success and mode_of(po.delta_s) == s.intended_mode):
-                    ok = False
+            solved: dict[ModelParams, str | None] = {}  # mirrored sets: one orbit
+            for p, aset in zip(params, sets, strict=True):
+                if p not in solved:
+                    po = solver(p)
+                    solved[p] = mode_of(po.delta_s) if po.success else None
+                if solved[p] != aset.intended_mode:
                     break
-            good += ok
+            else:
+                good += 1
         return good / n
 
     return probability
+
+
+def _sample_params(
+    spec: Any, arrays: dict[str, Any] | None, i: int, j: int, values: dict[str, Any]
+) -> Any:
+    """Model parameters of set ``i`` at sample ``j``: from the vectorised derivation, or
+    (when it could not take every sample) by deriving that sample alone."""
+    from betvdesign.nondim import derive_set
+    from betvdesign.params import ModelParams
+    from betvdesign.units import ureg
+
+    if arrays is not None:
+        return ModelParams(*(float(arrays[k][j]) for k in ("varpi", "alpha", "beta", "kappa")))
+    q = {f: (ureg.Quantity(v, u) if u else v) for f, (v, u) in values.items()}
+    s = with_values(spec, q)
+    return derive_set(s, s.actuator_sets[i]).params
