@@ -137,6 +137,10 @@ def phase_table(p: ModelParams) -> np.ndarray:
     """The constants of parameters p, a one-record array of :data:`TABLE_DTYPE`
     (w0 = 1/sqrt(a), F = c/a per phase); a record array (attribute access in plain
     Python) when the kernels run as Python (``NUMBA_DISABLE_JIT=1``)."""
+    if not p.ideal:
+        from betvdesign.errors import ParameterError
+
+        raise ParameterError("damping and restitution are not supported by this build yet")
     al, be, ka, wf = p.alpha, p.beta, p.kappa, p.varpi
     a_st = al * (1.0 + 1.0 / be)
     w_free = 1.0 / math.sqrt(al)
