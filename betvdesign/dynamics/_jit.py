@@ -34,6 +34,7 @@ KERNEL_MODULES = (
     "flows",
     "bounds",
     "evaluators",
+    "damped",
     "values",
     "search",
     "contact",

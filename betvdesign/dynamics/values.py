@@ -20,6 +20,7 @@ from betvdesign.dynamics.bounds import (
     envelope_at,
     local_m2,
 )
+from betvdesign.dynamics import damped
 from betvdesign.dynamics.evaluators import SLIP_KIND, STICK_KIND
 from betvdesign.dynamics.flows import oscillator, slider
 
@@ -47,6 +48,8 @@ def _evaluate_uniform(e, h: float, out) -> tuple[float, float]:
 def evaluate(e, h: float, out) -> tuple[float, float]:
     """(f_i, f_i', f_i'') at h into out[0:2], out[2:4], out[4:6]; returns (y, y') of the
     oscillator."""
+    if e["gen"]:
+        return damped.evaluate(e, h, out)
     if not e["fast"]:
         return _evaluate_uniform(e, h, out)
     wf, w0, sp0, cp0 = e["wf"], e["w0"], e["sp0"], e["cp0"]
@@ -77,6 +80,9 @@ def probe(e, h: float, out) -> None:
     """One search step's look at h: f, f', a local |f''| bound and the envelope's
     certified no-root length of each function into out[0:2], [2:4], [4:6], [6:8]."""
     y, yd = evaluate(e, h, out)
+    if e["gen"]:
+        damped.m2_bound(e, y, yd, out)
+        return
     wf = e["wf"]
     if not e["fast"]:  # energy-growth bounds
         w0, F = e["w0"], e["F"]
@@ -120,7 +126,10 @@ def clear(e, h: float, end) -> bool:
 @kernel
 def start_bound(e, i: int, order: int) -> float:
     """Bound on |f_i⁽ᵒʳᵈᵉʳ⁺¹⁾| over the window: the smaller of the energy-growth bound
-    (plus |q|ϖʲ) and the split bound |P − q|ϖʲ + w0^(j−1) E_h (j = order + bj)."""
+    (plus |q|ϖʲ) and the split bound |P − q|ϖʲ + w0^(j−1) E_h (j = order + bj); the
+    general form's bound (:func:`damped.start_bound`) with damping."""
+    if e["gen"]:
+        return damped.start_bound(e, order)
     j = order + e["bj"]
     w0, wf, q = e["w0"], e["wf"], e["q"][i]
     ba = derivative_bound(w0, e["F"], wf, e["R0"], j) + abs(q) * wf ** float(j)
