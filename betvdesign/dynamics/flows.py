@@ -164,7 +164,7 @@ def phase_table(p: ModelParams) -> np.ndarray:
     K = (P - qs[0], -1.0 * (P - qs[1])) if fast else (0.0, 0.0)
     stick = (w_st, F_st, qs, P, a2, a3, K, wf**3, fast, 0.0, 0.0)
     row = (wf, al, be, ka, b, a_st, w_free, 1.0 / al, slip, reverse, stick)
-    row = row + (False, 0.0, 0.0, 0.0, 1.0, b, p.restitution)
+    row = (*row, False, 0.0, 0.0, 0.0, 1.0, b, p.restitution)
     if p.zeta_v != 0.0 or p.zeta_h != 0.0:
         row = _damped_row(p, b, a_st)
     table = np.array([row], dtype=TABLE_DTYPE)

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 
+from betvdesign.dynamics import damped
 from betvdesign.dynamics._jit import kernel
 from betvdesign.dynamics.bounds import (
     cos_range_prep,
@@ -20,7 +21,6 @@ from betvdesign.dynamics.bounds import (
     envelope_at,
     local_m2,
 )
-from betvdesign.dynamics import damped
 from betvdesign.dynamics.evaluators import SLIP_KIND, STICK_KIND
 from betvdesign.dynamics.flows import oscillator, slider
 
