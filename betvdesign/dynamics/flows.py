@@ -197,16 +197,56 @@ def _damped_row(p: ModelParams, b: float, a_st: float) -> tuple:
     def phase(sig: float) -> tuple:
         w0, ds = 1.0 / math.sqrt(al), sig * be * ka * A
         F = (Fs - sig * al * ka * A) / al
-        return (sig, 1.0 - sig * b, w0, F, ds, math.nan, 0.0, 0.0, False,
-                p.zeta_h * math.sqrt(al) / al, Gc / al)
+        return (
+            sig,
+            1.0 - sig * b,
+            w0,
+            F,
+            ds,
+            math.nan,
+            0.0,
+            0.0,
+            False,
+            p.zeta_h * math.sqrt(al) / al,
+            Gc / al,
+        )
 
     w_st = 1.0 / math.sqrt(a_st)
     qs = (1.0 - b, 1.0 + b)
-    stick = (w_st, Fs / a_st, qs, math.nan, (0.0, 0.0), (0.0, 0.0), (0.0, 0.0), wf**3, False,
-             p.zeta_h * math.sqrt(al) / a_st, Gc / a_st)
+    stick = (
+        w_st,
+        Fs / a_st,
+        qs,
+        math.nan,
+        (0.0, 0.0),
+        (0.0, 0.0),
+        (0.0, 0.0),
+        wf**3,
+        False,
+        p.zeta_h * math.sqrt(al) / a_st,
+        Gc / a_st,
+    )
     w_free = 1.0 / math.sqrt(al)
-    return (wf, al, be, ka, b, a_st, w_free, Fs / al, phase(1.0), phase(-1.0), stick,
-            True, p.zeta_h * math.sqrt(al) / al, Gc / al, p.zeta_v, A, b * A, p.restitution)
+    return (
+        wf,
+        al,
+        be,
+        ka,
+        b,
+        a_st,
+        w_free,
+        Fs / al,
+        phase(1.0),
+        phase(-1.0),
+        stick,
+        True,
+        p.zeta_h * math.sqrt(al) / al,
+        Gc / al,
+        p.zeta_v,
+        A,
+        b * A,
+        p.restitution,
+    )
 
 
 @kernel
@@ -272,8 +312,16 @@ def decaying_basis(w0: float, g: float, h: float) -> tuple[float, float]:
 
 @kernel
 def forced(
-    w0: float, g: float, wf: float, F: float, G: float, y0: float, v0: float, sp0: float,
-    cp0: float, h: float,
+    w0: float,
+    g: float,
+    wf: float,
+    F: float,
+    G: float,
+    y0: float,
+    v0: float,
+    sp0: float,
+    cp0: float,
+    h: float,
 ) -> tuple[float, float]:
     """(y, y') after time h of y'' + 2g y' + w0² y = F sin φ + G cos φ, φ = φ0 + wf h,
     from (y0, v0), (sin φ0, cos φ0) = (sp0, cp0) [all dimensionless]; g ≥ 0.
