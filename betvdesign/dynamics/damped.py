@@ -17,8 +17,11 @@ undamped fast mode): values come from the closed form and bounds from the energy
 R = sqrt(y'² + w0² y²) + |(F, G)|·W, which bounds the radius over a window of length W
 because d/dh sqrt(y'² + w0² y²) ≤ |F sin φ + G cos φ| when g ≥ 0 (damping only removes
 energy); then |y⁽ᵏ⁾| ≤ B_k with B_0 = R/w0, B_1 = R,
-B_k = |(F, G)|ϖ^(k−2) + 2g B_(k−1) + w0² B_(k−2) (:func:`derivative_bounds`). Windows are
-one radian of the fastest rate (ϖ, w0, 2g).
+B_k = |(F, G)|ϖ^(k−2) + 2g B_(k−1) + w0² B_(k−2) (:func:`derivative_bounds`), sharpened
+at each point from the exact f'' (:func:`bounds.local_m2`). Windows are :data:`WINDOW`
+radians of the fastest rate (ϖ, w0, 2g). Unlike the undamped fast mode there is no slow
+envelope or whole-window clearance yet: a damped cycle costs 1–4× an undamped one
+(benchmarks/bench_damped.py).
 """
 
 from __future__ import annotations
@@ -26,9 +29,14 @@ from __future__ import annotations
 import math
 
 from betvdesign.dynamics._jit import kernel
-from betvdesign.dynamics.bounds import NOISE
+from betvdesign.dynamics.bounds import NOISE, local_m2
 from betvdesign.dynamics.evaluators import GAP_KIND, SLIP_KIND, STICK_KIND, _store
 from betvdesign.dynamics.flows import REVERSE, SLIP, STICK, PhaseTable, forced, rotate
+
+#: search window [rad of the fastest rate ϖ, w0, 2g]: long enough for few steps, short
+#: enough for the energy radius R = E + |(F, G)|·W to stay tight (root evaluations per
+#: cycle of the published fit with Q = 30: 49, 44, 58, 70 for 0.25, 0.5, 2, 4)
+WINDOW = 0.5
 
 
 @kernel
@@ -70,7 +78,7 @@ def taylor(w0, g, wf, F, G, y, yd, sp, cp, k: int) -> tuple[float, float]:
 
 @kernel
 def _window(H: float, w0: float, wf: float, g: float) -> float:
-    return min(H, 1.0 / max(w0, wf, 2.0 * g))
+    return min(H, WINDOW / max(w0, wf, 2.0 * g))
 
 
 @kernel
@@ -249,12 +257,14 @@ def stick_evaluator(c: PhaseTable, z, zd, sp0, cp0, H: float, on_edge: int, e) -
 
 @kernel
 def gap_evaluator(wf, zv, A, xi, xid, sp0, cp0, H: float, e) -> None:
-    """The gap ξ in damped free flight (ξ'' + 2ζ_v ξ' + ξ = −A sin φ) from (ξ, ξ') at φ0."""
+    """The gap ξ in damped free flight (ξ'' + 2ζ_v ξ' + ξ = −A sin φ) from (ξ, ξ') at φ0
+    (also undamped with restitution: its round-off scale follows the window, so the tiny
+    flights of a chattering sequence are located to their own precision)."""
     w0, g, F = 1.0, zv, -A
     W = _window(H, w0, wf, g)
     E0 = math.sqrt(xid * xid + xi * xi)
     R0 = E0 + A * W
-    sc = abs(xi) + E0 + A * H + A
+    sc = abs(xi) + E0 + A * H + 1e-300  # |ξ| reachable on the window: its round-off scale
     y2, _ = taylor(w0, g, wf, F, 0.0, xi, xid, sp0, cp0, 2)
     y3, _ = taylor(w0, g, wf, F, 0.0, xi, xid, sp0, cp0, 3)
     start = (xi, xid, y2, y3, 0.0, 0.0, 0.0, 0.0)
@@ -312,44 +322,57 @@ def gap_evaluator(wf, zv, A, xi, xid, sp0, cp0, H: float, e) -> None:
 
 @kernel(inline=True)
 def evaluate(e, h: float, out) -> tuple[float, float]:
-    """General-form values (f_i, f_i') at h into out[0:2], out[2:4] (f'' not given: 0);
+    """General-form values (f_i, f_i', f_i'') at h into out[0:2], out[2:4], out[4:6];
     returns (y, y')."""
     wf, w0, F, G, g = e["wf"], e["w0"], e["F"], e["G"], e["g"]
     sp0, cp0 = e["sp0"], e["cp0"]
     y, yd = forced(w0, g, wf, F, G, e["z"], e["zd"], sp0, cp0, h)
     sp, cp = rotate(wf, sp0, cp0, h)
-    out[4] = out[5] = 0.0
+    w02 = w0 * w0
+    fs, fc = F * sp + G * cp, F * cp - G * sp
+    ydd = fs - 2.0 * g * yd - w02 * y
     kind = e["kind"]
     if kind == GAP_KIND:
-        out[0], out[2] = y, yd
+        out[0], out[2], out[4] = y, yd, ydd
         return y, yd
-    ydd = F * sp + G * cp - 2.0 * g * yd - w0 * w0 * y
+    y3 = wf * fc - 2.0 * g * ydd - w02 * yd
     if kind == SLIP_KIND:
         sig, ds = e["sig"], e["ds"]
         sdn = e["sd"] + ds * (cp0 - cp) / wf
         out[0] = sig * (yd - sdn)
         out[2] = sig * (ydd - ds * sp)
+        out[4] = sig * (y3 - ds * wf * cp)
         return y, yd
     bA, ast = e["bA"], e["ast"]
-    y3 = wf * (F * cp - G * sp) - 2.0 * g * ydd - w0 * w0 * yd
+    y4 = -wf * wf * fs - 2.0 * g * y3 - w02 * ydd
     out[0], out[1] = bA * sp - ast * ydd, bA * sp + ast * ydd
     out[2], out[3] = bA * wf * cp - ast * y3, bA * wf * cp + ast * y3
+    w2 = bA * wf * wf * sp
+    out[4], out[5] = -w2 - ast * y4, -w2 + ast * y4
     return y, yd
 
 
 @kernel(inline=True)
 def m2_bound(e, y: float, yd: float, out) -> None:
-    """Bounds on |f_i''| over the next window from the point (y, y') into out[4:6]; no
-    envelope (out[6:8] = 0)."""
+    """Local bounds on the second derivatives of the event functions (from their exact
+    values and a bound on the third over the next window, :func:`bounds.local_m2`), from
+    the point (y, y'), into out[4:6]; no envelope (out[6:8] = 0)."""
     w0, g, Af, wf = e["w0"], e["g"], e["Af"], e["wf"]
     r = math.sqrt(yd * yd + w0 * w0 * y * y) + Af * e["W"]
     kind = e["kind"]
     if kind == GAP_KIND:
-        out[4] = derivative_bounds(w0, g, Af, wf, r, 2)
+        m2 = derivative_bounds(w0, g, Af, wf, r, 2)
+        m3 = derivative_bounds(w0, g, Af, wf, r, 3)
     elif kind == SLIP_KIND:
-        out[4] = derivative_bounds(w0, g, Af, wf, r, 3) + abs(e["ds"]) * wf
+        ads = abs(e["ds"])
+        m2 = derivative_bounds(w0, g, Af, wf, r, 3) + ads * wf
+        m3 = derivative_bounds(w0, g, Af, wf, r, 4) + ads * wf * wf
     else:
-        out[4] = out[5] = e["bA"] * wf * wf + e["ast"] * derivative_bounds(w0, g, Af, wf, r, 4)
+        bA, ast = e["bA"], e["ast"]
+        m2 = bA * wf * wf + ast * derivative_bounds(w0, g, Af, wf, r, 4)
+        m3 = bA * wf**3 + ast * derivative_bounds(w0, g, Af, wf, r, 5)
+    for i in range(e["n"]):
+        out[4 + i] = local_m2(out[i], out[2 + i], out[4 + i], m2, m3)
     out[6] = out[7] = 0.0
 
 

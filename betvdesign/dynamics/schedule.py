@@ -184,16 +184,27 @@ def vertical_run(wf, zv, A, e, xi, xid, horizon, cyc, imp, pieces):
                         cyc[m]["imp_count"] += 1
                 period = m - first_end
                 break
-        H = T - t
+        H = Hcycle = T - t
         ev = ws.ev[0]
-        if zv == 0.0:
+        if zv == 0.0 and e == 0.0:
             gap_evaluator(wf, xi, xid, sp, cp, H, ev)
         else:
+            if e != 0.0 and xi == 0.0 and xid > 0.0 and sp > 0.0:
+                # a rebound against the pull A sin ϖt: its flight lasts ≈ 2ξ'/(A sin ϖt);
+                # search a window of a few flights first, so the gap's round-off scale is
+                # the flight's own (tiny flights of a chattering sequence stay exact)
+                H = min(Hcycle, 8.0 * xid / (A * sp))
             damped.gap_evaluator(wf, zv, A, xi, xid, sp, cp, H, ev)
         code, h, _, k = first_root(ev, H, ws)
         evals += k
         if code == SEARCH_FAILED:
             return VerticalRun(FAILED, n, first_end, period, ni, nf, evals, h)
+        if code == NO_ROOT and H < Hcycle:  # not back within the short window: go on
+            xi, xid, _, _ = vertical_flight(wf, zv, A, xi, xid, sp, cp, H)
+            t += H
+            sp, cp = math.sin(wf * t), math.cos(wf * t)
+            nf = _piece(cyc, m, pieces, nf, t, xi, xid, sp, cp)
+            continue
         if code == NO_ROOT:
             xi, xid, _, _ = vertical_flight(wf, zv, A, xi, xid, sp, cp, H)
             if xi < 0.0:
