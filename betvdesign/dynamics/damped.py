@@ -29,9 +29,24 @@ from __future__ import annotations
 import math
 
 from betvdesign.dynamics._jit import kernel
-from betvdesign.dynamics.bounds import NOISE, local_m2
+from betvdesign.dynamics.bounds import (
+    NOISE,
+    cos_range_prep,
+    cos_range_to,
+    envelope_at,
+    envelope_prep,
+    local_m2,
+)
 from betvdesign.dynamics.evaluators import GAP_KIND, SLIP_KIND, STICK_KIND, _store
-from betvdesign.dynamics.flows import REVERSE, SLIP, STICK, PhaseTable, forced, rotate
+from betvdesign.dynamics.flows import (
+    REVERSE,
+    SLIP,
+    STICK,
+    PhaseTable,
+    decaying_basis,
+    forced,
+    rotate,
+)
 
 #: search window [rad of the fastest rate ϖ, w0, 2g]: long enough for few steps, short
 #: enough for the energy radius R = E + |(F, G)|·W to stay tight (root evaluations per
@@ -52,28 +67,22 @@ def derivative_bounds(w0: float, g: float, Af: float, wf: float, R: float, j: in
 
 
 @kernel
-def taylor(w0, g, wf, F, G, y, yd, sp, cp, k: int) -> tuple[float, float]:
-    """(y⁽ᵏ⁾, its round-off scale) at a point, k ≤ 6, from the equation of motion."""
-    ys = (y, yd)
-    ns = (abs(y), abs(yd))
-    a0, a1 = y, yd
-    n0, n1 = abs(y), abs(yd)
-    if k < 2:
-        return ys[k], ns[k]
-    fs = F * sp + G * cp
-    fc = F * cp - G * sp
+def taylor(w0, g, wf, F, G, y, yd, sp, cp) -> tuple:
+    """The derivatives of orders 2 to 5 at a point from the equation of motion, then
+    the round-off scale of each (sums of the magnitudes of their terms), in one pass."""
+    fs, fc = F * sp + G * cp, F * cp - G * sp
     fsa = abs(F * sp) + abs(G * cp)
     fca = abs(F * cp) + abs(G * sp)
-    for m in range(2, k + 1):
-        j = m - 2
-        w = wf ** float(j)
-        r = j % 4
-        f = (fs, fc, -fs, -fc)[r] * w
-        fa = (fsa, fca, fsa, fca)[r] * w
-        a2 = f - 2.0 * g * a1 - w0 * w0 * a0
-        n2 = fa + 2.0 * g * n1 + w0 * w0 * n0
-        a0, a1, n0, n1 = a1, a2, n1, n2
-    return a1, n1
+    g2, w2 = 2.0 * g, w0 * w0
+    y2 = fs - g2 * yd - w2 * y
+    n2 = fsa + g2 * abs(yd) + w2 * abs(y)
+    y3 = wf * fc - g2 * y2 - w2 * yd
+    n3 = wf * fca + g2 * n2 + w2 * abs(yd)
+    y4 = -wf * wf * fs - g2 * y3 - w2 * y2
+    n4 = wf * wf * fsa + g2 * n3 + w2 * n2
+    y5 = -(wf**3) * fc - g2 * y4 - w2 * y3
+    n5 = wf**3 * fca + g2 * n4 + w2 * n3
+    return y2, y3, y4, y5, n2, n3, n4, n5
 
 
 @kernel
@@ -85,6 +94,82 @@ def _window(H: float, w0: float, wf: float, g: float) -> float:
 def _general(e, g, G, Af, bA, ast) -> None:
     e["gen"] = True
     e["g"], e["G"], e["Af"], e["bA"], e["ast"] = g, G, Af, bA, ast
+
+
+@kernel
+def _coeffs(w0: float, g: float, k: int) -> float:
+    """c_k with |y_h⁽ᵏ⁾| ≤ c_k E_h for a free damped oscillation of energy radius E_h:
+    c_0 = 1/w0, c_1 = 1, c_k = 2g c_(k−1) + w0² c_(k−2)."""
+    c0, c1 = 1.0 / w0, 1.0
+    if k == 0:
+        return c0
+    for _ in range(2, k + 1):
+        c0, c1 = c1, 2.0 * g * c1 + w0 * w0 * c0
+    return c1
+
+
+@kernel
+def _split(e, w0, g, wf, F, G, y, yd, sp0, cp0, kind: int, sig: float, ds: float, sd: float):
+    """The fast mode of the general form (the damped analogue of the undamped split):
+    y = a sin φ + b cos φ + y_h with y_h a free damped oscillation whose energy radius
+    E_h = sqrt(y_h'² + w0² y_h²) never grows (d/dh E_h² = −4g y_h'²). Each event function
+    is then K_i cos(φ − off_i) − cc plus a fast part bounded by ct (a multiple of E_h):
+    global |f''|, |f'''| bounds (the whole window is one step range), slow envelopes and
+    the whole-window clearance test. Used when the split does not cancel:
+    |(a, b)| w0² ≤ 10 |(F, G)| (as the undamped |1 − aϖ²| ≥ 0.1)."""
+    dl = (w0 - wf) * (w0 + wf)
+    gw = 2.0 * g * wf
+    den = dl * dl + gw * gw
+    if den == 0.0:
+        return
+    a = (dl * F + gw * G) / den
+    b = (dl * G - gw * F) / den
+    if math.hypot(a, b) * w0 * w0 > 10.0 * math.hypot(F, G):
+        return
+    yh = y - (a * sp0 + b * cp0)
+    yhd = yd - wf * (a * cp0 - b * sp0)
+    Eh = math.sqrt(yhd * yhd + w0 * w0 * yh * yh)
+    if kind == GAP_KIND and math.hypot(a, b) + Eh / w0 > 8.0 * e["scale"][0]:
+        return  # a tiny flight (chattering): the split's terms would swamp the gap
+    w2, w3 = wf * wf, wf * wf * wf
+    if kind == SLIP_KIND:
+        kc, ks = sig * (wf * a + ds / wf), -sig * wf * b
+        K0 = math.hypot(kc, ks)
+        e["offs"][0] = math.atan2(ks, kc)
+        e["K"][0] = K0
+        cc = sig * (sd + ds * cp0 / wf)
+        ct = Eh
+        e["m2b"][0] = K0 * w2 + _coeffs(w0, g, 3) * Eh
+        e["m3b"][0] = K0 * w3 + _coeffs(w0, g, 4) * Eh
+    elif kind == STICK_KIND:
+        bA, ast = e["bA"], e["ast"]
+        kl = (ast * w2 * b, bA + ast * w2 * a)
+        kh = (-ast * w2 * b, bA - ast * w2 * a)
+        cc = 0.0
+        ct = ast * _coeffs(w0, g, 2) * Eh
+        for i in range(2):
+            kc, ks = kl if i == 0 else kh
+            Ki = math.hypot(kc, ks)
+            e["offs"][i] = math.atan2(ks, kc)
+            e["K"][i] = Ki
+            e["m2b"][i] = Ki * w2 + ast * _coeffs(w0, g, 4) * Eh
+            e["m3b"][i] = Ki * w3 + ast * _coeffs(w0, g, 5) * Eh
+    else:
+        K0 = math.hypot(a, b)
+        e["offs"][0] = math.atan2(a, b)
+        e["K"][0] = K0
+        cc = 0.0
+        ct = Eh / w0
+        e["m2b"][0] = K0 * w2 + _coeffs(w0, g, 2) * Eh
+        e["m3b"][0] = K0 * w3 + _coeffs(w0, g, 3) * Eh
+    e["P"], e["pwf"], e["ac"], e["as_"] = a, b, yh, yhd + g * yh  # for evaluate
+    e["fast"] = True
+    e["clearable"] = True
+    e["W"] = e["H"]
+    e["cc"], e["ct"], e["Eh"] = cc, ct, Eh
+    for i in range(e["n"]):
+        e["m2s"][i] = e["m2b"][i]
+        e["env_mode"][i], e["env_acos"][i] = envelope_prep(e["K"][i], -cc, ct)
 
 
 @kernel
@@ -100,9 +185,7 @@ def slip_evaluator(
     W = _window(H, w0, wf, g)
     E0 = math.sqrt(zd * zd + w0 * w0 * z * z)
     R0 = E0 + Af * W
-    y2, n2 = taylor(w0, g, wf, F, G, z, zd, sp0, cp0, 2)
-    y3, n3 = taylor(w0, g, wf, F, G, z, zd, sp0, cp0, 3)
-    y4, n4 = taylor(w0, g, wf, F, G, z, zd, sp0, cp0, 4)
+    y2, y3, y4, _, n2, n3, n4, _ = taylor(w0, g, wf, F, G, z, zd, sp0, cp0)
     ads = abs(ds)
     start = (
         sig * (zd - sd),
@@ -174,6 +257,7 @@ def slip_evaluator(
         noise,
     )
     _general(e, g, G, Af, c.bA, c.a_stick)
+    _split(e, w0, g, wf, F, G, z, zd, sp0, cp0, SLIP_KIND, sig, ds, sd)
 
 
 @kernel
@@ -188,20 +272,21 @@ def stick_evaluator(c: PhaseTable, z, zd, sp0, cp0, H: float, on_edge: int, e) -
     E0 = math.sqrt(zd * zd + w0 * w0 * z * z)
     R0 = E0 + Af * W
     sj = (sp0, wf * cp0, -wf * wf * sp0, -(wf**3) * cp0)
-    lo = [0.0] * 4
-    hi = [0.0] * 4
-    nn = [0.0] * 4
-    for j in range(4):
-        yj, nj = taylor(w0, g, wf, F, G, z, zd, sp0, cp0, j + 2)
-        lo[j] = bA * sj[j] - ast * yj
-        hi[j] = bA * sj[j] + ast * yj
-        nn[j] = abs(bA * sj[j]) + ast * nj
-    if on_edge == 0:
-        lo[0] = 0.0
-    elif on_edge == 1:
-        hi[0] = 0.0
-    start = (lo[0], lo[1], lo[2], lo[3], hi[0], hi[1], hi[2], hi[3])
-    noise = (nn[0], nn[1], nn[2], nn[3], nn[0], nn[1], nn[2], nn[3])
+    y2, y3, y4, y5, n2, n3, n4, n5 = taylor(w0, g, wf, F, G, z, zd, sp0, cp0)
+    b0, b1, b2, b3 = bA * sj[0], bA * sj[1], bA * sj[2], bA * sj[3]
+    start = (
+        0.0 if on_edge == 0 else b0 - ast * y2,
+        b1 - ast * y3,
+        b2 - ast * y4,
+        b3 - ast * y5,
+        0.0 if on_edge == 1 else b0 + ast * y2,
+        b1 + ast * y3,
+        b2 + ast * y4,
+        b3 + ast * y5,
+    )
+    n0, n1 = abs(b0) + ast * n2, abs(b1) + ast * n3
+    n2, n3 = abs(b2) + ast * n4, abs(b3) + ast * n5
+    noise = (n0, n1, n2, n3, n0, n1, n2, n3)
     m2 = bA * wf * wf + ast * derivative_bounds(w0, g, Af, wf, R0, 4)
     r = E0 + Af * H
     sc = bA + ast * ((2.0 * g + w0) * r + Af)
@@ -253,6 +338,7 @@ def stick_evaluator(c: PhaseTable, z, zd, sp0, cp0, H: float, on_edge: int, e) -
         noise,
     )
     _general(e, g, G, Af, bA, ast)
+    _split(e, w0, g, wf, F, G, z, zd, sp0, cp0, STICK_KIND, 1.0, 0.0, 0.0)
 
 
 @kernel
@@ -265,8 +351,7 @@ def gap_evaluator(wf, zv, A, xi, xid, sp0, cp0, H: float, e) -> None:
     E0 = math.sqrt(xid * xid + xi * xi)
     R0 = E0 + A * W
     sc = abs(xi) + E0 + A * H + 1e-300  # |ξ| reachable on the window: its round-off scale
-    y2, _ = taylor(w0, g, wf, F, 0.0, xi, xid, sp0, cp0, 2)
-    y3, _ = taylor(w0, g, wf, F, 0.0, xi, xid, sp0, cp0, 3)
+    y2, y3, _, _, _, _, _, _ = taylor(w0, g, wf, F, 0.0, xi, xid, sp0, cp0)
     start = (xi, xid, y2, y3, 0.0, 0.0, 0.0, 0.0)
     noise = (sc, sc, sc, sc, 0.0, 0.0, 0.0, 0.0)
     m2 = derivative_bounds(w0, g, A, wf, R0, 2)
@@ -318,6 +403,7 @@ def gap_evaluator(wf, zv, A, xi, xid, sp0, cp0, H: float, e) -> None:
         noise,
     )
     _general(e, g, 0.0, A, 0.0, 0.0)
+    _split(e, w0, g, wf, F, 0.0, xi, xid, sp0, cp0, GAP_KIND, 1.0, 0.0, 0.0)
 
 
 @kernel(inline=True)
@@ -326,8 +412,15 @@ def evaluate(e, h: float, out) -> tuple[float, float]:
     returns (y, y')."""
     wf, w0, F, G, g = e["wf"], e["w0"], e["F"], e["G"], e["g"]
     sp0, cp0 = e["sp0"], e["cp0"]
-    y, yd = forced(w0, g, wf, F, G, e["z"], e["zd"], sp0, cp0, h)
     sp, cp = rotate(wf, sp0, cp0, h)
+    if e["fast"]:  # the stored split: a sin φ + b cos φ plus the free damped part
+        a, b, u0, ug = e["P"], e["pwf"], e["ac"], e["as_"]
+        ec, es = decaying_basis(w0, g, h)
+        u1 = ug - g * u0
+        y = a * sp + b * cp + u0 * ec + ug * es
+        yd = wf * (a * cp - b * sp) + u1 * ec - (w0 * w0 * u0 + g * u1) * es
+    else:
+        y, yd = forced(w0, g, wf, F, G, e["z"], e["zd"], sp0, cp0, h)
     w02 = w0 * w0
     fs, fc = F * sp + G * cp, F * cp - G * sp
     ydd = fs - 2.0 * g * yd - w02 * y
@@ -353,11 +446,17 @@ def evaluate(e, h: float, out) -> tuple[float, float]:
 
 
 @kernel(inline=True)
-def m2_bound(e, y: float, yd: float, out) -> None:
+def m2_bound(e, h: float, y: float, yd: float, out) -> None:
     """Local bounds on the second derivatives of the event functions (from their exact
     values and a bound on the third over the next window, :func:`bounds.local_m2`), from
     the point (y, y'), into out[4:6]; no envelope (out[6:8] = 0)."""
     w0, g, Af, wf = e["w0"], e["g"], e["Af"], e["wf"]
+    if e["fast"]:  # split: global bounds, slow envelopes
+        for i in range(e["n"]):
+            out[4 + i] = local_m2(out[i], out[2 + i], out[4 + i], e["m2b"][i], e["m3b"][i])
+            th = e["phi0"] + wf * h - e["offs"][i]
+            out[6 + i] = envelope_at(e["env_mode"][i], e["env_acos"][i], th, wf)
+        return
     r = math.sqrt(yd * yd + w0 * w0 * y * y) + Af * e["W"]
     kind = e["kind"]
     if kind == GAP_KIND:
@@ -399,10 +498,13 @@ def decide_band(c: PhaseTable, z: float, vs: float, sp: float, cp: float, on: in
     w0, F, G, g = st.w0, st.F, st.G, st.g
     wf, bA, ast = c.varpi, c.bA, c.a_stick
     sj = (sp, wf * cp, -wf * wf * sp, -(wf**3) * cp)
+    y2, y3, y4, y5, n2, n3, n4, n5 = taylor(w0, g, wf, F, G, z, vs, sp, cp)
+    ys = (y2, y3, y4, y5)
+    ns = (n2, n3, n4, n5)
     for edge in range(1, 3):
         sig, phase = (-1.0, SLIP) if edge == 1 else (1.0, REVERSE)
         for j in range(4):
-            yj, nj = taylor(w0, g, wf, F, G, z, vs, sp, cp, j + 2)
+            yj, nj = ys[j], ns[j]
             dj = 0.0 if j == 0 and on == edge else bA * sj[j] + sig * ast * yj
             nz = NOISE * (abs(bA * sj[j]) + ast * nj)
             if dj > nz:
@@ -410,3 +512,17 @@ def decide_band(c: PhaseTable, z: float, vs: float, sp: float, cp: float, on: in
             if dj < -nz:
                 return phase
     return STICK
+
+
+@kernel(inline=True)
+def clear(e, h: float) -> bool:
+    """Every function provably positive on [h, H] (fast mode: the slow part's least value
+    over the phase range minus the fast part's bound ct)."""
+    wf, H = e["wf"], e["H"]
+    for i in range(e["n"]):
+        off = e["offs"][i]
+        cb, f1, f2 = cos_range_prep(e["phi0"] + wf * H - off)
+        lo, _ = cos_range_to(e["phi0"] + wf * h - off, cb, f1, f2)
+        if not e["K"][i] * lo - e["cc"] > e["ct"]:
+            return False
+    return True

@@ -100,6 +100,7 @@ EVALUATOR_DTYPE = np.dtype(
         ("Af", np.float64),
         ("bA", np.float64),
         ("ast", np.float64),
+        ("offs", np.float64, (2,)),  # per-function phase of the slow part (general form)
     ]
 )
 

@@ -81,7 +81,7 @@ def probe(e, h: float, out) -> None:
     certified no-root length of each function into out[0:2], [2:4], [4:6], [6:8]."""
     y, yd = evaluate(e, h, out)
     if e["gen"]:
-        damped.m2_bound(e, y, yd, out)
+        damped.m2_bound(e, h, y, yd, out)
         return
     wf = e["wf"]
     if not e["fast"]:  # energy-growth bounds
@@ -111,6 +111,8 @@ def clear(e, h: float, end) -> bool:
     filled on first use (end[3] = 1)."""
     if not e["clearable"]:
         return False
+    if e["gen"]:
+        return damped.clear(e, h)
     wf = e["wf"]
     if end[3] == 0.0:
         end[0], end[1], end[2] = cos_range_prep(e["phi0"] + wf * e["H"] - e["off"])
