@@ -35,6 +35,7 @@ KERNEL_MODULES = (
     "bounds",
     "evaluators",
     "damped",
+    "damped_values",
     "values",
     "search",
     "contact",

@@ -12,16 +12,21 @@ written in general form:
   ζ'' of the stick flow), g_lo = bA sin φ − R and g_hi = bA sin φ + R; stick ends when one
   reaches 0 (below: slip, above: reverse slip). Undamped this is ζ − (1 ∓ b) sin φ.
 
-There is no split into a forced part and a free oscillation of constant energy (the
-undamped fast mode): values come from the closed form and bounds from the energy radius
-R = sqrt(y'² + w0² y²) + |(F, G)|·W, which bounds the radius over a window of length W
-because d/dh sqrt(y'² + w0² y²) ≤ |F sin φ + G cos φ| when g ≥ 0 (damping only removes
-energy); then |y⁽ᵏ⁾| ≤ B_k with B_0 = R/w0, B_1 = R,
+Fast mode (:func:`_split`, the damped analogue of the undamped split; used when it does
+not cancel, |(a, b)| w0² ≤ 10 |(F, G)|): y = a sin φ + b cos φ + y_h with y_h a free
+damped oscillation whose energy radius E_h = sqrt(y_h'² + w0² y_h²) never grows
+(d/dh E_h² = −4g y_h'²), so |y_h⁽ᵏ⁾| ≤ c_k E_h for every h ≥ 0. Each event function is a
+slow sinusoid K cos(φ − off) − cc plus a fast part bounded by a multiple of E_h: global
+|f''|, |f'''| bounds, slow envelopes and the whole-window clearance test, as undamped.
+Otherwise (near resonance with light damping, tiny chattering flights): values from the
+closed form and bounds from the energy radius R = sqrt(y'² + w0² y²) + |(F, G)|·W, which
+bounds the radius over a window of length W because d/dh sqrt(y'² + w0² y²) ≤
+|F sin φ + G cos φ| when g ≥ 0; then |y⁽ᵏ⁾| ≤ B_k with B_0 = R/w0, B_1 = R,
 B_k = |(F, G)|ϖ^(k−2) + 2g B_(k−1) + w0² B_(k−2) (:func:`derivative_bounds`), sharpened
-at each point from the exact f'' (:func:`bounds.local_m2`). Windows are :data:`WINDOW`
-radians of the fastest rate (ϖ, w0, 2g). Unlike the undamped fast mode there is no slow
-envelope or whole-window clearance yet: a damped cycle costs 1–4× an undamped one
-(benchmarks/bench_damped.py).
+at each point from the exact f'' (:func:`bounds.local_m2`), on windows of :data:`WINDOW`
+radians of the fastest rate (ϖ, w0, 2g). Values and bounds at a point:
+:mod:`damped_values`. Cost: a damped cycle ≈ 1.3× an undamped one (median of the 26
+benchmark designs, benchmarks/bench_damped.py).
 """
 
 from __future__ import annotations
@@ -31,11 +36,7 @@ import math
 from betvdesign.dynamics._jit import kernel
 from betvdesign.dynamics.bounds import (
     NOISE,
-    cos_range_prep,
-    cos_range_to,
-    envelope_at,
     envelope_prep,
-    local_m2,
 )
 from betvdesign.dynamics.evaluators import GAP_KIND, SLIP_KIND, STICK_KIND, _store
 from betvdesign.dynamics.flows import (
@@ -43,9 +44,6 @@ from betvdesign.dynamics.flows import (
     SLIP,
     STICK,
     PhaseTable,
-    decaying_basis,
-    forced,
-    rotate,
 )
 
 #: search window [rad of the fastest rate ϖ, w0, 2g]: long enough for few steps, short
@@ -406,88 +404,6 @@ def gap_evaluator(wf, zv, A, xi, xid, sp0, cp0, H: float, e) -> None:
     _split(e, w0, g, wf, F, 0.0, xi, xid, sp0, cp0, GAP_KIND, 1.0, 0.0, 0.0)
 
 
-@kernel(inline=True)
-def evaluate(e, h: float, out) -> tuple[float, float]:
-    """General-form values (f_i, f_i', f_i'') at h into out[0:2], out[2:4], out[4:6];
-    returns (y, y')."""
-    wf, w0, F, G, g = e["wf"], e["w0"], e["F"], e["G"], e["g"]
-    sp0, cp0 = e["sp0"], e["cp0"]
-    sp, cp = rotate(wf, sp0, cp0, h)
-    if e["fast"]:  # the stored split: a sin φ + b cos φ plus the free damped part
-        a, b, u0, ug = e["P"], e["pwf"], e["ac"], e["as_"]
-        ec, es = decaying_basis(w0, g, h)
-        u1 = ug - g * u0
-        y = a * sp + b * cp + u0 * ec + ug * es
-        yd = wf * (a * cp - b * sp) + u1 * ec - (w0 * w0 * u0 + g * u1) * es
-    else:
-        y, yd = forced(w0, g, wf, F, G, e["z"], e["zd"], sp0, cp0, h)
-    w02 = w0 * w0
-    fs, fc = F * sp + G * cp, F * cp - G * sp
-    ydd = fs - 2.0 * g * yd - w02 * y
-    kind = e["kind"]
-    if kind == GAP_KIND:
-        out[0], out[2], out[4] = y, yd, ydd
-        return y, yd
-    y3 = wf * fc - 2.0 * g * ydd - w02 * yd
-    if kind == SLIP_KIND:
-        sig, ds = e["sig"], e["ds"]
-        sdn = e["sd"] + ds * (cp0 - cp) / wf
-        out[0] = sig * (yd - sdn)
-        out[2] = sig * (ydd - ds * sp)
-        out[4] = sig * (y3 - ds * wf * cp)
-        return y, yd
-    bA, ast = e["bA"], e["ast"]
-    y4 = -wf * wf * fs - 2.0 * g * y3 - w02 * ydd
-    out[0], out[1] = bA * sp - ast * ydd, bA * sp + ast * ydd
-    out[2], out[3] = bA * wf * cp - ast * y3, bA * wf * cp + ast * y3
-    w2 = bA * wf * wf * sp
-    out[4], out[5] = -w2 - ast * y4, -w2 + ast * y4
-    return y, yd
-
-
-@kernel(inline=True)
-def m2_bound(e, h: float, y: float, yd: float, out) -> None:
-    """Local bounds on the second derivatives of the event functions (from their exact
-    values and a bound on the third over the next window, :func:`bounds.local_m2`), from
-    the point (y, y'), into out[4:6]; no envelope (out[6:8] = 0)."""
-    w0, g, Af, wf = e["w0"], e["g"], e["Af"], e["wf"]
-    if e["fast"]:  # split: global bounds, slow envelopes
-        for i in range(e["n"]):
-            out[4 + i] = local_m2(out[i], out[2 + i], out[4 + i], e["m2b"][i], e["m3b"][i])
-            th = e["phi0"] + wf * h - e["offs"][i]
-            out[6 + i] = envelope_at(e["env_mode"][i], e["env_acos"][i], th, wf)
-        return
-    r = math.sqrt(yd * yd + w0 * w0 * y * y) + Af * e["W"]
-    kind = e["kind"]
-    if kind == GAP_KIND:
-        m2 = derivative_bounds(w0, g, Af, wf, r, 2)
-        m3 = derivative_bounds(w0, g, Af, wf, r, 3)
-    elif kind == SLIP_KIND:
-        ads = abs(e["ds"])
-        m2 = derivative_bounds(w0, g, Af, wf, r, 3) + ads * wf
-        m3 = derivative_bounds(w0, g, Af, wf, r, 4) + ads * wf * wf
-    else:
-        bA, ast = e["bA"], e["ast"]
-        m2 = bA * wf * wf + ast * derivative_bounds(w0, g, Af, wf, r, 4)
-        m3 = bA * wf**3 + ast * derivative_bounds(w0, g, Af, wf, r, 5)
-    for i in range(e["n"]):
-        out[4 + i] = local_m2(out[i], out[2 + i], out[4 + i], m2, m3)
-    out[6] = out[7] = 0.0
-
-
-@kernel
-def start_bound(e, order: int) -> float:
-    """Bound on |f⁽ᵒʳᵈᵉʳ⁺¹⁾| over the window (general form, either function)."""
-    j = order + 1
-    w0, g, Af, wf, R = e["w0"], e["g"], e["Af"], e["wf"], e["R0"]
-    kind = e["kind"]
-    if kind == GAP_KIND:
-        return derivative_bounds(w0, g, Af, wf, R, j)
-    if kind == SLIP_KIND:
-        return derivative_bounds(w0, g, Af, wf, R, j + 1) + abs(e["ds"]) * wf ** float(j - 1)
-    return e["bA"] * wf ** float(j) + e["ast"] * derivative_bounds(w0, g, Af, wf, R, j + 2)
-
-
 @kernel
 def decide_band(c: PhaseTable, z: float, vs: float, sp: float, cp: float, on: int) -> int:
     """The stick-band rule of :func:`contact.decide_phase` with damping: g_lo, g_hi
@@ -512,17 +428,3 @@ def decide_band(c: PhaseTable, z: float, vs: float, sp: float, cp: float, on: in
             if dj < -nz:
                 return phase
     return STICK
-
-
-@kernel(inline=True)
-def clear(e, h: float) -> bool:
-    """Every function provably positive on [h, H] (fast mode: the slow part's least value
-    over the phase range minus the fast part's bound ct)."""
-    wf, H = e["wf"], e["H"]
-    for i in range(e["n"]):
-        off = e["offs"][i]
-        cb, f1, f2 = cos_range_prep(e["phi0"] + wf * H - off)
-        lo, _ = cos_range_to(e["phi0"] + wf * h - off, cb, f1, f2)
-        if not e["K"][i] * lo - e["cc"] > e["ct"]:
-            return False
-    return True

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import math
 
-from betvdesign.dynamics import damped
+from betvdesign.dynamics import damped_values as damped
 from betvdesign.dynamics._jit import kernel
 from betvdesign.dynamics.bounds import (
     cos_range_prep,
