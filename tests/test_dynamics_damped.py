@@ -139,3 +139,18 @@ def test_bad_optional_terms_are_refused(kw):
 def test_schedule_refuses_bad_terms():
     with pytest.raises(ParameterError):
         VerticalSchedule(0.9, restitution=1.2)
+
+
+def test_vertical_failure_is_a_failed_result_not_a_traceback(monkeypatch):
+    """A vertical motion that cannot be computed (e.g. a chattering sequence that never
+    accumulates) comes back as status "failed" with the reason."""
+    from betvdesign.dynamics import periodic
+    from betvdesign.dynamics.vertical import VerticalSearchError
+
+    def boom(*a, **k):
+        raise VerticalSearchError("a chattering sequence did not accumulate")
+
+    monkeypatch.setattr(periodic, "VerticalSchedule", boom)
+    po = periodic.periodic_orbit(ModelParams(0.9, 0.1, 0.9, 0.4, restitution=0.3))
+    assert po.status == "failed" and not po.success
+    assert "did not accumulate" in po.message

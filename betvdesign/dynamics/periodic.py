@@ -50,7 +50,7 @@ from betvdesign.dynamics.flows import phase_table
 from betvdesign.dynamics.result import PeriodicResult
 from betvdesign.dynamics.shooting import TRUST
 from betvdesign.dynamics.solver import CycleRunner, SolverFailure
-from betvdesign.dynamics.vertical import VerticalSchedule
+from betvdesign.dynamics.vertical import VerticalSchedule, VerticalSearchError
 from betvdesign.errors import ParameterError
 from betvdesign.params import ModelParams
 
@@ -273,12 +273,42 @@ def periodic_orbit(
     )
 
 
+def _vertical_failure(p: ModelParams, msg: str, elapsed: float) -> PeriodicResult:
+    """The result when the vertical motion itself cannot be computed (a search that did
+    not terminate, a chattering sequence that did not accumulate)."""
+    return PeriodicResult(
+        params=p,
+        status="failed",
+        success=False,
+        message=f"vertical motion: {msg}",
+        impacts_per_cycle=math.nan,
+        contact_fraction=math.nan,
+        n_cycles=0,
+        n_events=0,
+        n_root_evals=0,
+        elapsed_s=elapsed,
+        delta_s=None,
+        mode=None,
+        period_cycles=None,
+        residual=None,
+        floquet=None,
+        stable=None,
+        state=None,
+        n_newton=0,
+        transient_cycles=0,
+        transient_s=0.0,
+    )
+
+
 def _periodic_orbit(
     p: ModelParams, tol: float, max_cycles: int, max_period: int, transient: int
 ) -> PeriodicResult:
     t0 = time.perf_counter()
     k = phase_table(p)
-    vs = VerticalSchedule(p.varpi, horizon=1000, zeta_v=p.zeta_v, restitution=p.restitution)
+    try:
+        vs = VerticalSchedule(p.varpi, horizon=1000, zeta_v=p.zeta_v, restitution=p.restitution)
+    except VerticalSearchError as exc:
+        return _vertical_failure(p, str(exc), time.perf_counter() - t0)
     hits, frac = vs.hits_per_cycle(), vs.contact_fraction()
 
     def result(status: str, msg: str, **kw: object) -> PeriodicResult:
