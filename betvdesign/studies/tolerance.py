@@ -52,7 +52,7 @@ from betvdesign.studies.pushpull import (
     solver_error,
 )
 from betvdesign.studies.runner import Study, StudyRun, run_study, split_run_args
-from betvdesign.studies.sampling import check_sample, derive_all, draw, nominal_values
+from betvdesign.studies.sampling import check_sample, derive_all, draw, nominal_values, params_of
 from betvdesign.studies.specpaths import replace, targets, value_at
 
 Dist = Literal["normal", "uniform"]
@@ -188,8 +188,6 @@ def tolerance_point(task: Mapping[str, Any]) -> dict[str, Any]:
     :func:`betvdesign.nondim.derive_samples`, the same formulas vectorised); otherwise
     the sample is derived here with :func:`betvdesign.nondim.derive_set`.
     """
-    from betvdesign.params import ModelParams
-
     row: dict[str, Any] = {c: None for c in task["columns"]}
     row.update(key=task["key"], sample=task["sample"], set=task["set_name"])
     for field, (mag, _) in task["values"].items():
@@ -205,7 +203,7 @@ def tolerance_point(task: Mapping[str, Any]) -> dict[str, Any]:
             length_m, f_act = d.scales.length_m, d.scales.f_act_hz
         else:
             check_sample(task["values"])
-            p = ModelParams(*(derived[k] for k in ("varpi", "alpha", "beta", "kappa")))
+            p = params_of(derived)
             intended, length_m, f_act = task["intended"], derived["length_m"], derived["f_act_hz"]
     except BetvError as exc:
         row.update(status="invalid-sample", converged=False, message=str(exc))
