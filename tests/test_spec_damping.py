@@ -452,3 +452,37 @@ def test_schema_documents_the_fields():
     contact = schema["$defs"]["Contact"]
     assert "0 ≤ e < 1" in contact["properties"]["restitution"]["description"]
     assert "pair of surfaces" in contact["description"]
+
+
+# --- betv check shows the terms -------------------------------------------------------
+
+
+def test_check_shows_damping_and_restitution(monkeypatch, tmp_path):
+    """With a stand-in solver (the damped kernel is not this test's subject): the JSON
+    params carry ζ_v = ζ_h = 1/(2·30) and e, the text line Q and e; ζ_h = 0 reads Q_h ∞;
+    an undamped device keeps its four parameters only."""
+    from types import SimpleNamespace
+
+    from betvdesign import checker
+
+    def orbit(p):
+        return SimpleNamespace(
+            status="success", success=True, message="stand-in", delta_s=1.0, period_cycles=1
+        )
+
+    monkeypatch.setattr(checker, "load_solver", lambda: orbit)
+    monkeypatch.setattr("betvdesign.checker._settling", lambda p, po, travel: None)
+    (s,) = json.loads(run("check", DEMO, "--json").stdout)["devices"][0]["sets"]
+    assert s["params"]["zeta_v"] == s["params"]["zeta_h"] == 1 / 60
+    assert s["params"]["restitution"] == 0.1
+    assert "Q_v 30 Q_h 30 e 0.1" in " ".join(run("check", DEMO).stdout.split())
+    normal_only = tmp_path / "normal_only.yaml"
+    line = "      quality_factor_tangential: 30    # Q_h: ζ_h = 1/(2 Q_h) ≈ 0.0167\n"
+    assert line in DEMO.read_text("utf-8")
+    normal_only.write_text(DEMO.read_text("utf-8").replace(line, ""), "utf-8")
+    assert "Q_v 30 Q_h ∞ e 0.1" in " ".join(run("check", normal_only).stdout.split())
+    plain = tmp_path / "plain.yaml"
+    plain.write_text(_text(), "utf-8")
+    (s,) = json.loads(run("check", plain, "--json").stdout)["devices"][0]["sets"]
+    assert set(s["params"]) == {"varpi", "alpha", "beta", "kappa"}
+    assert " Q_v " not in run("check", plain).stdout
