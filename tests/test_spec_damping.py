@@ -486,3 +486,50 @@ def test_check_shows_damping_and_restitution(monkeypatch, tmp_path):
     (s,) = json.loads(run("check", plain, "--json").stdout)["devices"][0]["sets"]
     assert set(s["params"]) == {"varpi", "alpha", "beta", "kappa"}
     assert " Q_v " not in run("check", plain).stdout
+
+
+# --- parameters derived from a device's keep its damping and restitution ----------------
+
+
+def test_margin_corners_keep_damping_and_restitution():
+    """The mode-margin corners scale ϖ and α only: ζ_v, ζ_h, e are the device's."""
+    from betvdesign.checker import MARGIN_CORNERS, corner_params
+
+    p = derive_file(DEMO).sets[0].params
+    corners = corner_params(p)
+    assert len(corners) == len(MARGIN_CORNERS)
+    for (fw, fa), c in zip(MARGIN_CORNERS, corners.values(), strict=True):
+        assert (c.varpi, c.alpha) == (p.varpi * fw, p.alpha * fa)
+        assert (c.beta, c.kappa, c.zeta_v, c.zeta_h, c.restitution) == (
+            p.beta,
+            p.kappa,
+            1 / 60,
+            1 / 60,
+            0.1,
+        )
+
+
+def test_speed_frequency_sweep_keeps_damping_and_restitution(monkeypatch):
+    """The report's speed-against-frequency orbits vary ϖ only (recorded by a stand-in
+    periodic_orbit): every other parameter is the device's."""
+    from types import SimpleNamespace
+
+    import betvdesign.dynamics as dyn
+    from betvdesign.report.analysis import Piece, ReportOptions
+    from betvdesign.report.frequency import frequency_sweep
+
+    seen: list[ModelParams] = []
+
+    def orbit(p, **_):
+        seen.append(p)
+        return SimpleNamespace(success=True, delta_s=0.5, status="success", message="")
+
+    monkeypatch.setattr(dyn, "periodic_orbit", orbit)
+    sd = derive_file(DEMO).sets[0]
+    own = Piece(value=SimpleNamespace(success=True, delta_s=0.5))
+    frequency_sweep(sd.params, sd.scales.f_act_hz, own, ReportOptions(frequency_points=5))
+    assert seen and all(q.varpi != sd.params.varpi for q in seen)
+    p = sd.params
+    for q in seen:
+        assert (q.alpha, q.beta, q.kappa) == (p.alpha, p.beta, p.kappa)
+        assert (q.zeta_v, q.zeta_h, q.restitution) == (1 / 60, 1 / 60, 0.1)
