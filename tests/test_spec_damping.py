@@ -533,3 +533,37 @@ def test_speed_frequency_sweep_keeps_damping_and_restitution(monkeypatch):
     for q in seen:
         assert (q.alpha, q.beta, q.kappa) == (p.alpha, p.beta, p.kappa)
         assert (q.zeta_v, q.zeta_h, q.restitution) == (1 / 60, 1 / 60, 0.1)
+
+
+def test_tolerance_study_spreads_a_quality_factor(tmp_path):
+    """`betv tolerance --spread actuator.quality_factor_normal=normal:20%` (λ rung: no
+    orbit needed): each row's ζ_v is 1/(2Q) of its drawn Q; ζ_h and e stay the device's;
+    a device of the paper's model has no such columns."""
+    import csv
+
+    out = tmp_path / "t.csv"
+    spread = "actuator.quality_factor_normal=normal:20%"
+    common = ["-n", 6, "--fidelity", "lambda", "-x", "serial", "-q"]
+    r = run("tolerance", DEMO, "--spread", spread, *common, "-o", out)
+    assert r.exit_code == 0, r.output
+    rows = list(csv.DictReader(out.open(encoding="utf-8")))
+    assert len(rows) == 6
+    qs = {float(row["in:actuator.quality_factor_normal"]) for row in rows}
+    assert len(qs) == 6  # drawn, not the nominal 30
+    for row in rows:
+        q = float(row["in:actuator.quality_factor_normal"])
+        assert float(row["zeta_v"]) == pytest.approx(1 / (2 * q), rel=1e-15)
+        assert float(row["zeta_h"]) == 1 / 60 and float(row["restitution"]) == 0.1
+    plain = tmp_path / "p.csv"
+    r = run(
+        "tolerance",
+        DEVICES / "push_demo.yaml",
+        "--spread",
+        "contact.friction=normal:5%",
+        *common,
+        "-o",
+        plain,
+    )
+    assert r.exit_code == 0, r.output
+    header = plain.read_text("utf-8").splitlines()[0].split(",")
+    assert not {"zeta_v", "zeta_h", "restitution"} & set(header)

@@ -253,6 +253,18 @@ BASE_COLUMNS: dict[str, type] = {
 }
 
 
+def _beyond_columns(spec: Any) -> dict[str, type]:
+    """Columns zeta_v, zeta_h, restitution [-] (ModelParams.as_dict's) when the nominal
+    device gives damping or restitution; none for the paper's model."""
+    from betvdesign.nondim import derive
+
+    try:
+        ideal = all(sd.params.ideal for sd in derive(spec).sets)
+    except BetvError:  # the nominal device does not derive: its samples say why
+        ideal = True
+    return {} if ideal else dict.fromkeys(("zeta_v", "zeta_h", "restitution"), float)
+
+
 def tolerance_study(
     device: str | os.PathLike[str],
     tolerances: Sequence[Tolerance],
@@ -282,7 +294,8 @@ def tolerance_study(
     limits.refuse_long_study("tolerance", samples * len(chosen), 0.0, 1)  # before drawing
     nominal = nominal_values(spec, tolerances)
     x = draw(tolerances, nominal, samples, seed)
-    columns = dict(BASE_COLUMNS) | {f"in:{t.field}": float for t in tolerances}
+    columns = dict(BASE_COLUMNS) | _beyond_columns(spec)
+    columns |= {f"in:{t.field}": float for t in tolerances}
     mtime = os.stat(path).st_mtime_ns
     derived = {name: derive_all(spec, tolerances, nominal, x, names.index(name)) for name in chosen}
     intended = {s.name: s.intended_mode for s in spec.actuator_sets}
