@@ -187,6 +187,10 @@ def stale(rtol: float = 1e-9) -> list[str]:
     return out
 
 
+#: rungs that solve the idealised model only (no damping, plastic impacts)
+IDEAL_ONLY = ("lambda", "vertical", "rigid")
+
+
 def rigid_error_estimate(alpha: float) -> float:
     """Measured bound on the rigid limit's relative Δs error at this α [-]."""
     fit = _measured()["rigid"]
@@ -221,6 +225,12 @@ def choose_rung(
                 f"fidelity {force!r} ({info.model}) cannot answer {question!r}; "
                 f"use one of {', '.join(able)}"
             )
+        if not p.ideal and force in IDEAL_ONLY:
+            raise UsageError(
+                f"fidelity {force!r} ({info.model}) is a rung of the idealised model (no "
+                "damping, plastic impacts) and this device has damping or restitution; use "
+                "periodic or full"
+            )
         why = f"forced by --fidelity {force} ({info.exact})"
         if force == "lambda":
             why += f"; {lambda_error_statement()}"
@@ -231,6 +241,13 @@ def choose_rung(
             )
         return Choice(force, question, why, True)
     in_window = domain.in_window(p.varpi)
+    if not p.ideal and question in ("regime", "delta_s"):
+        return Choice(
+            "periodic",
+            question,
+            "damping or restitution present: the vertical-only, rigid and λ rungs are of "
+            "the idealised model; the exact periodic orbit includes them",
+        )
     if question == "regime":
         return Choice("vertical", question, "the vertical motion does not depend on the slider")
     if question == "transient":

@@ -29,6 +29,14 @@ cycles of contact and free flight; Δs_m          :func:`contact.run_cycles`
 periodic orbit, Floquet multipliers              :func:`periodic.periodic_orbit`
                                                  (Newton: :func:`shooting.newton`)
 unbounded growth at α·ϖ² = 1                     :func:`periodic.resonance_growth_bound`
+*Beyond the paper* (docs/damping.md)
+kernel time: N ∝ A sin ϖτ, δ = atan(2ζ_v ϖ)        :func:`flows.normal_force_phase`
+damped phases, y'' + 2g y' + w0² y = F sin + G cos  :func:`flows.forced` (table:
+                                                 :func:`flows.phase_table`, ``damped``)
+damped event functions, stick band with damper   :mod:`damped` (values: :mod:`damped_values`)
+damped stick / slip rule                         :func:`damped.decide_band`
+restitution ξ' → −e ξ'                           :func:`schedule.rebound`
+chattering accumulation (Budd & Dux)             :func:`schedule.accumulation`
 ==============================================  ========================================
 """
 

@@ -34,6 +34,8 @@ KERNEL_MODULES = (
     "flows",
     "bounds",
     "evaluators",
+    "damped",
+    "damped_values",
     "values",
     "search",
     "contact",

@@ -22,6 +22,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from betvdesign.dynamics import damped
 from betvdesign.dynamics._jit import kernel
 from betvdesign.dynamics.bounds import EPS, NOISE
 from betvdesign.dynamics.evaluators import slip_evaluator, stick_evaluator
@@ -141,8 +142,10 @@ def decide_phase(
             return SLIP
         if v < -nv:
             return REVERSE
-    A, wf, b = c.a_stick, c.varpi, c.b
     vs = stick_velocity(zd, sd, c.beta)
+    if c.damped:
+        return damped.decide_band(c, z, vs, sp, cp, on)
+    A, wf, b = c.a_stick, c.varpi, c.b
     z2 = (sp - z) / A
     z3 = (wf * cp - vs) / A
     s1 = wf * cp
@@ -210,8 +213,13 @@ def contact(c, m, tc, z, zd, s, sd, ws, log, nlog, segs, nseg):
         H = te - t
         e = ws.ev[0]
         if phase == STICK:
-            stick_evaluator(c, z, zd, sp, cp, H, on_edge, e)
+            if c.damped:
+                damped.stick_evaluator(c, z, zd, sp, cp, H, on_edge, e)
+            else:
+                stick_evaluator(c, z, zd, sp, cp, H, on_edge, e)
             on_edge = -1
+        elif c.damped:
+            damped.slip_evaluator(c, phase, z, zd, s, sd, sp, cp, H, from_edge, e)
         else:
             slip_evaluator(c, phase, z, zd, s, sd, sp, cp, H, from_edge, e)
         from_edge = False

@@ -94,6 +94,13 @@ EVALUATOR_DTYPE = np.dtype(
         ("scale", np.float64, (2,)),
         ("start", np.float64, (8,)),
         ("noise", np.float64, (8,)),
+        ("gen", np.bool_),  # general (damped) form: dynamics.damped
+        ("g", np.float64),
+        ("G", np.float64),
+        ("Af", np.float64),
+        ("bA", np.float64),
+        ("ast", np.float64),
+        ("offs", np.float64, (2,)),  # per-function phase of the slow part (general form)
     ]
 )
 
@@ -146,7 +153,8 @@ def _store(
     start,
     noise,
 ):
-    """Write an evaluator's fields into the record e."""
+    """Write an evaluator's fields into the record e (undamped form: ``gen`` False)."""
+    e["gen"] = False
     e["kind"] = kind
     e["n"] = n
     e["H"] = H

@@ -71,6 +71,8 @@ SLIP_DTYPE = np.dtype(
         ("apq", np.float64),
         ("K", np.float64),
         ("fast", np.bool_),
+        ("g", np.float64),
+        ("G", np.float64),
     ]
 )
 #: Constants of stick: α(1 + 1/β) ζ'' + ζ = sin ϖτ, band edges q = (1 − b, 1 + b);
@@ -87,6 +89,8 @@ STICK_DTYPE = np.dtype(
         ("K", np.float64, (2,)),
         ("w3", np.float64),
         ("fast", np.bool_),
+        ("g", np.float64),
+        ("G", np.float64),
     ]
 )
 #: Everything the contact loop needs of one parameter set (MODEL.md phase table), one
@@ -107,6 +111,13 @@ TABLE_DTYPE = np.dtype(
         ("slip", SLIP_DTYPE),
         ("reverse", SLIP_DTYPE),
         ("stick", STICK_DTYPE),
+        ("damped", np.bool_),
+        ("g_free", np.float64),
+        ("G_free", np.float64),
+        ("zeta_v", np.float64),
+        ("A", np.float64),
+        ("bA", np.float64),
+        ("e", np.float64),
     ]
 )
 #: a record of :data:`TABLE_DTYPE` (``phase_table(p)[0]``), as the kernels see it
@@ -130,17 +141,13 @@ def _slip_phase(sig: float, b: float, w0: float, F: float, wf: float, ds: float)
     fast = _split_ok(P, w0, F)
     apq = 0.0 if P != P else abs(P - q) * wf
     K = sig * (P * wf + ds / wf) if fast else 0.0
-    return (sig, q, w0, F, ds, P, apq, K, fast)
+    return (sig, q, w0, F, ds, P, apq, K, fast, 0.0, 0.0)
 
 
 def phase_table(p: ModelParams) -> np.ndarray:
     """The constants of parameters p, a one-record array of :data:`TABLE_DTYPE`
     (w0 = 1/sqrt(a), F = c/a per phase); a record array (attribute access in plain
     Python) when the kernels run as Python (``NUMBA_DISABLE_JIT=1``)."""
-    if not p.ideal:
-        from betvdesign.errors import ParameterError
-
-        raise ParameterError("damping and restitution are not supported by this build yet")
     al, be, ka, wf = p.alpha, p.beta, p.kappa, p.varpi
     a_st = al * (1.0 + 1.0 / be)
     w_free = 1.0 / math.sqrt(al)
@@ -155,10 +162,91 @@ def phase_table(p: ModelParams) -> np.ndarray:
     a2 = (0.0, 0.0) if P != P else (abs(P - qs[0]) * wf * wf, abs(P - qs[1]) * wf * wf)
     a3 = (abs(P - qs[0]) * wf**3, abs(P - qs[1]) * wf**3) if fast else (0.0, 0.0)
     K = (P - qs[0], -1.0 * (P - qs[1])) if fast else (0.0, 0.0)
-    stick = (w_st, F_st, qs, P, a2, a3, K, wf**3, fast)
+    stick = (w_st, F_st, qs, P, a2, a3, K, wf**3, fast, 0.0, 0.0)
     row = (wf, al, be, ka, b, a_st, w_free, 1.0 / al, slip, reverse, stick)
+    row = (*row, False, 0.0, 0.0, 0.0, 1.0, b, p.restitution)
+    if p.zeta_v != 0.0 or p.zeta_h != 0.0:
+        row = _damped_row(p, b, a_st)
     table = np.array([row], dtype=TABLE_DTYPE)
     return table if jit_enabled() else table.view(np.recarray)
+
+
+def normal_force_phase(zeta_v: float, varpi: float) -> tuple[float, float]:
+    """(δ [rad], A [-]) of the contact normal force with the normal damper:
+    sin ϖτ_o + 2ζ_v ϖ cos ϖτ_o = A sin(ϖτ_o + δ), δ = atan(2ζ_v ϖ), A = sqrt(1 + (2ζ_v ϖ)²)
+    (docs/damping.md). The solver's time is τ = τ_o + δ/ϖ (N ∝ A sin ϖτ)."""
+    d = 2.0 * zeta_v * varpi
+    return math.atan(d), math.hypot(1.0, d)
+
+
+def _damped_row(p: ModelParams, b: float, a_st: float) -> tuple:
+    """The table row with damping (docs/damping.md, kernel time φ = ϖτ, N ∝ A sin φ).
+
+    Every phase is y'' + 2g y' + w0² y = F sin φ + G cos φ with inertia a (α, or
+    α(1 + 1/β) in stick): w0 = 1/sqrt(a), g = ζ_h sqrt(α)/a,
+    F = (cos δ + D sin δ − σακA)/a, G = (D cos δ − sin δ)/a, D = 2ζ_h sqrt(α) ϖ;
+    the slider s'' = σβκA sin φ. The undamped fast-path constants (P, K, ...) are not
+    used (``damped``: every evaluator takes its general form).
+    """
+    al, be, ka, wf = p.alpha, p.beta, p.kappa, p.varpi
+    delta, A = normal_force_phase(p.zeta_v, wf)
+    cd, sd = math.cos(delta), math.sin(delta)
+    D = 2.0 * p.zeta_h * math.sqrt(al) * wf
+    Fs, Gc = cd + D * sd, D * cd - sd
+
+    def phase(sig: float) -> tuple:
+        w0, ds = 1.0 / math.sqrt(al), sig * be * ka * A
+        F = (Fs - sig * al * ka * A) / al
+        return (
+            sig,
+            1.0 - sig * b,
+            w0,
+            F,
+            ds,
+            math.nan,
+            0.0,
+            0.0,
+            False,
+            p.zeta_h * math.sqrt(al) / al,
+            Gc / al,
+        )
+
+    w_st = 1.0 / math.sqrt(a_st)
+    qs = (1.0 - b, 1.0 + b)
+    stick = (
+        w_st,
+        Fs / a_st,
+        qs,
+        math.nan,
+        (0.0, 0.0),
+        (0.0, 0.0),
+        (0.0, 0.0),
+        wf**3,
+        False,
+        p.zeta_h * math.sqrt(al) / a_st,
+        Gc / a_st,
+    )
+    w_free = 1.0 / math.sqrt(al)
+    return (
+        wf,
+        al,
+        be,
+        ka,
+        b,
+        a_st,
+        w_free,
+        Fs / al,
+        phase(1.0),
+        phase(-1.0),
+        stick,
+        True,
+        p.zeta_h * math.sqrt(al) / al,
+        Gc / al,
+        p.zeta_v,
+        A,
+        b * A,
+        p.restitution,
+    )
 
 
 @kernel
@@ -197,6 +285,82 @@ def oscillator(
 
 
 @kernel
+def decaying_basis(w0: float, g: float, h: float) -> tuple[float, float]:
+    """(e^(−gh) cos(w_d h), e^(−gh) sin(w_d h)/w_d), w_d² = w0² − g² [-]: the basis of the
+    free damped oscillation y'' + 2g y' + w0² y = 0, one expression for under-, critically
+    and overdamped motion (cosh/sinh when w_d² < 0), with no cancellation near critical
+    damping: a Taylor series in x = w_d² h² for |x| < 0.01 (9 terms: error < 1e-20
+    relative), exponentials of −w0²h/(g + r) and −(g + r)h (r² = g² − w0²) when
+    overdamped."""
+    x = (w0 - g) * (w0 + g) * h * h
+    eg = math.exp(-g * h) if g * h < 745.0 else 0.0
+    if -0.01 < x < 0.01:
+        c, sn, t = 1.0, 1.0, 1.0
+        for k in range(1, 9):
+            t = -t * x / ((2 * k - 1) * (2 * k))
+            c += t
+            sn += t / (2 * k + 1)
+        return eg * c, eg * sn * h
+    if x > 0.0:
+        wd = math.sqrt((w0 - g) * (w0 + g))
+        return eg * math.cos(wd * h), eg * math.sin(wd * h) / wd
+    r = math.sqrt((g - w0) * (g + w0))
+    e1 = math.exp(-w0 * w0 * h / (g + r))
+    e2 = math.exp(-(g + r) * h)
+    return 0.5 * (e1 + e2), 0.5 * (e1 - e2) / r
+
+
+@kernel
+def forced(
+    w0: float,
+    g: float,
+    wf: float,
+    F: float,
+    G: float,
+    y0: float,
+    v0: float,
+    sp0: float,
+    cp0: float,
+    h: float,
+) -> tuple[float, float]:
+    """(y, y') after time h of y'' + 2g y' + w0² y = F sin φ + G cos φ, φ = φ0 + wf h,
+    from (y0, v0), (sin φ0, cos φ0) = (sp0, cp0) [all dimensionless]; g ≥ 0.
+
+    g = 0: :func:`oscillator` (resonance exact; G through the rotated forcing). g > 0:
+    the steady response a sin φ + b cos φ, (a, b) = (ΔF + 2gϖG, ΔG − 2gϖF)/(Δ² + 4g²ϖ²),
+    Δ = w0² − ϖ², plus the free damped oscillation (:func:`decaying_basis`) of the
+    remaining initial state. Near resonance the split cancels up to |a|/|y| ≲ 1/(2ζ)
+    (≤ 4 digits for ζ ≥ params.ZETA_MIN).
+    """
+    if g == 0.0:
+        if G == 0.0:
+            y, yd, _, _ = oscillator(w0, wf, F, y0, v0, sp0, cp0, h)
+        else:
+            y, yd, _, _ = oscillator(w0, wf, 1.0, y0, v0, F * sp0 + G * cp0, F * cp0 - G * sp0, h)
+        return y, yd
+    dl = (w0 - wf) * (w0 + wf)
+    gw = 2.0 * g * wf
+    den = dl * dl + gw * gw
+    a = (dl * F + gw * G) / den
+    b = (dl * G - gw * F) / den
+    cw, sw = math.cos(wf * h), math.sin(wf * h)
+    sp, cp = sp0 * cw + cp0 * sw, cp0 * cw - sp0 * sw
+    u0 = y0 - (a * sp0 + b * cp0)
+    u1 = v0 - wf * (a * cp0 - b * sp0)
+    ec, es = decaying_basis(w0, g, h)
+    y = a * sp + b * cp + u0 * ec + (u1 + g * u0) * es
+    yd = wf * (a * cp - b * sp) + u1 * ec - (w0 * w0 * u0 + g * u1) * es
+    return y, yd
+
+
+@kernel
+def rotate(wf: float, sp0: float, cp0: float, h: float) -> tuple[float, float]:
+    """(sin φ, cos φ) at φ = φ0 + wf h from (sin φ0, cos φ0)."""
+    cw, sw = math.cos(wf * h), math.sin(wf * h)
+    return sp0 * cw + cp0 * sw, cp0 * cw - sp0 * sw
+
+
+@kernel
 def slider(
     ds: float,
     wf: float,
@@ -222,10 +386,15 @@ def slider(
 
 @kernel
 def vertical_flight(
-    wf: float, xi: float, xid: float, sp0: float, cp0: float, h: float
+    wf: float, zv: float, A: float, xi: float, xid: float, sp0: float, cp0: float, h: float
 ) -> tuple[float, float, float, float]:
-    """No contact, vertical: ξ'' + ξ = −sin ϖτ over h: (ξ, ξ', sin φ, cos φ)."""
-    return oscillator(1.0, wf, -1.0, xi, xid, sp0, cp0, h)
+    """No contact, vertical: ξ'' + 2ζ_v ξ' + ξ = −A sin ϖτ over h (ζ_v = zv; undamped:
+    ξ'' + ξ = −sin ϖτ): (ξ, ξ', sin φ, cos φ)."""
+    if zv == 0.0:
+        return oscillator(1.0, wf, -1.0, xi, xid, sp0, cp0, h)
+    y, yd = forced(1.0, zv, wf, -A, 0.0, xi, xid, sp0, cp0, h)
+    sp, cp = rotate(wf, sp0, cp0, h)
+    return y, yd, sp, cp
 
 
 @kernel
@@ -235,6 +404,9 @@ def free_flight(
     """No contact, tangential: α ζ'' + ζ = sin ϖτ, s'' = 0, over h from a forcing phase
     0 or π (cp0 = ±1: a section or a contact end): (ζ, ζ', s, s')."""
     w0 = c.w_free
+    if c.damped:
+        y, yd = forced(w0, c.g_free, c.varpi, c.F_free, c.G_free, z, zd, 0.0, cp0, h)
+        return y, yd, s + sd * h, sd
     y0, v0, _, _ = oscillator(w0, c.varpi, c.F_free, 0.0, 0.0, 0.0, cp0, h)
     c0, s0 = math.cos(w0 * h), math.sin(w0 * h)
     return z * c0 + zd / w0 * s0 + y0, -z * w0 * s0 + zd * c0 + v0, s + sd * h, sd
@@ -255,7 +427,11 @@ def slip_flow(
     """Contact, slip (ζ' > s') or reverse slip (ζ' < s'): α ζ'' + ζ = (1 ∓ ακ) sin ϖτ,
     s'' = ±βκ sin ϖτ, over h: (ζ, ζ', s, s')."""
     ph = c.slip if phase == SLIP else c.reverse
-    zn, zdn, sp, cp = oscillator(ph.w0, c.varpi, ph.F, z, zd, sp0, cp0, h)
+    if c.damped:
+        zn, zdn = forced(ph.w0, ph.g, c.varpi, ph.F, ph.G, z, zd, sp0, cp0, h)
+        sp, cp = rotate(c.varpi, sp0, cp0, h)
+    else:
+        zn, zdn, sp, cp = oscillator(ph.w0, c.varpi, ph.F, z, zd, sp0, cp0, h)
     sn, sdn = slider(ph.ds, c.varpi, s, sd, sp0, cp0, sp, cp, h)
     return zn, zdn, sn, sdn
 
@@ -267,7 +443,10 @@ def stick_flow(
     """Contact, stick (ζ' = s'): α(1 + 1/β) ζ'' + ζ = sin ϖτ, s'' = ζ'' (s − ζ constant),
     over h: (ζ, ζ', s, s')."""
     st = c.stick
-    zn, zdn, _, _ = oscillator(st.w0, c.varpi, st.F, z, zd, sp0, cp0, h)
+    if c.damped:
+        zn, zdn = forced(st.w0, st.g, c.varpi, st.F, st.G, z, zd, sp0, cp0, h)
+    else:
+        zn, zdn, _, _ = oscillator(st.w0, c.varpi, st.F, z, zd, sp0, cp0, h)
     return zn, zdn, s + (zn - z), zdn
 
 
@@ -294,6 +473,9 @@ def flow(
     if phase == STICK:
         return stick_flow(c, z, zd, s, sp0, cp0, h)
     if phase == FREE:
-        zn, zdn, _, _ = oscillator(c.w_free, c.varpi, c.F_free, z, zd, sp0, cp0, h)
+        if c.damped:
+            zn, zdn = forced(c.w_free, c.g_free, c.varpi, c.F_free, c.G_free, z, zd, sp0, cp0, h)
+        else:
+            zn, zdn, _, _ = oscillator(c.w_free, c.varpi, c.F_free, z, zd, sp0, cp0, h)
         return zn, zdn, s + sd * h, sd
     return slip_flow(c, phase, z, zd, s, sd, sp0, cp0, h)

@@ -74,7 +74,7 @@ def resonance_growth_bound(p: ModelParams) -> float | None:
     α·ϖ² = 1 (within :data:`RESONANCE_RTOL`) and ακ < 2; None when the bound does not
     apply (module docstring; MODEL.md "Dimensionless model", no-contact and slip)."""
     ak = p.alpha * p.kappa
-    if abs(p.alpha * p.varpi**2 - 1.0) > RESONANCE_RTOL or ak >= 2.0:
+    if not p.ideal or abs(p.alpha * p.varpi**2 - 1.0) > RESONANCE_RTOL or ak >= 2.0:
         return None
     return math.pi * (1.0 - 0.5 * ak)
 
@@ -278,7 +278,7 @@ def _periodic_orbit(
 ) -> PeriodicResult:
     t0 = time.perf_counter()
     k = phase_table(p)
-    vs = VerticalSchedule(p.varpi, horizon=1000)
+    vs = VerticalSchedule(p.varpi, horizon=1000, zeta_v=p.zeta_v, restitution=p.restitution)
     hits, frac = vs.hits_per_cycle(), vs.contact_fraction()
 
     def result(status: str, msg: str, **kw: object) -> PeriodicResult:

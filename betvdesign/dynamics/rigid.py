@@ -42,6 +42,7 @@ from scipy.optimize import brentq
 
 from betvdesign.domain import mode_of
 from betvdesign.dynamics.vertical import VerticalSchedule
+from betvdesign.errors import ParameterError
 from betvdesign.params import ModelParams
 
 TWO_PI = 2.0 * math.pi
@@ -213,6 +214,11 @@ def rigid_simulate(
     ``state0`` = (s, s') at τ = 0 (a contact start). ``alpha`` of ``p`` is ignored
     (α → 0). See the module docstring for the equations (docs/MODEL.md).
     """
+    if not p.ideal:
+        raise ParameterError(
+            "the rigid limit is a limit of the idealised model; this p has damping or "
+            "restitution: use dynamics.periodic_orbit / simulate"
+        )
     t0 = time.perf_counter()
     if cycles < 1:
         raise ValueError(f"cycles must be >= 1, got {cycles}")
@@ -270,6 +276,11 @@ def rigid_periodic(p: ModelParams, *, max_cycles: int = 200) -> RigidPeriodic:
     Status "no_contact" when the head never makes a finite-duration contact within
     ``max_cycles`` (ϖ beyond the window: the model does not drive the slider).
     """
+    if not p.ideal:
+        raise ParameterError(
+            "the rigid limit is a limit of the idealised model; this p has damping or "
+            "restitution: use dynamics.periodic_orbit / simulate"
+        )
     t0 = time.perf_counter()
     wv = p.varpi
     period = TWO_PI / wv

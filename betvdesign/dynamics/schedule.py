@@ -21,6 +21,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from betvdesign.dynamics import damped
 from betvdesign.dynamics._jit import kernel
 from betvdesign.dynamics.bounds import EPS
 from betvdesign.dynamics.evaluators import gap_evaluator
@@ -51,7 +52,9 @@ PIECE_DTYPE = np.dtype(
     ]
 )
 #: :func:`vertical_run` codes
-DONE, FULL, FAILED = 0, 1, 2
+DONE, FULL, FAILED, CHATTERED = 0, 1, 2, 3
+#: hits of one cycle before a chattering sequence that does not accumulate is reported
+MAX_BOUNCES = 20000
 
 
 class VerticalRun(NamedTuple):
@@ -79,6 +82,41 @@ def plastic_hit(xid: float) -> float:
 
 
 @kernel
+def rebound(xid: float, e: float) -> float:
+    """Normal velocity just after a hit of velocity ξ' < 0 with restitution e: −e ξ'
+    (MODEL.md "Beyond the paper's idealisation"; e = 0: :func:`plastic_hit`)."""
+    if e == 0.0:
+        return plastic_hit(xid)
+    return -e * xid
+
+
+@kernel
+def accumulation(wf: float, zv: float, A: float, e: float, t: float, v: float) -> float:
+    """Time left until a chattering sequence accumulates [-], or −1 when its first-order
+    error bound is not yet below the round-off of the contact time (go on bouncing).
+
+    After a hit at local time t in contact conditions (N ∝ A sin ϖt > 0) the head leaves
+    at v = e|ξ'| and is pulled back by a ≈ A sin ϖt: flights of 2v_k/a with v_k = eᵏv
+    sum to T = 2v/(a(1 − e)) (Budd & Dux 1994, leading order). Over T the acceleration
+    changes by at most AϖT (forcing), 2ζ_v v (damper) and v²/a (spring at the apex): a
+    relative change ρ, so the sum is T(1 ± 3ρ/(1 − e)) to first order. T is taken when
+    that error, 3Tρ/(1 − e), is below EPS·π/ϖ and the sequence ends before contact
+    would end (π/ϖ). docs/damping.md.
+    """
+    if v == 0.0:
+        return 0.0
+    a = A * math.sin(wf * t)
+    if not a > 0.0:
+        return -1.0
+    T = 2.0 * v / (a * (1.0 - e))
+    rho = (A * wf * T + 2.0 * zv * v + v * v / a) / a
+    te = math.pi / wf
+    if 3.0 * T * rho / (1.0 - e) <= EPS * te and t + T < te:
+        return T
+    return -1.0
+
+
+@kernel
 def _new_cycle(cyc, n, xi, xid, ni, nf) -> int:
     r = cyc[n]
     r["xi0"], r["xid0"], r["tc"] = xi, xid, math.nan
@@ -95,10 +133,13 @@ def _piece(cyc, m, pieces, nf, t, xi, xid, sp, cp) -> int:
 
 
 @kernel
-def vertical_run(wf, xi, xid, horizon, cyc, imp, pieces):
+def vertical_run(wf, zv, A, e, xi, xid, horizon, cyc, imp, pieces):
     """Vertical motion from (ξ, ξ') at τ = 0 (see module doc) into cyc, imp, pieces.
 
-    Returns a :class:`VerticalRun`.
+    zv: damping ratio ζ_v; A: normal-force amplitude (1 undamped); e: restitution (kernel
+    time, docs/damping.md). Returns a :class:`VerticalRun`; with e > 0 a chattering
+    sequence is followed hit by hit until :func:`accumulation` can close it (its hits
+    count as impulsive), at most MAX_BOUNCES hits per cycle (else CHATTERED).
     """
     T = 2.0 * math.pi / wf
     te = math.pi / wf
@@ -107,7 +148,10 @@ def vertical_run(wf, xi, xid, horizon, cyc, imp, pieces):
     first_end, period = -1, -1
     n = _new_cycle(cyc, n, xi, xid, ni, nf)
     t, sp, cp = 0.0, 0.0, 1.0
+    bounces = 0
     contact = xi == 0.0 and xid <= 0.0  # a hit at phase 0: contact starts
+    if contact and e != 0.0 and xid < 0.0:  # ... or bounces
+        contact, xid = False, rebound(xid, e)
     if not contact:
         nf = _piece(cyc, 0, pieces, nf, 0.0, xi, xid, sp, cp)
     while True:
@@ -140,15 +184,29 @@ def vertical_run(wf, xi, xid, horizon, cyc, imp, pieces):
                         cyc[m]["imp_count"] += 1
                 period = m - first_end
                 break
-        H = T - t
-        e = ws.ev[0]
-        gap_evaluator(wf, xi, xid, sp, cp, H, e)
-        code, h, _, k = first_root(e, H, ws)
+        H = Hcycle = T - t
+        ev = ws.ev[0]
+        if zv == 0.0 and e == 0.0:
+            gap_evaluator(wf, xi, xid, sp, cp, H, ev)
+        else:
+            if e != 0.0 and xi == 0.0 and xid > 0.0 and sp > 0.0:
+                # a rebound against the pull A sin ϖt: its flight lasts ≈ 2ξ'/(A sin ϖt);
+                # search a window of a few flights first, so the gap's round-off scale is
+                # the flight's own (tiny flights of a chattering sequence stay exact)
+                H = min(Hcycle, 8.0 * xid / (A * sp))
+            damped.gap_evaluator(wf, zv, A, xi, xid, sp, cp, H, ev)
+        code, h, _, k = first_root(ev, H, ws)
         evals += k
         if code == SEARCH_FAILED:
             return VerticalRun(FAILED, n, first_end, period, ni, nf, evals, h)
+        if code == NO_ROOT and H < Hcycle:  # not back within the short window: go on
+            xi, xid, _, _ = vertical_flight(wf, zv, A, xi, xid, sp, cp, H)
+            t += H
+            sp, cp = math.sin(wf * t), math.cos(wf * t)
+            nf = _piece(cyc, m, pieces, nf, t, xi, xid, sp, cp)
+            continue
         if code == NO_ROOT:
-            xi, xid, _, _ = vertical_flight(wf, xi, xid, sp, cp, H)
+            xi, xid, _, _ = vertical_flight(wf, zv, A, xi, xid, sp, cp, H)
             if xi < 0.0:
                 xi = 0.0
             limit = horizon if first_end < 0 else first_end + 1 + horizon
@@ -158,18 +216,50 @@ def vertical_run(wf, xi, xid, horizon, cyc, imp, pieces):
                 return VerticalRun(FULL, n, first_end, period, ni, nf, evals, 0.0)
             n = _new_cycle(cyc, n, xi, xid, ni, nf)
             t, sp, cp = 0.0, 0.0, 1.0
-            if xi == 0.0 and xid <= 0.0:
+            bounces = 0
+            if xi == 0.0 and xid <= 0.0 and (e == 0.0 or xid == 0.0):
                 contact = True
             else:
+                if xi == 0.0 and xid < 0.0:  # a hit exactly at the section: it bounces
+                    xid = rebound(xid, e)
                 nf = _piece(cyc, n - 1, pieces, nf, 0.0, xi, xid, sp, cp)
             continue
         t += h
         if t >= T * (1.0 - 8.0 * EPS):  # hit at the section itself: contact from t = 0
-            _, xid, _, _ = vertical_flight(wf, xi, xid, sp, cp, h)
+            _, xid, _, _ = vertical_flight(wf, zv, A, xi, xid, sp, cp, h)
             if n >= cyc.size:
                 return VerticalRun(FULL, n, first_end, period, ni, nf, evals, 0.0)
             n = _new_cycle(cyc, n, 0.0, 0.0 if 0.0 < xid else xid, ni, nf)
-            t, contact = 0.0, True
+            t, sp, cp = 0.0, 0.0, 1.0
+            bounces = 0
+            if e == 0.0 or not xid < 0.0:
+                contact = True
+            else:
+                xi, xid = 0.0, rebound(xid, e)
+                nf = _piece(cyc, n - 1, pieces, nf, 0.0, xi, xid, sp, cp)
+            continue
+        if e != 0.0:  # restitution: the head bounces (and may chatter into contact)
+            _, xid, _, _ = vertical_flight(wf, zv, A, xi, xid, sp, cp, h)
+            v = rebound(xid if xid < 0.0 else 0.0, e)
+            if t < te:
+                rest = accumulation(wf, zv, A, e, t, v)
+                if rest >= 0.0:
+                    if rest > 0.0:
+                        imp[ni] = t
+                        ni += 1
+                        cyc[m]["imp_count"] += 1
+                    t += rest
+                    contact = True
+                    continue
+            bounces += 1
+            if bounces > MAX_BOUNCES:
+                return VerticalRun(CHATTERED, n, first_end, period, ni, nf, evals, t)
+            sp, cp = math.sin(wf * t), math.cos(wf * t)
+            imp[ni] = t
+            ni += 1
+            cyc[m]["imp_count"] += 1
+            xi, xid = 0.0, v
+            nf = _piece(cyc, m, pieces, nf, t, 0.0, v, sp, cp)
             continue
         if t < te:  # sin ϖt ≥ 0 at the hit: contact until π/ϖ
             contact = True
@@ -184,7 +274,7 @@ def vertical_run(wf, xi, xid, horizon, cyc, imp, pieces):
 
 
 @kernel
-def gap_at(wf, cyc_row_tc, pieces, start, count, t):
+def gap_at(wf, zv, A, cyc_row_tc, pieces, start, count, t):
     """(ξ, ξ') at local time t of a cycle with contact opening at cyc_row_tc (NaN: none)
     and free pieces pieces[start : start + count] (0 during contact)."""
     te = math.pi / wf
@@ -197,5 +287,5 @@ def gap_at(wf, cyc_row_tc, pieces, start, count, t):
     if best < 0:
         return 0.0, 0.0
     p = pieces[best]
-    y, yd, _, _ = vertical_flight(wf, p["xi"], p["xid"], p["sp"], p["cp"], t - p["t"])
+    y, yd, _, _ = vertical_flight(wf, zv, A, p["xi"], p["xid"], p["sp"], p["cp"], t - p["t"])
     return y, yd

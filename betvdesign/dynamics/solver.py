@@ -168,7 +168,14 @@ def simulate(
 def _simulate(p: ModelParams, n: int, st: tuple, dense: bool, log_events: bool) -> Trajectory:
     t0 = time.perf_counter()
     c = phase_table(p)
-    vs = VerticalSchedule(p.varpi, st[0], st[1], horizon=max(1000, n + 1))
+    vs = VerticalSchedule(
+        p.varpi,
+        st[0],
+        st[1],
+        horizon=max(1000, n + 1),
+        zeta_v=p.zeta_v,
+        restitution=p.restitution,
+    )
     cyc = CycleRunner(c, vs, log_events, dense)
     rows = np.empty((n + 1, 4))  # contiguous: the kernel's one signature
     status, message, done = "success", f"{n} cycles simulated", n

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 
+from betvdesign.dynamics import damped_values as damped
 from betvdesign.dynamics._jit import kernel
 from betvdesign.dynamics.bounds import (
     cos_range_prep,
@@ -47,6 +48,8 @@ def _evaluate_uniform(e, h: float, out) -> tuple[float, float]:
 def evaluate(e, h: float, out) -> tuple[float, float]:
     """(f_i, f_i', f_i'') at h into out[0:2], out[2:4], out[4:6]; returns (y, y') of the
     oscillator."""
+    if e["gen"]:
+        return damped.evaluate(e, h, out)
     if not e["fast"]:
         return _evaluate_uniform(e, h, out)
     wf, w0, sp0, cp0 = e["wf"], e["w0"], e["sp0"], e["cp0"]
@@ -77,6 +80,9 @@ def probe(e, h: float, out) -> None:
     """One search step's look at h: f, f', a local |f''| bound and the envelope's
     certified no-root length of each function into out[0:2], [2:4], [4:6], [6:8]."""
     y, yd = evaluate(e, h, out)
+    if e["gen"]:
+        damped.m2_bound(e, h, y, yd, out)
+        return
     wf = e["wf"]
     if not e["fast"]:  # energy-growth bounds
         w0, F = e["w0"], e["F"]
@@ -105,6 +111,8 @@ def clear(e, h: float, end) -> bool:
     filled on first use (end[3] = 1)."""
     if not e["clearable"]:
         return False
+    if e["gen"]:
+        return damped.clear(e, h)
     wf = e["wf"]
     if end[3] == 0.0:
         end[0], end[1], end[2] = cos_range_prep(e["phi0"] + wf * e["H"] - e["off"])
@@ -120,7 +128,10 @@ def clear(e, h: float, end) -> bool:
 @kernel
 def start_bound(e, i: int, order: int) -> float:
     """Bound on |f_i⁽ᵒʳᵈᵉʳ⁺¹⁾| over the window: the smaller of the energy-growth bound
-    (plus |q|ϖʲ) and the split bound |P − q|ϖʲ + w0^(j−1) E_h (j = order + bj)."""
+    (plus |q|ϖʲ) and the split bound |P − q|ϖʲ + w0^(j−1) E_h (j = order + bj); the
+    general form's bound (:func:`damped.start_bound`) with damping."""
+    if e["gen"]:
+        return damped.start_bound(e, order)
     j = order + e["bj"]
     w0, wf, q = e["w0"], e["wf"], e["q"][i]
     ba = derivative_bound(w0, e["F"], wf, e["R0"], j) + abs(q) * wf ** float(j)

@@ -19,6 +19,7 @@ import numpy as np
 
 from betvdesign.dynamics import schedule
 from betvdesign.dynamics._jit import compile_note
+from betvdesign.dynamics.flows import normal_force_phase
 from betvdesign.dynamics.search import search_failure_message
 from betvdesign.errors import ParameterError
 
@@ -54,10 +55,24 @@ class VerticalSchedule:
     pieces they index. ``prefix`` / ``pattern``: the same as :class:`VerticalCycle` lists.
     """
 
-    def __init__(self, varpi: float, xi0: float = 0.0, xid0: float = 0.0, horizon: int = 1000):
+    def __init__(
+        self,
+        varpi: float,
+        xi0: float = 0.0,
+        xid0: float = 0.0,
+        horizon: int = 1000,
+        *,
+        zeta_v: float = 0.0,
+        restitution: float = 0.0,
+    ):
         if not (math.isfinite(xi0) and math.isfinite(xid0)) or xi0 < 0.0:
             raise ParameterError(f"vertical state must be finite with ξ ≥ 0, got ({xi0}, {xid0})")
+        if not (zeta_v >= 0.0 and 0.0 <= restitution < 1.0):
+            raise ParameterError(f"need ζ_v ≥ 0 and 0 ≤ e < 1, got {zeta_v!r}, {restitution!r}")
         self.varpi = varpi
+        self.zeta_v = float(zeta_v)
+        self.restitution = float(restitution)
+        self.A = normal_force_phase(self.zeta_v, varpi)[1]
         self.T = 2.0 * math.pi / varpi
         self.te = math.pi / varpi
         n_cyc, n_imp = 16, 64
@@ -66,13 +81,29 @@ class VerticalSchedule:
             imp = np.empty(n_imp)
             pieces = np.empty(2 * n_imp, schedule.PIECE_DTYPE)
             run = schedule.vertical_run(
-                float(varpi), float(xi0), float(xid0), int(horizon), cyc, imp, pieces
+                float(varpi),
+                self.zeta_v,
+                self.A,
+                self.restitution,
+                float(xi0),
+                float(xid0),
+                int(horizon),
+                cyc,
+                imp,
+                pieces,
             )
             if run.code != schedule.FULL:
                 break
             n_cyc, n_imp = 2 * n_cyc, 2 * n_imp
         if run.code == schedule.FAILED:
             raise VerticalSearchError(search_failure_message(run.H))
+        if run.code == schedule.CHATTERED:
+            raise VerticalSearchError(
+                f"a chattering sequence (e = {restitution:g}) did not accumulate within "
+                f"{schedule.MAX_BOUNCES} hits in cycle {run.cycles - 1} (local time "
+                f"{run.H:.6g}): its error bound never fell below round-off; try a smaller "
+                "restitution or check ϖ"
+            )
         self.table = cyc[: run.cycles]
         self.impulsive = imp[: run.hits]
         self.pieces = pieces[: run.pieces]
@@ -130,7 +161,14 @@ class VerticalSchedule:
         for j in range(t.size):
             r = rows[j]
             out[j] = schedule.gap_at(
-                self.varpi, r["tc"], self.pieces, r["free_start"], r["free_count"], t[j]
+                self.varpi,
+                self.zeta_v,
+                self.A,
+                r["tc"],
+                self.pieces,
+                r["free_start"],
+                r["free_count"],
+                t[j],
             )
         return out
 
