@@ -3,14 +3,13 @@ values a device file gives (unit-free: plain numbers, floats or numpy arrays).
 
 MODEL.md, "Beyond the paper's idealisation": dampers in parallel with the head's
 springs, damping ratio ζ or quality factor Q = 1/(2ζ) per direction (normal ζ_v,
-tangential ζ_h); a coefficient of restitution e ∈ [0, 1) of normal impacts. In contact
-the normal force is N ∝ sin ϖτ_o + 2ζ_v ϖ cos ϖτ_o = A sin(ϖτ_o + δ) with
-A = sqrt(1 + (2ζ_v ϖ)²) and δ = atan(2ζ_v ϖ) (DAMPING.md's time convention).
+tangential ζ_h); a coefficient of restitution e ∈ [0, 1) of normal impacts. (The
+normal force's phase δ and factor A: :func:`betvdesign.params.normal_force_phase`.)
 
-The one implementation of Q ↔ ζ and of δ, A. :mod:`betvdesign.spec` declares its
+The one implementation of Q ↔ ζ. :mod:`betvdesign.spec` declares its
 fields with the types and ``Field`` s at the end (checked by the ``check_*`` functions:
 a ``ValueError`` whose message the loader places at the field's file:line);
-:mod:`betvdesign.nondim_terms` derives and records ζ, δ and A. The supported range of
+:mod:`betvdesign.nondim_terms` derives and records ζ (and δ, A). The supported range of
 ζ is :data:`betvdesign.params.ZETA_MIN` to :data:`~betvdesign.params.ZETA_MAX` (its one
 home): these checks apply it to the number as written in the file (so an error names the
 field), :class:`~betvdesign.params.ModelParams` once more to the model parameters.
@@ -23,7 +22,6 @@ import math
 from collections.abc import Callable
 from typing import Annotated, Any
 
-import numpy as np
 from pydantic import AfterValidator, Field
 
 from betvdesign.params import ZETA_MAX, ZETA_MIN
@@ -41,20 +39,6 @@ def zeta_from_quality(q: Any) -> Any:
 def quality_from_zeta(zeta: Any) -> Any:
     """Quality factor Q = 1/(2ζ) [-] of a damping ratio ζ > 0 [-] (float or array)."""
     return 1.0 / (2.0 * zeta)
-
-
-def force_phase(zeta_v: Any, varpi: Any) -> Any:
-    """Phase lead δ = atan(2ζ_v ϖ) [rad] of the contact normal force over the cart's
-    tangential position (0 undamped); float or array."""
-    x = 2.0 * zeta_v * varpi
-    return math.atan(float(x)) if np.ndim(x) == 0 else np.arctan(x)
-
-
-def force_amplitude(zeta_v: Any, varpi: Any) -> Any:
-    """Amplitude factor A = sqrt(1 + (2ζ_v ϖ)²) [-] of the contact normal force (1
-    undamped); ``hypot`` keeps it exact to round-off; float or array."""
-    x = 2.0 * zeta_v * varpi
-    return math.hypot(1.0, float(x)) if np.ndim(x) == 0 else np.hypot(1.0, x)
 
 
 def _number(value: Any, symbol: str) -> float:

@@ -19,6 +19,7 @@ import pint
 from betvdesign import damping
 from betvdesign import rolloff as _rolloff
 from betvdesign.derivation import Recorder, cached_unit
+from betvdesign.params import normal_force_phase
 from betvdesign.spec import Actuator, ActuatorSet
 from betvdesign.units import ureg
 
@@ -142,9 +143,9 @@ def damping_terms(rec: Recorder, aset: ActuatorSet, varpi: Any) -> tuple[Any, An
             ),
             "",
         )
-    if np.all(zeta_v > 0.0):
-        delta = damping.force_phase(zeta_v, varpi)
-        deg = f" = {math.degrees(delta):.4g}°" if np.ndim(delta) == 0 else ""
+    if np.ndim(zeta_v) == np.ndim(varpi) == 0 and zeta_v > 0.0:  # not needed for samples
+        delta, amplitude = normal_force_phase(zeta_v, varpi)
+        deg = f" = {math.degrees(delta):.4g}°"
         rec.add(
             "δ",
             f"phase lead of the contact normal force N ∝ A·sin(ϖτ_o + δ){deg}",
@@ -157,7 +158,7 @@ def damping_terms(rec: Recorder, aset: ActuatorSet, varpi: Any) -> tuple[Any, An
             "A",
             "amplitude factor of the contact normal force (1 undamped)",
             "sqrt(1 + (2·ζ_v·ϖ)²)",
-            damping.force_amplitude(zeta_v, varpi),
+            amplitude,
             ("ζ_v", "ϖ"),
             "",
         )
