@@ -14,7 +14,7 @@ from betvdesign.spec import DeviceSpec
 
 DEVICES = Path(__file__).resolve().parents[1] / "devices"
 SHIN = str(DEVICES / "shin2004.yaml")
-OWN = ["push_demo", "pull_demo", "bidir_demo", "rolloff_demo"]
+OWN = ["push_demo", "pull_demo", "bidir_demo", "rolloff_demo", "damped_demo"]
 
 
 @pytest.fixture
