@@ -567,3 +567,27 @@ def test_tolerance_study_spreads_a_quality_factor(tmp_path):
     assert r.exit_code == 0, r.output
     header = plain.read_text("utf-8").splitlines()[0].split(",")
     assert not {"zeta_v", "zeta_h", "restitution"} & set(header)
+
+
+def test_spread_quality_factor_reaches_the_exact_solver(tmp_path):
+    """Exact periodic rung: each row's Δs is the periodic orbit of that sample's device
+    derived one by one (what-if copy with the drawn Q), so the spread Q reaches the
+    solver; different Q give different Δs."""
+    import csv
+
+    from betvdesign.dynamics import periodic_orbit
+
+    out = tmp_path / "t.csv"
+    spread = "actuator.quality_factor_normal=normal:30%"
+    r = run("tolerance", DEMO, "--spread", spread, "-n", 3, "-x", "serial", "-q", "-o", out)
+    assert r.exit_code == 0, r.output
+    rows = list(csv.DictReader(out.open(encoding="utf-8")))
+    assert all(row["status"] == "success" for row in rows), rows
+    spec = load_device(DEMO)
+    for row in rows:
+        q = float(row["in:actuator.quality_factor_normal"])
+        one = spec.replace("actuator_sets.0.actuator.quality_factor_normal", q)
+        p = derive_set(one, one.actuator_sets[0]).params
+        assert p.zeta_v == pytest.approx(1 / (2 * q), rel=1e-15)
+        assert float(row["delta_s"]) == pytest.approx(periodic_orbit(p).delta_s, rel=1e-9)
+    assert len({round(float(row["delta_s"]), 9) for row in rows}) == 3
