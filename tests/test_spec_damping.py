@@ -591,3 +591,10 @@ def test_spread_quality_factor_reaches_the_exact_solver(tmp_path):
         assert p.zeta_v == pytest.approx(1 / (2 * q), rel=1e-15)
         assert float(row["delta_s"]) == pytest.approx(periodic_orbit(p).delta_s, rel=1e-9)
     assert len({round(float(row["delta_s"]), 9) for row in rows}) == 3
+
+
+def test_simulate_names_the_terms():
+    first = run("simulate", DEMO, "--cycles", 3).stdout.splitlines()[0]
+    assert first.endswith("ζ_v = 0.0166667, ζ_h = 0.0166667, e = 0.1")
+    plain = run("simulate", DEVICES / "push_demo.yaml", "--cycles", 3).stdout.splitlines()[0]
+    assert "ζ_v" not in plain and " e = " not in plain
