@@ -26,7 +26,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any, Literal
 
 from betvdesign.domain import mode_of
@@ -150,11 +150,12 @@ def _guarded(fn: Callable[[Any], Any], arg: Any) -> Any:
 
 
 def corner_params(p: ModelParams) -> dict[str, ModelParams]:
-    """The perturbed parameter sets of the mode-margin rule, by label."""
+    """The perturbed parameter sets of the mode-margin rule, by label (damping and
+    restitution kept)."""
     out = {}
     for fw, fa in MARGIN_CORNERS:
         label = f"ϖ×{fw:g}" if fa == 1.0 else f"α×{fa:g}"
-        out[label] = ModelParams(p.varpi * fw, p.alpha * fa, p.beta, p.kappa)
+        out[label] = replace(p, varpi=p.varpi * fw, alpha=p.alpha * fa)
     return out
 
 

@@ -108,7 +108,10 @@ class SetOut(_Out):
     travel_direction: Literal["+x", "-x"] | None
     time_to_cross_s: float | None = Field(description="time to cross travel_range_m [s]")
     travel_range_m: float
-    params: dict[str, float] = Field(description="varpi, alpha, beta, kappa [-]")
+    params: dict[str, float] = Field(
+        description="varpi, alpha, beta, kappa [-]; zeta_v, zeta_h, restitution [-] too when "
+        "the device gives damping or restitution"
+    )
     lambda_: LambdaOut = Field(alias="lambda")
     margin: MarginOut
     derived: dict[str, float] = Field(description="SI floats, unit-named keys (f_act_hz, ...)")
@@ -315,7 +318,7 @@ def _set_out(sc: Any, flt: RuleFilter) -> SetOut:
         travel_direction=direction,  # type: ignore[arg-type]
         time_to_cross_s=s.travel_range_m / v if v else None,
         travel_range_m=s.travel_range_m,
-        params={"varpi": p.varpi, "alpha": p.alpha, "beta": p.beta, "kappa": p.kappa},
+        params=p.as_dict(),
         **{
             "lambda": LambdaOut(
                 value=s.lam,
@@ -359,10 +362,20 @@ def set_headline(sc: Any) -> tuple[str, str]:
     rolled = f" (roll-off ×{sc_.rolloff_factor:.3g})" if sc_.has_rolloff else ""
     line2 = (
         f"f_act {format_si(sc_.f_act_hz, 'Hz')}, u {format_si(sc_.u_m, 'm')}{rolled} | "
-        f"ϖ {fmt_x(p.varpi)} α {fmt_x(p.alpha)} β {fmt_x(p.beta)} κ {fmt_x(p.kappa)} | "
-        f"λ {fmt_x(s.lam)} → {lam_mode}{word}"
+        f"ϖ {fmt_x(p.varpi)} α {fmt_x(p.alpha)} β {fmt_x(p.beta)} κ {fmt_x(p.kappa)}"
+        f"{_beyond(p)} | λ {fmt_x(s.lam)} → {lam_mode}{word}"
     )
     return line1, line2
+
+
+def _beyond(p: Any) -> str:
+    """`` Q_v 30 Q_h ∞ e 0.1``: damping and restitution, when the device gives any."""
+    if p.ideal:
+        return ""
+    from betvdesign.damping import quality_from_zeta
+
+    q_v, q_h = ("∞" if z == 0 else fmt_x(quality_from_zeta(z)) for z in (p.zeta_v, p.zeta_h))
+    return f" Q_v {q_v} Q_h {q_h} e {fmt_x(p.restitution)}"
 
 
 def compact_lines(view: DeviceView, *, width: int = 100, markup: bool = True) -> list[str]:

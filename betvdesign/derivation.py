@@ -39,6 +39,9 @@ _ASCII = {
     "τ_th": "tau_th",
     "H(f_act)": "H_act",
     "H(f_cal)": "H_cal",
+    "ζ_v": "zeta_v",
+    "ζ_h": "zeta_h",
+    "δ": "delta",
 }
 #: Keys of the dimensional values :meth:`SetDerivation.derived` reports.
 DERIVED_KEYS = (
@@ -196,7 +199,8 @@ class DeviceDerivation:
 @dataclass(frozen=True)
 class SampleDerivation:
     """:func:`derive_samples`: the model parameters and scales of many samples at once
-    (arrays of equal length, float SI)."""
+    (arrays of equal length, float SI; zeta_v, zeta_h, restitution 0 where the spec gives
+    none)."""
 
     varpi: np.ndarray
     alpha: np.ndarray
@@ -204,6 +208,9 @@ class SampleDerivation:
     kappa: np.ndarray
     length_m: np.ndarray
     f_act_hz: np.ndarray
+    zeta_v: np.ndarray
+    zeta_h: np.ndarray
+    restitution: np.ndarray
 
 
 @functools.lru_cache(maxsize=64)

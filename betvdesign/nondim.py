@@ -11,6 +11,10 @@ The only module that strips units. For each actuator set it computes
 - f_act = 2 f_drive (AC, zero DC bias) or f_drive;  ω = 2π f_act
 - u = amplitude or calibration(V); with a thermal cut-off f_c (or τ_th) this is u_cal
   and u = u_cal·H(f_act)/H(f_cal), H(f) = 1/sqrt(1 + (f/f_c)²) (:mod:`betvdesign.rolloff`)
+- ζ_v, ζ_h: head damping ratios (given, or 1/(2Q)); e: restitution of normal impacts;
+  with ζ_v > 0 the normal force's phase δ = atan(2ζ_v ϖ) and factor A = sqrt(1 + (2ζ_v ϖ)²)
+  (:mod:`betvdesign.damping`; these terms and the roll-off are recorded by
+  :mod:`betvdesign.nondim_terms`). All absent: the paper's model, recorded as before.
 - ϖ = ω·sqrt(m/k_v) = f_act/f_v,  β = m/M,  κ = μ·tanθ,  λ (MODEL.md, "Push/pull criterion")
 - scales: length u·cosθ [m], time sqrt(m/k_v) [s]
 
@@ -28,7 +32,7 @@ from typing import Any
 import numpy as np
 import pint
 
-from betvdesign import rolloff
+from betvdesign import nondim_terms
 from betvdesign.derivation import (
     DERIVED_KEYS,
     DerivationStep,
@@ -44,7 +48,6 @@ from betvdesign.errors import Location, ParameterError, SpecError, SpecIssue
 from betvdesign.loader import load_device
 from betvdesign.params import ModelParams
 from betvdesign.spec import (
-    Actuator,
     ActuatorSet,
     BoxGeometry,
     DeviceSpec,
@@ -291,7 +294,7 @@ def _derive_set(
         )
     roll: dict[str, float] = {}
     if rolled:
-        u, roll = _rolloff(rec, act, f_act, u, samples)
+        u, roll = nondim_terms.rolloff(rec, act, f_act, u, samples)
     theta = rec.spec("θ", "impact angle", "contact.impact_angle", aset.contact.impact_angle)
     mu = rec.spec(
         "μ",
@@ -323,6 +326,7 @@ def _derive_set(
         ("μ", "θ"),
         "",
     )
+    zeta_v, zeta_h, e = nondim_terms.damping_terms(rec, aset, nondim_terms.mag(varpi, ""))
 
     if samples:
 
@@ -331,12 +335,16 @@ def _derive_set(
 
         cols = [arr(q, "") for q in (varpi, alpha, beta, kappa)]
         cols += [arr(l_s, "m"), arr(f_act, "Hz")]
+        cols += [np.asarray(x, dtype=float) for x in (zeta_v, zeta_h, e)]
         return SampleDerivation(*(np.array(c) for c in np.broadcast_arrays(*cols)))
     params = ModelParams(
         varpi=float(varpi.to(_unit("")).magnitude),
         alpha=float(alpha.to(_unit("")).magnitude),
         beta=float(beta.to(_unit("")).magnitude),
         kappa=float(kappa.to(_unit("")).magnitude),
+        zeta_v=zeta_v,
+        zeta_h=zeta_h,
+        restitution=e,
     )
     lam = params.lam
     rec.add(
@@ -368,67 +376,6 @@ def _derive_set(
         travel_range_m=float(sl.travel_range.to(_unit("m")).magnitude),
         published=published,
     )
-
-
-def _rolloff(
-    rec: _Record, act: Actuator, f_act: pint.Quantity, u_cal: pint.Quantity, samples: bool
-) -> tuple[pint.Quantity, dict[str, float]]:
-    """u = u_cal·H(f_act)/H(f_cal) (MODEL.md, "Thermal roll-off of the actuator"), every
-    quantity recorded; also the cut-off and calibration frequency [Hz] for the scales."""
-    if act.thermal_cutoff is not None:
-        f_c = rec.spec(
-            "f_c", "thermal cut-off of the stroke", "actuator.thermal_cutoff", act.thermal_cutoff
-        )
-    else:
-        tau = rec.spec(
-            "τ_th",
-            "thermal time constant of the actuator",
-            "actuator.thermal_time_constant",
-            act.thermal_time_constant.to(_unit("ms")),
-        )
-        f_c = rec.add(
-            "f_c",
-            "thermal cut-off of the stroke",
-            "1/(2π·τ_th)",
-            ureg.Quantity(rolloff.cutoff_from_time_constant(_mag(tau, "s")), _unit("Hz")),
-            ("τ_th",),
-            "Hz",
-        )
-    f_cal = rec.spec(
-        "f_cal",
-        "actuation frequency of the amplitude calibration",
-        "actuator.calibration_frequency",
-        act.calibration_frequency,
-    )
-    fc_hz = _mag(f_c, "Hz")
-    h_act, h_cal = (
-        rec.add(
-            f"H({name})",
-            f"first-order thermal roll-off at {name}",
-            f"1/sqrt(1 + ({name}/f_c)²)",
-            rolloff.gain(_mag(f, "Hz"), fc_hz),
-            (name, "f_c"),
-            "",
-        )
-        for name, f in (("f_act", f_act), ("f_cal", f_cal))
-    )
-    u = rec.add(
-        "u",
-        "actuator amplitude at f_act (thermal roll-off)",
-        "u_cal·H(f_act)/H(f_cal)",
-        u_cal * (h_act / h_cal),
-        ("u_cal", "H(f_act)", "H(f_cal)"),
-        "um",
-    )
-    if samples:
-        return u, {}
-    return u, {"cutoff_hz": float(fc_hz), "calibration_hz": _mag(f_cal, "Hz")}
-
-
-def _mag(q: pint.Quantity, unit: str) -> Any:
-    """Magnitude of ``q`` in ``unit``: a float, or an array of samples."""
-    m = q.to(_unit(unit)).magnitude
-    return float(m) if np.ndim(m) == 0 else np.asarray(m, dtype=float)
 
 
 def _compare(params: ModelParams, fit: PublishedFit | None) -> list[FitComparison]:

@@ -108,6 +108,16 @@ class ModelParams:
         return d
 
 
+def normal_force_phase(zeta_v: float, varpi: float) -> tuple[float, float]:
+    """(δ [rad], A [-]) of the contact normal force with the normal damper:
+    sin ϖτ_o + 2ζ_v ϖ cos ϖτ_o = A sin(ϖτ_o + δ), δ = atan(2ζ_v ϖ), A = sqrt(1 + (2ζ_v ϖ)²)
+    (docs/damping.md). The solver's time is τ = τ_o + δ/ϖ (N ∝ A sin ϖτ). Its one home,
+    here so that the solver (:mod:`betvdesign.dynamics.flows`) and the derivation record
+    (:mod:`betvdesign.nondim_terms`) share it."""
+    d = 2.0 * zeta_v * varpi
+    return math.atan(d), math.hypot(1.0, d)
+
+
 def lambda_criterion(varpi: float, alpha: float, beta: float, kappa: float) -> float:
     """Empirical push/pull criterion [-].
 

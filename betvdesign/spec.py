@@ -16,7 +16,7 @@ import numpy as np
 import pint
 from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
 
-from betvdesign import limits
+from betvdesign import damping, limits
 from betvdesign.errors import ParameterError
 from betvdesign.units import (
     Density,
@@ -174,11 +174,17 @@ class ImpactHead(_Model):
 
 
 class Contact(_Model):
-    """Head/slider contact: impact angle θ in (0°, 90°) and Coulomb friction μ [-]."""
+    """Head/slider contact: impact angle θ in (0°, 90°), Coulomb friction μ [-] and the
+    coefficient of restitution e [-] of normal impacts (optional, 0 by default). e lives
+    here, beside μ, because like μ it is a property of the pair of surfaces that meet
+    (head and slider), not of the actuator's springs and dampers (MODEL.md "Beyond the
+    paper's idealisation").
+    """
 
     impact_angle: ImpactAngle
     """Impact angle θ between the head's stroke and the slider normal, in (0°, 90°)."""
     friction: float = Field(description=f"Coulomb friction coefficient μ [-], 0 < μ <= {MU_MAX}")
+    restitution: damping.Restitution = damping.restitution_field()
 
     @field_validator("friction")
     @classmethod
@@ -249,6 +255,9 @@ class Actuator(_Model):
     ``thermal_cutoff`` f_c or ``thermal_time_constant`` τ_th (f_c = 1/(2π τ_th)), then
     ``calibration_frequency`` f_cal is required and u(f) = u·H(f)/H(f_cal) with
     H(f) = 1/sqrt(1 + (f/f_c)²) at the actuation frequency f. Absent: u does not depend on f.
+    Head damping (optional, MODEL.md "Beyond the paper's idealisation"): dampers parallel to
+    the head's springs, per direction (normal ζ_v, tangential ζ_h) at most one of
+    ``damping_ratio_*`` ζ or ``quality_factor_*`` Q = 1/(2ζ); absent: undamped.
     """
 
     vertical_resonance: Frequency
@@ -270,6 +279,10 @@ class Actuator(_Model):
     calibration_frequency: Frequency | None = None
     """Actuation frequency (2 × drive frequency for AC) at which the amplitude or calibration
     was measured; required with a thermal cut-off."""
+    damping_ratio_normal: damping.DampingRatio = damping.ratio_field("ζ_v", "normal")
+    quality_factor_normal: damping.QualityFactor = damping.quality_field("Q_v", "normal")
+    damping_ratio_tangential: damping.DampingRatio = damping.ratio_field("ζ_h", "tangential")
+    quality_factor_tangential: damping.QualityFactor = damping.quality_field("Q_h", "tangential")
 
     _law = field_validator("calibration", mode="before")(_lower_tag("law"))
 
@@ -304,6 +317,10 @@ class Actuator(_Model):
                 "calibration_frequency",
                 "only applies with 'thermal_cutoff' or 'thermal_time_constant'",
             )
+        for d in ("normal", "tangential"):
+            both = (getattr(self, f"{k}_{d}") for k in ("damping_ratio", "quality_factor"))
+            if None not in both:
+                raise at(f"quality_factor_{d}", f"give 'damping_ratio_{d}' or this, not both")
         return self
 
 

@@ -14,7 +14,7 @@ from betvdesign.spec import DeviceSpec
 
 DEVICES = Path(__file__).resolve().parents[1] / "devices"
 SHIN = str(DEVICES / "shin2004.yaml")
-OWN = ["push_demo", "pull_demo", "bidir_demo", "rolloff_demo"]
+OWN = ["push_demo", "pull_demo", "bidir_demo", "rolloff_demo", "damped_demo"]
 
 
 @pytest.fixture
@@ -104,6 +104,7 @@ def test_json_conforms_to_its_published_schema(no_solver):
     doc = json.loads(r.stdout)
     assert [x["device"] for x in doc["devices"]] == [
         "bidir_demo",
+        "damped_demo",
         "pull_demo",
         "push_demo",
         "rolloff_demo",
@@ -328,4 +329,4 @@ def test_markup_in_names_is_printed_literally(tmp_path, no_solver):
 def test_summary_line_for_several_files(no_solver):
     r = run("check", *(str(p) for p in sorted(DEVICES.glob("*.yaml"))))
     assert r.exit_code == 1
-    assert "summary: 4 pass, 1 fail (shin2004)" in r.stdout
+    assert "summary: 5 pass, 1 fail (shin2004)" in r.stdout  # stand-in solver

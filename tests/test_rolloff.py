@@ -187,10 +187,12 @@ def test_without_the_fields_the_derivation_is_bit_identical(name, tmp_path):
 # --- the vectorised derivation (tolerance studies) -----------------------------------
 
 
-def test_derive_samples_matches_derive_set_with_roll_off():
+@pytest.mark.parametrize("device", [DEMO, DEVICES / "damped_demo.yaml"], ids=lambda p: p.stem)
+def test_derive_samples_matches_derive_set_with_roll_off(device):
     """Arrays of drive frequencies and time constants through derive_samples equal the
-    one-by-one derive_set of each sample (the same code, vectorised)."""
-    spec = load_device(DEMO)
+    one-by-one derive_set of each sample (the same code, vectorised); on damped_demo
+    (Q = 30, e = 0.1) the damping and restitution columns too."""
+    spec = load_device(device)
     f_drive = np.array([1.5e3, 2.2e3, 3e3, 4.1e3])
     tau = np.array([0.1, 0.2, 0.5, 1.0])  # ms
     arrays = spec
@@ -210,6 +212,8 @@ def test_derive_samples_matches_derive_set_with_roll_off():
         sd = derive_set(one, one.actuator_sets[0])
         assert many.length_m[i] == pytest.approx(sd.scales.length_m, rel=1e-15)
         assert many.varpi[i] == pytest.approx(sd.params.varpi, rel=1e-15)
+        extra = (many.zeta_v[i], many.zeta_h[i], many.restitution[i])
+        assert extra == (sd.params.zeta_v, sd.params.zeta_h, sd.params.restitution)
         f_c = 1.0 / (2.0 * math.pi * tau[i] * 1e-3)
         ratio = closed_form_ratio(2.0 * f_drive[i], 200.0, f_c)
         assert many.length_m[i] == pytest.approx(

@@ -200,6 +200,11 @@ def _print_text(out: dict[str, Any], periodic: bool) -> None:
     typer.echo(
         f"{head}ϖ = {pr['varpi']:.6g}, α = {pr['alpha']:.6g}, β = {pr['beta']:.6g}, "
         f"κ = {pr['kappa']:.6g}"
+        + "".join(  # damping and restitution, when the parameters have them
+            f", {sym} = {pr[k]:.6g}"
+            for k, sym in (("zeta_v", "ζ_v"), ("zeta_h", "ζ_h"), ("restitution", "e"))
+            if k in pr
+        )
     )
     typer.echo(f"status: {out['status']} — {out['message']}")
     ph = out.get("physical")

@@ -43,7 +43,7 @@ import math
 import numpy as np
 
 from betvdesign.dynamics._jit import jit_enabled, kernel
-from betvdesign.params import ModelParams
+from betvdesign.params import ModelParams, normal_force_phase
 
 # Phase codes (ints: they sit in the inner loops).
 FREE = 2
@@ -169,14 +169,6 @@ def phase_table(p: ModelParams) -> np.ndarray:
         row = _damped_row(p, b, a_st)
     table = np.array([row], dtype=TABLE_DTYPE)
     return table if jit_enabled() else table.view(np.recarray)
-
-
-def normal_force_phase(zeta_v: float, varpi: float) -> tuple[float, float]:
-    """(δ [rad], A [-]) of the contact normal force with the normal damper:
-    sin ϖτ_o + 2ζ_v ϖ cos ϖτ_o = A sin(ϖτ_o + δ), δ = atan(2ζ_v ϖ), A = sqrt(1 + (2ζ_v ϖ)²)
-    (docs/damping.md). The solver's time is τ = τ_o + δ/ϖ (N ∝ A sin ϖτ)."""
-    d = 2.0 * zeta_v * varpi
-    return math.atan(d), math.hypot(1.0, d)
 
 
 def _damped_row(p: ModelParams, b: float, a_st: float) -> tuple:

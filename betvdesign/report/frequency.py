@@ -13,7 +13,7 @@ keeps the calibrated stroke u_cal = u(f_cal) at every frequency.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -69,7 +69,7 @@ def frequency_sweep(
             res = per.value
         else:
             res = periodic_orbit(
-                ModelParams(varpi=float(w), alpha=p.alpha, beta=p.beta, kappa=p.kappa),
+                replace(p, varpi=float(w)),  # damping and restitution kept
                 tol=opts.periodic_tol,
                 max_cycles=opts.sweep_max_cycles,
             )

@@ -440,11 +440,11 @@ def _sample_params(
     """Model parameters of set ``i`` at sample ``j``: from the vectorised derivation, or
     (when it could not take every sample) by deriving that sample alone."""
     from betvdesign.nondim import derive_set
-    from betvdesign.params import ModelParams
+    from betvdesign.studies.sampling import params_of
     from betvdesign.units import ureg
 
     if arrays is not None:
-        return ModelParams(*(float(arrays[k][j]) for k in ("varpi", "alpha", "beta", "kappa")))
+        return params_of(arrays, j)
     q = {f: (ureg.Quantity(v, u) if u else v) for f, (v, u) in values.items()}
     s = with_values(spec, q)
     return derive_set(s, s.actuator_sets[i]).params

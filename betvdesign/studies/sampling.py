@@ -9,6 +9,7 @@ the order given; :func:`derive_all` pushes them through
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Mapping, Sequence
 from typing import Any
@@ -18,6 +19,7 @@ import pint
 
 from betvdesign import limits
 from betvdesign.errors import BetvError, UsageError
+from betvdesign.params import ModelParams
 from betvdesign.studies.specpaths import numeric, replace, targets, value_at
 
 
@@ -122,4 +124,16 @@ def derive_all(
             d = derive_samples(arrays, arrays.actuator_sets[set_index])
     except (BetvError, ValueError, ArithmeticError):
         return None
-    return {k: getattr(d, k) for k in ("varpi", "alpha", "beta", "kappa", "length_m", "f_act_hz")}
+    return {k: getattr(d, k) for k in (*PARAM_FIELDS, "length_m", "f_act_hz")}
+
+
+#: The fields of :class:`ModelParams` (the derived columns :func:`params_of` reads).
+PARAM_FIELDS = tuple(f.name for f in dataclasses.fields(ModelParams))
+
+
+def params_of(derived: Mapping[str, Any], j: int | None = None) -> ModelParams:
+    """The model parameters of one sample of :func:`derive_all`'s columns (``j``: its
+    index; None: ``derived`` holds that sample's floats). :class:`ParameterError` for
+    values the model cannot take (e.g. a sampled restitution ≥ 1)."""
+    pick = (lambda v: v) if j is None else (lambda v: v[j])
+    return ModelParams(**{k: float(pick(derived[k])) for k in PARAM_FIELDS})

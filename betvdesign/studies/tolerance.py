@@ -52,7 +52,7 @@ from betvdesign.studies.pushpull import (
     solver_error,
 )
 from betvdesign.studies.runner import Study, StudyRun, run_study, split_run_args
-from betvdesign.studies.sampling import check_sample, derive_all, draw, nominal_values
+from betvdesign.studies.sampling import check_sample, derive_all, draw, nominal_values, params_of
 from betvdesign.studies.specpaths import replace, targets, value_at
 
 Dist = Literal["normal", "uniform"]
@@ -188,8 +188,6 @@ def tolerance_point(task: Mapping[str, Any]) -> dict[str, Any]:
     :func:`betvdesign.nondim.derive_samples`, the same formulas vectorised); otherwise
     the sample is derived here with :func:`betvdesign.nondim.derive_set`.
     """
-    from betvdesign.params import ModelParams
-
     row: dict[str, Any] = {c: None for c in task["columns"]}
     row.update(key=task["key"], sample=task["sample"], set=task["set_name"])
     for field, (mag, _) in task["values"].items():
@@ -205,7 +203,7 @@ def tolerance_point(task: Mapping[str, Any]) -> dict[str, Any]:
             length_m, f_act = d.scales.length_m, d.scales.f_act_hz
         else:
             check_sample(task["values"])
-            p = ModelParams(*(derived[k] for k in ("varpi", "alpha", "beta", "kappa")))
+            p = params_of(derived)
             intended, length_m, f_act = task["intended"], derived["length_m"], derived["f_act_hz"]
     except BetvError as exc:
         row.update(status="invalid-sample", converged=False, message=str(exc))
@@ -255,6 +253,18 @@ BASE_COLUMNS: dict[str, type] = {
 }
 
 
+def _beyond_columns(spec: Any) -> dict[str, type]:
+    """Columns zeta_v, zeta_h, restitution [-] (ModelParams.as_dict's) when the nominal
+    device gives damping or restitution; none for the paper's model."""
+    from betvdesign.nondim import derive
+
+    try:
+        ideal = all(sd.params.ideal for sd in derive(spec).sets)
+    except BetvError:  # the nominal device does not derive: its samples say why
+        ideal = True
+    return {} if ideal else dict.fromkeys(("zeta_v", "zeta_h", "restitution"), float)
+
+
 def tolerance_study(
     device: str | os.PathLike[str],
     tolerances: Sequence[Tolerance],
@@ -284,7 +294,8 @@ def tolerance_study(
     limits.refuse_long_study("tolerance", samples * len(chosen), 0.0, 1)  # before drawing
     nominal = nominal_values(spec, tolerances)
     x = draw(tolerances, nominal, samples, seed)
-    columns = dict(BASE_COLUMNS) | {f"in:{t.field}": float for t in tolerances}
+    columns = dict(BASE_COLUMNS) | _beyond_columns(spec)
+    columns |= {f"in:{t.field}": float for t in tolerances}
     mtime = os.stat(path).st_mtime_ns
     derived = {name: derive_all(spec, tolerances, nominal, x, names.index(name)) for name in chosen}
     intended = {s.name: s.intended_mode for s in spec.actuator_sets}
