@@ -135,16 +135,16 @@ def load_solver() -> Callable[[ModelParams], Any]:
     return periodic_orbit
 
 
-def load_vertical() -> Callable[[float], Any]:
+def load_vertical() -> Callable[..., Any]:
     """The exact vertical-motion fast path ``dynamics.vertical_motion`` (lazy import)."""
     from betvdesign.dynamics import vertical_motion
 
     return vertical_motion
 
 
-def _guarded(fn: Callable[[Any], Any], arg: Any) -> Any:
+def _guarded(fn: Callable[..., Any], arg: Any, **kw: Any) -> Any:
     try:
-        return fn(arg)
+        return fn(arg, **kw)
     except Exception as exc:  # a failing solver must not crash the check: a failed rule
         return SolverFailure(f"{type(exc).__name__}: {exc}")
 
@@ -163,7 +163,7 @@ def check_derivation(
     derivation: DeviceDerivation,
     *,
     solver: Callable[[ModelParams], Any] | None = None,
-    vertical: Callable[[float], Any] | None = None,
+    vertical: Callable[..., Any] | None = None,
     margin: bool = True,
     settle: bool = True,
     target_speed_m_s: float | None = None,
@@ -187,17 +187,18 @@ def check_derivation(
     notes: list[str] = []
     orbits, verticals, settlings, margins = {}, {}, {}, {}
     settled: dict[Any, Any] = {}
-    vert_of: dict[float, Any] = {}
+    vert_of: dict[tuple[float, float, float], Any] = {}
     for s in derivation.sets:
         p = s.params
         seen = p in solved
         orbits[s.name] = po = orbit(p)
         if seen:
             notes.append(f"set {s.name}: same parameters as an already solved set, reused")
-        if p.varpi not in vert_of:
-            vert_of[p.varpi] = _guarded(vertical, p.varpi)
-        if vert_of[p.varpi] is not None:
-            verticals[s.name] = vert_of[p.varpi]
+        vkey = (p.varpi, p.zeta_v, p.restitution)
+        if vkey not in vert_of:
+            vert_of[vkey] = _guarded(vertical, p.varpi, zeta_v=p.zeta_v, restitution=p.restitution)
+        if vert_of[vkey] is not None:
+            verticals[s.name] = vert_of[vkey]
         if margin and orbit_mode(po) in ("push", "pull"):
             margins[s.name] = {k: orbit_mode(orbit(q)) for k, q in corner_params(p).items()}
         if settle and orbit_mode(po) in ("push", "pull"):

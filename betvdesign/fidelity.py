@@ -297,7 +297,7 @@ def evaluate(p: ModelParams, choice: Choice, *, cycles: int = 100) -> Answer:
         msg = f"λ = {lam:.6g} (a fit: {lambda_error_statement()})"
         return Answer(choice, "success", True, msg, lam, mode, _dt(t0))
     if rung == "vertical" or (q == "regime" and rung != "periodic"):
-        v = dynamics.vertical_motion(p.varpi)
+        v = dynamics.vertical_motion(p.varpi, zeta_v=p.zeta_v, restitution=p.restitution)
         value = {
             "regime": v.regime,
             "hits_per_cycle": v.hits_per_cycle,

@@ -26,7 +26,7 @@ from betvdesign.dynamics._jit import kernel
 from betvdesign.dynamics.bounds import EPS
 from betvdesign.dynamics.evaluators import gap_evaluator
 from betvdesign.dynamics.flows import vertical_flight
-from betvdesign.dynamics.search import NO_ROOT, SEARCH_FAILED, first_root, workspace
+from betvdesign.dynamics.search import NO_ROOT, ROOT, SEARCH_FAILED, first_root, workspace
 
 #: one cycle: section state (ξ, ξ'), contact-opening local time (NaN: none), its
 #: impulsive hits imp[imp_start : imp_start + imp_count] and free-flight pieces
@@ -116,6 +116,100 @@ def accumulation(wf: float, zv: float, A: float, e: float, t: float, v: float) -
     return -1.0
 
 
+#: coefficients of the short-flight series (:func:`short_flight`)
+SERIES_TERMS = 28
+#: longest flight [-] given to the series (beyond it the certified gap search is used)
+SERIES_HMAX = 0.25
+
+
+@kernel
+def short_flight(wf: float, zv: float, A: float, v: float, sp: float, cp: float):
+    """Certified flight time h and landing velocity of a rebound from ξ = 0 with ξ' = v > 0
+    at a phase with sin = sp > 0, cos = cp (kernel time), by its Taylor series; (−1, 0)
+    when the series cannot certify it (long flight: use the gap search).
+
+    Free flight in kernel time is ξ'' + 2ζ_v ξ' + ξ = −A sin ϖτ (docs/damping.md), so
+    the derivatives at the hit follow d₀ = 0, d₁ = v,
+    d_{k+2} = −2ζ_v d_{k+1} − d_k − A ϖᵏ sin(ϖt + kπ/2), and ξ(h) = Σ d_k hᵏ/k!. The
+    closed form loses the gap's absolute round-off (~1e-16) against a flight of size
+    ~v² — relative error 1e-16/v² — so the flights of a chattering sequence are taken
+    from the series, whose round-off is relative to the flight itself.
+
+    Certificate: |d_k| ≤ C ρᵏ beyond the computed terms (ρ = max(ϖ, ζ_v + √(ζ_v² + 1)) + 1,
+    C from the last terms and A/(ρ² − 2ζ_vρ − 1), by induction on the recursion); with it
+    G(h) = ξ(h)/h has G(0) = v > 0 and G' < 0 on [0, H] (so one root there), located by
+    Newton and bracketed by a sign change of G at h(1 ∓ 64ε).
+    """
+    a = A * sp + 2.0 * zv * v  # −ξ''(0)
+    if not (v > 0.0 and a > 0.0):
+        return -1.0, 0.0
+    h = 2.0 * v / a
+    if not h < SERIES_HMAX:
+        return -1.0, 0.0
+    K = SERIES_TERMS
+    d = np.empty(K + 2)
+    d[0], d[1] = 0.0, v
+    wk = 1.0
+    for k in range(K):
+        q = k % 4  # sin(x + kπ/2) = sin, cos, −sin, −cos
+        f = sp if q == 0 else (cp if q == 1 else (-sp if q == 2 else -cp))
+        d[k + 2] = -2.0 * zv * d[k + 1] - d[k] - A * wk * f
+        wk *= wf
+    rho = max(wf, zv + math.sqrt(zv * zv + 1.0)) + 1.0
+    c_tail = A / (rho * rho - 2.0 * zv * rho - 1.0)
+    C = max(abs(d[K]) / rho**K, abs(d[K + 1]) / rho ** (K + 1), c_tail)
+    for _ in range(60):  # Newton on G(h) = Σ_{k≥1} d_k h^(k−1)/k!
+        g, dg, term = 0.0, 0.0, 1.0  # term = h^(k−1)/k!
+        for k in range(1, K + 2):
+            g += d[k] * term / k
+            if k >= 2:
+                dg += d[k] * (k - 1) * term / (k * h)
+            term *= h / k
+        if not (dg < 0.0):
+            return -1.0, 0.0
+        step = g / dg
+        h -= step
+        if not (0.0 < h < SERIES_HMAX):
+            return -1.0, 0.0
+        if abs(step) <= 16.0 * EPS * h:
+            break
+    else:
+        return -1.0, 0.0
+    H = h * (1.0 + 64.0 * EPS)
+    x = rho * H
+    if x >= 1.0:
+        return -1.0, 0.0
+    # G' + a/2 on [0, H]: Σ_{k≥3} |d_k| (k−1) H^(k−2)/k!, computed terms plus the tail
+    slope = 0.0
+    term = H / 6.0  # H^(k−2)/k! at k = 3
+    for k in range(3, K + 2):
+        slope += abs(d[k]) * (k - 1) * term
+        term *= H / (k + 1)
+    slope += C * rho**2 * x**K * (K + 1) / math.gamma(K + 3) / (1.0 - x)
+    if not slope < 0.5 * a:
+        return -1.0, 0.0
+    lo, hi = h * (1.0 - 64.0 * EPS), H
+    glo, ghi = _series(d, K, lo), _series(d, K, hi)
+    tail = C * x ** (K + 2) / math.gamma(K + 3) / (1.0 - x) / H
+    if not (glo > tail and ghi < -tail):
+        return -1.0, 0.0
+    vl, term = 0.0, 1.0  # ξ'(h) = Σ d_{k+1} h^k/k!
+    for k in range(K + 1):
+        vl += d[k + 1] * term
+        term *= h / (k + 1)
+    return h, vl
+
+
+@kernel
+def _series(d, K, h):
+    """G(h) = ξ(h)/h = Σ_{k=1}^{K+1} d_k h^(k−1)/k! (:func:`short_flight`)."""
+    g, term = 0.0, 1.0
+    for k in range(1, K + 2):
+        g += d[k] * term / k
+        term *= h / k
+    return g
+
+
 @kernel
 def _new_cycle(cyc, n, xi, xid, ni, nf) -> int:
     r = cyc[n]
@@ -186,16 +280,25 @@ def vertical_run(wf, zv, A, e, xi, xid, horizon, cyc, imp, pieces):
                 break
         H = Hcycle = T - t
         ev = ws.ev[0]
-        if zv == 0.0 and e == 0.0:
+        hs, vland = -1.0, 0.0
+        if e != 0.0 and xi == 0.0 and xid > 0.0 and sp > 0.0:
+            # a rebound against the pull A sin ϖt: a short flight is taken from its
+            # series (round-off relative to the flight: chattering stays exact)
+            hs, vland = short_flight(wf, zv, A, xid, sp, cp)
+            if not t + hs < T * (1.0 - 8.0 * EPS):
+                hs = -1.0
+        if hs > 0.0:
+            code, h, k = ROOT, hs, 1
+        elif zv == 0.0 and e == 0.0:
             gap_evaluator(wf, xi, xid, sp, cp, H, ev)
+            code, h, _, k = first_root(ev, H, ws)
         else:
             if e != 0.0 and xi == 0.0 and xid > 0.0 and sp > 0.0:
-                # a rebound against the pull A sin ϖt: its flight lasts ≈ 2ξ'/(A sin ϖt);
-                # search a window of a few flights first, so the gap's round-off scale is
-                # the flight's own (tiny flights of a chattering sequence stay exact)
+                # ... else search a window of a few flights first (≈ 2ξ'/(A sin ϖt)),
+                # so the gap's round-off scale is the flight's own
                 H = min(Hcycle, 8.0 * xid / (A * sp))
             damped.gap_evaluator(wf, zv, A, xi, xid, sp, cp, H, ev)
-        code, h, _, k = first_root(ev, H, ws)
+            code, h, _, k = first_root(ev, H, ws)
         evals += k
         if code == SEARCH_FAILED:
             return VerticalRun(FAILED, n, first_end, period, ni, nf, evals, h)
@@ -239,7 +342,10 @@ def vertical_run(wf, zv, A, e, xi, xid, horizon, cyc, imp, pieces):
                 nf = _piece(cyc, n - 1, pieces, nf, 0.0, xi, xid, sp, cp)
             continue
         if e != 0.0:  # restitution: the head bounces (and may chatter into contact)
-            _, xid, _, _ = vertical_flight(wf, zv, A, xi, xid, sp, cp, h)
+            if hs > 0.0:
+                xid = vland
+            else:
+                _, xid, _, _ = vertical_flight(wf, zv, A, xi, xid, sp, cp, h)
             v = rebound(xid if xid < 0.0 else 0.0, e)
             if t < te:
                 rest = accumulation(wf, zv, A, e, t, v)

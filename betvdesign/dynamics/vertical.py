@@ -220,16 +220,22 @@ class VerticalResult:
     elapsed_s: float
 
 
-def vertical_motion(varpi: float, *, max_cycles: int = 1000) -> VerticalResult:
+def vertical_motion(
+    varpi: float, *, zeta_v: float = 0.0, restitution: float = 0.0, max_cycles: int = 1000
+) -> VerticalResult:
     """Vertical motion from rest (the "model no more than a scene needs" fast path).
 
-    varpi: ϖ [-] (> 0, finite); max_cycles: horizon within which a contact must recur.
+    varpi: ϖ [-] (> 0, finite); zeta_v: normal damping ratio ζ_v [-]; restitution: e [-]
+    (both 0: the paper's model; docs/damping.md); max_cycles: horizon within which a
+    contact must recur.
     """
-    return vertical_motion_schedule(varpi, max_cycles=max_cycles)[0]
+    return vertical_motion_schedule(
+        varpi, zeta_v=zeta_v, restitution=restitution, max_cycles=max_cycles
+    )[0]
 
 
 def vertical_motion_schedule(
-    varpi: float, *, max_cycles: int = 1000
+    varpi: float, *, zeta_v: float = 0.0, restitution: float = 0.0, max_cycles: int = 1000
 ) -> tuple[VerticalResult, VerticalSchedule]:
     """:func:`vertical_motion` and the schedule it was read from (for further analysis,
     e.g. the hit phases of impulsive-only motion, without computing it again)."""
@@ -241,7 +247,8 @@ def vertical_motion_schedule(
         raise ParameterError(f"varpi must be finite and > 0, got {varpi!r}")
     t0 = time.perf_counter()
     vs: VerticalSchedule = compile_note(  # type: ignore[assignment]
-        "vertical_motion", lambda: VerticalSchedule(v, horizon=max_cycles)
+        "vertical_motion",
+        lambda: VerticalSchedule(v, horizon=max_cycles, zeta_v=zeta_v, restitution=restitution),
     )
     el = time.perf_counter() - t0
     if vs.period is None:

@@ -189,7 +189,9 @@ REGIME_LONG_HORIZON = 2000
 
 
 @functools.lru_cache(maxsize=4096)
-def _vertical(varpi: float) -> tuple[float | None, float | None, float | None, str]:
+def _vertical(
+    varpi: float, zeta_v: float = 0.0, restitution: float = 0.0
+) -> tuple[float | None, float | None, float | None, str]:
     """(impact period [cycles], contact fraction [-], hits per cycle, label) of the
     vertical-only model, classified by :func:`betvdesign.studies.regime.regime_point` (the
     one classification: impulsive-only motion that repeats every k cycles has period k, not
@@ -197,10 +199,11 @@ def _vertical(varpi: float) -> tuple[float | None, float | None, float | None, s
     from betvdesign.studies.regime import LONG_PERIOD, regime_point
 
     dynamics_api("vertical_motion")  # Missing (stated in the figure) without the solver
-    row = regime_point({"key": 0, "varpi": varpi, "max_cycles": REGIME_HORIZON})
+    task = {"key": 0, "varpi": varpi, "zeta_v": zeta_v, "restitution": restitution}
+    row = regime_point({**task, "max_cycles": REGIME_HORIZON})
     if row["period_cycles"] is None and row["label"] == "aperiodic":
         # near a period doubling the transient outlasts the short horizon: look longer
-        row = regime_point({"key": 0, "varpi": varpi, "max_cycles": REGIME_LONG_HORIZON})
+        row = regime_point({**task, "max_cycles": REGIME_LONG_HORIZON})
     k = row["period_cycles"]
     if k is not None and k > LONG_PERIOD:  # shown as aperiodic, as in the regime study
         k = None
@@ -214,18 +217,19 @@ def _vertical(varpi: float) -> tuple[float | None, float | None, float | None, s
     )
 
 
-def vertical(varpi: float) -> Any:
-    """The exact vertical motion at the device's ϖ (full default horizon)."""
-    return dynamics_api("vertical_motion")(varpi)
+def vertical(p: ModelParams) -> Any:
+    """The exact vertical motion at the device's ϖ, ζ_v, e (full default horizon)."""
+    return dynamics_api("vertical_motion")(p.varpi, zeta_v=p.zeta_v, restitution=p.restitution)
 
 
-def regime_strip(varpi_device: float, opts: ReportOptions) -> RegimeData:
-    """Vertical-only sweep of ϖ over the options' range widened to the device's ϖ
-    (results cached per ϖ: the strip is shared by every device of a run)."""
+def regime_strip(p: ModelParams, opts: ReportOptions) -> RegimeData:
+    """Vertical-only sweep of ϖ over the options' range widened to the device's ϖ, with
+    its ζ_v and e (results cached per point: the strip is shared by the devices of a run)."""
+    varpi_device = p.varpi
     lo = min(opts.regime_range[0], 0.8 * varpi_device)
     hi = max(opts.regime_range[1], 1.15 * varpi_device, VARPI_WINDOW[1] * 1.2)
     grid = np.linspace(lo, hi, opts.regime_points)
-    rows = [_vertical(float(w)) for w in grid]
+    rows = [_vertical(float(w), p.zeta_v, p.restitution) for w in grid]
     return RegimeData(
         grid,
         [r[0] for r in rows],
@@ -415,8 +419,8 @@ def analyse_set(
     return SetAnalysis(
         params=p,
         periodic=per,
-        vertical=attempt(lambda: vertical(p.varpi)),
-        regime=attempt(lambda: regime_strip(p.varpi, opts)),
+        vertical=attempt(lambda: vertical(p)),
+        regime=attempt(lambda: regime_strip(p, opts)),
         transient=attempt(lambda: transient(p, n, opts)),
         orbit=orb,
         robustness=attempt(lambda: robustness(variants or [], opts)),

@@ -285,7 +285,10 @@ def design_check(
     """The design check of ``betv check``, fed the report's periodic orbits and vertical
     motions instead of solving them again (the mode-margin corners are solved here)."""
     orbits = {sd.params: an.periodic for sd, an, _ in per_set}
-    verticals = {sd.params.varpi: an.vertical for sd, an, _ in per_set}
+    verticals = {
+        (sd.params.varpi, sd.params.zeta_v, sd.params.restitution): an.vertical
+        for sd, an, _ in per_set
+    }
     exact = load_solver()
 
     def solver(p: Any) -> Any:
@@ -294,8 +297,8 @@ def design_check(
             return exact(p)
         return piece.value if piece.ok else SolverFailure(str(piece.reason))
 
-    def vertical(varpi: float) -> Any:
-        piece = verticals[varpi]
+    def vertical(varpi: float, *, zeta_v: float = 0.0, restitution: float = 0.0) -> Any:
+        piece = verticals[(varpi, zeta_v, restitution)]
         return piece.value if piece.ok else None
 
     return check_derivation(der, solver=solver, vertical=vertical)

@@ -95,7 +95,12 @@ def regime_point(task: Mapping[str, Any]) -> dict[str, Any]:
     row: dict[str, Any] = dict.fromkeys(COLUMNS)
     row.update(key=task["key"], varpi=task["varpi"])
     try:
-        r, vs = vertical_motion_schedule(task["varpi"], max_cycles=task["max_cycles"])
+        r, vs = vertical_motion_schedule(
+            task["varpi"],
+            zeta_v=task.get("zeta_v", 0.0),
+            restitution=task.get("restitution", 0.0),
+            max_cycles=task["max_cycles"],
+        )
     except Exception as exc:  # a failed point is recorded and listed, never dropped
         row.update(status="error", label="error", message=solver_error(exc))
         return row
