@@ -36,6 +36,7 @@ from typing import Literal
 
 import numpy as np
 from scipy.integrate import solve_ivp
+from scipy.optimize import brentq
 
 from betvdesign.dynamics.inputs import check_cycles, check_state0
 from betvdesign.dynamics.reference_terms import (
@@ -62,6 +63,9 @@ FRICTION = ("exact", "tanh")
 VTOL = 1e-9
 #: look-ahead [fraction of a cycle] at which the stick band is tested when ζ' = s'
 LOOKAHEAD = 1e-6
+#: methods whose steps are watched for grazing events (:func:`_watch`): the explicit
+#: Runge-Kutta pairs, whose dense output meets the step ends (scipy's event bracket holds)
+WATCHED = ("DOP853", "RK45", "RK23")
 #: hits (rebounds) per cycle before a sequence that does not accumulate is a failure
 MAX_HITS = 5000
 
@@ -128,6 +132,8 @@ def _rhs_factory(k: K, contact: bool, hmode: str, eps: float):
 
 
 def _events(k: K, contact: bool, hmode: str) -> list:
+    """The terminal events of a phase; each carries ``slope(t, y, f)``, its derivative
+    along the flow f = y' (for :func:`_watch`)."""
     w, b = k.varpi, k.b
     evs = []
     if not contact:
@@ -136,6 +142,7 @@ def _events(k: K, contact: bool, hmode: str) -> list:
             return y[0]
 
         gap.terminal, gap.direction = True, -1
+        gap.slope = lambda t, y, f: y[1]
         evs.append(gap)
         return evs
     if hmode in (SLIP, REVERSE):
@@ -144,6 +151,7 @@ def _events(k: K, contact: bool, hmode: str) -> list:
             return y[3] - y[5]
 
         vel.terminal, vel.direction = True, -1 if hmode == SLIP else 1
+        vel.slope = lambda t, y, f: f[3] - f[5]
         evs.append(vel)
     elif hmode == STICK and k.damped:
         evs += stick_events(k)
@@ -157,8 +165,55 @@ def _events(k: K, contact: bool, hmode: str) -> list:
 
         lo.terminal, lo.direction = True, -1
         hi.terminal, hi.direction = True, -1
+        lo.slope = lambda t, y, f: y[3] - (1.0 - b) * w * math.cos(w * t)
+        hi.slope = lambda t, y, f: (1.0 + b) * w * math.cos(w * t) - y[3]
         evs += [lo, hi]
     return evs
+
+
+def _watch(evs: list, rhs) -> list:
+    """Non-terminal companions of the terminal events: the slope of h = −d·g (g an event
+    of direction d, h > 0 before its crossing), rising through 0 at each local minimum
+    of h. A minimum with h < 0 is a pair of crossings inside one step, invisible to
+    solve_ivp's sign test at step ends (a grazing event); :func:`_missed` finds it."""
+    out = []
+    for ev in evs:
+
+        def watch(t: float, y: np.ndarray, ev=ev) -> float:
+            return -ev.direction * ev.slope(t, y, rhs(t, y))
+
+        watch.terminal, watch.direction = False, 1
+        out.append(watch)
+    return out
+
+
+def _missed(evs: list, sol, tau: float, thr: float, redo) -> tuple[int, float, np.ndarray] | None:
+    """(event index, τ, state) of the earliest crossing stepped over (a watched minimum
+    of h below −thr), located by brentq on the dense output of ``redo(τ_m)`` (the phase
+    integrated again up to that minimum with dense output; only then: the counters of a
+    run without grazing events stay those of plain solve_ivp); None when there is none."""
+    n, found = len(evs), None
+    for j, ev in enumerate(evs):
+        d = ev.direction
+        for tm, ym in zip(sol.t_events[n + j], sol.y_events[n + j], strict=True):
+            if tm > tau and -d * ev(tm, ym) < -thr:
+                if found is None or tm < found[1]:
+                    found = (j, tm)
+                break
+    if found is None:
+        return None
+    j, tm = found
+    ev, d = evs[j], evs[j].direction
+    again = redo(tm)
+
+    def h(t: float) -> float:
+        return -d * ev(t, again.sol(t))
+
+    left = [t for t in again.t if t < tm and h(t) > 0.0]
+    if not left or not h(tm) < 0.0:  # the minimum is not below 0 on the second pass
+        return None
+    tr = brentq(h, left[-1], tm, xtol=1e-300, rtol=4.0 * np.finfo(float).eps)
+    return j, tr, again.sol(tr)
 
 
 def simulate(
@@ -227,7 +282,7 @@ def simulate(
     status, message, m = "success", f"{n} cycles integrated", 0
     flight_step = math.inf  # max_step of the current rebound flight
     tail_end = math.nan  # contact start of a closed chattering sequence
-    closed, worst, hits = 0, 0.0, 0
+    closed, worst, hits, n_missed = 0, 0.0, 0, 0
 
     def open_contact(y: np.ndarray, on: int = -1) -> str:
         if friction == "tanh":
@@ -263,18 +318,23 @@ def simulate(
             evs = []
         if t_end > tau:
             step = min(max_step, flight_step)
-            sol = solve_ivp(
-                _rhs_factory(k, contact, hmode, eps),
-                (tau, t_end),
-                y,
-                method=method,
-                rtol=rtol,
-                atol=atol,
-                events=evs or None,
-                max_step=step,
-                first_step=None if step == math.inf else min(step / 4.0, t_end - tau),
-                dense_output=dense,
-            )
+            rhs = _rhs_factory(k, contact, hmode, eps)
+            watch = _watch(evs, rhs) if method in WATCHED else []
+            opts = {
+                "method": method,
+                "rtol": rtol,
+                "atol": atol,
+                "max_step": step,
+                "first_step": None if step == math.inf else min(step / 4.0, t_end - tau),
+            }
+            try:
+                sol = solve_ivp(
+                    rhs, (tau, t_end), y, events=(evs + watch) or None, dense_output=dense, **opts
+                )
+            except ValueError:  # scipy's event bracket lost to round-off on a watch: without
+                watch = []
+                evs_only = evs or None
+                sol = solve_ivp(rhs, (tau, t_end), y, events=evs_only, dense_output=dense, **opts)
             nfev += sol.nfev
             if sol.status == -1:
                 status, message = (
@@ -282,9 +342,23 @@ def simulate(
                     f"solve_ivp ({method}) failed in cycle {m}: {sol.message}",
                 )
                 break
+            hit = [i for i, te in enumerate((sol.t_events or [])[: len(evs)]) if len(te)]
+            if watch:
+
+                def redo(tm, rhs=rhs, tau=tau, y=y, opts=opts):
+                    return solve_ivp(rhs, (tau, tm), y, dense_output=True, **opts)
+
+                missed = _missed(evs, sol, tau, 10.0 * atol, redo)
+                if missed and (not hit or missed[1] < sol.t_events[hit[0]][0]):
+                    i, t_new, y_new = missed
+                    hit = [i]
+                    sol.t_events[i] = np.array([t_new])
+                    sol.y_events[i] = np.array([y_new])
+                    n_missed += 1
+                    if dense:
+                        sol.sol = redo(t_new).sol
             if dense:
-                pieces.append((tau, sol.t[-1], sol.sol))
-            hit = [i for i, te in enumerate(sol.t_events or []) if len(te)]
+                pieces.append((tau, float(sol.t_events[hit[0]][0]) if hit else sol.t[-1], sol.sol))
         else:
             sol, hit = None, []
         if hit:
@@ -350,6 +424,8 @@ def simulate(
             m += 1
             hits = 0
             section[m] = y
+    if n_missed and status == "success":
+        message += f"; {n_missed} grazing event(s) found between steps (minimum watch)"
     if closed and status == "success":
         message += (
             f"; {closed} chattering sequence(s) closed by their geometric tail, "

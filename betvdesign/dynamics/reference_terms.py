@@ -154,7 +154,8 @@ def rhs_damped(k: K, contact: bool, hmode: str, eps: float):
 
 def stick_events(k: K) -> list:
     """Damped stick-band exits: bN − P = 0 (friction at its limit, → slip) and
-    bN + P = 0 (→ reverse slip), both falling."""
+    bN + P = 0 (→ reverse slip), both falling; ``slope(t, y, f)``: their derivatives
+    along the flow f (N' = ϖ(cos ψ − 2ζ_vϖ sin ψ), P' = ϖ cos ψ − ζ' − 2ζ_h√α(ζ'' + ϖ² sin ψ))."""
     w, b = k.varpi, k.b
 
     def lo(t: float, y: np.ndarray) -> float:
@@ -163,8 +164,17 @@ def stick_events(k: K) -> list:
     def hi(t: float, y: np.ndarray) -> float:
         return b * normal_force(k, t) + push(k, w * t - k.lead, y[2], y[3])
 
+    def rates(t: float, y: np.ndarray, f) -> tuple[float, float]:
+        psi = w * t - k.lead
+        sn, cs = math.sin(psi), math.cos(psi)
+        dN = w * (cs - k.dv * sn)
+        dP = w * cs - y[3] - k.ch * (f[3] + w * w * sn)
+        return b * dN, dP
+
     lo.terminal, lo.direction = True, -1
     hi.terminal, hi.direction = True, -1
+    lo.slope = lambda t, y, f: (lambda r: r[0] - r[1])(rates(t, y, f))
+    hi.slope = lambda t, y, f: (lambda r: r[0] + r[1])(rates(t, y, f))
     return [lo, hi]
 
 
