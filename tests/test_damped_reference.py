@@ -75,7 +75,11 @@ def _cases():
     for i, p in enumerate(DESIGNS):
         marks = []
         if i in CHATTER_XFAIL:
-            marks = [pytest.mark.xfail(strict=True, reason="exact solver: " + CHATTER_XFAIL[i])]
+            marks = [
+                pytest.mark.xfail(
+                    strict=True, raises=AssertionError, reason="exact solver: " + CHATTER_XFAIL[i]
+                )
+            ]
         ident = f"{i}-w{p.varpi:.2f}-zv{p.zeta_v:.3f}-zh{p.zeta_h:.3f}-e{p.restitution:.2f}"
         yield pytest.param(p, id=ident, marks=marks)
 
