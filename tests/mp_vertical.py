@@ -9,7 +9,8 @@ forcing,
 (vertical free flight: p = 2ζ_v, q = 1, A = −1, B = −2ζ_vϖ; tangential free flight:
 p = 2ζ_h/√α, q = 1/α, A = 1/α, B = 2ζ_hϖ/√α), integrated here by its Taylor series
 (derivatives from the equation, :data:`TERMS` terms, steps of at most :data:`HMAX`: the
-remainder is below 1e-60 for ϖ < 2, q ≤ 25) in ``mp.dps`` = 50 digit arithmetic. Hits
+remainder is below 1e-60 for ϖ < 2, q ≤ 25) in 50-digit arithmetic (:data:`DPS`, by
+``mp.workdps``). Hits
 (ξ = 0 from above) are the first sign change of ξ/h (ξ with its root at the step's start
 divided out, so that tiny flights keep every digit), bracketed on a grid and refined by
 ``mp.findroot``. A chattering sequence is summed hit by hit, ξ' → −e ξ', until a flight is
@@ -20,9 +21,25 @@ the sum itself (no closure formula).
 
 from __future__ import annotations
 
+import functools
+
 import mpmath as mp
 
-mp.mp.dps = 50
+#: working precision [decimal digits] of every function here (``mp.workdps``: the global
+#: mp.mp.dps, which other test modules set at import, is left alone)
+DPS = 50
+
+
+def fifty_digits(f):
+    """Run f at DPS digits whatever the global precision."""
+
+    @functools.wraps(f)
+    def run(*args, **kwargs):
+        with mp.workdps(DPS):
+            return f(*args, **kwargs)
+
+    return run
+
 
 TERMS = 40
 HMAX = mp.mpf("0.25")
@@ -46,11 +63,13 @@ def deriv(c: list) -> list:
 class Oscillator:
     """y'' + p y' + q y = A sin ψ + B cos ψ, ψ = ϖτ − δ, in mpmath (module doc)."""
 
+    @fifty_digits
     def __init__(self, varpi, zeta_v, p, q, A, B):
         self.w = mp.mpf(varpi)
         self.lead = mp.atan(2 * mp.mpf(zeta_v) * self.w)
         self.p, self.q, self.A, self.B = (mp.mpf(x) for x in (p, q, A, B))
 
+    @fifty_digits
     def coeffs(self, t, y, v, n: int = TERMS) -> list:
         """Taylor coefficients c_j = y⁽ʲ⁾(t)/j!, j = 0..n, from the equation."""
         psi = self.w * t - self.lead
@@ -71,11 +90,13 @@ class Oscillator:
             out.append(dj / fact)
         return out
 
+    @fifty_digits
     def step(self, t, y, v, h) -> tuple:
         """(y, y') at t + h, |h| ≤ HMAX."""
         c = self.coeffs(t, y, v)
         return horner(c, h), horner(deriv(c), h)
 
+    @fifty_digits
     def advance(self, t, y, v, H) -> tuple:
         """(y, y') at t + H in steps of at most HMAX."""
         n = int(mp.ceil(abs(H) / HMAX)) or 1
@@ -86,24 +107,28 @@ class Oscillator:
         return y, v
 
 
+@fifty_digits
 def vertical(varpi: float, zeta_v: float) -> Oscillator:
     """The head's gap in free flight: ξ'' + 2ζ_v(ξ' + ϖ cos ψ) + ξ = −sin ψ."""
     z = mp.mpf(zeta_v)
     return Oscillator(varpi, zeta_v, 2 * z, 1, -1, -2 * z * mp.mpf(varpi))
 
 
+@fifty_digits
 def tangential(varpi: float, zeta_v: float, alpha: float, zeta_h: float) -> Oscillator:
     """The head's tangential free flight: α ζ'' + 2ζ_h√α(ζ' − ϖ cos ψ) + ζ = sin ψ."""
     a, zh, w = mp.mpf(alpha), mp.mpf(zeta_h), mp.mpf(varpi)
     return Oscillator(varpi, zeta_v, 2 * zh / mp.sqrt(a), 1 / a, 1 / a, 2 * zh * w / mp.sqrt(a))
 
 
+@fifty_digits
 def normal_force(osc: Oscillator, zeta_v: float, t):
     """N = sin ψ + 2ζ_vϖ cos ψ at τ = t."""
     psi = osc.w * t - osc.lead
     return mp.sin(psi) + 2 * mp.mpf(zeta_v) * osc.w * mp.cos(psi)
 
 
+@fifty_digits
 def next_hit(osc: Oscillator, t, x, v, horizon) -> tuple | None:
     """(τ, ξ'⁻) of the first hit after t from (ξ, ξ') = (x, v), within ``horizon``.
 
@@ -141,6 +166,7 @@ def next_hit(osc: Oscillator, t, x, v, horizon) -> tuple | None:
     return None
 
 
+@fifty_digits
 def chattering(varpi: float, zeta_v: float, e: float, t0, horizon, x0=0, v0=0) -> dict:
     """Head motion from (ξ, ξ') = (x0, v0) at t0, hit by hit with ξ' → −e ξ', until a
     hit in contact conditions (N ≥ 0) accumulates (flights below FLIGHT_END) or

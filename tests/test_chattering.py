@@ -27,6 +27,14 @@ from betvdesign.dynamics import reference, simulate
 from betvdesign.dynamics.vertical import VerticalSchedule
 from betvdesign.params import ModelParams
 
+
+@pytest.fixture(autouse=True)
+def _fifty_digits():
+    """Every test here at 50 digits (other modules set the global mp.mp.dps)."""
+    with mp.workdps(50):
+        yield
+
+
 TOL_T = 1e-12  # contact start and hit times [-] (τ up to 2·2π/ϖ ≈ 40)
 TOL_STATE = 1e-11
 

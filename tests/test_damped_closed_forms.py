@@ -24,7 +24,13 @@ import pytest
 
 from betvdesign.dynamics.flows import decaying_basis, forced, oscillator
 
-mp.mp.dps = 50
+
+@pytest.fixture(autouse=True)
+def _fifty_digits():
+    """Every test here at 50 digits (other modules set the global mp.mp.dps)."""
+    with mp.workdps(50):
+        yield
+
 
 RATIOS = [0.01, 0.3, 0.9, 1 - 1e-6, 1 - 1e-9, 1.0, 1 + 1e-9, 1 + 1e-6, 1.1, 3.0, 30.0]
 W0 = [0.3, 1.0, 3.3]

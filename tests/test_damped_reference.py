@@ -148,3 +148,14 @@ def test_reference_sees_the_damping():
     for kw in ({"zeta_v": 0.02}, {"zeta_h": 0.02}, {"restitution": 0.2}):
         q = ModelParams(p.varpi, p.alpha, p.beta, p.kappa, **kw)
         assert np.max(np.abs(reference.simulate(q, 10).section - base)) > 1e-4, kw
+
+
+def test_reference_gives_up_loudly_on_endless_rebounds(monkeypatch):
+    """A rebound sequence is never followed for ever: past MAX_HITS hits in a cycle the
+    reference stops with status "failed", the cycles done so far kept."""
+    monkeypatch.setattr(reference, "MAX_HITS", 5)
+    p = ModelParams(0.67, 1.64, 0.49, 0.39, 0.0, 0.072, 0.44)  # ≈ 27 hits per cycle
+    rf = reference.simulate(p, 4, rtol=1e-10, atol=1e-12)
+    assert rf.status == "failed" and not rf.success
+    assert "more than 5 hits" in rf.message and rf.n_cycles < 4
+    assert rf.section.shape == (rf.n_cycles + 1, 6)
