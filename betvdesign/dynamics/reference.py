@@ -1,12 +1,13 @@
 """Reference solver: the same model integrated by scipy ``solve_ivp`` (unit-free).
 
-docs/MODEL.md, "Dimensionless model". An independent second method for tests
-and the baseline of the work-precision study: the full state (ξ, ξ', ζ, ζ', s, s')
-is integrated numerically (no closed form), event functions are located by
-``solve_ivp``'s own root finding, and the hybrid automaton (contact / free,
-slip / reverse / stick) is driven by the model's switching rules, written here
-again from docs/MODEL.md (:func:`choose_phase`); nothing of the exact solver is
-imported (no shared phase rule, closed form or event search).
+docs/MODEL.md, "Dimensionless model", and shared MODEL.md "Beyond the paper's
+idealisation" (damping ζ_v, ζ_h, restitution e; docs/damping.md). An independent second
+method for tests and the baseline of the work-precision study: the full state
+(ξ, ξ', ζ, ζ', s, s') is integrated numerically (no closed form), event functions are
+located by ``solve_ivp``'s own root finding, and the hybrid automaton (contact / free,
+slip / reverse / stick) is driven by the model's switching rules, written here again
+from MODEL.md (:func:`choose_phase`); nothing of the exact solver is imported (no shared
+phase rule, closed form, event search or chattering closure).
 
 Friction models:
 
@@ -21,18 +22,36 @@ integration boundaries, so ``section`` holds exact-time states. The result is a
 :class:`~betvdesign.dynamics.result.Trajectory` with ``n_fev`` counting
 right-hand-side evaluations; a failed integration returns status "failed" with
 the scipy message and the cycles completed so far.
+
+Damping and restitution (MODEL.md "Beyond the paper's idealisation") are written
+again in :mod:`reference_terms` (its docstring: equations, time origin, the chattering
+closure and its error bound; docs/damping.md).
 """
 
 from __future__ import annotations
 
 import math
 import time
-from typing import Literal, NamedTuple
+from typing import Literal
 
 import numpy as np
 from scipy.integrate import solve_ivp
+from scipy.optimize import brentq
 
 from betvdesign.dynamics.inputs import check_cycles, check_state0
+from betvdesign.dynamics.reference_terms import (
+    FREE,
+    REVERSE,
+    SLIP,
+    STICK,
+    TANH,
+    K,
+    apply_hit,
+    band_damped,
+    constants,
+    rhs_damped,
+    stick_events,
+)
 from betvdesign.dynamics.result import Event, Trajectory
 from betvdesign.errors import ParameterError
 from betvdesign.params import ModelParams
@@ -40,42 +59,33 @@ from betvdesign.params import ModelParams
 Method = Literal["RK45", "DOP853", "Radau", "LSODA", "BDF", "RK23"]
 METHODS = ("RK45", "DOP853", "Radau", "LSODA", "BDF", "RK23")
 FRICTION = ("exact", "tanh")
-FREE, SLIP, STICK, REVERSE = "free", "slip", "stick", "reverse"
-TANH = "slip-tanh"  # horizontal mode during contact with regularised friction
 #: relative velocity |ζ' − s'| below which ζ' = s' is taken as reached (scaled)
 VTOL = 1e-9
 #: look-ahead [fraction of a cycle] at which the stick band is tested when ζ' = s'
 LOOKAHEAD = 1e-6
+#: methods whose steps are watched for grazing events (:func:`_watch`): the explicit
+#: Runge-Kutta pairs, whose dense output meets the step ends (scipy's event bracket holds)
+WATCHED = ("DOP853", "RK45", "RK23")
+#: hits (rebounds) per cycle before a sequence that does not accumulate is a failure
+MAX_HITS = 5000
 
 
-class _K(NamedTuple):
-    alpha: float
-    beta: float
-    kappa: float
-    varpi: float
-    b: float
-    a_stick: float
-
-
-def _constants(p: ModelParams) -> _K:
-    """MODEL.md: b = ακ(1 + β) stick-band half-width, α(1 + 1/β) stick inertia."""
-    al, be, ka = p.alpha, p.beta, p.kappa
-    return _K(al, be, ka, p.varpi, al * ka * (1.0 + be), al * (1.0 + 1.0 / be))
-
-
-def choose_phase(k: _K, tau: float, z: float, zd: float, sd: float, matched: bool) -> str:
+def choose_phase(k: K, tau: float, z: float, zd: float, sd: float, matched: bool) -> str:
     """MODEL.md stick/slip rules: the sign of ζ' − s' when they differ (slip if ζ' > s',
     reverse slip if ζ' < s'); when ζ' = s' (``matched``, or equal within VTOL) the
     friction band (1 − b) sin ϖτ ≤ ζ ≤ (1 + b) sin ϖτ decides: stick inside, slip below,
     reverse slip above. The band is tested a short look-ahead δ after τ on the stick
     flow α(1 + 1/β) ζ'' + ζ = sin ϖτ (third-order Taylor), which settles the cases
-    where ζ sits on an edge (a band exit, or sin ϖτ = 0 at a contact opening)."""
+    where ζ sits on an edge (a band exit, or sin ϖτ = 0 at a contact opening).
+    With damping the band is |P| ≤ bN (module doc), tested the same way."""
     v = zd - sd
     if not matched and abs(v) > VTOL * (1.0 + abs(zd) + abs(sd)):
         return SLIP if v > 0.0 else REVERSE
     w, A = k.varpi, k.a_stick
     vs = (zd + sd / k.beta) / (1.0 + 1.0 / k.beta)
     d = LOOKAHEAD * 2.0 * math.pi / w
+    if k.damped:
+        return band_damped(k, tau, z, vs, d)
     z2 = (math.sin(w * tau) - z) / A
     z3 = (w * math.cos(w * tau) - vs) / A
     zn = z + vs * d + z2 * d * d / 2.0 + z3 * d**3 / 6.0
@@ -93,7 +103,9 @@ MAX_ZERO_LENGTH = 20
 MASK = 1e-9
 
 
-def _rhs_factory(k: _K, contact: bool, hmode: str, eps: float):
+def _rhs_factory(k: K, contact: bool, hmode: str, eps: float):
+    if k.damped:
+        return rhs_damped(k, contact, hmode, eps)
     al, be, ka, w, A = k.alpha, k.beta, k.kappa, k.varpi, k.a_stick
 
     def rhs(t: float, y: np.ndarray) -> list[float]:
@@ -119,7 +131,9 @@ def _rhs_factory(k: _K, contact: bool, hmode: str, eps: float):
     return rhs
 
 
-def _events(k: _K, contact: bool, hmode: str) -> list:
+def _events(k: K, contact: bool, hmode: str) -> list:
+    """The terminal events of a phase; each carries ``slope(t, y, f)``, its derivative
+    along the flow f = y' (for :func:`_watch`)."""
     w, b = k.varpi, k.b
     evs = []
     if not contact:
@@ -128,6 +142,7 @@ def _events(k: _K, contact: bool, hmode: str) -> list:
             return y[0]
 
         gap.terminal, gap.direction = True, -1
+        gap.slope = lambda t, y, f: y[1]
         evs.append(gap)
         return evs
     if hmode in (SLIP, REVERSE):
@@ -136,7 +151,10 @@ def _events(k: _K, contact: bool, hmode: str) -> list:
             return y[3] - y[5]
 
         vel.terminal, vel.direction = True, -1 if hmode == SLIP else 1
+        vel.slope = lambda t, y, f: f[3] - f[5]
         evs.append(vel)
+    elif hmode == STICK and k.damped:
+        evs += stick_events(k)
     elif hmode == STICK:
 
         def lo(t: float, y: np.ndarray) -> float:
@@ -147,8 +165,55 @@ def _events(k: _K, contact: bool, hmode: str) -> list:
 
         lo.terminal, lo.direction = True, -1
         hi.terminal, hi.direction = True, -1
+        lo.slope = lambda t, y, f: y[3] - (1.0 - b) * w * math.cos(w * t)
+        hi.slope = lambda t, y, f: (1.0 + b) * w * math.cos(w * t) - y[3]
         evs += [lo, hi]
     return evs
+
+
+def _watch(evs: list, rhs) -> list:
+    """Non-terminal companions of the terminal events: the slope of h = −d·g (g an event
+    of direction d, h > 0 before its crossing), rising through 0 at each local minimum
+    of h. A minimum with h < 0 is a pair of crossings inside one step, invisible to
+    solve_ivp's sign test at step ends (a grazing event); :func:`_missed` finds it."""
+    out = []
+    for ev in evs:
+
+        def watch(t: float, y: np.ndarray, ev=ev) -> float:
+            return -ev.direction * ev.slope(t, y, rhs(t, y))
+
+        watch.terminal, watch.direction = False, 1
+        out.append(watch)
+    return out
+
+
+def _missed(evs: list, sol, tau: float, thr: float, redo) -> tuple[int, float, np.ndarray] | None:
+    """(event index, τ, state) of the earliest crossing stepped over (a watched minimum
+    of h below −thr), located by brentq on the dense output of ``redo(τ_m)`` (the phase
+    integrated again up to that minimum with dense output; only then: the counters of a
+    run without grazing events stay those of plain solve_ivp); None when there is none."""
+    n, found = len(evs), None
+    for j, ev in enumerate(evs):
+        d = ev.direction
+        for tm, ym in zip(sol.t_events[n + j], sol.y_events[n + j], strict=True):
+            if tm > tau and -d * ev(tm, ym) < -thr:
+                if found is None or tm < found[1]:
+                    found = (j, tm)
+                break
+    if found is None:
+        return None
+    j, tm = found
+    ev, d = evs[j], evs[j].direction
+    again = redo(tm)
+
+    def h(t: float) -> float:
+        return -d * ev(t, again.sol(t))
+
+    left = [t for t in again.t if t < tm and h(t) > 0.0]
+    if not left or not h(tm) < 0.0:  # the minimum is not below 0 on the second pass
+        return None
+    tr = brentq(h, left[-1], tm, xtol=1e-300, rtol=4.0 * np.finfo(float).eps)
+    return j, tr, again.sol(tr)
 
 
 def simulate(
@@ -166,9 +231,29 @@ def simulate(
 ) -> Trajectory:
     """Integrate ``cycles`` actuation cycles with ``solve_ivp`` (see module docstring).
 
-    method: a solve_ivp method; rtol, atol: its tolerances [-]; friction: "exact"
-    (switching Coulomb) or "tanh" (regularised, width ``eps`` [-] in relative velocity);
-    max_step: solve_ivp's max_step [-]; state0 as in :func:`solver.simulate`.
+    Parameters
+    ----------
+    p : ModelParams
+        The model, with its optional damping and restitution.
+    cycles : int
+        Actuation cycles to integrate.
+    method : str
+        A solve_ivp method; ``rtol``, ``atol`` its tolerances [-].
+    friction : str
+        "exact" (switching Coulomb) or "tanh" (regularised, width ``eps`` [-] in
+        relative velocity).
+    max_step : float
+        solve_ivp's max_step [-].
+    state0 : sequence of 6 floats, optional
+        As in :func:`solver.simulate`.
+    dense : bool
+        Keep the dense output (:meth:`Trajectory.sample`).
+
+    Returns
+    -------
+    Trajectory
+        Sections at τ = 2mπ/ϖ, events, counters; with e > 0 ``message`` names the
+        chattering sequences closed and the largest error bound of their tails.
     """
     if not isinstance(p, ModelParams):
         raise ParameterError(f"p must be a ModelParams, got {type(p).__name__}")
@@ -182,7 +267,7 @@ def simulate(
         if not (isinstance(v, (int, float)) and v > 0 and not math.isnan(v)):
             raise ParameterError(f"{name} must be > 0, got {v!r}")
     t_start = time.perf_counter()
-    k = _constants(p)
+    k = constants(p)
     w = p.varpi
     T = 2.0 * math.pi / w
     tau, y = 0.0, st.copy()
@@ -195,6 +280,9 @@ def simulate(
     nfev = 0
     zero_len = 0
     status, message, m = "success", f"{n} cycles integrated", 0
+    flight_step = math.inf  # max_step of the current rebound flight
+    tail_end = math.nan  # contact start of a closed chattering sequence
+    closed, worst, hits, n_missed = 0, 0.0, 0, 0
 
     def open_contact(y: np.ndarray, on: int = -1) -> str:
         if friction == "tanh":
@@ -204,7 +292,14 @@ def simulate(
             y[3] = y[5] = (y[3] + y[5] / p.beta) / (1.0 + 1.0 / p.beta)
         return ph
 
-    if contact:
+    def contact_end(tau: float) -> float:
+        return (2.0 * math.floor(tau / T + 1e-12) + 1.0) * math.pi / w
+
+    if contact and k.e != 0.0 and y[1] < 0.0:  # a hit at phase 0 that rebounds
+        contact = False
+        y[1] = -k.e * y[1]
+        events.append(Event(0.0, "impulsive", "free", "free"))
+    elif contact:
         y[1] = 0.0
         hmode = open_contact(y)
         events.append(Event(0.0, "impact", "free", hmode))
@@ -212,25 +307,34 @@ def simulate(
         t_sec = (m + 1) * T
         t_end = t_sec
         if contact:
-            t_end = min(t_sec, (2.0 * math.floor(tau / T + 1e-12) + 1.0) * math.pi / w)
+            t_end = min(t_sec, contact_end(tau))
             if t_end <= tau:  # contact end reached exactly at tau
                 t_end = tau
         evs = _events(k, contact, hmode)
+        if tail_end == tail_end:  # the tail of a chattering sequence: free, no events
+            t_end, evs = min(t_sec, tail_end), []
         if zero_len:  # an event fired where the phase started: step past it unmasked
             t_end = min(t_end, tau + MASK * T)
             evs = []
         if t_end > tau:
-            sol = solve_ivp(
-                _rhs_factory(k, contact, hmode, eps),
-                (tau, t_end),
-                y,
-                method=method,
-                rtol=rtol,
-                atol=atol,
-                events=evs or None,
-                max_step=max_step,
-                dense_output=dense,
-            )
+            step = min(max_step, flight_step)
+            rhs = _rhs_factory(k, contact, hmode, eps)
+            watch = _watch(evs, rhs) if method in WATCHED else []
+            opts = {
+                "method": method,
+                "rtol": rtol,
+                "atol": atol,
+                "max_step": step,
+                "first_step": None if step == math.inf else min(step / 4.0, t_end - tau),
+            }
+            try:
+                sol = solve_ivp(
+                    rhs, (tau, t_end), y, events=(evs + watch) or None, dense_output=dense, **opts
+                )
+            except ValueError:  # scipy's event bracket lost to round-off on a watch: without
+                watch = []
+                evs_only = evs or None
+                sol = solve_ivp(rhs, (tau, t_end), y, events=evs_only, dense_output=dense, **opts)
             nfev += sol.nfev
             if sol.status == -1:
                 status, message = (
@@ -238,9 +342,23 @@ def simulate(
                     f"solve_ivp ({method}) failed in cycle {m}: {sol.message}",
                 )
                 break
+            hit = [i for i, te in enumerate((sol.t_events or [])[: len(evs)]) if len(te)]
+            if watch:
+
+                def redo(tm, rhs=rhs, tau=tau, y=y, opts=opts):
+                    return solve_ivp(rhs, (tau, tm), y, dense_output=True, **opts)
+
+                missed = _missed(evs, sol, tau, 10.0 * atol, redo)
+                if missed and (not hit or missed[1] < sol.t_events[hit[0]][0]):
+                    i, t_new, y_new = missed
+                    hit = [i]
+                    sol.t_events[i] = np.array([t_new])
+                    sol.y_events[i] = np.array([y_new])
+                    n_missed += 1
+                    if dense:
+                        sol.sol = redo(t_new).sol
             if dense:
-                pieces.append((tau, sol.t[-1], sol.sol))
-            hit = [i for i, te in enumerate(sol.t_events or []) if len(te)]
+                pieces.append((tau, float(sol.t_events[hit[0]][0]) if hit else sol.t[-1], sol.sol))
         else:
             sol, hit = None, []
         if hit:
@@ -258,13 +376,25 @@ def simulate(
             tau = t_new
             before = hmode
             if not contact:
-                y[0], y[1] = 0.0, 0.0
-                if math.sin(w * tau) >= 0.0:
+                h = apply_hit(k, tau, y, contact_end(tau))
+                flight_step = h.step
+                if h.kind == "contact":
                     contact = True
                     hmode = open_contact(y)
                     events.append(Event(tau, "impact", "free", hmode))
                 else:
                     events.append(Event(tau, "impulsive", "free", "free"))
+                    hits += 1
+                    if hits > MAX_HITS:
+                        status = "failed"
+                        message = (
+                            f"more than {MAX_HITS} hits in cycle {m} (τ = {tau:.12g}): a "
+                            f"rebound sequence (e = {k.e:g}) that does not accumulate"
+                        )
+                        break
+                if h.kind == "tail":
+                    tail_end = tau + h.tail
+                    closed, worst = closed + 1, max(worst, h.bound)
             elif hmode == STICK:
                 hmode = open_contact(y, 1 + i)
                 events.append(Event(tau, "band-exit", "stick", hmode))
@@ -275,6 +405,13 @@ def simulate(
         if sol is not None:
             y = np.array(sol.y[:, -1], dtype=float)
         tau = t_end
+        if tau == tail_end:  # the chattering sequence has accumulated: contact opens
+            tail_end, flight_step = math.nan, math.inf
+            y[0], y[1] = 0.0, 0.0
+            contact = True
+            hmode = open_contact(y)
+            events.append(Event(tau, "impact", "free", hmode))
+            continue
         if zero_len:
             zero_len = 0
             if t_end < t_sec and not (contact and _is_contact_end(tau, w)):
@@ -285,7 +422,15 @@ def simulate(
             y[0], y[1] = 0.0, 0.0
         if t_end == t_sec:
             m += 1
+            hits = 0
             section[m] = y
+    if n_missed and status == "success":
+        message += f"; {n_missed} grazing event(s) found between steps (minimum watch)"
+    if closed and status == "success":
+        message += (
+            f"; {closed} chattering sequence(s) closed by their geometric tail, "
+            f"accumulation-time error bound ≤ {worst:.1e}"
+        )
     section = section[: m + 1]
     sampler = _sampler(pieces) if dense else None
     return Trajectory(

@@ -1,0 +1,161 @@
+"""Exact solver with damping and restitution against the independent solve_ivp reference.
+
+Source of truth: :mod:`betvdesign.dynamics.reference` (with :mod:`reference_terms`), a
+second method: the full state is integrated numerically (DOP853, rtol 1e-13), events are
+located by ``solve_ivp``'s own root finding (with a watch for crossings inside one step),
+the damped equations, normal force, stick band and restitution are written there again
+from shared MODEL.md "Beyond the paper's idealisation", and chattering sequences are
+followed hit by hit to flights of 1e-9 before a geometric tail of its own closes them.
+Nothing of the exact solver's closed forms, event search or chattering closure is
+shared (test_dynamics_reference.py checks the imports).
+
+Designs: 24 drawn over the design window 0.5 ≤ ϖ < 2 (α, β, κ log-uniform as in
+conftest.WINDOW_SETS), ζ_v and ζ_h log-uniform in [0.005, 0.3] (one of them 0 in a third
+of the designs each), restitution e in [0.02, 0.6] in every other design (at ϖ ≤ 1.3,
+where contacts recur, so that chattering sequences are exercised).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from betvdesign.dynamics import reference, simulate
+from betvdesign.params import ModelParams
+
+CYCLES = 100
+TOL = 1e-8
+RTOL, ATOL = 1e-13, 1e-14
+
+
+def damped_designs(n: int = 24, seed: int = 2026) -> list[ModelParams]:
+    """n designs with damping and (every other one) restitution; see module doc."""
+    rng = np.random.default_rng(seed)
+    out = []
+    for i in range(n):
+
+        def lz() -> float:
+            return float(10 ** rng.uniform(math.log10(0.005), math.log10(0.3)))
+
+        w = float(rng.uniform(0.5, 1.95)) if i % 2 == 0 else float(rng.uniform(0.5, 1.3))
+        zv = lz() if i % 3 != 2 else 0.0
+        zh = lz() if i % 3 != 1 else 0.0
+        e = 0.0 if i % 2 == 0 else float(rng.uniform(0.02, 0.6))
+        out.append(
+            ModelParams(
+                w,
+                float(10 ** rng.uniform(-1.3, 0.5)),
+                float(10 ** rng.uniform(-1, 1)),
+                float(10 ** rng.uniform(-1.3, 0)),
+                zv,
+                zh,
+                e,
+            )
+        )
+    return out
+
+
+DESIGNS = damped_designs()
+
+#: designs where the exact solver misses 1e-8 only through its contact start after a
+#: chattering sequence (schedule.py, round-off over many tiny flights; the lead's fix is
+#: pending): the reference's contact start agrees with the 50-digit event-by-event sum of
+#: test_chattering.py, the exact one is off by the offset given (measured 2026-11-25).
+CHATTER_XFAIL = {
+    3: "e = 0.32, 21 hits/cycle: contact starts off by 6.5e-8, sections by 4.3e-7",
+    13: "e = 0.03, 7 hits/cycle: contact starts off by 2.4e-9, sections by 1.3e-8",
+    19: "e = 0.09, 9 hits/cycle: contact starts off by 1.6e-8, sections by 3.8e-8",
+    21: "e = 0.09, 9 hits/cycle: contact starts off by 1.2e-8, sections by 2.1e-8",
+}
+
+
+def _cases():
+    for i, p in enumerate(DESIGNS):
+        marks = []
+        if i in CHATTER_XFAIL:
+            marks = [
+                pytest.mark.xfail(
+                    strict=True, raises=AssertionError, reason="exact solver: " + CHATTER_XFAIL[i]
+                )
+            ]
+        ident = f"{i}-w{p.varpi:.2f}-zv{p.zeta_v:.3f}-zh{p.zeta_h:.3f}-e{p.restitution:.2f}"
+        yield pytest.param(p, id=ident, marks=marks)
+
+
+def _run(p: ModelParams):
+    ex = simulate(p, CYCLES)
+    rf = reference.simulate(p, CYCLES, method="DOP853", rtol=RTOL, atol=ATOL)
+    assert ex.success and rf.success, (ex.message, rf.message)
+    return ex, rf
+
+
+def _contacts(tr) -> list[tuple[str, str, str]]:
+    """The event sequence without impulsive hits (whose number in a chattering sequence
+    depends on where each method closes it)."""
+    return [(e.kind, e.phase_before, e.phase_after) for e in tr.events if e.kind != "impulsive"]
+
+
+@pytest.mark.parametrize("p", list(_cases()))
+def test_exact_agrees_with_reference_after_100_cycles(p):
+    """Every section state (ξ, ξ', ζ, ζ', s, s') of 100 cycles within 1e-8 (relative to
+    max(1, |x|)), the same contact events in the same order, contact starts within 1e-8."""
+    ex, rf = _run(p)
+    scale = np.maximum(1.0, np.abs(ex.section))
+    err = float(np.max(np.abs(ex.section - rf.section) / scale))
+    assert err <= TOL, f"sections differ by {err:.3g}"
+    a, b = _contacts(ex), _contacts(rf)
+    assert a == b
+    ta = np.array([e.tau for e in ex.events if e.kind != "impulsive"])
+    tb = np.array([e.tau for e in rf.events if e.kind != "impulsive"])
+    assert np.max(np.abs(ta - tb)) <= TOL * max(1.0, float(ta[-1]))
+
+
+def test_designs_exercise_every_term():
+    """The set is what the module doc says: damping in both directions, restitution with
+    recurring (chattering) contacts, spread over the window."""
+    w = [p.varpi for p in DESIGNS]
+    assert len(DESIGNS) >= 20 and min(w) < 0.7 and max(w) > 1.6
+    assert sum(p.zeta_v > 0 for p in DESIGNS) >= 12 and sum(p.zeta_h > 0 for p in DESIGNS) >= 12
+    bouncy = [p for p in DESIGNS if p.restitution > 0]
+    assert len(bouncy) >= 10 and max(p.restitution for p in bouncy) > 0.4
+    chattering = 0
+    for p in bouncy:
+        rf = reference.simulate(p, 6, rtol=1e-10, atol=1e-12)
+        chattering += "chattering" in rf.message
+    assert chattering >= 5
+
+
+def test_normal_force_vanishes_at_the_contact_ends():
+    """The time origin both solvers share (N rises through 0 at τ = 0): MODEL.md's
+    N = sin ϖτ_o + 2ζ_vϖ cos ϖτ_o, with τ = τ_o + δ/ϖ, is 0 at τ = 0 and τ = π/ϖ, where
+    the reference integrates contacts to (its lead δ computed from its definition)."""
+    from betvdesign.dynamics.reference_terms import constants, normal_force
+
+    for p in DESIGNS:
+        k = constants(p)
+        T = 2.0 * math.pi / p.varpi
+        assert abs(normal_force(k, 0.0)) < 1e-15 and abs(normal_force(k, T / 2)) < 1e-15
+        assert normal_force(k, T / 4) > 0.0 > normal_force(k, 3 * T / 4)
+
+
+def test_reference_sees_the_damping():
+    """The reference is not blind to the terms: each of ζ_v, ζ_h, e changes its sections
+    by far more than the agreement tolerance."""
+    p = DESIGNS[3]
+    base = reference.simulate(ModelParams(p.varpi, p.alpha, p.beta, p.kappa), 10).section
+    for kw in ({"zeta_v": 0.02}, {"zeta_h": 0.02}, {"restitution": 0.2}):
+        q = ModelParams(p.varpi, p.alpha, p.beta, p.kappa, **kw)
+        assert np.max(np.abs(reference.simulate(q, 10).section - base)) > 1e-4, kw
+
+
+def test_reference_gives_up_loudly_on_endless_rebounds(monkeypatch):
+    """A rebound sequence is never followed for ever: past MAX_HITS hits in a cycle the
+    reference stops with status "failed", the cycles done so far kept."""
+    monkeypatch.setattr(reference, "MAX_HITS", 5)
+    p = ModelParams(0.67, 1.64, 0.49, 0.39, 0.0, 0.072, 0.44)  # ≈ 27 hits per cycle
+    rf = reference.simulate(p, 4, rtol=1e-10, atol=1e-12)
+    assert rf.status == "failed" and not rf.success
+    assert "more than 5 hits" in rf.message and rf.n_cycles < 4
+    assert rf.section.shape == (rf.n_cycles + 1, 6)
