@@ -11,6 +11,7 @@ plausible ranges, checked by direct orbits.
 
 from __future__ import annotations
 
+import json
 import math
 from dataclasses import replace
 
@@ -102,7 +103,7 @@ def test_adequate_far_from_any_flip():
         assert s.ideal.mode == s.richer.mode == "pull"
         assert s.flip_quality is None and s.flip_restitution is None and not s.flips
         assert abs(s.speed_change) <= 0.1
-        assert "pull throughout" in s.message
+        assert "pull over the whole range Q 1–1000" in s.message
     p = derive(spec).sets[0].params
     for q in QUALITY_RANGE:
         assert _mode(replace(p, zeta_v=_z(q), zeta_h=_z(q), restitution=0.1)) == "pull"
@@ -191,3 +192,60 @@ def test_public_api_and_text():
     assert text.startswith("push_demo: the idealised model is not adequate")
     assert "forward: mode-flips" in text and ("µm/s" in text or "mm/s" in text)
     assert res.sets[0].line().startswith("model adequacy: mode-flips: idealised push at ")
+
+
+# --- the design rule and betv check -------------------------------------------------------
+
+
+def _rule(view, rule_id):
+    return next(r for r in view.result.rules if r.id == rule_id)
+
+
+def test_check_rule_info_when_adequate_and_line_in_the_block():
+    spec = load_device(DEVICES / "shin2004.yaml").replace("drive.frequency", "300 Hz")
+    view = betvdesign.check(spec)
+    r = _rule(view, "model-adequacy")
+    assert r.severity == "info" and r.passed and r.message.startswith("adequate: ")
+    assert "model adequacy: adequate: idealised pull at" in view.text()
+    out = view.out.sets[0].adequacy
+    assert out is not None and out.adequate and out.flip_quality is None
+
+
+def test_check_rule_warns_where_the_mode_flips_with_the_studys_numbers():
+    view = betvdesign.check(DEVICES / "push_demo.yaml")
+    r = _rule(view, "model-adequacy")
+    assert r.severity == "warning" and not r.passed and r.fix
+    study = adequacy(DEVICES / "push_demo.yaml").sets[0]
+    assert r.value == pytest.approx(study.speed_change, rel=1e-12)
+    out = view.out.sets[0].adequacy
+    assert out.status == "mode-flips" and out.flip_restitution == study.flip_restitution.at
+    assert out.richer.mode == "push" and out.ideal.quality_normal is None  # undamped: null
+    text = view.text()
+    assert "warn model-adequacy: mode-flips" in text and "e ≈ 0.166 (→ none)" in text
+    from betvdesign.checkview import output_json
+
+    doc = json.loads(output_json([view]))
+    assert doc["devices"][0]["sets"][0]["adequacy"]["source"] == "default"
+
+
+def test_check_at_resonance_with_damping_uses_the_finite_damped_orbit():
+    """push_demo at α·ϖ² = 1 with Q = 30 given: the check's mode and speed are the finite
+    damped orbit's; the idealised model alone would be unbounded (status ideal-fails);
+    the resonance rule says the damping keeps the motion bounded."""
+    spec = load_device(DEVICES / "push_demo.yaml").replace(
+        "actuator.horizontal_resonance",
+        "6 kHz",
+        ("actuator.quality_factor_normal", 30),
+        ("actuator.quality_factor_tangential", 30),
+    )
+    view = betvdesign.check(spec)
+    sc = view.result.sets[0]
+    p = sc.derivation.params
+    direct = periodic_orbit(p)
+    assert direct.success and sc.periodic.delta_s == direct.delta_s
+    assert _rule(view, "mode").passed == (mode_of(direct.delta_s) == "push")
+    res = _rule(view, "tangential-resonance")
+    assert not res.passed and "keeps it bounded" in res.message
+    r = _rule(view, "model-adequacy")
+    assert r.message.startswith("ideal-fails: idealised no periodic orbit (unbounded)")
+    assert sc.adequacy.richer.delta_s == direct.delta_s

@@ -309,7 +309,7 @@ def _message(
             end = "Q = " + fmt_x(QUALITY_RANGE[1]) if scan.axis == "quality" else "e = 0"
             parts.append(f"already at {end} the mode is not {reference} ({where})")
         else:
-            parts.append(f"{reference} throughout {where}")
+            parts.append(f"{reference} over the whole range {where}")
     if sd.scales.has_rolloff:
         f = sd.scales.rolloff_factor
         parts.append(

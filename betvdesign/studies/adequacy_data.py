@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Literal
+from typing import Any, Literal
 
 from betvdesign.siformat import format_dimensionless as fmt_x
 from betvdesign.siformat import format_si
@@ -90,6 +90,10 @@ class Point:
         q_v, q_h = (_q(q) for q in (self.quality, self.quality_tangential))
         q = f"Q {q_v}" if q_v == q_h else f"Q_v {q_v}, Q_h {q_h}"
         return f"{q}, e {fmt_x(self.restitution)}"
+
+
+def _finite(x: float) -> float | None:
+    return x if math.isfinite(x) else None
 
 
 def _q(q: float) -> str:
@@ -194,9 +198,75 @@ class SetAdequacy:
         """Every change of mode found in the plausible ranges (both scans)."""
         return [*self.quality_scan.crossings, *self.restitution_scan.crossings]
 
+    def as_dict(self) -> dict[str, Any]:
+        """JSON-safe record (``betv check --json``): infinite Q (undamped) as None."""
+
+        def pt(p: Point) -> dict[str, Any]:
+            return {
+                "quality_normal": _finite(p.quality),
+                "quality_tangential": _finite(p.quality_tangential),
+                "restitution": p.restitution,
+                "status": p.status,
+                "mode": p.mode,
+                "delta_s": p.delta_s,
+                "speed_m_s": p.speed_m_s,
+            }
+
+        def flip(c: Crossing | None) -> float | None:
+            return None if c is None else c.at
+
+        return {
+            "status": self.status,
+            "adequate": self.adequate,
+            "message": self.message,
+            "summary": self.summary(),
+            "source": self.source,
+            "reference_mode": self.reference,
+            "ideal": pt(self.ideal),
+            "richer": pt(self.richer),
+            "speed_change": self.speed_change,
+            "flip_quality": flip(self.flip_quality),
+            "flip_restitution": flip(self.flip_restitution),
+            "crossings": [
+                {
+                    "axis": c.axis,
+                    "at": c.at,
+                    "low": c.low,
+                    "high": c.high,
+                    "mode_low": c.mode_low,
+                    "mode_high": c.mode_high,
+                }
+                for c in self.flips
+            ],
+            "quality_range": list(QUALITY_RANGE),
+            "restitution_range": list(RESTITUTION_RANGE),
+        }
+
     def line(self) -> str:
         """One line for ``betv check``: status, both answers, where the mode flips."""
-        return f"model adequacy: {self.status}: {self.message}"
+        return f"model adequacy: {self.status}: {self.summary()}"
+
+    def summary(self) -> str:
+        """Short form of :attr:`message`: both answers and the flips (or their absence)."""
+        src = " (defaults)" if self.source == "default" else ""
+        change = self.speed_change
+        pct = f" ({change:+.0%})" if change is not None and change > -1.0 else ""
+        text = f"idealised {self.ideal.answer}; {self.richer.terms}{src}: {self.richer.answer}{pct}"
+        flips = [f for f in (self.flip_quality, self.flip_restitution) if f is not None]
+        if flips:
+            text += "; mode flips at " + ", ".join(
+                f"{'Q' if f.axis == 'quality' else 'e'} ≈ {fmt_x(f.at)} (→ "
+                f"{f.mode_low if f.axis == 'quality' else f.mode_high})"
+                for f in flips
+            )
+        elif self.status == "mode-flips":
+            text += "; the mode differs within the plausible ranges"
+        else:
+            text += (
+                f"; no mode flip for Q {fmt_x(QUALITY_RANGE[0])}–{fmt_x(QUALITY_RANGE[1])}, "
+                f"e {fmt_x(RESTITUTION_RANGE[0])}–{fmt_x(RESTITUTION_RANGE[1])}"
+            )
+        return text
 
 
 @dataclass(frozen=True)
