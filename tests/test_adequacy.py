@@ -249,3 +249,34 @@ def test_check_at_resonance_with_damping_uses_the_finite_damped_orbit():
     r = _rule(view, "model-adequacy")
     assert r.message.startswith("ideal-fails: idealised no periodic orbit (unbounded)")
     assert sc.adequacy.richer.delta_s == direct.delta_s
+
+
+# --- the report -----------------------------------------------------------------------------
+
+
+def test_report_section_model_adequacy():
+    """damped_demo: section 5 holds the verdict, the Q/e figure and the roll-off figure
+    (moved from section 4, drawn once); the rule row equals betv check's; the caption
+    names the flip the study found."""
+    from betvdesign.report import ReportOptions, build_report, prepare, render_html
+
+    opts = ReportOptions(regime_points=5, robustness_points=3, frequency_points=6)
+    rep = build_report(prepare(DEVICES / "damped_demo.yaml"), options=opts)
+    blk = rep.sets[0].adequacy
+    study = adequacy(DEVICES / "damped_demo.yaml").sets[0]
+    assert blk.status == study.status == "mode-flips"
+    assert [f.key for f in blk.figures] == ["s1-adequacy", "s1-frequency"]
+    assert all(f.svg for f in blk.figures)
+    assert not any(f.key == "s1-frequency" for f in rep.sets[0].figures)
+    assert f"e ≈ {study.flip_restitution.at:.4g}" in blk.figures[0].caption
+    assert "the device" in blk.figures[0].svg and "none (not driven)" in blk.figures[0].svg
+    labels = {kv.label: kv.value for kv in blk.rows}
+    assert labels["Damping and restitution"] == "the device file's"
+    assert labels["Mode flip in e"].startswith(f"at {study.flip_restitution.text}")
+    row = next(r for r in rep.sets[0].rules if r.id == "model-adequacy")
+    assert row.severity == "warning" and not row.passed
+    html = render_html(rep)
+    assert '<section id="adequacy">' in html and "5. Model adequacy" in html
+    assert html.index('id="fig-s1-adequacy"') > html.index('<section id="adequacy">')
+    n = len(rep.figures())
+    assert f"Figure {n}. Mean speed against actuation frequency" in html
