@@ -11,6 +11,7 @@ Notebook use::
     spec = bd.load_device("devices/push_demo.yaml")
     bd.check(spec)                                  # compact verdict (HTML in Jupyter)
     bd.check(spec.replace("drive.frequency", "2.5 kHz"))
+    bd.adequacy(spec)                               # is the idealised model enough?
     q = bd.ureg.Quantity("6 um")                    # the package's pint registry
 
 The model: W. P. Shin, M. Pai, Y. Y. Lin, C. Y. Hui, N. C. Tien, "Impact dynamics of
@@ -37,6 +38,7 @@ _LAZY = {
     "load_device": "betvdesign.loader",
     "derive": "betvdesign.nondim",
     "check": "betvdesign.api",
+    "adequacy": "betvdesign.api",
     "DeviceView": "betvdesign.checkview",
     "SpecError": "betvdesign.errors",
 }

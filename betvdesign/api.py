@@ -1,7 +1,8 @@
 """Notebook and script entry points: check a device file or an edited spec in one call.
 
 ``betvdesign.check`` is :func:`check`; the command line's ``betv check`` shows the same
-view (:class:`betvdesign.checkview.DeviceView`).
+view (:class:`betvdesign.checkview.DeviceView`). ``betvdesign.adequacy`` is
+:func:`adequacy`: is the paper's idealised model enough for the device?
 """
 
 from __future__ import annotations
@@ -55,3 +56,28 @@ def check(
     for message in flt.unmatched([res]):
         warnings.warn(message, stacklevel=2)
     return DeviceView(res, flt)
+
+
+def adequacy(device: Any) -> Any:
+    """Is the paper's idealised model (undamped, plastic impacts) adequate for a device?
+
+    Compares the exact periodic orbit of every actuator set without and with head damping
+    and restitution (the device's, or Q = 30 and e = 0.1 when it gives none) and scans Q
+    over 1–1000 and e over 0–0.9 for a change of mode
+    (:mod:`betvdesign.studies.adequacy`).
+
+    Parameters
+    ----------
+    device : str, pathlib.Path or DeviceSpec
+        A device YAML file or an already loaded spec.
+
+    Returns
+    -------
+    DeviceAdequacy
+        ``status`` ("adequate", "speed-differs", "mode-flips", "ideal-fails", "failed"),
+        ``adequate``, ``message``, ``text()``; per set (``sets``) the idealised and the
+        richer answer (mode, Δs [-], speed [m/s]) and the Q / e at which the mode flips.
+    """
+    from betvdesign.studies.adequacy import adequacy as _adequacy
+
+    return _adequacy(device)

@@ -53,6 +53,7 @@ class SetCheck:
     vertical: Any | None = None
     settling: Any | None = None
     margin: dict[str, str | None] | None = None
+    adequacy: Any | None = None
 
     @property
     def mode(self) -> str | None:
@@ -167,14 +168,19 @@ def check_derivation(
     margin: bool = True,
     settle: bool = True,
     target_speed_m_s: float | None = None,
+    adequacy: Any = None,
 ) -> CheckResult:
     """Check every actuator set with its exact orbit (see the module docstring).
 
     solver / vertical: override ``dynamics.periodic_orbit`` / ``dynamics.vertical_motion``
     (tests, studies); margin: run the mode-margin corners; settle: run the transient
     from rest; target_speed_m_s: a required speed [m/s] (adds the error rule
-    ``target-speed``).
+    ``target-speed``); adequacy: is the idealised model enough
+    (:mod:`betvdesign.studies.adequacy`, rule ``model-adequacy``): None runs it with the
+    exact solver unless ``solver`` is given, True always (with ``solver``), False never,
+    or an already computed :class:`~betvdesign.studies.adequacy_data.DeviceAdequacy`.
     """
+    custom = solver is not None
     solver = solver or load_solver()
     vertical = vertical or load_vertical()
     solved: dict[ModelParams, Any] = {}
@@ -206,6 +212,7 @@ def check_derivation(
             if key not in settled:
                 settled[key] = _settling(p, po, key[1])
             settlings[s.name] = settled[key]
+    adq = _adequacy(derivation, adequacy, (lambda p, **_: orbit(p)) if custom else None)
     rules = evaluate_device(
         derivation,
         orbits=orbits,
@@ -213,6 +220,7 @@ def check_derivation(
         settling=settlings,
         margins=margins if margin else None,
         target_speed_m_s=target_speed_m_s,
+        adequacy=adq,
     )
     sets = [
         SetCheck(
@@ -222,10 +230,24 @@ def check_derivation(
             verticals.get(s.name),
             settlings.get(s.name),
             margins.get(s.name),
+            adq.get(s.name),
         )
         for s in derivation.sets
     ]
     return CheckResult(derivation, sets, rules, notes)
+
+
+def _adequacy(
+    derivation: DeviceDerivation, want: Any, custom: Callable[..., Any] | None
+) -> dict[str, Any]:
+    """Adequacy results by set name ({} when not wanted; see :func:`check_derivation`)."""
+    if want is False or (want is None and custom is not None):
+        return {}
+    if want is None or want is True:
+        from betvdesign.studies.adequacy import assess
+
+        want = assess(derivation, solver=custom)
+    return {a.name: a for a in want.sets}
 
 
 def _settling(p: ModelParams, po: Any, travel_s: float) -> Any:
@@ -268,6 +290,7 @@ def _set_dict(sc: SetCheck) -> dict[str, Any]:
         "simulation": None if p is None else simulation_summary(p),
         "settling": None if st is None or not hasattr(st, "as_dict") else st.as_dict(),
         "margin": sc.margin,
+        "adequacy": None if sc.adequacy is None else sc.adequacy.as_dict(),
         "vertical": None if sc.vertical is None else _vertical_summary(sc.vertical),
         "published_fit": [
             {

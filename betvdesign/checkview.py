@@ -27,6 +27,7 @@ from typing import Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Field
 
+from betvdesign.checkview_adequacy import AdequacyOut, adequacy_line, adequacy_out
 from betvdesign.rules import RuleResult
 from betvdesign.siformat import format_dimensionless as fmt_x
 from betvdesign.siformat import format_si, si_key
@@ -114,6 +115,7 @@ class SetOut(_Out):
     )
     lambda_: LambdaOut = Field(alias="lambda")
     margin: MarginOut
+    adequacy: AdequacyOut | None = Field(None, description="model adequacy (rule of that name)")
     derived: dict[str, float] = Field(description="SI floats, unit-named keys (f_act_hz, ...)")
     rules: list[RuleOut]
 
@@ -327,6 +329,7 @@ def _set_out(sc: Any, flt: RuleFilter) -> SetOut:
             )
         },
         margin=MarginOut(holds=holds, corners=dict(getattr(sc, "margin", None) or {})),
+        adequacy=adequacy_out(sc),
         derived=derived,
         rules=[_rule_out(r) for r in rules],
     )
@@ -396,6 +399,8 @@ def compact_lines(view: DeviceView, *, width: int = 100, markup: bool = True) ->
         label = f"  {sc.derivation.name}: "
         lines += _wrap(label + l1, width, len(label), esc)
         lines += _wrap(" " * len(label) + l2, width, len(label), esc)
+        if (l3 := adequacy_line(sc)) is not None:
+            lines += _wrap(" " * len(label) + l3, width, len(label), esc)
     groups: dict[tuple[str, str, str, str], list[str]] = {}
     for r in view.rules:
         if r.passed or r.severity == "info":
@@ -468,8 +473,11 @@ def device_html(view: DeviceView) -> str:
     rows = []
     for sc in res.sets:
         l1, l2 = set_headline(sc)
+        l3 = adequacy_line(sc)
+        l2 += "" if l3 is None else "\n" + l3
         rows.append(
-            f"<tr><th>{e(sc.derivation.name)}</th><td>{e(l1)}<br><small>{e(l2)}</small></td></tr>"
+            f"<tr><th>{e(sc.derivation.name)}</th><td>{e(l1)}<br><small>"
+            f"{e(l2).replace(chr(10), '<br>')}</small></td></tr>"
         )
     for r in view.rules:
         if r.passed or r.severity == "info":

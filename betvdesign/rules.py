@@ -50,6 +50,7 @@ from betvdesign.ruledata import (
     orbit_mode,
     verdict,
 )
+from betvdesign.rules_adequacy import adequacy_rule
 from betvdesign.rules_motion import format_speed, format_time, speed_rules
 from betvdesign.siformat import format_si
 
@@ -79,6 +80,7 @@ def evaluate(
     settling: Any | None = None,
     margin: dict[str, str | None] | None = None,
     target_speed_m_s: float | None = None,
+    adequacy: Any | None = None,
 ) -> list[RuleResult]:
     """Every rule for one actuator set (see the module docstring for thresholds).
 
@@ -86,7 +88,8 @@ def evaluate(
     vertical motion (quoted by the window rule); settling: a
     :class:`betvdesign.studies.settling.Settling` from rest; margin: mode of the exact
     orbit at each perturbed corner (label -> mode or None); target_speed_m_s: the
-    speed the design must reach [m/s] (adds an error rule).
+    speed the design must reach [m/s] (adds an error rule); adequacy: a
+    :class:`betvdesign.studies.adequacy_data.SetAdequacy` (adds ``model-adequacy``).
     """
     out = [
         _frequency_window(s, vertical),
@@ -96,6 +99,7 @@ def evaluate(
         _tangential_resonance(s),
         *_published(s),
         *speed_rules(s, orbit, settling, target_speed_m_s),
+        *([adequacy_rule(adequacy)] if adequacy is not None else []),
     ]
     return [_with_set(r, s.name) for r in out]
 
@@ -257,11 +261,17 @@ def _margin(
 def _tangential_resonance(s: SetDerivation) -> RuleResult:
     label, worst = resonance_detuning(s.params)
     ok = worst >= TANGENTIAL_DETUNING
-    msg = f"min |a·ϖ² − 1| = {worst:.3g} ({label}): " + (
-        "tangential head vibration is off resonance"
-        if ok
-        else "near tangential resonance: the head's tangential vibration is undamped off "
+    zeta_h = s.params.zeta_h
+    near = (
+        "near tangential resonance: the head's tangential vibration is undamped off "
         "contact and can grow without bound"
+        if zeta_h == 0.0
+        else f"near tangential resonance: the head's damping (ζ_h = {zeta_h:.3g}, Q_h = "
+        f"{1 / (2 * zeta_h):.3g}) keeps it bounded, the mode and speed are the finite "
+        "damped orbit's, but its tangential amplitude grows about ∝ Q_h"
+    )
+    msg = f"min |a·ϖ² − 1| = {worst:.3g} ({label}): " + (
+        "tangential head vibration is off resonance" if ok else near
     )
     fix = (
         ""
@@ -324,10 +334,11 @@ def evaluate_device(
     settling: dict[str, Any] | None = None,
     margins: dict[str, dict[str, str | None]] | None = None,
     target_speed_m_s: float | None = None,
+    adequacy: dict[str, Any] | None = None,
 ) -> list[RuleResult]:
     """Rules of every set (dicts keyed by set name) plus the device rule
     ``bidirectional`` (two or more sets must move the slider both ways)."""
-    orbits, vertical = orbits or {}, vertical or {}
+    orbits, vertical, adequacy = orbits or {}, vertical or {}, adequacy or {}
     settling, margins = settling or {}, margins or {}
     out: list[RuleResult] = []
     travel: dict[str, int | None] = {}
@@ -341,6 +352,7 @@ def evaluate_device(
                 settling=settling.get(s.name),
                 margin=margins.get(s.name),
                 target_speed_m_s=target_speed_m_s,
+                adequacy=adequacy.get(s.name),
             )
         )
         mode = orbit_mode(orbit)

@@ -123,7 +123,12 @@ def test_own_designs_pass(name):
     d = _device(r.stdout)
     assert d["verdict"] == "pass" and d["failed"] == []
     full = d["details"]
-    assert all(x["passed"] for x in full["rules"] if x["severity"] != "info"), full["rules"]
+    # model-adequacy judges the paper's idealised model, not the design: at ϖ ≥ 0.5 every
+    # design loses its drive at some restitution e < 0.9 (the rebounds leave no finite
+    # contact), so it warns here by design (tests/test_adequacy.py).
+    kept = [x for x in full["rules"] if x["severity"] != "info" and x["id"] != "model-adequacy"]
+    assert all(x["passed"] for x in kept), full["rules"]
+    assert all(s["adequacy"]["reference_mode"] == s["mode"] for s in d["sets"])
     for s, sfull in zip(d["sets"], full["sets"], strict=True):
         assert s["mode"] == s["intended_mode"] and s["passed"] and s["lambda"]["agrees"]
         assert sfull["settling"]["status"] == "settled"

@@ -27,7 +27,8 @@ from betvdesign.report import analysis as report_analysis
 from betvdesign.report.build import fmt_num
 from betvdesign.report.render import write_atomic
 
-FIGURES_PER_SET = 7
+#: Section 4's figures per distinct set, plus the model-adequacy figure (section 5).
+FIGURES_PER_SET = 7 + 1
 #: Small sweeps for tests about rendering, not about the numbers.
 SMALL = ReportOptions(regime_points=5, robustness_points=8)
 
@@ -103,7 +104,8 @@ def test_report_content(reports_dir: Path, device: Path) -> None:
         "2. Device inputs",
         "3. Design rules",
         "4. Figures",
-        "5. Numerical provenance",
+        "5. Model adequacy",
+        "6. Numerical provenance",
         f"betv report {device}",
     ):
         assert needle in text
@@ -121,6 +123,7 @@ def test_report_content(reports_dir: Path, device: Path) -> None:
         "Slider displacement",
         "Mean speed against drive",
         "Robustness",
+        "Model adequacy: mode and speed against damping and restitution",
     ):
         assert title in text
     # Every number shown for an input is the file's own text.

@@ -7,6 +7,7 @@ into byte-reproducible inline SVG.
 """
 
 from betvdesign.plots._figure import figure_style, figure_svg, new_figure
+from betvdesign.plots.adequacy import mode_speed_scan
 from betvdesign.plots.phase import orbit_plane, vertical_phase_portrait
 from betvdesign.plots.pushpull import lambda_one_curve, pushpull_map, pushpull_map_frequencies
 from betvdesign.plots.regime import contact_fraction_strip, impact_period_strip
@@ -24,6 +25,7 @@ __all__ = [
     "figure_svg",
     "impact_period_strip",
     "lambda_one_curve",
+    "mode_speed_scan",
     "new_figure",
     "orbit_plane",
     "pushpull_map",

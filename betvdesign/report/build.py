@@ -27,7 +27,7 @@ from betvdesign.checker import (
 )
 from betvdesign.checkview import rule_unit
 from betvdesign.nondim import DeviceDerivation, SetDerivation, derive_file
-from betvdesign.report import figures, frequency
+from betvdesign.report import adequacy, figures, frequency
 from betvdesign.report.analysis import ReportOptions, SetAnalysis, analyse_set, attempt
 from betvdesign.report.inputs import device_inputs
 from betvdesign.report.model import (
@@ -281,9 +281,11 @@ def design_check(
     der: DeviceDerivation,
     per_set: list[tuple[SetDerivation, SetAnalysis, str | None]],
     opts: ReportOptions,
+    adequacy_result: Any = False,
 ) -> CheckResult:
     """The design check of ``betv check``, fed the report's periodic orbits and vertical
-    motions instead of solving them again (the mode-margin corners are solved here)."""
+    motions instead of solving them again (the mode-margin corners are solved here), and
+    the report's model-adequacy study (``adequacy_result``: a DeviceAdequacy, or False)."""
     orbits = {sd.params: an.periodic for sd, an, _ in per_set}
     verticals = {
         (sd.params.varpi, sd.params.zeta_v, sd.params.restitution): an.vertical
@@ -301,7 +303,7 @@ def design_check(
         piece = verticals[(varpi, zeta_v, restitution)]
         return piece.value if piece.ok else None
 
-    return check_derivation(der, solver=solver, vertical=vertical)
+    return check_derivation(der, solver=solver, vertical=vertical, adequacy=adequacy_result)
 
 
 def build_report(
@@ -337,7 +339,8 @@ def build_report(
             )
         analyses[key] = (sd.name, an)
         per_set.append((sd, an, None))
-    check = design_check(der, per_set, opts)
+    adq = adequacy.compute(der)
+    check = design_check(der, per_set, opts, adq.value if adq.ok else False)
     results = check.rules
     sets: list[SetReport] = []
     for i, ((sd, an, same_as), sc) in enumerate(zip(per_set, check.sets, strict=True), start=1):
@@ -346,7 +349,17 @@ def build_report(
             []
             if same_as
             else figures.set_figures(f"s{i}", sd, an, opts.voltage_points, opts.periodic_tol)
-            + frequency.figures(f"s{i}-frequency", sd, an.frequency, opts.periodic_tol)
+        )
+        adequate = (
+            None
+            if same_as
+            else adequacy.section(
+                f"s{i}",
+                sd,
+                adq,
+                tuple(frequency.figures(f"s{i}-frequency", sd, an.frequency, opts.periodic_tol)),
+                opts.periodic_tol,
+            )
         )
         p = sd.params
         params = (
@@ -367,6 +380,7 @@ def build_report(
                 figures=tuple(figs),
                 provenance=provenance(an, opts, timings=generated is not None),
                 same_as=same_as,
+                adequacy=adequate,
             )
         )
     device_rules = [r for r in results if not r.set_name]

@@ -103,6 +103,17 @@ class VerdictBox:
 
 
 @dataclass(frozen=True)
+class AdequacyBlock:
+    """Section "Model adequacy" of one set: status, a verdict sentence, labelled rows
+    and its figures (mode/speed against Q and e; speed against frequency with roll-off)."""
+
+    status: str
+    verdict: str
+    rows: tuple[KeyValue, ...]
+    figures: tuple[FigureBlock, ...]
+
+
+@dataclass(frozen=True)
 class SetReport:
     """Everything the report says about one actuator set."""
 
@@ -116,6 +127,7 @@ class SetReport:
     provenance: tuple[KeyValue, ...]
     same_as: str | None = None
     notes: tuple[str, ...] = ()
+    adequacy: AdequacyBlock | None = None
 
 
 @dataclass(frozen=True, repr=False)
@@ -137,8 +149,10 @@ class Report:
     notes: tuple[str, ...] = field(default_factory=tuple)
 
     def figures(self) -> list[FigureBlock]:
-        """All figures of the report in reading order."""
-        return [f for s in self.sets for f in s.figures]
+        """All figures of the report in reading order (section 4, then the model-adequacy
+        section)."""
+        adequacy = [f for s in self.sets if s.adequacy for f in s.adequacy.figures]
+        return [f for s in self.sets for f in s.figures] + adequacy
 
     def _set_lines(self) -> list[tuple[str, str]]:
         return [

@@ -1,0 +1,96 @@
+"""Model-adequacy figure: mode and mean speed against the head's quality factor Q and
+against the coefficient of restitution e, around the device
+(:mod:`betvdesign.studies.adequacy`). Plain arrays in, drawn on ``ax=``."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+
+import numpy as np
+from matplotlib.axes import Axes
+
+from betvdesign.plots._figure import DEVICE_COLOR, MODE_COLORS, axes_or_new
+from betvdesign.siformat import scale_for
+
+#: Marker colours of the modes that do not move the slider (push/pull: MODE_COLORS).
+OTHER_COLORS = {"stalled": "#ff7f0e", "none": "#7f7f7f"}
+
+
+def mode_speed_scan(
+    x: Sequence[float],
+    speed_m_s: Sequence[float | None],
+    modes: Sequence[str | None],
+    *,
+    xlabel: str,
+    logx: bool = False,
+    device: tuple[float, float] | None = None,
+    ideal_m_s: float | None = None,
+    flips: Sequence[float] = (),
+    speed_scale: tuple[float, str] | None = None,
+    ax: Axes | None = None,
+) -> Axes:
+    """Mean slider speed [m/s, SI prefix by magnitude; signed along the impact direction]
+    against ``x`` (Q [-] or e [-]), each point coloured by its mode ("push", "pull",
+    "stalled", "none" = not driven, None = no periodic orbit: crosses on zero).
+
+    device: (x, speed [m/s]) of the device with its (or the default) damping and
+    restitution; ideal_m_s: the idealised model's speed [m/s] (dashed line); flips:
+    x where the mode changes (dotted lines); speed_scale: (factor, unit) to share one
+    speed axis between panels (default: from the data).
+    """
+    ax = axes_or_new(ax)
+    if logx:
+        ax.set_xscale("log")
+    xs = np.asarray(x, float)
+    v = np.array([s if s is not None else 0.0 for s in speed_m_s], float)
+    top = max(float(np.abs(v).max(initial=0.0)), abs(ideal_m_s or 0.0))
+    k, unit = speed_scale or scale_for(top, "m/s")
+    moving = np.array([m in ("push", "pull", "stalled") for m in modes], bool)
+    ax.plot(xs, np.where(moving, v * k, np.nan), color="black", lw=0.8, zorder=1)
+    for mode in ("push", "pull", "stalled", "none", None):
+        sel = np.array([m == mode for m in modes], bool)
+        if not sel.any():
+            continue
+        if mode is None:
+            ax.plot(
+                xs[sel],
+                v[sel] * 0.0,
+                ls="none",
+                marker="x",
+                ms=6,
+                color="#7f7f7f",
+                label="no periodic orbit",
+            )
+            continue
+        color = MODE_COLORS.get(mode) or OTHER_COLORS[mode]
+        label = {"none": "none (not driven)"}.get(mode, mode)
+        ax.plot(
+            xs[sel], v[sel] * k, ls="none", marker="o", ms=3.5, color=color, label=label, zorder=2
+        )
+    if ideal_m_s is not None and math.isfinite(ideal_m_s):
+        ax.axhline(
+            ideal_m_s * k,
+            color="black",
+            ls="--",
+            lw=1.0,
+            label="idealised model (undamped, plastic)",
+        )
+    for i, f in enumerate(flips):
+        ax.axvline(f, color="black", ls=":", lw=1.0, label="mode flips" if i == 0 else None)
+    if device is not None and device[1] is not None and math.isfinite(device[0]):
+        ax.plot(
+            [device[0]],
+            [device[1] * k],
+            marker="*",
+            ms=10,
+            ls="none",
+            color=DEVICE_COLOR,
+            label="the device",
+            zorder=3,
+        )
+    ax.axhline(0.0, color="#7f7f7f", lw=0.5)
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(f"mean slider speed  [{unit}]")
+    ax.legend(loc="best", framealpha=0.9, fontsize=7)
+    return ax
