@@ -38,21 +38,12 @@ def _fifty_digits():
 TOL_T = 1e-12  # contact start and hit times [-] (τ up to 2·2π/ϖ ≈ 40)
 TOL_STATE = 1e-11
 
-#: exact-solver defect (damped vertical, ζ_v > 0): measured offsets of its contact start
-#: (2026-11-25). Its hits drift as the flights shrink, from 1e-14 (flights ~1e-2) to the
-#: offsets below (flights ~1e-9): the damped gap closed form (flows.forced through
-#: vertical_flight) carries an absolute round-off ~1e-16 that a flight with rebound
-#: velocity v turns into a time error ~1e-16/v; undamped flights (flows.oscillator, a
-#: divided-difference form) stay within 5e-13.
-DAMPED_DEFECT = {
-    (0.77, 0.016, 0.32): "contact start off by 1.9e-8, hits by up to 2.6e-9",
-    (0.63, 0.242, 0.03): "contact start off by 8.6e-10, hits by up to 8.0e-10",
-    (0.77, 0.077, 0.09): "contact start off by 7.4e-9, hits by up to 6.6e-9",
-    (0.78, 0.018, 0.09): "contact start off by 3.5e-8, hits by up to 2.9e-8",
-    (0.9, 0.05, 0.3): "contact start off by 2.2e-7, hits by up to 2.2e-7",
-}
+#: The damped cases were the exact solver's chattering defect until 2026-11-25 (its
+#: contact start off by 8.6e-10 to 2.2e-7, hits drifting as the flights shrink: the
+#: damped gap closed form carries an absolute round-off ~1e-16, a time error ~1e-16/v
+#: for a rebound of velocity v); tiny flights now come from schedule.short_flight.
 #: (ϖ, ζ_v, e): every one chatters into a contact in each cycle (period 1); the damped
-#: ones are the vertical motions of test_damped_reference's xfail designs, and more
+#: ones are the vertical motions of test_damped_reference's chattering designs, and more
 CASES = [
     (0.77, 0.016, 0.32),
     (0.63, 0.242, 0.03),
@@ -66,18 +57,8 @@ CASES = [
 ]
 
 
-def _exact_marks(case):
-    if case in DAMPED_DEFECT:
-        return [
-            pytest.mark.xfail(
-                strict=True, raises=AssertionError, reason="exact solver: " + DAMPED_DEFECT[case]
-            )
-        ]
-    return []
-
-
 def _params(case) -> list:
-    return [pytest.param(c, id=f"w{c[0]}-zv{c[1]}-e{c[2]}", marks=_exact_marks(c)) for c in case]
+    return [pytest.param(c, id=f"w{c[0]}-zv{c[1]}-e{c[2]}") for c in case]
 
 
 _MP: dict = {}
@@ -183,7 +164,7 @@ def _free_flight(case, alpha, zeta_h, start, t0, t1) -> np.ndarray:
 
 @pytest.mark.parametrize(
     "case,alpha,beta,kappa,zeta_h",
-    [pytest.param(*c, id=f"w{c[0][0]}-zv{c[0][1]}", marks=_exact_marks(c[0])) for c in STATE_CASES],
+    [pytest.param(*c, id=f"w{c[0][0]}-zv{c[0][1]}") for c in STATE_CASES],
 )
 def test_exact_state_at_contact_start(case, alpha, beta, kappa, zeta_h):
     """(ζ, ζ', s, s') where the contact of cycle 1 starts: the exact solver's dense

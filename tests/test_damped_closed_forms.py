@@ -23,6 +23,7 @@ import mpmath as mp
 import pytest
 
 from betvdesign.dynamics.flows import decaying_basis, forced, oscillator
+from betvdesign.dynamics.schedule import short_flight
 
 
 @pytest.fixture(autouse=True)
@@ -155,20 +156,10 @@ def test_forced_matches_mpmath_odefun(case):
     assert abs(y - ym) <= 1e-14 and abs(v - vm) <= 1e-14
 
 
-@pytest.mark.xfail(
-    strict=True,
-    raises=AssertionError,
-    reason="exact solver: flows.forced sums a steady part a sin φ + b cos φ and a free "
-    "part of size |(a, b)| ≈ 1, so its y carries an absolute round-off ≈ 1e-16 however "
-    "small the motion: from ξ = 0 at ξ' = v to the apex, its error relative to v·h is "
-    "2e-10, 2e-4 and 36 for v = 1e-3, 1e-6, 5e-9 (undamped flows.oscillator: 1e-14, 2e-11, "
-    "2e-10; measured 2026-11-25). It mislocates the tiny flights of damped chattering "
-    "sequences (test_chattering.py)",
-)
-def test_forced_over_a_tiny_flight_keeps_its_own_scale():
-    """A rebound flight of a chattering sequence: from ξ = 0 with ξ' = v small under the
-    damped vertical equation, ξ at the apex (h ≈ v/a) must be right to 1e-8 relative to
-    v·h (the gap's own size), as the undamped oscillator form is."""
+def test_forced_over_a_tiny_flight_is_accurate_to_its_absolute_round_off():
+    """flows.forced sums a steady part and a free part of size ≈ 1, so over a tiny
+    rebound flight (ξ = 0, ξ' = v) its ξ is right to ~1e-16 absolute, not relative to
+    v·h: why the solver takes such flights from schedule.short_flight (below)."""
     zv, wf = 0.05, 0.9
     A = math.hypot(1.0, 2 * zv * wf)
     phi = 1.3
@@ -176,12 +167,45 @@ def test_forced_over_a_tiny_flight_keeps_its_own_scale():
         h = v / (A * math.sin(phi))
         y, _ = forced(1.0, zv, wf, -A, 0.0, 0.0, v, math.sin(phi), math.cos(phi), h)
         ym, _, _ = forced_mp(1.0, zv, wf, -A, 0.0, 0.0, v, math.sin(phi), math.cos(phi), h)
-        assert abs(y - ym) <= 1e-8 * v * h, (v, y, float(ym))
+        assert abs(y - ym) <= 1e-15, (v, y, float(ym))
+
+
+@pytest.mark.parametrize("zv", [0.0, 0.05, 0.7, 1.0, 2.5])
+@pytest.mark.parametrize("wf", [0.5, 1.01, 1.9])
+def test_short_flight_keeps_its_own_scale(zv, wf):
+    """A rebound flight of a chattering sequence as the solver takes it
+    (schedule.short_flight: certified Taylor series): its flight time and landing
+    velocity are the 50-digit closed form's (root of ξ(h)/h by mpmath) to 1e-13
+    relative, down to v = 1e-12 (the closed form in floats loses 1e-16/v² there)."""
+    A = math.hypot(1.0, 2 * zv * wf)
+    for phi in (0.05, 1.3, 2.9):
+        sp, cp = math.sin(phi), math.cos(phi)
+        for v in (1e-2, 1e-5, 1e-8, 1e-12):
+            h, vl = short_flight(wf, zv, A, v, sp, cp)
+            if 2.0 * v / (A * sp) > 0.1:  # beyond the series' reach (left to the search)
+                continue
+            assert h > 0.0, (phi, v)
+
+            def gap(t, v=v, sp=sp, cp=cp):
+                return forced_mp(1.0, zv, wf, -A, 0.0, 0.0, v, sp, cp, t)[0] / t
+
+            with mp.workdps(50):
+                hm = mp.findroot(gap, (mp.mpf(h) * 0.99, mp.mpf(h) * 1.01), solver="anderson")
+                vm = forced_mp(1.0, zv, wf, -A, 0.0, 0.0, v, sp, cp, hm)[1]
+            assert abs(h - hm) <= 1e-13 * hm, (phi, v, h, float(hm))
+            assert abs(vl - vm) <= 1e-13 * abs(vm), (phi, v, vl, float(vm))
+
+
+def test_short_flight_refuses_long_flights():
+    """A flight beyond the series' certified reach is left to the gap search (−1)."""
+    A = 1.0
+    assert short_flight(1.0, 0.0, A, 0.5, 0.1, math.sqrt(0.99))[0] == -1.0
+    assert short_flight(1.0, 0.0, A, 1e-3, -0.1, math.sqrt(0.99))[0] == -1.0
 
 
 def test_undamped_oscillator_over_a_tiny_flight_keeps_its_own_scale():
     """The same flight without damping through flows.oscillator (the undamped path of
-    vertical_flight), which the xfail above is measured against."""
+    vertical_flight), a divided-difference form that keeps the flight's own scale."""
     wf, phi = 0.9, 1.3
     for v in (1e-3, 1e-6, 5e-9):
         h = v / math.sin(phi)

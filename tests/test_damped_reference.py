@@ -59,29 +59,11 @@ def damped_designs(n: int = 24, seed: int = 2026) -> list[ModelParams]:
 
 DESIGNS = damped_designs()
 
-#: designs where the exact solver misses 1e-8 only through its contact start after a
-#: chattering sequence (schedule.py, round-off over many tiny flights; the lead's fix is
-#: pending): the reference's contact start agrees with the 50-digit event-by-event sum of
-#: test_chattering.py, the exact one is off by the offset given (measured 2026-11-25).
-CHATTER_XFAIL = {
-    3: "e = 0.32, 21 hits/cycle: contact starts off by 6.5e-8, sections by 4.3e-7",
-    13: "e = 0.03, 7 hits/cycle: contact starts off by 2.4e-9, sections by 1.3e-8",
-    19: "e = 0.09, 9 hits/cycle: contact starts off by 1.6e-8, sections by 3.8e-8",
-    21: "e = 0.09, 9 hits/cycle: contact starts off by 1.2e-8, sections by 2.1e-8",
-}
-
 
 def _cases():
     for i, p in enumerate(DESIGNS):
-        marks = []
-        if i in CHATTER_XFAIL:
-            marks = [
-                pytest.mark.xfail(
-                    strict=True, raises=AssertionError, reason="exact solver: " + CHATTER_XFAIL[i]
-                )
-            ]
         ident = f"{i}-w{p.varpi:.2f}-zv{p.zeta_v:.3f}-zh{p.zeta_h:.3f}-e{p.restitution:.2f}"
-        yield pytest.param(p, id=ident, marks=marks)
+        yield pytest.param(p, id=ident)
 
 
 def _run(p: ModelParams):
