@@ -187,8 +187,9 @@ def stale(rtol: float = 1e-9) -> list[str]:
     return out
 
 
-#: rungs that solve the idealised model only (no damping, plastic impacts)
-IDEAL_ONLY = ("lambda", "vertical", "rigid")
+#: rungs that solve the idealised model only (no damping, plastic impacts); the vertical
+#: rung takes ζ_v and e (the vertical motion does not depend on ζ_h or the slider)
+IDEAL_ONLY = ("lambda", "rigid")
 
 
 def rigid_error_estimate(alpha: float) -> float:
@@ -241,12 +242,12 @@ def choose_rung(
             )
         return Choice(force, question, why, True)
     in_window = domain.in_window(p.varpi)
-    if not p.ideal and question in ("regime", "delta_s"):
+    if not p.ideal and question == "delta_s":
         return Choice(
             "periodic",
             question,
-            "damping or restitution present: the vertical-only, rigid and λ rungs are of "
-            "the idealised model; the exact periodic orbit includes them",
+            "damping or restitution present: the rigid and λ rungs are of the idealised "
+            "model; the exact periodic orbit includes them",
         )
     if question == "regime":
         return Choice("vertical", question, "the vertical motion does not depend on the slider")

@@ -193,3 +193,21 @@ def test_reference_state_at_contact_start(case, alpha, beta, kappa, zeta_h):
     tc = T + truth(case)["contact"]
     want = _free_flight(case, alpha, zeta_h, rf.section[1, 2:], T, tc)
     assert np.max(np.abs(got - want)) <= TOL_STATE * max(1.0, np.abs(want).max())
+
+
+@pytest.mark.parametrize("case", _params(CASES[:5]))
+def test_regime_rung_sees_the_chattering(case):
+    """What ``betv check`` and the regime question read (dynamics.vertical_motion through
+    the fidelity ladder's vertical rung, given ζ_v and e): one contact per cycle lasting
+    from the 50-digit accumulation time to π/ϖ (kernel time), not the idealised motion's."""
+    from betvdesign import fidelity
+
+    w, zv, e = case
+    p = ModelParams(w, 0.3, 1.0, 0.3, zv, 0.0, e)
+    ans = fidelity.answer(p, "regime")
+    assert ans.choice.rung == "vertical" and ans.success, ans.message
+    frac = (math.pi / w - float(truth(case)["contact"])) / (2 * math.pi / w)
+    assert ans.value["period_cycles"] == 1
+    assert abs(ans.value["contact_fraction"] - frac) <= 1e-12
+    ideal = fidelity.answer(ModelParams(w, 0.3, 1.0, 0.3), "regime")
+    assert abs(ideal.value["contact_fraction"] - frac) > 1e-6
