@@ -119,6 +119,8 @@ def tolerance_cmd(
                 )
                 if s["p_not_converged"]:
                     typer.echo(f"    P(not converged) {s['p_not_converged']:.3f}")
+                if s.get("p_not_driven"):
+                    typer.echo(f"    P(not driven: no contact recurs) {s['p_not_driven']:.3f}")
                 if s["invalid_samples"]:
                     typer.echo(f"    invalid samples: {s['invalid_samples']}")
                 pct = s["speed_um_s_percentiles"]

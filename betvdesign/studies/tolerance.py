@@ -265,6 +265,41 @@ def _beyond_columns(spec: Any) -> dict[str, type]:
     return {} if ideal else dict.fromkeys(("zeta_v", "zeta_h", "restitution"), float)
 
 
+#: tolerance fields that give the model damping or restitution (beyond the λ fit's model)
+BEYOND_IDEAL_FIELDS = (
+    "damping_ratio_normal",
+    "damping_ratio_tangential",
+    "quality_factor_normal",
+    "quality_factor_tangential",
+    "restitution",
+)
+
+
+def _refuse_lambda_beyond_ideal(
+    device: str | os.PathLike[str],
+    spec: Any,
+    chosen: Sequence[str],
+    tolerances: Sequence[Tolerance],
+) -> None:
+    """UsageError when the λ rung is asked of a device (or a spread) with damping or
+    restitution: λ is a fit to the idealised model and knows neither."""
+    from betvdesign.nondim import derive_set
+
+    spread = [t.field for t in tolerances if t.field.rsplit(".", 1)[-1] in BEYOND_IDEAL_FIELDS]
+    damped = [
+        s.name
+        for s in spec.actuator_sets
+        if s.name in chosen and not derive_set(spec, s).params.ideal
+    ]
+    if spread or damped:
+        names = ", ".join(damped or spread)
+        what = f"set(s) {names} give" if damped else f"{names} spread(s) give"
+        raise UsageError(
+            f"{device}: --fidelity lambda is a fit to the idealised model (undamped, plastic "
+            f"impacts) and {what} damping or restitution; use --fidelity periodic (the default)"
+        )
+
+
 def tolerance_study(
     device: str | os.PathLike[str],
     tolerances: Sequence[Tolerance],
@@ -291,6 +326,8 @@ def tolerance_study(
     for name in chosen:
         if name not in names:
             raise UsageError(f"{device}: no actuator set {name!r} (sets: {', '.join(names)})")
+    if fidelity == "lambda":
+        _refuse_lambda_beyond_ideal(device, spec, chosen, tolerances)
     limits.refuse_long_study("tolerance", samples * len(chosen), 0.0, 1)  # before drawing
     nominal = nominal_values(spec, tolerances)
     x = draw(tolerances, nominal, samples, seed)
@@ -370,7 +407,15 @@ def summarise(
             "p_push": sum(r[mode_key] == "push" for r in decided) / n,
             "p_pull": sum(r[mode_key] == "pull" for r in decided) / n,
             "p_not_converged": (
-                sum(not r["converged"] for r in valid) / n if fidelity == "periodic" else None
+                sum(not r["converged"] and r["status"] != "not_driven" for r in valid) / n
+                if fidelity == "periodic"
+                else None
+            ),
+            # a definite answer, not a failure: no contact recurs, the slider stays put
+            "p_not_driven": (
+                sum(r["status"] == "not_driven" for r in valid) / n
+                if fidelity == "periodic"
+                else None
             ),
             "p_outside_window": sum(not r["in_window"] for r in valid) / n,
             "intended_mode": intended,
