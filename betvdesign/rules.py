@@ -170,7 +170,9 @@ def mode_hint(intended: str) -> str:
 
 _STATUS_FIX = {
     "unbounded": "detune the tangential resonance (|α·ϖ² − 1| ≥ 0.1: change the drive "
-    "frequency or the horizontal resonance)",
+    "frequency or the horizontal resonance), or give the head's measured damping "
+    "(actuator.quality_factor_*): a damped head stays bounded and the rule model-adequacy "
+    "gives that finite answer",
     "not_driven": "bring ϖ into 0.5–2 (the head does not stay in contact beyond ϖ ≈ 2)",
     "not_converged": "move away from the window edges or the tangential resonance; "
     "`betv simulate FILE --cycles N` shows the transient",

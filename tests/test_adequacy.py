@@ -280,3 +280,44 @@ def test_report_section_model_adequacy():
     assert html.index('id="fig-s1-adequacy"') > html.index('<section id="adequacy">')
     n = len(rep.figures())
     assert f"Figure {n}. Mean speed against actuation frequency" in html
+
+
+def test_partial_terms_are_the_devices_and_undamped_q_is_null_in_json():
+    """A device giving only e: compared as given (Q = ∞, no default damping added); the
+    JSON writes the infinite Q as null."""
+    spec = load_device(DEVICES / "push_demo.yaml").replace("contact.restitution", 0.05)
+    view = betvdesign.check(spec)
+    a = view.result.sets[0].adequacy
+    assert a.source == "device" and math.isinf(a.richer.quality)
+    assert a.richer.restitution == 0.05 and a.richer.terms == "Q ∞, e 0.05"
+    out = view.out.sets[0].adequacy
+    assert out.richer.quality_normal is None and out.richer.restitution == 0.05
+
+
+def test_plot_mode_speed_scan_draws_on_the_given_axes():
+    from matplotlib.figure import Figure
+
+    from betvdesign.plots import mode_speed_scan
+
+    ax = Figure().subplots()
+    got = mode_speed_scan(
+        [0.0, 0.1, 0.2, 0.3],
+        [1e-3, 1.2e-3, None, None],
+        ["push", "push", "none", None],
+        xlabel="restitution e  [-]",
+        device=(0.1, 1.2e-3),
+        ideal_m_s=1e-3,
+        flips=[0.15],
+        ax=ax,
+    )
+    assert got is ax
+    labels = [t.get_text() for t in ax.get_legend().get_texts()]
+    for want in ("push", "none (not driven)", "no periodic orbit", "the device", "mode flips"):
+        assert want in labels
+    assert ax.get_ylabel() == "mean slider speed  [mm/s]"
+    assert isinstance(
+        mode_speed_scan(
+            [1, 10], [1e-6, 2e-6], ["pull", "pull"], xlabel="Q", logx=True
+        ).get_xscale(),
+        str,
+    )

@@ -156,6 +156,7 @@ class Evaluator:
                 margin=full,
                 settle=full,
                 target_speed_m_s=self.target,
+                adequacy=False,  # not a criterion of the search (fixfile's check has it)
             )
         except (ParameterError, BetvError, ValueError) as exc:
             return False, [f"invalid: {exc}"], None
