@@ -12,7 +12,8 @@ shared (test_dynamics_reference.py checks the imports).
 Designs: 24 drawn over the design window 0.5 ≤ ϖ < 2 (α, β, κ log-uniform as in
 conftest.WINDOW_SETS), ζ_v and ζ_h log-uniform in [0.005, 0.3] (one of them 0 in a third
 of the designs each), restitution e in [0.02, 0.6] in every other design (at ϖ ≤ 1.3,
-where contacts recur, so that chattering sequences are exercised).
+where contacts recur, so that chattering sequences are exercised). Compared: 100-cycle
+transients, and the exact solver's periodic orbits as fixed points of one reference cycle.
 """
 
 from __future__ import annotations
@@ -159,3 +160,35 @@ def test_reference_gives_up_loudly_on_endless_rebounds(monkeypatch):
     assert rf.status == "failed" and not rf.success
     assert "more than 5 hits" in rf.message and rf.n_cycles < 4
     assert rf.section.shape == (rf.n_cycles + 1, 6)
+
+
+#: one-cycle defect of the exact periodic orbit in the chattering designs (same cause)
+ORBIT_XFAIL = {3: 1.3e-8, 13: 1.1e-9, 19: 6.0e-10, 21: 1.0e-8}
+
+
+def _orbit_cases():
+    for i, p in enumerate(DESIGNS):
+        marks = []
+        if i in ORBIT_XFAIL:
+            why = f"exact solver: its periodic state is mapped {ORBIT_XFAIL[i]:.1e} off"
+            marks = [pytest.mark.xfail(strict=True, raises=AssertionError, reason=why)]
+        yield pytest.param(p, id=f"{i}-e{p.restitution:.2f}", marks=marks)
+
+
+@pytest.mark.parametrize("p", list(_orbit_cases()))
+def test_periodic_orbit_is_a_fixed_point_of_the_reference(p):
+    """The exact solver's periodic orbit (shooting on its closed forms) is mapped onto
+    itself, shifted by Δs, by one reference cycle (1e-10 of the state's size); designs
+    whose contact does not recur are reported not driven by both."""
+    from betvdesign.dynamics import periodic_orbit
+
+    po = periodic_orbit(p)
+    if not po.success:
+        assert po.status == "not_driven"
+        rf = reference.simulate(p, 3, rtol=1e-10, atol=1e-12)
+        assert sum(e.kind == "impact" for e in rf.events) == 1  # only the initial contact
+        return
+    rf = reference.simulate(p, 1, state0=po.state, rtol=RTOL, atol=ATOL)
+    d = rf.section[1] - np.asarray(po.state)
+    d[4] -= po.delta_s
+    assert np.max(np.abs(d)) <= 1e-10 * max(1.0, float(np.max(np.abs(po.state))))
