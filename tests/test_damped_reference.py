@@ -192,3 +192,24 @@ def test_periodic_orbit_is_a_fixed_point_of_the_reference(p):
     d = rf.section[1] - np.asarray(po.state)
     d[4] -= po.delta_s
     assert np.max(np.abs(d)) <= 1e-10 * max(1.0, float(np.max(np.abs(po.state))))
+
+
+@pytest.mark.parametrize(
+    "p,what",
+    [
+        (ModelParams(1.0, 0.5, 1.0, 0.4, 0.01, 0.0), "ϖ = 1: vertical resonance, damped"),
+        (ModelParams(1.0, 1.0, 1.0, 0.4, 0.0, 0.02), "αϖ² = 1: free tangential resonance"),
+        (ModelParams(1.25, 0.32, 1.0, 0.4, 0.01, 0.01), "α(1+1/β)ϖ² = 1: stick resonance"),
+        (ModelParams(0.9, 0.1, 0.9, 0.4, 1.0, 1.0), "critically damped head"),
+        (ModelParams(0.9, 0.1, 0.9, 0.4, 0.02, 3.0), "tangentially overdamped"),
+        (ModelParams(0.6, 0.3, 2.0, 0.5, 2.0, 0.5, 0.2), "overdamped normal, chattering"),
+    ],
+)
+def test_resonant_and_heavily_damped_against_reference(p, what):
+    """Where the undamped closed forms are secular or the damped ones change branch
+    (critical, overdamped): 40 cycles within 1e-8."""
+    ex = simulate(p, 40)
+    rf = reference.simulate(p, 40, rtol=RTOL, atol=ATOL)
+    assert ex.success and rf.success, (ex.message, rf.message)
+    err = float(np.max(np.abs(ex.section - rf.section) / np.maximum(1.0, np.abs(ex.section))))
+    assert err <= TOL, (what, err)
