@@ -213,3 +213,33 @@ def test_resonant_and_heavily_damped_against_reference(p, what):
     assert ex.success and rf.success, (ex.message, rf.message)
     err = float(np.max(np.abs(ex.section - rf.section) / np.maximum(1.0, np.abs(ex.section))))
     assert err <= TOL, (what, err)
+
+
+def _slip_sign_violation(tr, m: int, p: ModelParams) -> float:
+    """Largest violation of the slip direction in cycle m on the dense output (2000
+    points per phase): ζ' − s' ≥ 0 in slip, ≤ 0 in reverse slip (MODEL.md: the phase is
+    the sign of ζ' − s')."""
+    T = 2 * math.pi / p.varpi
+    ev = [e for e in tr.events if m * T <= e.tau < (m + 1) * T]
+    worst = 0.0
+    for a, b in zip(ev, [*ev[1:], None], strict=True):
+        t1 = b.tau if b is not None else (m + 1) * T
+        if a.phase_after not in ("slip", "reverse") or t1 <= a.tau:
+            continue
+        x = tr.sample(np.linspace(a.tau, t1, 2000)[1:-1])
+        rel = (x[:, 3] - x[:, 5]) * (1.0 if a.phase_after == "slip" else -1.0)
+        worst = max(worst, float(-rel.min()))
+    return worst
+
+
+def test_reference_finds_grazing_velocity_matches(monkeypatch):
+    """Design 19 grazes ζ' = s' in cycle 10 (at rtol 1e-12 a dip of 6e-5 inside one step):
+    with the minimum watch the reference sees it (slip never runs the wrong way);
+    without it, slip carries on with ζ' < s'."""
+    p, n = DESIGNS[19], 11
+    rf = reference.simulate(p, n, rtol=1e-12, atol=1e-13, dense=True)
+    assert "grazing" in rf.message
+    assert _slip_sign_violation(rf, 10, p) < 1e-9
+    monkeypatch.setattr(reference, "WATCHED", ())
+    blind = reference.simulate(p, n, rtol=1e-12, atol=1e-13, dense=True)
+    assert _slip_sign_violation(blind, 10, p) > 1e-5
