@@ -12,7 +12,8 @@ shared (test_dynamics_reference.py checks the imports).
 Designs: 24 drawn over the design window 0.5 ≤ ϖ < 2 (α, β, κ log-uniform as in
 conftest.WINDOW_SETS), ζ_v and ζ_h log-uniform in [0.005, 0.3] (one of them 0 in a third
 of the designs each), restitution e in [0.02, 0.6] in every other design (at ϖ ≤ 1.3,
-where contacts recur, so that chattering sequences are exercised).
+where contacts recur, so that chattering sequences are exercised). Compared: 100-cycle
+transients, and the exact solver's periodic orbits as fixed points of one reference cycle.
 """
 
 from __future__ import annotations
@@ -141,3 +142,86 @@ def test_reference_gives_up_loudly_on_endless_rebounds(monkeypatch):
     assert rf.status == "failed" and not rf.success
     assert "more than 5 hits" in rf.message and rf.n_cycles < 4
     assert rf.section.shape == (rf.n_cycles + 1, 6)
+
+
+#: one-cycle defect of the exact periodic orbit in the chattering designs (same cause)
+ORBIT_XFAIL = {3: 1.3e-8, 13: 1.1e-9, 19: 6.0e-10, 21: 1.0e-8}
+
+
+def _orbit_cases():
+    for i, p in enumerate(DESIGNS):
+        marks = []
+        if i in ORBIT_XFAIL:
+            why = f"exact solver: its periodic state is mapped {ORBIT_XFAIL[i]:.1e} off"
+            marks = [pytest.mark.xfail(strict=True, raises=AssertionError, reason=why)]
+        yield pytest.param(p, id=f"{i}-e{p.restitution:.2f}", marks=marks)
+
+
+@pytest.mark.parametrize("p", list(_orbit_cases()))
+def test_periodic_orbit_is_a_fixed_point_of_the_reference(p):
+    """The exact solver's periodic orbit (shooting on its closed forms) is mapped onto
+    itself, shifted by Δs, by one reference cycle (1e-10 of the state's size); designs
+    whose contact does not recur are reported not driven by both."""
+    from betvdesign.dynamics import periodic_orbit
+
+    po = periodic_orbit(p)
+    if not po.success:
+        assert po.status == "not_driven"
+        rf = reference.simulate(p, 3, rtol=1e-10, atol=1e-12)
+        assert sum(e.kind == "impact" for e in rf.events) == 1  # only the initial contact
+        return
+    rf = reference.simulate(p, 1, state0=po.state, rtol=RTOL, atol=ATOL)
+    d = rf.section[1] - np.asarray(po.state)
+    d[4] -= po.delta_s
+    assert np.max(np.abs(d)) <= 1e-10 * max(1.0, float(np.max(np.abs(po.state))))
+
+
+@pytest.mark.parametrize(
+    "p,what",
+    [
+        (ModelParams(1.0, 0.5, 1.0, 0.4, 0.01, 0.0), "ϖ = 1: vertical resonance, damped"),
+        (ModelParams(1.0, 1.0, 1.0, 0.4, 0.0, 0.02), "αϖ² = 1: free tangential resonance"),
+        (ModelParams(1.25, 0.32, 1.0, 0.4, 0.01, 0.01), "α(1+1/β)ϖ² = 1: stick resonance"),
+        (ModelParams(0.9, 0.1, 0.9, 0.4, 1.0, 1.0), "critically damped head"),
+        (ModelParams(0.9, 0.1, 0.9, 0.4, 0.02, 3.0), "tangentially overdamped"),
+        (ModelParams(0.6, 0.3, 2.0, 0.5, 2.0, 0.5, 0.2), "overdamped normal, chattering"),
+    ],
+)
+def test_resonant_and_heavily_damped_against_reference(p, what):
+    """Where the undamped closed forms are secular or the damped ones change branch
+    (critical, overdamped): 40 cycles within 1e-8."""
+    ex = simulate(p, 40)
+    rf = reference.simulate(p, 40, rtol=RTOL, atol=ATOL)
+    assert ex.success and rf.success, (ex.message, rf.message)
+    err = float(np.max(np.abs(ex.section - rf.section) / np.maximum(1.0, np.abs(ex.section))))
+    assert err <= TOL, (what, err)
+
+
+def _slip_sign_violation(tr, m: int, p: ModelParams) -> float:
+    """Largest violation of the slip direction in cycle m on the dense output (2000
+    points per phase): ζ' − s' ≥ 0 in slip, ≤ 0 in reverse slip (MODEL.md: the phase is
+    the sign of ζ' − s')."""
+    T = 2 * math.pi / p.varpi
+    ev = [e for e in tr.events if m * T <= e.tau < (m + 1) * T]
+    worst = 0.0
+    for a, b in zip(ev, [*ev[1:], None], strict=True):
+        t1 = b.tau if b is not None else (m + 1) * T
+        if a.phase_after not in ("slip", "reverse") or t1 <= a.tau:
+            continue
+        x = tr.sample(np.linspace(a.tau, t1, 2000)[1:-1])
+        rel = (x[:, 3] - x[:, 5]) * (1.0 if a.phase_after == "slip" else -1.0)
+        worst = max(worst, float(-rel.min()))
+    return worst
+
+
+def test_reference_finds_grazing_velocity_matches(monkeypatch):
+    """Design 19 grazes ζ' = s' in cycle 10 (at rtol 1e-12 a dip of 6e-5 inside one step):
+    with the minimum watch the reference sees it (slip never runs the wrong way);
+    without it, slip carries on with ζ' < s'."""
+    p, n = DESIGNS[19], 11
+    rf = reference.simulate(p, n, rtol=1e-12, atol=1e-13, dense=True)
+    assert "grazing" in rf.message
+    assert _slip_sign_violation(rf, 10, p) < 1e-9
+    monkeypatch.setattr(reference, "WATCHED", ())
+    blind = reference.simulate(p, n, rtol=1e-12, atol=1e-13, dense=True)
+    assert _slip_sign_violation(blind, 10, p) > 1e-5

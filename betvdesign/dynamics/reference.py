@@ -190,8 +190,9 @@ def _watch(evs: list, rhs) -> list:
 def _missed(evs: list, sol, tau: float, thr: float, redo) -> tuple[int, float, np.ndarray] | None:
     """(event index, τ, state) of the earliest crossing stepped over (a watched minimum
     of h below −thr), located by brentq on the dense output of ``redo(τ_m)`` (the phase
-    integrated again up to that minimum with dense output; only then: the counters of a
-    run without grazing events stay those of plain solve_ivp); None when there is none."""
+    integrated again up to that minimum with dense output, only then; the watch itself
+    costs the dense outputs at the minima, about 1 % more right-hand sides with DOP853);
+    None when there is none."""
     n, found = len(evs), None
     for j, ev in enumerate(evs):
         d = ev.direction
@@ -346,7 +347,10 @@ def simulate(
             if watch:
 
                 def redo(tm, rhs=rhs, tau=tau, y=y, opts=opts):
-                    return solve_ivp(rhs, (tau, tm), y, dense_output=True, **opts)
+                    nonlocal nfev
+                    again = solve_ivp(rhs, (tau, tm), y, dense_output=True, **opts)
+                    nfev += again.nfev
+                    return again
 
                 missed = _missed(evs, sol, tau, 10.0 * atol, redo)
                 if missed and (not hit or missed[1] < sol.t_events[hit[0]][0]):

@@ -18,24 +18,25 @@ is computed here from its definition; that N = 0 there is checked by the tests).
 opens a contact only where N ≥ 0, else it is impulsive.
 
 **Restitution** (e > 0). A hit reverses the normal velocity, ξ' → −e ξ' (the horizontal
-velocities do not jump). Every rebound flight is integrated and its hit located like
-any other event (max_step a fraction of the flight's own estimate 2v/a, v the rebound
+velocities do not jump). Every rebound flight is integrated and its hit located like any
+other event (max_step a fraction of the flight's own estimate 2v/a, v the rebound
 velocity, a = N + 2ζ_v v the pull at ξ = 0, so that tiny flights stay resolved). A
 chattering sequence (hits in contact conditions, N ≥ 0, flights shrinking by about e) is
 followed hit by hit until the next flight's estimate 2v/a is at most :data:`FLIGHT_TOL`;
-its remaining flights are then summed as the geometric tail S = 2v/(a(1 − e)), over which
-the tangential motion stays free, and the contact starts at the accumulation time τ + S
-(only if that is before the contact would end; else the head bounces on). Error bound
-(docs/damping.md): over the tail the pull differs from a by at most ρa,
-ρ = (AϖS + 4ζ_v v + v²/a)/a (A = √(1 + (2ζ_vϖ)²) bounds |N'|/ϖ; damper at |ξ'| ≤ 2v; the
-spring at the apex height v²/(2a)), which changes each flight and each rebound ratio by
-a relative O(ρ), so the tail is S(1 ± 3ρ/(1 − e)) to first order: the contact start is
-off by at most 3ρS/(1 − e) ≤ 3(Aϖ/a + 2ζ_v + S)·S²/(1 − e) (t_f ≤ S, v = a·t_f/2). The
-tail is closed only when that bound is at most :data:`TAIL_TOL` (1e-12; it falls as S²,
-so a few more hits always reach it while a > 0); the largest bound met is reported in
-``message``. Even without the tail the start would be off by at most
-S(1 + 3ρ/(1 − e)) ≈ FLIGHT_TOL/(1 − e). A sequence is never followed
-for ever: at most :data:`MAX_HITS` hits per cycle, else status "failed".
+its remaining flights are then summed as the geometric tail S = 2v/(a(1 − e)), over
+which the tangential motion stays free, and the contact starts at the accumulation time
+τ + S (only if that is before the contact would end; else the head bounces on). Error
+bound (docs/damping.md): over the tail the pull differs from a by at most ρa, ρ = (AϖS +
+4ζ_v v + v²/a)/a (A = √(1 + (2ζ_vϖ)²) bounds |N'|/ϖ; the damper term 2ζ_vξ' moves by at
+most 4ζ_v v as |ξ'| ≤ v; the spring by the apex height v²/(2a)), which changes each
+flight and each rebound ratio by a relative O(ρ), so the tail is S(1 ± 3ρ/(1 − e)) to
+first order: the contact start is off by at most 3ρS/(1 − e) ≤ 3(Aϖ/a + 2ζ_v + S)·S²/(1
+− e) (t_f ≤ S, v = a·t_f/2). The tail is closed only when that bound is at most
+:data:`TAIL_TOL` (1e-12; it falls as S², so a few more hits always reach it while a > 0;
+a flight below solve_ivp's time resolution, 1e-12·max(1, τ), is closed whatever its
+bound); the largest bound met is reported in ``message``. Even without the tail the
+start would be off by at most S(1 + 3ρ/(1 − e)) ≈ FLIGHT_TOL/(1 − e). A sequence is
+never followed for ever: at most :data:`reference.MAX_HITS` hits per cycle, else status "failed".
 """
 
 from __future__ import annotations
