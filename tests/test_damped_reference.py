@@ -144,17 +144,9 @@ def test_reference_gives_up_loudly_on_endless_rebounds(monkeypatch):
     assert rf.section.shape == (rf.n_cycles + 1, 6)
 
 
-#: one-cycle defect of the exact periodic orbit in the chattering designs (same cause)
-ORBIT_XFAIL = {3: 1.3e-8, 13: 1.1e-9, 19: 6.0e-10, 21: 1.0e-8}
-
-
 def _orbit_cases():
     for i, p in enumerate(DESIGNS):
-        marks = []
-        if i in ORBIT_XFAIL:
-            why = f"exact solver: its periodic state is mapped {ORBIT_XFAIL[i]:.1e} off"
-            marks = [pytest.mark.xfail(strict=True, raises=AssertionError, reason=why)]
-        yield pytest.param(p, id=f"{i}-e{p.restitution:.2f}", marks=marks)
+        yield pytest.param(p, id=f"{i}-e{p.restitution:.2f}")
 
 
 @pytest.mark.parametrize("p", list(_orbit_cases()))
