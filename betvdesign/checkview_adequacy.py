@@ -32,7 +32,9 @@ class AdequacyOut(BaseModel):
 
     model_config = ConfigDict(extra="forbid")
 
-    status: Literal["adequate", "speed-differs", "mode-flips", "ideal-fails", "failed"]
+    status: Literal[
+        "adequate", "flips-beyond", "speed-differs", "mode-flips", "ideal-fails", "failed"
+    ]
     adequate: bool = Field(description="the idealised model's mode holds")
     summary: str
     message: str

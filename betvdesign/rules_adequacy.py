@@ -4,7 +4,9 @@ Built from a :class:`betvdesign.studies.adequacy_data.SetAdequacy` (duck-typed: 
 ``adequate``, ``summary()``, ``speed_change``; its long ``message`` is in the JSON and the
 report): info when the idealised model's
 mode holds with the device's (or plausible default) head damping and restitution and
-throughout the plausible ranges of Q and e; warning when the mode flips there, or when
+throughout the likely bands of Q and e (``LIKELY_QUALITY``, ``LIKELY_RESTITUTION``; a flip
+only beyond them, within the scanned ranges, is stated in the message); warning when the
+mode flips within them, or when
 the idealised model has no periodic orbit while the richer one has (e.g. unbounded
 tangential growth at α·ϖ² = 1 without damping: the finite damped answer is reported).
 """
@@ -14,7 +16,7 @@ from __future__ import annotations
 from typing import Any
 
 from betvdesign.ruledata import RuleResult
-from betvdesign.studies.adequacy_data import QUALITY_RANGE, RESTITUTION_RANGE
+from betvdesign.studies.adequacy_data import LIKELY_QUALITY, LIKELY_RESTITUTION
 
 SRC_ADEQUACY = (
     "betvdesign.studies.adequacy: exact periodic orbits without and with head damping and "
@@ -35,8 +37,8 @@ def adequacy_rule(a: Any) -> RuleResult:
     status = str(a.status)
     ok = bool(a.adequate)
     thr = (
-        f"same mode without and with damping/restitution, and for {QUALITY_RANGE[0]:g} ≤ Q ≤ "
-        f"{QUALITY_RANGE[1]:g}, {RESTITUTION_RANGE[0]:g} ≤ e ≤ {RESTITUTION_RANGE[1]:g}"
+        f"same mode without and with damping/restitution, and for {LIKELY_QUALITY[0]:g} ≤ Q ≤ "
+        f"{LIKELY_QUALITY[1]:g}, {LIKELY_RESTITUTION[0]:g} ≤ e ≤ {LIKELY_RESTITUTION[1]:g}"
     )
     change = a.speed_change
     fix = (

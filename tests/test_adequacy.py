@@ -26,10 +26,13 @@ from betvdesign.dynamics import periodic_orbit
 from betvdesign.errors import ParameterError, SpecError
 from betvdesign.loader import load_device
 from betvdesign.nondim import derive
+from betvdesign.rules_adequacy import adequacy_rule
 from betvdesign.studies.adequacy import adequacy, assess_set
 from betvdesign.studies.adequacy_data import (
     DEFAULT_QUALITY,
     DEFAULT_RESTITUTION,
+    LIKELY_QUALITY,
+    LIKELY_RESTITUTION,
     QUALITY_RANGE,
     RESTITUTION_RANGE,
 )
@@ -90,7 +93,26 @@ def test_quality_flip_matches_a_brute_force_grid():
     assert grid[k] * (1 - 1e-12) <= flip.low < flip.high <= grid[k + 1] * (1 + 1e-12)
     assert flip.high / flip.low - 1 < 1e-3
     assert 1.5 < flip.at < 100  # inside the plausible range, not at an edge
-    assert res.status == "mode-flips"
+    likely = LIKELY_QUALITY[0] <= flip.at <= LIKELY_QUALITY[1]
+    assert res.status == ("mode-flips" if likely else "flips-beyond") or (
+        not likely and res.status == "speed-differs"
+    )
+
+
+def test_flip_only_beyond_the_likely_band_is_stated_not_warned():
+    """pull_demo: pull with the defaults; its mode is lost only at e ≈ 0.37 (> 0.3, the
+    likely band's edge) and at Q ≈ 1 (< 10). Direct orbits at the band's corners are
+    pull; the rule is info and its message names both flips."""
+    res = adequacy(DEVICES / "pull_demo.yaml").sets[0]
+    assert res.adequate and res.status in ("flips-beyond", "speed-differs")
+    assert res.flip_restitution is not None and res.flip_restitution.at > LIKELY_RESTITUTION[1]
+    p = derive(load_device(DEVICES / "pull_demo.yaml")).sets[0].params
+    for q in LIKELY_QUALITY:
+        for e in LIKELY_RESTITUTION:
+            assert _mode(replace(p, zeta_v=_z(q), zeta_h=_z(q), restitution=e)) == "pull"
+    rule = adequacy_rule(res)
+    assert rule.severity == "info" and rule.passed
+    assert "e ≈ 0.37" in rule.message and "Q ≈ 1.01" in rule.message
 
 
 def test_adequate_far_from_any_flip():

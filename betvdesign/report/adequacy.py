@@ -27,6 +27,8 @@ from betvdesign.studies.adequacy import assess
 from betvdesign.studies.adequacy_data import (
     DEFAULT_QUALITY,
     DEFAULT_RESTITUTION,
+    LIKELY_QUALITY,
+    LIKELY_RESTITUTION,
     QUALITY_RANGE,
     RESTITUTION_RANGE,
     SPEED_RTOL,
@@ -39,8 +41,11 @@ _VERDICT = {
     "and restitution and over their whole plausible ranges, speed within {rtol:.0%}.",
     "speed-differs": "The idealised model is adequate for the mode, not for the speed "
     "(more than {rtol:.0%} apart): quote the richer model's speed.",
+    "flips-beyond": "The idealised model is adequate for the mode within the likely Q and e "
+    "(Q {q0:g}–{q1:g}, e ≤ {e1:g}); the mode changes only beyond them (see the flips below), speed "
+    "within {rtol:.0%}.",
     "mode-flips": "The idealised model is not adequate: the mode changes with damping or "
-    "restitution within their plausible ranges.",
+    "restitution within their likely values (Q {q0:g}–{q1:g}, e ≤ {e1:g}) or at the device's.",
     "ideal-fails": "The idealised model gives no periodic orbit here; the richer model's "
     "finite answer is the one to use.",
     "failed": "Neither model gives a periodic orbit: adequacy cannot be judged.",
@@ -65,7 +70,9 @@ def section(
     fig = figure(f"{key}-adequacy", sd, sets_piece, tol)
     if a is None:
         return AdequacyBlock("unavailable", f"Not assessed: {piece.reason}", (), (fig, *extra))
-    verdict = _VERDICT[a.status].format(rtol=SPEED_RTOL)
+    verdict = _VERDICT[a.status].format(
+        rtol=SPEED_RTOL, q0=LIKELY_QUALITY[0], q1=LIKELY_QUALITY[1], e1=LIKELY_RESTITUTION[1]
+    )
     return AdequacyBlock(a.status, verdict, rows(a), (fig, *extra))
 
 

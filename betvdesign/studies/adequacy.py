@@ -45,6 +45,8 @@ from betvdesign.studies.adequacy_data import (
     BISECT_STEPS,
     DEFAULT_QUALITY,
     DEFAULT_RESTITUTION,
+    LIKELY_QUALITY,
+    LIKELY_RESTITUTION,
     QUALITY_POINTS,
     QUALITY_RANGE,
     RESTITUTION_POINTS,
@@ -259,13 +261,29 @@ def _status(
         return "failed"
     if ideal.mode is None:
         return "ideal-fails"
-    scans = (*q_scan.points, *e_scan.points)
-    if richer.mode != reference or any(pt.mode != reference for pt in scans):
+    if richer.mode != reference or _flips_within(reference, q_scan, e_scan, likely=True):
         return "mode-flips"
     change = speed_change(ideal, richer)
     if change is not None and abs(change) > SPEED_RTOL:
         return "speed-differs"
+    if _flips_within(reference, q_scan, e_scan, likely=False):
+        return "flips-beyond"
     return "adequate"
+
+
+def _flips_within(reference: str, q_scan: Scan, e_scan: Scan, *, likely: bool) -> bool:
+    """Does the mode leave ``reference`` anywhere on the scans (``likely``: only within
+    LIKELY_QUALITY and LIKELY_RESTITUTION, by grid point or bisected crossing)?"""
+    for scan, band in ((q_scan, LIKELY_QUALITY), (e_scan, LIKELY_RESTITUTION)):
+        lo, hi = band if likely else (-math.inf, math.inf)
+        if any(
+            pt.mode != reference and lo <= v <= hi
+            for pt, v in zip(scan.points, scan.values, strict=True)
+        ):
+            return True
+        if any(lo <= c.at <= hi for c in scan.crossings):
+            return True
+    return False
 
 
 def _message(
