@@ -175,3 +175,35 @@ def test_unbounded_resonant_device_is_fixed(tmp_path):
     r = run("fix", src, "--vary", "drive.frequency", "-o", out)
     assert r.exit_code == 0, r.output
     _check_passes(out)
+
+
+def test_damped_rolled_off_device_is_fixed_end_to_end(tmp_path):
+    """damped_demo (Q = 30 both ways, e = 0.1, thermal cut-off) marked intended pull: the
+    fix found changes the drive frequency; the written file keeps damping, restitution
+    and roll-off, passes `betv check`, and its speed is Δs·u(f)·cosθ·f_act with the stroke
+    rolled off at the new frequency by the closed form u_cal·H(f)/H(f_cal) (by hand)."""
+    import math
+
+    src = tmp_path / "damped_as_pull.yaml"
+    src.write_text(
+        (DEVICES / "damped_demo.yaml")
+        .read_text()
+        .replace("intended_mode: push", "intended_mode: pull")
+    )
+    assert run("check", src).exit_code == 1
+    out = tmp_path / "fixed.yaml"
+    r = run("fix", src, "--vary", "drive.frequency", "-o", out)
+    assert r.exit_code == 0, r.output
+    d = _check_passes(out)
+    (s,) = d["sets"]
+    assert s["mode"] == "pull"
+    assert s["params"]["zeta_v"] == s["params"]["zeta_h"] == 1 / 60
+    assert s["params"]["restitution"] == 0.1
+    act = load_device(out).actuator_sets[0]
+    assert act.actuator.thermal_time_constant is not None
+    f_act = 2 * act.drive.frequency.to("Hz").magnitude  # AC: twice the drive frequency
+    f_c = 1 / (2 * math.pi * 0.2e-3)
+    h = lambda f: 1 / math.sqrt(1 + (f / f_c) ** 2)  # noqa: E731
+    u_cal = 0.11e-6 + (9 - 8) / (10 - 8) * (0.17e-6 - 0.11e-6)  # measured points, 9 V
+    length = u_cal * h(f_act) / h(200.0) * math.cos(math.radians(20.56))
+    assert s["speed_m_s"] == pytest.approx(abs(s["delta_s"]) * length * f_act, rel=1e-9)
