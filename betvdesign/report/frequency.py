@@ -80,6 +80,22 @@ def frequency_sweep(
     return FrequencySweep(grid * f_v, delta_s, reasons, n)
 
 
+def _missing_text(sweep: FrequencySweep) -> str:
+    """The swept frequencies without a periodic orbit, grouped by status: each status
+    once, with its frequencies and the first one's message (the others say the same
+    at their own ϖ)."""
+    groups: dict[str, list[tuple[float, str]]] = {}
+    for f, r in zip(sweep.f_act_hz, sweep.reasons, strict=True):
+        if r:
+            status, _, message = r.partition(": ")
+            groups.setdefault(status, []).append((float(f), message))
+    parts = []
+    for status, rows in groups.items():
+        freqs = ", ".join(format_si(f, "Hz") for f, _ in rows)
+        parts.append(f"{status} at {freqs} (at {format_si(rows[0][0], 'Hz')}: {rows[0][1]})")
+    return (" No periodic orbit: " + "; ".join(parts) + ".") if parts else ""
+
+
 def speeds(sd: SetDerivation, sweep: FrequencySweep) -> tuple[list[float | None], ...]:
     """(speed with the roll-off, speed with the calibrated stroke held constant) [m/s]
     along the impact direction at each swept frequency (None where Δs is missing)."""
@@ -127,13 +143,7 @@ def speed_frequency(
                     f" Fastest swept frequency in the intended direction {label}: "
                     f"{format_si(float(best[1]), 'Hz')} ({format_si(best[0], 'm/s')})."
                 )
-        missing = [
-            f"{format_si(float(f), 'Hz')} ({r})"
-            for f, r in zip(sweep.f_act_hz, sweep.reasons, strict=True)
-            if r
-        ]
-        if missing:
-            caption += " No periodic orbit at: " + "; ".join(missing) + "."
+        caption += _missing_text(sweep)
 
     def draw(ax: Any) -> None:
         plots.speed_vs_frequency(
