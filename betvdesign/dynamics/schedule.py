@@ -123,7 +123,7 @@ SERIES_HMAX = 0.25
 
 
 @kernel
-def short_flight(wf: float, zv: float, A: float, v: float, sp: float, cp: float):
+def short_flight(wf: float, zv: float, A: float, v: float, sp: float, cp: float, d=None):
     """Certified flight time h and landing velocity of a rebound from ξ = 0 with ξ' = v > 0
     at a phase with sin = sp > 0, cos = cp (kernel time), by its Taylor series; (−1, 0)
     when the series cannot certify it (long flight: use the gap search).
@@ -138,7 +138,8 @@ def short_flight(wf: float, zv: float, A: float, v: float, sp: float, cp: float)
     Certificate: |d_k| ≤ C ρᵏ beyond the computed terms (ρ = max(ϖ, ζ_v + √(ζ_v² + 1)) + 1,
     C from the last terms and A/(ρ² − 2ζ_vρ − 1), by induction on the recursion); with it
     G(h) = ξ(h)/h has G(0) = v > 0 and G' < 0 on [0, H] (so one root there), located by
-    Newton and bracketed by a sign change of G at h(1 ∓ 64ε).
+    Newton and bracketed by a sign change of G at h(1 ∓ 64ε). ``d``: optional scratch
+    array of SERIES_TERMS + 2 floats (reused along a chattering sequence).
     """
     a = A * sp + 2.0 * zv * v  # −ξ''(0)
     if not (v > 0.0 and a > 0.0):
@@ -147,7 +148,8 @@ def short_flight(wf: float, zv: float, A: float, v: float, sp: float, cp: float)
     if not h < SERIES_HMAX:
         return -1.0, 0.0
     K = SERIES_TERMS
-    d = np.empty(K + 2)
+    if d is None:
+        d = np.empty(K + 2)
     d[0], d[1] = 0.0, v
     wk = 1.0
     for k in range(K):
@@ -238,6 +240,7 @@ def vertical_run(wf, zv, A, e, xi, xid, horizon, cyc, imp, pieces):
     T = 2.0 * math.pi / wf
     te = math.pi / wf
     ws = workspace()
+    dser = np.empty(SERIES_TERMS + 2)
     n, ni, nf, evals = 0, 0, 0, 0
     first_end, period = -1, -1
     n = _new_cycle(cyc, n, xi, xid, ni, nf)
@@ -284,7 +287,7 @@ def vertical_run(wf, zv, A, e, xi, xid, horizon, cyc, imp, pieces):
         if e != 0.0 and xi == 0.0 and xid > 0.0 and sp > 0.0:
             # a rebound against the pull A sin ϖt: a short flight is taken from its
             # series (round-off relative to the flight: chattering stays exact)
-            hs, vland = short_flight(wf, zv, A, xid, sp, cp)
+            hs, vland = short_flight(wf, zv, A, xid, sp, cp, dser)
             if not t + hs < T * (1.0 - 8.0 * EPS):
                 hs = -1.0
         if hs > 0.0:
