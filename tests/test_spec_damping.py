@@ -537,8 +537,9 @@ def test_speed_frequency_sweep_keeps_damping_and_restitution(monkeypatch):
 
 def test_tolerance_study_spreads_a_quality_factor(tmp_path):
     """`betv tolerance --spread actuator.quality_factor_normal=normal:20%` (exact periodic
-    rung: the λ fit is refused for a damped device): each row's ζ_v is 1/(2Q) of its drawn Q; ζ_h and e stay the device's;
-    a device of the paper's model has no such columns."""
+    rung: the λ fit is refused for a damped device): each row's ζ_v is 1/(2Q) of its
+    drawn Q; ζ_h and e stay the device's; a device of the paper's model has no such
+    columns."""
     import csv
 
     out = tmp_path / "t.csv"
