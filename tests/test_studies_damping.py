@@ -167,3 +167,31 @@ def test_regime_and_lambda_stores_key_on_the_terms(tmp_path):
         run_lambda_scan(
             [1.2], kappa=0.4, beta=0.5, alpha=0.5, out=out, max_cycles=2000, zeta_v=0.02
         )
+
+
+def test_regime_impulsive_period_with_rebounds_returns_the_section_state():
+    """e > 0: a hit's phase no longer fixes the state after it, so an impulsive-only
+    period k must also return (ξ, ξ') at the section k cycles later (checked here on the
+    schedule itself) and carry an integer number of hits."""
+    from betvdesign.dynamics.vertical import vertical_motion_schedule
+
+    run, _ = run_regime([1.0, 1.5, 2.2], max_cycles=400, restitution=0.3)
+    impulsive = [r for r in run.rows if r["label"] == "impulsive"]
+    assert impulsive
+    for r in impulsive:
+        k = r["period_cycles"]
+        assert k >= 1 and r["hits_per_cycle"] * k == pytest.approx(round(r["hits_per_cycle"] * k))
+        _, vs = vertical_motion_schedule(r["varpi"], restitution=0.3, max_cycles=400)
+        late = vs.prefix[-2 * k - 1 :]
+        for a, b in zip(late, late[k:], strict=False):
+            assert (b.xi0, b.xid0) == pytest.approx((a.xi0, a.xid0), abs=1e-8)
+
+
+def test_map_figure_names_the_terms():
+    from betvdesign.plots.studies import pushpull_figure
+
+    damped, _ = run_pushpull([1.2], [0.5], [0.5], [0.4], zeta_h=0.05)
+    ideal, _ = run_pushpull([1.2], [0.5], [0.5], [0.4])
+    title = pushpull_figure(damped.rows)._suptitle
+    assert title is not None and "ζ_h = 0.05 (Q = 10)" in title.get_text()
+    assert pushpull_figure(ideal.rows)._suptitle is None
