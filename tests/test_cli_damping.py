@@ -117,6 +117,7 @@ def test_simulate_and_ladder_with_quality_factors_match_the_api():
     assert r.exit_code == 0, r.stderr
     ans = json.loads(r.stdout)
     assert ans["rung"] == "periodic" and ans["value"] == periodic_orbit(p).delta_s
+    assert ans["params"] == p.as_dict()
 
 
 def test_regime_and_lambda_sweeps_take_the_terms():

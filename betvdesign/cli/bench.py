@@ -156,9 +156,12 @@ def ladder_cmd(
         "value": ans.value,
         "mode": ans.mode,
         "seconds": ans.seconds,
+        "params": p.as_dict(),  # with ζ_v, ζ_h, e when one is set
     }
     if as_json:
         typer.echo(json.dumps(doc, allow_nan=False, default=float))
         return
+    if not p.ideal:
+        typer.echo(f"with ζ_v = {p.zeta_v:g}, ζ_h = {p.zeta_h:g}, e = {p.restitution:g}")
     typer.echo(f"{question}: {ans.value!r} (mode {ans.mode}) [{ans.status}] {ans.message}")
     typer.echo(f"model: {doc['model']} (rung {ans.choice.rung}); why: {ans.choice.reason}")
