@@ -81,6 +81,7 @@ def test_regime_with_terms_agrees_with_the_vertical_model(zeta_v, e):
     run0, _ = run_regime(grid, max_cycles=400)
     run, summary = run_regime(grid, max_cycles=400, zeta_v=zeta_v, restitution=e)
     assert summary["terms"] == {"zeta_v": zeta_v, "restitution": e}
+    assert "ζ_h" not in summary["model"] and f"e = {e:g}" in summary["model"]
     changed = 0
     for r0, r in zip(run0.rows, run.rows, strict=True):
         assert (r["zeta_v"], r["restitution"]) == (zeta_v, e)

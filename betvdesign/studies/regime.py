@@ -232,6 +232,7 @@ def summarise(rows: Sequence[Mapping[str, Any]], terms: Terms | None = None) -> 
             "vertical-only exact model (dynamics.vertical): the head's vertical motion "
             "does not depend on the slider, so no slider is simulated",
             terms,
+            VERTICAL_TERMS,
         ),
         **extra,
         "fidelity_reason": "regimes need the head's vertical motion only: the cheapest exact "

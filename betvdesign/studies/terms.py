@@ -71,12 +71,13 @@ class Terms:
         """The model parameters of one grid point with these terms."""
         return ModelParams(varpi, alpha, beta, kappa, self.zeta_v, self.zeta_h, self.restitution)
 
-    def statement(self) -> str:
-        """``ζ_v = 0.01, ζ_h = 0.02, e = 0.1`` (with Q), or the paper's model."""
+    def statement(self, names: tuple[str, ...] = NAMES) -> str:
+        """``ζ_v = 0.01 (Q = 50), ζ_h = 0.02 (Q = 25), e = 0.1`` (the terms ``names``),
+        or the paper's model."""
         if self.ideal:
             return "the paper's idealised model (undamped, plastic impacts)"
         parts = []
-        for name in NAMES:
+        for name in names:
             v = getattr(self, name)
             text = f"{SYMBOLS[name]} = {v:g}"
             if name != "restitution" and v > 0:
@@ -98,9 +99,9 @@ def columns_with(columns: Mapping[str, type], terms: Terms, after: str) -> dict[
     return out
 
 
-def model_statement(base: str, terms: Terms) -> str:
-    """A study's model statement, with the terms when one is set."""
-    return base if terms.ideal else f"{base}; with {terms.statement()}"
+def model_statement(base: str, terms: Terms, names: tuple[str, ...] = NAMES) -> str:
+    """A study's model statement, with the terms ``names`` when one is set."""
+    return base if terms.ideal else f"{base}; with {terms.statement(names)}"
 
 
 def require_ideal_rung(fidelity: str, terms: Terms) -> None:
