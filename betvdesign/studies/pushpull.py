@@ -13,6 +13,11 @@ The summary compares the λ < 1 rule with the simulated mode at every converged
 point and lists every disagreement and every point that did not converge
 (status ``unbounded``, the exact tangential resonance α·ϖ² = 1 where the head's
 motion grows without bound, is also listed on its own), so nothing is dropped silently.
+
+Damping ζ_v, ζ_h and restitution e (docs/MODEL.md, "Beyond the paper's idealisation";
+:mod:`betvdesign.studies.terms`) are fixed over a map: every point is then the exact
+periodic orbit with them (near α·ϖ² = 1 a finite Δs instead of "unbounded"), λ stays the
+idealised fit it is compared with, and the ``lambda`` rung is refused.
 """
 
 from __future__ import annotations
