@@ -18,6 +18,14 @@ import typer
 
 from betvdesign.cli import app
 from betvdesign.cli.common import user_errors
+from betvdesign.cli.physics import (
+    QualityNormalOpt,
+    QualityTangentialOpt,
+    RestitutionOpt,
+    ZetaHOpt,
+    ZetaVOpt,
+    physics_terms,
+)
 from betvdesign.errors import UsageError
 
 
@@ -124,14 +132,22 @@ def ladder_cmd(
     fidelity: str | None = typer.Option(
         None, "--fidelity", help="Force a rung: lambda, vertical, rigid, full, periodic."
     ),
+    quality_normal: QualityNormalOpt = None,
+    zeta_v: ZetaVOpt = None,
+    quality_tangential: QualityTangentialOpt = None,
+    zeta_h: ZetaHOpt = None,
+    restitution: RestitutionOpt = None,
     as_json: bool = typer.Option(False, "--json", help="Print the answer as JSON."),
 ) -> None:
-    """Answer a question with the cheapest adequate model, and say which and why."""
+    """Answer a question with the cheapest adequate model, and say which and why
+    (with damping or restitution: --quality-normal/--zeta-v, --quality-tangential/
+    --zeta-h, --restitution; the λ and rigid rungs then refuse)."""
     from betvdesign import fidelity as fid
     from betvdesign.params import ModelParams
 
     with user_errors():
-        p = ModelParams(varpi, alpha, beta, kappa)
+        terms = physics_terms(quality_normal, zeta_v, quality_tangential, zeta_h, restitution)
+        p = ModelParams(varpi, alpha, beta, kappa, **terms)
         ans = fid.answer(p, question, tol=tol, force=fidelity)  # type: ignore[arg-type]
     doc = {
         **ans.choice.as_dict(),
@@ -140,9 +156,12 @@ def ladder_cmd(
         "value": ans.value,
         "mode": ans.mode,
         "seconds": ans.seconds,
+        "params": p.as_dict(),  # with ζ_v, ζ_h, e when one is set
     }
     if as_json:
         typer.echo(json.dumps(doc, allow_nan=False, default=float))
         return
+    if not p.ideal:
+        typer.echo(f"with ζ_v = {p.zeta_v:g}, ζ_h = {p.zeta_h:g}, e = {p.restitution:g}")
     typer.echo(f"{question}: {ans.value!r} (mode {ans.mode}) [{ans.status}] {ans.message}")
     typer.echo(f"model: {doc['model']} (rung {ans.choice.rung}); why: {ans.choice.reason}")

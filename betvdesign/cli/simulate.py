@@ -4,7 +4,9 @@ Parameters come either from a device file (``betv simulate devices/x.yaml
 [--set NAME]``: loaded and made dimensionless by :func:`betvdesign.nondim.derive_file`,
 so results are also given in physical units: SI prefixes by magnitude in text, SI
 floats under unit-named keys in JSON) or directly as
-``--varpi --alpha --beta --kappa``. ``--cycles N`` runs a transient of N cycles
+``--varpi --alpha --beta --kappa`` (with the optional physics ``--quality-normal``/
+``--zeta-v``, ``--quality-tangential``/``--zeta-h``, ``--restitution``; a device file
+carries its own). ``--cycles N`` runs a transient of N cycles
 from rest (:func:`betvdesign.dynamics.simulate`); ``--periodic`` solves for the
 periodic state (:func:`betvdesign.dynamics.periodic_orbit`).
 
@@ -35,17 +37,38 @@ from betvdesign.cli.common import (
     renamed_option,
     user_errors,
 )
+from betvdesign.cli.physics import (
+    QualityNormalOpt,
+    QualityTangentialOpt,
+    RestitutionOpt,
+    ZetaHOpt,
+    ZetaVOpt,
+    given_options,
+    physics_terms,
+)
 from betvdesign.errors import UsageError
 from betvdesign.params import ModelParams
 from betvdesign.siformat import format_si
 
 
 def _params_from_options(
-    file: Path | None, set_name: str | None, opts: dict[str, float | None]
+    file: Path | None,
+    set_name: str | None,
+    opts: dict[str, float | None],
+    physics: dict[str, float | None] | None = None,
 ) -> tuple[ModelParams, Any, dict[str, Any]]:
-    """(params, scales or None, identification) from a device file or the four options."""
+    """(params, scales or None, identification) from a device file or the four options
+    (and the optional physics options ``physics``, see :mod:`betvdesign.cli.physics`)."""
+    physics = physics or {}
     given = [k for k, v in opts.items() if v is not None]
     if file is not None:
+        extra = given_options(physics)
+        if extra:
+            raise UsageError(
+                f"{', '.join(extra)}: a device file carries its own damping and restitution "
+                f"(fields of its actuator set, see `betv schema`); give them with "
+                "--varpi --alpha --beta --kappa instead of a file"
+            )
         if given:
             raise UsageError(
                 f"give either a device file or --{'/--'.join(opts)}, not both "
@@ -71,7 +94,8 @@ def _params_from_options(
             "give a device file or all of --varpi --alpha --beta --kappa "
             f"(missing: --{', --'.join(missing)})"
         )
-    return ModelParams(**opts), None, {}  # type: ignore[arg-type]
+    terms = physics_terms(**physics)
+    return ModelParams(**opts, **terms), None, {}  # type: ignore[arg-type]
 
 
 def _physical(scales: Any, s: float, delta_s: float | None, cycles: int) -> dict[str, Any]:
@@ -141,6 +165,11 @@ def simulate_cmd(
         hidden=True,
         callback=renamed_option("--residual-tol", "the periodic solver's residual"),
     ),
+    quality_normal: QualityNormalOpt = None,
+    zeta_v: ZetaVOpt = None,
+    quality_tangential: QualityTangentialOpt = None,
+    zeta_h: ZetaHOpt = None,
+    restitution: RestitutionOpt = None,
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object on stdout."),
 ) -> None:
     """Simulate one design exactly: a transient (--cycles) or the periodic state (--periodic)."""
@@ -148,7 +177,14 @@ def simulate_cmd(
 
     opts = {"varpi": varpi, "alpha": alpha, "beta": beta, "kappa": kappa}
     with user_errors(), interruptible(resumable=False):
-        p, scales, ident = _params_from_options(file, set_name, opts)
+        physics = {
+            "quality_normal": quality_normal,
+            "zeta_v": zeta_v,
+            "quality_tangential": quality_tangential,
+            "zeta_h": zeta_h,
+            "restitution": restitution,
+        }
+        p, scales, ident = _params_from_options(file, set_name, opts, physics)
         if periodic:
             po = periodic_orbit(p, tol=residual_tol, max_cycles=max_cycles)
             out: dict[str, Any] = {

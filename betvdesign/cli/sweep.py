@@ -6,6 +6,11 @@ Every sweep takes the execution options (``--executor serial|process|dask``,
 ``--out results.csv`` (+ ``results.json`` sidecar) as they finish, resumes an
 interrupted output when run again with the same arguments, shows a rich
 progress bar on stderr and prints a JSON summary on stdout with ``--json``.
+
+The optional physics (``--quality-normal``/``--zeta-v``, ``--quality-tangential``/
+``--zeta-h``, ``--restitution``; :mod:`betvdesign.cli.physics`) is fixed over a sweep;
+absent, the sweep is of the paper's model. ``regime`` takes the normal terms only (the
+vertical motion does not depend on ζ_h).
 """
 
 from __future__ import annotations
@@ -30,10 +35,19 @@ from betvdesign.cli.common import (
     renamed_option,
     user_errors,
 )
+from betvdesign.cli.physics import (
+    QualityNormalOpt,
+    QualityTangentialOpt,
+    RestitutionOpt,
+    ZetaHOpt,
+    ZetaVOpt,
+    physics_terms,
+)
 from betvdesign.outputs import atomic_path
 from betvdesign.studies.executors import make_executor
 from betvdesign.studies.grid import parse_range
 from betvdesign.studies.runner import StudyRun
+from betvdesign.studies.terms import SYMBOLS
 
 __all__ = ["EXIT_INTERRUPTED", "interruptible"]  # re-exported for older imports
 #: Disagreements/failures printed in the human summary (--json lists all).
@@ -223,6 +237,11 @@ def pushpull_cmd(
     fidelity: FidelityOpt = "periodic",
     residual_tol: ResidualTolOpt = 1e-10,
     max_cycles: MaxCyclesOpt = None,
+    quality_normal: QualityNormalOpt = None,
+    zeta_v: ZetaVOpt = None,
+    quality_tangential: QualityTangentialOpt = None,
+    zeta_h: ZetaHOpt = None,
+    restitution: RestitutionOpt = None,
     _tol: RetiredTolOpt = None,
     figure: Annotated[
         Path | None, typer.Option("--figure", help="Write the map figure (SVG/PNG/PDF).")
@@ -240,6 +259,7 @@ def pushpull_cmd(
     from betvdesign.studies.pushpull import run_pushpull
 
     with user_errors(), interruptible(out):
+        terms = physics_terms(quality_normal, zeta_v, quality_tangential, zeta_h, restitution)
         axes = {n: axis(t, n) for n, t in (("varpi", varpi), ("alpha", alpha))}
         axes |= {n: axis(t, n) for n, t in (("beta", beta), ("kappa", kappa))}
         if figure is not None:
@@ -252,6 +272,7 @@ def pushpull_cmd(
             fidelity=fidelity.lower(),
             tol=residual_tol,
             max_cycles=max_cycles,
+            **terms,
         )
         if figure is not None:
             from betvdesign.plots.studies import save_pushpull_figure
@@ -263,6 +284,8 @@ def pushpull_cmd(
 
         def human() -> None:
             agree = summary.agreement
+            if not summary.terms.ideal:
+                typer.echo(f"with {summary.terms.statement()} (λ: the idealised fit)")
             typer.echo(
                 f"{summary.n_points} points, {summary.n_converged} converged "
                 f"({summary.n_push} push, {summary.n_pull} pull)"
@@ -315,6 +338,11 @@ def lambda_cmd(
     ] = None,
     residual_tol: ResidualTolOpt = 1e-10,
     max_cycles: MaxCyclesOpt = None,
+    quality_normal: QualityNormalOpt = None,
+    zeta_v: ZetaVOpt = None,
+    quality_tangential: QualityTangentialOpt = None,
+    zeta_h: ZetaHOpt = None,
+    restitution: RestitutionOpt = None,
     _tol: RetiredTolOpt = None,
     out: OutOpt = None,
     overwrite: OverwriteOpt = False,
@@ -329,6 +357,7 @@ def lambda_cmd(
     from betvdesign.studies.lambda_scan import run_lambda_scan
 
     with user_errors(), interruptible(out):
+        terms = physics_terms(quality_normal, zeta_v, quality_tangential, zeta_h, restitution)
         targets = axis(lam, "lambda")
         execution = Execution(executor, workers, chunksize, scheduler, out, overwrite, quiet)
         run, summary = execution.run(
@@ -342,6 +371,7 @@ def lambda_cmd(
             varpi=varpi,
             tol=residual_tol,
             max_cycles=max_cycles,
+            **terms,
         )
         rows = [
             {k: r[k] for k in ("lam", "varpi", "alpha", "status", "mode", "delta_s")}
@@ -350,6 +380,8 @@ def lambda_cmd(
         data = {"study": "lambda", **run_block(run), **summary.as_dict(), "rows": rows}
 
         def human() -> None:
+            if not summary.terms.ideal:
+                typer.echo(f"with {summary.terms.statement()} (λ: the idealised fit)")
             typer.echo(f"{'λ':>8} {'ϖ':>8} {'α':>8} {'Δs':>12}  mode / status")
             for r in rows:
                 ds = "—" if r["delta_s"] is None else f"{r['delta_s']:.5g}"
@@ -380,6 +412,9 @@ def regime_cmd(
             callback=int_option(2, limits.MAX_CYCLES),
         ),
     ] = 400,
+    quality_normal: QualityNormalOpt = None,
+    zeta_v: ZetaVOpt = None,
+    restitution: RestitutionOpt = None,
     out: OutOpt = None,
     overwrite: OverwriteOpt = False,
     executor: ExecutorOpt = "process",
@@ -393,12 +428,21 @@ def regime_cmd(
     from betvdesign.studies.regime import LONG_PERIOD, run_regime
 
     with user_errors(), interruptible(out):
+        terms = physics_terms(quality_normal, zeta_v, restitution=restitution)
+        del terms["zeta_h"]  # the vertical motion does not depend on it
         grid = axis(varpi, "varpi")
         execution = Execution(executor, workers, chunksize, scheduler, out, overwrite, quiet)
-        run, summary = execution.run("vertical regimes", run_regime, grid, max_cycles=max_cycles)
+        run, summary = execution.run(
+            "vertical regimes", run_regime, grid, max_cycles=max_cycles, **terms
+        )
         data = {"study": "regime", **run_block(run), **summary}
 
         def human() -> None:
+            if "terms" in summary:
+                typer.echo(
+                    "with "
+                    + ", ".join(f"{SYMBOLS[k]} = {v:g}" for k, v in summary["terms"].items())
+                )
             for iv in summary["overview"]:
                 typer.echo(
                     f"ϖ {iv['from']:8.4g} – {iv['to']:<8.4g} {iv['label']:<14} "

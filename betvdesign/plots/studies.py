@@ -20,6 +20,7 @@ from matplotlib.figure import Figure
 
 from betvdesign.plots._figure import MODE_COLORS, STYLE, axes_or_new, figure_style, new_figure
 from betvdesign.plots.pushpull import lambda_one_curve
+from betvdesign.studies.terms import Terms
 
 Row = Mapping[str, Any]
 
@@ -102,7 +103,8 @@ def label_lambda_one(ax: Axes, xs: np.ndarray, curve: np.ndarray) -> None:
 
 
 def pushpull_figure(rows: Sequence[Row]) -> Figure:
-    """One panel per (κ, β): rows κ, columns β; legend below the panels (never clipped)."""
+    """One panel per (κ, β): rows κ, columns β; legend below the panels (never clipped);
+    the damping and restitution of a map made with them as its title."""
     kappas = sorted({r["kappa"] for r in rows})
     betas = sorted({r["beta"] for r in rows})
     with figure_style():
@@ -126,6 +128,9 @@ def pushpull_figure(rows: Sequence[Row]) -> Figure:
             loc="outside lower center",
             ncols=min(3, max(1, len(seen))),
         )
+        terms = Terms.of(rows[0]) if rows else Terms()  # a damped map's rows carry them
+        if not terms.ideal:
+            fig.suptitle(f"{terms.statement()} (λ: the idealised fit)")
     return fig
 
 

@@ -12,6 +12,11 @@ neighbouring λ values between which the converged Δs changes sign, to compare
 with the fit's λ = 1. The bracket is reported, not an interpolated root: near
 λ = 1 |Δs| often grows sharply on both sides (the speed changes abruptly), so
 a straight line between the two points would say nothing reliable.
+
+With damping or restitution (``zeta_v``, ``zeta_h``, ``restitution``, fixed over the
+scan; :mod:`betvdesign.studies.terms`) λ stays the coordinate of the idealised fit and
+Δs comes from the exact periodic orbit with the terms, so the scan shows where they move
+the boundary away from λ = 1.
 """
 
 from __future__ import annotations
@@ -19,7 +24,7 @@ from __future__ import annotations
 import itertools
 import math
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any, Literal
 
 import numpy as np
@@ -34,6 +39,7 @@ from betvdesign.studies.pushpull import (
     vertical_precheck,
 )
 from betvdesign.studies.runner import Study, StudyRun, run_study, split_run_args
+from betvdesign.studies.terms import Terms, columns_with, model_statement
 
 Vary = Literal["varpi", "alpha"]
 
@@ -73,8 +79,13 @@ def lambda_study(
     varpi: float | None = None,
     tol: float = 1e-10,
     max_cycles: int | None = None,
+    zeta_v: float = 0.0,
+    zeta_h: float = 0.0,
+    restitution: float = 0.0,
 ) -> Study:
-    """One periodic solve per λ target (ascending order kept as given)."""
+    """One periodic solve per λ target (ascending order kept as given); ``zeta_v``,
+    ``zeta_h``, ``restitution``: the optional terms, fixed (0: the paper's model)."""
+    terms = Terms(zeta_v, zeta_h, restitution)
     lam_arr = require_positive(np.asarray(lam, float), "lambda")
     if max_cycles is not None and max_cycles < 1:
         raise UsageError(f"--max-cycles must be >= 1, got {max_cycles}")
@@ -83,8 +94,8 @@ def lambda_study(
         p = params_for_lambda(
             float(target), kappa=kappa, beta=beta, vary=vary, alpha=alpha, varpi=varpi
         )
-        tasks.append({"key": key, **p, "tol": tol, "max_cycles": max_cycles})
-    idle = vertical_precheck([t["varpi"] for t in tasks])
+        tasks.append({"key": key, **p, **terms.as_dict(), "tol": tol, "max_cycles": max_cycles})
+    idle = vertical_precheck([t["varpi"] for t in tasks], terms)
     for t in tasks:
         t["not_driven"] = idle.get(t["varpi"])
     params = {
@@ -96,8 +107,9 @@ def lambda_study(
         "varpi": varpi,
         "tol": tol,
         "max_cycles": max_cycles,
+        **terms.as_dict(),  # a store of other terms is never resumed (store.py)
     }
-    return Study("lambda", COLUMNS, params, tasks, periodic_point)
+    return Study("lambda", columns_with(COLUMNS, terms, "kappa"), params, tasks, periodic_point)
 
 
 @dataclass
@@ -108,11 +120,15 @@ class LambdaSummary:
     n_converged: int
     crossings: list[dict[str, float]]
     not_converged: list[dict[str, Any]]
+    terms: Terms = field(default_factory=Terms)
 
     def as_dict(self) -> dict[str, Any]:
+        """The summary as plain data; ``terms`` only when set."""
+        extra = {} if self.terms.ideal else {"terms": self.terms.as_dict()}
         return {
             "fidelity": "periodic",
-            "model": MODEL_STATEMENT["periodic"],
+            "model": model_statement(MODEL_STATEMENT["periodic"], self.terms),
+            **extra,
             "fidelity_reason": "the scan locates where the exact Δs changes sign against the "
             "fit's λ = 1, which only the periodic orbit gives",
             "points": self.n_points,
@@ -122,7 +138,7 @@ class LambdaSummary:
         }
 
 
-def summarise(rows: Sequence[Mapping[str, Any]]) -> LambdaSummary:
+def summarise(rows: Sequence[Mapping[str, Any]], terms: Terms | None = None) -> LambdaSummary:
     """Brackets [λ_a, λ_b] where Δs changes sign (converged points only, in λ order)."""
     conv = sorted((r for r in rows if r["converged"]), key=lambda r: r["lam"])
     crossings = [
@@ -140,12 +156,13 @@ def summarise(rows: Sequence[Mapping[str, Any]]) -> LambdaSummary:
         for r in rows
         if not r["converged"]
     ]
-    return LambdaSummary(len(rows), len(conv), crossings, failed)
+    return LambdaSummary(len(rows), len(conv), crossings, failed, terms or Terms())
 
 
 def run_lambda_scan(*args: Any, **kwargs: Any) -> tuple[StudyRun, LambdaSummary]:
     """Build (arguments of :func:`lambda_study`), run (:class:`RunArgs`: executor, out,
     overwrite, progress) and summarise a Δs-against-λ scan."""
     study_kw, run = split_run_args(kwargs)
-    result = run_study(lambda_study(*args, **study_kw), **run)
-    return result, summarise(result.rows)
+    study = lambda_study(*args, **study_kw)
+    result = run_study(study, **run)
+    return result, summarise(result.rows, Terms.of(study.parameters))

@@ -13,6 +13,11 @@ The summary compares the λ < 1 rule with the simulated mode at every converged
 point and lists every disagreement and every point that did not converge
 (status ``unbounded``, the exact tangential resonance α·ϖ² = 1 where the head's
 motion grows without bound, is also listed on its own), so nothing is dropped silently.
+
+Damping ζ_v, ζ_h and restitution e (docs/MODEL.md, "Beyond the paper's idealisation";
+:mod:`betvdesign.studies.terms`) are fixed over a map: every point is then the exact
+periodic orbit with them (near α·ϖ² = 1 a finite Δs instead of "unbounded"), λ stays the
+idealised fit it is compared with, and the ``lambda`` rung is refused.
 """
 
 from __future__ import annotations
@@ -28,6 +33,7 @@ from betvdesign.fidelity import RUNGS
 from betvdesign.params import ModelParams
 from betvdesign.studies.grid import Grid, require_positive
 from betvdesign.studies.runner import Study, StudyRun, run_study, split_run_args
+from betvdesign.studies.terms import Terms, columns_with, model_statement, require_ideal_rung
 
 Fidelity = Literal["periodic", "lambda"]
 
@@ -92,9 +98,15 @@ COLUMNS: dict[str, type] = {
 }
 
 
+def task_params(task: Mapping[str, Any]) -> ModelParams:
+    """The model parameters of a task: its (ϖ, α, β, κ) and the optional terms it carries
+    (ζ_v, ζ_h, e; absent: 0, the paper's model)."""
+    return Terms.of(task).params(task["varpi"], task["alpha"], task["beta"], task["kappa"])
+
+
 def _base_row(task: Mapping[str, Any]) -> dict[str, Any]:
-    p = ModelParams(task["varpi"], task["alpha"], task["beta"], task["kappa"])
-    row: dict[str, Any] = dict.fromkeys(COLUMNS)
+    p = task_params(task)
+    row: dict[str, Any] = dict.fromkeys(columns_with(COLUMNS, Terms.of(task), "kappa"))
     row.update(key=task["key"], **p.as_dict(), lam=p.lam, mode_predicted=p.mode_predicted)
     return row
 
@@ -126,7 +138,7 @@ def periodic_point(task: Mapping[str, Any]) -> dict[str, Any]:
             message=nd["message"],
         )
         return row
-    p = ModelParams(task["varpi"], task["alpha"], task["beta"], task["kappa"])
+    p = task_params(task)
     kwargs: dict[str, Any] = {"tol": task["tol"]}
     if task.get("max_cycles") is not None:
         kwargs["max_cycles"] = task["max_cycles"]
@@ -176,15 +188,25 @@ def _int_or_none(x: Any) -> int | None:
 VERTICAL_HORIZON = 1000
 
 
-def vertical_precheck(varpi: Sequence[float]) -> dict[float, dict[str, Any]]:
+def vertical_precheck(
+    varpi: Sequence[float], terms: Terms | None = None
+) -> dict[float, dict[str, Any]]:
     """ϖ values at which no contact recurs (the slider is not driven), by the vertical
-    model alone, once per ϖ instead of once per grid point ("model no more than a
-    scene needs"; docs/MODEL.md, "Vertical motion")."""
+    model alone (with the terms' ζ_v and e), once per ϖ instead of once per grid point
+    ("model no more than a scene needs"; docs/MODEL.md, "Vertical motion"). A ϖ whose
+    vertical motion cannot be computed is left to the periodic solve, which reports it."""
     from betvdesign.dynamics import vertical_motion
+    from betvdesign.dynamics.vertical import VerticalSearchError
 
+    t = terms or Terms()
     out = {}
     for v in sorted(set(float(x) for x in varpi)):
-        r = vertical_motion(v, max_cycles=VERTICAL_HORIZON)
+        try:
+            r = vertical_motion(
+                v, zeta_v=t.zeta_v, restitution=t.restitution, max_cycles=VERTICAL_HORIZON
+            )
+        except VerticalSearchError:
+            continue
         if r.period_cycles is None:
             out[v] = {"hits_per_cycle": float(r.hits_per_cycle), "message": r.message}
     return out
@@ -199,8 +221,17 @@ def pushpull_study(
     fidelity: Fidelity = "periodic",
     tol: float = 1e-10,
     max_cycles: int | None = None,
+    zeta_v: float = 0.0,
+    zeta_h: float = 0.0,
+    restitution: float = 0.0,
 ) -> tuple[Study, Grid]:
-    """Build the map study; grid order κ, β, α, ϖ (ϖ fastest)."""
+    """Build the map study; grid order κ, β, α, ϖ (ϖ fastest).
+
+    zeta_v, zeta_h, restitution: the optional terms (:mod:`betvdesign.studies.terms`),
+    fixed over the map; all 0 is the paper's model and the study of before they existed.
+    The ``lambda`` rung refuses them (a fit of the idealised model).
+    """
+    terms = Terms(zeta_v, zeta_h, restitution)
     axes = {
         "kappa": require_positive(np.asarray(kappa, float), "kappa"),
         "beta": require_positive(np.asarray(beta, float), "beta"),
@@ -209,13 +240,15 @@ def pushpull_study(
     }
     grid = Grid(axes)
     require_fidelity(fidelity)
+    require_ideal_rung(fidelity, terms)
     if max_cycles is not None and max_cycles < 1:
         raise UsageError(f"--max-cycles must be >= 1, got {max_cycles}")
-    idle = vertical_precheck(axes["varpi"]) if fidelity == "periodic" else {}
+    idle = vertical_precheck(axes["varpi"], terms) if fidelity == "periodic" else {}
     tasks = [
         {
             "key": pt.key,
             **pt.values,
+            **terms.as_dict(),
             "tol": tol,
             "max_cycles": max_cycles,
             "not_driven": idle.get(pt.values["varpi"]),
@@ -224,7 +257,9 @@ def pushpull_study(
     ]
     worker = periodic_point if fidelity == "periodic" else lambda_point
     params = {"grid": grid.as_dict(), "fidelity": fidelity, "tol": tol, "max_cycles": max_cycles}
-    return Study("pushpull", COLUMNS, params, tasks, worker), grid
+    params |= terms.as_dict()  # a store of other terms is never resumed (store.py)
+    columns = columns_with(COLUMNS, terms, "kappa")
+    return Study("pushpull", columns, params, tasks, worker), grid
 
 
 @dataclass
@@ -243,6 +278,8 @@ class PushPullSummary:
     #: The subset of ``not_converged`` whose status is "unbounded" (no periodic orbit
     #: exists: the head's tangential motion grows linearly; the message gives the rate).
     unbounded: list[dict[str, Any]] = field(default_factory=list)
+    #: The optional terms the map was made with (default: the paper's model).
+    terms: Terms = field(default_factory=Terms)
 
     @property
     def agreement(self) -> float | None:
@@ -250,9 +287,14 @@ class PushPullSummary:
         return self.n_agree / self.n_converged if self.n_converged else None
 
     def as_dict(self) -> dict[str, Any]:
+        """The summary as plain data; ``terms`` (and the note on λ) only when set."""
+        extra: dict[str, Any] = {}
+        if not self.terms.ideal:
+            extra = {"terms": self.terms.as_dict(), "lambda_note": LAMBDA_NOTE}
         return {
             "fidelity": self.fidelity,
-            "model": MODEL_STATEMENT[self.fidelity],
+            "model": model_statement(MODEL_STATEMENT[self.fidelity], self.terms),
+            **extra,
             "fidelity_reason": rung_reason(self.fidelity),
             "points": self.n_points,
             "converged": self.n_converged,
@@ -266,6 +308,13 @@ class PushPullSummary:
             "unbounded": self.unbounded,
         }
 
+
+#: What λ's agreement means on a map with damping or restitution.
+LAMBDA_NOTE = (
+    "λ and mode_predicted are the fit of the idealised model (undamped, plastic impacts); "
+    "with damping or restitution their agreement with the simulated modes measures how far "
+    "these terms move the push/pull boundary, not the fit's accuracy"
+)
 
 #: Relative distance to a·ϖ² = 1 below which a point counts as at the tangential resonance.
 RESONANCE_RTOL = 1e-9
@@ -286,8 +335,11 @@ def _brief(row: Mapping[str, Any], keys: Sequence[str]) -> dict[str, Any]:
     return {k: row[k] for k in keys}
 
 
-def summarise(rows: Sequence[Mapping[str, Any]], fidelity: str = "periodic") -> PushPullSummary:
-    """Compare λ with the simulations; list disagreements and non-converged points."""
+def summarise(
+    rows: Sequence[Mapping[str, Any]], fidelity: str = "periodic", terms: Terms | None = None
+) -> PushPullSummary:
+    """Compare λ with the simulations; list disagreements and non-converged points
+    (``terms``: those the map was made with, stated in the summary)."""
     point = ("key", "varpi", "alpha", "beta", "kappa", "lam")
     conv = [r for r in rows if r["converged"]]
     disagree = [
@@ -315,6 +367,7 @@ def summarise(rows: Sequence[Mapping[str, Any]], fidelity: str = "periodic") -> 
         disagreements=disagree,
         not_converged=failed,
         unbounded=[d for d in failed if d["status"] == "unbounded"],
+        terms=terms or Terms(),
     )
 
 
@@ -324,4 +377,4 @@ def run_pushpull(*args: Any, **kwargs: Any) -> tuple[StudyRun, PushPullSummary]:
     study_kw, run = split_run_args(kwargs)
     study, _ = pushpull_study(*args, **study_kw)
     result = run_study(study, **run)
-    return result, summarise(result.rows, study.parameters["fidelity"])
+    return result, summarise(result.rows, study.parameters["fidelity"], Terms.of(study.parameters))

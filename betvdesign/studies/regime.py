@@ -22,7 +22,13 @@ Impulsive-only motion is a circle map: an impulsive hit leaves ξ = ξ' = 0, so
 the motion after it depends only on the hit's phase in the cycle. Its period
 is found from the hit phases over the second half of the horizon (after
 transients): period p hits if every phase recurs p hits later to 1e-9 of a
-cycle. Contiguous runs of one label are reported as ϖ intervals.
+cycle. Contiguous runs of one label are reported as ϖ intervals. With restitution
+(e > 0) a hit is a rebound and that argument fails: the period found from the phases
+must then also return the section state (ξ, ξ') to :data:`STATE_RTOL`.
+
+Normal damping ζ_v and restitution e (MODEL.md, "Beyond the paper's idealisation")
+enter the vertical model; ζ_h and the slider do not, so the study takes those two
+only (fixed over the sweep; 0: the paper's model, the study of before they existed).
 """
 
 from __future__ import annotations
@@ -38,6 +44,7 @@ from betvdesign.errors import UsageError
 from betvdesign.studies.grid import Grid
 from betvdesign.studies.pushpull import solver_error
 from betvdesign.studies.runner import RunArgs, Study, StudyRun, run_study
+from betvdesign.studies.terms import Terms, model_statement
 
 if TYPE_CHECKING:
     from betvdesign.dynamics.vertical import VerticalSchedule
@@ -48,6 +55,10 @@ PHASE_RTOL = 1e-9
 LONG_PERIOD = 8
 #: Longest impulsive-hit period (in hits) searched for.
 MAX_HIT_PERIOD = 64
+#: With restitution: section states k cycles apart must agree to this (relative to 1).
+STATE_RTOL = 1e-9
+#: The vertical model's optional terms (ζ_h acts on the tangential motion only).
+VERTICAL_TERMS = ("zeta_v", "restitution")
 
 COLUMNS: dict[str, type] = {
     "key": int,
@@ -83,17 +94,31 @@ def impulsive_period(vs: VerticalSchedule) -> tuple[int | None, float]:
         d = np.minimum(d, 1.0 - d)
         if np.all(d <= PHASE_RTOL):
             k = np.unique(cycle[p:] - cycle[:-p])
-            if k.size == 1:
+            if k.size == 1 and (vs.restitution == 0.0 or _state_recurs(vs, int(k[0]))):
                 return int(k[0]), rate
     return None, rate
+
+
+def _state_recurs(vs: VerticalSchedule, k: int) -> bool:
+    """Whether the section state (ξ, ξ') of every cycle of the second half of the
+    schedule recurs k cycles later (to :data:`STATE_RTOL`): with rebounds (e > 0) the
+    state after a hit is not fixed by its phase, so the phases alone prove no period."""
+    cyc = vs.prefix[len(vs.prefix) // 2 :]
+    if len(cyc) <= k:
+        return False
+    state = np.array([(c.xi0, c.xid0) for c in cyc])
+    return bool(np.all(np.abs(state[k:] - state[:-k]) <= STATE_RTOL * (1.0 + np.abs(state[:-k]))))
 
 
 def regime_point(task: Mapping[str, Any]) -> dict[str, Any]:
     """Worker: vertical-only motion at one ϖ (plain data in and out)."""
     from betvdesign.dynamics.vertical import vertical_motion_schedule
 
-    row: dict[str, Any] = dict.fromkeys(COLUMNS)
+    terms = {n: float(task[n]) for n in VERTICAL_TERMS if task.get(n)}
+    row: dict[str, Any] = dict.fromkeys(regime_columns(bool(terms)))
     row.update(key=task["key"], varpi=task["varpi"])
+    if terms:
+        row.update(dict.fromkeys(VERTICAL_TERMS, 0.0) | terms)
     try:
         r, vs = vertical_motion_schedule(
             task["varpi"],
@@ -128,17 +153,34 @@ def regime_point(task: Mapping[str, Any]) -> dict[str, Any]:
     return row
 
 
-def regime_study(varpi: Sequence[float], *, max_cycles: int = 400) -> Study:
-    """One vertical-only solve per ϖ (ascending)."""
+def regime_columns(with_terms: bool) -> dict[str, type]:
+    """:data:`COLUMNS`, with ``zeta_v`` and ``restitution`` after ϖ when a term is set."""
+    if not with_terms:
+        return dict(COLUMNS)
+    head = {"key": int, "varpi": float} | dict.fromkeys(VERTICAL_TERMS, float)
+    return head | COLUMNS
+
+
+def regime_study(
+    varpi: Sequence[float],
+    *,
+    max_cycles: int = 400,
+    zeta_v: float = 0.0,
+    restitution: float = 0.0,
+) -> Study:
+    """One vertical-only solve per ϖ (ascending); ``zeta_v``, ``restitution``: normal
+    damping ratio and coefficient of restitution, fixed (0: the paper's model)."""
+    terms = Terms(zeta_v=zeta_v, restitution=restitution)
+    fixed = {n: getattr(terms, n) for n in VERTICAL_TERMS} if not terms.ideal else {}
     v = np.asarray(varpi, dtype=float)
     if np.any(~(v > 0)):
         raise UsageError("varpi: values must be > 0")
     if max_cycles < 4:
         raise UsageError(f"--max-cycles must be >= 4, got {max_cycles}")
     grid = Grid({"varpi": np.sort(v)})
-    tasks = [{"key": p.key, **p.values, "max_cycles": max_cycles} for p in grid]
-    params = {"grid": grid.as_dict(), "max_cycles": max_cycles}
-    return Study("regime", COLUMNS, params, tasks, regime_point)
+    tasks = [{"key": p.key, **p.values, **fixed, "max_cycles": max_cycles} for p in grid]
+    params = {"grid": grid.as_dict(), "max_cycles": max_cycles, **fixed}  # keys the store
+    return Study("regime", regime_columns(bool(fixed)), params, tasks, regime_point)
 
 
 @dataclass(frozen=True)
@@ -174,8 +216,11 @@ def intervals(rows: Sequence[Mapping[str, Any]], *, coarse: bool = False) -> lis
     return out
 
 
-def summarise(rows: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
-    """Intervals, counts per label, and every failed point."""
+def summarise(rows: Sequence[Mapping[str, Any]], terms: Terms | None = None) -> dict[str, Any]:
+    """Intervals, counts per label, and every failed point (``terms``: the ζ_v and e the
+    diagram was made with, stated when set)."""
+    terms = terms or Terms()
+    extra = {} if terms.ideal else {"terms": {n: getattr(terms, n) for n in VERTICAL_TERMS}}
     ivs = intervals(rows)
     overview = intervals(rows, coarse=True)
     counts: dict[str, int] = {}
@@ -183,8 +228,13 @@ def summarise(rows: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
         counts[r["label"]] = counts.get(r["label"], 0) + 1
     return {
         "fidelity": "vertical",
-        "model": "vertical-only exact model (dynamics.vertical): the head's vertical motion "
-        "does not depend on the slider, so no slider is simulated",
+        "model": model_statement(
+            "vertical-only exact model (dynamics.vertical): the head's vertical motion "
+            "does not depend on the slider, so no slider is simulated",
+            terms,
+            VERTICAL_TERMS,
+        ),
+        **extra,
         "fidelity_reason": "regimes need the head's vertical motion only: the cheapest exact "
         "rung for them (fidelity.choose_rung)",
         "points": len(rows),
@@ -201,8 +251,12 @@ def run_regime(
     varpi: Sequence[float],
     *,
     max_cycles: int = 400,
+    zeta_v: float = 0.0,
+    restitution: float = 0.0,
     **run: Unpack[RunArgs],
 ) -> tuple[StudyRun, dict[str, Any]]:
-    """Build, run and summarise the vertical regime diagram."""
-    result = run_study(regime_study(varpi, max_cycles=max_cycles), **run)
-    return result, summarise(result.rows)
+    """Build, run and summarise the vertical regime diagram (``zeta_v``,
+    ``restitution``: as :func:`regime_study`)."""
+    study = regime_study(varpi, max_cycles=max_cycles, zeta_v=zeta_v, restitution=restitution)
+    result = run_study(study, **run)
+    return result, summarise(result.rows, Terms.of(study.parameters))
