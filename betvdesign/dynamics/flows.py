@@ -176,7 +176,8 @@ def _damped_row(p: ModelParams, b: float, a_st: float) -> tuple:
 
     Every phase is y'' + 2g y' + w0² y = F sin φ + G cos φ with inertia a (α, or
     α(1 + 1/β) in stick): w0 = 1/sqrt(a), g = ζ_h sqrt(α)/a,
-    F = (cos δ + D sin δ − σακA)/a, G = (D cos δ − sin δ)/a, D = 2ζ_h sqrt(α) ϖ;
+    F = (cos δ + D sin δ − σακA)/a, G = (D cos δ − sin δ)/a = 2ϖ cos δ (ζ_h√α − ζ_v)/a,
+    D = 2ζ_h sqrt(α) ϖ;
     the slider s'' = σβκA sin φ. The undamped fast-path constants (P, K, ...) are not
     used (``damped``: every evaluator takes its general form).
     """
@@ -184,7 +185,9 @@ def _damped_row(p: ModelParams, b: float, a_st: float) -> tuple:
     delta, A = normal_force_phase(p.zeta_v, wf)
     cd, sd = math.cos(delta), math.sin(delta)
     D = 2.0 * p.zeta_h * math.sqrt(al) * wf
-    Fs, Gc = cd + D * sd, D * cd - sd
+    # G = D cos δ − sin δ = 2ϖ cos δ (ζ_h√α − ζ_v) (tan δ = 2ζ_vϖ): in this form it is
+    # exactly 0 when the tangential and normal dampers balance (ζ_h√α = ζ_v), not ±1e-18
+    Fs, Gc = cd + D * sd, 2.0 * wf * cd * (p.zeta_h * math.sqrt(al) - p.zeta_v)
 
     def phase(sig: float) -> tuple:
         w0, ds = 1.0 / math.sqrt(al), sig * be * ka * A
