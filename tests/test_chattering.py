@@ -211,3 +211,21 @@ def test_regime_rung_sees_the_chattering(case):
     assert abs(ans.value["contact_fraction"] - frac) <= 1e-12
     ideal = fidelity.answer(ModelParams(w, 0.3, 1.0, 0.3), "regime")
     assert abs(ideal.value["contact_fraction"] - frac) > 1e-6
+
+
+@pytest.mark.parametrize("case", _params(CASES))
+def test_chattering_into_contact_is_one_contact_per_cycle(case):
+    """Every case chatters into one contact per cycle (the 50-digit sequence closes at
+    its contact start before π/ϖ): the vertical fast path calls it "chattering-contact"
+    (not "multi-impact"), its rebounds are hits of that sequence, and the regime study
+    keeps it in the one-contact-per-cycle label "period-1"."""
+    from betvdesign.dynamics import vertical_motion
+    from betvdesign.studies.regime import regime_point
+
+    w, zv, e = case
+    assert float(truth(case)["contact"]) < math.pi / w  # closes within the half cycle
+    r = vertical_motion(w, zeta_v=zv, restitution=e)
+    assert r.regime == "chattering-contact" and r.period_cycles == 1, r.message
+    assert r.impulsive_per_cycle >= 3 and "chattering sequence" in r.message
+    row = regime_point({"key": 0, "varpi": w, "zeta_v": zv, "restitution": e, "max_cycles": 50})
+    assert row["label"] == "period-1"

@@ -193,6 +193,19 @@ class VerticalSchedule:
         """Fraction of time in contact over one period (or the computed horizon)."""
         return self._per_period[1]
 
+    def chattering_into_contact(self) -> int:
+        """Rebounds per cycle of a period-1 motion whose only impulsive hits are the
+        chattering sequence that closes into its contact (restitution, docs/damping.md
+        §4): every hit before the contact start lies where N > 0, so it belongs to that
+        one sequence. 0 when the motion is not of that kind."""
+        if self.restitution == 0.0 or self.period != 1:
+            return 0
+        (row,) = self.period_rows()
+        tc, i0, n = float(row["tc"]), int(row["imp_start"]), int(row["imp_count"])
+        if n == 0 or tc != tc or not np.all(self.impulsive[i0 : i0 + n] < tc):
+            return 0
+        return n
+
 
 @dataclass(frozen=True, slots=True)
 class VerticalResult:
@@ -202,7 +215,9 @@ class VerticalResult:
     within ``n_cycles``); ``hits_per_cycle`` counts contact-opening and impulsive hits;
     ``contact_fraction`` [-] of the time in contact; ``contact_phase`` [rad] ϖτ at the
     contact-opening hit; ``regime``: "single-impact" (the design window: one hit per
-    cycle with finite contact), "multi-impact", "period-k", or "impulsive-only".
+    cycle with finite contact), "chattering-contact" (one contact per cycle, reached by
+    a chattering sequence of rebounds: restitution), "multi-impact", "period-k", or
+    "impulsive-only".
     """
 
     varpi: float
@@ -258,8 +273,14 @@ def vertical_motion_schedule(
             "not_periodic",
             False,
             f"no contact recurred within {max_cycles} cycles: hits are impulsive only "
-            "and the slider is not driven (MODEL.md: ϖ beyond about 2); "
-            "increase max_cycles to look further",
+            "and the slider is not driven ("
+            + (
+                f"restitution e = {vs.restitution:g}: the rebounds never settle into contact "
+                "before the normal force falls to zero; "
+                if vs.restitution > 0.0
+                else ""
+            )
+            + "MODEL.md: ϖ beyond about 2); increase max_cycles to look further",
             "impulsive-only",
             None,
             imp,
@@ -274,8 +295,11 @@ def vertical_motion_schedule(
     k = vs.period
     imp = int(vs.period_rows()["imp_count"].sum()) / k
     hits = vs.hits_per_cycle()
+    chatter = vs.chattering_into_contact()
     if k > 1:
         regime = f"period-{k}"
+    elif chatter:
+        regime = "chattering-contact"
     elif hits > 1.0:
         regime = "multi-impact"
     else:
@@ -286,7 +310,12 @@ def vertical_motion_schedule(
         v,
         "success",
         True,
-        f"vertical motion periodic with {k} cycle(s) per period",
+        f"vertical motion periodic with {k} cycle(s) per period"
+        + (
+            f"; its contact is reached by a chattering sequence of {chatter} rebound(s)"
+            if chatter
+            else ""
+        ),
         regime,
         k,
         hits,

@@ -141,7 +141,7 @@ def regime_point(task: Mapping[str, Any]) -> dict[str, Any]:
     if r.period_cycles is not None:
         k = r.period_cycles
         row["label"] = (
-            f"period-{k}" if k > 1 else ("multi-hit" if r.hits_per_cycle > 1 else "period-1")
+            f"period-{k}" if k > 1 else ("multi-hit" if r.regime == "multi-impact" else "period-1")
         )
         return row
     k, rate = impulsive_period(vs)  # the schedule already computed, not a second run
