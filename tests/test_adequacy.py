@@ -343,3 +343,20 @@ def test_plot_mode_speed_scan_draws_on_the_given_axes():
         ).get_xscale(),
         str,
     )
+
+
+def test_check_can_skip_the_adequacy_study():
+    """`betv check --no-adequacy`: no model-adequacy rule, JSON adequacy null, the other
+    rules and the verdict unchanged."""
+    from typer.testing import CliRunner
+
+    from betvdesign.cli import app
+
+    dev = str(DEVICES / "push_demo.yaml")
+    runs = [CliRunner().invoke(app, ["check", dev, "--json", *x]) for x in ([], ["--no-adequacy"])]
+    assert [r.exit_code for r in runs] == [0, 0]
+    (full,), (lean,) = (json.loads(r.stdout)["devices"] for r in runs)
+    assert lean["sets"][0]["adequacy"] is None and full["sets"][0]["adequacy"] is not None
+    ids = [{r["id"] for r in d["sets"][0]["rules"]} for d in (full, lean)]
+    assert ids[0] - ids[1] == {"model-adequacy"}
+    assert full["verdict"] == lean["verdict"]

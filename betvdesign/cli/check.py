@@ -64,6 +64,13 @@ def check_cmd(
         help="Required slider speed with its unit, e.g. '1 mm/s' (adds the error rule "
         "target-speed).",
     ),
+    adequacy: bool = typer.Option(
+        True,
+        "--adequacy/--no-adequacy",
+        help="Judge the idealised model (rule model-adequacy: exact orbits with and without "
+        "damping and restitution, Q and e scanned; about 0.2–0.7 s per set). "
+        "--no-adequacy skips it.",
+    ),
     show_derivation: bool = typer.Option(False, "--derivation", hidden=True),
 ) -> None:
     """Check device files: design window, push/pull mode, speed, margin, resonance, settling.
@@ -101,7 +108,7 @@ def check_cmd(
             raise SpecError(issues)
         results = []
         for f, d in derivations:
-            res = check_derivation(d, target_speed_m_s=target)
+            res = check_derivation(d, target_speed_m_s=target, adequacy=None if adequacy else False)
             res.source_file = str(f)
             results.append(res)
     for warning in flt.unmatched(results):
