@@ -62,7 +62,10 @@ class SetCheck:
 
     @property
     def mode_predicted(self) -> str:
-        """The mode the check reports: the exact one, "unknown" without an orbit."""
+        """The mode the check reports: the exact one, "not driven" when no contact
+        recurs (the slider is not moved), "unknown" without an orbit."""
+        if self.mode is None and getattr(self.periodic, "status", None) == "not_driven":
+            return "not driven"
         return self.mode or "unknown"
 
     @property

@@ -99,7 +99,10 @@ class SetOut(_Out):
     name: str
     intended_mode: Literal["push", "pull"]
     impact_direction: Literal["+x", "-x"]
-    mode: str = Field(description="push, pull, stalled or unknown (from the exact orbit)")
+    mode: str = Field(
+        description="push, pull, stalled, not driven (no contact recurs) or unknown (no "
+        "exact orbit)"
+    )
     passed: bool = Field(description="every error-severity rule of the set passes")
     delta_s: float | None = Field(description="periodic slider increment per cycle [-]")
     speed_m_s: float | None = Field(
@@ -357,7 +360,15 @@ def set_headline(sc: Any) -> tuple[str, str]:
             f"{format_si(s.travel_range_m, 'm')} in {format_si(s.travel_range_m / v, 's')}"
         )
     else:
-        motion = "the slider does not move" if v == 0.0 else "no speed (no exact orbit)"
+        motion = (
+            "the slider does not move"
+            if v == 0.0
+            else (
+                "no periodic drive (impulsive hits only)"
+                if mode == "not driven"
+                else "no speed (no exact orbit)"
+            )
+        )
     line1 = f"{head}, {motion}; {_margin(sc)[1]}"
     lam_mode = "push" if s.lam < 1.0 else "pull"
     word = "" if mode not in ("push", "pull") else (" agrees" if lam_mode == mode else " disagrees")

@@ -195,6 +195,13 @@ def _mode(s: SetDerivation, orbit: OrbitLike | None) -> RuleResult:
             "not_converged": "the exact solver found no periodic orbit within its budget",
         }.get(status, "the exact solver failed")
         fix = _STATUS_FIX.get(status, "report this design; `betv simulate` shows the transient")
+        if status == "not_driven" and s.params.restitution > 0.0 and s.params.varpi < 2.0:
+            fix = (
+                f"with restitution e = {s.params.restitution:g} the rebounds never settle "
+                "into contact: lower ϖ (drive frequency; the e the head tolerates rises as ϖ "
+                "falls) or the restitution (a softer, more dissipative contact); "
+                "`betv fix FILE` finds the change"
+            )
         return RuleResult(
             "mode", "error", False, None, want, f"{what} ({status}): {msg}", SRC_SOLVER, fix=fix
         )

@@ -127,3 +127,31 @@ def test_regime_and_lambda_sweeps_take_the_terms():
     r = _run([*COMMANDS["lambda"], "--quality-tangential", "20", "--json"])
     assert r.exit_code == 0, r.stderr
     assert json.loads(r.stdout)["terms"]["zeta_h"] == 0.025
+
+
+def test_not_driven_by_restitution_is_said_so_with_the_right_fix(tmp_path):
+    """damped_demo with e = 0.2 (above its flip at e ≈ 0.166): `betv check` calls the set
+    "not driven" (not "unknown") and its fix names restitution and a lower ϖ, not the
+    design window it is already inside (ϖ = 1.2)."""
+    from pathlib import Path
+
+    src = Path(__file__).resolve().parents[1] / "devices" / "damped_demo.yaml"
+    dev = tmp_path / "e02.yaml"
+    dev.write_text(src.read_text().replace("restitution: 0.1 ", "restitution: 0.2 "))
+    r = runner.invoke(app, ["check", str(dev), "--no-adequacy"])
+    assert r.exit_code == 1, r.output
+    text = " ".join(r.output.split())
+    assert "forward: not driven (intended push)" in text
+    assert "restitution e = 0.2" in text and "lower ϖ" in text
+    assert "bring ϖ into 0.5–2" not in text
+
+
+def test_transient_of_a_not_driven_design_is_not_called_push():
+    """From rest the first contact gives the slider a velocity it then keeps (no contact
+    recurs with e = 0.5 at ϖ = 1.2): the transient's last Δs is coasting, not a mode."""
+    args = ["--varpi", "1.2", "--alpha", "2.04", "--beta", "0.5", "--kappa", "0.15"]
+    r = runner.invoke(app, ["simulate", *args, "--restitution", "0.5", "--cycles", "50"])
+    assert r.exit_code == 0, r.output
+    assert "-> not driven" in r.output and "-> push" not in r.output
+    r = runner.invoke(app, ["simulate", *args, "--restitution", "0.5", "--cycles", "50", "--json"])
+    assert json.loads(r.output)["mode"] == "not driven"

@@ -173,7 +173,8 @@ def simulate_cmd(
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object on stdout."),
 ) -> None:
     """Simulate one design exactly: a transient (--cycles) or the periodic state (--periodic)."""
-    from betvdesign.dynamics import periodic_orbit, simulate
+    from betvdesign.domain import mode_of
+    from betvdesign.dynamics import periodic_orbit, simulate, vertical_motion
 
     opts = {"varpi": varpi, "alpha": alpha, "beta": beta, "kappa": kappa}
     with user_errors(), interruptible(resumable=False):
@@ -205,6 +206,8 @@ def simulate_cmd(
         else:
             tr = simulate(p, cycles, log_events=False)
             last = float(tr.delta_s[-1]) if len(tr.delta_s) else None
+            # no contact recurs: the last Δs is coasting at the first contacts' velocity
+            driven = vertical_motion(p.varpi, zeta_v=p.zeta_v, restitution=p.restitution).success
             out = {
                 "params": p.as_dict(),
                 "status": tr.status,
@@ -212,7 +215,7 @@ def simulate_cmd(
                 "cycles": tr.n_cycles,
                 "s": tr.s,
                 "delta_s": last,
-                "mode": None if last is None or last == 0 else ("push" if last > 0 else "pull"),
+                "mode": mode_of(last) if driven else "not driven",
                 "period_cycles": None,
                 "residual": None,
                 "floquet": None,
@@ -253,7 +256,14 @@ def _print_text(out: dict[str, Any], periodic: bool) -> None:
                 f" = {format_si(ph['delta_s_m'], 'm', digits=4)}; mean speed "
                 f"{format_si(ph['speed_m_s'], 'm/s', digits=4)}"
             )
-        typer.echo(line + (f" -> {out['mode']}" if out["mode"] else ""))
+        if out["mode"] == "not driven":
+            line += (
+                " -> not driven: no contact recurs, the slider coasts at the velocity of "
+                "its first contacts"
+            )
+        elif out["mode"]:
+            line += f" -> {out['mode']}"
+        typer.echo(line)
     line = f"s after {out['cycles']} cycles = {out['s']:.10g} [u·cosθ]"
     if ph:
         line += (

@@ -344,7 +344,14 @@ def _periodic_orbit(
         return result(
             "not_driven",
             f"no contact recurs within {vs.n_prefix} cycles at ϖ = {p.varpi:g}: hits are "
-            "impulsive only and the slider is not driven (MODEL.md design window 0.5 ≤ ϖ < 2)",
+            "impulsive only and the slider is not driven ("
+            + (
+                f"restitution e = {p.restitution:g}: the rebounds never settle into contact "
+                "before the normal force falls to zero; a lower ϖ or e lets them settle"
+                if p.restitution > 0.0 and p.varpi < 2.0
+                else "MODEL.md design window 0.5 ≤ ϖ < 2"
+            )
+            + ")",
         )
     kv = vs.period
     assert vs.first_end is not None
