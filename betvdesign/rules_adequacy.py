@@ -41,11 +41,15 @@ def adequacy_rule(a: Any) -> RuleResult:
         f"{LIKELY_QUALITY[1]:g}, {LIKELY_RESTITUTION[0]:g} ≤ e ≤ {LIKELY_RESTITUTION[1]:g}"
     )
     change = a.speed_change
-    fix = (
-        ""
-        if ok
-        else _FIX.get(status, "") + "`betv report FILE` draws mode and speed against Q and e"
-    )
+    head = _FIX.get(status, "")
+    if status == "mode-flips" and getattr(a, "source", None) == "device":
+        head = (
+            "the file's Q and e are given, but the mode flips within their likely range: "
+            "check how sure they are (`betv tolerance FILE --spread "
+            "contact.restitution=uniform:0.05`) and keep clear of the flip (a lower ϖ "
+            "tolerates a larger e); "
+        )
+    fix = "" if ok else head + "`betv report FILE` draws mode and speed against Q and e"
     return RuleResult(
         "model-adequacy",
         "info" if ok else "warning",

@@ -243,7 +243,7 @@ def test_check_rule_warns_where_the_mode_flips_with_the_studys_numbers():
     assert out.status == "mode-flips" and out.flip_restitution == study.flip_restitution.at
     assert out.richer.mode == "push" and out.ideal.quality_normal is None  # undamped: null
     text = view.text()
-    assert "warn model-adequacy: mode-flips" in text and "e ≈ 0.166 (→ none)" in text
+    assert "warn model-adequacy: mode-flips" in text and "e ≈ 0.166 (→ not driven)" in text
     from betvdesign.checkview import output_json
 
     doc = json.loads(output_json([view]))
@@ -291,7 +291,7 @@ def test_report_section_model_adequacy():
     assert all(f.svg for f in blk.figures)
     assert not any(f.key == "s1-frequency" for f in rep.sets[0].figures)
     assert f"e ≈ {study.flip_restitution.at:.4g}" in blk.figures[0].caption
-    assert "the device" in blk.figures[0].svg and "none (not driven)" in blk.figures[0].svg
+    assert "the device" in blk.figures[0].svg and "not driven" in blk.figures[0].svg
     labels = {kv.label: kv.value for kv in blk.rows}
     assert labels["Damping and restitution"] == "the device file's"
     assert labels["Mode flip in e"].startswith(f"at {study.flip_restitution.text}")
@@ -334,7 +334,7 @@ def test_plot_mode_speed_scan_draws_on_the_given_axes():
     )
     assert got is ax
     labels = [t.get_text() for t in ax.get_legend().get_texts()]
-    for want in ("push", "none (not driven)", "no periodic orbit", "the device", "mode flips"):
+    for want in ("push", "not driven", "no periodic orbit", "the device", "mode flips"):
         assert want in labels
     assert ax.get_ylabel() == "mean slider speed  [mm/s]"
     assert isinstance(

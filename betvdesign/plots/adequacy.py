@@ -64,7 +64,7 @@ def mode_speed_scan(
             )
             continue
         color = MODE_COLORS.get(mode) or OTHER_COLORS[mode]
-        label = {"none": "none (not driven)"}.get(mode, mode)
+        label = {"none": "not driven"}.get(mode, mode)
         ax.plot(
             xs[sel], v[sel] * k, ls="none", marker="o", ms=3.5, color=color, label=label, zorder=2
         )

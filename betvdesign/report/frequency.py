@@ -122,7 +122,8 @@ def speed_frequency(
         "shaded). Solid: with the stroke's first-order thermal roll-off "
         f"u(f) = u_cal·H(f)/H(f_cal), H(f) = 1/sqrt(1 + (f/f_c)²), f_c = "
         f"{format_si(sc.cutoff_hz, 'Hz')}, f_cal = {format_si(sc.calibration_hz or 0.0, 'Hz')}; "
-        "dashed: the calibrated stroke u_cal at every frequency (the idealised model). "
+        "dashed: the calibrated stroke u_cal at every frequency (no roll-off; the device's "
+        "damping and restitution in both curves). "
         f"At the device's f_act = {format_si(sc.f_act_hz, 'Hz')} the stroke is "
         f"{sc.rolloff_factor:.3g} × u_cal ({format_si(sc.u_m, 'm')})."
     )

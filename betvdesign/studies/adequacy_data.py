@@ -60,6 +60,12 @@ Axis = Literal["quality", "restitution"]
 ADEQUATE: tuple[str, ...] = ("adequate", "flips-beyond", "speed-differs")
 
 
+def shown_mode(mode: str | None) -> str:
+    """A scan point's mode as a designer reads it: "none" is "not driven" (no contact
+    recurs), None "no orbit"."""
+    return {"none": "not driven", None: "no orbit"}.get(mode, str(mode))
+
+
 @dataclass(frozen=True)
 class Point:
     """One exact periodic orbit of the study.
@@ -139,8 +145,8 @@ class Crossing:
     def text(self) -> str:
         sym = "Q" if self.axis == "quality" else "e"
         return (
-            f"{sym} ≈ {fmt_x(self.at, 4)} ({self.mode_low or 'no orbit'} below, "
-            f"{self.mode_high or 'no orbit'} above)"
+            f"{sym} ≈ {fmt_x(self.at, 4)} ({shown_mode(self.mode_low)} below, "
+            f"{shown_mode(self.mode_high)} above)"
         )
 
 
@@ -263,7 +269,7 @@ class SetAdequacy:
         if flips:
             text += "; mode flips at " + ", ".join(
                 f"{'Q' if f.axis == 'quality' else 'e'} ≈ {fmt_x(f.at)} (→ "
-                f"{f.mode_low if f.axis == 'quality' else f.mode_high})"
+                f"{shown_mode(f.mode_low if f.axis == 'quality' else f.mode_high)})"
                 for f in flips
             )
         elif self.status == "mode-flips":
