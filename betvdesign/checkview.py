@@ -360,15 +360,8 @@ def set_headline(sc: Any) -> tuple[str, str]:
             f"{format_si(s.travel_range_m, 'm')} in {format_si(s.travel_range_m / v, 's')}"
         )
     else:
-        motion = (
-            "the slider does not move"
-            if v == 0.0
-            else (
-                "no periodic drive (impulsive hits only)"
-                if mode == "not driven"
-                else "no speed (no exact orbit)"
-            )
-        )
+        none = "no periodic drive (impulsive hits only)" if mode == "not driven" else None
+        motion = "the slider does not move" if v == 0.0 else none or "no speed (no exact orbit)"
     line1 = f"{head}, {motion}; {_margin(sc)[1]}"
     lam_mode = "push" if s.lam < 1.0 else "pull"
     word = "" if mode not in ("push", "pull") else (" agrees" if lam_mode == mode else " disagrees")

@@ -17,6 +17,25 @@ from typing import Any
 
 import numpy as np
 
+#: Largest f_cal/f_c accepted [-]: a calibration taken where the first-order low-pass has
+#: already cut the stroke by ~100× (H < 0.01) would be scaled back up by that factor and
+#: more at lower actuation frequencies; far beyond what a first-order law can be trusted
+#: for (and a calibration measured there is mostly noise). The spec refuses it.
+MAX_CALIBRATION_RATIO = 100.0
+
+
+def calibration_problem(f_cal_hz: float, cutoff_hz: float) -> str | None:
+    """Why a calibration frequency f_cal [Hz] cannot be used with the cut-off f_c [Hz]
+    (beyond :data:`MAX_CALIBRATION_RATIO`), None when it can."""
+    if f_cal_hz <= MAX_CALIBRATION_RATIO * cutoff_hz:
+        return None
+    return (
+        f"{f_cal_hz:g} Hz is {f_cal_hz / cutoff_hz:.3g}× the thermal cut-off {cutoff_hz:.4g} "
+        f"Hz: the stroke measured there is rolled off below 1/{MAX_CALIBRATION_RATIO:g} and "
+        "the first-order law cannot scale it back; give the actuation frequency at which the "
+        f"amplitude was measured (≤ {MAX_CALIBRATION_RATIO:g} f_c)"
+    )
+
 
 def cutoff_from_time_constant(tau_s: Any) -> Any:
     """Cut-off frequency f_c = 1/(2π τ_th) [Hz] of a first-order thermal time constant

@@ -18,6 +18,8 @@ from pydantic import BaseModel, ConfigDict, Field, field_validator, model_valida
 
 from betvdesign import damping, limits
 from betvdesign.errors import ParameterError
+from betvdesign.rolloff import calibration_problem
+from betvdesign.rolloff import cutoff_from_time_constant as cutoff_hz
 from betvdesign.units import (
     Density,
     Duration,
@@ -288,11 +290,8 @@ class Actuator(_Model):
 
     @model_validator(mode="after")
     def _exactly_one(self) -> Actuator:
-        given = [
-            n
-            for n in ("alpha", "horizontal_stiffness", "horizontal_resonance")
-            if getattr(self, n) is not None
-        ]
+        names = ("alpha", "horizontal_stiffness", "horizontal_resonance")
+        given = [n for n in names if getattr(self, n) is not None]
         if len(given) != 1:
             raise ValueError(
                 "give exactly one of 'alpha', 'horizontal_stiffness' or 'horizontal_resonance'"
@@ -306,12 +305,17 @@ class Actuator(_Model):
             raise at("thermal_time_constant", "give 'thermal_cutoff' or this, not both")
         rolloff = self.thermal_cutoff is not None or self.thermal_time_constant is not None
         if rolloff and self.calibration_frequency is None:
-            given = "thermal_cutoff" if self.thermal_cutoff is not None else "thermal_time_constant"
             raise at(
-                given,
+                "thermal_cutoff" if self.thermal_cutoff is not None else "thermal_time_constant",
                 "needs 'calibration_frequency' too (the actuation frequency at which the "
                 "amplitude or calibration was measured)",
             )
+        if rolloff and self.calibration_frequency is not None:
+            tc, tau = self.thermal_cutoff, self.thermal_time_constant
+            f_c = tc.to("Hz").magnitude if tc is not None else cutoff_hz(tau.to("s").magnitude)
+            bad = calibration_problem(self.calibration_frequency.to("Hz").magnitude, f_c)
+            if bad:
+                raise at("calibration_frequency", bad)
         if not rolloff and self.calibration_frequency is not None:
             raise at(
                 "calibration_frequency",

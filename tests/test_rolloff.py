@@ -386,6 +386,16 @@ BAD = {
         "thermal_cutoff: 800\ncalibration_frequency: 200 Hz",
         [(19, 23, A + "thermal_cutoff", "missing unit: got the bare number 800")],
     ),
+    # a calibration where the stroke was already cut > 100×: f_cal/f_c = 90 kHz/800 Hz = 112.5
+    "calibration_far_above_cutoff": (
+        "thermal_cutoff: 800 Hz\ncalibration_frequency: 90 kHz",
+        [(20, 30, A + "calibration_frequency", "is 112× the thermal cut-off 800 Hz")],
+    ),
+    # f_c = 1/(2π·0.2 ms) = 795.77 Hz
+    "calibration_far_above_tau_cutoff": (
+        "thermal_time_constant: 0.2 ms\ncalibration_frequency: 1 GHz",
+        [(20, 30, A + "calibration_frequency", "the thermal cut-off 795.8 Hz")],
+    ),
     "calibration_zero": (
         "thermal_cutoff: 800 Hz\ncalibration_frequency: 0 Hz",
         [(20, 30, A + "calibration_frequency", "must be > 0 Hz")],
@@ -394,10 +404,10 @@ BAD = {
         "thermal_cutoff: inf Hz\ncalibration_frequency: 200 Hz",
         [(19, 23, A + "thermal_cutoff", "must be finite")],
     ),
-    # valid fields, but H(f_act) underflows to 0: the derivation names it (no NaN)
+    # a subnormal cut-off (H(f_act) would underflow to 0): refused at f_cal, no NaN
     "cutoff_subnormal": (
         "thermal_cutoff: 1e-320 Hz\ncalibration_frequency: 200 Hz",
-        [(None, None, "", "H(f_act) = 1/sqrt(1 + (f_act/f_c)²) = 0.0: must be finite and > 0")],
+        [(20, 30, A + "calibration_frequency", "× the thermal cut-off 1e-320 Hz")],
     ),
 }
 
