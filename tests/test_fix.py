@@ -207,3 +207,35 @@ def test_damped_rolled_off_device_is_fixed_end_to_end(tmp_path):
     u_cal = 0.11e-6 + (9 - 8) / (10 - 8) * (0.17e-6 - 0.11e-6)  # measured points, 9 V
     length = u_cal * h(f_act) / h(200.0) * math.cos(math.radians(20.56))
     assert s["speed_m_s"] == pytest.approx(abs(s["delta_s"]) * length * f_act, rel=1e-9)
+
+
+@pytest.mark.parametrize(
+    ("vary", "words"),
+    [
+        ("contact.restitution=0.01:1.5", "outside what the model takes (< 1)"),
+        ("contact.restitution=0.01:1", "outside what the model takes (< 1)"),
+        ("contact.restitution=0:0.15", "LO = 0.001"),
+        ("actuator.quality_factor_normal=0.001:1e6", "need 0.05 ≤ LO < HI"),
+        ("actuator.quality_factor_normal=10:1e6", "outside what the model takes (≤ 5000)"),
+    ],
+)
+def test_fix_bounds_of_the_optional_physics_are_the_models(vary, words):
+    """e ∈ [0, 1) (the search is log-spaced, so LO > 0), Q in [1/(2ζ_max), 1/(2ζ_min)] =
+    [0.05, 5000]: bounds outside are refused with exit 2, not searched."""
+    r = run("fix", DEVICES / "damped_demo.yaml", "--vary", vary)
+    assert r.exit_code == 2 and words in r.output, r.output
+
+
+def test_fix_finds_the_restitution_that_restores_the_drive(tmp_path):
+    """damped_demo with e = 0.2 is not driven; varying e alone finds a passing e below the
+    flip (e ≈ 0.166, tests/test_adequacy.py), confirmed by the written file's check."""
+    src = tmp_path / "e02.yaml"
+    src.write_text(
+        (DEVICES / "damped_demo.yaml").read_text().replace("restitution: 0.1 ", "restitution: 0.2 ")
+    )
+    out = tmp_path / "fixed.yaml"
+    r = run("fix", src, "--vary", "contact.restitution=0.001:0.19", "-o", out)
+    assert r.exit_code == 0, r.output
+    e = load_device(out).actuator_sets[0].contact.restitution
+    assert 0.001 <= e < 0.166
+    assert _check_passes(out)["sets"][0]["mode"] == "push"

@@ -36,6 +36,22 @@ DEFAULT_BOUNDS: dict[str, tuple[float, float] | tuple[float, float, str]] = {
 }
 
 
+def _domain(name: str) -> tuple[float, float, bool] | None:
+    """(lo, hi, hi_open) a field can take at all when varied, for the fields of the
+    optional physics: e ∈ [0, 1), Q in [Q_MIN, Q_MAX], ζ in [ZETA_MIN, ZETA_MAX]."""
+    from betvdesign.damping import Q_MAX, Q_MIN
+    from betvdesign.params import ZETA_MAX, ZETA_MIN
+
+    leaf = name.rsplit(".", 1)[-1]
+    if leaf == "restitution":
+        return 0.0, 1.0, True
+    if leaf.startswith("quality_factor_"):
+        return Q_MIN, Q_MAX, False
+    if leaf.startswith("damping_ratio_"):
+        return ZETA_MIN, ZETA_MAX, False
+    return None
+
+
 @dataclass(frozen=True)
 class Vary:
     """A field to vary and its bounds, in the field's own unit (``unit``)."""
@@ -106,8 +122,25 @@ def parse_vary(spec: Any, items: Sequence[str]) -> list[Vary]:
                 lo, hi = (float(ureg.Quantity(v, b[2]).to(unit).magnitude) for v in b[:2])
             else:
                 lo, hi = x0 * b[0], x0 * b[1]
-        if not (math.isfinite(lo) and math.isfinite(hi) and 0 < lo < hi):
-            raise UsageError(f"--vary {item}: need 0 < LO < HI (got {lo:g} to {hi:g} {unit})")
+        dom = _domain(name)
+        if dom is not None:  # optional physics: its own range, e = 0 included
+            dlo, dhi, hi_open = dom
+            if not (math.isfinite(lo) and math.isfinite(hi) and 0 < lo < hi and dlo <= lo):
+                raise UsageError(
+                    f"--vary {item}: need 0 < LO < HI (got {lo:g} to {hi:g}; the search is "
+                    "log-spaced: for nearly plastic impacts give e.g. LO = 0.001)"
+                    if dlo == 0
+                    else f"--vary {item}: need {dlo:g} ≤ LO < HI (got {lo:g} to {hi:g})"
+                )
+            if hi > dhi or (hi_open and hi == dhi):
+                raise UsageError(
+                    f"--vary {item}: HI {hi:g} outside what the model takes "
+                    f"({'<' if hi_open else '≤'} {dhi:g})"
+                )
+        elif not (math.isfinite(lo) and math.isfinite(hi) and 0 < lo < hi):
+            raise UsageError(
+                f"--vary {item}: need 0 < LO < HI (got {lo:g} to {hi:g} {unit})".rstrip()
+            )
         out.append(Vary(name, x0, lo, hi, unit))
     if len({v.field for v in out}) != len(out):
         raise UsageError("--vary: a field is given twice")
