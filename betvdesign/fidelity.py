@@ -221,7 +221,11 @@ def choose_rung(
             raise UsageError(f"unknown fidelity {force!r}; one of {', '.join(RUNGS)}")
         info = RUNG_INFO[force]
         if question not in info.answers:
-            able = [r for r in RUNGS if question in RUNG_INFO[r].answers]
+            able = [
+                r
+                for r in RUNGS
+                if question in RUNG_INFO[r].answers and (p.ideal or r not in IDEAL_ONLY)
+            ]
             raise UsageError(
                 f"fidelity {force!r} ({info.model}) cannot answer {question!r}; "
                 f"use one of {', '.join(able)}"

@@ -141,7 +141,7 @@ def test_verdict_and_rules_agree_with_betv_check(reports_dir: Path, device: Path
     assert f"Device verdict: <strong>{check.verdict.upper()}</strong>" in html
     rows = re.findall(
         r"<tr class=\"[^\"]*\"><td><code>([^<]+)</code></td><td>(\w+)</td>"
-        r"<td class=\"num\">[^<]*</td><td>[^<]*</td><td>(pass|FAIL)</td>",
+        r"<td class=\"num\">[^<]*</td><td>[^<]*</td><td>(pass|FAIL|warning|info)</td>",
         html,
     )
     shown = sorted((rid, sev, res == "pass") for rid, sev, res in rows)

@@ -102,7 +102,10 @@ def _print(res, file: Path) -> None:
     from betvdesign.rules import format_speed
 
     if res.status == "already_passes":
-        typer.echo(f"{file}: already passes every rule; nothing to change")
+        typer.echo(
+            f"{file}: already passes every error rule; nothing to change "
+            "(`betv check` lists its warnings)"
+        )
         return
     typer.echo(f"{file}: {res.message} ({res.evaluations} exact checks)")
     rows = [c for c in res.candidates if c.passed][:6]
