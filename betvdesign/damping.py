@@ -31,6 +31,20 @@ Q_MIN = 1.0 / (2.0 * ZETA_MAX)
 Q_MAX = 1.0 / (2.0 * ZETA_MIN)
 
 
+def term_range(field: str) -> tuple[float, float, bool] | None:
+    """(lo, hi, hi_open) [-] a device field of the optional physics can take, by its
+    dotted path (e.g. ``contact.restitution``): e ∈ [0, 1), Q in [Q_MIN, Q_MAX], ζ in
+    [ZETA_MIN, ZETA_MAX]; None for every other field."""
+    leaf = field.rsplit(".", 1)[-1]
+    if leaf == "restitution":
+        return 0.0, 1.0, True
+    if leaf.startswith("quality_factor_"):
+        return Q_MIN, Q_MAX, False
+    if leaf.startswith("damping_ratio_"):
+        return ZETA_MIN, ZETA_MAX, False
+    return None
+
+
 def zeta_from_quality(q: Any) -> Any:
     """Damping ratio ζ = 1/(2Q) [-] of a quality factor Q [-] (float or array)."""
     return 1.0 / (2.0 * q)

@@ -26,6 +26,15 @@ def run(*args):
     return CliRunner().invoke(app, [str(a) for a in args])
 
 
+def _variant(tmp_path: Path, name: str, device: str, old: str, new: str) -> Path:
+    """A shipped device with one text replaced, written as tmp_path/name."""
+    src = tmp_path / name
+    text = (DEVICES / device).read_text()
+    assert old in text
+    src.write_text(text.replace(old, new))
+    return src
+
+
 def _check_passes(path: Path) -> dict:
     """`betv check --json` on the file passes; its device entry."""
     r = run("check", path, "--json")
@@ -62,12 +71,7 @@ def test_default_fields_rank_operating_changes_first():
 def test_wrong_mode_device_is_fixed_by_the_exact_orbit(tmp_path):
     """push_demo marked intended pull fails its mode rule; the fix found makes the
     exact orbit pull, confirmed by `betv check` on the written file."""
-    src = tmp_path / "push_as_pull.yaml"
-    src.write_text(
-        (DEVICES / "push_demo.yaml")
-        .read_text()
-        .replace("intended_mode: push", "intended_mode: pull")
-    )
+    src = _variant(tmp_path, "push_as_pull.yaml", "push_demo.yaml", "mode: push", "mode: pull")
     assert run("check", src).exit_code == 1
     out = tmp_path / "fixed.yaml"
     r = run("fix", src, "--vary", "drive.frequency", "-o", out)
@@ -184,12 +188,7 @@ def test_damped_rolled_off_device_is_fixed_end_to_end(tmp_path):
     rolled off at the new frequency by the closed form u_cal·H(f)/H(f_cal) (by hand)."""
     import math
 
-    src = tmp_path / "damped_as_pull.yaml"
-    src.write_text(
-        (DEVICES / "damped_demo.yaml")
-        .read_text()
-        .replace("intended_mode: push", "intended_mode: pull")
-    )
+    src = _variant(tmp_path, "damped_as_pull.yaml", "damped_demo.yaml", "mode: push", "mode: pull")
     assert run("check", src).exit_code == 1
     out = tmp_path / "fixed.yaml"
     r = run("fix", src, "--vary", "drive.frequency", "-o", out)
@@ -229,9 +228,8 @@ def test_fix_bounds_of_the_optional_physics_are_the_models(vary, words):
 def test_fix_finds_the_restitution_that_restores_the_drive(tmp_path):
     """damped_demo with e = 0.2 is not driven; varying e alone finds a passing e below the
     flip (e ≈ 0.166, tests/test_adequacy.py), confirmed by the written file's check."""
-    src = tmp_path / "e02.yaml"
-    src.write_text(
-        (DEVICES / "damped_demo.yaml").read_text().replace("restitution: 0.1 ", "restitution: 0.2 ")
+    src = _variant(
+        tmp_path, "e02.yaml", "damped_demo.yaml", "restitution: 0.1 ", "restitution: 0.2 "
     )
     out = tmp_path / "fixed.yaml"
     r = run("fix", src, "--vary", "contact.restitution=0.001:0.19", "-o", out)

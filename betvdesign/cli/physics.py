@@ -19,6 +19,7 @@ import typer
 
 from betvdesign import damping
 from betvdesign.errors import UsageError
+from betvdesign.params import ZETA_MAX, ZETA_MIN
 
 
 def _checked(check: Callable[[Any], float]) -> Callable[[float | None], float | None]:
@@ -50,7 +51,7 @@ ZetaVOpt = Annotated[
     typer.Option(
         "--zeta-v",
         help="Head's normal damping ratio ζ_v [-]: 0 or "
-        f"{1 / (2 * damping.Q_MAX):g} to {1 / (2 * damping.Q_MIN):g}. Or --quality-normal.",
+        f"{ZETA_MIN:g} to {ZETA_MAX:g}. Or --quality-normal.",
         callback=_checked(damping.check_damping_ratio),
     ),
 ]
@@ -68,7 +69,7 @@ ZetaHOpt = Annotated[
     typer.Option(
         "--zeta-h",
         help="Head's tangential damping ratio ζ_h [-]: 0 or "
-        f"{1 / (2 * damping.Q_MAX):g} to {1 / (2 * damping.Q_MIN):g}. Or --quality-tangential.",
+        f"{ZETA_MIN:g} to {ZETA_MAX:g}. Or --quality-tangential.",
         callback=_checked(damping.check_damping_ratio),
     ),
 ]

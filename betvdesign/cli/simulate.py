@@ -174,7 +174,7 @@ def simulate_cmd(
 ) -> None:
     """Simulate one design exactly: a transient (--cycles) or the periodic state (--periodic)."""
     from betvdesign.domain import mode_of
-    from betvdesign.dynamics import periodic_orbit, simulate, vertical_motion
+    from betvdesign.dynamics import periodic_orbit, simulate
 
     opts = {"varpi": varpi, "alpha": alpha, "beta": beta, "kappa": kappa}
     with user_errors(), interruptible(resumable=False):
@@ -206,8 +206,6 @@ def simulate_cmd(
         else:
             tr = simulate(p, cycles, log_events=False)
             last = float(tr.delta_s[-1]) if len(tr.delta_s) else None
-            # no contact recurs: the last Δs is coasting at the first contacts' velocity
-            driven = vertical_motion(p.varpi, zeta_v=p.zeta_v, restitution=p.restitution).success
             out = {
                 "params": p.as_dict(),
                 "status": tr.status,
@@ -215,7 +213,7 @@ def simulate_cmd(
                 "cycles": tr.n_cycles,
                 "s": tr.s,
                 "delta_s": last,
-                "mode": mode_of(last) if driven else "not driven",
+                "mode": mode_of(last) if tr.driven else "not driven",
                 "period_cycles": None,
                 "residual": None,
                 "floquet": None,

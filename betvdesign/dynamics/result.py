@@ -64,6 +64,10 @@ class Trajectory:
     n_fev: int = 0
     impacts_per_cycle: float = float("nan")
     contact_fraction: float = float("nan")
+    #: True when contact recurs (the vertical motion is periodic with contacts), False
+    #: when the hits are impulsive only within the horizon: the slider is not driven and
+    #: the last Δs is coasting (exact solver; None for the reference solvers)
+    driven: bool | None = None
     phases: list[tuple[float, float, str]] = field(default_factory=list, repr=False)
     #: "compiled" (numba, :mod:`betvdesign.dynamics.contact`) or "python" (uncompiled)
     engine: str = "python"

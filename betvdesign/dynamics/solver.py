@@ -215,6 +215,7 @@ def _simulate(p: ModelParams, n: int, st: tuple, dense: bool, log_events: bool) 
         elapsed_s=time.perf_counter() - t0,
         impacts_per_cycle=vs.hits_per_cycle(),
         contact_fraction=vs.contact_fraction(),
+        driven=vs.period is not None,
         phases=phases,
         engine="compiled" if jit_enabled() else "python",
         _sampler=_Sampler(c, vs, segs, starts) if dense else None,

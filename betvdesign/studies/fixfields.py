@@ -13,6 +13,7 @@ from typing import Any
 
 import pint
 
+from betvdesign.damping import term_range
 from betvdesign.errors import UsageError
 from betvdesign.studies.specpaths import targets, value_at
 
@@ -34,22 +35,6 @@ DEFAULT_BOUNDS: dict[str, tuple[float, float] | tuple[float, float, str]] = {
     "actuator.alpha": (0.25, 4.0),
     "contact.impact_angle": (15.0, 75.0, "deg"),
 }
-
-
-def _domain(name: str) -> tuple[float, float, bool] | None:
-    """(lo, hi, hi_open) a field can take at all when varied, for the fields of the
-    optional physics: e ∈ [0, 1), Q in [Q_MIN, Q_MAX], ζ in [ZETA_MIN, ZETA_MAX]."""
-    from betvdesign.damping import Q_MAX, Q_MIN
-    from betvdesign.params import ZETA_MAX, ZETA_MIN
-
-    leaf = name.rsplit(".", 1)[-1]
-    if leaf == "restitution":
-        return 0.0, 1.0, True
-    if leaf.startswith("quality_factor_"):
-        return Q_MIN, Q_MAX, False
-    if leaf.startswith("damping_ratio_"):
-        return ZETA_MIN, ZETA_MAX, False
-    return None
 
 
 @dataclass(frozen=True)
@@ -122,7 +107,7 @@ def parse_vary(spec: Any, items: Sequence[str]) -> list[Vary]:
                 lo, hi = (float(ureg.Quantity(v, b[2]).to(unit).magnitude) for v in b[:2])
             else:
                 lo, hi = x0 * b[0], x0 * b[1]
-        dom = _domain(name)
+        dom = term_range(name)
         if dom is not None:  # optional physics: its own range, e = 0 included
             dlo, dhi, hi_open = dom
             if not (math.isfinite(lo) and math.isfinite(hi) and 0 < lo < hi and dlo <= lo):

@@ -43,6 +43,7 @@ from typing import Any, Literal
 import numpy as np
 
 from betvdesign import limits
+from betvdesign.damping import term_range
 from betvdesign.domain import in_window
 from betvdesign.errors import BetvError, UsageError
 from betvdesign.studies.pushpull import (
@@ -265,16 +266,6 @@ def _beyond_columns(spec: Any) -> dict[str, type]:
     return {} if ideal else dict.fromkeys(("zeta_v", "zeta_h", "restitution"), float)
 
 
-#: tolerance fields that give the model damping or restitution (beyond the λ fit's model)
-BEYOND_IDEAL_FIELDS = (
-    "damping_ratio_normal",
-    "damping_ratio_tangential",
-    "quality_factor_normal",
-    "quality_factor_tangential",
-    "restitution",
-)
-
-
 def _refuse_lambda_beyond_ideal(
     device: str | os.PathLike[str],
     spec: Any,
@@ -285,7 +276,7 @@ def _refuse_lambda_beyond_ideal(
     restitution: λ is a fit to the idealised model and knows neither."""
     from betvdesign.nondim import derive_set
 
-    spread = [t.field for t in tolerances if t.field.rsplit(".", 1)[-1] in BEYOND_IDEAL_FIELDS]
+    spread = [t.field for t in tolerances if term_range(t.field) is not None]
     damped = [
         s.name
         for s in spec.actuator_sets
