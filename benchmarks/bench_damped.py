@@ -25,7 +25,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from bench_solver import NAMED, OUT, ROOT, window_sets
 
 from betvdesign.dynamics import periodic_orbit, simulate
-from betvdesign.params import ModelParams
+from betvdesign.model.params import ModelParams
 
 
 def _per_cycle_us(p: ModelParams, n: int = 2000) -> float:

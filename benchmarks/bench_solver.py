@@ -39,7 +39,7 @@ from pathlib import Path
 import numpy as np
 
 from betvdesign.dynamics import periodic_orbit, reference, simulate
-from betvdesign.params import ModelParams
+from betvdesign.model.params import ModelParams
 
 ROOT = Path(__file__).resolve().parents[1]
 OUT = ROOT / "benchmarks" / "out"
@@ -215,7 +215,7 @@ _COLD = """
 import time
 t0 = time.perf_counter()
 from betvdesign.dynamics import simulate
-from betvdesign.params import ModelParams
+from betvdesign.model.params import ModelParams
 t1 = time.perf_counter()
 tr = simulate(ModelParams(1.2, 0.5, 1.0, 0.4), 3, log_events=False)
 t2 = time.perf_counter()

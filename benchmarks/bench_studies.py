@@ -24,10 +24,10 @@ from pathlib import Path
 
 import numpy as np
 
-from betvdesign.studies.executors import ProcessExecutor, SerialExecutor
+from betvdesign.studies.engine.executors import ProcessExecutor, SerialExecutor
+from betvdesign.studies.engine.runner import run_study
 from betvdesign.studies.pushpull import periodic_point, pushpull_study, summarise
 from betvdesign.studies.regime import run_regime
-from betvdesign.studies.runner import run_study
 from betvdesign.studies.tolerance import parse_tolerance, run_tolerance
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -61,8 +61,8 @@ def designs(n: int, seed: int = SEED) -> list[tuple[float, float, float, float, 
 
 def brute_force(p) -> tuple[str | None, float | None, int]:
     """Sign of the settled mean increment from rest (None: did not settle)."""
-    from betvdesign.domain import mode_of
     from betvdesign.dynamics import simulate
+    from betvdesign.model.domain import mode_of
 
     state, n, ds = None, 0, []
     chunk = 4_000
@@ -84,15 +84,15 @@ def brute_force(p) -> tuple[str | None, float | None, int]:
 @functools.cache
 def _base():
     """A device derivation whose one set's parameters each design replaces."""
-    from betvdesign.loader import load_device
-    from betvdesign.nondim import derive
+    from betvdesign.nondim.device import derive
+    from betvdesign.spec.loader import load_device
 
     return derive(load_device(ROOT / "devices" / "pull_demo.yaml"))
 
 
 def one(design: tuple[float, float, float, float, str]) -> dict:
-    from betvdesign.checker import check_derivation
-    from betvdesign.params import ModelParams
+    from betvdesign.checks.checker import check_derivation
+    from betvdesign.model.params import ModelParams
 
     w, a, b, k, family = design
     p = ModelParams(w, a, b, k)

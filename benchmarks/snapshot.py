@@ -27,7 +27,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from bench_solver import NAMED, window_sets
 
 from betvdesign.dynamics import periodic_orbit, simulate
-from betvdesign.params import ModelParams
+from betvdesign.model.params import ModelParams
 
 ROOT = Path(__file__).resolve().parents[1]
 SPECIAL = {
@@ -42,7 +42,7 @@ SPECIAL = {
 
 
 def designs() -> dict[str, ModelParams]:
-    from betvdesign.nondim import derive_file
+    from betvdesign.nondim.device import derive_file
 
     out = {**NAMED, **window_sets()}
     for f in sorted((ROOT / "devices").glob("*.yaml")):

@@ -54,7 +54,7 @@ def ladder(out_path: Path, reuse_map: bool) -> None:
 
     previous = None
     if reuse_map:
-        from betvdesign.fidelity import _measured
+        from betvdesign.checks.fidelity import _measured
 
         previous = {k: v for k, v in _measured()["lambda"].items() if k != "held_out"}
     m = measure(reuse_map=previous)

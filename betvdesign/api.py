@@ -1,7 +1,7 @@
 """Notebook and script entry points: check a device file or an edited spec in one call.
 
 ``betvdesign.check`` is :func:`check`; the command line's ``betv check`` shows the same
-view (:class:`betvdesign.checkview.DeviceView`). ``betvdesign.adequacy`` is
+view (:class:`betvdesign.checks.view.DeviceView`). ``betvdesign.adequacy`` is
 :func:`adequacy`: is the paper's idealised model enough for the device?
 """
 
@@ -12,7 +12,7 @@ import warnings
 from collections.abc import Sequence
 from typing import Any
 
-from betvdesign.checkview import DeviceView, RuleFilter
+from betvdesign.checks.view import DeviceView, RuleFilter
 
 
 def check(
@@ -38,12 +38,12 @@ def check(
     -------
     DeviceView
         ``repr`` is the compact block, ``_repr_html_`` a notebook table, ``.out`` the
-        JSON (:class:`~betvdesign.checkview.DeviceOut`), ``.result`` the full
-        :class:`~betvdesign.checker.CheckResult`.
+        JSON (:class:`~betvdesign.checks.view.DeviceOut`), ``.result`` the full
+        :class:`~betvdesign.checks.checker.CheckResult`.
     """
-    from betvdesign.checker import check_derivation
-    from betvdesign.nondim import derive, derive_file
-    from betvdesign.units import parse_speed
+    from betvdesign.checks.checker import check_derivation
+    from betvdesign.nondim.device import derive, derive_file
+    from betvdesign.spec.units import parse_speed
 
     if isinstance(device, str | os.PathLike):
         d, source = derive_file(device), str(device)
@@ -64,7 +64,7 @@ def adequacy(device: Any) -> Any:
     Compares the exact periodic orbit of every actuator set without and with head damping
     and restitution (the device's, or Q = 30 and e = 0.1 when it gives none) and scans Q
     over 1–1000 and e over 0–0.9 for a change of mode
-    (:mod:`betvdesign.studies.adequacy`).
+    (:mod:`betvdesign.checks.adequacy`).
 
     Parameters
     ----------
@@ -78,6 +78,6 @@ def adequacy(device: Any) -> Any:
         ``adequate``, ``message``, ``text()``; per set (``sets``) the idealised and the
         richer answer (mode, Δs [-], speed [m/s]) and the Q / e at which the mode flips.
     """
-    from betvdesign.studies.adequacy import adequacy as _adequacy
+    from betvdesign.checks.adequacy import adequacy as _adequacy
 
     return _adequacy(device)

@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 from hypothesis import settings
 
-from betvdesign.params import ModelParams
+from betvdesign.model.params import ModelParams
 
 # CI gates on a reproducible suite: the same hypothesis examples on every run
 # (a new counterexample is found in development, where the database keeps it).

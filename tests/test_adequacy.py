@@ -20,15 +20,8 @@ import pytest
 from conftest import DEVICES
 
 import betvdesign
-from betvdesign.damping import zeta_from_quality
-from betvdesign.domain import mode_of
-from betvdesign.dynamics import periodic_orbit
-from betvdesign.errors import ParameterError, SpecError
-from betvdesign.loader import load_device
-from betvdesign.nondim import derive
-from betvdesign.rules_adequacy import adequacy_rule
-from betvdesign.studies.adequacy import adequacy, assess_set
-from betvdesign.studies.adequacy_data import (
+from betvdesign.checks.adequacy import adequacy, assess_set
+from betvdesign.checks.adequacy_data import (
     DEFAULT_QUALITY,
     DEFAULT_RESTITUTION,
     LIKELY_QUALITY,
@@ -36,6 +29,13 @@ from betvdesign.studies.adequacy_data import (
     QUALITY_RANGE,
     RESTITUTION_RANGE,
 )
+from betvdesign.checks.rules_adequacy import adequacy_rule
+from betvdesign.dynamics import periodic_orbit
+from betvdesign.errors import ParameterError, SpecError
+from betvdesign.model.damping import zeta_from_quality
+from betvdesign.model.domain import mode_of
+from betvdesign.nondim.device import derive
+from betvdesign.spec.loader import load_device
 
 
 def _mode(p) -> str | None:
@@ -178,7 +178,7 @@ def test_mirrored_sets_are_solved_once():
         return periodic_orbit(p, **kw)
 
     der = derive(load_device(DEVICES / "bidir_demo.yaml"))
-    from betvdesign.studies.adequacy import assess
+    from betvdesign.checks.adequacy import assess
 
     two = assess(der, solver=counting)
     n_two = len(calls)
@@ -244,7 +244,7 @@ def test_check_rule_warns_where_the_mode_flips_with_the_studys_numbers():
     assert out.richer.mode == "push" and out.ideal.quality_normal is None  # undamped: null
     text = view.text()
     assert "warn model-adequacy: mode-flips" in text and "e ≈ 0.166 (→ not driven)" in text
-    from betvdesign.checkview import output_json
+    from betvdesign.checks.view import output_json
 
     doc = json.loads(output_json([view]))
     assert doc["devices"][0]["sets"][0]["adequacy"]["source"] == "default"

@@ -9,15 +9,15 @@ import pytest
 
 import betvdesign as bd
 from betvdesign.errors import SpecError
-from betvdesign.loader import load_device_text
-from betvdesign.nondim import derive
+from betvdesign.nondim.device import derive
+from betvdesign.spec.loader import load_device_text
 
 DEVICES = Path(__file__).resolve().parents[1] / "devices"
 PUSH = DEVICES / "push_demo.yaml"
 
 
 def test_ureg_is_the_package_registry_and_foreign_quantities_are_refused():
-    from betvdesign import units
+    from betvdesign.spec import units
 
     assert bd.ureg is units.ureg and bd.Quantity is units.ureg.Quantity
     spec = bd.load_device(PUSH)

@@ -25,7 +25,7 @@ import pytest
 
 from betvdesign.dynamics import reference, simulate
 from betvdesign.dynamics.vertical import VerticalSchedule
-from betvdesign.params import ModelParams
+from betvdesign.model.params import ModelParams
 
 
 @pytest.fixture(autouse=True)
@@ -200,7 +200,7 @@ def test_regime_rung_sees_the_chattering(case):
     """What ``betv check`` and the regime question read (dynamics.vertical_motion through
     the fidelity ladder's vertical rung, given ζ_v and e): one contact per cycle lasting
     from the 50-digit accumulation time to π/ϖ (kernel time), not the idealised motion's."""
-    from betvdesign import fidelity
+    from betvdesign.checks import fidelity
 
     w, zv, e = case
     p = ModelParams(w, 0.3, 1.0, 0.3, zv, 0.0, e)

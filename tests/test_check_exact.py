@@ -16,12 +16,12 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from betvdesign.checker import check_derivation
+from betvdesign.checks.checker import check_derivation
 from betvdesign.dynamics import periodic_orbit, simulate
-from betvdesign.loader import load_device
-from betvdesign.nondim import derive
-from betvdesign.params import ModelParams
-from betvdesign.studies.settling import settling
+from betvdesign.dynamics.settling import settling
+from betvdesign.model.params import ModelParams
+from betvdesign.nondim.device import derive
+from betvdesign.spec.loader import load_device
 
 DEVICES = Path(__file__).resolve().parents[1] / "devices"
 BASE = derive(load_device(DEVICES / "pull_demo.yaml"))

@@ -13,7 +13,7 @@ import pytest
 from typer.testing import CliRunner
 
 from betvdesign.cli import app
-from betvdesign.siformat import format_q, format_si, si_key
+from betvdesign.output.siformat import format_q, format_si, si_key
 
 DEVICES = Path(__file__).resolve().parents[1] / "devices"
 PUSH = str(DEVICES / "push_demo.yaml")
@@ -56,7 +56,7 @@ def test_formatter_edge_cases_and_keys():
     assert si_key("speed", "m/s") == "speed_m_s"
     assert si_key("f_act", "Hz") == "f_act_hz"
     assert si_key("k_v", "N/m") == "k_v_n_m"
-    from betvdesign.units import ureg
+    from betvdesign.spec.units import ureg
 
     assert format_q(ureg.Quantity("0.036 ug")) == "36 ng"
     assert format_q(ureg.Quantity("26.53 us")) == "26.5 µs"
@@ -72,7 +72,7 @@ def test_push_demo_fits_one_screen_and_names_mode_speed_margin():
     speed is Δs·u·cosθ·f_act with Δs of the exact orbit (u = 0.14 µm, θ = 20.56°,
     f_act = 6 kHz), recomputed here."""
     from betvdesign.dynamics import periodic_orbit
-    from betvdesign.nondim import derive_file
+    from betvdesign.nondim.device import derive_file
 
     r = run("check", PUSH)
     assert r.exit_code == 0, r.output
@@ -175,9 +175,9 @@ def test_version_flag_and_schema_kinds():
 
 def test_python_view_repr_and_html():
     """Notebook face: repr is the compact block, _repr_html_ escapes names."""
-    from betvdesign.checker import check_derivation
-    from betvdesign.checkview import DeviceView
-    from betvdesign.nondim import derive_file
+    from betvdesign.checks.checker import check_derivation
+    from betvdesign.checks.view import DeviceView
+    from betvdesign.nondim.device import derive_file
 
     view = DeviceView(check_derivation(derive_file(SHIN)))
     text = repr(view)

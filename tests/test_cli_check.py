@@ -7,10 +7,10 @@ from pathlib import Path
 import pytest
 from typer.testing import CliRunner
 
-from betvdesign import checker
+from betvdesign.checks import checker
 from betvdesign.cli import app
-from betvdesign.loader import load_device
-from betvdesign.spec import DeviceSpec
+from betvdesign.spec.loader import load_device
+from betvdesign.spec.models import DeviceSpec
 
 DEVICES = Path(__file__).resolve().parents[1] / "devices"
 SHIN = str(DEVICES / "shin2004.yaml")
@@ -30,7 +30,7 @@ def no_solver(monkeypatch):
         )
 
     monkeypatch.setattr(checker, "load_solver", lambda: orbit)
-    monkeypatch.setattr("betvdesign.checker._settling", lambda p, po, travel: None)
+    monkeypatch.setattr("betvdesign.checks.checker._settling", lambda p, po, travel: None)
 
 
 def run(*args):
@@ -256,7 +256,7 @@ def test_check_reports_orbit_speed_and_json(monkeypatch):
         elapsed_s=0.01,
     )
     monkeypatch.setattr(checker, "load_solver", lambda: lambda p: orbit)
-    monkeypatch.setattr("betvdesign.checker._settling", lambda p, po, travel: None)
+    monkeypatch.setattr("betvdesign.checks.checker._settling", lambda p, po, travel: None)
     path = str(DEVICES / "push_demo.yaml")
     v = 0.25 * 0.14e-6 * math.cos(math.radians(20.56)) * 6000.0  # [m/s] = 196.6 µm/s
     r = run("check", path)
@@ -283,7 +283,7 @@ def test_shin2004_orbit_and_speed_from_the_exact_solver():
     import math
 
     from betvdesign.dynamics import periodic_orbit, simulate
-    from betvdesign.params import ModelParams
+    from betvdesign.model.params import ModelParams
 
     r = run("check", "--json", "-v", SHIN)
     assert r.exit_code == 1  # the frequency-window error

@@ -10,7 +10,7 @@ from typer.testing import CliRunner
 
 from betvdesign.cli import app
 from betvdesign.dynamics import periodic_orbit
-from betvdesign.params import ModelParams
+from betvdesign.model.params import ModelParams
 
 runner = CliRunner()
 POINT = ["--varpi", "1", "--alpha", "1", "--beta", "0.5", "--kappa", "0.4"]

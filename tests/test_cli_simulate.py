@@ -10,9 +10,9 @@ from typer.testing import CliRunner
 
 from betvdesign.cli import app
 from betvdesign.dynamics import periodic_orbit, simulate
-from betvdesign.nondim import derive_file
-from betvdesign.params import ModelParams
-from betvdesign.siformat import format_si
+from betvdesign.model.params import ModelParams
+from betvdesign.nondim.device import derive_file
+from betvdesign.output.siformat import format_si
 
 DEVICES = Path(__file__).resolve().parents[1] / "devices"
 KEYS = {

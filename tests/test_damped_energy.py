@@ -27,7 +27,7 @@ import numpy as np
 import pytest
 
 from betvdesign.dynamics import reference, simulate
-from betvdesign.params import ModelParams
+from betvdesign.model.params import ModelParams
 
 NODES, LEG = np.polynomial.legendre.leggauss(16)
 PIECE = 0.25

@@ -24,7 +24,7 @@ import numpy as np
 import pytest
 
 from betvdesign.dynamics import reference, simulate
-from betvdesign.params import ModelParams
+from betvdesign.model.params import ModelParams
 
 CYCLES = 100
 TOL = 1e-8

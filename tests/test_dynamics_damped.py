@@ -19,7 +19,7 @@ import pytest
 from betvdesign.dynamics import flows, periodic_orbit, simulate, solver
 from betvdesign.dynamics.vertical import VerticalSchedule
 from betvdesign.errors import ParameterError
-from betvdesign.params import ZETA_MIN, ModelParams
+from betvdesign.model.params import ZETA_MIN, ModelParams
 
 
 def _designs(n: int, seed: int) -> list[ModelParams]:

@@ -13,7 +13,7 @@ from betvdesign.dynamics.evaluators import gap_evaluator
 from betvdesign.dynamics.flows import oscillator
 from betvdesign.dynamics.search import ROOT, first_root, workspace
 from betvdesign.errors import ParameterError
-from betvdesign.params import ModelParams
+from betvdesign.model.params import ModelParams
 
 W = 0.5
 SP0, CP0 = 0.0, -1.0  # a free flight starting at phase π (a contact end)

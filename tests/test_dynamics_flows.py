@@ -18,7 +18,7 @@ from betvdesign.dynamics.flows import (
     phase_table,
     sinc,
 )
-from betvdesign.params import ModelParams
+from betvdesign.model.params import ModelParams
 
 
 def _ode_residual(w0, wf, F, y0, v0, phi0, h, d=1e-4):

@@ -22,7 +22,7 @@ import pytest
 
 from betvdesign.dynamics import periodic_orbit, reference, simulate
 from betvdesign.dynamics.periodic import GROWTH_WINDOW, resonance_growth_bound
-from betvdesign.params import ModelParams
+from betvdesign.model.params import ModelParams
 from betvdesign.studies.pushpull import run_pushpull
 
 #: The issue-5 push/pull map axes.
@@ -148,9 +148,9 @@ def test_pushpull_summary_lists_unbounded_points_separately():
 def test_unbounded_orbit_fails_the_mode_rule_with_its_reason():
     """rules: an unbounded result fails the mode rule (no steady motion, so the verdict
     fails) and says what to change; a plain solver failure fails it too."""
-    from betvdesign.loader import load_device
-    from betvdesign.nondim import derive
-    from betvdesign.rules import evaluate, verdict
+    from betvdesign.checks.rules import evaluate, verdict
+    from betvdesign.nondim.device import derive
+    from betvdesign.spec.loader import load_device
 
     base = derive(load_device(Path(__file__).resolve().parents[1] / "devices/shin2004.yaml"))
     p = ModelParams(1.5, 1 / 1.5**2, 0.5, 0.2)

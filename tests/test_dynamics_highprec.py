@@ -20,7 +20,7 @@ import numpy as np
 import pytest
 
 from betvdesign.dynamics import simulate, vertical_motion
-from betvdesign.params import ModelParams
+from betvdesign.model.params import ModelParams
 
 mp.mp.dps = 40
 

@@ -12,7 +12,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from betvdesign.dynamics import simulate
-from betvdesign.params import ModelParams
+from betvdesign.model.params import ModelParams
 
 GL_X, GL_W = np.polynomial.legendre.leggauss(24)
 

@@ -19,7 +19,7 @@ import pytest
 from betvdesign.dynamics import periodic, periodic_orbit, simulate
 from betvdesign.dynamics.flows import phase_table
 from betvdesign.dynamics.vertical import VerticalSchedule
-from betvdesign.params import ModelParams
+from betvdesign.model.params import ModelParams
 
 #: Window designs (benchmarks/bench_solver.py draw, seed 20041) whose transient from rest
 #: takes hundreds to ~10⁵ cycles (near ϖ → 2).

@@ -10,7 +10,7 @@ from conftest import WINDOW_SETS
 
 from betvdesign.dynamics import reference, simulate
 from betvdesign.errors import ParameterError
-from betvdesign.params import ModelParams
+from betvdesign.model.params import ModelParams
 
 CYCLES = 30
 

@@ -11,7 +11,7 @@ from betvdesign.dynamics import periodic_orbit, simulate
 from betvdesign.dynamics.contact import decide_phase
 from betvdesign.dynamics.flows import SLIP, STICK, phase_table
 from betvdesign.errors import ParameterError
-from betvdesign.params import ModelParams
+from betvdesign.model.params import ModelParams
 
 PULL = ModelParams(1.2, 0.5, 1.0, 0.4)
 PUSH = ModelParams(1.5, 1.0, 0.2, 0.2)
@@ -150,7 +150,7 @@ def test_same_source_runs_as_python():
 
     code = (
         "import json; from betvdesign.dynamics import simulate; "
-        "from betvdesign.params import ModelParams; "
+        "from betvdesign.model.params import ModelParams; "
         "tr = simulate(ModelParams(0.9, 0.1, 0.9, 0.4), 3, dense=True); "
         "print(json.dumps([tr.engine, tr.section.tolist(), tr.n_events]))"
     )

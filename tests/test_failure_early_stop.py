@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from betvdesign.dynamics import periodic_orbit, simulate
-from betvdesign.params import ModelParams
+from betvdesign.model.params import ModelParams
 
 
 def naive_mode(delta_s: np.ndarray, tol: float = 1e-4) -> tuple[int, str]:

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from betvdesign.dynamics import reference, simulate
-from betvdesign.params import ModelParams
+from betvdesign.model.params import ModelParams
 
 P = ModelParams(0.6, 0.5, 1.5, 0.4)  # sticks in every contact
 CYCLES = 6

@@ -12,7 +12,7 @@ import pytest
 
 from betvdesign.bench.fixedstep import rk4_post
 from betvdesign.dynamics import reference, simulate
-from betvdesign.params import ModelParams
+from betvdesign.model.params import ModelParams
 
 P = ModelParams(1.99, 1.0, 0.5, 0.1)  # contact ≈ 0.2 % of the cycle
 CYCLES = 30

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from betvdesign.dynamics import periodic_orbit, reference, simulate
-from betvdesign.params import ModelParams
+from betvdesign.model.params import ModelParams
 
 P = ModelParams(1.2, 1.0 / 1.2**2, 0.5, 0.1)  # α·ϖ² = 1 exactly
 

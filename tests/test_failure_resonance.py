@@ -9,7 +9,7 @@ from __future__ import annotations
 import pytest
 
 from betvdesign.dynamics import reference, simulate
-from betvdesign.params import ModelParams
+from betvdesign.model.params import ModelParams
 
 CYCLES = 8
 

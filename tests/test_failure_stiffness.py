@@ -14,7 +14,7 @@ import numpy as np
 from betvdesign.bench.fixedstep import rk4_post
 from betvdesign.dynamics import periodic_orbit, reference
 from betvdesign.dynamics.rigid import rigid_periodic
-from betvdesign.params import ModelParams
+from betvdesign.model.params import ModelParams
 
 
 def test_explicit_cost_grows_like_inverse_sqrt_alpha():

@@ -1,4 +1,4 @@
-"""The fidelity ladder (betvdesign.fidelity) and ``betv ladder``.
+"""The fidelity ladder (betvdesign.checks.fidelity) and ``betv ladder``.
 
 Sources: the stored measurements (betvdesign/data/fidelity_measured.json, regenerated
 by benchmarks/work_precision.py --ladder) checked against a recount and a recomputation
@@ -14,11 +14,11 @@ import json
 import pytest
 from typer.testing import CliRunner
 
-from betvdesign import fidelity
+from betvdesign.checks import fidelity
 from betvdesign.cli import app
 from betvdesign.dynamics import periodic_orbit
 from betvdesign.errors import UsageError
-from betvdesign.params import ModelParams
+from betvdesign.model.params import ModelParams
 
 PULL = ModelParams(0.9, 0.1, 0.9, 0.4)  # λ ≈ 12.3
 NEAR = ModelParams(1.2, 0.66, 1.0, 0.4)  # λ ≈ 1.05

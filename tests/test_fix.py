@@ -15,7 +15,7 @@ import pytest
 from typer.testing import CliRunner
 
 from betvdesign.cli import app
-from betvdesign.loader import load_device
+from betvdesign.spec.loader import load_device
 from betvdesign.studies.fix import FIELD_MARGIN, find_fixes, parse_vary
 
 DEVICES = Path(__file__).resolve().parents[1] / "devices"

@@ -12,10 +12,10 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from betvdesign import limits
 from betvdesign.errors import SpecError
-from betvdesign.loader import load_device_text
-from betvdesign.units import parse_quantity
+from betvdesign.spec import limits
+from betvdesign.spec.loader import load_device_text
+from betvdesign.spec.units import parse_quantity
 
 TOKENS = st.sampled_from(
     ["1", "9", "2.5e3", "nan", "-", "+", " ", "*", "**", "^", "/", "(", ")", "um", "m",

@@ -1,6 +1,6 @@
 """Outputs written whole or not at all, and output paths refused up front
-(betvdesign.outputs); the limits' overrides and the study-time refusal
-(betvdesign.limits)."""
+(betvdesign.output.files); the limits' overrides and the study-time refusal
+(betvdesign.spec.limits)."""
 
 from __future__ import annotations
 
@@ -9,16 +9,16 @@ from pathlib import Path
 
 import pytest
 
-from betvdesign import limits
 from betvdesign.errors import SpecError, UsageError
-from betvdesign.loader import load_device
-from betvdesign.outputs import (
+from betvdesign.output.files import (
     atomic_path,
     check_output_dir,
     check_output_file,
     write_atomic,
     write_group,
 )
+from betvdesign.spec import limits
+from betvdesign.spec.loader import load_device
 
 REPO = Path(__file__).resolve().parents[1]
 

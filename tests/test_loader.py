@@ -5,7 +5,7 @@ from pathlib import Path
 import pytest
 
 from betvdesign.errors import SpecError
-from betvdesign.loader import load_device, load_device_text
+from betvdesign.spec.loader import load_device, load_device_text
 
 DEVICES = Path(__file__).resolve().parents[1] / "devices"
 

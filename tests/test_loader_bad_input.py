@@ -9,8 +9,8 @@ from typer.testing import CliRunner
 
 from betvdesign.cli import app
 from betvdesign.errors import SpecError
-from betvdesign.loader import load_device, load_device_text
-from betvdesign.nondim import derive_file
+from betvdesign.nondim.device import derive_file
+from betvdesign.spec.loader import load_device, load_device_text
 
 SPECS = Path(__file__).resolve().parent / "data" / "specs"
 

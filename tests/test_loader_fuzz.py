@@ -7,8 +7,8 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from betvdesign.errors import BetvError, SpecError
-from betvdesign.loader import load_device_text
-from betvdesign.nondim import derive
+from betvdesign.nondim.device import derive
+from betvdesign.spec.loader import load_device_text
 
 BASE = (Path(__file__).resolve().parent / "data" / "specs" / "valid_base.yaml").read_text()
 LINES = BASE.splitlines()

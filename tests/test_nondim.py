@@ -8,9 +8,9 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from betvdesign.loader import load_device, load_device_text
-from betvdesign.nondim import derive
-from betvdesign.params import lambda_criterion
+from betvdesign.model.params import lambda_criterion
+from betvdesign.nondim.device import derive
+from betvdesign.spec.loader import load_device, load_device_text
 
 DEVICES = Path(__file__).resolve().parents[1] / "devices"
 
@@ -190,9 +190,9 @@ def test_derive_samples_vectorises_derive_set_by_hand_formulas():
     computed by hand with numpy, against nondim.derive_samples on array-valued fields."""
     import numpy as np
 
-    from betvdesign.nondim import derive_samples
-    from betvdesign.studies.specpaths import with_values
-    from betvdesign.units import ureg
+    from betvdesign.nondim.device import derive_samples
+    from betvdesign.spec.paths import with_values
+    from betvdesign.spec.units import ureg
 
     spec = load_device(DEVICES / "shin2004.yaml")
     w = np.array([4.0, 5.0, 6.5])  # um

@@ -5,7 +5,7 @@ import math
 import pytest
 
 from betvdesign.errors import ParameterError
-from betvdesign.params import ModelParams, lambda_criterion
+from betvdesign.model.params import ModelParams, lambda_criterion
 
 
 def test_lambda_hand_value():

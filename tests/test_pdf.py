@@ -15,9 +15,9 @@ from pathlib import Path
 import pytest
 from conftest import device_files, require_program
 
-from betvdesign.loader import load_device
-from betvdesign.nondim import derive
+from betvdesign.nondim.device import derive
 from betvdesign.report.build import fmt_num
+from betvdesign.spec.loader import load_device
 
 pytestmark = pytest.mark.pdf
 

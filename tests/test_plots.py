@@ -1,7 +1,7 @@
 """Figure functions of betvdesign.plots: geometry, reproducible SVG, no global state.
 
 Sources: the λ = 1 curve is checked against the independent closed form
-:func:`betvdesign.params.lambda_criterion` (MODEL.md, "Push/pull criterion");
+:func:`betvdesign.model.params.lambda_criterion` (MODEL.md, "Push/pull criterion");
 SVG reproducibility and id hygiene are invariants checked on real output.
 """
 
@@ -19,7 +19,7 @@ from hypothesis import strategies as st
 from matplotlib.axes import Axes
 
 from betvdesign import plots
-from betvdesign.params import lambda_criterion
+from betvdesign.model.params import lambda_criterion
 from betvdesign.plots.phase import phase_runs
 
 pos = st.floats(min_value=0.05, max_value=5.0, allow_nan=False)
@@ -179,7 +179,7 @@ def test_robustness_rings_fit_misses_and_prefixes_the_speed() -> None:
 def test_pushpull_frequency_map_boundary_is_lambda_one() -> None:
     """The black curve f_h(f_act) of the frequency map is λ = 1 (λ from ModelParams with
     ϖ = f_act/f_v, α = (f_v/f_h)², an independent formula)."""
-    from betvdesign.params import ModelParams
+    from betvdesign.model.params import ModelParams
 
     f_v, kappa, beta = 5e3, 0.15, 0.5
     ax = plots.pushpull_map_frequencies(

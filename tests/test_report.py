@@ -1,6 +1,6 @@
 """Design reports (betv report): content, self-containment, reproducibility, CLI.
 
-Sources: the derived parameters are checked against :func:`betvdesign.nondim.derive`
+Sources: the derived parameters are checked against :func:`betvdesign.nondim.device.derive`
 (the report must show the derivation's numbers); shin2004's verdict against
 docs/MODEL.md, "The published device" (its dimensional data give ϖ ≈ 0.34, below
 the 0.5 ≤ ϖ < 2 window: a failing design); push_demo's predicted mode against a
@@ -20,12 +20,12 @@ from conftest import DEVICES, device_files
 from typer.testing import CliRunner
 
 from betvdesign.cli import app
-from betvdesign.loader import load_device
-from betvdesign.nondim import derive
+from betvdesign.nondim.device import derive
 from betvdesign.report import ReportOptions, build_report, prepare, render_html, write_reports
 from betvdesign.report import analysis as report_analysis
 from betvdesign.report.build import fmt_num
 from betvdesign.report.render import write_atomic
+from betvdesign.spec.loader import load_device
 
 #: Section 4's figures per distinct set, plus the model-adequacy figure (section 5).
 FIGURES_PER_SET = 7 + 1
@@ -134,7 +134,7 @@ def test_report_content(reports_dir: Path, device: Path) -> None:
 def test_verdict_and_rules_agree_with_betv_check(reports_dir: Path, device: Path) -> None:
     """Second path: ``betv check`` (checker.check_derivation, which runs the solver
     itself) gives the same verdict and the same rule outcomes as the report."""
-    from betvdesign.checker import check_derivation
+    from betvdesign.checks.checker import check_derivation
 
     html = (reports_dir / f"{device.stem}.html").read_text("utf-8")
     check = check_derivation(derive(load_device(device)))
@@ -272,9 +272,9 @@ def test_robustness_varies_designer_fields_through_the_spec() -> None:
     +10 % drive frequency is ϖ·1.1 (ϖ = 2·f_drive/f_v), +10 % tangential resonance is
     α/1.21 (α = (f_v/f_h)²), +10 % beam width is β/1.1 (β = m/M, M ∝ w without extra
     mass), friction κ·1.1 (κ = μ·tanθ); the 0 % point is the device itself."""
-    from betvdesign.loader import load_device
-    from betvdesign.nondim import derive
+    from betvdesign.nondim.device import derive
     from betvdesign.report.variants import field_variants, relative_changes
+    from betvdesign.spec.loader import load_device
 
     spec = load_device(DEVICES / "push_demo.yaml")
     p = derive(spec).sets[0].params

@@ -1,8 +1,8 @@
 """Design reports state the fidelity rung of every figure and of every verdict; the
 verdict's mode is always the exact periodic orbit's (no rung can be forced for it).
 
-Sources: :func:`betvdesign.fidelity.choose_rung` (the ladder's reasons, restated per
-figure question); the verdict against ``betv check`` (:func:`betvdesign.checker.
+Sources: :func:`betvdesign.checks.fidelity.choose_rung` (the ladder's reasons, restated per
+figure question); the verdict against ``betv check`` (:func:`betvdesign.checks.checker.
 check_derivation`, a second path that solves for itself). One small device only.
 """
 
@@ -14,10 +14,10 @@ from conftest import DEVICES
 from test_report import SMALL, text_of
 from typer.testing import CliRunner
 
-from betvdesign.checker import check_derivation
+from betvdesign.checks.checker import check_derivation
+from betvdesign.checks.fidelity import RUNGS, choose_rung
 from betvdesign.cli import app
-from betvdesign.fidelity import RUNGS, choose_rung
-from betvdesign.nondim import derive_file
+from betvdesign.nondim.device import derive_file
 from betvdesign.report import build_report, prepare, render_html
 
 PULL = DEVICES / "pull_demo.yaml"

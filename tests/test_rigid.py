@@ -18,7 +18,7 @@ from hypothesis import strategies as st
 from scipy.integrate import solve_ivp
 
 from betvdesign.dynamics import rigid
-from betvdesign.params import ModelParams
+from betvdesign.model.params import ModelParams
 
 
 @pytest.mark.parametrize("varpi", [0.55, 0.8, 1.0, 1.6, 1.95, 2.3, 2.9])

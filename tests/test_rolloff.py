@@ -23,11 +23,11 @@ from typer.testing import CliRunner
 
 from betvdesign.cli import app
 from betvdesign.errors import SpecError
-from betvdesign.loader import load_device, load_device_text
-from betvdesign.nondim import derive, derive_file, derive_samples, derive_set
+from betvdesign.nondim.device import derive, derive_file, derive_samples, derive_set
 from betvdesign.report.frequency import FrequencySweep, frequency_grid, speeds
-from betvdesign.studies.specpaths import replace, targets
-from betvdesign.units import ureg
+from betvdesign.spec.loader import load_device, load_device_text
+from betvdesign.spec.paths import replace, targets
+from betvdesign.spec.units import ureg
 
 TESTS = Path(__file__).resolve().parent
 DEVICES = TESTS.parent / "devices"

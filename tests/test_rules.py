@@ -12,12 +12,12 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from betvdesign.checker import check_derivation
-from betvdesign.domain import DELTA_S_STALL, mode_of
-from betvdesign.loader import load_device
-from betvdesign.nondim import derive
-from betvdesign.params import ModelParams
-from betvdesign.rules import RuleResult, evaluate, evaluate_device, verdict
+from betvdesign.checks.checker import check_derivation
+from betvdesign.checks.rules import RuleResult, evaluate, evaluate_device, verdict
+from betvdesign.model.domain import DELTA_S_STALL, mode_of
+from betvdesign.model.params import ModelParams
+from betvdesign.nondim.device import derive
+from betvdesign.spec.loader import load_device
 
 DEVICES = Path(__file__).resolve().parents[1] / "devices"
 SHIN = derive(load_device(DEVICES / "shin2004.yaml"))

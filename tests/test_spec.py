@@ -7,9 +7,9 @@ import pytest
 from pydantic import ValidationError
 
 from betvdesign.errors import ParameterError
-from betvdesign.nondim import amplitude_at as amplitude_at_nondim
-from betvdesign.spec import MATERIALS, POLYSILICON, ActuatorSet, DeviceSpec, amplitude_at
-from betvdesign.units import ureg
+from betvdesign.nondim.device import amplitude_at as amplitude_at_nondim
+from betvdesign.spec.models import MATERIALS, POLYSILICON, ActuatorSet, DeviceSpec, amplitude_at
+from betvdesign.spec.units import ureg
 
 SET = {
     "name": "a",

@@ -6,7 +6,7 @@ Independent truths: Q = 1/(2ζ) and the normal force N ∝ A·sin(ϖτ_o + δ),
 δ = atan(2ζ_v ϖ), A = sqrt(1 + (2ζ_v ϖ)²) written out here (math.sqrt; the package uses
 hypot), pairs chosen so both sides are exact (ζ = 0.0125 ↔ Q = 40, ζ = 0.5 ↔ Q = 1);
 ϖ = f_act/f_v = 6 kHz/5 kHz of devices/damped_demo.yaml; the supported range from
-betvdesign.params (its one home); file:line:col positions read off the texts below by
+betvdesign.model.params (its one home); file:line:col positions read off the texts below by
 hand; derive_set one sample at a time against derive_samples on arrays.
 """
 
@@ -22,13 +22,13 @@ from typer.testing import CliRunner
 
 from betvdesign.cli import app
 from betvdesign.errors import SpecError
-from betvdesign.loader import load_device, load_device_text
-from betvdesign.nondim import derive, derive_file, derive_samples, derive_set
-from betvdesign.params import ZETA_MAX, ZETA_MIN, ModelParams
+from betvdesign.model.params import ZETA_MAX, ZETA_MIN, ModelParams
+from betvdesign.nondim.device import derive, derive_file, derive_samples, derive_set
+from betvdesign.spec.loader import load_device, load_device_text
+from betvdesign.spec.paths import with_values
+from betvdesign.spec.units import ureg
 from betvdesign.studies.sampling import derive_all, nominal_values, params_of
-from betvdesign.studies.specpaths import with_values
 from betvdesign.studies.tolerance import parse_tolerance
-from betvdesign.units import ureg
 
 TESTS = Path(__file__).resolve().parent
 DEVICES = TESTS.parent / "devices"
@@ -463,7 +463,7 @@ def test_check_shows_damping_and_restitution(monkeypatch, tmp_path):
     an undamped device keeps its four parameters only."""
     from types import SimpleNamespace
 
-    from betvdesign import checker
+    from betvdesign.checks import checker
 
     def orbit(p):
         return SimpleNamespace(
@@ -471,7 +471,7 @@ def test_check_shows_damping_and_restitution(monkeypatch, tmp_path):
         )
 
     monkeypatch.setattr(checker, "load_solver", lambda: orbit)
-    monkeypatch.setattr("betvdesign.checker._settling", lambda p, po, travel: None)
+    monkeypatch.setattr("betvdesign.checks.checker._settling", lambda p, po, travel: None)
     (s,) = json.loads(run("check", DEMO, "--json").stdout)["devices"][0]["sets"]
     assert s["params"]["zeta_v"] == s["params"]["zeta_h"] == 1 / 60
     assert s["params"]["restitution"] == 0.1
@@ -493,7 +493,7 @@ def test_check_shows_damping_and_restitution(monkeypatch, tmp_path):
 
 def test_margin_corners_keep_damping_and_restitution():
     """The mode-margin corners scale ϖ and α only: ζ_v, ζ_h, e are the device's."""
-    from betvdesign.checker import MARGIN_CORNERS, corner_params
+    from betvdesign.checks.checker import MARGIN_CORNERS, corner_params
 
     p = derive_file(DEMO).sets[0].params
     corners = corner_params(p)

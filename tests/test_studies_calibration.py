@@ -14,8 +14,8 @@ from typer.testing import CliRunner
 from betvdesign.cli import app
 from betvdesign.dynamics import periodic_orbit, simulate
 from betvdesign.errors import UsageError
-from betvdesign.loader import load_device, load_device_text
-from betvdesign.nondim import derive_set
+from betvdesign.nondim.device import derive_set
+from betvdesign.spec.loader import load_device, load_device_text
 from betvdesign.studies.calibration import calibrate, fitted
 from betvdesign.studies.measurements import Measurements, read_measurements
 

@@ -10,11 +10,11 @@ import pytest
 
 from betvdesign.dynamics import periodic_orbit, simulate, vertical_motion
 from betvdesign.errors import UsageError
-from betvdesign.params import ModelParams
+from betvdesign.model.params import ModelParams
+from betvdesign.studies.engine.runner import run_study
 from betvdesign.studies.lambda_scan import lambda_study, run_lambda_scan
 from betvdesign.studies.pushpull import periodic_point, pushpull_study, run_pushpull
 from betvdesign.studies.regime import regime_study, run_regime
-from betvdesign.studies.runner import run_study
 from betvdesign.studies.terms import Terms
 
 TERMS = {"zeta_v": 0.02, "zeta_h": 0.05, "restitution": 0.1}

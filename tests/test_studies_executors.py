@@ -7,7 +7,7 @@ import pytest
 from conftest import require_module
 
 from betvdesign.errors import UsageError
-from betvdesign.studies.executors import (
+from betvdesign.studies.engine.executors import (
     DaskExecutor,
     ProcessExecutor,
     SerialExecutor,
@@ -15,8 +15,8 @@ from betvdesign.studies.executors import (
     default_chunksize,
     make_executor,
 )
+from betvdesign.studies.engine.runner import run_study
 from betvdesign.studies.pushpull import pushpull_study
-from betvdesign.studies.runner import run_study
 
 
 @pytest.fixture(scope="module")

@@ -1,16 +1,16 @@
 """Every study states the fidelity rung it used and why, with the rung names of
-:data:`betvdesign.fidelity.RUNGS`; a rung a study does not offer is exit 2 naming the
+:data:`betvdesign.checks.fidelity.RUNGS`; a rung a study does not offer is exit 2 naming the
 ladder's rungs (source: typer CliRunner runs of the real commands, serial executor,
-tiny grids; the regime rung against :func:`betvdesign.fidelity.choose_rung`)."""
+tiny grids; the regime rung against :func:`betvdesign.checks.fidelity.choose_rung`)."""
 
 import json
 
 import pytest
 from typer.testing import CliRunner
 
+from betvdesign.checks.fidelity import RUNGS, choose_rung
 from betvdesign.cli import app
-from betvdesign.fidelity import RUNGS, choose_rung
-from betvdesign.params import ModelParams
+from betvdesign.model.params import ModelParams
 
 MAP = ["sweep", "pushpull", "--alpha", "1", "--beta", "0.5", "--kappa", "0.4", "-x", "serial"]
 LAMBDA = ["sweep", "lambda", "--kappa", "0.4", "--beta", "0.5", "--alpha", "1", "-x", "serial"]

@@ -8,7 +8,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from betvdesign.errors import UsageError
-from betvdesign.studies.grid import Grid, parse_range
+from betvdesign.studies.engine.grid import Grid, parse_range
 
 
 def test_colon_range_includes_stop_on_the_lattice():

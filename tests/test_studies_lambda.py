@@ -5,7 +5,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from betvdesign.errors import UsageError
-from betvdesign.params import ModelParams
+from betvdesign.model.params import ModelParams
 from betvdesign.studies.lambda_scan import params_for_lambda, summarise
 
 

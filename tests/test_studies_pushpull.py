@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from betvdesign.dynamics import simulate
-from betvdesign.params import ModelParams
+from betvdesign.model.params import ModelParams
 from betvdesign.plots.studies import save_pushpull_figure
 from betvdesign.studies.pushpull import periodic_point, pushpull_study, run_pushpull, summarise
 

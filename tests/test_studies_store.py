@@ -6,10 +6,10 @@ import json
 import pytest
 
 from betvdesign.errors import UsageError
-from betvdesign.studies.executors import ProcessExecutor, SerialExecutor
+from betvdesign.studies.engine.executors import ProcessExecutor, SerialExecutor
+from betvdesign.studies.engine.runner import run_study
+from betvdesign.studies.engine.store import ResultStore, read_results
 from betvdesign.studies.pushpull import pushpull_study
-from betvdesign.studies.runner import run_study
-from betvdesign.studies.store import ResultStore, read_results
 
 
 class Stop(Exception):

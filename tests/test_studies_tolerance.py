@@ -5,9 +5,9 @@ import numpy as np
 import pytest
 
 from betvdesign.errors import UsageError
-from betvdesign.loader import load_device
-from betvdesign.nondim import derive_set
-from betvdesign.studies.executors import ProcessExecutor
+from betvdesign.nondim.device import derive_set
+from betvdesign.spec.loader import load_device
+from betvdesign.studies.engine.executors import ProcessExecutor
 from betvdesign.studies.tolerance import (
     draw,
     load_tolerances,
@@ -124,7 +124,7 @@ def test_periodic_rung_speeds_follow_from_the_exact_orbit():
     """Second route per sample: periodic_orbit on the row's parameters and the sample's own
     scales give the same Δs and speed Δs·u·cosθ·f_act."""
     from betvdesign.dynamics import periodic_orbit
-    from betvdesign.params import ModelParams
+    from betvdesign.model.params import ModelParams
 
     dev = "devices/push_demo.yaml"
     tols = [parse_tolerance("actuator.horizontal_resonance=4%")]

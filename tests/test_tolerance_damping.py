@@ -13,7 +13,7 @@ from typer.testing import CliRunner
 from betvdesign.cli import app
 from betvdesign.dynamics import reference
 from betvdesign.errors import UsageError
-from betvdesign.params import ModelParams
+from betvdesign.model.params import ModelParams
 from betvdesign.studies.tolerance import parse_tolerance, run_tolerance
 
 DAMPED = "devices/damped_demo.yaml"

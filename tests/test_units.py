@@ -8,7 +8,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 from pydantic import BaseModel, ValidationError
 
-from betvdesign.units import (
+from betvdesign.spec.units import (
     Frequency,
     ImpactAngle,
     Length,

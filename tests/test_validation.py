@@ -1,4 +1,4 @@
-"""The validation study against the published paper (betvdesign.studies.validation*,
+"""The validation study against the published paper (betvdesign.paper.study*,
 betvdesign.report.validation, ``betv report --validation``).
 
 Only the computed side is pinned, and only against independent truths: brute-force
@@ -23,17 +23,17 @@ from typer.testing import CliRunner
 from betvdesign.cli import app
 from betvdesign.dynamics import reference, simulate
 from betvdesign.dynamics.rigid import rigid_periodic, rigid_simulate
-from betvdesign.params import ModelParams, lambda_criterion
-from betvdesign.studies.regime import regime_point
-from betvdesign.studies.validation_common import (
+from betvdesign.model.params import ModelParams, lambda_criterion
+from betvdesign.paper.common import (
     refine_edge,
     settled_from,
     successive_stop,
     true_intervals,
 )
-from betvdesign.studies.validation_maps import FIG12_ALPHA, FIG12_BETA, FIG12_KAPPA, maps_part
-from betvdesign.studies.validation_slider import slider_part
-from betvdesign.studies.validation_vertical import finite_contact, one_hit_per_cycle
+from betvdesign.paper.maps import FIG12_ALPHA, FIG12_BETA, FIG12_KAPPA, maps_part
+from betvdesign.paper.slider import slider_part
+from betvdesign.paper.vertical import finite_contact, one_hit_per_cycle
+from betvdesign.studies.regime import regime_point
 
 SHIN = DEVICES / "shin2004.yaml"
 
@@ -173,10 +173,10 @@ def test_page_end_to_end(tmp_path, monkeypatch, maps, slider):
     """A coarse run written as a page: every comparison row in the HTML and Markdown,
     every figure inline and as a file, no external reference, no PDF when not asked."""
     import betvdesign.report.validation as rv
-    from betvdesign.studies import validation as sv
+    from betvdesign.paper import study as sv
 
     def coarse(device=None):
-        from betvdesign.studies.validation_vertical import vertical_part
+        from betvdesign.paper.vertical import vertical_part
 
         return sv.ValidationStudy(
             "paper", SHIN, vertical_part(step=0.1, top=5.0), maps, slider, 0.0

@@ -13,7 +13,7 @@ import pytest
 from scipy.optimize import brentq
 
 from betvdesign.dynamics import simulate, vertical_motion
-from betvdesign.params import ModelParams
+from betvdesign.model.params import ModelParams
 
 
 def _first_gap_root(varpi: float) -> float:

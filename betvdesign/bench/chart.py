@@ -20,8 +20,8 @@ from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
 from betvdesign.bench.workprecision import Row
-from betvdesign.outputs import write_atomic
-from betvdesign.plots._figure import figure_style, new_figure
+from betvdesign.output.files import write_atomic
+from betvdesign.plots.figure import figure_style, new_figure
 from betvdesign.plots.studies import save_figure
 
 #: Plotted in place of a zero error (exact agreement) so it stays on a log axis.

@@ -21,8 +21,8 @@ from matplotlib.figure import Figure
 
 from betvdesign.bench.chart import ERROR_FLOOR, STYLES
 from betvdesign.bench.workprecision import Method, _exact, _reference, _rk4
-from betvdesign.params import ModelParams
-from betvdesign.plots._figure import figure_style, new_figure
+from betvdesign.model.params import ModelParams
+from betvdesign.plots.figure import figure_style, new_figure
 
 BASE = {"alpha": 0.5, "beta": 0.5, "kappa": 0.4}
 CYCLES = 10
@@ -145,7 +145,7 @@ def write_failure_map(rows: Sequence[dict[str, Any]], out_dir: Any, stem: str = 
     import json
     from pathlib import Path
 
-    from betvdesign.outputs import write_atomic
+    from betvdesign.output.files import write_atomic
     from betvdesign.plots.studies import save_figure
 
     out = Path(out_dir)

@@ -19,7 +19,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from betvdesign.params import ModelParams
+from betvdesign.model.params import ModelParams
 
 FREE, SLIP, STICK, REVERSE = "free", "slip", "stick", "reverse"
 

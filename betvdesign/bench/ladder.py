@@ -1,4 +1,4 @@
-"""Measurements behind the fidelity ladder (:mod:`betvdesign.fidelity`).
+"""Measurements behind the fidelity ladder (:mod:`betvdesign.checks.fidelity`).
 
 * :func:`lambda_disagreement`: the λ < 1 rule against the simulated periodic mode on
   the push/pull map (issue 5's grid by default, run by
@@ -11,7 +11,7 @@
 
 :func:`write_measured` stores the numbers the ladder relies on as the generated
 package data ``betvdesign/data/fidelity_measured.json`` with its provenance (regenerate
-with ``python benchmarks/work_precision.py --ladder``; :func:`betvdesign.fidelity.stale`
+with ``python benchmarks/work_precision.py --ladder``; :func:`betvdesign.checks.fidelity.stale`
 says when the stored numbers no longer match the solver).
 """
 
@@ -28,7 +28,7 @@ from typing import Any
 
 import numpy as np
 
-from betvdesign.params import ModelParams
+from betvdesign.model.params import ModelParams
 
 #: The push/pull map of issue 5: κ × β × α × ϖ = 2 × 4 × 9 × 16 = 1152 points.
 MAP_GRID: dict[str, list[float]] = {
@@ -147,8 +147,8 @@ def rung_costs(designs: Sequence[ModelParams], cycles: int = 100) -> dict[str, f
 
 
 def _periodic_row(args: tuple[float, float, float, float]) -> dict[str, Any]:
-    from betvdesign.domain import mode_of
     from betvdesign.dynamics import periodic_orbit
+    from betvdesign.model.domain import mode_of
 
     p = ModelParams(*args)
     po = periodic_orbit(p)
@@ -263,7 +263,7 @@ def measure(
     reuse_map: dict[str, Any] | None = None,
     sample: int = HELD_OUT_N,
 ) -> dict[str, Any]:
-    """Everything :mod:`betvdesign.fidelity` relies on, measured now (``reuse_map``: a
+    """Everything :mod:`betvdesign.checks.fidelity` relies on, measured now (``reuse_map``: a
     previous ``lambda`` entry, to skip re-solving the map)."""
     from betvdesign.bench.workprecision import DESIGNS
 
@@ -321,7 +321,7 @@ def provenance() -> dict[str, Any]:
 
 def write_measured(measured: dict[str, Any], path: Path) -> None:
     """Write the package data (JSON, with provenance) atomically."""
-    from betvdesign.outputs import write_atomic
+    from betvdesign.output.files import write_atomic
 
     plain = json.loads(json.dumps(measured, default=float))  # numpy scalars -> float
     doc = {"provenance": provenance(), "measured": plain}

@@ -29,7 +29,7 @@ from typing import Any, Literal
 
 import numpy as np
 
-from betvdesign.params import ModelParams
+from betvdesign.model.params import ModelParams
 
 Level = Literal["quick", "full"]
 

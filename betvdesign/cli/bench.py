@@ -142,8 +142,8 @@ def ladder_cmd(
     """Answer a question with the cheapest adequate model, and say which and why
     (with damping or restitution: --quality-normal/--zeta-v, --quality-tangential/
     --zeta-h, --restitution; the λ and rigid rungs then refuse)."""
-    from betvdesign import fidelity as fid
-    from betvdesign.params import ModelParams
+    from betvdesign.checks import fidelity as fid
+    from betvdesign.model.params import ModelParams
 
     with user_errors():
         terms = physics_terms(quality_normal, zeta_v, quality_tangential, zeta_h, restitution)

@@ -1,10 +1,10 @@
 """``betv check FILE...``: device files -> design verdict (compact text, ``--verbose``
 tables, ``--quiet`` for CI, or versioned ``--json``; presentation in
-:mod:`betvdesign.checkview`).
+:mod:`betvdesign.checks.view`).
 
-Thin: loading is :func:`betvdesign.loader.load_device`, numbers are
-:func:`betvdesign.nondim.derive`, rules and the optional exact solver are
-:func:`betvdesign.checker.check_derivation`.
+Thin: loading is :func:`betvdesign.spec.loader.load_device`, numbers are
+:func:`betvdesign.nondim.device.derive`, rules and the optional exact solver are
+:func:`betvdesign.checks.checker.check_derivation`.
 
 Exit codes: 0 every error-severity rule passes, 1 a rule fails, 2 bad input or usage.
 """
@@ -26,8 +26,8 @@ from betvdesign.cli.config import load_config
 from betvdesign.errors import SpecError, UsageError
 
 if TYPE_CHECKING:  # the heavy layers load when a check runs, not for `betv --help`
-    from betvdesign.checker import CheckResult
-    from betvdesign.rules import RuleResult
+    from betvdesign.checks.checker import CheckResult
+    from betvdesign.checks.rules import RuleResult
 
 _STATUS = {
     (True, "error"): "[green]ok[/]",
@@ -83,10 +83,16 @@ def check_cmd(
 
     Exit 0 pass, 1 an error rule fails, 2 bad input/usage.
     """
-    from betvdesign.checker import check_derivation
-    from betvdesign.checkview import DeviceView, RuleFilter, compact_lines, output_json, quiet_line
-    from betvdesign.nondim import derive_file
-    from betvdesign.units import parse_speed
+    from betvdesign.checks.checker import check_derivation
+    from betvdesign.checks.view import (
+        DeviceView,
+        RuleFilter,
+        compact_lines,
+        output_json,
+        quiet_line,
+    )
+    from betvdesign.nondim.device import derive_file
+    from betvdesign.spec.units import parse_speed
 
     verbose = verbose or show_derivation
     with user_errors():
@@ -146,9 +152,9 @@ def check_cmd(
 
 def render(result: CheckResult, console: Console, *, derivation: bool = False) -> None:
     """Rich tables for one device: per set parameters, derived values, rules; then notes."""
-    from betvdesign.checker import simulation_summary
-    from betvdesign.nondim import DERIVED_KEYS
-    from betvdesign.siformat import format_q
+    from betvdesign.checks.checker import simulation_summary
+    from betvdesign.nondim.device import DERIVED_KEYS
+    from betvdesign.output.siformat import format_q
 
     colour = "green" if result.verdict == "pass" else "red"
     console.rule(
@@ -190,8 +196,8 @@ def render(result: CheckResult, console: Console, *, derivation: bool = False) -
 
 def _rules_table(rules: list[RuleResult]) -> Table:
     """Compact table (status, severity, rule, value, threshold); messages follow it."""
-    from betvdesign.checkview import rule_unit
-    from betvdesign.siformat import format_si
+    from betvdesign.checks.view import rule_unit
+    from betvdesign.output.siformat import format_si
 
     t = Table(pad_edge=False, expand=False)
     for col in ("", "severity", "rule", "value"):
@@ -217,7 +223,7 @@ def _print_rules(rules: list[RuleResult], console: Console) -> None:
 
 
 def _record_table(sc) -> Table:
-    from betvdesign.siformat import format_q
+    from betvdesign.output.siformat import format_q
 
     t = Table(title=f"derivation of set {esc(sc.derivation.name)}", pad_edge=False)
     for col in ("symbol", "description", "formula", "value"):

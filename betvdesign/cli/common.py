@@ -6,7 +6,7 @@ Every command turns user errors into ``error: ...`` lines and exit code 2
 (:func:`interruptible`), validates numeric options with click callbacks that put
 the allowed range in the message (:func:`int_option`, :func:`float_option`,
 :func:`seed_option`), and checks output paths before any work
-(:func:`output_file`, :func:`output_dir`, from :mod:`betvdesign.outputs`, which
+(:func:`output_file`, :func:`output_dir`, from :mod:`betvdesign.output.files`, which
 also writes every file atomically).
 """
 
@@ -23,9 +23,9 @@ from typing import Any
 
 import typer
 
-from betvdesign import limits
 from betvdesign.errors import BetvError
-from betvdesign.outputs import check_output_dir, check_output_file
+from betvdesign.output.files import check_output_dir, check_output_file
+from betvdesign.spec import limits
 
 EXIT_OK = 0
 EXIT_RULE_FAILED = 1

@@ -17,7 +17,7 @@ import typer
 
 from betvdesign.cli import app
 from betvdesign.cli.common import EXIT_OK, EXIT_RULE_FAILED, seed_option, user_errors
-from betvdesign.outputs import check_output_file, write_atomic
+from betvdesign.output.files import check_output_file, write_atomic
 
 
 @app.command("fix")
@@ -66,10 +66,10 @@ def fix_cmd(
 ) -> None:
     """Find the smallest change (one field, then pairs) that passes every error rule with
     margin; every candidate goes through the same exact check as `betv check`."""
-    from betvdesign.loader import load_device
+    from betvdesign.spec.loader import load_device
+    from betvdesign.spec.units import parse_speed
     from betvdesign.studies import fix as fx
     from betvdesign.studies.fixfile import fixed_text
-    from betvdesign.units import parse_speed
 
     with user_errors():
         target = None if target_speed is None else parse_speed(target_speed, "--target-speed")
@@ -99,7 +99,7 @@ def fix_cmd(
 
 
 def _print(res, file: Path) -> None:
-    from betvdesign.rules import format_speed
+    from betvdesign.checks.rules import format_speed
 
     if res.status == "already_passes":
         typer.echo(

@@ -5,7 +5,7 @@ coefficient of restitution (docs/MODEL.md, "Beyond the paper's idealisation").
 
 ``--quality-normal Q`` or ``--zeta-v ζ`` (not both), ``--quality-tangential Q`` or
 ``--zeta-h ζ`` (not both), ``--restitution e``; absent: the paper's model. Each value is
-checked by :mod:`betvdesign.damping` (the checks a device file's fields get), so a bad
+checked by :mod:`betvdesign.model.damping` (the checks a device file's fields get), so a bad
 value is a click usage error naming the option (exit 2); giving both forms of one
 direction is a :class:`UsageError` (exit 2 under ``user_errors``).
 """
@@ -17,13 +17,13 @@ from typing import Annotated, Any
 
 import typer
 
-from betvdesign import damping
 from betvdesign.errors import UsageError
-from betvdesign.params import ZETA_MAX, ZETA_MIN
+from betvdesign.model import damping
+from betvdesign.model.params import ZETA_MAX, ZETA_MIN
 
 
 def _checked(check: Callable[[Any], float]) -> Callable[[float | None], float | None]:
-    """Click callback: ``check`` (a :mod:`betvdesign.damping` check) as a BadParameter."""
+    """Click callback: ``check`` (a :mod:`betvdesign.model.damping` check) as a BadParameter."""
 
     def callback(value: float | None) -> float | None:
         if value is None:

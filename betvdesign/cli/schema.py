@@ -1,6 +1,6 @@
 """``betv schema [device|check]``: JSON schema of device files (pydantic ``DeviceSpec``, with
-the input limits of :mod:`betvdesign.limits` under ``x-betv-limits`` and in the
-description) or of ``betv check --json`` (:func:`betvdesign.checkview.check_json_schema`)."""
+the input limits of :mod:`betvdesign.spec.limits` under ``x-betv-limits`` and in the
+description) or of ``betv check --json`` (:func:`betvdesign.checks.view.check_json_schema`)."""
 
 from __future__ import annotations
 
@@ -9,16 +9,16 @@ from pathlib import Path
 
 import typer
 
-from betvdesign import limits
 from betvdesign.cli import app
 from betvdesign.cli.common import user_errors
 from betvdesign.errors import UsageError
-from betvdesign.outputs import check_output_file, write_atomic
+from betvdesign.output.files import check_output_file, write_atomic
+from betvdesign.spec import limits
 
 
 def device_schema() -> dict:
     """JSON schema of a device file (quantities are strings with units)."""
-    from betvdesign.spec import DeviceSpec  # loaded on use: `betv --help` stays light
+    from betvdesign.spec.models import DeviceSpec  # loaded on use: `betv --help` stays light
 
     schema = DeviceSpec.model_json_schema(mode="validation")
     schema["$schema"] = "https://json-schema.org/draft/2020-12/schema"
@@ -51,7 +51,7 @@ def schema_cmd(
         if kind.lower() not in SCHEMAS:
             raise UsageError(f"unknown schema {kind!r}: use {' or '.join(SCHEMAS)}")
     if kind.lower() == "check":
-        from betvdesign.checkview import check_json_schema
+        from betvdesign.checks.view import check_json_schema
 
         schema = check_json_schema()
     else:

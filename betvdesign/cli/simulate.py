@@ -1,7 +1,7 @@
 """``betv simulate``: the exact solver from the command line (thin layer).
 
 Parameters come either from a device file (``betv simulate devices/x.yaml
-[--set NAME]``: loaded and made dimensionless by :func:`betvdesign.nondim.derive_file`,
+[--set NAME]``: loaded and made dimensionless by :func:`betvdesign.nondim.device.derive_file`,
 so results are also given in physical units: SI prefixes by magnitude in text, SI
 floats under unit-named keys in JSON) or directly as
 ``--varpi --alpha --beta --kappa`` (with the optional physics ``--quality-normal``/
@@ -26,7 +26,6 @@ from typing import Any
 
 import typer
 
-from betvdesign import limits
 from betvdesign.cli import app
 from betvdesign.cli.common import (
     EXIT_OK,
@@ -47,8 +46,9 @@ from betvdesign.cli.physics import (
     physics_terms,
 )
 from betvdesign.errors import UsageError
-from betvdesign.params import ModelParams
-from betvdesign.siformat import format_si
+from betvdesign.model.params import ModelParams
+from betvdesign.output.siformat import format_si
+from betvdesign.spec import limits
 
 
 def _params_from_options(
@@ -74,7 +74,7 @@ def _params_from_options(
                 f"give either a device file or --{'/--'.join(opts)}, not both "
                 f"(got {file} and --{', --'.join(given)})"
             )
-        from betvdesign.nondim import derive_file
+        from betvdesign.nondim.device import derive_file
 
         der = derive_file(file)
         names = [s.name for s in der.sets]
@@ -173,8 +173,8 @@ def simulate_cmd(
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object on stdout."),
 ) -> None:
     """Simulate one design exactly: a transient (--cycles) or the periodic state (--periodic)."""
-    from betvdesign.domain import mode_of
     from betvdesign.dynamics import periodic_orbit, simulate
+    from betvdesign.model.domain import mode_of
 
     opts = {"varpi": varpi, "alpha": alpha, "beta": beta, "kappa": kappa}
     with user_errors(), interruptible(resumable=False):

@@ -8,7 +8,6 @@ from typing import Annotated
 
 import typer
 
-from betvdesign import limits
 from betvdesign.cli import app
 from betvdesign.cli.common import (
     EXIT_RULE_FAILED,
@@ -34,6 +33,7 @@ from betvdesign.cli.sweep import (
     run_block,
 )
 from betvdesign.errors import UsageError
+from betvdesign.spec import limits
 
 
 @app.command("tolerance")
@@ -193,7 +193,7 @@ def calibrate_cmd(
 
     Prints R², χ²/dof, 1σ and warnings; exit 1 if the fit fails or sits at bound 0.
     """
-    from betvdesign.outputs import write_atomic
+    from betvdesign.output.files import write_atomic
     from betvdesign.studies.calibration import calibrate
     from betvdesign.studies.measurements import read_measurements
 

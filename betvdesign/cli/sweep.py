@@ -24,7 +24,6 @@ from typing import Annotated, Any, TypeVar
 
 import typer
 
-from betvdesign import limits
 from betvdesign.cli import app
 from betvdesign.cli.common import (
     EXIT_INTERRUPTED,
@@ -43,10 +42,11 @@ from betvdesign.cli.physics import (
     ZetaVOpt,
     physics_terms,
 )
-from betvdesign.outputs import atomic_path
-from betvdesign.studies.executors import make_executor
-from betvdesign.studies.grid import parse_range
-from betvdesign.studies.runner import StudyRun
+from betvdesign.output.files import atomic_path
+from betvdesign.spec import limits
+from betvdesign.studies.engine.executors import make_executor
+from betvdesign.studies.engine.grid import parse_range
+from betvdesign.studies.engine.runner import StudyRun
 from betvdesign.studies.terms import SYMBOLS
 
 __all__ = ["EXIT_INTERRUPTED", "interruptible"]  # re-exported for older imports

@@ -43,7 +43,7 @@ import math
 import numpy as np
 
 from betvdesign.dynamics._jit import jit_enabled, kernel
-from betvdesign.params import ModelParams, normal_force_phase
+from betvdesign.model.params import ModelParams, normal_force_phase
 
 # Phase codes (ints: they sit in the inner loops).
 FREE = 2

@@ -43,7 +43,6 @@ import time
 
 import numpy as np
 
-from betvdesign.domain import mode_of
 from betvdesign.dynamics import contact, shooting
 from betvdesign.dynamics._jit import compile_note
 from betvdesign.dynamics.flows import phase_table
@@ -52,7 +51,8 @@ from betvdesign.dynamics.shooting import TRUST
 from betvdesign.dynamics.solver import CycleRunner, SolverFailure
 from betvdesign.dynamics.vertical import VerticalSchedule, VerticalSearchError
 from betvdesign.errors import ParameterError
-from betvdesign.params import ModelParams
+from betvdesign.model.domain import mode_of
+from betvdesign.model.params import ModelParams
 
 POLISH = 1e-14
 #: |α·ϖ² − 1| at or below which the free-flight tangential resonance counts as exact.

@@ -54,7 +54,7 @@ from betvdesign.dynamics.reference_terms import (
 )
 from betvdesign.dynamics.result import Event, Trajectory
 from betvdesign.errors import ParameterError
-from betvdesign.params import ModelParams
+from betvdesign.model.params import ModelParams
 
 Method = Literal["RK45", "DOP853", "Radau", "LSODA", "BDF", "RK23"]
 METHODS = ("RK45", "DOP853", "Radau", "LSODA", "BDF", "RK23")

@@ -46,7 +46,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from betvdesign.params import ModelParams
+from betvdesign.model.params import ModelParams
 
 FREE, SLIP, STICK, REVERSE = "free", "slip", "stick", "reverse"
 TANH = "slip-tanh"  # horizontal mode during contact with regularised friction

@@ -14,7 +14,7 @@ from typing import Literal, NamedTuple
 
 import numpy as np
 
-from betvdesign.params import ModelParams
+from betvdesign.model.params import ModelParams
 
 Mode = Literal["push", "pull", "stalled"]
 
@@ -93,7 +93,7 @@ class PeriodicResult:
     ``state``: section state (ξ, ξ', ζ, ζ', s, s') at τ = 2m*π/ϖ on the orbit (s = 0);
     ``delta_s`` [-]: slider increment per actuation cycle on the orbit (the orbit's
     increment over ``period_cycles`` divided by it); ``mode``: "push" (Δs > 0), "pull"
-    (Δs < 0) or "stalled" (|Δs| at round-off; :func:`betvdesign.domain.mode_of`);
+    (Δs < 0) or "stalled" (|Δs| at round-off; :func:`betvdesign.model.domain.mode_of`);
     ``residual``: max-norm of (map(state) − state) over the whole
     section state, slider position excepted (it drifts by design); ``floquet``:
     multipliers of the section map (ζ, ζ', s'), complex, sorted by decreasing modulus;

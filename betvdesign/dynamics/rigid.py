@@ -40,10 +40,10 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.optimize import brentq
 
-from betvdesign.domain import mode_of
 from betvdesign.dynamics.vertical import VerticalSchedule
 from betvdesign.errors import ParameterError
-from betvdesign.params import ModelParams
+from betvdesign.model.domain import mode_of
+from betvdesign.model.params import ModelParams
 
 TWO_PI = 2.0 * math.pi
 

@@ -22,7 +22,7 @@ from betvdesign.dynamics.result import Event, Trajectory
 from betvdesign.dynamics.search import search_failure_message
 from betvdesign.dynamics.vertical import VerticalSchedule
 from betvdesign.errors import ParameterError
-from betvdesign.params import ModelParams
+from betvdesign.model.params import ModelParams
 
 
 class SolverFailure(RuntimeError):

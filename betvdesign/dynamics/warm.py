@@ -15,7 +15,7 @@ import time
 def warm() -> float:
     """Compile or load every kernel; returns the seconds it took."""
     from betvdesign.dynamics import periodic_orbit, simulate, vertical_motion
-    from betvdesign.params import ModelParams
+    from betvdesign.model.params import ModelParams
 
     t0 = time.perf_counter()
     p = ModelParams(1.2, 0.5, 1.0, 0.4)

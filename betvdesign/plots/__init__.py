@@ -6,8 +6,8 @@ unit-suffixed arrays; none computes physics. :func:`figure_svg` turns a figure
 into byte-reproducible inline SVG.
 """
 
-from betvdesign.plots._figure import figure_style, figure_svg, new_figure
 from betvdesign.plots.adequacy import mode_speed_scan
+from betvdesign.plots.figure import figure_style, figure_svg, new_figure
 from betvdesign.plots.phase import orbit_plane, vertical_phase_portrait
 from betvdesign.plots.pushpull import lambda_one_curve, pushpull_map, pushpull_map_frequencies
 from betvdesign.plots.regime import contact_fraction_strip, impact_period_strip

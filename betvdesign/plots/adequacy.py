@@ -1,6 +1,6 @@
 """Model-adequacy figure: mode and mean speed against the head's quality factor Q and
 against the coefficient of restitution e, around the device
-(:mod:`betvdesign.studies.adequacy`). Plain arrays in, drawn on ``ax=``."""
+(:mod:`betvdesign.checks.adequacy`). Plain arrays in, drawn on ``ax=``."""
 
 from __future__ import annotations
 
@@ -10,8 +10,8 @@ from collections.abc import Sequence
 import numpy as np
 from matplotlib.axes import Axes
 
-from betvdesign.plots._figure import DEVICE_COLOR, MODE_COLORS, axes_or_new
-from betvdesign.siformat import scale_for
+from betvdesign.output.siformat import scale_for
+from betvdesign.plots.figure import DEVICE_COLOR, MODE_COLORS, axes_or_new
 
 #: Marker colours of the modes that do not move the slider (push/pull: MODE_COLORS).
 OTHER_COLORS = {"stalled": "#ff7f0e", "none": "#7f7f7f"}

@@ -11,7 +11,7 @@ from collections.abc import Sequence
 import numpy as np
 from matplotlib.axes import Axes
 
-from betvdesign.plots._figure import PHASE_COLORS, Scale, axes_or_new, dimensionless_twin
+from betvdesign.plots.figure import PHASE_COLORS, Scale, axes_or_new, dimensionless_twin
 
 #: Legend text per contact phase.
 PHASE_LABELS: dict[str, str] = {

@@ -14,8 +14,8 @@ from typing import Any
 import numpy as np
 from matplotlib.axes import Axes
 
-from betvdesign.params import fit_offset
-from betvdesign.plots._figure import (
+from betvdesign.model.params import fit_offset
+from betvdesign.plots.figure import (
     DEVICE_COLOR,
     MODE_COLORS,
     VARPI_WINDOW,
@@ -84,7 +84,7 @@ def pushpull_map_frequencies(
     x: actuation frequency f_act [kHz]; y: tangential resonance f_h = f_v/√α [kHz]
     (α = (f_v/f_h)², so the map holds for a device given by α or k_h too). With
     X = 1/ϖ² = (f_v/f_act)² and Y = 1/(ακ) = f_h²/(κ f_v²), λ < 1 (push) reads
-    f_h² < f_act² + κ·c·f_v² (c: :func:`betvdesign.params.fit_offset`): push lies below
+    f_h² < f_act² + κ·c·f_v² (c: :func:`betvdesign.model.params.fit_offset`): push lies below
     the curve f_h = sqrt(f_act² + κ c f_v²). Secondary axes: ϖ = f_act/f_v (top) and α
     (right). points: (label, f_act [Hz], f_h [Hz]).
     """

@@ -12,7 +12,7 @@ from collections.abc import Sequence
 import numpy as np
 from matplotlib.axes import Axes
 
-from betvdesign.plots._figure import (
+from betvdesign.plots.figure import (
     DEVICE_COLOR,
     VARPI_WINDOW,
     Scale,

@@ -18,7 +18,7 @@ import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
-from betvdesign.plots._figure import MODE_COLORS, STYLE, axes_or_new, figure_style, new_figure
+from betvdesign.plots.figure import MODE_COLORS, STYLE, axes_or_new, figure_style, new_figure
 from betvdesign.plots.pushpull import lambda_one_curve
 from betvdesign.studies.terms import Terms
 

@@ -8,14 +8,14 @@ from collections.abc import Sequence
 import numpy as np
 from matplotlib.axes import Axes
 
-from betvdesign.plots._figure import (
+from betvdesign.output.siformat import format_si, scale_for
+from betvdesign.plots.figure import (
     DEVICE_COLOR,
     MODE_COLORS,
     VARPI_WINDOW,
     axes_or_new,
     dimensionless_twin,
 )
-from betvdesign.siformat import format_si, scale_for
 
 
 def speed_vs_voltage(

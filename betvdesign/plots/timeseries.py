@@ -7,7 +7,7 @@ from collections.abc import Sequence
 import numpy as np
 from matplotlib.axes import Axes
 
-from betvdesign.plots._figure import DEVICE_COLOR, Scale, axes_or_new, dimensionless_twin
+from betvdesign.plots.figure import DEVICE_COLOR, Scale, axes_or_new, dimensionless_twin
 
 
 def slider_velocity(

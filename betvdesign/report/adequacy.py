@@ -1,6 +1,6 @@
 """The report section "Model adequacy": is the paper's idealised model enough here?
 
-Data: :func:`betvdesign.studies.adequacy.assess` (exact periodic orbits without and with
+Data: :func:`betvdesign.checks.adequacy.assess` (exact periodic orbits without and with
 head damping and restitution, Q and e scanned, mode flips bisected), computed once per
 device (the same result feeds the design check's rule ``model-adequacy``). Per distinct
 actuator set the section states the verdict, the idealised and the richer answer in
@@ -16,15 +16,8 @@ import math
 from typing import Any
 
 from betvdesign import plots
-from betvdesign.derivation import DeviceDerivation, SetDerivation
-from betvdesign.report import analysis
-from betvdesign.report.analysis import Piece, attempt
-from betvdesign.report.figures import _block, ladder
-from betvdesign.report.model import AdequacyBlock, FigureBlock, KeyValue
-from betvdesign.siformat import format_dimensionless as fmt_x
-from betvdesign.siformat import scale_for
-from betvdesign.studies.adequacy import assess
-from betvdesign.studies.adequacy_data import (
+from betvdesign.checks.adequacy import assess
+from betvdesign.checks.adequacy_data import (
     DEFAULT_QUALITY,
     DEFAULT_RESTITUTION,
     LIKELY_QUALITY,
@@ -35,6 +28,13 @@ from betvdesign.studies.adequacy_data import (
     DeviceAdequacy,
     SetAdequacy,
 )
+from betvdesign.nondim.record import DeviceDerivation, SetDerivation
+from betvdesign.output.siformat import format_dimensionless as fmt_x
+from betvdesign.output.siformat import scale_for
+from betvdesign.report import analysis
+from betvdesign.report.analysis import Piece, attempt
+from betvdesign.report.figures import _block, ladder
+from betvdesign.report.model import AdequacyBlock, FigureBlock, KeyValue
 
 _VERDICT = {
     "adequate": "The idealised model is adequate: the same mode with and without damping "

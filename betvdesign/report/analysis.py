@@ -1,7 +1,7 @@
 """The computations behind one actuator set's report: solver runs, small sweeps.
 
 Unit-free except where explicitly suffixed (``_um``, ``_ms``, ``_v``...); the
-dimensional conversion uses only the :class:`~betvdesign.nondim.Scales` of the
+dimensional conversion uses only the :class:`~betvdesign.nondim.device.Scales` of the
 derivation (MODEL.md, "Displacement per cycle": x = s·u·cosθ, t = τ·sqrt(m/k_v)).
 
 Model rungs, cheapest that answers each question (the captions say which):
@@ -33,8 +33,8 @@ from typing import Any, Generic, TypeVar
 import numpy as np
 
 from betvdesign.errors import BetvError
-from betvdesign.params import ModelParams
-from betvdesign.plots._figure import VARPI_WINDOW
+from betvdesign.model.params import ModelParams
+from betvdesign.plots.figure import VARPI_WINDOW
 
 T = TypeVar("T")
 

@@ -1,7 +1,7 @@
 """Build the report model of one device file (data first, rendering later).
 
 load (spec) -> derive (nondim) -> analyse each distinct actuator set (dynamics)
--> the design check (:func:`betvdesign.checker.check_derivation`, fed the periodic
+-> the design check (:func:`betvdesign.checks.checker.check_derivation`, fed the periodic
 orbits and vertical motions already computed; the exact orbit decides the mode) -> format
 everything into a :class:`~betvdesign.report.model.Report`. Bad input raises the loader's
 :class:`~betvdesign.errors.SpecError` before anything is computed or written.
@@ -18,15 +18,17 @@ from typing import Any
 import pint
 
 from betvdesign import __version__
-from betvdesign.checker import (
+from betvdesign.checks.checker import (
     CheckResult,
     SetCheck,
     SolverFailure,
     check_derivation,
     load_solver,
 )
-from betvdesign.checkview import rule_unit
-from betvdesign.nondim import DeviceDerivation, SetDerivation, derive_file
+from betvdesign.checks.rules import RuleResult, verdict
+from betvdesign.checks.view import rule_unit
+from betvdesign.nondim.device import DeviceDerivation, SetDerivation, derive_file
+from betvdesign.output.siformat import format_q, format_si
 from betvdesign.report import adequacy, figures, frequency
 from betvdesign.report.analysis import ReportOptions, SetAnalysis, analyse_set, attempt
 from betvdesign.report.inputs import device_inputs
@@ -41,8 +43,6 @@ from betvdesign.report.model import (
     VerdictBox,
 )
 from betvdesign.report.variants import field_variants, relative_changes
-from betvdesign.rules import RuleResult, verdict
-from betvdesign.siformat import format_q, format_si
 
 MAX_WARNINGS = 5
 _SEVERITY_ORDER = {"error": 0, "warning": 1, "info": 2}
@@ -78,7 +78,7 @@ def fmt_num(x: float | None, digits: int = 4) -> str:
 
 def fmt_quantity(q: pint.Quantity) -> str:
     """A quantity with 4 significant digits and an SI prefix by magnitude (µ, not u):
-    :func:`betvdesign.siformat.format_q`."""
+    :func:`betvdesign.output.siformat.format_q`."""
     return format_q(q, digits=4)
 
 

@@ -2,7 +2,7 @@
 
 Each builder returns a :class:`FigureBlock` whose caption says what is shown,
 which model made it and which rung of the fidelity ladder that is, and why
-(:func:`betvdesign.fidelity.choose_rung`'s reason where the ladder picks the same
+(:func:`betvdesign.checks.fidelity.choose_rung`'s reason where the ladder picks the same
 rung for the figure's question); when its data are missing the block carries the
 reason instead of an SVG (never an invented curve).
 """
@@ -15,15 +15,16 @@ from typing import Any
 
 import numpy as np
 
-from betvdesign import fidelity, plots
-from betvdesign.nondim import SetDerivation
-from betvdesign.plots._figure import VARPI_WINDOW
+from betvdesign import plots
+from betvdesign.checks import fidelity
+from betvdesign.nondim.device import SetDerivation
+from betvdesign.output.siformat import format_si, scale_for
+from betvdesign.plots.figure import VARPI_WINDOW
 from betvdesign.report.analysis import REGIME_LONG_HORIZON, Piece, SetAnalysis
 from betvdesign.report.model import FigureBlock
-from betvdesign.siformat import format_si, scale_for
-from betvdesign.spec import amplitude_at
+from betvdesign.spec.models import amplitude_at
+from betvdesign.spec.units import ureg
 from betvdesign.studies.regime import LONG_PERIOD
-from betvdesign.units import ureg
 
 EXACT = "exact event-driven impact model (closed-form phases, MODEL.md)"
 

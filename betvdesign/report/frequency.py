@@ -5,8 +5,8 @@ Only ϖ = f_act/f_v depends on the actuation frequency; α, β and κ do not, an
 displacement scales with the stroke u (MODEL.md, "Displacement per cycle"). So one
 periodic orbit per frequency gives Δs(ϖ), and the speed is
 v(f) = Δs(f/f_v)·u(f)·cosθ·f with u(f) = u·H(f)/H(f_act) from
-:meth:`betvdesign.derivation.Scales.amplitude_m` (the roll-off of
-:mod:`betvdesign.rolloff`, as derived by :mod:`betvdesign.nondim`); the idealised model
+:meth:`betvdesign.nondim.record.Scales.amplitude_m` (the roll-off of
+:mod:`betvdesign.model.rolloff`, as derived by :mod:`betvdesign.nondim.device`); the idealised model
 keeps the calibrated stroke u_cal = u(f_cal) at every frequency.
 """
 
@@ -19,13 +19,13 @@ from typing import Any
 import numpy as np
 
 from betvdesign import plots
-from betvdesign.derivation import SetDerivation
-from betvdesign.domain import VARPI_WINDOW
-from betvdesign.params import ModelParams
+from betvdesign.model.domain import VARPI_WINDOW
+from betvdesign.model.params import ModelParams
+from betvdesign.nondim.record import SetDerivation
+from betvdesign.output.siformat import format_si
 from betvdesign.report.analysis import Missing, Piece, ReportOptions, dynamics_api
 from betvdesign.report.figures import _block, ladder
 from betvdesign.report.model import FigureBlock
-from betvdesign.siformat import format_si
 
 #: Largest ϖ of the sweep relative to the window's upper edge (ϖ < 2: finite contact).
 _TOP = 0.98

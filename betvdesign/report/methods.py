@@ -25,7 +25,7 @@ from betvdesign.bench.chart import work_precision_figure
 from betvdesign.bench.failuremap import default_varpis, failure_map_figure, scan
 from betvdesign.bench.failures import FAILURES, Failure
 from betvdesign.bench.workprecision import DESIGNS, Row, summarise
-from betvdesign.outputs import check_output_dir, write_group
+from betvdesign.output.files import check_output_dir, write_group
 from betvdesign.report.render import _css, _environment, render_pdf
 
 TEMPLATE = "methods.html.j2"
@@ -93,7 +93,7 @@ def build(
     """The report model from work-precision rows, the failure map along ϖ
     (:func:`betvdesign.bench.failuremap.scan` rows) and the measured ladder data."""
     from betvdesign import __version__
-    from betvdesign.fidelity import RUNG_INFO, RUNGS, measured_document
+    from betvdesign.checks.fidelity import RUNG_INFO, RUNGS, measured_document
 
     doc = measured_document()
     MEASURED = doc["measured"]

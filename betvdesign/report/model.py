@@ -57,7 +57,7 @@ class FigureBlock:
 
     model: the model that produced the data ("λ fit", "vertical-only exact
     model", "exact event-driven model"...), stated in the caption; rung: the
-    rung(s) of the fidelity ladder (:data:`betvdesign.fidelity.RUNGS`, "+" between
+    rung(s) of the fidelity ladder (:data:`betvdesign.checks.fidelity.RUNGS`, "+" between
     two) and rung_reason why that rung, also in the caption.
     """
 

@@ -15,7 +15,7 @@ from importlib import resources
 import jinja2
 from markupsafe import Markup
 
-from betvdesign.outputs import write_atomic
+from betvdesign.output.files import write_atomic
 from betvdesign.report.model import Report
 
 __all__ = ["render_html", "render_pdf", "write_atomic"]

@@ -20,15 +20,15 @@ import numpy as np
 from markupsafe import Markup
 
 from betvdesign import plots
-from betvdesign.outputs import write_atomic
+from betvdesign.output.files import write_atomic
+from betvdesign.output.siformat import scale_for
+from betvdesign.paper.common import STOP_RTOL, Comparison
+from betvdesign.paper.maps import FIG12_ALPHA
+from betvdesign.paper.study import ValidationStudy, run_validation
+from betvdesign.paper.vertical import FIG3_VARPI, MAX_CYCLES
 from betvdesign.plots import validation as vplots
 from betvdesign.report.render import _css, _environment, render_pdf
-from betvdesign.siformat import scale_for
 from betvdesign.studies.regime import LONG_PERIOD
-from betvdesign.studies.validation import ValidationStudy, run_validation
-from betvdesign.studies.validation_common import STOP_RTOL, Comparison
-from betvdesign.studies.validation_maps import FIG12_ALPHA
-from betvdesign.studies.validation_vertical import FIG3_VARPI, MAX_CYCLES
 
 TEMPLATE = "validation.html.j2"
 #: Δs range drawn in Fig. 12 (near the resonance |Δs| grows far beyond it).

@@ -2,8 +2,8 @@
 
 A designer sets drive frequencies, resonances, friction surfaces and beam widths, not
 α or β. Each variant goes through the same path as the device itself: the spec with the
-field changed (:meth:`betvdesign.spec.DeviceSpec.replace`, validated like a device file)
--> :func:`betvdesign.nondim.derive_set` (the only place units are stripped). A value the
+field changed (:meth:`betvdesign.spec.models.DeviceSpec.replace`, validated like a device file)
+-> :func:`betvdesign.nondim.device.derive_set` (the only place units are stripped). A value the
 spec rejects (e.g. an impact angle past 90°) is kept with its reason, never dropped.
 """
 
@@ -12,10 +12,10 @@ from __future__ import annotations
 import numpy as np
 
 from betvdesign.errors import BetvError
-from betvdesign.nondim import derive_set
+from betvdesign.nondim.device import derive_set
 from betvdesign.report.analysis import FieldVariant
-from betvdesign.spec import DeviceSpec
-from betvdesign.units import format_quantity
+from betvdesign.spec.models import DeviceSpec
+from betvdesign.spec.units import format_quantity
 
 #: Fields a designer changes, in the order shown; per group the first one the set gives
 #: is varied (a resonance or a stiffness, a head mass or its geometry's thickness).

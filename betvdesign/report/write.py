@@ -13,7 +13,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from betvdesign.errors import SpecError, UsageError
-from betvdesign.outputs import check_output_dir, write_group
+from betvdesign.output.files import check_output_dir, write_group
 from betvdesign.report.analysis import ReportOptions
 from betvdesign.report.build import build_report, prepare
 from betvdesign.report.render import render_html, render_pdf

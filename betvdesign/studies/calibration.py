@@ -114,7 +114,7 @@ class _Model:
     """
 
     def __init__(self, spec: Any, set_index: int, data: Measurements, law: Law, fit_alpha: bool):
-        from betvdesign.nondim import derive_set
+        from betvdesign.nondim.device import derive_set
 
         self.aset = spec.actuator_sets[set_index]
         d = derive_set(spec, self.aset)
@@ -226,7 +226,7 @@ def calibrate(
     """
     from scipy.optimize import least_squares
 
-    from betvdesign.loader import load_device
+    from betvdesign.spec.loader import load_device
 
     spec = load_device(device)
     names = [s.name for s in spec.actuator_sets]
@@ -401,8 +401,8 @@ def _start(model: _Model, law: Law, fit_alpha: bool) -> tuple[np.ndarray, list[s
 
 def snippet(result: CalibrationResult, data: Measurements) -> str:
     """A device-file fragment (YAML) carrying the fitted calibration."""
-    from betvdesign.siformat import format_si
-    from betvdesign.units import ureg
+    from betvdesign.output.siformat import format_si
+    from betvdesign.spec.units import ureg
 
     lines = [
         f"# betv calibrate: fitted to {data.source} ({data.kind}, {result.n_data} points), "

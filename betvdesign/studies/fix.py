@@ -1,8 +1,8 @@
 """``betv fix``: the smallest change to a device file that makes it pass, with margin.
 
 Every candidate goes through the same path as ``betv check``: spec (one field
-changed) -> :func:`betvdesign.nondim.derive` -> exact periodic orbit -> rules
-(:func:`betvdesign.checker.check_derivation`). There is no separate model.
+changed) -> :func:`betvdesign.nondim.device.derive` -> exact periodic orbit -> rules
+(:func:`betvdesign.checks.checker.check_derivation`). There is no separate model.
 
 A candidate **passes** when every error-severity rule passes (window, intended mode,
 target speed when given), the tangential-resonance distance holds and the slider
@@ -33,8 +33,8 @@ from typing import Any
 import numpy as np
 
 from betvdesign.errors import BetvError, ParameterError
+from betvdesign.spec.paths import with_values
 from betvdesign.studies.fixfields import DEFAULT_BOUNDS, Vary, parse_vary
-from betvdesign.studies.specpaths import with_values
 
 __all__ = ["DEFAULT_BOUNDS", "FIELD_MARGIN", "Vary", "find_fixes", "parse_vary"]
 
@@ -144,8 +144,8 @@ class Evaluator:
         return self._run(changes, full=True)
 
     def _run(self, changes: dict[str, float], *, full: bool) -> tuple[bool, list[str], Any]:
-        from betvdesign.checker import check_derivation
-        from betvdesign.nondim import derive
+        from betvdesign.checks.checker import check_derivation
+        from betvdesign.nondim.device import derive
         from betvdesign.studies.sampling import check_sample
 
         self.evaluations += 1
@@ -267,7 +267,7 @@ def _inward(x0: float, lo: float, hi: float, x: float) -> list[float]:
 
 def _why(before: list[str], check: Any) -> str:
     """What a passing candidate does: the rules it fixes, its exact mode and speed."""
-    from betvdesign.rules import format_speed
+    from betvdesign.checks.rules import format_speed
 
     speed = _speed(check)
     parts = [f"fixes {', '.join(before)}" if before else "keeps every rule passing"]
@@ -400,9 +400,9 @@ def robust_probability(
     nominal_values(spec, tols)  # unknown or non-numeric fields: UsageError now
 
     def probability(candidate: Any) -> float:
-        from betvdesign.checker import load_solver
-        from betvdesign.domain import mode_of
-        from betvdesign.params import ModelParams
+        from betvdesign.checks.checker import load_solver
+        from betvdesign.model.domain import mode_of
+        from betvdesign.model.params import ModelParams
         from betvdesign.studies.sampling import check_sample, derive_all
 
         solver = load_solver()
@@ -440,9 +440,9 @@ def _sample_params(
 ) -> Any:
     """Model parameters of set ``i`` at sample ``j``: from the vectorised derivation, or
     (when it could not take every sample) by deriving that sample alone."""
-    from betvdesign.nondim import derive_set
+    from betvdesign.nondim.device import derive_set
+    from betvdesign.spec.units import ureg
     from betvdesign.studies.sampling import params_of
-    from betvdesign.units import ureg
 
     if arrays is not None:
         return params_of(arrays, j)

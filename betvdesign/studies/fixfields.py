@@ -1,6 +1,6 @@
 """Fields ``betv fix`` may change, their realistic default bounds, and ``--vary``.
 
-A field is a dotted path as in the device file (:mod:`betvdesign.studies.specpaths`);
+A field is a dotted path as in the device file (:mod:`betvdesign.spec.paths`);
 its bounds are factors of the current value, or absolute values in a unit.
 """
 
@@ -13,9 +13,9 @@ from typing import Any
 
 import pint
 
-from betvdesign.damping import term_range
 from betvdesign.errors import UsageError
-from betvdesign.studies.specpaths import targets, value_at
+from betvdesign.model.damping import term_range
+from betvdesign.spec.paths import targets, value_at
 
 #: Default search bounds of the fields a designer can change: (factor low, factor high)
 #: on the current value, or absolute bounds in the given unit.
@@ -48,7 +48,7 @@ class Vary:
     unit: str
 
     def quantity(self, x: float) -> Any:
-        from betvdesign.units import ureg
+        from betvdesign.spec.units import ureg
 
         return ureg.Quantity(x, self.unit) if self.unit else float(x)
 
@@ -75,7 +75,7 @@ def parse_vary(spec: Any, items: Sequence[str]) -> list[Vary]:
     """``FIELD`` or ``FIELD=LO:HI`` (quantities in any unit of the field, e.g.
     ``drive.frequency=400Hz:3kHz``); without items, every default field the spec has.
     :class:`UsageError` for unknown fields, unreadable or inverted bounds."""
-    from betvdesign.units import parse_quantity
+    from betvdesign.spec.units import parse_quantity
 
     out: list[Vary] = []
     names = list(items) or [f for f in DEFAULT_BOUNDS if _current(spec, f) is not None]
@@ -102,7 +102,7 @@ def parse_vary(spec: Any, items: Sequence[str]) -> list[Vary]:
         else:
             b = DEFAULT_BOUNDS.get(name, (0.5, 2.0))
             if len(b) == 3:
-                from betvdesign.units import ureg
+                from betvdesign.spec.units import ureg
 
                 lo, hi = (float(ureg.Quantity(v, b[2]).to(unit).magnitude) for v in b[:2])
             else:

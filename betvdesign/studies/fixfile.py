@@ -9,7 +9,7 @@ from pathlib import Path
 from typing import Any
 
 from betvdesign.errors import BetvError
-from betvdesign.studies.specpaths import SET_PREFIXES
+from betvdesign.spec.paths import SET_PREFIXES
 
 
 def _nodes(data: Any, field: str) -> list[tuple[Any, str]]:
@@ -32,10 +32,10 @@ def fixed_text(path: str | Path, res: Any, cand: Any) -> str:
     if the result does not load or does not pass ``betv check`` (never written then)."""
     from ruamel.yaml import YAML
 
-    from betvdesign.checker import check_derivation
-    from betvdesign.loader import load_device_text
-    from betvdesign.nondim import derive
-    from betvdesign.units import format_quantity
+    from betvdesign.checks.checker import check_derivation
+    from betvdesign.nondim.device import derive
+    from betvdesign.spec.loader import load_device_text
+    from betvdesign.spec.units import format_quantity
 
     yaml = YAML(typ="rt")
     yaml.preserve_quotes = True

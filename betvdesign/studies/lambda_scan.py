@@ -30,15 +30,15 @@ from typing import Any, Literal
 import numpy as np
 
 from betvdesign.errors import UsageError
-from betvdesign.params import fit_offset
-from betvdesign.studies.grid import require_positive
+from betvdesign.model.params import fit_offset
+from betvdesign.studies.engine.grid import require_positive
+from betvdesign.studies.engine.runner import Study, StudyRun, run_study, split_run_args
 from betvdesign.studies.pushpull import (
     COLUMNS,
     MODEL_STATEMENT,
     periodic_point,
     vertical_precheck,
 )
-from betvdesign.studies.runner import Study, StudyRun, run_study, split_run_args
 from betvdesign.studies.terms import Terms, columns_with, model_statement
 
 Vary = Literal["varpi", "alpha"]

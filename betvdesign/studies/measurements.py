@@ -48,8 +48,8 @@ class Measurements:
 
 def read_measurements(path: str | os.PathLike[str], kind: Kind) -> Measurements:
     """Read a calibration CSV (see module doc); errors name file, line and column."""
-    from betvdesign.safeyaml import read_text
-    from betvdesign.units import parse_units, ureg
+    from betvdesign.spec.safeyaml import read_text
+    from betvdesign.spec.units import parse_units, ureg
 
     p = Path(path)
     text = read_text(p)  # the input-size limit; errors name the file

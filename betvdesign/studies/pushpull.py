@@ -28,11 +28,11 @@ from typing import Any, Literal
 
 import numpy as np
 
+from betvdesign.checks.fidelity import RUNGS
 from betvdesign.errors import UsageError
-from betvdesign.fidelity import RUNGS
-from betvdesign.params import ModelParams
-from betvdesign.studies.grid import Grid, require_positive
-from betvdesign.studies.runner import Study, StudyRun, run_study, split_run_args
+from betvdesign.model.params import ModelParams
+from betvdesign.studies.engine.grid import Grid, require_positive
+from betvdesign.studies.engine.runner import Study, StudyRun, run_study, split_run_args
 from betvdesign.studies.terms import Terms, columns_with, model_statement, require_ideal_rung
 
 Fidelity = Literal["periodic", "lambda"]
@@ -50,7 +50,7 @@ def rung_reason(fidelity: str) -> str:
     """Why a study runs on ``fidelity`` (``fidelity_reason`` next to ``fidelity`` and
     ``model`` in every summary); for λ it states the fit's held-out error rate."""
     if fidelity == "lambda":
-        from betvdesign.fidelity import lambda_error_statement
+        from betvdesign.checks.fidelity import lambda_error_statement
 
         return (
             "chosen with --fidelity lambda: λ alone, a fit whose mode can be wrong: "

@@ -41,9 +41,9 @@ from typing import TYPE_CHECKING, Any, Unpack
 import numpy as np
 
 from betvdesign.errors import UsageError
-from betvdesign.studies.grid import Grid
+from betvdesign.studies.engine.grid import Grid
+from betvdesign.studies.engine.runner import RunArgs, Study, StudyRun, run_study
 from betvdesign.studies.pushpull import solver_error
-from betvdesign.studies.runner import RunArgs, Study, StudyRun, run_study
 from betvdesign.studies.terms import Terms, model_statement
 
 if TYPE_CHECKING:

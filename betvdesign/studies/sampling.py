@@ -4,7 +4,7 @@ an actuator set derived at once.
 Used by ``betv tolerance`` (:mod:`betvdesign.studies.tolerance`) and the robust search
 of ``betv fix``. Samples are drawn with one seeded ``numpy.random.Generator``, fields in
 the order given; :func:`derive_all` pushes them through
-:func:`betvdesign.nondim.derive_samples` (the derivation's own formulas on arrays).
+:func:`betvdesign.nondim.device.derive_samples` (the derivation's own formulas on arrays).
 """
 
 from __future__ import annotations
@@ -17,10 +17,10 @@ from typing import Any
 import numpy as np
 import pint
 
-from betvdesign import limits
 from betvdesign.errors import BetvError, UsageError
-from betvdesign.params import ModelParams
-from betvdesign.studies.specpaths import numeric, replace, targets, value_at
+from betvdesign.model.params import ModelParams
+from betvdesign.spec import limits
+from betvdesign.spec.paths import numeric, replace, targets, value_at
 
 
 def nominal_values(spec: Any, tolerances: Sequence[Any]) -> dict[str, tuple[float, str]]:
@@ -61,7 +61,7 @@ def draw(
     One seeded ``Generator``; fields drawn in the order given: normal
     ``x0(1 + r·z)`` or ``x0 + a·z``; uniform with half-width r or a.
     """
-    from betvdesign.units import parse_quantity
+    from betvdesign.spec.units import parse_quantity
 
     rng = np.random.default_rng(limits.check_seed(seed))
     cols = []
@@ -91,7 +91,7 @@ def check_sample(values: Mapping[str, tuple[float, str]]) -> None:
         if mag <= 0.0:
             raise BetvError(f"{field} sampled non-positive ({mag:g} {unit})")
         if field == "contact.impact_angle":
-            from betvdesign.units import ureg
+            from betvdesign.spec.units import ureg
 
             if ureg.Quantity(mag, unit).to("deg").magnitude >= 90.0:
                 raise BetvError(f"{field} sampled at or above 90° ({mag:g} {unit})")
@@ -106,8 +106,8 @@ def derive_all(
 ) -> dict[str, np.ndarray] | None:
     """Every sample of one set derived at once (nondim.derive_samples); None when some
     sample cannot be derived that way (then each is derived on its own)."""
-    from betvdesign.nondim import derive_samples
-    from betvdesign.units import ureg
+    from betvdesign.nondim.device import derive_samples
+    from betvdesign.spec.units import ureg
 
     values = {}
     for j, t in enumerate(tolerances):

@@ -8,16 +8,16 @@ idealised study (bit-identical results, and an output written before these terms
 still resumes).
 
 Non-zero terms enter everywhere a result depends on them, following
-:meth:`betvdesign.params.ModelParams.as_dict` (all three when one is set):
+:meth:`betvdesign.model.params.ModelParams.as_dict` (all three when one is set):
 
 * the study's ``parameters`` (so a store of a damped sweep never resumes an undamped one
-  and vice versa: :mod:`betvdesign.studies.store` compares them),
+  and vice versa: :mod:`betvdesign.studies.engine.store` compares them),
 * every task (the workers build ``ModelParams`` with them),
 * the result columns and rows (:func:`columns_with`),
 * the summary (``terms`` and the model statement).
 
 The λ fit is a fit of the idealised model: :func:`require_ideal_rung` refuses it (and
-every rung of :data:`betvdesign.fidelity.IDEAL_ONLY`) when a term is set.
+every rung of :data:`betvdesign.checks.fidelity.IDEAL_ONLY`) when a term is set.
 """
 
 from __future__ import annotations
@@ -27,7 +27,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from betvdesign.errors import ParameterError, UsageError
-from betvdesign.params import ModelParams
+from betvdesign.model.params import ModelParams
 
 #: The optional terms, in the order of ``ModelParams`` (and of the result columns).
 NAMES = ("zeta_v", "zeta_h", "restitution")
@@ -38,7 +38,7 @@ SYMBOLS = {"zeta_v": "ζ_v", "zeta_h": "ζ_h", "restitution": "e"}
 @dataclass(frozen=True)
 class Terms:
     """ζ_v, ζ_h [-] and e [-] of a study (0: the paper's model), validated as
-    :class:`~betvdesign.params.ModelParams` validates them (a :class:`UsageError`
+    :class:`~betvdesign.model.params.ModelParams` validates them (a :class:`UsageError`
     naming the term otherwise)."""
 
     zeta_v: float = 0.0
@@ -106,8 +106,8 @@ def model_statement(base: str, terms: Terms, names: tuple[str, ...] = NAMES) -> 
 
 def require_ideal_rung(fidelity: str, terms: Terms) -> None:
     """:class:`UsageError` when ``fidelity`` is a rung of the idealised model only
-    (:data:`betvdesign.fidelity.IDEAL_ONLY`) and a term is set."""
-    from betvdesign.fidelity import IDEAL_ONLY
+    (:data:`betvdesign.checks.fidelity.IDEAL_ONLY`) and a term is set."""
+    from betvdesign.checks.fidelity import IDEAL_ONLY
 
     if terms.ideal or fidelity not in IDEAL_ONLY:
         return

@@ -42,19 +42,19 @@ from typing import Any, Literal
 
 import numpy as np
 
-from betvdesign import limits
-from betvdesign.damping import term_range
-from betvdesign.domain import in_window
 from betvdesign.errors import BetvError, UsageError
+from betvdesign.model.damping import term_range
+from betvdesign.model.domain import in_window
+from betvdesign.spec import limits
+from betvdesign.spec.paths import replace, targets, value_at
+from betvdesign.studies.engine.runner import Study, StudyRun, run_study, split_run_args
 from betvdesign.studies.pushpull import (
     MODEL_STATEMENT,
     require_fidelity,
     rung_reason,
     solver_error,
 )
-from betvdesign.studies.runner import Study, StudyRun, run_study, split_run_args
 from betvdesign.studies.sampling import check_sample, derive_all, draw, nominal_values, params_of
-from betvdesign.studies.specpaths import replace, targets, value_at
 
 Dist = Literal["normal", "uniform"]
 #: Distributions a tolerance may name (lower case; names are case-insensitive).
@@ -119,8 +119,8 @@ def load_tolerances(path: str | os.PathLike[str]) -> list[Tolerance]:
     """Read a ``tolerances:`` mapping from YAML (see module doc)."""
     from ruamel.yaml import YAML, YAMLError
 
-    from betvdesign import safeyaml
     from betvdesign.errors import SpecError
+    from betvdesign.spec import safeyaml
 
     p = Path(path)
     try:
@@ -160,13 +160,13 @@ def load_tolerances(path: str | os.PathLike[str]) -> list[Tolerance]:
 # -- the worker ------------------------------------------------------------------
 @functools.lru_cache(maxsize=8)
 def _device(path: str, mtime_ns: int) -> Any:
-    from betvdesign.loader import load_device
+    from betvdesign.spec.loader import load_device
 
     return load_device(path)
 
 
 def _perturbed(task: Mapping[str, Any]) -> Any:
-    from betvdesign.units import ureg
+    from betvdesign.spec.units import ureg
 
     spec = _device(task["device"], task["mtime_ns"])
     for field, (mag, unit) in task["values"].items():
@@ -186,8 +186,8 @@ def tolerance_point(task: Mapping[str, Any]) -> dict[str, Any]:
 
     Tasks built by :func:`tolerance_study` usually carry the sample's derived
     parameters already (``derived``: the whole sample derived at once by
-    :func:`betvdesign.nondim.derive_samples`, the same formulas vectorised); otherwise
-    the sample is derived here with :func:`betvdesign.nondim.derive_set`.
+    :func:`betvdesign.nondim.device.derive_samples`, the same formulas vectorised); otherwise
+    the sample is derived here with :func:`betvdesign.nondim.device.derive_set`.
     """
     row: dict[str, Any] = {c: None for c in task["columns"]}
     row.update(key=task["key"], sample=task["sample"], set=task["set_name"])
@@ -196,7 +196,7 @@ def tolerance_point(task: Mapping[str, Any]) -> dict[str, Any]:
     derived = task.get("derived")
     try:
         if derived is None:
-            from betvdesign.nondim import derive_set
+            from betvdesign.nondim.device import derive_set
 
             spec = _perturbed(task)
             d = derive_set(spec, spec.actuator_sets[task["set_index"]])
@@ -257,7 +257,7 @@ BASE_COLUMNS: dict[str, type] = {
 def _beyond_columns(spec: Any) -> dict[str, type]:
     """Columns zeta_v, zeta_h, restitution [-] (ModelParams.as_dict's) when the nominal
     device gives damping or restitution; none for the paper's model."""
-    from betvdesign.nondim import derive
+    from betvdesign.nondim.device import derive
 
     try:
         ideal = all(sd.params.ideal for sd in derive(spec).sets)
@@ -274,7 +274,7 @@ def _refuse_lambda_beyond_ideal(
 ) -> None:
     """UsageError when the λ rung is asked of a device (or a spread) with damping or
     restitution: λ is a fit to the idealised model and knows neither."""
-    from betvdesign.nondim import derive_set
+    from betvdesign.nondim.device import derive_set
 
     spread = [t.field for t in tolerances if term_range(t.field) is not None]
     damped = [
@@ -302,7 +302,7 @@ def tolerance_study(
     sets: Sequence[str] | None = None,
 ) -> Study:
     """Draw the samples and build the study (tasks carry plain floats only)."""
-    from betvdesign.loader import load_device
+    from betvdesign.spec.loader import load_device
 
     if not 1 <= samples <= limits.MAX_SAMPLES:
         raise UsageError(f"--samples must be >= 1 and <= {limits.MAX_SAMPLES:,}, got {samples}")

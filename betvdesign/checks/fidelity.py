@@ -1,0 +1,345 @@
+"""The fidelity ladder: model no more than a scene needs, and say which model answered.
+
+Rungs, cheapest first (docs/MODEL.md sections in brackets):
+
+1. ``lambda``   closed-form λ rule ["Push/pull criterion"]: mode only, an empirical
+   fit; only ever used when forced (``--fidelity lambda`` on sweeps and tolerance
+   studies), and then its held-out error rate is stated;
+2. ``vertical`` vertical-only impact map ["Vertical motion"]: hits per cycle, contact
+   fraction, regime; exact, because the head's vertical motion ignores the slider;
+3. ``rigid``    α → 0 rigid tangential contact (:mod:`betvdesign.dynamics.rigid`):
+   exact closed form of the limit; its mode is always pull and its Δs is the
+   small-α limit of the full model's;
+4. ``full``     full stick-slip model, transient (:func:`betvdesign.dynamics.simulate`):
+   s after N cycles, trajectories;
+5. ``periodic`` periodic-orbit shooting (:func:`betvdesign.dynamics.periodic_orbit`):
+   periodic Δs, mode, period, Floquet stability, to a residual ≤ 1e-10.
+
+:func:`choose_rung` picks the cheapest rung that answers a question to the accuracy
+asked and returns the reason; ``force=`` (the CLI's ``--fidelity``) overrides it, and
+is refused when the forced rung cannot answer the question at all. A *mode* is never
+chosen from a fit: the question "mode" is always answered by the periodic orbit
+(about 1 ms). What the ladder states about the cheaper rungs (the λ fit's
+misprediction rate on a held-out random sample with its 95 % bound, the rigid limit's
+error envelope over α, indicative costs) is *measured* by
+``benchmarks/work_precision.py --ladder`` and stored as package data
+``betvdesign/data/fidelity_measured.json`` with its provenance; :func:`stale` says
+when the stored numbers no longer match the solver.
+"""
+
+from __future__ import annotations
+
+import functools
+import json
+import math
+import time
+from dataclasses import dataclass, field
+from typing import Any, Literal
+
+from betvdesign.errors import UsageError
+from betvdesign.model import domain
+from betvdesign.model.params import ModelParams
+
+Rung = Literal["lambda", "vertical", "rigid", "full", "periodic"]
+Question = Literal["mode", "regime", "delta_s", "transient", "stability"]
+
+#: Rungs, cheapest first.
+RUNGS: tuple[Rung, ...] = ("lambda", "vertical", "rigid", "full", "periodic")
+QUESTIONS: tuple[Question, ...] = ("mode", "regime", "delta_s", "transient", "stability")
+
+WINDOW = domain.VARPI_WINDOW
+
+
+@dataclass(frozen=True)
+class RungInfo:
+    """What a rung is, what it answers and where it comes from."""
+
+    name: Rung
+    model: str
+    answers: frozenset[str]
+    exact: str
+    source: str
+
+
+RUNG_INFO: dict[Rung, RungInfo] = {
+    "lambda": RungInfo(
+        "lambda",
+        "closed-form λ rule (empirical fit)",
+        frozenset({"mode"}),
+        "a fit: wrong near λ = 1 and outside its fit range",
+        'docs/MODEL.md "Push/pull criterion"',
+    ),
+    "vertical": RungInfo(
+        "vertical",
+        "vertical-only impact map",
+        frozenset({"regime"}),
+        "exact (the vertical motion does not depend on the slider)",
+        'docs/MODEL.md "Vertical motion"',
+    ),
+    "rigid": RungInfo(
+        "rigid",
+        "α → 0 rigid tangential contact, closed form",
+        frozenset({"mode", "delta_s", "regime"}),
+        "exact for α → 0; error grows with α (measured)",
+        "betvdesign.dynamics.rigid (limit of docs/MODEL.md as α → 0)",
+    ),
+    "full": RungInfo(
+        "full",
+        "full stick-slip model, exact event-driven transient",
+        frozenset({"transient", "regime", "delta_s", "mode"}),
+        "exact to round-off for the cycles simulated (Δs only once settled)",
+        'docs/MODEL.md "Dimensionless model"',
+    ),
+    "periodic": RungInfo(
+        "periodic",
+        "periodic-orbit shooting on the full model",
+        frozenset({"mode", "delta_s", "stability", "regime"}),
+        "exact periodic state, residual ≤ 1e-10",
+        'docs/MODEL.md "Slider"',
+    ),
+}
+
+
+@dataclass(frozen=True)
+class Choice:
+    """The rung chosen for a question, and why (printed with every answer)."""
+
+    rung: Rung
+    question: Question
+    reason: str
+    forced: bool = False
+
+    def as_dict(self) -> dict[str, Any]:
+        return {
+            "rung": self.rung,
+            "question": self.question,
+            "reason": self.reason,
+            "forced": self.forced,
+            "model": RUNG_INFO[self.rung].model,
+        }
+
+
+@dataclass
+class Answer:
+    """A rung's answer: ``value`` (Δs, mode, regime dict...), status and timing [s]."""
+
+    choice: Choice
+    status: str
+    success: bool
+    message: str
+    value: Any
+    mode: str | None
+    seconds: float
+    extra: dict[str, Any] = field(default_factory=dict)
+
+
+MEASURED_DATA = "data/fidelity_measured.json"
+
+
+@functools.lru_cache(maxsize=1)
+def measured_document() -> dict[str, Any]:
+    """The stored measurements with their provenance (package data, JSON)."""
+    from importlib.resources import files
+
+    text = files("betvdesign").joinpath(MEASURED_DATA).read_text("utf-8")
+    return json.loads(text)
+
+
+def _measured() -> dict[str, Any]:
+    return measured_document()["measured"]
+
+
+def lambda_error() -> dict[str, Any]:
+    """The λ rule's measured misprediction rate on the held-out random sample:
+    ``{"n", "mispredicted", "rate", "upper_95", "bands"}`` (one-sided 95 %
+    Clopper–Pearson bound; per |λ − 1| band too)."""
+    h = _measured()["lambda"]["held_out"]
+    return {
+        "n": h["converged"],
+        "mispredicted": h["mispredicted"],
+        "rate": h["rate"],
+        "upper_95": h["upper_95"],
+        "bands": h["bands"],
+    }
+
+
+def lambda_error_statement() -> str:
+    """One sentence a study prints when it answers "mode" with λ."""
+    e = lambda_error()
+    return (
+        f"the λ fit named the wrong mode for {e['mispredicted']} of {e['n']} held-out random "
+        f"designs ({100 * e['rate']:.2f} %, ≤ {100 * e['upper_95']:.2f} % at 95 % confidence)"
+    )
+
+
+def stale(rtol: float = 1e-9) -> list[str]:
+    """Why the stored measurements no longer describe the current solver ([] if they do):
+    the periodic Δs of the fingerprint designs recomputed now against the stored ones."""
+    from betvdesign import dynamics
+
+    out = []
+    for f in _measured().get("fingerprint", []):
+        p = ModelParams(f["varpi"], f["alpha"], f["beta"], f["kappa"])
+        now = dynamics.periodic_orbit(p).delta_s
+        old = f["delta_s"]
+        if now is None or old is None or abs(now - old) > rtol * max(abs(old), 1e-300):
+            out.append(f"Δs at {p.as_dict()}: stored {old}, now {now}")
+    return out
+
+
+#: rungs that solve the idealised model only (no damping, plastic impacts); the vertical
+#: rung takes ζ_v and e (the vertical motion does not depend on ζ_h or the slider)
+IDEAL_ONLY = ("lambda", "rigid")
+
+
+def rigid_error_estimate(alpha: float) -> float:
+    """Measured bound on the rigid limit's relative Δs error at this α [-]."""
+    fit = _measured()["rigid"]
+    return float(fit["coef"] * alpha ** fit["power"])
+
+
+def choose_rung(
+    p: ModelParams,
+    question: Question,
+    *,
+    tol: float = 1e-6,
+    force: Rung | None = None,
+) -> Choice:
+    """Cheapest rung answering ``question`` for ``p`` to the accuracy ``tol``.
+
+    question: "mode" (push or pull), "regime" (hits and contact), "delta_s" (periodic
+    displacement per cycle, relative accuracy ``tol``), "transient" (s over N cycles),
+    "stability" (Floquet multipliers). For "mode", ``tol`` is the misprediction rate
+    accepted; the λ rule is used only where it never mispredicted on the measured map.
+    force: a rung name (``--fidelity``); refused with :class:`UsageError` when that
+    rung cannot answer the question.
+    """
+    if question not in QUESTIONS:
+        raise UsageError(f"unknown question {question!r}; one of {', '.join(QUESTIONS)}")
+    if force is not None:
+        if force not in RUNGS:
+            raise UsageError(f"unknown fidelity {force!r}; one of {', '.join(RUNGS)}")
+        info = RUNG_INFO[force]
+        if question not in info.answers:
+            able = [
+                r
+                for r in RUNGS
+                if question in RUNG_INFO[r].answers and (p.ideal or r not in IDEAL_ONLY)
+            ]
+            raise UsageError(
+                f"fidelity {force!r} ({info.model}) cannot answer {question!r}; "
+                f"use one of {', '.join(able)}"
+            )
+        if not p.ideal and force in IDEAL_ONLY:
+            raise UsageError(
+                f"fidelity {force!r} ({info.model}) is a rung of the idealised model (no "
+                "damping, plastic impacts) and this device has damping or restitution; use "
+                "periodic or full"
+            )
+        why = f"forced by --fidelity {force} ({info.exact})"
+        if force == "lambda":
+            why += f"; {lambda_error_statement()}"
+        elif force == "rigid" and question in ("mode", "delta_s"):
+            why += (
+                f"; measured relative Δs error ≤ {rigid_error_estimate(p.alpha):.2g} at "
+                f"α = {p.alpha:.3g}, and its mode is always pull"
+            )
+        return Choice(force, question, why, True)
+    in_window = domain.in_window(p.varpi)
+    if not p.ideal and question == "delta_s":
+        return Choice(
+            "periodic",
+            question,
+            "damping or restitution present: the rigid and λ rungs are of the idealised "
+            "model; the exact periodic orbit includes them",
+        )
+    if question == "regime":
+        return Choice("vertical", question, "the vertical motion does not depend on the slider")
+    if question == "transient":
+        return Choice("full", question, "only the full model gives the trajectory itself")
+    if question == "stability":
+        return Choice("periodic", question, "Floquet multipliers need the periodic orbit")
+    if not in_window:
+        return Choice(
+            "periodic",
+            question,
+            f"ϖ = {p.varpi:.3g} outside the window {WINDOW[0]}–{WINDOW[1]}: the λ fit and "
+            "the rigid limit do not apply there",
+        )
+    if question == "mode":
+        return Choice(
+            "periodic",
+            question,
+            "a mode is only ever taken from the exact periodic orbit (≈ 1 ms); the λ fit "
+            f"is a prediction ({lambda_error_statement()}), never a verdict",
+        )
+    # delta_s
+    est = rigid_error_estimate(p.alpha)
+    if est <= tol:
+        return Choice(
+            "rigid",
+            question,
+            f"α = {p.alpha:.3g}: measured rigid-limit error ≈ {est:.2g} ≤ tol {tol:.2g}",
+        )
+    return Choice(
+        "periodic",
+        question,
+        f"rigid limit error ≈ {est:.2g} > tol {tol:.2g} at α = {p.alpha:.3g}: "
+        "the periodic orbit of the full model is needed",
+    )
+
+
+def evaluate(p: ModelParams, choice: Choice, *, cycles: int = 100) -> Answer:
+    """Run the chosen rung and return its answer (``cycles`` for "transient")."""
+    from betvdesign import dynamics
+    from betvdesign.dynamics import rigid
+
+    t0 = time.perf_counter()
+    rung, q = choice.rung, choice.question
+    if rung == "lambda":
+        lam = p.lam
+        mode = "push" if lam < 1.0 else "pull"
+        msg = f"λ = {lam:.6g} (a fit: {lambda_error_statement()})"
+        return Answer(choice, "success", True, msg, lam, mode, _dt(t0))
+    if rung == "vertical" or (q == "regime" and rung != "periodic"):
+        v = dynamics.vertical_motion(p.varpi, zeta_v=p.zeta_v, restitution=p.restitution)
+        value = {
+            "regime": v.regime,
+            "hits_per_cycle": v.hits_per_cycle,
+            "contact_fraction": v.contact_fraction,
+            "period_cycles": v.period_cycles,
+        }
+        return Answer(choice, v.status, v.success, v.message, value, None, _dt(t0))
+    if rung == "rigid":
+        r = rigid.rigid_periodic(p)
+        return Answer(choice, r.status, r.success, r.message, r.delta_s, r.mode, _dt(t0))
+    if rung == "full":
+        tr = dynamics.simulate(p, cycles, log_events=False)
+        last = float(tr.delta_s[-1]) if len(tr.delta_s) else math.nan
+        mode = domain.mode_of(last) if tr.success else None
+        value = tr.s if q == "transient" else last
+        msg = tr.message if q == "transient" else f"{tr.message}; Δs of the last cycle only"
+        return Answer(choice, tr.status, tr.success, msg, value, mode, _dt(t0))
+    po = dynamics.periodic_orbit(p)
+    value: Any = po.delta_s
+    if q == "stability":
+        value = po.floquet_moduli
+    elif q == "regime":
+        value = {
+            "impacts_per_cycle": po.impacts_per_cycle,
+            "contact_fraction": po.contact_fraction,
+            "period_cycles": po.period_cycles,
+        }
+    mode = domain.mode_of(po.delta_s) if po.success else None
+    return Answer(choice, po.status, po.success, po.message, value, mode, _dt(t0))
+
+
+def answer(
+    p: ModelParams, question: Question, *, tol: float = 1e-6, force: Rung | None = None
+) -> Answer:
+    """Choose the cheapest adequate rung (or the forced one) and evaluate it."""
+    return evaluate(p, choose_rung(p, question, tol=tol, force=force))
+
+
+def _dt(t0: float) -> float:
+    return time.perf_counter() - t0

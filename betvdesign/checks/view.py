@@ -1,0 +1,499 @@
+"""What a designer reads of a design check: one compact block per device, JSON v1, HTML.
+
+Built only from the public attributes of :class:`betvdesign.checks.checker.CheckResult`
+(its sets, rules, derivations and periodic orbits), so the check itself stays in
+:mod:`betvdesign.checks.checker`; this module does not import it (annotations say ``Any``), so
+``CheckResult`` may render itself through it (``__repr__``, ``_repr_html_``).
+Quantities are written by :func:`betvdesign.output.siformat.format_si`
+(text) or as SI floats under unit-named keys (JSON).
+
+The JSON shape (``betv check --json``, :data:`JSON_SCHEMA_VERSION`) is the same for
+one or many files: ``{"schema": "betv-check", "version": 1, "verdict": ...,
+"devices": [...]}``; its JSON schema is :func:`check_json_schema` (``betv schema
+check``). Fields may be added in a minor change; removing or renaming one bumps the
+version.
+"""
+
+from __future__ import annotations
+
+import difflib
+import html
+import json
+import math
+import textwrap
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass, field
+from typing import Any, Literal
+
+from pydantic import BaseModel, ConfigDict, Field
+
+from betvdesign.checks.rules import RuleResult
+from betvdesign.checks.view_adequacy import AdequacyOut, adequacy_line, adequacy_out
+from betvdesign.output.siformat import format_dimensionless as fmt_x
+from betvdesign.output.siformat import format_si, si_key
+
+JSON_SCHEMA_VERSION = 1
+
+
+def rule_unit(r: Any) -> str:
+    """SI unit of a rule's ``value`` ("" when dimensionless): the rule's own ``unit``."""
+    return str(getattr(r, "unit", "") or "")
+
+
+#: Record symbols reported as SI floats: (record symbol, JSON name, SI unit).
+_DERIVED_SI: tuple[tuple[str, str, str], ...] = (
+    ("M", "slider_mass", "kg"),
+    ("m", "head_mass", "kg"),
+    ("k_v", "k_v", "N/m"),
+    ("k_h", "k_h", "N/m"),
+    ("f_v", "f_v", "Hz"),
+    ("f_act", "f_act", "Hz"),
+    ("u_cal", "calibrated_amplitude", "m"),
+    ("f_c", "thermal_cutoff", "Hz"),
+    ("f_cal", "calibration_frequency", "Hz"),
+    ("u", "amplitude", "m"),
+    ("t_s", "time_scale", "s"),
+    ("ℓ", "length_scale", "m"),
+)
+
+
+# --- the JSON contract (pydantic models: validated output and its schema) -----------------
+
+
+class _Out(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+
+
+class RuleOut(_Out):
+    """One design rule's outcome."""
+
+    id: str
+    severity: Literal["error", "warning", "info"]
+    passed: bool
+    value: float | None = Field(description="the number checked, in value_unit (SI)")
+    value_unit: str = Field(description="SI unit of value; '' when dimensionless")
+    threshold: str
+    message: str
+    fix: str = Field(description="what to change to pass ('' when none is known)")
+    source: str
+
+
+class LambdaOut(_Out):
+    """The paper's λ criterion beside the exact answer (never decisive)."""
+
+    value: float
+    predicts: Literal["push", "pull"]
+    agrees: bool | None = Field(description="λ's mode equals the exact one (None: no mode)")
+
+
+class MarginOut(_Out):
+    """Does the exact mode survive fabrication spread (rule mode-margin)?"""
+
+    holds: bool | None = Field(description="same mode at every corner (None: not computed)")
+    corners: dict[str, str | None] = Field(description="exact mode at each perturbed corner")
+
+
+class SetOut(_Out):
+    """One actuator set: mode, speed and parameters."""
+
+    name: str
+    intended_mode: Literal["push", "pull"]
+    impact_direction: Literal["+x", "-x"]
+    mode: str = Field(
+        description="push, pull, stalled, not driven (no contact recurs) or unknown (no "
+        "exact orbit)"
+    )
+    passed: bool = Field(description="every error-severity rule of the set passes")
+    delta_s: float | None = Field(description="periodic slider increment per cycle [-]")
+    speed_m_s: float | None = Field(
+        description="mean slider speed magnitude [m/s] (the speed rule's: periodic, or "
+        "from rest over the travel range when it has not settled by then)"
+    )
+    travel_direction: Literal["+x", "-x"] | None
+    time_to_cross_s: float | None = Field(description="time to cross travel_range_m [s]")
+    travel_range_m: float
+    params: dict[str, float] = Field(
+        description="varpi, alpha, beta, kappa [-]; zeta_v, zeta_h, restitution [-] too when "
+        "the device gives damping or restitution"
+    )
+    lambda_: LambdaOut = Field(alias="lambda")
+    margin: MarginOut
+    adequacy: AdequacyOut | None = Field(None, description="model adequacy (rule of that name)")
+    derived: dict[str, float] = Field(description="SI floats, unit-named keys (f_act_hz, ...)")
+    rules: list[RuleOut]
+
+
+class DeviceOut(_Out):
+    """One device file."""
+
+    device: str
+    file: str
+    verdict: Literal["pass", "fail"]
+    failed: list[str] = Field(description="ids of failing error-severity rules")
+    sets: list[SetOut]
+    rules: list[RuleOut] = Field(description="device-level rules (not tied to a set)")
+    ignored: list[str] = Field(description="rule ids left out by --select/--ignore")
+    notes: list[str]
+    details: dict[str, Any] | None = Field(
+        None,
+        description="--verbose only: the checker's full record (fidelity, solver summary, "
+        "vertical motion, derivation); its shape is not covered by the version",
+    )
+
+
+class CheckOutput(_Out):
+    """``betv check --json``: one object for one or many files."""
+
+    schema_: Literal["betv-check"] = Field("betv-check", alias="schema")
+    version: Literal[1] = JSON_SCHEMA_VERSION
+    betvdesign: str = Field(description="betvdesign version that wrote this")
+    verdict: Literal["pass", "fail"] = Field(description="fail when any device fails")
+    devices: list[DeviceOut]
+
+
+def check_json_schema() -> dict[str, Any]:
+    """JSON schema of ``betv check --json`` (version :data:`JSON_SCHEMA_VERSION`)."""
+    schema = CheckOutput.model_json_schema(by_alias=True, mode="serialization")
+    schema["$schema"] = "https://json-schema.org/draft/2020-12/schema"
+    schema["title"] = f"betv check --json, version {JSON_SCHEMA_VERSION} (betvdesign)"
+    return schema
+
+
+# --- rule selection (--select/--ignore, [tool.betv]) -------------------------------------
+
+
+@dataclass(frozen=True)
+class RuleFilter:
+    """Which rules count: ``select`` (empty: all) minus ``ignore``. A selector matches a
+    rule id exactly or as a dotted prefix (``fit-range`` matches ``fit-range.beta``)."""
+
+    select: tuple[str, ...] = ()
+    ignore: tuple[str, ...] = ()
+
+    def keeps(self, rule_id: str) -> bool:
+        if self.select and not any(self._hit(rule_id, s) for s in self.select):
+            return False
+        return not any(self._hit(rule_id, s) for s in self.ignore)
+
+    def unmatched(self, results: Sequence[Any]) -> list[str]:
+        """A warning per selector that matches no rule of ``results`` (a typo, or a rule
+        these devices do not have, e.g. published-fit without a published fit), with the
+        closest rule id."""
+        ids = sorted({r.id for res in results for r in res.rules})
+        known = sorted(set(ids) | {i.split(".")[0] for i in ids})
+        out = []
+        for opt, sels in (("--select", self.select), ("--ignore", self.ignore)):
+            for s in sels:
+                if not any(self._hit(i, s) for i in ids):
+                    close = difflib.get_close_matches(s, known, n=1)
+                    hint = f"; did you mean {close[0]!r}?" if close else ""
+                    out.append(f"{opt} {s}: matches no rule of these devices{hint}")
+        return out
+
+    @staticmethod
+    def _hit(rule_id: str, sel: str) -> bool:
+        return rule_id == sel or rule_id.startswith(sel + ".")
+
+
+# --- the view of one device ---------------------------------------------------------------
+
+
+@dataclass
+class DeviceView:
+    """A checked device as a designer reads it (``repr`` one screen, ``_repr_html_``).
+
+    ``result`` is the full :class:`~betvdesign.checks.checker.CheckResult`; ``out`` its JSON
+    (:class:`DeviceOut`); ``rules`` the rules that count under ``rule_filter``.
+    """
+
+    result: Any  # betvdesign.checks.checker.CheckResult
+    rule_filter: RuleFilter = field(default_factory=RuleFilter)
+
+    @property
+    def rules(self) -> list[RuleResult]:
+        return [r for r in self.result.rules if self.rule_filter.keeps(r.id)]
+
+    @property
+    def verdict(self) -> Literal["pass", "fail"]:
+        """ "fail" when a counted error-severity rule fails."""
+        return "fail" if self.failed else "pass"
+
+    @property
+    def failed(self) -> list[str]:
+        return _unique(r.id for r in self.rules if r.severity == "error" and not r.passed)
+
+    @property
+    def out(self) -> DeviceOut:
+        return self.as_out()
+
+    def as_out(self, *, details: bool = False) -> DeviceOut:
+        """The JSON of this device (``details``: add the checker's full record)."""
+        res = self.result
+        return DeviceOut(
+            device=res.derivation.name,
+            file=res.source_file,
+            verdict=self.verdict,
+            failed=self.failed,
+            sets=[_set_out(sc, self.rule_filter) for sc in res.sets],
+            rules=[_rule_out(r) for r in self.rules if not r.set_name],
+            ignored=_unique(r.id for r in res.rules if not self.rule_filter.keeps(r.id)),
+            notes=list(res.notes),
+            details=res.as_dict() if details else None,
+        )
+
+    def text(self, width: int = 100) -> str:
+        """The compact block (plain text, ``width`` columns)."""
+        return "\n".join(compact_lines(self, width=width, markup=False))
+
+    def __repr__(self) -> str:
+        return self.text()
+
+    def _repr_html_(self) -> str:
+        return device_html(self)
+
+
+def _unique(items: Iterable[str]) -> list[str]:
+    return list(dict.fromkeys(items))
+
+
+def _rule_out(r: RuleResult) -> RuleOut:
+    v = r.value
+    return RuleOut(
+        id=r.id,
+        severity=r.severity,
+        passed=r.passed,
+        value=None if v is None or not math.isfinite(v) else float(v),
+        value_unit=rule_unit(r),
+        threshold=r.threshold,
+        message=r.message,
+        fix=str(getattr(r, "fix", "") or ""),
+        source=r.source,
+    )
+
+
+def set_motion(sc: Any) -> tuple[float | None, float | None, str | None]:
+    """(Δs [-], speed magnitude [m/s], travel direction) of a set: Δs of its exact periodic
+    orbit, the speed its speed rule reports; Nones where there is none."""
+    p = sc.periodic
+    ds = None
+    if p is not None and getattr(p, "success", False) and p.delta_s is not None:
+        ds = float(p.delta_s) if math.isfinite(float(p.delta_s)) else None
+    v = getattr(sc, "speed_m_s", None)
+    if v is None or not math.isfinite(v) or v == 0.0:
+        return ds, (0.0 if v == 0.0 else None), None
+    direction = "+x" if sc.derivation.impact_sign * (1 if v > 0 else -1) > 0 else "-x"
+    return ds, abs(float(v)), direction
+
+
+def _margin(sc: Any) -> tuple[bool | None, str]:
+    """(holds, short text) of the set's mode-margin rule."""
+    r = next((r for r in sc.rules if r.id == "mode-margin"), None)
+    if r is None:
+        return None, "margin not computed"
+    if r.passed:
+        return True, "mode holds at ϖ ±5 %, α ±10 %"
+    flips = r.value if r.value is not None and math.isfinite(r.value) else None
+    n = f"{flips:g} of 4 corners" if flips is not None else "some corners"
+    return False, f"mode flips at {n} of ϖ ±5 %, α ±10 %!"
+
+
+def _set_out(sc: Any, flt: RuleFilter) -> SetOut:
+    s = sc.derivation
+    ds, v, direction = set_motion(sc)
+    derived: dict[str, float] = {}
+    for sym, name, unit in _DERIVED_SI:
+        try:
+            q = s.step(sym).value
+        except KeyError:
+            continue
+        derived[si_key(name, unit)] = float(q.to(unit).magnitude)
+    rules = [r for r in sc.rules if flt.keeps(r.id)]
+    p = s.params
+    lam_mode = "push" if s.lam < 1.0 else "pull"
+    exact = sc.mode_predicted
+    holds, _ = _margin(sc)
+    return SetOut(
+        name=s.name,
+        intended_mode=s.intended_mode,
+        impact_direction=s.actuator_set.impact_direction,
+        mode=exact,
+        passed=not any(r.severity == "error" and not r.passed for r in rules),
+        delta_s=ds,
+        speed_m_s=v,
+        travel_direction=direction,  # type: ignore[arg-type]
+        time_to_cross_s=s.travel_range_m / v if v else None,
+        travel_range_m=s.travel_range_m,
+        params=p.as_dict(),
+        **{
+            "lambda": LambdaOut(
+                value=s.lam,
+                predicts=lam_mode,
+                agrees=(lam_mode == exact) if exact in ("push", "pull") else None,
+            )
+        },
+        margin=MarginOut(holds=holds, corners=dict(getattr(sc, "margin", None) or {})),
+        adequacy=adequacy_out(sc),
+        derived=derived,
+        rules=[_rule_out(r) for r in rules],
+    )
+
+
+# --- text ---------------------------------------------------------------------------------
+
+_TAG = {"error": ("FAIL", "bold red"), "warning": ("warn", "yellow"), "info": ("note", "dim")}
+
+
+def set_headline(sc: Any) -> tuple[str, str]:
+    """Two short lines for a set: mode, speed and margin; drive and parameters (plain)."""
+    s = sc.derivation
+    p = s.params
+    _, v, direction = set_motion(sc)
+    mode = sc.mode_predicted
+    if mode in ("push", "pull"):
+        agree = "as intended" if mode == s.intended_mode else f"instead of {s.intended_mode}"
+        head = f"{mode} {agree}"
+    else:
+        head = f"{mode} (intended {s.intended_mode})"
+    if v:
+        motion = (
+            f"{format_si(v, 'm/s')} toward {direction}, "
+            f"{format_si(s.travel_range_m, 'm')} in {format_si(s.travel_range_m / v, 's')}"
+        )
+    else:
+        none = "no periodic drive (impulsive hits only)" if mode == "not driven" else None
+        motion = "the slider does not move" if v == 0.0 else none or "no speed (no exact orbit)"
+    line1 = f"{head}, {motion}; {_margin(sc)[1]}"
+    lam_mode = "push" if s.lam < 1.0 else "pull"
+    word = "" if mode not in ("push", "pull") else (" agrees" if lam_mode == mode else " disagrees")
+    sc_ = s.scales
+    rolled = f" (roll-off ×{sc_.rolloff_factor:.3g})" if sc_.has_rolloff else ""
+    line2 = (
+        f"f_act {format_si(sc_.f_act_hz, 'Hz')}, u {format_si(sc_.u_m, 'm')}{rolled} | "
+        f"ϖ {fmt_x(p.varpi)} α {fmt_x(p.alpha)} β {fmt_x(p.beta)} κ {fmt_x(p.kappa)}"
+        f"{_beyond(p)} | λ {fmt_x(s.lam)} → {lam_mode}{word}"
+    )
+    return line1, line2
+
+
+def _beyond(p: Any) -> str:
+    """`` Q_v 30 Q_h ∞ e 0.1``: damping and restitution, when the device gives any."""
+    if p.ideal:
+        return ""
+    from betvdesign.model.damping import quality_from_zeta
+
+    q_v, q_h = ("∞" if z == 0 else fmt_x(quality_from_zeta(z)) for z in (p.zeta_v, p.zeta_h))
+    return f" Q_v {q_v} Q_h {q_h} e {fmt_x(p.restitution)}"
+
+
+def compact_lines(view: DeviceView, *, width: int = 100, markup: bool = True) -> list[str]:
+    """The default ``betv check`` block: verdict, one or two lines per set, the failing
+    rules (grouped across sets) with their fix. ``markup``: rich colour tags."""
+    from rich.markup import escape
+
+    esc = escape if markup else (lambda t: t)
+    res = view.result
+    colour = "green" if view.verdict == "pass" else "bold red"
+    verdict = view.verdict.upper()
+    head = f"{esc(res.derivation.name)}: " + (f"[{colour}]{verdict}[/]" if markup else verdict)
+    if res.source_file:
+        head += f"  ({esc(res.source_file)})"
+    lines = [head]
+    for sc in res.sets:
+        l1, l2 = set_headline(sc)
+        label = f"  {sc.derivation.name}: "
+        lines += _wrap(label + l1, width, len(label), esc)
+        lines += _wrap(" " * len(label) + l2, width, len(label), esc)
+        if (l3 := adequacy_line(sc)) is not None:
+            lines += _wrap(" " * len(label) + l3, width, len(label), esc)
+    groups: dict[tuple[str, str, str, str], list[str]] = {}
+    for r in view.rules:
+        if r.passed or r.severity == "info":
+            continue
+        key = (r.severity, r.id, r.message, str(getattr(r, "fix", "") or ""))
+        groups.setdefault(key, []).append(r.set_name)
+    for (sev, rid, msg, fix), names in sorted(groups.items(), key=lambda kv: kv[0][0] != "error"):
+        tag, style = _TAG[sev]
+        several = len(res.sets) > 1
+        where = f" [{', '.join(n for n in names if n)}]" if several and any(names) else ""
+        tag_s = f"[{style}]{tag}[/]" if markup else tag
+        text = f"{rid}{where}: {msg}"
+        wrapped = _wrap("  " + tag + " " + text, width, 7, esc)
+        wrapped[0] = wrapped[0].replace(tag, tag_s, 1)
+        lines += wrapped
+        if fix:
+            lines += _wrap("       fix: " + fix, width, 12, esc)
+    if not groups:
+        lines.append("  all rules pass")
+    flt = view.rule_filter
+    if flt.select:
+        lines += _wrap("  only rules: " + ", ".join(flt.select), width, 4, esc)
+    if flt.ignore:
+        lines += _wrap("  ignored: " + ", ".join(flt.ignore), width, 4, esc)
+    return lines
+
+
+def _wrap(text: str, width: int, indent: int, esc: Any) -> list[str]:
+    out = textwrap.wrap(
+        text, width=width, subsequent_indent=" " * indent, break_on_hyphens=False
+    ) or [text]
+    return [esc(line) for line in out]
+
+
+def quiet_line(view: DeviceView) -> str | None:
+    """One line for a failing device (``--quiet``), None when it passes."""
+    if view.verdict == "pass":
+        return None
+    return (
+        f"{view.result.source_file or view.result.derivation.name}: FAIL {', '.join(view.failed)}"
+    )
+
+
+def output(views: Sequence[DeviceView], *, details: bool = False) -> CheckOutput:
+    """The whole ``--json`` document for ``views`` (``details``: ``--verbose``)."""
+    from betvdesign import __version__
+
+    devices = [v.as_out(details=details) for v in views]
+    worst = "fail" if any(d.verdict == "fail" for d in devices) else "pass"
+    return CheckOutput(betvdesign=__version__, verdict=worst, devices=devices)
+
+
+def output_json(views: Sequence[DeviceView], *, details: bool = False) -> str:
+    """``betv check --json`` text (``details`` with ``--verbose``); None fields kept."""
+    doc = output(views, details=details).model_dump(mode="json", by_alias=True)
+    if not details:
+        for d in doc["devices"]:
+            d.pop("details")
+    return json.dumps(doc, indent=2, ensure_ascii=False)
+
+
+# --- HTML (notebooks) ---------------------------------------------------------------------
+
+
+def device_html(view: DeviceView) -> str:
+    """A small HTML table of the check (Jupyter ``_repr_html_``), escaped."""
+    e = html.escape
+    res = view.result
+    colour = "#1a7f37" if view.verdict == "pass" else "#cf222e"
+    rows = []
+    for sc in res.sets:
+        l1, l2 = set_headline(sc)
+        l3 = adequacy_line(sc)
+        l2 += "" if l3 is None else "\n" + l3
+        rows.append(
+            f"<tr><th>{e(sc.derivation.name)}</th><td>{e(l1)}<br><small>"
+            f"{e(l2).replace(chr(10), '<br>')}</small></td></tr>"
+        )
+    for r in view.rules:
+        if r.passed or r.severity == "info":
+            continue
+        fix = str(getattr(r, "fix", "") or "")
+        where = f" [{e(r.set_name)}]" if r.set_name else ""
+        rows.append(
+            f"<tr><th>{e(_TAG[r.severity][0])}</th><td><code>{e(r.id)}</code>{where}: "
+            f"{e(r.message)}" + (f"<br><b>fix:</b> {e(fix)}" if fix else "") + "</td></tr>"
+        )
+    return (
+        f"<div><b>{e(res.derivation.name)}</b>: "
+        f"<b style='color:{colour}'>{view.verdict.upper()}</b>"
+        f"<table>{''.join(rows)}</table></div>"
+    )

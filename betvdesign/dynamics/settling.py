@@ -1,0 +1,166 @@
+"""Settling from rest: how long until the slider shows its periodic speed (unit-free).
+
+The periodic Δs is what a device shows only after it settles (docs/MODEL.md,
+"Slider": settling can take from a few hundred to about 10⁵ cycles, and near ϖ → 2
+far more). :func:`settling` runs the exact transient from rest
+(:func:`betvdesign.dynamics.simulate`, compiled, states only) and measures
+
+- ``cycles_to_settle``: the first cycle m from which the running mean increment
+  (s_{m+k} − s_m)/k over the orbit's period k stays within ``rtol``·|Δs*| of the
+  periodic Δs* for every later simulated cycle (and for at least
+  :data:`MIN_TAIL` cycles);
+- ``cycles_to_cross``: the first cycle at which |s| reaches the travel range
+  (in units of u·cosθ), and ``crossing_delta_s`` = s/m there, the mean increment a
+  designer sees over the whole travel from rest.
+
+The transient is extended in doubling chunks up to ``max_cycles``. When it has not
+settled by then the result says so and ``settle_cycles`` is the lower bound
+``simulated_cycles``. No extrapolation is offered: the slowest Floquet multiplier
+describes only the last, linear stage of settling, and measured near ϖ → 2 it
+under-predicts the settling of the whole transient by factors of 2 to 25
+(tests/test_check_exact.py).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from betvdesign.model.params import ModelParams
+
+#: Settled means within this fraction of the periodic Δs [-].
+SETTLE_RTOL = 0.01
+#: Cycles within tolerance needed after the settling cycle before it is accepted.
+MIN_TAIL = 32
+#: First transient chunk and the cap on simulated cycles.
+FIRST_CHUNK = 512
+MAX_CYCLES = 200_000
+
+
+@dataclass(frozen=True)
+class Settling:
+    """Settling and crossing from rest (all counts in actuation cycles).
+
+    status: "settled" (within ``rtol`` of the periodic Δs for the rest of the run),
+    "not_settled" (not within ``simulated_cycles``, a lower bound on settling), or
+    "failed" (the transient itself failed; ``message`` says why).
+    """
+
+    status: str
+    message: str
+    cycles_to_settle: int | None
+    cycles_to_cross: int | None
+    crossing_delta_s: float | None
+    simulated_cycles: int
+    rtol: float = SETTLE_RTOL
+
+    @property
+    def settled(self) -> bool:
+        return self.status == "settled"
+
+    @property
+    def settle_cycles(self) -> float:
+        """Measured settling cycles, else their lower bound (the cycles simulated)."""
+        if self.cycles_to_settle is not None:
+            return float(self.cycles_to_settle)
+        return float(self.simulated_cycles)
+
+    def as_dict(self) -> dict[str, Any]:
+        return {
+            "status": self.status,
+            "message": self.message,
+            "cycles_to_settle": self.cycles_to_settle,
+            "cycles_to_cross": self.cycles_to_cross,
+            "crossing_delta_s": self.crossing_delta_s,
+            "simulated_cycles": self.simulated_cycles,
+            "rtol": self.rtol,
+        }
+
+
+def settling(
+    p: ModelParams,
+    delta_s: float,
+    *,
+    period_cycles: int = 1,
+    travel_s: float = math.inf,
+    mu_max: float | None = None,
+    rtol: float = SETTLE_RTOL,
+    max_cycles: int = MAX_CYCLES,
+) -> Settling:
+    """Transient from rest against the periodic increment ``delta_s`` [-] per cycle.
+
+    period_cycles: the orbit's period k (the running mean is taken over k cycles);
+    travel_s: travel range in units of u·cosθ [-] (inf: no crossing asked);
+    mu_max: slowest Floquet modulus |μ|max, quoted when settling is not reached.
+    """
+    from betvdesign.dynamics import simulate
+
+    k = max(1, int(period_cycles))
+    target = float(delta_s)
+    tol = rtol * abs(target)
+    s_all = [np.zeros(1)]
+    state = None
+    done, chunk = 0, FIRST_CHUNK
+    if math.isfinite(travel_s) and target != 0.0:
+        chunk = max(chunk, min(max_cycles, int(2 * travel_s / abs(target)) + 1))
+    settle: int | None = None
+    cross: int | None = None
+    while True:
+        n = min(chunk, max_cycles - done)
+        tr = simulate(p, n, state0=state, log_events=False)
+        if not tr.success:
+            return Settling(
+                "failed",
+                f"transient from rest failed after {done} cycles: {tr.message}",
+                None,
+                cross,
+                None,
+                done + len(tr.delta_s),
+            )
+        s_all.append(s_all[-1][-1] + tr.section[1:, 4] - tr.section[0, 4])
+        state = tr.section[-1].copy()
+        done += n
+        s = np.concatenate(s_all)
+        s_all = [s]
+        if cross is None and math.isfinite(travel_s):
+            hit = np.nonzero(np.abs(s) >= travel_s)[0]
+            cross = int(hit[0]) if len(hit) else None
+        settle = _settle_index(s, k, target, tol)
+        crossed = cross is not None or not math.isfinite(travel_s)
+        if (settle is not None and crossed) or done >= max_cycles:
+            break
+        chunk = done  # double the horizon
+    crossing = None if cross is None else float(s[cross] / cross)
+    if settle is not None:
+        return Settling(
+            "settled",
+            f"within {rtol:.0%} of the periodic Δs from cycle {settle} on "
+            f"({done} cycles simulated from rest)",
+            settle,
+            cross,
+            crossing,
+            done,
+        )
+    shown = f" (slowest Floquet multiplier |μ| = {mu_max:.6g})" if mu_max is not None else ""
+    return Settling(
+        "not_settled",
+        f"not within {rtol:.0%} of the periodic Δs after {done} cycles from rest{shown}",
+        None,
+        cross,
+        crossing,
+        done,
+    )
+
+
+def _settle_index(s: np.ndarray, k: int, target: float, tol: float) -> int | None:
+    """First m such that |(s_{j+k} − s_j)/k − target| ≤ tol for every j ≥ m, with at
+    least :data:`MIN_TAIL` such j; None when the run is too short to say."""
+    if len(s) <= k:
+        return None
+    mean = (s[k:] - s[:-k]) / k
+    bad = np.nonzero(np.abs(mean - target) > tol)[0]
+    first = int(bad[-1]) + 1 if len(bad) else 0
+    return first if len(mean) - first >= MIN_TAIL else None

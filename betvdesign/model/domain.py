@@ -1,0 +1,79 @@
+"""The design space of the BETV model: one home for its limits and for the mode of a Δs.
+
+Unit-free, below every solver and rule (imports only :mod:`betvdesign.model.params`):
+
+- the design window 0.5 ≤ ϖ < 2 and where impulsive hits end (docs/MODEL.md,
+  "Vertical motion");
+- the parameter range the λ fit was made on (docs/MODEL.md, "Push/pull criterion");
+- the tangential-resonance detuning the rules ask for;
+- :func:`mode_of`, the *only* place that turns a periodic increment Δs into a mode
+  ("push", "pull", or "stalled" when |Δs| is at the solver's round-off: a slider that
+  does not move is neither).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Literal
+
+from betvdesign.model.params import ModelParams
+
+#: Design window of the normalised frequency ϖ [-]: one hit per cycle, finite contact.
+VARPI_WINDOW: tuple[float, float] = (0.5, 2.0)
+#: Above the window, hits stay impulsive (zero contact) up to about this ϖ [-].
+VARPI_IMPULSIVE_END = 2.6
+#: Parameter ranges of the simulations the λ fit was made on (Shin et al. 2004, Fig. 7).
+FIT_RANGE: dict[str, tuple[float, float]] = {
+    "alpha": (0.1, 4.0),
+    "beta": (0.1, 1.5),
+    "kappa": (0.1, 0.4),
+}
+#: Relative tolerance at the fit-range edges (κ = 0.4·tan 45° = 0.39999...).
+FIT_EDGE_RTOL = 1e-9
+#: Minimum |a·ϖ² − 1| for a = α and a = α(1 + 1/β) (tangential resonance) [-].
+TANGENTIAL_DETUNING = 0.1
+#: |Δs| per cycle [-] at or below which the slider counts as stalled. The periodic
+#: orbit is accepted at a section residual ≤ 1e-10, so a Δs within 10× of that is
+#: not distinguishable from zero; in length it is < 1e-9·u·cosθ per cycle.
+DELTA_S_STALL = 1e-9
+
+Mode = Literal["push", "pull", "stalled"]
+
+
+def mode_of(delta_s: float | None) -> Mode | None:
+    """Mode of a periodic increment per cycle Δs [-] (MODEL.md, "Slider").
+
+    Δs > 0 push (the slider moves with the impact direction), Δs < 0 pull,
+    |Δs| ≤ :data:`DELTA_S_STALL` "stalled". None when Δs is missing or not finite.
+    """
+    if delta_s is None:
+        return None
+    d = float(delta_s)
+    if not math.isfinite(d):
+        return None
+    if abs(d) <= DELTA_S_STALL:
+        return "stalled"
+    return "push" if d > 0 else "pull"
+
+
+def in_window(varpi: float) -> bool:
+    """0.5 ≤ ϖ < 2 (the design window)."""
+    return VARPI_WINDOW[0] <= varpi < VARPI_WINDOW[1]
+
+
+def outside_fit_range(p: ModelParams) -> list[str]:
+    """The parameters (of α, β, κ) outside the range the λ fit was made on (edges with
+    round-off); [] when λ is not an extrapolation."""
+    return [
+        k
+        for k, (lo, hi) in FIT_RANGE.items()
+        if not lo * (1 - FIT_EDGE_RTOL) <= getattr(p, k) <= hi * (1 + FIT_EDGE_RTOL)
+    ]
+
+
+def resonance_detuning(p: ModelParams) -> tuple[str, float]:
+    """The tangential resonance closest to ϖ: (label, min |a·ϖ² − 1|) over
+    a = α (free flight) and a = α(1 + 1/β) (stick) [-]."""
+    w2 = p.varpi**2
+    cases = {"free flight a = α": p.alpha, "stick a = α(1 + 1/β)": p.alpha * (1 + 1 / p.beta)}
+    return min(((k, abs(a * w2 - 1.0)) for k, a in cases.items()), key=lambda t: t[1])

@@ -1,0 +1,36 @@
+"""Device spec -> dimensionless model: (ϖ, α, β, κ) and the optional terms, the scales
+back to SI and the record of every step. The only package that strips units.
+
+- :mod:`~betvdesign.nondim.device`: :func:`derive`, :func:`derive_file`,
+  :func:`derive_set`, :func:`derive_samples` (the paper's relations, MODEL.md
+  "Device-to-parameter relations");
+- :mod:`~betvdesign.nondim.terms`: the steps of the optional terms (thermal roll-off,
+  damping, restitution);
+- :mod:`~betvdesign.nondim.record`: what a derivation produces (plain data).
+
+Named ``nondim`` rather than ``derive`` so that the package does not shadow the public
+function :func:`betvdesign.derive`.
+"""
+
+from betvdesign.nondim.device import derive, derive_file, derive_samples, derive_set
+from betvdesign.nondim.record import (
+    DerivationStep,
+    DeviceDerivation,
+    FitComparison,
+    SampleDerivation,
+    Scales,
+    SetDerivation,
+)
+
+__all__ = [
+    "DerivationStep",
+    "DeviceDerivation",
+    "FitComparison",
+    "SampleDerivation",
+    "Scales",
+    "SetDerivation",
+    "derive",
+    "derive_file",
+    "derive_samples",
+    "derive_set",
+]

@@ -1,0 +1,254 @@
+"""What a derivation produces (plain data): the record of every step, the scales, the
+comparison with a published fit, the derivation of one actuator set and of a device;
+and the :class:`Recorder` that builds the record.
+
+Computed by :mod:`betvdesign.nondim.device` (the only module that strips units); read by
+rules, studies, reports and the CLI.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+import pint
+
+from betvdesign.errors import ParameterError
+from betvdesign.model import rolloff
+from betvdesign.model.params import ModelParams
+from betvdesign.spec.models import ActuatorSet, DeviceSpec, Mode
+from betvdesign.spec.units import format_quantity, ureg
+
+#: ASCII keys for JSON output of the symbols that are not ASCII already.
+_ASCII = {
+    "ρ": "rho",
+    "ρ_head": "rho_head",
+    "α": "alpha",
+    "ω": "omega",
+    "θ": "theta",
+    "μ": "mu",
+    "ϖ": "varpi",
+    "β": "beta",
+    "κ": "kappa",
+    "λ": "lambda",
+    "t_s": "time_scale",
+    "ℓ": "length_scale",
+    "τ_th": "tau_th",
+    "H(f_act)": "H_act",
+    "H(f_cal)": "H_cal",
+    "ζ_v": "zeta_v",
+    "ζ_h": "zeta_h",
+    "δ": "delta",
+}
+#: Keys of the dimensional values :meth:`SetDerivation.derived` reports.
+DERIVED_KEYS = (
+    "M",
+    "m",
+    "k_v",
+    "k_h",
+    "f_act",
+    "omega",
+    "u_cal",
+    "f_c",
+    "f_cal",
+    "u",
+    "time_scale",
+    "length_scale",
+)
+
+
+@dataclass(frozen=True)
+class DerivationStep:
+    """One number of the derivation: an input from the spec or a computed value.
+
+    symbol: e.g. "k_v"; description: words; formula: "m·(2π f_v)²" or
+    "spec: actuator.vertical_resonance" for inputs; value: pint Quantity in the
+    engineering unit it is best read in; inputs: symbols the formula uses.
+    """
+
+    symbol: str
+    description: str
+    formula: str
+    value: pint.Quantity
+    inputs: tuple[str, ...] = ()
+    key: str = ""
+
+    def __post_init__(self) -> None:
+        if not self.key:
+            object.__setattr__(self, "key", _ASCII.get(self.symbol, self.symbol))
+
+    @property
+    def value_str(self) -> str:
+        """The value as a short string with units, e.g. ``"0.0184 ug"``."""
+        return format_quantity(self.value, ".4g")
+
+    @property
+    def magnitude(self) -> float:
+        return float(self.value.magnitude)
+
+
+@dataclass(frozen=True)
+class Scales:
+    """Scales of the dimensionless model, float SI (MODEL.md, "Dimensionless model").
+
+    length_m: u·cosθ [m] (ζ and s scale); time_s: sqrt(m/k_v) [s] (τ = t/time_s);
+    f_act_hz: actuation frequency [Hz]; omega_rad_s: 2π f_act [rad/s];
+    u_m: amplitude at f_act [m] (after the thermal roll-off); theta_rad: impact angle [rad];
+    cutoff_hz: thermal cut-off f_c [Hz] (inf: no roll-off); calibration_hz: actuation
+    frequency f_cal of the amplitude calibration [Hz] (None without a cut-off).
+    """
+
+    length_m: float
+    time_s: float
+    f_act_hz: float
+    omega_rad_s: float
+    u_m: float
+    theta_rad: float
+    cutoff_hz: float = math.inf
+    calibration_hz: float | None = None
+
+    @property
+    def has_rolloff(self) -> bool:
+        """True when the device gives a thermal cut-off."""
+        return math.isfinite(self.cutoff_hz)
+
+    def amplitude_m(self, f_act_hz: Any) -> Any:
+        """Stroke u [m] at another actuation frequency [Hz] (float or array):
+        u·H(f)/H(f_act) (MODEL.md, "Thermal roll-off"); u itself without a cut-off."""
+        return self.u_m * rolloff.ratio(f_act_hz, self.f_act_hz, self.cutoff_hz)
+
+    @property
+    def rolloff_factor(self) -> float:
+        """H(f_act)/H(f_cal) [-]: the stroke at f_act relative to the calibrated one
+        (1 without a cut-off)."""
+        if self.calibration_hz is None:
+            return 1.0
+        return float(rolloff.ratio(self.f_act_hz, self.calibration_hz, self.cutoff_hz))
+
+    def speed_m_s(self, delta_s: float) -> float:
+        """Mean slider speed for a dimensionless per-cycle increment Δs [m/s]:
+        Δs·u·cosθ·f_act (MODEL.md, "Displacement per cycle")."""
+        return delta_s * self.length_m * self.f_act_hz
+
+
+@dataclass(frozen=True)
+class FitComparison:
+    """A computed parameter against the value(s) a publication fitted."""
+
+    name: str
+    computed: float
+    published: tuple[float, ...]
+
+    @property
+    def rel_diff(self) -> float:
+        """Smallest relative difference |computed − published|/published [-]."""
+        return min(abs(self.computed - p) / abs(p) for p in self.published)
+
+    def matches(self, rtol: float = 0.1) -> bool:
+        return self.rel_diff <= rtol
+
+
+@dataclass(frozen=True)
+class SetDerivation:
+    """Model parameters and scales of one actuator set, with their derivation."""
+
+    name: str
+    intended_mode: Mode
+    params: ModelParams
+    lam: float
+    scales: Scales
+    record: list[DerivationStep]
+    actuator_set: ActuatorSet
+    travel_range_m: float
+    published: list[FitComparison] = field(default_factory=list)
+
+    def step(self, symbol: str) -> DerivationStep:
+        """The record entry for ``symbol`` (KeyError if absent)."""
+        for s in self.record:
+            if s.symbol == symbol:
+                return s
+        raise KeyError(symbol)
+
+    @property
+    def mode_predicted(self) -> Mode:
+        return self.params.mode_predicted
+
+    @property
+    def impact_sign(self) -> int:
+        return 1 if self.actuator_set.impact_direction == "+x" else -1
+
+    def derived(self) -> dict[str, str]:
+        """Key dimensional values as strings with units (``{"M": "0.003961 ug", ...}``),
+        keyed by :data:`DERIVED_KEYS`."""
+        by_key = {s.key: s for s in self.record}
+        return {k: by_key[k].value_str for k in DERIVED_KEYS if k in by_key}
+
+
+@dataclass(frozen=True)
+class DeviceDerivation:
+    """Derivations of every actuator set of a device."""
+
+    name: str
+    spec: DeviceSpec
+    sets: list[SetDerivation]
+
+
+@dataclass(frozen=True)
+class SampleDerivation:
+    """:func:`derive_samples`: the model parameters and scales of many samples at once
+    (arrays of equal length, float SI; zeta_v, zeta_h, restitution 0 where the spec gives
+    none)."""
+
+    varpi: np.ndarray
+    alpha: np.ndarray
+    beta: np.ndarray
+    kappa: np.ndarray
+    length_m: np.ndarray
+    f_act_hz: np.ndarray
+    zeta_v: np.ndarray
+    zeta_h: np.ndarray
+    restitution: np.ndarray
+
+
+@functools.lru_cache(maxsize=64)
+def cached_unit(text: str) -> pint.Unit:
+    """A parsed unit of :data:`ureg` (parsing unit text dominates ``derive`` otherwise)."""
+    return ureg.Unit(text)
+
+
+class Recorder:
+    """Builds the record of a derivation: every step checked (finite, > 0 unless an
+    input or λ) and converted to the unit it is best read in."""
+
+    def __init__(self) -> None:
+        self.steps: list[DerivationStep] = []
+
+    def add(
+        self,
+        symbol: str,
+        description: str,
+        formula: str,
+        value: pint.Quantity,
+        inputs: tuple[str, ...] = (),
+        unit: str | None = None,
+    ) -> pint.Quantity:
+        if not isinstance(value, pint.Quantity):
+            value = ureg.Quantity(value, cached_unit(""))
+        if unit is not None:
+            value = value.to(cached_unit(unit))
+        if not formula.startswith("spec:") and symbol != "λ":
+            mag = np.asarray(value.magnitude, dtype=float)
+            if not np.all(np.isfinite(mag) & (mag > 0.0)):
+                shown = float(mag) if mag.ndim == 0 else "an invalid sample"
+                raise ParameterError(
+                    f"{symbol} = {formula} = {shown!r}: must be finite and > 0 "
+                    "(check the inputs for extreme or zero values)"
+                )
+        self.steps.append(DerivationStep(symbol, description, formula, value, inputs))
+        return value
+
+    def spec(self, symbol: str, description: str, path: str, value) -> pint.Quantity:
+        return self.add(symbol, description, f"spec: {path}", value)

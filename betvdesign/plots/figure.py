@@ -1,0 +1,159 @@
+"""Figure creation and reproducible SVG export shared by every plot family.
+
+Object-oriented matplotlib only (``matplotlib.figure.Figure``, never pyplot): no
+global state is touched, so figures can be built concurrently and the caller's
+own matplotlib set-up is left alone.
+
+Reproducibility: :func:`figure_svg` fixes ``svg.hashsalt`` (per figure, so the
+ids of several SVGs inlined into one HTML page cannot collide), drops the SVG
+date metadata, keeps text as ``<text>`` in DejaVu Sans (searchable; the viewer's
+installed font, never a download) and prefixes every ``id`` with the figure's key.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import io
+import re
+from collections.abc import Iterator
+from typing import Any
+
+import matplotlib
+from matplotlib.axes import Axes
+from matplotlib.figure import Figure
+
+from betvdesign.model import domain
+
+#: rcParams pinned for every figure of the package, independent of the user's
+#: matplotlibrc, so the same inputs give the same bytes on every machine.
+STYLE: dict[str, Any] = {
+    "font.family": "DejaVu Sans",
+    "font.size": 8.5,
+    "axes.titlesize": 9.0,
+    "axes.labelsize": 8.5,
+    "legend.fontsize": 7.5,
+    "xtick.labelsize": 7.5,
+    "ytick.labelsize": 7.5,
+    "lines.linewidth": 1.2,
+    "axes.grid": True,
+    "grid.alpha": 0.3,
+    "grid.linewidth": 0.5,
+    # Text stays <text> (DejaVu Sans): a third of the SVG size and WeasyPrint time of
+    # glyph paths, selectable/searchable in HTML and PDF; no font file is referenced.
+    "svg.fonttype": "none",
+    "svg.image_inline": True,
+    "path.simplify": True,
+    "axes.formatter.use_mathtext": True,
+    "mathtext.fontset": "dejavusans",
+}
+
+#: Colours of the slider/head contact phases (docs/MODEL.md, "Contact").
+PHASE_COLORS: dict[str, str] = {
+    "free": "#9e9e9e",
+    "slip": "#d62728",
+    "reverse": "#1f77b4",
+    "stick": "#2ca02c",
+}
+
+#: Colours of the two slider modes.
+MODE_COLORS: dict[str, str] = {"push": "#2ca02c", "pull": "#9467bd"}
+
+#: The design window (one home: betvdesign.model.domain), drawn on the figures.
+VARPI_WINDOW = domain.VARPI_WINDOW
+
+DEVICE_COLOR = "#d62728"
+
+
+@contextlib.contextmanager
+def figure_style() -> Iterator[None]:
+    """Context in which figures are built: the package's pinned rcParams."""
+    with matplotlib.rc_context(rc=STYLE):
+        yield
+
+
+def new_figure(
+    width_in: float = 6.4, height_in: float = 3.4, *, nrows: int = 1, ncols: int = 1, **kw: Any
+) -> tuple[Figure, Any]:
+    """A constrained-layout :class:`Figure` [inches] and its axes (array if several)."""
+    fig = Figure(figsize=(width_in, height_in), layout="constrained")
+    axes = fig.subplots(nrows, ncols, squeeze=True, **kw)
+    return fig, axes
+
+
+def axes_or_new(ax: Axes | None, width_in: float = 6.4, height_in: float = 3.4) -> Axes:
+    """``ax`` itself, or a fresh single-axes figure when ``ax`` is None."""
+    if ax is not None:
+        return ax
+    _, new_ax = new_figure(width_in, height_in)
+    return new_ax
+
+
+#: A physical axis: (physical units per dimensionless unit, axis label with the unit).
+Scale = tuple[float, str]
+
+
+def dimensionless_twin(ax: Axes, which: str, factor: float, label: str) -> Any:
+    """Secondary axis (top for "x", right for "y") giving the dimensionless value of a
+    physical primary axis whose data were multiplied by ``factor`` (physical first,
+    dimensionless second)."""
+
+    def fwd(v: Any) -> Any:
+        return v / factor
+
+    def inv(v: Any) -> Any:
+        return v * factor
+
+    if which == "x":
+        sec = ax.secondary_xaxis("top", functions=(fwd, inv))
+        sec.set_xlabel(label, fontsize=7.5, color="#555555")
+    else:
+        sec = ax.secondary_yaxis("right", functions=(fwd, inv))
+        sec.set_ylabel(label, fontsize=7.5, color="#555555")
+    sec.tick_params(labelsize=7, colors="#555555")
+    return sec
+
+
+_ID_RE = re.compile(r'\bid="([^"]+)"')
+
+
+def _prefix_ids(svg: str, prefix: str) -> str:
+    """Prefix every id of ``svg`` and every reference to it (href, url(#...))."""
+    ids = set(_ID_RE.findall(svg))
+    if not ids:
+        return svg
+
+    def sub_id(m: re.Match[str]) -> str:
+        return f'id="{prefix}-{m.group(1)}"'
+
+    def sub_ref(m: re.Match[str]) -> str:
+        name = m.group(2)
+        if name not in ids:
+            return m.group(0)
+        return f"{m.group(1)}#{prefix}-{name}{m.group(3)}"
+
+    svg = _ID_RE.sub(sub_id, svg)
+    return re.sub(r'(href="|url\()#([^")]+)([")])', sub_ref, svg)
+
+
+def figure_svg(fig: Figure, key: str) -> str:
+    """The figure as an ``<svg>`` element string, ready to inline into HTML.
+
+    Byte-reproducible: hash salt fixed to ``key``, no date metadata, ids
+    prefixed with ``key`` (a short [A-Za-z0-9_-] string unique within
+    the page). The XML prolog, DOCTYPE and RDF metadata are dropped.
+    """
+    if not re.fullmatch(r"[A-Za-z][A-Za-z0-9_-]*", key):
+        raise ValueError(f"figure key must be a simple identifier, got {key!r}")
+    buf = io.StringIO()
+    with matplotlib.rc_context(rc={**STYLE, "svg.hashsalt": f"betvdesign-{key}"}):
+        fig.savefig(buf, format="svg", metadata={"Date": None, "Creator": None})
+    text = buf.getvalue()
+    start = text.find("<svg")
+    if start < 0:  # pragma: no cover - matplotlib always writes an <svg> root
+        raise RuntimeError("matplotlib produced no <svg> element")
+    svg = text[start:].strip()
+    # The RDF <metadata> block only names matplotlib and the image type; dropping it
+    # leaves no namespace URI but the SVG/XLink ones in the page.
+    svg = re.sub(r"\s*<metadata>.*?</metadata>", "", svg, flags=re.S)
+    svg = re.sub(r'\s+xmlns:(?:dc|cc|rdf)="[^"]*"', "", svg)
+    return _prefix_ids(svg, key)

@@ -1,0 +1,30 @@
+"""Device specs: pint quantities and units, the pydantic models, the YAML loader with
+file:line:col messages, input limits, spec paths and what-if edits.
+
+Above :mod:`betvdesign.model`; units live here and in :mod:`betvdesign.nondim`, which
+strips them. Nothing below imports this package.
+
+The names of the former module ``betvdesign.spec`` (now :mod:`betvdesign.spec.models`)
+are still served from here for one release, with a ``DeprecationWarning``.
+"""
+
+from __future__ import annotations
+
+import importlib
+import warnings
+from typing import Any
+
+
+def __getattr__(name: str) -> Any:
+    if name.startswith("__"):
+        raise AttributeError(name)
+    models = importlib.import_module("betvdesign.spec.models")
+    if not hasattr(models, name):
+        raise AttributeError(f"module 'betvdesign.spec' has no attribute {name!r}")
+    warnings.warn(
+        f"betvdesign.spec.{name} moved to betvdesign.spec.models.{name}; the old path is "
+        "removed in the next release",
+        DeprecationWarning,
+        stacklevel=2,
+    )
+    return getattr(models, name)

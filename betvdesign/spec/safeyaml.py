@@ -1,0 +1,191 @@
+"""Bounded reading of YAML input files: size, encoding, nesting, alias expansion, strings.
+
+:func:`read_text` reads at most the file-size limit (so ``/dev/zero`` or a 50 MB
+file costs a bounded read) and decodes UTF-8 (with or without BOM) or BOM-marked
+UTF-16. :func:`check_events` walks the YAML *event* stream (ruamel's parser is
+iterative, unlike its composer, and stops at the first limit crossed, so a deeply
+nested or alias-bomb file is refused after a bounded amount of work) and raises a
+:class:`~betvdesign.errors.SpecError` at ``file:line:col`` naming the field and the
+limit. The limits live in :mod:`betvdesign.spec.limits`.
+"""
+
+from __future__ import annotations
+
+import codecs
+import os
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from ruamel.yaml import YAML
+from ruamel.yaml.events import (
+    AliasEvent,
+    CollectionEndEvent,
+    CollectionStartEvent,
+    MappingStartEvent,
+    ScalarEvent,
+)
+
+from betvdesign.errors import Location, SpecError, SpecIssue
+from betvdesign.spec import limits
+
+
+def _one(filename: str, message: str, line: int | None = None, col: int | None = None):
+    return SpecError([SpecIssue(Location(filename, line, col), "", message)])
+
+
+def read_text(path: str | os.PathLike[str]) -> str:
+    """Text of a YAML input file, read with the size limit; :class:`SpecError` otherwise."""
+    p = Path(path)
+    fname = str(p)
+    cap = limits.max_file_bytes()
+    try:
+        with open(p, "rb") as fh:
+            raw = fh.read(cap + 1)
+    except FileNotFoundError:
+        raise _one(fname, "file not found") from None
+    except IsADirectoryError:
+        raise _one(fname, "is a directory, expected a YAML file") from None
+    except OSError as exc:
+        raise _one(fname, f"cannot read file: {exc.strerror or exc}") from None
+    if len(raw) > cap:
+        size = _size(p)
+        got = f"{size:,} bytes" if size and size > cap else f"more than {cap:,} bytes"
+        raise _one(
+            fname,
+            f"file is {got}; the limit is {cap:,} bytes (set {limits.FILE_BYTES_ENV} to raise it)",
+        )
+    return decode(raw, fname)
+
+
+def _size(p: Path) -> int | None:
+    try:
+        return p.stat().st_size
+    except OSError:
+        return None
+
+
+def decode(raw: bytes, fname: str) -> str:
+    """UTF-8 (BOM optional) or UTF-16 with a BOM, as YAML 1.2 allows; else a SpecError
+    naming the line and column of the first undecodable byte."""
+    if raw.startswith((codecs.BOM_UTF16_LE, codecs.BOM_UTF16_BE)):
+        try:
+            return raw.decode("utf-16")
+        except UnicodeDecodeError as exc:
+            raise _one(fname, f"not valid UTF-16 text ({exc.reason} at byte {exc.start})") from None
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        line = raw.count(b"\n", 0, exc.start) + 1
+        col = exc.start - (raw.rfind(b"\n", 0, exc.start) + 1) + 1
+        raise _one(
+            fname,
+            f"not UTF-8 text ({exc.reason}, byte 0x{raw[exc.start]:02x}); save the file as UTF-8",
+            line,
+            col,
+        ) from None
+    return text.removeprefix("\ufeff")
+
+
+@dataclass
+class _Frame:
+    """One open mapping or sequence during the event walk."""
+
+    path: str
+    is_map: bool
+    anchor: str | None
+    nodes: int = 1
+    depth: int = 1  # levels below and including this one
+    index: int = 0  # items seen (sequence) or keys+values seen (mapping)
+    key: Any = None
+    children: list[Any] = field(default_factory=list)
+
+
+def check_events(text: str, filename: str) -> None:
+    """Walk the YAML events of ``text``; raise :class:`SpecError` at the first limit crossed.
+
+    Alias expansion is counted as the composer and the validation will see it: an
+    alias (or a ``<<`` merge) costs the nodes and depth of what it names. Malformed
+    YAML raises ruamel's own ``MarkedYAMLError`` (the loader reports it).
+    """
+    sizes: dict[str, tuple[int, int]] = {}  # anchor -> (nodes, depth)
+    stack: list[_Frame] = []
+    total = 0
+
+    def fail(event: Any, path: str, message: str) -> None:
+        m = event.start_mark
+        if len(path) > 120:
+            path = path[:60] + "…" + path[-59:]
+        raise SpecError([SpecIssue(Location(filename, m.line + 1, m.column + 1), path, message)])
+
+    def child_path() -> str:
+        if not stack:
+            return ""
+        top = stack[-1]
+        if top.is_map:
+            if top.index % 2 == 0:  # a key
+                return top.path
+            key = top.key
+            return f"{top.path}.{key}" if top.path else str(key)
+        return f"{top.path}[{top.index}]"
+
+    def add(nodes: int, depth: int, event: Any, path: str) -> None:
+        nonlocal total
+        if stack:
+            top = stack[-1]
+            top.nodes += nodes
+            top.depth = max(top.depth, depth + 1)
+            top.index += 1
+        else:
+            total += nodes
+        running = total + sum(f.nodes for f in stack)
+        if running > limits.MAX_YAML_NODES:
+            fail(
+                event,
+                path,
+                f"more than {limits.MAX_YAML_NODES:,} YAML nodes"
+                + (" once aliases are expanded" if sizes else "")
+                + "; a device file has a few hundred",
+            )
+        if len(stack) + depth > limits.MAX_YAML_DEPTH:
+            fail(event, path, f"YAML nested deeper than {limits.MAX_YAML_DEPTH} levels")
+
+    for event in YAML(typ="rt").parse(text):
+        if isinstance(event, ScalarEvent):
+            path = child_path()
+            value = event.value
+            if len(value) > limits.MAX_STRING_CHARS:
+                fail(
+                    event,
+                    path,
+                    f"string of {len(value):,} characters; the limit is "
+                    f"{limits.MAX_STRING_CHARS:,}",
+                )
+            if stack and stack[-1].is_map and stack[-1].index % 2 == 0:
+                stack[-1].key = value
+            if event.anchor:
+                sizes[event.anchor] = (1, 0)
+            add(1, 0, event, path)
+        elif isinstance(event, AliasEvent):
+            path = child_path()
+            if any(f.anchor == event.anchor for f in stack):
+                fail(
+                    event,
+                    path,
+                    f"alias *{event.anchor} refers to a mapping or list that contains it "
+                    "(a recursive structure)",
+                )
+            nodes, depth = sizes.get(event.anchor, (1, 0))
+            if stack and stack[-1].is_map and stack[-1].index % 2 == 0:
+                stack[-1].key = f"*{event.anchor}"
+            add(nodes, depth, event, path)
+        elif isinstance(event, CollectionStartEvent):
+            path = child_path()
+            if len(stack) + 1 > limits.MAX_YAML_DEPTH:
+                fail(event, path, f"YAML nested deeper than {limits.MAX_YAML_DEPTH} levels")
+            stack.append(_Frame(path, isinstance(event, MappingStartEvent), event.anchor))
+        elif isinstance(event, CollectionEndEvent):
+            frame = stack.pop()
+            if frame.anchor:
+                sizes[frame.anchor] = (frame.nodes, frame.depth)
+            add(frame.nodes, frame.depth, event, frame.path)

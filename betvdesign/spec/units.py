@@ -1,0 +1,312 @@
+"""The package's one pint registry and pydantic field types for physical quantities.
+
+Device files give every dimensional value as a string with units ("5 um",
+"2.94 kHz", "45 deg", "0.036 ug"). The types here parse such strings with
+:data:`ureg`, check the dimension, reject bare numbers where a unit is due,
+enforce simple bounds, and serialise back to strings that parse again.
+
+Only :mod:`betvdesign.nondim.device` strips units; every other layer above the spec keeps
+pint quantities or unit-free model parameters.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass
+from typing import Annotated, Any
+
+import pint
+from pydantic import GetCoreSchemaHandler, GetJsonSchemaHandler
+from pydantic.json_schema import JsonSchemaValue
+from pydantic_core import PydanticCustomError, core_schema
+
+from betvdesign.spec import limits
+
+#: The one unit registry of the package. Quantities from another registry cannot mix.
+ureg = pint.UnitRegistry()
+Quantity = ureg.Quantity
+
+#: Dimension labels accepted by :class:`QuantitySpec` (pint dimensionality strings).
+#: "angle" is special: pint treats radians as dimensionless, so angles are recognised
+#: by their root unit (radian) instead.
+ANGLE = "angle"
+
+
+#: A number: decimal or scientific, or nan/inf (refused later as not finite, by name).
+_NUMBER = r"[+-]?(?:(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?|nan|inf(?:inity)?)"
+#: One unit factor: a name with at most one numeric power (``m^3``, ``V**-2``).
+_NAME = re.compile(r"[^\W\d]\w*")
+_POWER = re.compile(r"(?:\*\*|\^)\s*([+-]?\d+(?:\.\d+)?)")
+_SHAPE = re.compile(
+    rf"\s*(?P<num>{_NUMBER})?\s*"
+    r"(?P<units>(?:[%°µμΩ]|[^\W\d])[\w°µμΩ]*(?:\s*(?:\*\*|\^)\s*[+-]?\d+(?:\.\d+)?)?"
+    r"(?:\s*(?:[*/]\s*|\s)\s*(?:[%°µμΩ]|[^\W\d])[\w°µμΩ]*"
+    r"(?:\s*(?:\*\*|\^)\s*[+-]?\d+(?:\.\d+)?)?)*)?\s*",
+    re.IGNORECASE,
+)
+
+
+def _check_shape(text: str) -> None:
+    """Bound the work pint may do on ``text`` before it sees it: a number and at most
+    :data:`~betvdesign.spec.limits.MAX_UNIT_FACTORS` unit names joined by ``*``, ``/`` or
+    spaces, each with at most one integer power of modest size. No parentheses, no
+    powers of powers, no arithmetic on numbers: a quantity is written "2330 kg/m^3"."""
+    if len(text) > limits.MAX_QUANTITY_CHARS:
+        raise ValueError(
+            f"quantity string of {len(text)} characters; the limit is "
+            f"{limits.MAX_QUANTITY_CHARS} (expected e.g. '5 um')"
+        )
+    m = _SHAPE.fullmatch(text)
+    if m is None or (m.group("num") is None and m.group("units") is None):
+        raise ValueError(
+            f"cannot read {text!r} as a quantity: write a number and units such as "
+            "'5 um' or '2330 kg/m^3' (one power per unit, no parentheses or arithmetic)"
+        )
+    units = m.group("units") or ""
+    n_factors = len(_NAME.findall(_POWER.sub("", units)))
+    if n_factors > limits.MAX_UNIT_FACTORS:
+        raise ValueError(
+            f"{text!r} has {n_factors} unit factors; the limit is {limits.MAX_UNIT_FACTORS}"
+        )
+    for exp in _POWER.findall(units):
+        if abs(float(exp)) > limits.MAX_UNIT_EXPONENT:
+            raise ValueError(
+                f"unit power {exp} in {text!r} exceeds the limit of ±{limits.MAX_UNIT_EXPONENT}"
+            )
+
+
+def parse_quantity(text: str) -> pint.Quantity:
+    """Parse ``"5 um"`` into a quantity of :data:`ureg`.
+
+    The text is first checked against a bounded shape (:func:`_check_shape`: length,
+    number of unit factors, one modest power each), so a hostile string cannot make
+    pint evaluate towers of powers. Raises ``ValueError`` with a user-facing message
+    for text that fails the check or that pint cannot read.
+    """
+    _check_shape(text)
+    try:
+        q = ureg.Quantity(text)
+    except pint.UndefinedUnitError as exc:
+        raise ValueError(f"unknown unit in {text!r}: {exc}") from None
+    except pint.OffsetUnitCalculusError:
+        raise ValueError(
+            f"{text!r}: offset units (degC, degF) have no meaning here; use kelvin or a "
+            "unit of the field's dimension"
+        ) from None
+    except Exception:  # pint's tokenizer raises assorted errors for malformed text
+        raise ValueError(f"cannot read {text!r} as a quantity (expected e.g. '5 um')") from None
+    if not isinstance(q, pint.Quantity):  # e.g. a bare unit name parses to a Unit
+        q = ureg.Quantity(1.0, q)
+    return q
+
+
+def parse_positive(text: str, unit: str, what: str) -> float:
+    """Magnitude in ``unit`` of a user-given quantity such as ``"1 mm/s"`` (a CLI option
+    named ``what``); :class:`~betvdesign.errors.UsageError` unless it parses, has the
+    dimension of ``unit`` and is finite and > 0."""
+    from betvdesign.errors import UsageError
+
+    try:
+        q = parse_quantity(text)
+        v = float(q.to(unit).magnitude)
+    except (ValueError, pint.DimensionalityError, pint.PintError) as exc:
+        raise UsageError(f"{what}: {exc} (expected a quantity in units of {unit})") from None
+    if not (math.isfinite(v) and v > 0):
+        raise UsageError(f"{what}: must be finite and > 0, got {text!r}")
+    return v
+
+
+def parse_speed(text: str, what: str = "speed") -> float:
+    """A speed such as ``"1 mm/s"`` in m/s (see :func:`parse_positive`)."""
+    return parse_positive(text, "m/s", what)
+
+
+def parse_units(text: str) -> pint.Unit:
+    """Parse a unit expression such as ``"um/s"`` with the same bounds as
+    :func:`parse_quantity`; ``ValueError`` with a user-facing message otherwise."""
+    q = parse_quantity(text)
+    if q.magnitude != 1:
+        raise ValueError(f"{text!r} is not a unit (it has the factor {q.magnitude:g})")
+    return q.units
+
+
+def format_quantity(q: pint.Quantity, fmt: str = "") -> str:
+    """Write a quantity as a string that :func:`parse_quantity` reads back.
+
+    ``fmt`` is a float format spec (e.g. ``".4g"``); empty keeps full precision.
+    The micro sign is written as ``u`` so files stay ASCII.
+    """
+    mag = q.magnitude
+    if isinstance(mag, float):
+        mag_s = format(mag, fmt) if fmt else repr(mag)
+    else:
+        mag_s = format(mag, fmt) if fmt else str(mag)
+    unit_s = format(q.units, "~C").replace("µ", "u").replace("μ", "u")
+    return f"{mag_s} {unit_s}".strip() if unit_s else mag_s
+
+
+def is_angle(q: pint.Quantity) -> bool:
+    """True when ``q`` is expressed in an angle unit (deg, rad, ...)."""
+    return ureg.get_root_units(q.units)[1] == ureg.radian
+
+
+@dataclass(frozen=True)
+class QuantitySpec:
+    """Pydantic annotation: a quantity of one dimension, with optional bounds.
+
+    dimension: a label for messages (``"[length]"``) or :data:`ANGLE`.
+    unit: the canonical unit; it fixes the dimension checked and the unit of the bounds.
+    example: shown in messages and in the JSON schema.
+    gt/ge/lt: bounds in ``unit`` (exclusive/inclusive/exclusive).
+    """
+
+    dimension: str
+    unit: str
+    example: str
+    gt: float | None = None
+    ge: float | None = None
+    lt: float | None = None
+
+    # --- validation -----------------------------------------------------------------
+    def validate(self, value: Any) -> pint.Quantity:
+        if isinstance(value, bool) or isinstance(value, int | float):
+            raise PydanticCustomError(
+                "missing_unit",
+                "missing unit: got the bare number {value}, write it with units, e.g. '{example}'",
+                {"value": value, "example": self.example},
+            )
+        if isinstance(value, pint.Quantity):
+            if value._REGISTRY is not ureg:
+                raise PydanticCustomError(
+                    "foreign_registry", "quantity from another pint registry; use betvdesign.ureg"
+                )
+            q = value
+        elif isinstance(value, str):
+            try:
+                q = parse_quantity(value)
+            except ValueError as exc:
+                raise PydanticCustomError("bad_quantity", str(exc)) from None
+            if _SHAPE.fullmatch(value).group("num") is None:  # parse_quantity matched it
+                raise PydanticCustomError(
+                    "missing_number",
+                    "missing number in {text!r}: write e.g. '{example}'",
+                    {"text": value, "example": self.example},
+                )
+            if q.units == ureg.dimensionless:
+                raise PydanticCustomError(
+                    "missing_unit",
+                    "missing unit in {text!r}: write it with units, e.g. '{example}'",
+                    {"text": value, "example": self.example},
+                )
+        else:
+            raise PydanticCustomError(
+                "bad_quantity",
+                "expected a quantity string such as '{example}', got {kind}",
+                {"example": self.example, "kind": type(value).__name__},
+            )
+        self._check_dimension(q)
+        mag = q.to(self.unit).magnitude
+        if not math.isfinite(float(mag)):
+            raise PydanticCustomError("not_finite", "value must be finite, got {q}", {"q": str(q)})
+        self._check_bounds(q, float(mag))
+        return q
+
+    def _check_dimension(self, q: pint.Quantity) -> None:
+        if self.dimension == ANGLE:
+            ok = is_angle(q)
+            want = "an angle"
+        else:
+            ok = q.dimensionality == ureg.parse_units(self.unit).dimensionality
+            want = f"dimension {self.dimension}"
+        if not ok:
+            raise PydanticCustomError(
+                "wrong_dimension",
+                "wrong dimension: {got} has {dim}, expected {want} (e.g. '{example}')",
+                {
+                    "got": format_quantity(q),
+                    "dim": "no angle unit" if self.dimension == ANGLE else str(q.dimensionality),
+                    "want": want,
+                    "example": self.example,
+                },
+            )
+
+    def _check_bounds(self, q: pint.Quantity, mag: float) -> None:
+        u = self.unit
+        if self.gt is not None and not mag > self.gt:
+            raise PydanticCustomError(
+                "out_of_range",
+                "must be > {b} {u}, got {q}",
+                {"b": f"{self.gt:g}", "u": u, "q": format_quantity(q)},
+            )
+        if self.ge is not None and not mag >= self.ge:
+            raise PydanticCustomError(
+                "out_of_range",
+                "must be >= {b} {u}, got {q}",
+                {"b": f"{self.ge:g}", "u": u, "q": format_quantity(q)},
+            )
+        if self.lt is not None and not mag < self.lt:
+            raise PydanticCustomError(
+                "out_of_range",
+                "must be < {b} {u}, got {q}",
+                {"b": f"{self.lt:g}", "u": u, "q": format_quantity(q)},
+            )
+
+    # --- pydantic hooks -------------------------------------------------------------
+    def __get_pydantic_core_schema__(
+        self, source: Any, handler: GetCoreSchemaHandler
+    ) -> core_schema.CoreSchema:
+        return core_schema.no_info_plain_validator_function(
+            self.validate,
+            serialization=core_schema.plain_serializer_function_ser_schema(
+                format_quantity, when_used="always"
+            ),
+        )
+
+    def __get_pydantic_json_schema__(
+        self, schema: core_schema.CoreSchema, handler: GetJsonSchemaHandler
+    ) -> JsonSchemaValue:
+        bounds = []
+        if self.gt is not None:
+            bounds.append(f"> {self.gt:g} {self.unit}")
+        if self.ge is not None:
+            bounds.append(f">= {self.ge:g} {self.unit}")
+        if self.lt is not None:
+            bounds.append(f"< {self.lt:g} {self.unit}")
+        dim = "an angle" if self.dimension == ANGLE else self.dimension
+        desc = f"Quantity string with units of {dim}"
+        if bounds:
+            desc += ", " + " and ".join(bounds)
+        return {
+            "x-quantity": desc,
+            "type": "string",
+            "pattern": r"^\s*[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?\s*\S.*$",
+            "description": desc,
+            "examples": [self.example],
+        }
+
+
+def _q(dimension: str, unit: str, example: str, **bounds: float) -> Any:
+    return Annotated[pint.Quantity, QuantitySpec(dimension, unit, example, **bounds)]
+
+
+# Field types used by :mod:`betvdesign.spec.models`. Positive unless the name says otherwise.
+Length = _q("[length]", "m", "5 um", gt=0.0)
+NonNegativeLength = _q("[length]", "m", "0.11 um", ge=0.0)
+Mass = _q("[mass]", "kg", "0.036 ug", gt=0.0)
+NonNegativeMass = _q("[mass]", "kg", "0 ug", ge=0.0)
+Frequency = _q("[frequency]", "Hz", "2.94 kHz", gt=0.0)
+Duration = _q("[time]", "s", "0.2 ms", gt=0.0)
+Density = _q("[mass]/[length]**3", "kg/m**3", "2330 kg/m^3", gt=0.0)
+Stiffness = _q("[mass]/[time]**2", "N/m", "12 N/m", gt=0.0)
+Voltage = _q("[voltage]", "V", "8 V", gt=0.0)
+NonNegativeVoltage = _q("[voltage]", "V", "0 V", ge=0.0)
+#: Impact angle θ: strictly between 0° and 90° (tanθ must be finite and positive).
+ImpactAngle = _q(ANGLE, "deg", "45 deg", gt=0.0, lt=90.0)
+LinearGain = _q("[length]/[voltage]", "m/V", "0.01375 um/V", gt=0.0)
+QuadraticGain = _q("[length]/[voltage]**2", "m/V**2", "0.0017 um/V^2", gt=0.0)
+
+
+def to_float(q: pint.Quantity, unit: str) -> float:
+    """Magnitude of ``q`` in ``unit`` as a float (used by :mod:`betvdesign.nondim.device`)."""
+    return float(q.to(unit).magnitude)

@@ -1,0 +1,367 @@
+"""Executors: run one study serially, on local processes, or on a dask cluster.
+
+Every study is a list of independent tasks and a module-level worker function
+``fn(task) -> row`` taking and returning plain picklable data. An executor
+splits the tasks into chunks (to amortise inter-process traffic), runs
+``fn`` over each chunk somewhere, and yields each finished chunk's rows as
+soon as it completes (completion order, not task order). Rows carry their
+grid key, so the caller (``studies.runner``) can stream them to disk and a
+resumed run can skip what is finished.
+
+Backends:
+
+* :class:`SerialExecutor` -- in this process; the reference, and what tests and
+  debuggers want.
+* :class:`ProcessExecutor` -- ``concurrent.futures`` over ``forkserver``
+  processes (safe next to threads; the default, all cores).
+* :class:`DaskExecutor` -- a ``dask.distributed`` scheduler (``tcp://host:port``)
+  or a given ``Client``; dask is an optional extra (``pip install betvdesign[dask]``).
+
+Work is submitted through a bounded window of in-flight chunks, so a study of
+millions of points does not create millions of futures, and an interrupted run
+(exception, Ctrl-C) cancels what has not started.
+
+All three run the same worker code, so they return bitwise-identical floats.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import itertools
+import math
+import multiprocessing
+import os
+import select
+import signal
+import threading
+import time
+from collections.abc import Callable, Iterator, Sequence
+from concurrent.futures import (
+    FIRST_COMPLETED,
+    Future,
+    InvalidStateError,
+    ProcessPoolExecutor,
+    wait,
+)
+from dataclasses import dataclass, field
+from typing import Any, Protocol
+
+from betvdesign.errors import UsageError
+from betvdesign.spec import limits
+
+Task = Any
+Row = dict[str, Any]
+Worker = Callable[[Task], Row]
+
+#: Modules the fork server imports once so workers start warm (missing ones are skipped).
+_PRELOAD = (
+    "numpy",
+    "scipy.optimize",
+    "betvdesign.spec.loader",
+    "betvdesign.nondim.device",
+    "betvdesign.dynamics",
+)
+
+#: Chunks per worker the default chunk size aims at.
+_CHUNKS_PER_WORKER = 16
+
+#: In-flight chunks per worker (keeps workers busy without flooding the queue).
+_WINDOW_PER_WORKER = 4
+
+
+def _watch_parent(pid: int) -> None:
+    """Exit this worker as soon as process ``pid`` (the study's main process) is gone.
+
+    Workers are children of the fork server, not of the main process, so neither
+    their parent's exit nor a closed queue tells them that the main process was
+    killed (SIGKILL runs no clean-up): without this they would wait for work for
+    ever. A ``pidfd`` (Linux >= 5.3) wakes the thread the moment ``pid`` exits;
+    elsewhere it polls every 0.2 s.
+    """
+    try:
+        fd = os.pidfd_open(pid)
+    except (AttributeError, OSError):
+        fd = None
+    if fd is not None:
+        select.select([fd], [], [])
+        os._exit(1)
+    while True:
+        try:
+            os.kill(pid, 0)
+        except ProcessLookupError:
+            os._exit(1)
+        except PermissionError:  # pid reused by another user's process: ours is gone
+            os._exit(1)
+        time.sleep(0.2)
+
+
+def _init_worker(main_pid: int) -> None:
+    """Worker start-up: Ctrl-C is the main process's to handle (it stops the pool;
+    a worker printing its own KeyboardInterrupt traceback would only be noise), and
+    a watchdog ends the worker when the main process is gone."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    threading.Thread(
+        target=_watch_parent, args=(main_pid,), name="betv-parent-watch", daemon=True
+    ).start()
+
+
+def apply_chunk(fn: Worker, chunk: Sequence[Task]) -> list[Row]:
+    """Run ``fn`` over one chunk of tasks (module level so it pickles by reference)."""
+    return [fn(task) for task in chunk]
+
+
+def chunked(tasks: Sequence[Task], size: int) -> list[list[Task]]:
+    """Split ``tasks`` into consecutive chunks of at most ``size`` items."""
+    if size < 1:
+        raise UsageError(f"chunk size must be >= 1, got {size}")
+    return [list(tasks[i : i + size]) for i in range(0, len(tasks), size)]
+
+
+def default_chunksize(n_tasks: int, workers: int) -> int:
+    """About sixteen chunks per worker, between 1 and 32 tasks each.
+
+    Point costs are heavy-tailed (a point that never settles burns the whole
+    cycle budget), so many small chunks balance the load; a chunk of even one
+    periodic solve (milliseconds) still dwarfs the inter-process overhead.
+    """
+    if n_tasks <= 0:
+        return 1
+    return max(1, min(32, math.ceil(n_tasks / (_CHUNKS_PER_WORKER * max(1, workers)))))
+
+
+@dataclass
+class ExecutorInfo:
+    """What ran a study (recorded in the results sidecar)."""
+
+    backend: str
+    workers: int
+    chunksize: int | None
+    scheduler: str | None = None
+    extra: dict[str, Any] = field(default_factory=dict)
+
+
+class Executor(Protocol):
+    """Runs a worker over tasks and yields finished chunks of rows."""
+
+    def info(self) -> ExecutorInfo: ...
+
+    def run(self, fn: Worker, tasks: Sequence[Task]) -> Iterator[list[Row]]: ...
+
+
+class SerialExecutor:
+    """Runs every task in this process, in order; chunks only to pace the output."""
+
+    def __init__(self, chunksize: int | None = None):
+        self.chunksize = chunksize
+
+    def info(self) -> ExecutorInfo:
+        return ExecutorInfo("serial", 1, self.chunksize)
+
+    def run(self, fn: Worker, tasks: Sequence[Task]) -> Iterator[list[Row]]:
+        size = self.chunksize or default_chunksize(len(tasks), 1)
+        for chunk in chunked(tasks, size):
+            yield apply_chunk(fn, chunk)
+
+
+def _drain(
+    submit: Callable[[list[Task]], Any],
+    chunks: list[list[Task]],
+    window: int,
+    wait_any: Callable[[set[Any]], tuple[set[Any], set[Any]]],
+    result: Callable[[Any], list[Row]],
+    cancel: Callable[[Any], Any],
+) -> Iterator[list[Row]]:
+    """Bounded-window submit/yield loop shared by the pool backends."""
+    pending: set[Any] = set()
+    todo = iter(chunks)
+    try:
+        for chunk in itertools.islice(todo, window):
+            pending.add(submit(chunk))
+        while pending:
+            done, pending = wait_any(pending)
+            for fut in done:
+                rows = result(fut)
+                nxt = next(todo, None)
+                if nxt is not None:
+                    pending.add(submit(nxt))
+                yield rows
+    finally:
+        for fut in pending:
+            cancel(fut)
+
+
+class ProcessExecutor:
+    """Local worker processes (``forkserver``); default workers = ``os.cpu_count()``."""
+
+    def __init__(self, workers: int | None = None, chunksize: int | None = None):
+        if workers is not None and workers < 1:
+            raise UsageError(f"workers must be >= 1, got {workers}")
+        self.workers = workers or os.cpu_count() or 1
+        self.chunksize = chunksize
+
+    def info(self) -> ExecutorInfo:
+        return ExecutorInfo("process", self.workers, self.chunksize)
+
+    def run(self, fn: Worker, tasks: Sequence[Task]) -> Iterator[list[Row]]:
+        if not tasks:
+            return
+        size = self.chunksize or default_chunksize(len(tasks), self.workers)
+        chunks = chunked(tasks, size)
+        workers = min(self.workers, len(chunks))
+        ctx = multiprocessing.get_context("forkserver")
+        # Import the heavy modules once in the fork server, not in every worker.
+        ctx.set_forkserver_preload([*_PRELOAD, fn.__module__])
+        pool = ProcessPoolExecutor(
+            max_workers=workers,
+            mp_context=ctx,
+            initializer=_init_worker,
+            initargs=(os.getpid(),),
+        )
+        finished = False
+        try:
+            yield from _drain(
+                lambda chunk: pool.submit(apply_chunk, fn, chunk),
+                chunks,
+                _WINDOW_PER_WORKER * workers,
+                _wait_first,
+                Future.result,
+                Future.cancel,
+            )
+            finished = True
+        finally:
+            if not finished:  # interrupted (signal, error): stop now, not after the chunks
+                _terminate(pool)
+            pool.shutdown(wait=True, cancel_futures=True)
+
+
+def _terminate(pool: ProcessPoolExecutor) -> None:
+    """Terminate the pool's worker processes and shut the pool down (the rows they
+    finished are already ours; what they were computing is recomputed on resume).
+
+    The pool's manager thread then marks the futures it still holds as broken; on
+    Python < 3.12 it raises ``InvalidStateError`` for those already cancelled
+    (CPython gh-94777), which would print a thread traceback: that one exception
+    from that thread is silenced while the pool shuts down.
+    """
+    procs = list((getattr(pool, "_processes", None) or {}).values())
+    previous = threading.excepthook
+
+    def quiet(args: threading.ExceptHookArgs) -> None:
+        if not isinstance(args.exc_value, InvalidStateError):
+            previous(args)
+
+    threading.excepthook = quiet
+    try:
+        for proc in procs:
+            with contextlib.suppress(Exception):
+                proc.terminate()
+        for proc in procs:
+            with contextlib.suppress(Exception):
+                proc.join(timeout=5)
+        pool.shutdown(wait=True, cancel_futures=True)  # joins the manager thread
+    finally:
+        threading.excepthook = previous
+
+
+def _wait_first(pending: set[Future]) -> tuple[set[Future], set[Future]]:
+    done, rest = wait(pending, return_when=FIRST_COMPLETED)
+    return set(done), set(rest)
+
+
+class DaskExecutor:
+    """A ``dask.distributed`` cluster: ``address`` (``tcp://host:port``) or ``client``."""
+
+    def __init__(
+        self,
+        address: str | None = None,
+        *,
+        client: Any = None,
+        chunksize: int | None = None,
+    ):
+        try:
+            import distributed  # noqa: F401
+        except ImportError:  # pragma: no cover - the extra is installed in the test env
+            raise UsageError(
+                "the dask executor needs dask.distributed: pip install 'betvdesign[dask]'"
+            ) from None
+        if address is None and client is None:
+            raise UsageError("the dask executor needs a scheduler address (tcp://host:port)")
+        self.address = address
+        self._client = client
+        self.chunksize = chunksize
+        #: Threads the cluster gave the last run (0 until a run has connected).
+        self.workers = 0
+
+    def _connect(self) -> tuple[Any, bool]:
+        if self._client is not None:
+            return self._client, False
+        from distributed import Client
+
+        try:
+            return Client(self.address, timeout="10s"), True
+        except (OSError, TimeoutError) as exc:
+            raise UsageError(f"cannot reach dask scheduler {self.address}: {exc}") from None
+
+    def info(self) -> ExecutorInfo:
+        address = self.address
+        if address is None and self._client is not None:
+            address = self._client.scheduler.address
+        return ExecutorInfo("dask", self.workers, self.chunksize, scheduler=address)
+
+    def run(self, fn: Worker, tasks: Sequence[Task]) -> Iterator[list[Row]]:
+        if not tasks:
+            return
+        from distributed import wait as dwait
+
+        client, owned = self._connect()
+        try:
+            workers = max(1, sum(client.nthreads().values()))
+            self.workers = workers
+            size = self.chunksize or default_chunksize(len(tasks), workers)
+
+            def wait_any(pending: set[Any]) -> tuple[set[Any], set[Any]]:
+                res = dwait(list(pending), return_when="FIRST_COMPLETED")
+                return set(res.done), set(res.not_done)
+
+            yield from _drain(
+                lambda chunk: client.submit(apply_chunk, fn, chunk, pure=False),
+                chunked(tasks, size),
+                _WINDOW_PER_WORKER * workers,
+                wait_any,
+                lambda fut: fut.result(),
+                lambda fut: fut.cancel(),
+            )
+        finally:
+            if owned:
+                client.close()
+
+
+def make_executor(
+    backend: str = "process",
+    *,
+    workers: int | None = None,
+    chunksize: int | None = None,
+    scheduler: str | None = None,
+) -> Executor:
+    """Executor by name: ``serial``, ``process`` (default) or ``dask``.
+
+    A ``scheduler`` address implies ``dask``.
+    """
+    backend = backend.strip().lower()
+    if chunksize is not None and not 1 <= chunksize <= limits.MAX_CHUNKSIZE:
+        raise UsageError(
+            f"chunk size must be >= 1 and <= {limits.MAX_CHUNKSIZE:,}, got {chunksize}"
+        )
+    if workers is not None and not 1 <= workers <= limits.MAX_WORKERS:
+        raise UsageError(f"workers must be >= 1 and <= {limits.MAX_WORKERS:,}, got {workers}")
+    if scheduler is not None:
+        if backend not in ("dask", "process"):
+            raise UsageError(f"--scheduler needs the dask executor, not {backend!r}")
+        return DaskExecutor(scheduler, chunksize=chunksize)
+    if backend == "serial":
+        return SerialExecutor(chunksize)
+    if backend == "process":
+        return ProcessExecutor(workers, chunksize)
+    if backend == "dask":
+        raise UsageError("the dask executor needs --scheduler tcp://host:port")
+    raise UsageError(f"unknown executor {backend!r} (serial, process or dask)")
