@@ -145,7 +145,7 @@ def measured_document() -> dict[str, Any]:
     return json.loads(text)
 
 
-def _measured() -> dict[str, Any]:
+def measured() -> dict[str, Any]:
     return measured_document()["measured"]
 
 
@@ -153,7 +153,7 @@ def lambda_error() -> dict[str, Any]:
     """The λ rule's measured misprediction rate on the held-out random sample:
     ``{"n", "mispredicted", "rate", "upper_95", "bands"}`` (one-sided 95 %
     Clopper–Pearson bound; per |λ − 1| band too)."""
-    h = _measured()["lambda"]["held_out"]
+    h = measured()["lambda"]["held_out"]
     return {
         "n": h["converged"],
         "mispredicted": h["mispredicted"],
@@ -178,7 +178,7 @@ def stale(rtol: float = 1e-9) -> list[str]:
     from betvdesign import dynamics
 
     out = []
-    for f in _measured().get("fingerprint", []):
+    for f in measured().get("fingerprint", []):
         p = ModelParams(f["varpi"], f["alpha"], f["beta"], f["kappa"])
         now = dynamics.periodic_orbit(p).delta_s
         old = f["delta_s"]
@@ -194,7 +194,7 @@ IDEAL_ONLY = ("lambda", "rigid")
 
 def rigid_error_estimate(alpha: float) -> float:
     """Measured bound on the rigid limit's relative Δs error at this α [-]."""
-    fit = _measured()["rigid"]
+    fit = measured()["rigid"]
     return float(fit["coef"] * alpha ** fit["power"])
 
 

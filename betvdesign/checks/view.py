@@ -27,17 +27,28 @@ from typing import Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Field
 
-from betvdesign.checks.rules import RuleResult
-from betvdesign.checks.view_adequacy import AdequacyOut, adequacy_line, adequacy_out
+from betvdesign.checks.adequacy import AdequacyOut, adequacy_line, adequacy_out
+from betvdesign.checks.rules import RuleResult, travel_axis
 from betvdesign.output.siformat import format_dimensionless as fmt_x
 from betvdesign.output.siformat import format_si, si_key
 
 JSON_SCHEMA_VERSION = 1
 
 
-def rule_unit(r: Any) -> str:
-    """SI unit of a rule's ``value`` ("" when dimensionless): the rule's own ``unit``."""
-    return str(getattr(r, "unit", "") or "")
+def rule_unit(r: RuleResult) -> str:
+    """SI unit of a rule's value.
+
+    Parameters
+    ----------
+    r : RuleResult
+        A rule's outcome.
+
+    Returns
+    -------
+    str
+        The rule's own ``unit`` ("" when dimensionless).
+    """
+    return r.unit
 
 
 #: Record symbols reported as SI floats: (record symbol, JSON name, SI unit).
@@ -266,7 +277,7 @@ def _rule_out(r: RuleResult) -> RuleOut:
         value_unit=rule_unit(r),
         threshold=r.threshold,
         message=r.message,
-        fix=str(getattr(r, "fix", "") or ""),
+        fix=r.fix,
         source=r.source,
     )
 
@@ -276,13 +287,12 @@ def set_motion(sc: Any) -> tuple[float | None, float | None, str | None]:
     orbit, the speed its speed rule reports; Nones where there is none."""
     p = sc.periodic
     ds = None
-    if p is not None and getattr(p, "success", False) and p.delta_s is not None:
+    if p is not None and p.success and p.delta_s is not None:
         ds = float(p.delta_s) if math.isfinite(float(p.delta_s)) else None
-    v = getattr(sc, "speed_m_s", None)
+    v = sc.speed_m_s
     if v is None or not math.isfinite(v) or v == 0.0:
         return ds, (0.0 if v == 0.0 else None), None
-    direction = "+x" if sc.derivation.impact_sign * (1 if v > 0 else -1) > 0 else "-x"
-    return ds, abs(float(v)), direction
+    return ds, abs(float(v)), travel_axis(sc.derivation, v)
 
 
 def _margin(sc: Any) -> tuple[bool | None, str]:
@@ -331,8 +341,8 @@ def _set_out(sc: Any, flt: RuleFilter) -> SetOut:
                 agrees=(lam_mode == exact) if exact in ("push", "pull") else None,
             )
         },
-        margin=MarginOut(holds=holds, corners=dict(getattr(sc, "margin", None) or {})),
-        adequacy=adequacy_out(sc),
+        margin=MarginOut(holds=holds, corners=dict(sc.margin or {})),
+        adequacy=adequacy_out(sc.adequacy),
         derived=derived,
         rules=[_rule_out(r) for r in rules],
     )
@@ -403,13 +413,13 @@ def compact_lines(view: DeviceView, *, width: int = 100, markup: bool = True) ->
         label = f"  {sc.derivation.name}: "
         lines += _wrap(label + l1, width, len(label), esc)
         lines += _wrap(" " * len(label) + l2, width, len(label), esc)
-        if (l3 := adequacy_line(sc)) is not None:
+        if (l3 := adequacy_line(sc.adequacy)) is not None:
             lines += _wrap(" " * len(label) + l3, width, len(label), esc)
     groups: dict[tuple[str, str, str, str], list[str]] = {}
     for r in view.rules:
         if r.passed or r.severity == "info":
             continue
-        key = (r.severity, r.id, r.message, str(getattr(r, "fix", "") or ""))
+        key = (r.severity, r.id, r.message, r.fix)
         groups.setdefault(key, []).append(r.set_name)
     for (sev, rid, msg, fix), names in sorted(groups.items(), key=lambda kv: kv[0][0] != "error"):
         tag, style = _TAG[sev]
@@ -477,7 +487,7 @@ def device_html(view: DeviceView) -> str:
     rows = []
     for sc in res.sets:
         l1, l2 = set_headline(sc)
-        l3 = adequacy_line(sc)
+        l3 = adequacy_line(sc.adequacy)
         l2 += "" if l3 is None else "\n" + l3
         rows.append(
             f"<tr><th>{e(sc.derivation.name)}</th><td>{e(l1)}<br><small>"
@@ -486,7 +496,7 @@ def device_html(view: DeviceView) -> str:
     for r in view.rules:
         if r.passed or r.severity == "info":
             continue
-        fix = str(getattr(r, "fix", "") or "")
+        fix = r.fix
         where = f" [{e(r.set_name)}]" if r.set_name else ""
         rows.append(
             f"<tr><th>{e(_TAG[r.severity][0])}</th><td><code>{e(r.id)}</code>{where}: "
