@@ -125,6 +125,12 @@ def _finite(x: float) -> float | None:
     return x if math.isfinite(x) else None
 
 
+def _scanned(axis: Axis) -> str:
+    """``Q 1–1000`` or ``e 0–0.9``: the plausible range scanned along ``axis``."""
+    lo, hi = QUALITY_RANGE if axis == "quality" else RESTITUTION_RANGE
+    return f"{'Q' if axis == 'quality' else 'e'} {fmt_x(lo)}–{fmt_x(hi)}"
+
+
 # --- the answer as data ------------------------------------------------------------------
 
 
@@ -337,11 +343,24 @@ class SetAdequacy:
         return {k: d[k] for k in ("status", "adequate", "message")} | d
 
     def line(self) -> str:
-        """One line for ``betv check``: status, both answers, where the mode flips."""
+        """One line for ``betv check``.
+
+        Returns
+        -------
+        str
+            ``model adequacy: <status>: <summary>`` (both answers, where the mode flips).
+        """
         return f"model adequacy: {self.status}: {self.summary()}"
 
     def summary(self) -> str:
-        """Short form of :attr:`message`: both answers and the flips (or their absence)."""
+        """Short form of :attr:`message`.
+
+        Returns
+        -------
+        str
+            Both answers (speeds [m/s], their relative change) and the flips in Q and e
+            [-], or their absence.
+        """
         src = " (defaults)" if self.source == "default" else ""
         change = self.speed_change
         pct = f" ({change:+.0%})" if change is not None and change > -1.0 else ""
@@ -356,10 +375,7 @@ class SetAdequacy:
         elif self.status == "mode-flips":
             text += "; the mode differs within the plausible ranges"
         else:
-            text += (
-                f"; no mode flip for Q {fmt_x(QUALITY_RANGE[0])}–{fmt_x(QUALITY_RANGE[1])}, "
-                f"e {fmt_x(RESTITUTION_RANGE[0])}–{fmt_x(RESTITUTION_RANGE[1])}"
-            )
+            text += f"; no mode flip for {_scanned('quality')}, {_scanned('restitution')}"
         return text
 
 
@@ -395,7 +411,13 @@ class DeviceAdequacy:
         return "; ".join(f"{s.name}: {s.message}" for s in self.sets)
 
     def text(self) -> str:
-        """The verdict for the device, then one line per set (status and message)."""
+        """The answer in words.
+
+        Returns
+        -------
+        str
+            The verdict for the device, then one line per set (status and message).
+        """
         lines = [f"{self.device}: the idealised model is {self._word()}"]
         lines += [f"  {s.name}: {s.status}: {s.message}" for s in self.sets]
         return "\n".join(lines)
@@ -430,7 +452,18 @@ class AdequacyPointOut(BaseModel):
 
     @classmethod
     def of(cls, p: Point) -> AdequacyPointOut:
-        """The JSON of a study :class:`Point` ``p`` (an infinite Q, undamped, as None)."""
+        """The JSON of a study point.
+
+        Parameters
+        ----------
+        p : Point
+            One orbit of the study.
+
+        Returns
+        -------
+        AdequacyPointOut
+            Its fields; an infinite Q [-] (undamped) as None.
+        """
         return cls(
             quality_normal=_finite(p.quality),
             quality_tangential=_finite(p.quality_tangential),
@@ -466,9 +499,19 @@ class AdequacyOut(BaseModel):
 
     @classmethod
     def of(cls, a: SetAdequacy) -> AdequacyOut:
-        """The JSON of one set's adequacy ``a``: verdict, both answers, the flips (Q or e
-        [-]), every crossing (``axis``, ``at``, ``low``, ``high``, ``mode_low``,
-        ``mode_high``) and the scanned ranges."""
+        """The JSON of one set's adequacy.
+
+        Parameters
+        ----------
+        a : SetAdequacy
+            The set's adequacy.
+
+        Returns
+        -------
+        AdequacyOut
+            Verdict, both answers, the flips (Q or e [-]), every crossing (``axis``,
+            ``at``, ``low``, ``high``, ``mode_low``, ``mode_high``), the scanned ranges.
+        """
         return cls(
             status=a.status,
             adequate=a.adequate,
@@ -495,12 +538,6 @@ class AdequacyOut(BaseModel):
             quality_range=list(QUALITY_RANGE),
             restitution_range=list(RESTITUTION_RANGE),
         )
-
-
-def adequacy_out(a: SetAdequacy | None) -> AdequacyOut | None:
-    """The JSON of a set's adequacy ``a`` (:meth:`AdequacyOut.of`); None when the check
-    did not assess it (``a`` None)."""
-    return None if a is None else AdequacyOut.of(a)
 
 
 def adequacy_line(a: SetAdequacy | None) -> str | None:
@@ -688,24 +725,11 @@ def assess_set(sd: SetDerivation, *, solver: Solver | None = None) -> SetAdequac
     reference = ideal.mode if ideal.mode is not None else richer.mode
     flip_q, q_end = _first_flip(q_scan, reference)
     flip_e, e_end = _first_flip(e_scan, reference)
-    status = _status(ideal, richer, reference, q_scan, e_scan)
-    msg = _message(
-        sd,
-        status,
-        ideal,
-        richer,
-        source,
-        reference,
-        q_scan,
-        e_scan,
-        (flip_q, q_end),
-        (flip_e, e_end),
-    )
-    return SetAdequacy(
+    a = SetAdequacy(
         name=sd.name,
         intended_mode=sd.intended_mode,
-        status=status,
-        message=msg,
+        status=_status(ideal, richer, reference, q_scan, e_scan),
+        message="",
         ideal=ideal,
         richer=richer,
         source=source,
@@ -718,6 +742,7 @@ def assess_set(sd: SetDerivation, *, solver: Solver | None = None) -> SetAdequac
         flip_restitution=flip_e,
         rolloff_factor=sd.scales.rolloff_factor,
     )
+    return replace(a, message=_message(sd, a, q_end, e_end))
 
 
 def _status(
@@ -752,39 +777,33 @@ def _flips_within(reference: str, q_scan: Scan, e_scan: Scan, *, likely: bool) -
     return False
 
 
-def _message(
-    sd: SetDerivation,
-    status: Status,
-    ideal: Point,
-    richer: Point,
-    source: str,
-    reference: str | None,
-    q_scan: Scan,
-    e_scan: Scan,
-    flip_q: tuple[Crossing | None, bool],
-    flip_e: tuple[Crossing | None, bool],
-) -> str:
+def _message(sd: SetDerivation, a: SetAdequacy, q_end: bool, e_end: bool) -> str:
+    """The verdict in full (``q_end``, ``e_end``: the mode already differs from the
+    reference at the idealised end of the Q, the e scan)."""
+    ideal, richer, reference = a.ideal, a.richer, a.reference
     terms = richer.terms + (
-        " (plausible defaults: the device gives none)" if source == "default" else " (the device's)"
+        " (plausible defaults: the device gives none)"
+        if a.source == "default"
+        else " (the device's)"
     )
     head = f"idealised {ideal.answer}; with {terms}: {richer.answer}"
     if ideal.speed_m_s and richer.speed_m_s and ideal.mode in ("push", "pull"):
-        head += f" ({speed_change(ideal, richer):+.0%})"
+        head += f" ({a.speed_change:+.0%})"
     parts = [head]
-    if status == "ideal-fails":
+    if a.status == "ideal-fails":
         parts.append(
             f"the idealised model has no periodic orbit ({ideal.status}"
             + (": unbounded tangential growth at α·ϖ² = 1" if ideal.status == "unbounded" else "")
             + f"); the richer model's finite answer holds: {richer.answer}"
         )
-    elif status == "failed":
+    elif a.status == "failed":
         parts.append("neither model gives a periodic orbit")
     ranges = (
-        (q_scan, flip_q, f"Q {fmt_x(QUALITY_RANGE[0])}–{fmt_x(QUALITY_RANGE[1])}"),
-        (e_scan, flip_e, f"e {fmt_x(RESTITUTION_RANGE[0])}–{fmt_x(RESTITUTION_RANGE[1])}"),
+        (a.quality_scan, a.flip_quality, q_end),
+        (a.restitution_scan, a.flip_restitution, e_end),
     )
-    for scan, (flip, at_end), rng in ranges:
-        where = f"{rng} ({scan.fixed})"
+    for scan, flip, at_end in ranges:
+        where = f"{_scanned(scan.axis)} ({scan.fixed})"
         if reference is None:
             continue
         if flip is not None:

@@ -171,7 +171,15 @@ class CheckResult:
 
 @dataclass
 class SolverFailure:
-    """Stands in for a solver result when the solver raised: success False, with why."""
+    """Stands in for a solver result when the solver raised: success False, with why.
+
+    Parameters
+    ----------
+    message : str
+        What the solver raised.
+    success, status, delta_s, mode
+        Those of a failed result (False, "failed", nan, "").
+    """
 
     message: str
     success: bool = False
