@@ -29,4 +29,6 @@ def __getattr__(name: str) -> Any:
         DeprecationWarning,
         stacklevel=2,
     )
-    return getattr(models, name)
+    value = getattr(models, name)
+    globals()[name] = value  # warned once
+    return value
