@@ -11,10 +11,13 @@ typer's CliRunner.
 
 from __future__ import annotations
 
+import math
 import re
 from html.parser import HTMLParser
 from pathlib import Path
+from typing import Any
 
+import numpy as np
 import pytest
 from conftest import DEVICES, device_files
 from typer.testing import CliRunner
@@ -298,9 +301,28 @@ def test_robustness_varies_designer_fields_through_the_spec() -> None:
     assert vs[("drive.frequency", 0.0)].nominal == "3 kHz"
 
 
-def test_robustness_figure_speaks_designer_units() -> None:
+def test_robustness_figure_speaks_designer_units(monkeypatch: pytest.MonkeyPatch) -> None:
     """Speed at 0 % equals the device's periodic speed; the figure's axes are the field
-    change in % and the speed with an SI prefix, never α or λ."""
+    change in % and the speed with an SI prefix, never α or λ.
+
+    The speed is read off the plotted points (the matplotlib figure the SVG is written
+    from, in the unit its axis label names) and checked against Δs·u·cosθ·f_act worked
+    out by hand from push_demo.yaml (MODEL.md, "Displacement per cycle"): f_act = 2·3 kHz
+    (AC doubling), f_v = 5 kHz, f_h = 3.5 kHz, u = 0.14 µm (linear between the measured
+    8 V and 10 V points, at 9 V), θ = 20.56°, μ = 0.4, a 36 µm × 2.5 µm disc head against
+    one 200 × 10 × 2.5 µm beam; Δs from the periodic orbit of those parameters."""
+    from betvdesign import plots
+    from betvdesign.dynamics import periodic_orbit
+    from betvdesign.model.params import ModelParams
+
+    drawn: dict[str, Any] = {}
+    real = plots.figure_svg
+
+    def keep(fig: Any, key: str) -> str:
+        drawn[key] = fig
+        return real(fig, key)
+
+    monkeypatch.setattr(plots, "figure_svg", keep)
     report = build_report(prepare(DEVICES / "push_demo.yaml"), options=SMALL)
     fig = next(f for f in report.figures() if f.key.endswith("robustness"))
     assert fig.svg is not None
@@ -308,6 +330,32 @@ def test_robustness_figure_speaks_designer_units() -> None:
     assert "change of the field from its specified value" in text and "mm/s" in text
     assert "drive.frequency" in text and "λ  [-]" not in text
     assert "Specified values: drive.frequency = 3 kHz" in fig.caption
+
+    theta = math.radians(20.56)
+    f_act, u = 2 * 3e3, 0.11e-6 + (0.17e-6 - 0.11e-6) * (9 - 8) / (10 - 8)
+    beta = (math.pi / 4 * 36**2 * 2.5) / (200 * 10 * 2.5)
+    po = periodic_orbit(ModelParams(6 / 5, (5 / 3.5) ** 2, beta, 0.4 * math.tan(theta)))
+    assert po.success and po.delta_s > 0  # push, the intended mode: plotted positive
+    speed = po.delta_s * u * math.cos(theta) * f_act  # [m/s]
+
+    ax = drawn[fig.key].axes[0]
+    unit = re.search(r"\[(\S+)/s\]", ax.get_ylabel())
+    assert unit, ax.get_ylabel()
+    per = {"m": 1.0, "mm": 1e-3, "µm": 1e-6, "nm": 1e-9}[unit.group(1)]
+    at_zero = {}
+    for line in ax.get_lines():  # one marked, labelled line per field (not the 0 % rule)
+        x, y = (np.asarray(v, dtype=float) for v in line.get_data())
+        if line.get_marker() != "None" and not line.get_label().startswith("_") and 0 in x:
+            at_zero[line.get_label()] = float(y[x == 0.0][0]) * per
+    assert set(at_zero) == {
+        "drive.frequency",
+        "actuator.horizontal_resonance",
+        "head.geometry.thickness",
+        "contact.friction",
+        "slider.beam_width",
+    }
+    for name, v in at_zero.items():
+        assert v == pytest.approx(speed, rel=1e-8), name
 
 
 # --------------------------------------------------------------------------- CLI
