@@ -33,8 +33,8 @@ from typing import Any, Generic, TypeVar
 import numpy as np
 
 from betvdesign.errors import BetvError
+from betvdesign.model.domain import VARPI_WINDOW
 from betvdesign.model.params import ModelParams
-from betvdesign.plots.figure import VARPI_WINDOW
 
 T = TypeVar("T")
 

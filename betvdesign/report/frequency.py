@@ -24,7 +24,7 @@ from betvdesign.model.params import ModelParams
 from betvdesign.nondim.record import SetDerivation
 from betvdesign.output.siformat import format_si
 from betvdesign.report.analysis import Missing, Piece, ReportOptions, dynamics_api
-from betvdesign.report.figures import _block, ladder
+from betvdesign.report.figures import figure_block, ladder
 from betvdesign.report.model import FigureBlock
 
 #: Largest ϖ of the sweep relative to the window's upper edge (ϖ < 2: finite contact).
@@ -162,7 +162,7 @@ def speed_frequency(
         "so the roll-off enters through the stroke (length scale) only"
     )
     rung = ladder(p, "delta_s", "periodic", tol=tol)
-    return _block(
+    return figure_block(
         key,
         "Mean speed against actuation frequency, with thermal roll-off",
         caption,

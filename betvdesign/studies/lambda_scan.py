@@ -33,7 +33,7 @@ from betvdesign.errors import UsageError
 from betvdesign.model.params import fit_offset
 from betvdesign.studies.engine.grid import require_positive
 from betvdesign.studies.engine.runner import Study, StudyRun, run_study, split_run_args
-from betvdesign.studies.pushpull import (
+from betvdesign.studies.points import (
     COLUMNS,
     MODEL_STATEMENT,
     periodic_point,

@@ -43,7 +43,7 @@ import numpy as np
 from betvdesign.errors import UsageError
 from betvdesign.studies.engine.grid import Grid
 from betvdesign.studies.engine.runner import RunArgs, Study, StudyRun, run_study
-from betvdesign.studies.pushpull import solver_error
+from betvdesign.studies.points import solver_error
 from betvdesign.studies.terms import Terms, model_statement
 
 if TYPE_CHECKING:

@@ -48,8 +48,9 @@ from betvdesign.model.domain import in_window
 from betvdesign.spec import limits
 from betvdesign.spec.paths import replace, targets, value_at
 from betvdesign.studies.engine.runner import Study, StudyRun, run_study, split_run_args
-from betvdesign.studies.pushpull import (
+from betvdesign.studies.points import (
     MODEL_STATEMENT,
+    Fidelity,
     require_fidelity,
     rung_reason,
     solver_error,
@@ -59,7 +60,6 @@ from betvdesign.studies.sampling import check_sample, derive_all, draw, nominal_
 Dist = Literal["normal", "uniform"]
 #: Distributions a tolerance may name (lower case; names are case-insensitive).
 DISTRIBUTIONS: tuple[str, ...] = ("normal", "uniform")
-Fidelity = Literal["periodic", "lambda"]
 PERCENTILES = (5.0, 25.0, 50.0, 75.0, 95.0)
 
 
