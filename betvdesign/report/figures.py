@@ -353,7 +353,7 @@ def speed_voltage(
             "a speed-voltage curve needs one (linear, quadratic or measured)"
         )
     v0 = aset.drive.voltage.to("V").magnitude if aset.drive.voltage is not None else None
-    law = getattr(cal, "law", "none")
+    law = cal.law if cal is not None else "none"
     caption = (
         f"Mean slider speed Δs·u(V)·cosθ·f_act along the impact direction (negative: against "
         f"it) with u(V) from the {law} amplitude calibration; operating point marked."

@@ -70,8 +70,8 @@ def rung_reason(fidelity: str) -> str:
 
     Parameters
     ----------
-    fidelity
-        The rung: "periodic" or "lambda".
+    fidelity : {"periodic", "lambda"}
+        The rung.
 
     Returns
     -------
@@ -97,9 +97,9 @@ def require_fidelity(fidelity: str, offered: Sequence[str] = ("periodic", "lambd
 
     Parameters
     ----------
-    fidelity
+    fidelity : str
         The rung asked for.
-    offered
+    offered : sequence of str
         The rungs the study offers.
 
     Raises
@@ -121,7 +121,7 @@ def task_params(task: Mapping[str, Any]) -> ModelParams:
 
     Parameters
     ----------
-    task
+    task : mapping
         A study task: ``varpi`` ϖ, ``alpha`` α, ``beta`` β, ``kappa`` κ [-] and the
         optional terms ``zeta_v``, ``zeta_h``, ``restitution`` [-] (absent: 0, the
         paper's model).
@@ -139,7 +139,7 @@ def point_row(task: Mapping[str, Any]) -> dict[str, Any]:
 
     Parameters
     ----------
-    task
+    task : mapping
         A study task (see :func:`task_params`) with its ``key``.
 
     Returns
@@ -164,7 +164,7 @@ def periodic_point(task: Mapping[str, Any]) -> dict[str, Any]:
 
     Parameters
     ----------
-    task
+    task : mapping
         A study task (see :func:`point_row`) with ``tol``, the fixed-point residual
         accepted [-], ``max_cycles`` (None: the solver's budget) and ``not_driven``
         (from :func:`vertical_precheck`, or None).
@@ -225,7 +225,7 @@ def solver_error(exc: BaseException) -> str:
 
     Parameters
     ----------
-    exc
+    exc : BaseException
         What the solver raised.
 
     Returns
@@ -253,9 +253,9 @@ def vertical_precheck(
 
     Parameters
     ----------
-    varpi
+    varpi : sequence of float
         Frequency ratios ϖ = ω/ω_v [-] of the study's points (repeats are solved once).
-    terms
+    terms : Terms, optional
         The optional terms; the vertical model takes ζ_v and e [-] (None: the paper's
         model).
 

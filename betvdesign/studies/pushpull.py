@@ -54,7 +54,7 @@ def lambda_point(task: Mapping[str, Any]) -> dict[str, Any]:
 
     Parameters
     ----------
-    task
+    task : mapping
         A map task: ``key``, ϖ, α, β, κ [-] (see :func:`betvdesign.studies.points.point_row`).
 
     Returns
@@ -87,9 +87,41 @@ def pushpull_study(
 ) -> tuple[Study, Grid]:
     """Build the map study; grid order κ, β, α, ϖ (ϖ fastest).
 
-    zeta_v, zeta_h, restitution: the optional terms (:mod:`betvdesign.studies.terms`),
-    fixed over the map; all 0 is the paper's model and the study of before they existed.
-    The ``lambda`` rung refuses them (a fit of the idealised model).
+    Parameters
+    ----------
+    varpi : sequence of float
+        Normalised actuation frequencies ϖ = ω·sqrt(m/k_v) [-] (> 0).
+    alpha : sequence of float
+        Relative impact compliances α = k_v/k_h [-] (> 0).
+    beta : sequence of float
+        Relative masses β = m/M [-] (> 0).
+    kappa : sequence of float
+        Normalised friction κ = μ·tanθ [-] (> 0).
+    fidelity : {"periodic", "lambda"}
+        The rung: the exact periodic orbit per point (the reference) or the λ fit only.
+    tol : float
+        Fixed-point residual accepted for a periodic orbit [-].
+    max_cycles : int, optional
+        Cycle budget of each periodic solve (None: the solver's own).
+    zeta_v, zeta_h : float
+        Normal and tangential damping ratios [-], fixed over the map
+        (:mod:`betvdesign.studies.terms`; 0: undamped).
+    restitution : float
+        Coefficient of restitution e [-] (0: plastic impacts). All three 0 is the paper's
+        model and the study of before they existed; the ``lambda`` rung refuses them (a fit
+        of the idealised model).
+
+    Returns
+    -------
+    tuple of (Study, Grid)
+        The study (one task per grid point, worker :func:`points.periodic_point` or
+        :func:`lambda_point`) and its grid.
+
+    Raises
+    ------
+    UsageError
+        A non-positive axis value, a rung the map does not offer, the λ rung with the
+        optional terms, or ``max_cycles`` < 1.
     """
     terms = Terms(zeta_v, zeta_h, restitution)
     axes = {
@@ -147,7 +179,14 @@ class PushPullSummary:
         return self.n_agree / self.n_converged if self.n_converged else None
 
     def as_dict(self) -> dict[str, Any]:
-        """The summary as plain data; ``terms`` (and the note on λ) only when set."""
+        """The summary as plain data.
+
+        Returns
+        -------
+        dict
+            Rung, model statement and why, counts, agreement of λ [-], disagreements and
+            points without an orbit; ``terms`` (and the note on λ) only when set.
+        """
         extra: dict[str, Any] = {}
         if not self.terms.ideal:
             extra = {"terms": self.terms.as_dict(), "lambda_note": LAMBDA_NOTE}
@@ -181,9 +220,26 @@ RESONANCE_RTOL = 1e-9
 
 
 def tangential_resonance(row: Mapping[str, Any]) -> str | None:
-    """Which tangential resonance a·ϖ² = 1 the point sits on, if any (docs/MODEL.md: the
-    head's tangential motion is undamped in free flight and can grow without bound there):
-    ``"alpha"`` (a = α, free flight), ``"stick"`` (a = α(1 + 1/β)) or None."""
+    """Which tangential resonance a·ϖ² = 1 the point sits on, if any.
+
+    The head's tangential motion is undamped in free flight and can grow without bound
+    there (docs/MODEL.md; the model of Shin et al. [1]_).
+
+    Parameters
+    ----------
+    row : mapping
+        A row with ``varpi`` ϖ, ``alpha`` α and ``beta`` β [-].
+
+    Returns
+    -------
+    {"alpha", "stick"} or None
+        ``"alpha"`` (a = α, free flight), ``"stick"`` (a = α(1 + 1/β)) when
+        |a·ϖ² − 1| ≤ :data:`RESONANCE_RTOL`, else None.
+
+    References
+    ----------
+    .. [1] K. Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773
+    """
     w2 = row["varpi"] ** 2
     for name, a in (("alpha", row["alpha"]), ("stick", row["alpha"] * (1 + 1 / row["beta"]))):
         if abs(a * w2 - 1.0) <= RESONANCE_RTOL:
@@ -198,8 +254,30 @@ def _brief(row: Mapping[str, Any], keys: Sequence[str]) -> dict[str, Any]:
 def summarise(
     rows: Sequence[Mapping[str, Any]], fidelity: str = "periodic", terms: Terms | None = None
 ) -> PushPullSummary:
-    """Compare λ with the simulations; list disagreements and non-converged points
-    (``terms``: those the map was made with, stated in the summary)."""
+    """Compare λ with the simulations; list disagreements and non-converged points.
+
+    Parameters
+    ----------
+    rows : sequence of mapping
+        The map's rows (:data:`betvdesign.studies.points.COLUMNS`).
+    fidelity : {"periodic", "lambda"}
+        The rung the rows were made on (points without an orbit are listed for
+        "periodic" only).
+    terms : Terms, optional
+        The optional terms the map was made with, stated in the summary (None: the
+        paper's model).
+
+    Returns
+    -------
+    PushPullSummary
+        Counts, agreement of the λ < 1 rule of Shin et al. [1]_ with the simulated modes,
+        every disagreement and every point without an orbit (with the tangential
+        resonance it sits on, :func:`tangential_resonance`).
+
+    References
+    ----------
+    .. [1] K. Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773
+    """
     point = ("key", "varpi", "alpha", "beta", "kappa", "lam")
     conv = [r for r in rows if r["converged"]]
     disagree = [
@@ -232,8 +310,20 @@ def summarise(
 
 
 def run_pushpull(*args: Any, **kwargs: Any) -> tuple[StudyRun, PushPullSummary]:
-    """Build (arguments of :func:`pushpull_study`), run (:class:`RunArgs`: executor, out,
-    overwrite, progress; streamed and resumable with ``out``) and summarise a map."""
+    """Build, run and summarise a map.
+
+    Parameters
+    ----------
+    *args, **kwargs
+        Arguments of :func:`pushpull_study` and the keywords of
+        :class:`~betvdesign.studies.engine.runner.RunArgs` (executor, out, overwrite,
+        progress; streamed and resumable with ``out``).
+
+    Returns
+    -------
+    tuple of (StudyRun, PushPullSummary)
+        The run (its rows) and :func:`summarise`'s summary.
+    """
     study_kw, run = split_run_args(kwargs)
     study, _ = pushpull_study(*args, **study_kw)
     result = run_study(study, **run)
