@@ -221,30 +221,11 @@ class SerialExecutor:
         self.chunksize = chunksize
 
     def info(self) -> ExecutorInfo:
-        """What runs the study (recorded in the results sidecar).
-
-        Returns
-        -------
-        ExecutorInfo
-            Backend, workers, chunk size (serial, 1).
-        """
+        """What runs the study (:meth:`Executor.info`)."""
         return ExecutorInfo("serial", 1, self.chunksize)
 
     def run(self, fn: Worker, tasks: Sequence[Task]) -> Iterator[list[Row]]:
-        """Run ``fn`` over ``tasks`` in this process, in order.
-
-        Parameters
-        ----------
-        fn : callable
-            Module-level worker ``fn(task) -> row`` (plain, picklable data in and out).
-        tasks : sequence
-            The tasks, each a dict with an integer ``key``.
-
-        Yields
-        ------
-        list of dict
-            The rows of each finished chunk, in completion order.
-        """
+        """Run ``fn`` over ``tasks`` in this process, in order (:meth:`Executor.run`)."""
         size = self.chunksize or default_chunksize(len(tasks), 1)
         for chunk in chunked(tasks, size):
             yield apply_chunk(fn, chunk)
@@ -287,30 +268,12 @@ class ProcessExecutor:
         self.chunksize = chunksize
 
     def info(self) -> ExecutorInfo:
-        """What runs the study (recorded in the results sidecar).
-
-        Returns
-        -------
-        ExecutorInfo
-            Backend, workers, chunk size (process).
-        """
+        """What runs the study (:meth:`Executor.info`)."""
         return ExecutorInfo("process", self.workers, self.chunksize)
 
     def run(self, fn: Worker, tasks: Sequence[Task]) -> Iterator[list[Row]]:
-        """Run ``fn`` over ``tasks`` on local worker processes (an interrupted run terminates them).
-
-        Parameters
-        ----------
-        fn : callable
-            Module-level worker ``fn(task) -> row`` (plain, picklable data in and out).
-        tasks : sequence
-            The tasks, each a dict with an integer ``key``.
-
-        Yields
-        ------
-        list of dict
-            The rows of each finished chunk, in completion order.
-        """
+        """Run ``fn`` over ``tasks`` on local worker processes (:meth:`Executor.run`); an
+        interrupted run terminates them."""
         if not tasks:
             return
         size = self.chunksize or default_chunksize(len(tasks), self.workers)
@@ -411,33 +374,14 @@ class DaskExecutor:
             raise UsageError(f"cannot reach dask scheduler {self.address}: {exc}") from None
 
     def info(self) -> ExecutorInfo:
-        """What runs the study (recorded in the results sidecar).
-
-        Returns
-        -------
-        ExecutorInfo
-            Backend, workers, chunk size (dask) and the scheduler's address.
-        """
+        """What runs the study (:meth:`Executor.info`)."""
         address = self.address
         if address is None and self._client is not None:
             address = self._client.scheduler.address
         return ExecutorInfo("dask", self.workers, self.chunksize, scheduler=address)
 
     def run(self, fn: Worker, tasks: Sequence[Task]) -> Iterator[list[Row]]:
-        """Run ``fn`` over ``tasks`` on the dask cluster.
-
-        Parameters
-        ----------
-        fn : callable
-            Module-level worker ``fn(task) -> row`` (plain, picklable data in and out).
-        tasks : sequence
-            The tasks, each a dict with an integer ``key``.
-
-        Yields
-        ------
-        list of dict
-            The rows of each finished chunk, in completion order.
-        """
+        """Run ``fn`` over ``tasks`` on the dask cluster (:meth:`Executor.run`)."""
         if not tasks:
             return
         from distributed import wait as dwait
