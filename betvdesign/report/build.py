@@ -27,7 +27,8 @@ from betvdesign.checks.checker import (
 )
 from betvdesign.checks.rules import RuleResult, verdict
 from betvdesign.checks.view import rule_unit
-from betvdesign.nondim.device import DeviceDerivation, SetDerivation, derive_file
+from betvdesign.nondim.device import derive_file
+from betvdesign.nondim.record import DeviceDerivation, SetDerivation
 from betvdesign.output.siformat import format_q, format_si
 from betvdesign.report import adequacy, figures, frequency
 from betvdesign.report.analysis import Piece, ReportOptions, SetAnalysis, analyse_set, attempt

@@ -18,7 +18,7 @@ import numpy as np
 from betvdesign import plots
 from betvdesign.checks import fidelity
 from betvdesign.model.domain import VARPI_WINDOW
-from betvdesign.nondim.device import SetDerivation
+from betvdesign.nondim.record import SetDerivation
 from betvdesign.output.siformat import format_si, scale_for
 from betvdesign.report.analysis import REGIME_LONG_HORIZON, Piece, SetAnalysis
 from betvdesign.report.model import FigureBlock
