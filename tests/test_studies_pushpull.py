@@ -8,7 +8,8 @@ import pytest
 from betvdesign.dynamics import simulate
 from betvdesign.model.params import ModelParams
 from betvdesign.plots.studies import save_pushpull_figure
-from betvdesign.studies.pushpull import periodic_point, pushpull_study, run_pushpull, summarise
+from betvdesign.studies.points import periodic_point
+from betvdesign.studies.pushpull import pushpull_study, run_pushpull, summarise
 
 
 def _task(varpi, alpha, beta=0.5, kappa=0.4, **kw):

@@ -153,7 +153,7 @@ def check_cmd(
 def render(result: CheckResult, console: Console, *, derivation: bool = False) -> None:
     """Rich tables for one device: per set parameters, derived values, rules; then notes."""
     from betvdesign.checks.checker import simulation_summary
-    from betvdesign.nondim.device import DERIVED_KEYS
+    from betvdesign.nondim.record import DERIVED_KEYS
     from betvdesign.output.siformat import format_q
 
     colour = "green" if result.verdict == "pass" else "red"
