@@ -40,6 +40,7 @@ from __future__ import annotations
 
 import math
 import time
+from typing import Any
 
 import numpy as np
 
@@ -48,7 +49,7 @@ from betvdesign.dynamics._jit import compile_note
 from betvdesign.dynamics.flows import phase_table
 from betvdesign.dynamics.result import PeriodicResult
 from betvdesign.dynamics.shooting import TRUST
-from betvdesign.dynamics.solver import CycleRunner, SolverFailure
+from betvdesign.dynamics.solver import CycleFailure, CycleRunner
 from betvdesign.dynamics.vertical import VerticalSchedule, VerticalSearchError
 from betvdesign.errors import ParameterError
 from betvdesign.model.domain import mode_of
@@ -127,7 +128,7 @@ class _Map:
         ok, y, s = shooting.section_map(*self.shot(n), np.asarray(x, dtype=float))
         if not ok:  # run again where the failure is explained (rare path)
             CycleRunner(self.c, self.vs).run(self.m0, n, x[0], x[1], 0.0, x[2], check_finite=False)
-            raise SolverFailure(f"a contact could not be advanced from cycle {self.m0}", self.m0)
+            raise CycleFailure(f"a contact could not be advanced from cycle {self.m0}", self.m0)
         return y, s
 
     def residual(self, x: np.ndarray, n: int) -> tuple[float, np.ndarray, float]:
@@ -136,7 +137,7 @@ class _Map:
     def jacobian(self, x: np.ndarray, n: int, y: np.ndarray, central: bool = False) -> np.ndarray:
         ok, J = shooting.jacobian(*self.shot(n), x, y, central)
         if not ok:
-            raise SolverFailure("a contact could not be advanced (Jacobian)", self.m0)
+            raise CycleFailure("a contact could not be advanced (Jacobian)", self.m0)
         return J
 
 
@@ -273,33 +274,6 @@ def periodic_orbit(
     )
 
 
-def _vertical_failure(p: ModelParams, msg: str, elapsed: float) -> PeriodicResult:
-    """The result when the vertical motion itself cannot be computed (a search that did
-    not terminate, a chattering sequence that did not accumulate)."""
-    return PeriodicResult(
-        params=p,
-        status="failed",
-        success=False,
-        message=f"vertical motion: {msg}",
-        impacts_per_cycle=math.nan,
-        contact_fraction=math.nan,
-        n_cycles=0,
-        n_events=0,
-        n_root_evals=0,
-        elapsed_s=elapsed,
-        delta_s=None,
-        mode=None,
-        period_cycles=None,
-        residual=None,
-        floquet=None,
-        stable=None,
-        state=None,
-        n_newton=0,
-        transient_cycles=0,
-        transient_s=0.0,
-    )
-
-
 def _periodic_orbit(
     p: ModelParams, tol: float, max_cycles: int, max_period: int, transient: int
 ) -> PeriodicResult:
@@ -308,40 +282,27 @@ def _periodic_orbit(
     try:
         vs = VerticalSchedule(p.varpi, horizon=1000, zeta_v=p.zeta_v, restitution=p.restitution)
     except VerticalSearchError as exc:
-        return _vertical_failure(p, str(exc), time.perf_counter() - t0)
+        return PeriodicResult.failure(
+            p, "failed", f"vertical motion: {exc}", elapsed_s=time.perf_counter() - t0
+        )
     hits, frac = vs.hits_per_cycle(), vs.contact_fraction()
 
-    def result(status: str, msg: str, **kw: object) -> PeriodicResult:
-        base: dict[str, object] = dict(
-            delta_s=None,
-            mode=None,
-            period_cycles=None,
-            residual=None,
-            floquet=None,
-            stable=None,
-            state=None,
-            n_newton=0,
-            transient_cycles=0,
-            transient_s=0.0,
-        )
-        base.update(kw)
-        return PeriodicResult(
-            params=p,
-            status=status,
-            success=status == "success",
-            message=msg,
+    def spent() -> dict[str, Any]:
+        """What every answer from here on carries: the vertical motion's hits and contact
+        fraction, the counters so far and the time taken."""
+        return dict(
             impacts_per_cycle=hits,
             contact_fraction=frac,
             n_cycles=phi.n_cycles if phi else 0,
             n_events=phi.n_events if phi else 0,
             n_root_evals=(phi.n_evals if phi else 0) + vs.n_root_evals,
             elapsed_s=time.perf_counter() - t0,
-            **base,  # type: ignore[arg-type]
         )
 
     phi: _Map | None = None
     if vs.period is None:
-        return result(
+        return PeriodicResult.failure(
+            p,
             "not_driven",
             f"no contact recurs within {vs.n_prefix} cycles at ϖ = {p.varpi:g}: hits are "
             "impulsive only and the slider is not driven ("
@@ -352,6 +313,7 @@ def _periodic_orbit(
                 else "MODEL.md design window 0.5 ≤ ϖ < 2"
             )
             + ")",
+            **spent(),
         )
     kv = vs.period
     assert vs.first_end is not None
@@ -361,8 +323,8 @@ def _periodic_orbit(
     pre = _Map(k, vs, 0)
     try:
         x, s_total = pre(np.zeros(3), m0)
-    except (SolverFailure, RuntimeError) as exc:
-        return result("failed", f"transient from rest failed: {exc}")
+    except (CycleFailure, RuntimeError) as exc:
+        return PeriodicResult.failure(p, "failed", f"transient from rest failed: {exc}", **spent())
     brute = m0
     bound = resonance_growth_bound(p)
     if bound is not None:
@@ -370,11 +332,13 @@ def _periodic_orbit(
         grown = _measure_growth(phi, x.copy(), bound, kv, window)
         if grown is not None:
             rate, n, amp, s_win = grown
-            return result(
+            return PeriodicResult.failure(
+                p,
                 "unbounded",
                 _unbounded_message(p, bound, rate, n, amp, m0 + n),
                 transient_cycles=m0 + n,
                 transient_s=s_total + s_win,
+                **spent(),
             )
     chunk = max(kv, (transient // kv) * kv)
     n_newton = 0
@@ -384,11 +348,15 @@ def _periodic_orbit(
         try:
             x, s_chunk = phi(x, chunk)
             s_total += s_chunk
-        except (SolverFailure, RuntimeError) as exc:
-            return result("failed", f"brute-force iteration failed after {brute} cycles: {exc}")
+        except (CycleFailure, RuntimeError) as exc:
+            return PeriodicResult.failure(
+                p, "failed", f"brute-force iteration failed after {brute} cycles: {exc}", **spent()
+            )
         brute += chunk
         if not np.all(np.isfinite(x)):
-            return result("failed", f"state became non-finite after {brute} cycles")
+            return PeriodicResult.failure(
+                p, "failed", f"state became non-finite after {brute} cycles", **spent()
+            )
         for j in range(1, max_period + 1):
             n = j * kv
             xs, r, s, it = _newton(phi, x.copy(), n, tol, POLISH)
@@ -422,9 +390,10 @@ def _periodic_orbit(
             if r_final > tol:
                 continue
             ds = s / n
-            return result(
-                "success",
-                f"periodic orbit of {n} cycle(s), residual {r_final:.2e} ≤ {tol:.0e}, "
+            return PeriodicResult(
+                params=p,
+                status="success",
+                message=f"periodic orbit of {n} cycle(s), residual {r_final:.2e} ≤ {tol:.0e}, "
                 f"|μ|max = {abs(mu[0]):.6f}",
                 delta_s=ds,
                 mode=mode_of(ds),
@@ -436,9 +405,11 @@ def _periodic_orbit(
                 n_newton=n_newton,
                 transient_cycles=brute,
                 transient_s=s_total,
+                **spent(),
             )
         if brute >= max_cycles:
-            return result(
+            return PeriodicResult.failure(
+                p,
                 "not_converged",
                 f"no stable periodic orbit of period ≤ {max_period * kv} cycles found within "
                 f"{brute} cycles (best residual {best[0]:.2e} for period {best[1]}); the "
@@ -448,6 +419,7 @@ def _periodic_orbit(
                 transient_cycles=brute,
                 transient_s=s_total,
                 residual=best[0],
+                **spent(),
             )
         chunk = min(2 * chunk, max(kv, ((max_cycles - brute) // kv) * kv))
 
@@ -471,7 +443,7 @@ def _measure_growth(
             s_total += s
             if z_prev - float(x[0]) < kv * bound - 1e-9 * max(1.0, abs(z_prev)):
                 return None
-    except (SolverFailure, RuntimeError):
+    except (CycleFailure, RuntimeError):
         return None
     if not np.all(np.isfinite(x)):
         return None

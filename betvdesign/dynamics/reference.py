@@ -441,7 +441,6 @@ def simulate(
         params=p,
         solver=f"solve_ivp:{method}/{friction}",
         status=status,
-        success=status == "success",
         message=message,
         s=float(section[-1, 4]),
         delta_s=np.diff(section[:, 4]),

@@ -25,9 +25,17 @@ from betvdesign.errors import ParameterError
 from betvdesign.model.params import ModelParams
 
 
-class SolverFailure(RuntimeError):
-    """Cycle ``cycle`` could not be advanced (chattering contact, a non-terminating event
-    search or a non-finite state); the message says why."""
+class CycleFailure(RuntimeError):
+    """Raised when a cycle cannot be advanced: a chattering contact (a Zeno point), a
+    non-terminating event search or a non-finite state; the message says which.
+
+    Parameters
+    ----------
+    message : str
+        What failed and where.
+    cycle : int
+        The cycle that could not be advanced [-] (0-based; the ones before it are done).
+    """
 
     def __init__(self, message: str, cycle: int):
         super().__init__(message)
@@ -83,7 +91,7 @@ class CycleRunner:
         """State (ζ, ζ', s, s') after cycles m0..m0+n−1 from the state at m0's start.
 
         rows (n + 1, 4): receives the state at every cycle start and at the end. Raises
-        :class:`SolverFailure` naming the cycle that failed (rows up to its start filled).
+        :class:`CycleFailure` naming the cycle that failed (rows up to its start filled).
         """
         idx = self._idx(m0, n)
         buf = self._norows if rows is None else rows
@@ -127,7 +135,7 @@ class CycleRunner:
             msg = chatter_message(m * self.T + run.where, m, int(run.switches))
         else:
             msg = f"non-finite state in cycle {m}"
-        raise SolverFailure(msg, m)
+        raise CycleFailure(msg, m)
 
     def events(self) -> list[Event]:
         """The event log as :class:`~betvdesign.dynamics.result.Event` (τ = mT + t)."""
@@ -181,7 +189,7 @@ def _simulate(p: ModelParams, n: int, st: tuple, dense: bool, log_events: bool) 
     status, message, done = "success", f"{n} cycles simulated", n
     try:
         cyc.run(0, n, *st[2:], rows=rows)
-    except SolverFailure as exc:
+    except CycleFailure as exc:
         status, message, done = "failed", f"{exc}; results up to cycle {exc.cycle} kept", exc.cycle
     section = np.empty((done + 1, 6))
     section[:, 2:] = rows[: done + 1]
@@ -203,7 +211,6 @@ def _simulate(p: ModelParams, n: int, st: tuple, dense: bool, log_events: bool) 
         params=p,
         solver="exact",
         status=status,
-        success=status == "success",
         message=message,
         s=float(section[-1, 4]),
         delta_s=np.diff(section[:, 4]),
