@@ -38,7 +38,14 @@ from betvdesign.dynamics.bounds import (
     NOISE,
     envelope_prep,
 )
-from betvdesign.dynamics.evaluators import GAP_KIND, SLIP_KIND, STICK_KIND, _store
+from betvdesign.dynamics.evaluators import (
+    GAP_KIND,
+    SLIP_KIND,
+    STICK_KIND,
+    init_record,
+    put_forcing,
+    put_start,
+)
 from betvdesign.dynamics.flows import (
     REVERSE,
     SLIP,
@@ -207,53 +214,14 @@ def slip_evaluator(
     )
     m2 = derivative_bounds(w0, g, Af, wf, R0, 3) + ads * wf
     r = E0 + Af * H
-    _store(
-        e,
-        SLIP_KIND,
-        1,
-        H,
-        W,
-        False,
-        False,
-        math.atan2(sp0, cp0),
-        0.0,
-        wf,
-        w0,
-        F,
-        sp0,
-        cp0,
-        math.nan,
-        0.0,
-        0.0,
-        0.0,
-        0.0,
-        ds,
-        sig,
-        c.alpha,
-        z,
-        zd,
-        s,
-        sd,
-        math.inf,
-        R0,
-        1.0,
-        0,
-        0.0,
-        0.0,
-        0.0,
-        0.0,
-        (ph.q, 0.0),
-        (0.0, 0.0),
-        (math.inf, 0.0),
-        (0.0, 0.0),
-        (m2, 0.0),
-        (0, 0),
-        (0.0, 0.0),
-        (0.0, 0.0),
-        (r + abs(sd) + abs(zd) + 1e-300, 0.0),
-        start,
-        noise,
-    )
+    init_record(e, SLIP_KIND, H, W)
+    put_forcing(e, wf, w0, F, sp0, cp0)
+    put_start(e, start, noise)
+    e["R0"], e["bj"] = R0, 0
+    e["z"], e["zd"], e["s"], e["sd"] = z, zd, s, sd
+    e["ds"], e["sig"], e["al"] = ds, sig, c.alpha
+    e["q"][0], e["m2s"][0] = ph.q, m2
+    e["scale"][0] = r + abs(sd) + abs(zd) + 1e-300
     _general(e, g, G, Af, c.bA, c.a_stick)
     _split(e, w0, g, wf, F, G, z, zd, sp0, cp0, SLIP_KIND, sig, ds, sd)
 
@@ -288,53 +256,13 @@ def stick_evaluator(c: PhaseTable, z, zd, sp0, cp0, H: float, on_edge: int, e) -
     m2 = bA * wf * wf + ast * derivative_bounds(w0, g, Af, wf, R0, 4)
     r = E0 + Af * H
     sc = bA + ast * ((2.0 * g + w0) * r + Af)
-    _store(
-        e,
-        STICK_KIND,
-        2,
-        H,
-        W,
-        False,
-        False,
-        math.atan2(sp0, cp0),
-        0.5 * math.pi,
-        wf,
-        w0,
-        F,
-        sp0,
-        cp0,
-        math.nan,
-        0.0,
-        0.0,
-        0.0,
-        0.0,
-        0.0,
-        1.0,
-        1.0,
-        z,
-        zd,
-        0.0,
-        0.0,
-        math.inf,
-        R0,
-        1.0,
-        1,
-        0.0,
-        0.0,
-        0.0,
-        0.0,
-        (st.q[0], st.q[1]),
-        (0.0, 0.0),
-        (math.inf, math.inf),
-        (0.0, 0.0),
-        (m2, m2),
-        (0, 0),
-        (0.0, 0.0),
-        (0.0, 0.0),
-        (sc, sc),
-        start,
-        noise,
-    )
+    init_record(e, STICK_KIND, H, W)
+    put_forcing(e, wf, w0, F, sp0, cp0)
+    put_start(e, start, noise)
+    e["R0"], e["z"], e["zd"] = R0, z, zd
+    e["q"][0], e["q"][1] = st.q[0], st.q[1]
+    e["m2s"][0], e["m2s"][1] = m2, m2
+    e["scale"][0], e["scale"][1] = sc, sc
     _general(e, g, G, Af, bA, ast)
     _split(e, w0, g, wf, F, G, z, zd, sp0, cp0, STICK_KIND, 1.0, 0.0, 0.0)
 
@@ -353,53 +281,11 @@ def gap_evaluator(wf, zv, A, xi, xid, sp0, cp0, H: float, e) -> None:
     start = (xi, xid, y2, y3, 0.0, 0.0, 0.0, 0.0)
     noise = (sc, sc, sc, sc, 0.0, 0.0, 0.0, 0.0)
     m2 = derivative_bounds(w0, g, A, wf, R0, 2)
-    _store(
-        e,
-        GAP_KIND,
-        1,
-        H,
-        W,
-        False,
-        False,
-        math.atan2(sp0, cp0),
-        0.5 * math.pi,
-        wf,
-        w0,
-        F,
-        sp0,
-        cp0,
-        math.nan,
-        0.0,
-        0.0,
-        0.0,
-        0.0,
-        0.0,
-        1.0,
-        1.0,
-        xi,
-        xid,
-        0.0,
-        0.0,
-        math.inf,
-        R0,
-        1.0,
-        1,
-        0.0,
-        0.0,
-        0.0,
-        0.0,
-        (0.0, 0.0),
-        (0.0, 0.0),
-        (math.inf, 0.0),
-        (0.0, 0.0),
-        (m2, 0.0),
-        (0, 0),
-        (0.0, 0.0),
-        (0.0, 0.0),
-        (sc, 0.0),
-        start,
-        noise,
-    )
+    init_record(e, GAP_KIND, H, W)
+    put_forcing(e, wf, w0, F, sp0, cp0)
+    put_start(e, start, noise)
+    e["R0"], e["z"], e["zd"] = R0, xi, xid
+    e["m2s"][0], e["scale"][0] = m2, sc
     _general(e, g, 0.0, A, 0.0, 0.0)
     _split(e, w0, g, wf, F, 0.0, xi, xid, sp0, cp0, GAP_KIND, 1.0, 0.0, 0.0)
 
