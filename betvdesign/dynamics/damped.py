@@ -181,8 +181,31 @@ def _split(e, w0, g, wf, F, G, y, yd, sp0, cp0, kind: int, sig: float, ds: float
 def slip_evaluator(
     c: PhaseTable, phase: int, z, zd, s, sd, sp0, cp0, H: float, from_edge: bool, e
 ) -> None:
-    """f = σ(ζ' − s') of damped slip/reverse slip from (ζ, ζ', s, s') at φ0, window H;
-    ``from_edge``: entered at a band edge, where f' = σ(R − σbA sin φ)/α is 0 exactly."""
+    """Evaluator of f = σ(ζ' − s') with damping in slip (σ = +1) or reverse slip (σ = −1).
+
+    The phase ends (ζ' = s') where f reaches 0.
+
+    Parameters
+    ----------
+    c : PhaseTable
+        The constants of the parameter set (a record of :func:`phase_table`).
+    phase : int
+        ``SLIP`` or ``REVERSE``.
+    z, zd, s, sd : float
+        ζ, ζ', s, s' at the window start [-].
+    sp0, cp0 : float
+        sin φ0, cos φ0 [-] of the forcing phase at the start.
+    H : float
+        Window length [-].
+    from_edge : bool
+        Entered at a band edge, where f' = σ(R − σbA sin φ)/α is 0 exactly.
+    e : numpy.void
+        The evaluator filled (a record of :data:`evaluators.EVALUATOR_DTYPE`), by field name.
+
+    References
+    ----------
+    Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773.
+    """
     ph = c.slip if phase == SLIP else c.reverse
     sig, w0, F, G, g, ds = ph.sig, ph.w0, ph.F, ph.G, ph.g, ph.ds
     wf = c.varpi
@@ -228,8 +251,31 @@ def slip_evaluator(
 
 @kernel
 def stick_evaluator(c: PhaseTable, z, zd, sp0, cp0, H: float, on_edge: int, e) -> None:
-    """Damped stick-band distances g_lo, g_hi (module doc) from (ζ, ζ') at φ0, window H;
-    ``on_edge``: stick re-entered on that edge (0 lower, 1 upper), its distance 0 exactly."""
+    """Evaluator of the stick-band distances g_lo, g_hi with damping.
+
+    Stick ends where one reaches 0: below the band slip, above it reverse slip (module
+    doc).
+
+    Parameters
+    ----------
+    c : PhaseTable
+        The constants of the parameter set (a record of :func:`phase_table`).
+    z, zd : float
+        ζ, ζ' (= s') at the window start [-].
+    sp0, cp0 : float
+        sin φ0, cos φ0 [-] of the forcing phase at the start.
+    H : float
+        Window length [-].
+    on_edge : int
+        Stick re-entered on that edge (0 lower, 1 upper), whose distance is 0 exactly; −1
+        none.
+    e : numpy.void
+        The evaluator filled (a record of :data:`evaluators.EVALUATOR_DTYPE`), by field name.
+
+    References
+    ----------
+    Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773.
+    """
     st = c.stick
     w0, F, G, g = st.w0, st.F, st.G, st.g
     wf, bA, ast = c.varpi, c.bA, c.a_stick
@@ -269,9 +315,33 @@ def stick_evaluator(c: PhaseTable, z, zd, sp0, cp0, H: float, on_edge: int, e) -
 
 @kernel
 def gap_evaluator(wf, zv, A, xi, xid, sp0, cp0, H: float, e) -> None:
-    """The gap ξ in damped free flight (ξ'' + 2ζ_v ξ' + ξ = −A sin φ) from (ξ, ξ') at φ0
-    (also undamped with restitution: its round-off scale follows the window, so the tiny
-    flights of a chattering sequence are located to their own precision)."""
+    """Evaluator of the gap ξ in damped free flight (ξ'' + 2ζ_v ξ' + ξ = −A sin φ).
+
+    Also used undamped with restitution: its round-off scale follows the window, so the
+    tiny flights of a chattering sequence are located to their own precision.
+
+    Parameters
+    ----------
+    wf : float
+        ϖ [-].
+    zv : float
+        Normal damping ratio ζ_v [-].
+    A : float
+        Normal-force amplitude [-].
+    xi, xid : float
+        ξ, ξ' at the window start [-].
+    sp0, cp0 : float
+        sin φ0, cos φ0 [-] of the forcing phase at the start.
+    H : float
+        Window length [-].
+    e : numpy.void
+        The evaluator filled (a record of :data:`evaluators.EVALUATOR_DTYPE`), by field name.
+
+    References
+    ----------
+    Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773.
+    Budd & Dux, Phil. Trans. R. Soc. A 347 (1994), doi:10.1098/rsta.1994.0044.
+    """
     w0, g, F = 1.0, zv, -A
     W = _window(H, w0, wf, g)
     E0 = math.sqrt(xid * xid + xi * xi)
@@ -292,10 +362,35 @@ def gap_evaluator(wf, zv, A, xi, xid, sp0, cp0, H: float, e) -> None:
 
 @kernel
 def decide_band(c: PhaseTable, z: float, vs: float, sp: float, cp: float, on: int) -> int:
-    """The stick-band rule of :func:`contact.decide_phase` with damping: g_lo, g_hi
-    (module doc) compared lexicographically on their Taylor coefficients under the damped
-    stick flow from (ζ, common velocity vs): stick inside, slip below, reverse slip above.
-    ``on``: 1 / 2 when on the lower / upper edge (its distance 0 exactly)."""
+    """The stick-band rule of :func:`contact.decide_phase` with damping.
+
+    g_lo, g_hi (module doc) are compared lexicographically on their Taylor coefficients
+    under the damped stick flow from (ζ, common velocity vs): stick inside, slip below,
+    reverse slip above.
+
+    Parameters
+    ----------
+    c : PhaseTable
+        The constants of the parameter set (a record of :func:`phase_table`).
+    z : float
+        ζ [-].
+    vs : float
+        The common velocity ζ' = s' [-].
+    sp, cp : float
+        sin φ, cos φ [-] now.
+    on : int
+        1 / 2 when on the lower / upper edge (its distance 0 exactly), else 0 or −1.
+
+    Returns
+    -------
+    int
+        ``SLIP``, ``STICK`` or ``REVERSE``.
+
+    References
+    ----------
+    Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773 (the band; damping:
+    docs/damping.md).
+    """
     st = c.stick
     w0, F, G, g = st.w0, st.F, st.G, st.g
     wf, bA, ast = c.varpi, c.bA, c.a_stick

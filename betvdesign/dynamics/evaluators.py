@@ -105,7 +105,7 @@ EVALUATOR_DTYPE = np.dtype(
 )
 
 
-@kernel
+@kernel(inline=True)
 def init_record(e, kind: int, H: float, W: float) -> None:
     """Start the evaluator e of ``kind`` on the window [0, H], searched by windows W [-].
 
@@ -139,7 +139,7 @@ def init_record(e, kind: int, H: float, W: float) -> None:
     e["g"], e["G"], e["Af"], e["bA"], e["ast"] = 0.0, 0.0, 0.0, 0.0, 0.0
 
 
-@kernel
+@kernel(inline=True)
 def put_forcing(e, wf: float, w0: float, F: float, sp0: float, cp0: float) -> None:
     """The oscillator y'' + w0² y = F sin φ of the evaluator e, φ = φ0 + ϖh (ϖ = wf), and
     its forcing phase at the window start: (sin φ0, cos φ0) = (sp0, cp0) and φ0 [rad]."""
@@ -147,7 +147,7 @@ def put_forcing(e, wf: float, w0: float, F: float, sp0: float, cp0: float) -> No
     e["sp0"], e["cp0"], e["phi0"] = sp0, cp0, math.atan2(sp0, cp0)
 
 
-@kernel
+@kernel(inline=True)
 def put_start(e, start, noise) -> None:
     """The Taylor coefficients 0..3 of each event function at the window start (entries
     4i..4i+3 of the 8-tuple ``start``) and their round-off floors (``noise``)."""
@@ -170,8 +170,31 @@ def slip_evaluator(
     from_edge: bool,
     e,
 ) -> None:
-    """f = σ(ζ' − s') in slip/reverse slip from (ζ, ζ', s, s') at φ0, window H.
-    ``from_edge``: entered at a band edge, where f' = σ(q sin φ − ζ)/α is 0 exactly."""
+    """Evaluator of f = σ(ζ' − s') in slip (σ = +1) or reverse slip (σ = −1).
+
+    The phase ends (ζ' = s') where f reaches 0.
+
+    Parameters
+    ----------
+    c : PhaseTable
+        The constants of the parameter set (a record of :func:`phase_table`).
+    phase : int
+        ``SLIP`` or ``REVERSE``.
+    z, zd, s, sd : float
+        ζ, ζ', s, s' at the window start [-].
+    sp0, cp0 : float
+        sin φ0, cos φ0 [-] of the forcing phase at the start.
+    H : float
+        Window length [-].
+    from_edge : bool
+        Entered at a band edge, where f' = σ(q sin φ − ζ)/α is 0 exactly.
+    e : numpy.void
+        The evaluator filled (a record of :data:`EVALUATOR_DTYPE`), by field name.
+
+    References
+    ----------
+    Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773.
+    """
     ph = c.slip if phase == SLIP else c.reverse
     sig, q, w0, F, ds = ph.sig, ph.q, ph.w0, ph.F, ph.ds
     P, apq, K, fast = ph.P, ph.apq, ph.K, ph.fast
@@ -236,8 +259,31 @@ def slip_evaluator(
 def stick_evaluator(
     c: PhaseTable, z: float, zd: float, sp0: float, cp0: float, H: float, on_edge: int, e
 ) -> None:
-    """Stick-band distances g_lo, g_hi from (ζ, ζ') at φ0, window H. ``on_edge``: stick
-    re-entered on that edge (0 lower, 1 upper), whose distance is 0 exactly."""
+    """Evaluator of the stick-band distances g_lo, g_hi.
+
+    Stick ends where one reaches 0: below the band slip, above it reverse slip (module
+    doc).
+
+    Parameters
+    ----------
+    c : PhaseTable
+        The constants of the parameter set (a record of :func:`phase_table`).
+    z, zd : float
+        ζ, ζ' (= s') at the window start [-].
+    sp0, cp0 : float
+        sin φ0, cos φ0 [-] of the forcing phase at the start.
+    H : float
+        Window length [-].
+    on_edge : int
+        Stick re-entered on that edge (0 lower, 1 upper), whose distance is 0 exactly; −1
+        none.
+    e : numpy.void
+        The evaluator filled (a record of :data:`EVALUATOR_DTYPE`), by field name.
+
+    References
+    ----------
+    Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773.
+    """
     st = c.stick
     w0, F, P, fast, w3 = st.w0, st.F, st.P, st.fast, st.w3
     ql, qh = st.q[0], st.q[1]
@@ -313,7 +359,25 @@ def stick_evaluator(
 
 @kernel
 def gap_evaluator(wf: float, xi: float, xid: float, sp0: float, cp0: float, H: float, e) -> None:
-    """The gap ξ in free flight (ξ'' + ξ = −sin φ) from (ξ, ξ') at φ0, window H."""
+    """Evaluator of the gap ξ in free flight (ξ'' + ξ = −sin φ): the head hits where ξ = 0.
+
+    Parameters
+    ----------
+    wf : float
+        ϖ [-].
+    xi, xid : float
+        ξ, ξ' at the window start [-].
+    sp0, cp0 : float
+        sin φ0, cos φ0 [-] of the forcing phase at the start.
+    H : float
+        Window length [-].
+    e : numpy.void
+        The evaluator filled (a record of :data:`EVALUATOR_DTYPE`), by field name.
+
+    References
+    ----------
+    Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773.
+    """
     w0, F = 1.0, -1.0
     den = w0 * w0 - wf * wf
     if den == 0.0:  # vertical resonance ϖ = 1: no split

@@ -71,9 +71,25 @@ BRACKET_BISECT = 40
 
 
 def resonance_growth_bound(p: ModelParams) -> float | None:
-    """Proven least fall of ζ per cycle at the section [-/cycle], π(1 − ακ/2), when
-    α·ϖ² = 1 (within :data:`RESONANCE_RTOL`) and ακ < 2; None when the bound does not
-    apply (module docstring; MODEL.md "Dimensionless model", no-contact and slip)."""
+    """Proven least fall of ζ per cycle at the section at the free-flight resonance.
+
+    Parameters
+    ----------
+    p : ModelParams
+        The model.
+
+    Returns
+    -------
+    float or None
+        π(1 − ακ/2) [-/cycle] when α·ϖ² = 1 (within :data:`RESONANCE_RTOL`), ακ < 2 and
+        the model is the paper's (no damping, no restitution); None when the bound does
+        not apply (module docstring; MODEL.md "Dimensionless model", no-contact and slip).
+
+    References
+    ----------
+    Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773 (the model; unbounded
+    tangential motion near a·ϖ² = 1).
+    """
     ak = p.alpha * p.kappa
     if not p.ideal or abs(p.alpha * p.varpi**2 - 1.0) > RESONANCE_RTOL or ak >= 2.0:
         return None
@@ -257,13 +273,42 @@ def periodic_orbit(
 ) -> PeriodicResult:
     """Periodic state reached from rest (MODEL.md "Initial state"), by shooting.
 
-    tol: accepted fixed-point residual ‖Φⁿ(x) − x‖∞ [-]; max_cycles: brute-force budget
-    (cycles from rest) before giving up; max_period: periods j·k_v tried, j ≤ max_period;
-    transient: cycles from rest before the first Newton attempt.
+    Newton (with Anderson-accelerated starts) on the exact Poincaré map of the section
+    state (ζ, ζ', s'), accepted on the fixed-point residual only, stable orbits only
+    (module docstring).
 
-    status: "success"; "unbounded" (exact free-flight tangential resonance α·ϖ² = 1 with
-    ακ < 2: no bounded motion exists, proven and measured, see the module docstring);
-    "not_converged" (budget spent); "not_driven" (no contact recurs); "failed".
+    Parameters
+    ----------
+    p : ModelParams
+        The model, with its optional damping and restitution.
+    tol : float
+        Accepted fixed-point residual ‖Φⁿ(x) − x‖∞ [-].
+    max_cycles : int
+        Brute-force budget [cycles from rest] before giving up.
+    max_period : int
+        Periods j·k_v tried, j ≤ max_period [-] (k_v the vertical period).
+    transient : int
+        Cycles from rest before the first Newton attempt [-].
+
+    Returns
+    -------
+    PeriodicResult
+        Status (:data:`~betvdesign.dynamics.result.PeriodicStatus`): "success";
+        "unbounded" (exact free-flight tangential resonance α·ϖ² = 1 with ακ < 2: no
+        bounded motion exists, proven and measured, see the module docstring);
+        "not_converged" (budget spent); "not_driven" (no contact recurs); "failed".
+
+    Raises
+    ------
+    ParameterError
+        For a ``p`` that is not a ModelParams or a ``tol`` that is not finite and > 0.
+
+    References
+    ----------
+    Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773 (the model; the slider
+    settles to a periodic motion of the actuator's period).
+    Budd & Dux, Phil. Trans. R. Soc. A 347 (1994), doi:10.1098/rsta.1994.0044 (chattering, with
+    restitution).
     """
     if not isinstance(p, ModelParams):
         raise ParameterError(f"p must be a ModelParams, got {type(p).__name__}")

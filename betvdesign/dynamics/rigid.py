@@ -211,8 +211,25 @@ def contact_schedule(varpi: float, tau_end: float, *, max_contacts: int | None =
 
     From rest at a contact start at τ = 0 (docs/MODEL.md "Initial state"); the exact
     vertical motion is :class:`betvdesign.dynamics.vertical.VerticalSchedule` (the
-    same one the full model uses). Stops after ``max_contacts`` contacts.
-    Returns (contacts, impulsive_hit_times, n_root_evals).
+    same one the full model uses).
+
+    Parameters
+    ----------
+    varpi : float
+        ϖ [-].
+    tau_end : float
+        End of the span τ_end [-].
+    max_contacts : int, optional
+        Stop after this many contacts.
+
+    Returns
+    -------
+    contacts : list of Contact
+        The finite-duration contacts [τ].
+    impulsive : list of float
+        Times of the impulsive hits [-].
+    n_root_evals : int
+        Evaluations of the gap by the hit search [-].
     """
     period = TWO_PI / varpi
     n_cyc = math.ceil(tau_end / period - 1e-12)
@@ -239,8 +256,36 @@ def rigid_simulate(
 ) -> RigidTrajectory:
     """Integrate the rigid-limit model over ``cycles`` actuation cycles, exactly.
 
-    ``state0`` = (s, s') at τ = 0 (a contact start). ``alpha`` of ``p`` is ignored
-    (α → 0). See the module docstring for the equations (docs/MODEL.md).
+    See the module docstring for the equations (docs/MODEL.md): the head's tangential
+    motion is slaved to the actuator and the slider feels Coulomb friction only.
+
+    Parameters
+    ----------
+    p : ModelParams
+        The paper's model (no damping, no restitution); its α is ignored (α → 0).
+    cycles : int
+        Actuation cycles [-] (≥ 1).
+    state0 : tuple of 2 floats
+        (s, s') [-] at τ = 0 (a contact start).
+    log : bool
+        Keep the event log.
+
+    Returns
+    -------
+    RigidTrajectory
+        Always "success".
+
+    Raises
+    ------
+    ParameterError
+        For a ``p`` with damping or restitution.
+    ValueError
+        For ``cycles`` < 1.
+
+    References
+    ----------
+    Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773 (α → 0 always gives pull
+    mode).
     """
     if not p.ideal:
         raise ParameterError(
@@ -300,8 +345,30 @@ def rigid_periodic(p: ModelParams, *, max_cycles: int = 200) -> RigidPeriodic:
     vertical motion; over one period the slider velocity map F is monotone
     non-decreasing with F(v) − v non-increasing, so its fixed point is bracketed
     and refined to round-off. ``delta_s`` is the displacement per cycle there.
-    Status "no_contact" when the head never makes a finite-duration contact within
-    ``max_cycles`` (ϖ beyond the window: the model does not drive the slider).
+
+    Parameters
+    ----------
+    p : ModelParams
+        The paper's model (no damping, no restitution); its α is ignored (α → 0).
+    max_cycles : int
+        Horizon [cycles] within which two finite-duration contacts must occur.
+
+    Returns
+    -------
+    RigidPeriodic
+        "success", or "no_contact" when the head makes no finite-duration contact
+        within ``max_cycles`` (ϖ beyond the window: the model does not drive the slider)
+        (:data:`~betvdesign.dynamics.result.RigidStatus`).
+
+    Raises
+    ------
+    ParameterError
+        For a ``p`` with damping or restitution.
+
+    References
+    ----------
+    Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773 (α → 0 always gives pull
+    mode).
     """
     if not p.ideal:
         raise ParameterError(

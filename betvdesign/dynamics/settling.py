@@ -145,8 +145,8 @@ def settling(
 
     References
     ----------
-    Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773 (settling
-    from rest takes from a few hundred to about 10⁵ cycles).
+    Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773 (settling from rest takes
+    from a few hundred to about 10⁵ cycles).
     """
     t0 = time.perf_counter()
     k = max(1, int(period_cycles))

@@ -43,7 +43,22 @@ class CycleFailure(RuntimeError):
 
 
 def chatter_message(tau: float, m: int, n_switch: int) -> str:
-    """What a chattering contact (a Zeno point) at τ [-] in cycle m reports."""
+    """What a chattering contact (a Zeno point) reports.
+
+    Parameters
+    ----------
+    tau : float
+        Time of the chattering switches τ [-].
+    m : int
+        Its cycle [-].
+    n_switch : int
+        Phase switches counted in this contact [-].
+
+    Returns
+    -------
+    str
+        The message of the :class:`CycleFailure`.
+    """
     return (
         f"contact phases of (near) zero length repeat at τ = {tau:.12g} "
         f"(cycle {m}, {n_switch} switches in this contact): the stick/slip "
@@ -160,11 +175,45 @@ def simulate(
     state0: object = None,
     log_events: bool = True,
 ) -> Trajectory:
-    """Exact transient of ``cycles`` actuation cycles from ``state0`` at τ = 0.
+    """Exact event-driven transient of ``cycles`` actuation cycles from ``state0`` at τ = 0.
 
-    p: parameters; state0: (ξ, ξ', ζ, ζ', s, s') at τ = 0, default all zero (MODEL.md
-    "Initial state"); dense: keep the phase segments for :meth:`Trajectory.sample`;
-    log_events: keep the event log (counters are kept either way).
+    Every phase is advanced in closed form to its next event, located by a certified
+    search (MODEL.md "Dimensionless model"); the vertical motion is computed once
+    (:class:`~betvdesign.dynamics.vertical.VerticalSchedule`), the tangential motion by
+    the compiled contact loop (:func:`~betvdesign.dynamics.contact.run_cycles`).
+
+    Parameters
+    ----------
+    p : ModelParams
+        The model, with its optional damping and restitution.
+    cycles : int
+        Actuation cycles to simulate [-] (≥ 0).
+    dense : bool
+        Keep the closed-form phase pieces for :meth:`Trajectory.sample` and
+        ``Trajectory.phases``.
+    state0 : sequence of 6 floats, optional
+        (ξ, ξ', ζ, ζ', s, s') [-] at τ = 0, with ξ ≥ 0; default all zero (MODEL.md
+        "Initial state": a contact start).
+    log_events : bool
+        Keep the event log (the counters are kept either way).
+
+    Returns
+    -------
+    Trajectory
+        Status "success", or "failed" with the cycles before the one that could not be
+        advanced (:data:`~betvdesign.dynamics.result.TrajectoryStatus`).
+
+    Raises
+    ------
+    ParameterError
+        For a ``p`` that is not a ModelParams, a negative or non-integer ``cycles`` or an
+        invalid ``state0``.
+
+    References
+    ----------
+    Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773 (the model).
+    Budd & Dux, Phil. Trans. R. Soc. A 347 (1994), doi:10.1098/rsta.1994.0044 (chattering, with
+    restitution).
     """
     if not isinstance(p, ModelParams):
         raise ParameterError(f"p must be a ModelParams, got {type(p).__name__}")

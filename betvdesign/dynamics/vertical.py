@@ -261,9 +261,39 @@ def vertical_motion(
 ) -> VerticalResult:
     """Vertical motion from rest (the "model no more than a scene needs" fast path).
 
-    varpi: ϖ [-] (> 0, finite); zeta_v: normal damping ratio ζ_v [-]; restitution: e [-]
-    (both 0: the paper's model; docs/damping.md); max_cycles: horizon within which a
-    contact must recur.
+    The head's normal motion does not depend on the slider (MODEL.md "Vertical
+    motion"): it is computed exactly until it repeats, and classified.
+
+    Parameters
+    ----------
+    varpi : float
+        ϖ [-] (> 0, finite).
+    zeta_v : float
+        Normal damping ratio ζ_v [-] (0: the paper's model; docs/damping.md).
+    restitution : float
+        Coefficient of restitution e [-] of normal impacts (0: plastic).
+    max_cycles : int
+        Horizon [cycles] within which a contact must recur.
+
+    Returns
+    -------
+    VerticalResult
+        "success" with the regime, or "not_periodic" (impulsive hits only)
+        (:data:`~betvdesign.dynamics.result.VerticalStatus`).
+
+    Raises
+    ------
+    ParameterError
+        For a ϖ that is not a finite number > 0, or invalid ζ_v or e.
+    VerticalSearchError
+        When the certified hit search does not terminate or a chattering sequence does
+        not accumulate.
+
+    References
+    ----------
+    Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773 (vertical regimes against ϖ).
+    Budd & Dux, Phil. Trans. R. Soc. A 347 (1994), doi:10.1098/rsta.1994.0044 (chattering, with
+    restitution).
     """
     return vertical_motion_schedule(
         varpi, zeta_v=zeta_v, restitution=restitution, max_cycles=max_cycles
@@ -273,8 +303,24 @@ def vertical_motion(
 def vertical_motion_schedule(
     varpi: float, *, zeta_v: float = 0.0, restitution: float = 0.0, max_cycles: int = 1000
 ) -> tuple[VerticalResult, VerticalSchedule]:
-    """:func:`vertical_motion` and the schedule it was read from (for further analysis,
-    e.g. the hit phases of impulsive-only motion, without computing it again)."""
+    """:func:`vertical_motion` and the schedule it was read from.
+
+    Parameters
+    ----------
+    varpi, zeta_v, restitution, max_cycles
+        As in :func:`vertical_motion`.
+
+    Returns
+    -------
+    tuple of (VerticalResult, VerticalSchedule)
+        The answer and its schedule, for further analysis (e.g. the hit phases of
+        impulsive-only motion) without computing the motion again.
+
+    Raises
+    ------
+    ParameterError, VerticalSearchError
+        As :func:`vertical_motion`.
+    """
     try:
         v = float(varpi)
     except (TypeError, ValueError):
