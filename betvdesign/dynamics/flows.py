@@ -156,7 +156,7 @@ def _slip_phase(sig: float, b: float, w0: float, F: float, wf: float, ds: float)
     return dict(sig=sig, q=q, w0=w0, F=F, ds=ds, P=P, apq=apq, K=K, fast=fast, g=0.0, G=0.0)
 
 
-def phase_table(p: ModelParams) -> np.ndarray:
+def phase_table(p: ModelParams, *, general: bool = False) -> np.ndarray:
     """The constants of every phase of one parameter set (MODEL.md phase table).
 
     Parameters
@@ -164,6 +164,10 @@ def phase_table(p: ModelParams) -> np.ndarray:
     p : ModelParams
         The model, with its optional damping (then every phase takes its general form,
         :func:`_damped_fields`).
+    general : bool
+        Every phase in its general (damped) form even without damping: a second
+        implementation of the same events, which must agree with the undamped one at
+        zero damping (tests).
 
     Returns
     -------
@@ -210,7 +214,7 @@ def phase_table(p: ModelParams) -> np.ndarray:
         bA=b,
         e=p.restitution,
     )
-    if p.zeta_v != 0.0 or p.zeta_h != 0.0:
+    if general or p.zeta_v != 0.0 or p.zeta_h != 0.0:
         row.update(_damped_fields(p, b, a_st))
     table = np.array([_record(TABLE_DTYPE, row)], dtype=TABLE_DTYPE)
     return table if jit_enabled() else table.view(np.recarray)
