@@ -5,6 +5,7 @@ import json
 from pathlib import Path
 
 import pytest
+from conftest import orbit_stand_in
 from typer.testing import CliRunner
 
 from betvdesign.checks import checker
@@ -21,13 +22,9 @@ OWN = ["push_demo", "pull_demo", "bidir_demo", "rolloff_demo", "damped_demo"]
 def no_solver(monkeypatch):
     """A stand-in solver (Δs = ±1 per cycle, with the sign λ predicts) instead of the exact
     one: the CLI's presentation is tested apart from the dynamics."""
-    from types import SimpleNamespace
 
     def orbit(p):
-        ds = 1.0 if p.lam < 1 else -1.0
-        return SimpleNamespace(
-            status="success", success=True, message="stand-in", delta_s=ds, period_cycles=1
-        )
+        return orbit_stand_in(1.0 if p.lam < 1 else -1.0)
 
     monkeypatch.setattr(checker, "load_solver", lambda: orbit)
     monkeypatch.setattr("betvdesign.checks.checker._settling", lambda p, po, travel: None)
@@ -243,18 +240,8 @@ def test_check_reports_orbit_speed_and_json(monkeypatch):
     """With a stand-in solver returning Δs = 0.25, the mode is the orbit's and the speed
     is Δs·u·cosθ·f_act (push_demo: u = 0.14 um, θ = 20.56°, f_act = 6 kHz)."""
     import math
-    from types import SimpleNamespace
 
-    orbit = SimpleNamespace(
-        status="success",
-        success=True,
-        message="ok",
-        delta_s=0.25,
-        period_cycles=1,
-        residual=1e-12,
-        n_cycles=300,
-        elapsed_s=0.01,
-    )
+    orbit = orbit_stand_in(0.25, message="ok", residual=1e-12, n_cycles=300, elapsed_s=0.01)
     monkeypatch.setattr(checker, "load_solver", lambda: lambda p: orbit)
     monkeypatch.setattr("betvdesign.checks.checker._settling", lambda p, po, travel: None)
     path = str(DEVICES / "push_demo.yaml")

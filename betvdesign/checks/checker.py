@@ -27,8 +27,9 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
-from typing import Any, Literal
+from typing import TYPE_CHECKING, Any, Literal
 
+from betvdesign.checks.adequacy import DeviceAdequacy, SetAdequacy, assess
 from betvdesign.checks.rules import (
     MARGIN_CORNERS,
     RuleResult,
@@ -42,18 +43,40 @@ from betvdesign.model.domain import mode_of
 from betvdesign.model.params import ModelParams
 from betvdesign.nondim.device import DeviceDerivation, SetDerivation
 
+if TYPE_CHECKING:
+    from betvdesign.dynamics import PeriodicResult, VerticalResult
+    from betvdesign.dynamics.settling import Settling
+
 
 @dataclass
 class SetCheck:
-    """Check outcome of one actuator set (``periodic`` is the exact orbit)."""
+    """Check outcome of one actuator set.
+
+    Parameters
+    ----------
+    derivation : SetDerivation
+        The derived set.
+    rules : list of RuleResult
+        Its rules (device-level rules are in :attr:`CheckResult.rules` only).
+    periodic : PeriodicResult or SolverFailure, optional
+        Its exact periodic orbit (a :class:`SolverFailure` when the solver raised).
+    vertical : VerticalResult or SolverFailure, optional
+        Its exact vertical motion.
+    settling : Settling or SolverFailure, optional
+        The transient from rest (only for a moving orbit and ``settle=True``).
+    margin : dict, optional
+        Mode of the exact orbit at each perturbed corner (label -> mode or None).
+    adequacy : SetAdequacy, optional
+        Is the idealised model enough (:mod:`betvdesign.checks.adequacy`).
+    """
 
     derivation: SetDerivation
     rules: list[RuleResult]
-    periodic: Any | None = None
-    vertical: Any | None = None
-    settling: Any | None = None
+    periodic: PeriodicResult | SolverFailure | None = None
+    vertical: VerticalResult | SolverFailure | None = None
+    settling: Settling | SolverFailure | None = None
     margin: dict[str, str | None] | None = None
-    adequacy: Any | None = None
+    adequacy: SetAdequacy | None = None
 
     @property
     def mode(self) -> str | None:
@@ -64,7 +87,8 @@ class SetCheck:
     def mode_predicted(self) -> str:
         """The mode the check reports: the exact one, "not driven" when no contact
         recurs (the slider is not moved), "unknown" without an orbit."""
-        if self.mode is None and getattr(self.periodic, "status", None) == "not_driven":
+        not_driven = self.periodic is not None and self.periodic.status == "not_driven"
+        if self.mode is None and not_driven:
             return "not driven"
         return self.mode or "unknown"
 
@@ -82,7 +106,21 @@ class SetCheck:
 
 @dataclass
 class CheckResult:
-    """Everything ``betv check`` reports for one device."""
+    """Everything ``betv check`` reports for one device.
+
+    Parameters
+    ----------
+    derivation : DeviceDerivation
+        The derived device.
+    sets : list of SetCheck
+        One per actuator set, in the device's order.
+    rules : list of RuleResult
+        Every rule: each set's, then the device-level ones.
+    notes : list of str
+        Remarks of the check (e.g. a mirrored set reused).
+    source_file : str
+        The device file ("" when checked from a spec).
+    """
 
     derivation: DeviceDerivation
     sets: list[SetCheck]
@@ -92,10 +130,20 @@ class CheckResult:
 
     @property
     def verdict(self) -> Literal["pass", "fail"]:
+        """ "fail" when any error-severity rule fails, else "pass"."""
         return verdict(self.rules)
 
     def as_dict(self) -> dict[str, Any]:
-        """The JSON contract of ``betv check --json`` for one device."""
+        """The checker's full record of one device (``betv check --json --verbose``).
+
+        Returns
+        -------
+        dict
+            ``device``, ``file``, the first set's ``params``, ``derived`` and
+            ``mode_predicted``, every rule, the verdict, the notes and per set its
+            parameters, derivation record, solver summaries, settling, margin, adequacy
+            and rules (JSON-safe).
+        """
         sets = [_set_dict(sc) for sc in self.sets]
         first = sets[0]
         return {
@@ -123,7 +171,15 @@ class CheckResult:
 
 @dataclass
 class SolverFailure:
-    """Stands in for a solver result when the solver raised: success False, with why."""
+    """Stands in for a solver result when the solver raised: success False, with why.
+
+    Parameters
+    ----------
+    message : str
+        What the solver raised.
+    success, status, delta_s, mode
+        Those of a failed result (False, "failed", nan, "").
+    """
 
     message: str
     success: bool = False
@@ -133,14 +189,26 @@ class SolverFailure:
 
 
 def load_solver() -> Callable[[ModelParams], Any]:
-    """The exact solver's ``periodic_orbit`` (imported lazily)."""
+    """The exact periodic-orbit solver, imported lazily.
+
+    Returns
+    -------
+    callable
+        :func:`betvdesign.dynamics.periodic_orbit`.
+    """
     from betvdesign.dynamics import periodic_orbit
 
     return periodic_orbit
 
 
 def load_vertical() -> Callable[..., Any]:
-    """The exact vertical-motion fast path ``dynamics.vertical_motion`` (lazy import)."""
+    """The exact vertical-motion fast path, imported lazily.
+
+    Returns
+    -------
+    callable
+        :func:`betvdesign.dynamics.vertical_motion`.
+    """
     from betvdesign.dynamics import vertical_motion
 
     return vertical_motion
@@ -154,8 +222,19 @@ def _guarded(fn: Callable[..., Any], arg: Any, **kw: Any) -> Any:
 
 
 def corner_params(p: ModelParams) -> dict[str, ModelParams]:
-    """The perturbed parameter sets of the mode-margin rule, by label (damping and
-    restitution kept)."""
+    """The perturbed parameter sets of the mode-margin rule.
+
+    Parameters
+    ----------
+    p : ModelParams
+        The set's parameters.
+
+    Returns
+    -------
+    dict
+        Label (``ϖ×0.95``, ``α×1.1``, ...) -> ``p`` with ϖ and α scaled by
+        :data:`~betvdesign.checks.rules.MARGIN_CORNERS` (damping and restitution kept).
+    """
     out = {}
     for fw, fa in MARGIN_CORNERS:
         label = f"ϖ×{fw:g}" if fa == 1.0 else f"α×{fa:g}"
@@ -171,17 +250,40 @@ def check_derivation(
     margin: bool = True,
     settle: bool = True,
     target_speed_m_s: float | None = None,
-    adequacy: Any = None,
+    adequacy: DeviceAdequacy | bool | None = None,
 ) -> CheckResult:
     """Check every actuator set with its exact orbit (see the module docstring).
 
-    solver / vertical: override ``dynamics.periodic_orbit`` / ``dynamics.vertical_motion``
-    (tests, studies); margin: run the mode-margin corners; settle: run the transient
-    from rest; target_speed_m_s: a required speed [m/s] (adds the error rule
-    ``target-speed``); adequacy: is the idealised model enough
-    (:mod:`betvdesign.checks.adequacy`, rule ``model-adequacy``): None runs it with the
-    exact solver unless ``solver`` is given, True always (with ``solver``), False never,
-    or an already computed :class:`~betvdesign.checks.adequacy_data.DeviceAdequacy`.
+    Parameters
+    ----------
+    derivation : DeviceDerivation
+        The derived device.
+    solver : callable, optional
+        Stand-in for :func:`betvdesign.dynamics.periodic_orbit` (tests, studies, the
+        report's own orbits); returns a PeriodicResult.
+    vertical : callable, optional
+        Stand-in for :func:`betvdesign.dynamics.vertical_motion`; may return None.
+    margin : bool
+        Run the mode-margin corners (:func:`corner_params`).
+    settle : bool
+        Run the transient from rest (:func:`betvdesign.dynamics.settling.settling`).
+    target_speed_m_s : float, optional
+        A required speed [m/s] (adds the error rule ``target-speed``).
+    adequacy : DeviceAdequacy or bool, optional
+        Is the idealised model enough (:mod:`betvdesign.checks.adequacy`, rule
+        ``model-adequacy``): None runs it with the exact solver unless ``solver`` is
+        given, True always (with ``solver``), False never; or an already computed
+        :class:`~betvdesign.checks.adequacy.DeviceAdequacy`.
+
+    Returns
+    -------
+    CheckResult
+        The sets with their orbits and rules, every rule, the verdict.
+
+    References
+    ----------
+    .. [1] Shin, Pai, Lin, Hui and Tien, J. Appl. Phys. 96, 7603 (2004),
+       doi:10.1063/1.1809773.
     """
     custom = solver is not None
     solver = solver or load_solver()
@@ -241,27 +343,28 @@ def check_derivation(
 
 
 def _adequacy(
-    derivation: DeviceDerivation, want: Any, custom: Callable[..., Any] | None
-) -> dict[str, Any]:
+    derivation: DeviceDerivation,
+    want: DeviceAdequacy | bool | None,
+    custom: Callable[..., Any] | None,
+) -> dict[str, SetAdequacy]:
     """Adequacy results by set name ({} when not wanted; see :func:`check_derivation`)."""
     if want is False or (want is None and custom is not None):
         return {}
     if want is None or want is True:
-        from betvdesign.checks.adequacy import assess
-
         want = assess(derivation, solver=custom)
     return {a.name: a for a in want.sets}
 
 
-def _settling(p: ModelParams, po: Any, travel_s: float) -> Any:
+def _settling(p: ModelParams, po: PeriodicResult, travel_s: float) -> Settling | SolverFailure:
+    """The transient from rest of a moving orbit ``po`` (a failure stand-in if it raised)."""
     from betvdesign.dynamics.settling import settling
 
-    moduli = getattr(po, "floquet_moduli", None)
+    moduli = po.floquet_moduli
     try:
         return settling(
             p,
             float(po.delta_s),
-            period_cycles=int(getattr(po, "period_cycles", 1) or 1),
+            period_cycles=1 if po.period_cycles is None else int(po.period_cycles),
             travel_s=travel_s,
             mu_max=max(moduli) if moduli else None,
         )
@@ -291,7 +394,7 @@ def _set_dict(sc: SetCheck) -> dict[str, Any]:
         "lambda_agrees": sc.mode in (None, "stalled") or sc.mode == sc.lambda_mode,
         "speed_m_s": v,
         "simulation": None if p is None else simulation_summary(p),
-        "settling": None if st is None or not hasattr(st, "as_dict") else st.as_dict(),
+        "settling": None if st is None or isinstance(st, SolverFailure) else st.as_dict(),
         "margin": sc.margin,
         "adequacy": None if sc.adequacy is None else sc.adequacy.as_dict(),
         "vertical": None if sc.vertical is None else _vertical_summary(sc.vertical),
@@ -319,40 +422,59 @@ def _set_dict(sc: SetCheck) -> dict[str, Any]:
     }
 
 
-def simulation_summary(p: Any) -> dict[str, Any]:
-    """JSON-safe summary of a periodic-orbit result (fields the solver provides)."""
+def simulation_summary(p: PeriodicResult | SolverFailure) -> dict[str, Any]:
+    """JSON-safe summary of a periodic-orbit result.
+
+    Parameters
+    ----------
+    p : PeriodicResult or SolverFailure
+        The exact orbit, or the stand-in for a solver that raised.
+
+    Returns
+    -------
+    dict
+        ``status``, ``success``, ``message``, ``mode`` (None without an orbit),
+        ``delta_s`` [-]; for a solver result also ``residual`` [-], ``impacts_per_cycle``,
+        ``contact_fraction`` [-], ``elapsed_s`` [s], the cycle counts (``period_cycles``,
+        ``n_cycles``, ``transient_cycles``, when known) and ``mu_max`` (slowest Floquet
+        modulus |μ| [-], when known). Non-finite floats as strings.
+    """
     out: dict[str, Any] = {
-        "status": str(getattr(p, "status", "")),
-        "success": bool(getattr(p, "success", False)),
-        "message": str(getattr(p, "message", "")),
-        "mode": mode_of(getattr(p, "delta_s", None)) if getattr(p, "success", False) else None,
+        "status": str(p.status),
+        "success": bool(p.success),
+        "message": str(p.message),
+        "mode": mode_of(p.delta_s) if p.success else None,
+        "delta_s": _json_float(p.delta_s),
     }
-    for name in ("delta_s", "residual", "impacts_per_cycle", "contact_fraction", "elapsed_s"):
-        if hasattr(p, name):
-            out[name] = _json_float(getattr(p, name))
-    for name in ("period_cycles", "n_cycles", "transient_cycles"):
-        v = getattr(p, name, None)
-        if v is not None:
-            out[name] = int(v)
-    moduli = getattr(p, "floquet_moduli", None)
+    if isinstance(p, SolverFailure):
+        return out
+    out["residual"] = _json_float(p.residual)
+    out["impacts_per_cycle"] = _json_float(p.impacts_per_cycle)
+    out["contact_fraction"] = _json_float(p.contact_fraction)
+    out["elapsed_s"] = _json_float(p.elapsed_s)
+    counts = (
+        ("period_cycles", p.period_cycles),
+        ("n_cycles", p.n_cycles),
+        ("transient_cycles", p.transient_cycles),
+    )
+    out |= {name: int(k) for name, k in counts if k is not None}
+    moduli = p.floquet_moduli
     if moduli:
         out["mu_max"] = float(max(moduli))
     return out
 
 
-def _vertical_summary(v: Any) -> dict[str, Any]:
-    out: dict[str, Any] = {
-        "success": bool(getattr(v, "success", False)),
-        "message": str(getattr(v, "message", "")),
-    }
-    if out["success"]:
+def _vertical_summary(v: VerticalResult | SolverFailure) -> dict[str, Any]:
+    out: dict[str, Any] = {"success": bool(v.success), "message": str(v.message)}
+    if v.success:
         out["regime"] = str(v.regime)
-        for name in ("hits_per_cycle", "impulsive_per_cycle", "contact_fraction"):
-            out[name] = _json_float(getattr(v, name, None))
+        out["hits_per_cycle"] = _json_float(v.hits_per_cycle)
+        out["impulsive_per_cycle"] = _json_float(v.impulsive_per_cycle)
+        out["contact_fraction"] = _json_float(v.contact_fraction)
     return out
 
 
-def _json_float(x: Any) -> float | str | None:
+def _json_float(x: float | None) -> float | str | None:
     if x is None:
         return None
     x = float(x)

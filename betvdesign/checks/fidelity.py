@@ -25,6 +25,11 @@ error envelope over α, indicative costs) is *measured* by
 ``benchmarks/work_precision.py --ladder`` and stored as package data
 ``betvdesign/data/fidelity_measured.json`` with its provenance; :func:`stale` says
 when the stored numbers no longer match the solver.
+
+References
+----------
+.. [1] Shin, Pai, Lin, Hui and Tien, J. Appl. Phys. 96, 7603 (2004),
+   doi:10.1063/1.1809773 (the λ criterion, eq. 9; the vertical motion; the model).
 """
 
 from __future__ import annotations
@@ -52,7 +57,21 @@ WINDOW = domain.VARPI_WINDOW
 
 @dataclass(frozen=True)
 class RungInfo:
-    """What a rung is, what it answers and where it comes from."""
+    """What a rung is, what it answers and where it comes from.
+
+    Parameters
+    ----------
+    name : Rung
+        The rung.
+    model : str
+        The model it solves, in words.
+    answers : frozenset of str
+        The questions it answers (:data:`QUESTIONS`).
+    exact : str
+        How exact its answer is.
+    source : str
+        Where it comes from (MODEL.md section, module).
+    """
 
     name: Rung
     model: str
@@ -102,7 +121,19 @@ RUNG_INFO: dict[Rung, RungInfo] = {
 
 @dataclass(frozen=True)
 class Choice:
-    """The rung chosen for a question, and why (printed with every answer)."""
+    """The rung chosen for a question, and why (printed with every answer).
+
+    Parameters
+    ----------
+    rung : Rung
+        The rung that answers.
+    question : Question
+        The question asked.
+    reason : str
+        Why this rung.
+    forced : bool
+        Chosen by ``--fidelity`` rather than by :func:`choose_rung`.
+    """
 
     rung: Rung
     question: Question
@@ -110,6 +141,13 @@ class Choice:
     forced: bool = False
 
     def as_dict(self) -> dict[str, Any]:
+        """JSON record of the choice.
+
+        Returns
+        -------
+        dict
+            ``rung``, ``question``, ``reason``, ``forced`` and the rung's ``model``.
+        """
         return {
             "rung": self.rung,
             "question": self.question,
@@ -121,7 +159,26 @@ class Choice:
 
 @dataclass
 class Answer:
-    """A rung's answer: ``value`` (Δs, mode, regime dict...), status and timing [s]."""
+    """A rung's answer.
+
+    Parameters
+    ----------
+    choice : Choice
+        The rung and why.
+    status, message : str
+        The rung's status and explanation.
+    success : bool
+        The rung answered.
+    value : Any
+        The answer: Δs per cycle [-], λ [-], Floquet moduli [-], a regime dict or the
+        slider positions [-] of a transient.
+    mode : str or None
+        "push", "pull", "stalled", or None.
+    seconds : float
+        Time taken [s].
+    extra : dict
+        Anything else the rung reports.
+    """
 
     choice: Choice
     status: str
@@ -138,22 +195,42 @@ MEASURED_DATA = "data/fidelity_measured.json"
 
 @functools.lru_cache(maxsize=1)
 def measured_document() -> dict[str, Any]:
-    """The stored measurements with their provenance (package data, JSON)."""
+    """The stored measurements with their provenance.
+
+    Returns
+    -------
+    dict
+        The package data :data:`MEASURED_DATA` (JSON): ``measured`` and its provenance.
+    """
     from importlib.resources import files
 
     text = files("betvdesign").joinpath(MEASURED_DATA).read_text("utf-8")
     return json.loads(text)
 
 
-def _measured() -> dict[str, Any]:
+def measured() -> dict[str, Any]:
+    """The stored measurements the ladder states (without their provenance).
+
+    Returns
+    -------
+    dict
+        ``lambda`` (held-out misprediction rate), ``rigid`` (error fit over α),
+        ``fingerprint`` (periodic Δs of reference designs), ``full_cycles`` and
+        ``costs_cpu_s`` (indicative costs [s]).
+    """
     return measured_document()["measured"]
 
 
 def lambda_error() -> dict[str, Any]:
-    """The λ rule's measured misprediction rate on the held-out random sample:
-    ``{"n", "mispredicted", "rate", "upper_95", "bands"}`` (one-sided 95 %
-    Clopper–Pearson bound; per |λ − 1| band too)."""
-    h = _measured()["lambda"]["held_out"]
+    """The λ rule's measured misprediction rate on the held-out random sample.
+
+    Returns
+    -------
+    dict
+        ``n`` (converged designs), ``mispredicted``, ``rate`` [-], ``upper_95`` [-] (one-sided
+        95 % Clopper–Pearson bound) and ``bands`` (the same per |λ − 1| band).
+    """
+    h = measured()["lambda"]["held_out"]
     return {
         "n": h["converged"],
         "mispredicted": h["mispredicted"],
@@ -164,7 +241,13 @@ def lambda_error() -> dict[str, Any]:
 
 
 def lambda_error_statement() -> str:
-    """One sentence a study prints when it answers "mode" with λ."""
+    """One sentence a study prints when it answers "mode" with λ.
+
+    Returns
+    -------
+    str
+        The held-out misprediction count, rate and 95 % bound, in words.
+    """
     e = lambda_error()
     return (
         f"the λ fit named the wrong mode for {e['mispredicted']} of {e['n']} held-out random "
@@ -173,12 +256,23 @@ def lambda_error_statement() -> str:
 
 
 def stale(rtol: float = 1e-9) -> list[str]:
-    """Why the stored measurements no longer describe the current solver ([] if they do):
-    the periodic Δs of the fingerprint designs recomputed now against the stored ones."""
+    """Why the stored measurements no longer describe the current solver.
+
+    Parameters
+    ----------
+    rtol : float
+        Relative tolerance [-] on the periodic Δs of each fingerprint design.
+
+    Returns
+    -------
+    list of str
+        One line per fingerprint design whose Δs, recomputed now, differs from the
+        stored one; [] when they all agree.
+    """
     from betvdesign import dynamics
 
     out = []
-    for f in _measured().get("fingerprint", []):
+    for f in measured().get("fingerprint", []):
         p = ModelParams(f["varpi"], f["alpha"], f["beta"], f["kappa"])
         now = dynamics.periodic_orbit(p).delta_s
         old = f["delta_s"]
@@ -193,8 +287,19 @@ IDEAL_ONLY = ("lambda", "rigid")
 
 
 def rigid_error_estimate(alpha: float) -> float:
-    """Measured bound on the rigid limit's relative Δs error at this α [-]."""
-    fit = _measured()["rigid"]
+    """Measured bound on the rigid limit's relative Δs error.
+
+    Parameters
+    ----------
+    alpha : float
+        Tangential compliance ratio α [-].
+
+    Returns
+    -------
+    float
+        The measured fit coef·α^power [-] of the relative Δs error.
+    """
+    fit = measured()["rigid"]
     return float(fit["coef"] * alpha ** fit["power"])
 
 
@@ -207,12 +312,33 @@ def choose_rung(
 ) -> Choice:
     """Cheapest rung answering ``question`` for ``p`` to the accuracy ``tol``.
 
-    question: "mode" (push or pull), "regime" (hits and contact), "delta_s" (periodic
-    displacement per cycle, relative accuracy ``tol``), "transient" (s over N cycles),
-    "stability" (Floquet multipliers). For "mode", ``tol`` is the misprediction rate
-    accepted; the λ rule is used only where it never mispredicted on the measured map.
-    force: a rung name (``--fidelity``); refused with :class:`UsageError` when that
-    rung cannot answer the question.
+    Parameters
+    ----------
+    p : ModelParams
+        The design's dimensionless parameters.
+    question : Question
+        "mode" (push or pull), "regime" (hits and contact), "delta_s" (periodic
+        displacement per cycle), "transient" (s over N cycles) or "stability" (Floquet
+        multipliers).
+    tol : float
+        Relative accuracy [-] asked of "delta_s" (a mode is always the periodic orbit's).
+    force : Rung, optional
+        A rung name (``--fidelity``), used instead of the cheapest.
+
+    Returns
+    -------
+    Choice
+        The rung and why (with the measured error of a forced λ or rigid rung).
+
+    Raises
+    ------
+    UsageError
+        For an unknown question or rung, or a forced rung that cannot answer.
+
+    References
+    ----------
+    .. [1] Shin, Pai, Lin, Hui and Tien, J. Appl. Phys. 96, 7603 (2004),
+       doi:10.1063/1.1809773 (the λ criterion and the window 0.5 ≤ ϖ < 2).
     """
     if question not in QUESTIONS:
         raise UsageError(f"unknown question {question!r}; one of {', '.join(QUESTIONS)}")
@@ -290,7 +416,27 @@ def choose_rung(
 
 
 def evaluate(p: ModelParams, choice: Choice, *, cycles: int = 100) -> Answer:
-    """Run the chosen rung and return its answer (``cycles`` for "transient")."""
+    """Run the chosen rung.
+
+    Parameters
+    ----------
+    p : ModelParams
+        The design's dimensionless parameters.
+    choice : Choice
+        The rung and question (:func:`choose_rung`).
+    cycles : int
+        Actuation cycles of the "full" rung's transient.
+
+    Returns
+    -------
+    Answer
+        The rung's answer (value, mode, status) and its time [s].
+
+    References
+    ----------
+    .. [1] Shin, Pai, Lin, Hui and Tien, J. Appl. Phys. 96, 7603 (2004),
+       doi:10.1063/1.1809773 (λ of the "lambda" rung, eq. 9).
+    """
     from betvdesign import dynamics
     from betvdesign.dynamics import rigid
 
@@ -337,7 +483,24 @@ def evaluate(p: ModelParams, choice: Choice, *, cycles: int = 100) -> Answer:
 def answer(
     p: ModelParams, question: Question, *, tol: float = 1e-6, force: Rung | None = None
 ) -> Answer:
-    """Choose the cheapest adequate rung (or the forced one) and evaluate it."""
+    """Choose the cheapest adequate rung (or the forced one) and evaluate it.
+
+    Parameters
+    ----------
+    p : ModelParams
+        The design's dimensionless parameters.
+    question : Question
+        The question (:func:`choose_rung`).
+    tol : float
+        Relative accuracy [-] asked of "delta_s".
+    force : Rung, optional
+        A rung name (``--fidelity``).
+
+    Returns
+    -------
+    Answer
+        :func:`evaluate` of :func:`choose_rung`'s choice.
+    """
     return evaluate(p, choose_rung(p, question, tol=tol, force=force))
 
 

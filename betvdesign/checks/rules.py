@@ -1,13 +1,13 @@
 """Design rules as data: each check of a derived design gives a :class:`RuleResult`.
 
 The rules turn docs/MODEL.md, "What the model shows", into checks a designer can act
-on. **The mode and the speed always come from the exact periodic orbit** (an object
-with ``success``, ``status``, ``message``, ``delta_s``, ``period_cycles``,
-``floquet_moduli``, as :class:`betvdesign.dynamics.PeriodicResult`); the paper's λ
-fit is shown beside it ("agrees"/"disagrees"), never used for a verdict. Each failed
-rule carries a ``fix``: what to change, in the designer's quantities.
+on. **The mode and the speed always come from the exact periodic orbit** (a
+:class:`betvdesign.dynamics.PeriodicResult`, or the checker's failure stand-in, which
+has ``success`` False and says why); the paper's λ fit is shown beside it
+("agrees"/"disagrees"), never used for a verdict. Each failed rule carries a ``fix``:
+what to change, in the designer's quantities.
 
-Thresholds (one home: :mod:`betvdesign.model.domain`, except the two below):
+Thresholds (one home: :mod:`betvdesign.model.domain`, except the ones defined here):
 
 - frequency window 0.5 ≤ ϖ < 2 (one hit per cycle, finite contact);
 - mode: the intended one, |Δs| above round-off (else "stalled");
@@ -15,33 +15,35 @@ Thresholds (one home: :mod:`betvdesign.model.domain`, except the two below):
   (:data:`MARGIN_CORNERS`: ±5 % on the resonance frequency or ±10 % on the tangential
   compliance is a typical fabrication spread);
 - tangential resonance |a·ϖ² − 1| ≥ 0.1 for a = α and a = α(1 + 1/β);
+- speed Δs·u·cosθ·f_act from the exact orbit (MODEL.md, "Displacement per cycle"), or
+  the mean over the crossing of the travel range from rest when the slider has not
+  settled by then (:mod:`betvdesign.dynamics.settling`);
 - settling: from rest the slider is within 1 % of its periodic Δs before
   :data:`SETTLE_SHARE` of the cycles that cross the travel range are spent;
 - speed ≥ the target, when one is given;
-- published fit: computed parameters within 10 % of a published value.
+- published fit: computed parameters within :data:`PUBLISHED_RTOL` (10 %) of a published
+  value;
+- model adequacy (:func:`adequacy_rule`, from :mod:`betvdesign.checks.adequacy`): info
+  when the idealised model's mode holds with the device's (or plausible default) head
+  damping and restitution and throughout the likely bands of Q and e; warning when the
+  mode flips within them, or when the idealised model has no periodic orbit while the
+  richer one has (e.g. unbounded tangential growth at α·ϖ² = 1 without damping);
+- device: two or more sets move the slider both ways (``bidirectional``).
+
+References
+----------
+.. [1] Shin, Pai, Lin, Hui and Tien, J. Appl. Phys. 96, 7603 (2004),
+   doi:10.1063/1.1809773 (the window 0.5 ≤ ϖ < 2, the λ criterion of eq. 9, the
+   displacement per cycle).
 """
 
 from __future__ import annotations
 
-from typing import Any
+import math
+from dataclasses import asdict, dataclass
+from typing import TYPE_CHECKING, Any, Literal, Protocol
 
-from betvdesign.checks.ruledata import (
-    MARGIN_CORNERS,
-    PUBLISHED_RTOL,
-    SETTLE_SHARE,
-    SRC_LAMBDA,
-    SRC_MARGIN,
-    SRC_PUBLISHED,
-    SRC_SOLVER,
-    SRC_TANG,
-    SRC_WINDOW,
-    OrbitLike,
-    RuleResult,
-    orbit_mode,
-    verdict,
-)
-from betvdesign.checks.rules_adequacy import adequacy_rule
-from betvdesign.checks.rules_motion import format_speed, format_time, speed_rules
+from betvdesign.checks.adequacy import LIKELY_QUALITY, LIKELY_RESTITUTION, SetAdequacy
 from betvdesign.model.domain import (
     FIT_RANGE,
     TANGENTIAL_DETUNING,
@@ -51,22 +53,252 @@ from betvdesign.model.domain import (
     outside_fit_range,
     resonance_detuning,
 )
-from betvdesign.nondim.device import DeviceDerivation, SetDerivation
+from betvdesign.nondim.record import DeviceDerivation, SetDerivation
 from betvdesign.output.siformat import format_si
+
+if TYPE_CHECKING:
+    from betvdesign.dynamics import VerticalResult
+    from betvdesign.dynamics.settling import Settling
 
 __all__ = [
     "MARGIN_CORNERS",
+    "PUBLISHED_RTOL",
     "SETTLE_SHARE",
+    "SRC_ADEQUACY",
+    "SRC_LAMBDA",
+    "SRC_MARGIN",
+    "SRC_PUBLISHED",
+    "SRC_SETTLE",
+    "SRC_SOLVER",
+    "SRC_SPEED",
+    "SRC_TANG",
+    "SRC_WINDOW",
+    "OrbitLike",
     "RuleResult",
+    "Severity",
+    "adequacy_rule",
     "evaluate",
     "evaluate_device",
     "format_speed",
     "format_time",
     "mode_hint",
     "orbit_mode",
+    "speed_rules",
+    "travel_axis",
     "travel_direction",
     "verdict",
 ]
+
+Severity = Literal["error", "warning", "info"]
+
+#: Relative distance [-] within which a computed parameter matches a published one.
+PUBLISHED_RTOL = 0.1
+#: Relative perturbations of (ϖ, α) the mode must survive (fabrication spread).
+MARGIN_CORNERS: tuple[tuple[float, float], ...] = (
+    (0.95, 1.0),
+    (1.05, 1.0),
+    (1.0, 0.9),
+    (1.0, 1.1),
+)
+#: Settling may take at most this share of the cycles that cross the travel range.
+SETTLE_SHARE = 0.25
+
+SRC_WINDOW = "MODEL.md, What the model shows: Vertical motion (Shin et al. 2004)"
+SRC_LAMBDA = "MODEL.md, Push/pull criterion (empirical fit, Shin et al. 2004, eq. 9)"
+SRC_TANG = "MODEL.md, What the model shows: tangential vibration undamped off contact"
+SRC_SPEED = "MODEL.md, Displacement per cycle: speed = Δs·u·cosθ·f_act"
+SRC_PUBLISHED = "device file: published_fit"
+SRC_SOLVER = "betvdesign.dynamics.periodic_orbit (exact event-driven solver, shooting)"
+SRC_SETTLE = "betvdesign.dynamics.settling (exact transient from rest, MODEL.md: Slider)"
+SRC_MARGIN = "exact periodic orbits at ϖ·(1 ± 5 %) and α·(1 ± 10 %) (fabrication spread)"
+SRC_ADEQUACY = (
+    "betvdesign.checks.adequacy: exact periodic orbits without and with head damping and "
+    "restitution, Q and e scanned (MODEL.md, Beyond the paper's idealisation)"
+)
+
+
+class OrbitLike(Protocol):
+    """What the rules read of any periodic-orbit result, a failed one included.
+
+    A :class:`betvdesign.dynamics.PeriodicResult`, or a stand-in for a solver that failed
+    (``success`` False, ``status`` and ``message`` saying why). A successful orbit is a
+    ``PeriodicResult`` and also gives ``period_cycles`` [-].
+
+    Attributes
+    ----------
+    success : bool
+        A periodic orbit was found.
+    status : str
+        The solver's status ("success", "unbounded", "not_driven", "not_converged", ...).
+    message : str
+        The solver's explanation.
+    delta_s : float or None
+        Slider increment per actuation cycle on the orbit [-] (in units of u·cosθ).
+    """
+
+    success: bool
+    status: str
+    message: str
+    delta_s: float | None
+
+
+@dataclass(frozen=True)
+class RuleResult:
+    """Outcome of one design rule.
+
+    Parameters
+    ----------
+    id : str
+        Rule id (``mode``, ``frequency-window``, ``published-fit.alpha``, ...).
+    severity : {"error", "warning", "info"}
+        A failed error fails the verdict; warnings and infos do not.
+    passed : bool
+        The rule's condition holds.
+    value : float or None
+        The number checked, in ``unit`` (SI, or [-] when ``unit`` is ""); None when the
+        rule could not be evaluated.
+    threshold : str
+        The pass condition in words and maths.
+    message : str
+        What was found, in the designer's quantities.
+    source : str
+        Where the rule comes from (MODEL.md section, solver, device file).
+    set_name : str
+        The actuator set ("" for device-level rules).
+    fix : str
+        What to change when the rule fails ("" when it passes or no change is known).
+    unit : str
+        SI unit of ``value`` ("" when dimensionless).
+    """
+
+    id: str
+    severity: Severity
+    passed: bool
+    value: float | None
+    threshold: str
+    message: str
+    source: str
+    set_name: str = ""
+    fix: str = ""
+    unit: str = ""
+
+    def as_dict(self) -> dict[str, Any]:
+        """JSON-safe record of the rule.
+
+        Returns
+        -------
+        dict
+            Every field by name; a non-finite ``value`` as its string ("inf", "nan":
+            JSON has no inf/nan).
+        """
+        d = asdict(self)
+        if d["value"] is not None and not math.isfinite(d["value"]):
+            d["value"] = str(d["value"])  # JSON has no inf/nan
+        return d
+
+
+def verdict(results: list[RuleResult]) -> Literal["pass", "fail"]:
+    """The verdict of a list of rule results.
+
+    Parameters
+    ----------
+    results : list of RuleResult
+        The rules of a set or a device.
+
+    Returns
+    -------
+    {"pass", "fail"}
+        "fail" when any error-severity rule fails, else "pass".
+    """
+    return "fail" if any(r.severity == "error" and not r.passed for r in results) else "pass"
+
+
+def orbit_mode(orbit: OrbitLike | None) -> str | None:
+    """Mode of a successful exact orbit.
+
+    Parameters
+    ----------
+    orbit : OrbitLike or None
+        An exact periodic-orbit result (None: none was computed).
+
+    Returns
+    -------
+    str or None
+        "push", "pull" or "stalled" (:func:`betvdesign.model.domain.mode_of` of its Δs);
+        None without a successful orbit.
+    """
+    if orbit is None or not orbit.success:
+        return None
+    return mode_of(orbit.delta_s)
+
+
+def format_speed(v_m_s: float) -> str:
+    """A speed with its SI prefix.
+
+    Parameters
+    ----------
+    v_m_s : float
+        Speed [m/s].
+
+    Returns
+    -------
+    str
+        E.g. ``"38.9 µm/s"`` (:func:`betvdesign.output.siformat.format_si`).
+    """
+    return format_si(v_m_s, "m/s")
+
+
+def format_time(t_s: float) -> str:
+    """A duration with its SI prefix.
+
+    Parameters
+    ----------
+    t_s : float
+        Duration [s].
+
+    Returns
+    -------
+    str
+        E.g. ``"1.03 s"`` (:func:`betvdesign.output.siformat.format_si`).
+    """
+    return format_si(t_s, "s")
+
+
+def travel_direction(s: SetDerivation, mode: str) -> int:
+    """Direction of slider travel for a set working in ``mode``.
+
+    Parameters
+    ----------
+    s : SetDerivation
+        The actuator set (its impact direction).
+    mode : {"push", "pull"}
+        Push moves the slider along the impacts, pull against them (MODEL.md, Slider).
+
+    Returns
+    -------
+    int
+        +1 (toward +x) or −1 (toward −x).
+    """
+    return s.impact_sign if mode == "push" else -s.impact_sign
+
+
+def travel_axis(s: SetDerivation, delta_s: float) -> Literal["+x", "-x"]:
+    """Direction the slider travels for a signed increment (or speed) along the impacts.
+
+    Parameters
+    ----------
+    s : SetDerivation
+        The actuator set (its impact direction).
+    delta_s : float
+        Δs per cycle [-], or the signed speed [m/s]: positive along the set's impacts;
+        nonzero.
+
+    Returns
+    -------
+    {"+x", "-x"}
+        The direction of travel.
+    """
+    return "+x" if travel_direction(s, "push" if delta_s > 0 else "pull") > 0 else "-x"
 
 
 # --- per-set rules -----------------------------------------------------------------------
@@ -76,20 +308,45 @@ def evaluate(
     s: SetDerivation,
     *,
     orbit: OrbitLike | None = None,
-    vertical: Any | None = None,
-    settling: Any | None = None,
+    vertical: VerticalResult | None = None,
+    settling: Settling | None = None,
     margin: dict[str, str | None] | None = None,
     target_speed_m_s: float | None = None,
-    adequacy: Any | None = None,
+    adequacy: SetAdequacy | None = None,
 ) -> list[RuleResult]:
-    """Every rule for one actuator set (see the module docstring for thresholds).
+    """Every rule for one actuator set (the module docstring gives the thresholds).
 
-    orbit: exact periodic orbit (decides the mode, gives the speed); vertical: exact
-    vertical motion (quoted by the window rule); settling: a
-    :class:`betvdesign.dynamics.settling.Settling` from rest; margin: mode of the exact
-    orbit at each perturbed corner (label -> mode or None); target_speed_m_s: the
-    speed the design must reach [m/s] (adds an error rule); adequacy: a
-    :class:`betvdesign.checks.adequacy_data.SetAdequacy` (adds ``model-adequacy``).
+    Parameters
+    ----------
+    s : SetDerivation
+        The derived actuator set.
+    orbit : OrbitLike, optional
+        Its exact periodic orbit (decides the mode, gives the speed).
+    vertical : VerticalResult, optional
+        Its exact vertical motion (quoted by the window rule), or a failure stand-in
+        (``success`` False, ``message``).
+    settling : Settling, optional
+        The transient from rest (:func:`betvdesign.dynamics.settling.settling`), or a
+        failure stand-in with ``status`` "failed" (then ignored).
+    margin : dict, optional
+        Mode of the exact orbit at each perturbed corner (label -> mode or None); adds
+        the rule ``mode-margin``.
+    target_speed_m_s : float, optional
+        The speed the design must reach [m/s]; adds the error rule ``target-speed``.
+    adequacy : SetAdequacy, optional
+        The set's model adequacy (:mod:`betvdesign.checks.adequacy`); adds the rule
+        ``model-adequacy``.
+
+    Returns
+    -------
+    list of RuleResult
+        In a fixed order: window, mode, λ, margin, tangential resonance, published fit,
+        speed, settling, target speed, model adequacy; ``set_name`` is ``s.name``.
+
+    References
+    ----------
+    .. [1] Shin, Pai, Lin, Hui and Tien, J. Appl. Phys. 96, 7603 (2004),
+       doi:10.1063/1.1809773.
     """
     out = [
         _frequency_window(s, vertical),
@@ -122,7 +379,7 @@ def _drive_range(s: SetDerivation, lo_varpi: float, hi_varpi: float) -> str:
     return f"{_hz(lo_varpi * f_v / k)}–{_hz(hi_varpi * f_v / k)}{note}"
 
 
-def _frequency_window(s: SetDerivation, vertical: Any | None = None) -> RuleResult:
+def _frequency_window(s: SetDerivation, vertical: VerticalResult | None) -> RuleResult:
     v = s.params.varpi
     lo, hi = VARPI_WINDOW
     f_v = s.scales.f_act_hz / v
@@ -141,21 +398,32 @@ def _frequency_window(s: SetDerivation, vertical: Any | None = None) -> RuleResu
             f"vertical resonance (now {_hz(f_v)}) to {_hz(s.scales.f_act_hz / hi)}–"
             f"{_hz(s.scales.f_act_hz / lo)}; `betv fix` finds the smallest change"
         )
-    if vertical is not None and getattr(vertical, "success", False):
+    if vertical is not None and vertical.success:
         msg += (
             f" [exact vertical motion: {vertical.regime}, {vertical.hits_per_cycle:g} hit(s) "
             f"per cycle ({vertical.impulsive_per_cycle:g} impulsive), in contact "
             f"{vertical.contact_fraction:.0%} of the time]"
         )
     elif vertical is not None:
-        msg += f" [exact vertical motion: {getattr(vertical, 'message', '')}]"
+        msg += f" [exact vertical motion: {vertical.message}]"
     thr = f"{lo:g} <= varpi < {hi:g}"
     return RuleResult("frequency-window", "error", lo <= v < hi, v, thr, msg, SRC_WINDOW, fix=fix)
 
 
 def mode_hint(intended: str) -> str:
-    """Which way to move the designer's fields for ``intended`` (MODEL.md: larger ϖ and
-    α favour push; larger β and κ favour pull)."""
+    """Which way to move the designer's fields toward a mode.
+
+    Parameters
+    ----------
+    intended : {"push", "pull"}
+        The mode wanted.
+
+    Returns
+    -------
+    str
+        The change in words (MODEL.md: larger ϖ and α favour push; larger β and κ favour
+        pull).
+    """
     if intended == "push":
         return (
             "toward push: raise ϖ (higher drive frequency, or a lower head vertical resonance) "
@@ -185,9 +453,8 @@ def _mode(s: SetDerivation, orbit: OrbitLike | None) -> RuleResult:
         return RuleResult(
             "mode", "error", False, None, want, "no exact periodic orbit was computed", SRC_SOLVER
         )
-    if not getattr(orbit, "success", False):
-        status = str(getattr(orbit, "status", "failed"))
-        msg = getattr(orbit, "message", "")
+    if not orbit.success:
+        status = str(orbit.status)
         what = {
             "unbounded": "no periodic orbit exists: the head's tangential motion grows "
             "without bound",
@@ -203,11 +470,18 @@ def _mode(s: SetDerivation, orbit: OrbitLike | None) -> RuleResult:
                 "`betv fix FILE` finds the change"
             )
         return RuleResult(
-            "mode", "error", False, None, want, f"{what} ({status}): {msg}", SRC_SOLVER, fix=fix
+            "mode",
+            "error",
+            False,
+            None,
+            want,
+            f"{what} ({status}): {orbit.message}",
+            SRC_SOLVER,
+            fix=fix,
         )
     ds = float(orbit.delta_s)
     mode = mode_of(ds)
-    k = getattr(orbit, "period_cycles", 1) or 1
+    k = 1 if orbit.period_cycles is None else orbit.period_cycles  # a PeriodicResult
     per = f" (mean of a {k}-cycle orbit)" if k > 1 else ""
     if mode == "stalled":
         msg = f"exact periodic orbit: Δs = {ds:.3g} per cycle{per}: the slider does not move"
@@ -327,26 +601,222 @@ def _published(s: SetDerivation) -> list[RuleResult]:
     return out
 
 
+# --- motion along the travel: speed, settling from rest, target speed ---------------------
+
+
+def speed_rules(
+    s: SetDerivation,
+    orbit: OrbitLike | None,
+    settling: Settling | None,
+    target: float | None,
+) -> list[RuleResult]:
+    """The rules about motion along the travel range.
+
+    Parameters
+    ----------
+    s : SetDerivation
+        The derived actuator set (scales, travel range).
+    orbit : OrbitLike or None
+        Its exact periodic orbit.
+    settling : Settling or None
+        The transient from rest; a failure stand-in (``status`` "failed") is ignored.
+    target : float or None
+        The speed the design must reach [m/s] (adds ``target-speed``).
+
+    Returns
+    -------
+    list of RuleResult
+        ``speed`` (info; value [m/s], signed along the impacts): Δs·u·cosθ·f_act of the
+        orbit, or the crossing mean from rest when the slider has not settled within
+        :data:`SETTLE_SHARE` of the crossing; ``settling`` (warning; value: settling time
+        [s]) when a transient is given; ``target-speed`` (error) when a target is given.
+
+    References
+    ----------
+    .. [1] Shin, Pai, Lin, Hui and Tien, J. Appl. Phys. 96, 7603 (2004),
+       doi:10.1063/1.1809773 (displacement per cycle).
+    """
+    mode = orbit_mode(orbit)
+    if orbit is None or mode not in ("push", "pull"):
+        why = "the slider does not move" if mode == "stalled" else "no exact periodic orbit"
+        out = [RuleResult("speed", "info", False, None, "needs a moving orbit", why, SRC_SPEED)]
+        if target is not None:
+            out.append(_target(None, target, why))
+        return out
+    ds = float(orbit.delta_s)
+    v_orbit = s.scales.speed_m_s(ds)
+    travel = s.travel_range_m
+    f = s.scales.f_act_hz
+    v, basis, out = v_orbit, "periodic orbit", []
+    if settling is not None and settling.status != "failed":
+        n_cross = settling.cycles_to_cross
+        n_settle = settling.settle_cycles  # a lower bound when not settled
+        share = n_settle / n_cross if n_cross else math.inf
+        ok = share <= SETTLE_SHARE
+        settle_txt = (
+            f"{n_settle:.4g} cycles ({format_time(n_settle / f)})"
+            if settling.cycles_to_settle is not None
+            else f"more than {settling.simulated_cycles} cycles (not settled)"
+        )
+        cross_txt = (
+            f"{n_cross} cycles ({format_time(n_cross / f)})"
+            if n_cross
+            else f"more than {settling.simulated_cycles} cycles"
+        )
+        out.append(
+            RuleResult(
+                "settling",
+                "warning",
+                ok,
+                n_settle / f,
+                f"settling ≤ {SETTLE_SHARE:.0%} of the cycles to cross the travel range",
+                f"from rest: within {settling.rtol:.0%} of the periodic Δs after {settle_txt}; "
+                f"crosses the {format_si(travel, 'm')} travel range after {cross_txt}"
+                + ("" if ok else ": the periodic speed is not what the travel shows"),
+                SRC_SETTLE,
+                fix=""
+                if ok
+                else "quote the crossing speed from rest (the speed rule does), or choose a "
+                "design that settles faster (slowest Floquet multiplier |μ| further below 1; "
+                "near ϖ → 2 settling slows sharply)",
+                unit="s",
+            )
+        )
+        if not ok and settling.crossing_delta_s is not None:
+            v = s.scales.speed_m_s(float(settling.crossing_delta_s))
+            basis = (
+                f"transient from rest over the travel range (periodic: "
+                f"{format_speed(abs(v_orbit))})"
+            )
+    if abs(v) > 0:
+        t_cross = travel / abs(v)
+        msg = (
+            f"mean speed {format_speed(abs(v))} toward {travel_axis(s, ds)} "
+            f"({'with' if ds > 0 else 'against'} the impact direction "
+            f"{s.actuator_set.impact_direction}), crosses the {format_si(travel, 'm')} "
+            f"travel range in {format_time(t_cross)} [{basis}]"
+        )
+    else:
+        msg = "the slider does not advance over the travel range"
+    speed = RuleResult("speed", "info", True, v, "Δs·u·cosθ·f_act", msg, SRC_SPEED, unit="m/s")
+    out.insert(0, speed)
+    if target is not None:
+        out.append(_target(abs(v), target, ""))
+    return out
+
+
+def _target(v: float | None, target: float, why: str) -> RuleResult:
+    ok = v is not None and v >= target
+    msg = (
+        f"speed {format_speed(v)} {'≥' if ok else '<'} target {format_speed(target)}"
+        if v is not None
+        else f"no speed ({why}); target {format_speed(target)}"
+    )
+    return RuleResult(
+        "target-speed",
+        "error",
+        ok,
+        v,
+        f"speed >= {format_speed(target)}",
+        msg,
+        SRC_SPEED,
+        fix=""
+        if ok
+        else "raise the drive voltage (stroke u) or frequency; `betv fix FILE "
+        "--target-speed Q` finds the change",
+        unit="m/s",
+    )
+
+
+# --- model adequacy: is the paper's idealised model enough here? --------------------------
+
+_ADEQUACY_FIX = {
+    "mode-flips": "give the measured Q and e (actuator.quality_factor_*, contact.restitution) "
+    "and stay clear of the flip; ",
+    "ideal-fails": "give the head's damping (actuator.quality_factor_*) so the check uses the "
+    "finite damped orbit, or detune the tangential resonance; ",
+    "failed": "`betv simulate FILE --periodic` shows why no orbit was found; ",
+}
+
+
+def adequacy_rule(a: SetAdequacy) -> RuleResult:
+    """The rule ``model-adequacy`` of one set's adequacy result.
+
+    Parameters
+    ----------
+    a : SetAdequacy
+        The set's adequacy (:func:`betvdesign.checks.adequacy.assess_set`); its long
+        ``message`` is in the JSON and the report, the rule quotes ``summary()``.
+
+    Returns
+    -------
+    RuleResult
+        Info when the idealised model's mode holds with the device's (or plausible
+        default) head damping and restitution and throughout the likely bands
+        :data:`~betvdesign.checks.adequacy.LIKELY_QUALITY` and
+        :data:`~betvdesign.checks.adequacy.LIKELY_RESTITUTION` (a flip only beyond them
+        is stated in the message); warning otherwise. Value: the relative speed change
+        (v_richer − v_ideal)/v_ideal [-], None without both speeds.
+    """
+    status = str(a.status)
+    ok = bool(a.adequate)
+    thr = (
+        f"same mode without and with damping/restitution, and for {LIKELY_QUALITY[0]:g} ≤ Q ≤ "
+        f"{LIKELY_QUALITY[1]:g}, {LIKELY_RESTITUTION[0]:g} ≤ e ≤ {LIKELY_RESTITUTION[1]:g}"
+    )
+    change = a.speed_change
+    head = _ADEQUACY_FIX.get(status, "")
+    if status == "mode-flips" and a.source == "device":
+        head = (
+            "the file's Q and e are given, but the mode flips within their likely range: "
+            "check how sure they are (`betv tolerance FILE --spread "
+            "contact.restitution=uniform:0.05`) and keep clear of the flip (a lower ϖ "
+            "tolerates a larger e); "
+        )
+    fix = "" if ok else head + "`betv report FILE` draws mode and speed against Q and e"
+    return RuleResult(
+        "model-adequacy",
+        "info" if ok else "warning",
+        ok,
+        None if change is None else float(change),
+        thr,
+        f"{status}: {a.summary()}",
+        SRC_ADEQUACY,
+        fix=fix,
+    )
+
+
 # --- device-level ------------------------------------------------------------------------
-
-
-def travel_direction(s: SetDerivation, mode: str) -> int:
-    """+1/−1: slider travel for a set working in ``mode`` (push: along its impacts)."""
-    return s.impact_sign if mode == "push" else -s.impact_sign
 
 
 def evaluate_device(
     derivation: DeviceDerivation,
     *,
     orbits: dict[str, OrbitLike] | None = None,
-    vertical: dict[str, Any] | None = None,
-    settling: dict[str, Any] | None = None,
+    vertical: dict[str, VerticalResult] | None = None,
+    settling: dict[str, Settling] | None = None,
     margins: dict[str, dict[str, str | None]] | None = None,
     target_speed_m_s: float | None = None,
-    adequacy: dict[str, Any] | None = None,
+    adequacy: dict[str, SetAdequacy] | None = None,
 ) -> list[RuleResult]:
-    """Rules of every set (dicts keyed by set name) plus the device rule
-    ``bidirectional`` (two or more sets must move the slider both ways)."""
+    """Rules of every set, then the device rule ``bidirectional``.
+
+    Parameters
+    ----------
+    derivation : DeviceDerivation
+        The derived device.
+    orbits, vertical, settling, margins, adequacy : dict, optional
+        Per set name, what :func:`evaluate` takes as ``orbit``, ``vertical``,
+        ``settling``, ``margin`` and ``adequacy`` (a set not in a dict gets None).
+    target_speed_m_s : float, optional
+        The speed every set must reach [m/s].
+
+    Returns
+    -------
+    list of RuleResult
+        The rules of each set in order, then, for two or more sets, ``bidirectional``
+        (warning: the sets must move the slider both ways).
+    """
     orbits, vertical, adequacy = orbits or {}, vertical or {}, adequacy or {}
     settling, margins = settling or {}, margins or {}
     out: list[RuleResult] = []

@@ -27,17 +27,28 @@ from typing import Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Field
 
-from betvdesign.checks.rules import RuleResult
-from betvdesign.checks.view_adequacy import AdequacyOut, adequacy_line, adequacy_out
+from betvdesign.checks.adequacy import AdequacyOut, adequacy_line
+from betvdesign.checks.rules import RuleResult, travel_axis
 from betvdesign.output.siformat import format_dimensionless as fmt_x
 from betvdesign.output.siformat import format_si, si_key
 
 JSON_SCHEMA_VERSION = 1
 
 
-def rule_unit(r: Any) -> str:
-    """SI unit of a rule's ``value`` ("" when dimensionless): the rule's own ``unit``."""
-    return str(getattr(r, "unit", "") or "")
+def rule_unit(r: RuleResult) -> str:
+    """SI unit of a rule's value.
+
+    Parameters
+    ----------
+    r : RuleResult
+        A rule's outcome.
+
+    Returns
+    -------
+    str
+        The rule's own ``unit`` ("" when dimensionless).
+    """
+    return r.unit
 
 
 #: Record symbols reported as SI floats: (record symbol, JSON name, SI unit).
@@ -152,7 +163,14 @@ class CheckOutput(_Out):
 
 
 def check_json_schema() -> dict[str, Any]:
-    """JSON schema of ``betv check --json`` (version :data:`JSON_SCHEMA_VERSION`)."""
+    """JSON schema of ``betv check --json`` (``betv schema check``).
+
+    Returns
+    -------
+    dict
+        The draft 2020-12 schema of :class:`CheckOutput`, version
+        :data:`JSON_SCHEMA_VERSION`.
+    """
     schema = CheckOutput.model_json_schema(by_alias=True, mode="serialization")
     schema["$schema"] = "https://json-schema.org/draft/2020-12/schema"
     schema["title"] = f"betv check --json, version {JSON_SCHEMA_VERSION} (betvdesign)"
@@ -164,21 +182,53 @@ def check_json_schema() -> dict[str, Any]:
 
 @dataclass(frozen=True)
 class RuleFilter:
-    """Which rules count: ``select`` (empty: all) minus ``ignore``. A selector matches a
-    rule id exactly or as a dotted prefix (``fit-range`` matches ``fit-range.beta``)."""
+    """Which rules count: ``select`` minus ``ignore``.
+
+    A selector matches a rule id exactly or as a dotted prefix (``fit-range`` matches
+    ``fit-range.beta``).
+
+    Parameters
+    ----------
+    select : tuple of str
+        Rules that count (empty: all).
+    ignore : tuple of str
+        Rules left out.
+    """
 
     select: tuple[str, ...] = ()
     ignore: tuple[str, ...] = ()
 
     def keeps(self, rule_id: str) -> bool:
+        """Does a rule count?
+
+        Parameters
+        ----------
+        rule_id : str
+            The rule's id.
+
+        Returns
+        -------
+        bool
+            Selected (or no selection) and not ignored.
+        """
         if self.select and not any(self._hit(rule_id, s) for s in self.select):
             return False
         return not any(self._hit(rule_id, s) for s in self.ignore)
 
     def unmatched(self, results: Sequence[Any]) -> list[str]:
-        """A warning per selector that matches no rule of ``results`` (a typo, or a rule
-        these devices do not have, e.g. published-fit without a published fit), with the
-        closest rule id."""
+        """Selectors that match no rule (a typo, or a rule these devices do not have, e.g.
+        published-fit without a published fit).
+
+        Parameters
+        ----------
+        results : sequence of CheckResult
+            The checked devices.
+
+        Returns
+        -------
+        list of str
+            A warning per such selector, with the closest rule id.
+        """
         ids = sorted({r.id for res in results for r in res.rules})
         known = sorted(set(ids) | {i.split(".")[0] for i in ids})
         out = []
@@ -202,8 +252,13 @@ class RuleFilter:
 class DeviceView:
     """A checked device as a designer reads it (``repr`` one screen, ``_repr_html_``).
 
-    ``result`` is the full :class:`~betvdesign.checks.checker.CheckResult`; ``out`` its JSON
-    (:class:`DeviceOut`); ``rules`` the rules that count under ``rule_filter``.
+    Parameters
+    ----------
+    result : CheckResult
+        The full :class:`~betvdesign.checks.checker.CheckResult` (not imported here: the
+        checker renders itself through this module).
+    rule_filter : RuleFilter
+        The rules that count (``--select``/``--ignore``).
     """
 
     result: Any  # betvdesign.checks.checker.CheckResult
@@ -211,6 +266,7 @@ class DeviceView:
 
     @property
     def rules(self) -> list[RuleResult]:
+        """The rules that count under ``rule_filter``."""
         return [r for r in self.result.rules if self.rule_filter.keeps(r.id)]
 
     @property
@@ -220,14 +276,27 @@ class DeviceView:
 
     @property
     def failed(self) -> list[str]:
+        """Ids of the counted error-severity rules that fail (each once)."""
         return _unique(r.id for r in self.rules if r.severity == "error" and not r.passed)
 
     @property
     def out(self) -> DeviceOut:
+        """The JSON of this device (:meth:`as_out` without details)."""
         return self.as_out()
 
     def as_out(self, *, details: bool = False) -> DeviceOut:
-        """The JSON of this device (``details``: add the checker's full record)."""
+        """The JSON of this device.
+
+        Parameters
+        ----------
+        details : bool
+            Add the checker's full record (``--verbose``).
+
+        Returns
+        -------
+        DeviceOut
+            Verdict, failing rules, sets (SI floats under unit-named keys), rules, notes.
+        """
         res = self.result
         return DeviceOut(
             device=res.derivation.name,
@@ -242,7 +311,18 @@ class DeviceView:
         )
 
     def text(self, width: int = 100) -> str:
-        """The compact block (plain text, ``width`` columns)."""
+        """The compact block in plain text.
+
+        Parameters
+        ----------
+        width : int
+            Columns to wrap at.
+
+        Returns
+        -------
+        str
+            :func:`compact_lines` without markup.
+        """
         return "\n".join(compact_lines(self, width=width, markup=False))
 
     def __repr__(self) -> str:
@@ -266,23 +346,34 @@ def _rule_out(r: RuleResult) -> RuleOut:
         value_unit=rule_unit(r),
         threshold=r.threshold,
         message=r.message,
-        fix=str(getattr(r, "fix", "") or ""),
+        fix=r.fix,
         source=r.source,
     )
 
 
 def set_motion(sc: Any) -> tuple[float | None, float | None, str | None]:
-    """(Δs [-], speed magnitude [m/s], travel direction) of a set: Δs of its exact periodic
-    orbit, the speed its speed rule reports; Nones where there is none."""
+    """How a set moves the slider.
+
+    Parameters
+    ----------
+    sc : SetCheck
+        A set of a :class:`~betvdesign.checks.checker.CheckResult`.
+
+    Returns
+    -------
+    tuple
+        (Δs [-] of its exact periodic orbit, speed magnitude [m/s] its speed rule
+        reports, travel direction "+x"/"-x"); None where there is none (speed 0.0 when
+        the slider does not advance).
+    """
     p = sc.periodic
     ds = None
-    if p is not None and getattr(p, "success", False) and p.delta_s is not None:
+    if p is not None and p.success and p.delta_s is not None:
         ds = float(p.delta_s) if math.isfinite(float(p.delta_s)) else None
-    v = getattr(sc, "speed_m_s", None)
+    v = sc.speed_m_s
     if v is None or not math.isfinite(v) or v == 0.0:
         return ds, (0.0 if v == 0.0 else None), None
-    direction = "+x" if sc.derivation.impact_sign * (1 if v > 0 else -1) > 0 else "-x"
-    return ds, abs(float(v)), direction
+    return ds, abs(float(v)), travel_axis(sc.derivation, v)
 
 
 def _margin(sc: Any) -> tuple[bool | None, str]:
@@ -331,8 +422,8 @@ def _set_out(sc: Any, flt: RuleFilter) -> SetOut:
                 agrees=(lam_mode == exact) if exact in ("push", "pull") else None,
             )
         },
-        margin=MarginOut(holds=holds, corners=dict(getattr(sc, "margin", None) or {})),
-        adequacy=adequacy_out(sc),
+        margin=MarginOut(holds=holds, corners=dict(sc.margin or {})),
+        adequacy=None if sc.adequacy is None else AdequacyOut.of(sc.adequacy),
         derived=derived,
         rules=[_rule_out(r) for r in rules],
     )
@@ -344,7 +435,19 @@ _TAG = {"error": ("FAIL", "bold red"), "warning": ("warn", "yellow"), "info": ("
 
 
 def set_headline(sc: Any) -> tuple[str, str]:
-    """Two short lines for a set: mode, speed and margin; drive and parameters (plain)."""
+    """Two short lines for a set (plain text).
+
+    Parameters
+    ----------
+    sc : SetCheck
+        A set of a :class:`~betvdesign.checks.checker.CheckResult`.
+
+    Returns
+    -------
+    tuple of str
+        Mode, speed [m/s], travel and margin; drive (f_act [Hz], stroke u [m]) and the
+        dimensionless parameters with λ's prediction.
+    """
     s = sc.derivation
     p = s.params
     _, v, direction = set_motion(sc)
@@ -386,8 +489,23 @@ def _beyond(p: Any) -> str:
 
 
 def compact_lines(view: DeviceView, *, width: int = 100, markup: bool = True) -> list[str]:
-    """The default ``betv check`` block: verdict, one or two lines per set, the failing
-    rules (grouped across sets) with their fix. ``markup``: rich colour tags."""
+    """The default ``betv check`` block.
+
+    Parameters
+    ----------
+    view : DeviceView
+        The checked device.
+    width : int
+        Columns to wrap at.
+    markup : bool
+        Rich colour tags (text escaped for rich).
+
+    Returns
+    -------
+    list of str
+        Verdict, two or three lines per set, the failing rules (grouped across sets) with
+        their fix.
+    """
     from rich.markup import escape
 
     esc = escape if markup else (lambda t: t)
@@ -403,13 +521,13 @@ def compact_lines(view: DeviceView, *, width: int = 100, markup: bool = True) ->
         label = f"  {sc.derivation.name}: "
         lines += _wrap(label + l1, width, len(label), esc)
         lines += _wrap(" " * len(label) + l2, width, len(label), esc)
-        if (l3 := adequacy_line(sc)) is not None:
+        if (l3 := adequacy_line(sc.adequacy)) is not None:
             lines += _wrap(" " * len(label) + l3, width, len(label), esc)
     groups: dict[tuple[str, str, str, str], list[str]] = {}
     for r in view.rules:
         if r.passed or r.severity == "info":
             continue
-        key = (r.severity, r.id, r.message, str(getattr(r, "fix", "") or ""))
+        key = (r.severity, r.id, r.message, r.fix)
         groups.setdefault(key, []).append(r.set_name)
     for (sev, rid, msg, fix), names in sorted(groups.items(), key=lambda kv: kv[0][0] != "error"):
         tag, style = _TAG[sev]
@@ -440,7 +558,18 @@ def _wrap(text: str, width: int, indent: int, esc: Any) -> list[str]:
 
 
 def quiet_line(view: DeviceView) -> str | None:
-    """One line for a failing device (``--quiet``), None when it passes."""
+    """One line for a failing device (``--quiet``).
+
+    Parameters
+    ----------
+    view : DeviceView
+        The checked device.
+
+    Returns
+    -------
+    str or None
+        ``FILE: FAIL rule, ...``; None when the device passes.
+    """
     if view.verdict == "pass":
         return None
     return (
@@ -449,7 +578,20 @@ def quiet_line(view: DeviceView) -> str | None:
 
 
 def output(views: Sequence[DeviceView], *, details: bool = False) -> CheckOutput:
-    """The whole ``--json`` document for ``views`` (``details``: ``--verbose``)."""
+    """The whole ``--json`` document.
+
+    Parameters
+    ----------
+    views : sequence of DeviceView
+        The checked devices.
+    details : bool
+        Add each checker's full record (``--verbose``).
+
+    Returns
+    -------
+    CheckOutput
+        One object for one or many files; its verdict fails when any device fails.
+    """
     from betvdesign import __version__
 
     devices = [v.as_out(details=details) for v in views]
@@ -458,7 +600,20 @@ def output(views: Sequence[DeviceView], *, details: bool = False) -> CheckOutput
 
 
 def output_json(views: Sequence[DeviceView], *, details: bool = False) -> str:
-    """``betv check --json`` text (``details`` with ``--verbose``); None fields kept."""
+    """The text of ``betv check --json``.
+
+    Parameters
+    ----------
+    views : sequence of DeviceView
+        The checked devices.
+    details : bool
+        Add each checker's full record (``--verbose``).
+
+    Returns
+    -------
+    str
+        :func:`output` as indented JSON (None fields kept, ``details`` only with it).
+    """
     doc = output(views, details=details).model_dump(mode="json", by_alias=True)
     if not details:
         for d in doc["devices"]:
@@ -470,14 +625,25 @@ def output_json(views: Sequence[DeviceView], *, details: bool = False) -> str:
 
 
 def device_html(view: DeviceView) -> str:
-    """A small HTML table of the check (Jupyter ``_repr_html_``), escaped."""
+    """A small HTML table of the check (Jupyter ``_repr_html_``).
+
+    Parameters
+    ----------
+    view : DeviceView
+        The checked device.
+
+    Returns
+    -------
+    str
+        Verdict, a row per set and per failing rule; every text escaped.
+    """
     e = html.escape
     res = view.result
     colour = "#1a7f37" if view.verdict == "pass" else "#cf222e"
     rows = []
     for sc in res.sets:
         l1, l2 = set_headline(sc)
-        l3 = adequacy_line(sc)
+        l3 = adequacy_line(sc.adequacy)
         l2 += "" if l3 is None else "\n" + l3
         rows.append(
             f"<tr><th>{e(sc.derivation.name)}</th><td>{e(l1)}<br><small>"
@@ -486,7 +652,7 @@ def device_html(view: DeviceView) -> str:
     for r in view.rules:
         if r.passed or r.severity == "info":
             continue
-        fix = str(getattr(r, "fix", "") or "")
+        fix = r.fix
         where = f" [{e(r.set_name)}]" if r.set_name else ""
         rows.append(
             f"<tr><th>{e(_TAG[r.severity][0])}</th><td><code>{e(r.id)}</code>{where}: "

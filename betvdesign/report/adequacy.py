@@ -16,8 +16,7 @@ import math
 from typing import Any
 
 from betvdesign import plots
-from betvdesign.checks.adequacy import assess
-from betvdesign.checks.adequacy_data import (
+from betvdesign.checks.adequacy import (
     DEFAULT_QUALITY,
     DEFAULT_RESTITUTION,
     LIKELY_QUALITY,
@@ -27,6 +26,7 @@ from betvdesign.checks.adequacy_data import (
     SPEED_RTOL,
     DeviceAdequacy,
     SetAdequacy,
+    assess,
 )
 from betvdesign.nondim.record import DeviceDerivation, SetDerivation
 from betvdesign.output.siformat import format_dimensionless as fmt_x

@@ -11,6 +11,7 @@ are still served from here for one release, with a ``DeprecationWarning``.
 from __future__ import annotations
 
 import importlib
+import types
 import warnings
 from typing import Any
 
@@ -19,7 +20,8 @@ def __getattr__(name: str) -> Any:
     if name.startswith("__"):
         raise AttributeError(name)
     models = importlib.import_module("betvdesign.spec.models")
-    if not hasattr(models, name):
+    if not hasattr(models, name) or isinstance(getattr(models, name), types.ModuleType):
+        # not a name of the former module (a submodule is imported by the import system)
         raise AttributeError(f"module 'betvdesign.spec' has no attribute {name!r}")
     warnings.warn(
         f"betvdesign.spec.{name} moved to betvdesign.spec.models.{name}; the old path is "
@@ -27,4 +29,6 @@ def __getattr__(name: str) -> Any:
         DeprecationWarning,
         stacklevel=2,
     )
-    return getattr(models, name)
+    value = getattr(models, name)
+    globals()[name] = value  # warned once
+    return value
