@@ -63,6 +63,8 @@ class TravelAnswer:
         Cycles simulated from rest (None: not run).
     reason : str
         Why this basis, in one sentence.
+    fix : str
+        What to change when the answer fails the verdict ("" when there is none here).
     """
 
     basis: Basis
@@ -72,6 +74,7 @@ class TravelAnswer:
     cycles_to_cross: int | None
     horizon_cycles: int | None
     reason: str
+    fix: str = ""
 
     @property
     def moves(self) -> bool:
@@ -92,6 +95,7 @@ class TravelAnswer:
             "cycles_to_cross": self.cycles_to_cross,
             "horizon_cycles": self.horizon_cycles,
             "reason": self.reason,
+            "fix": self.fix,
         }
 
 
@@ -138,7 +142,8 @@ def travel_answer(orbit: Any, determination: Any, settling: Any) -> TravelAnswer
                 f"travel in {cross} cycles"
             )
         why = determination.reason if determination is not None else "Δs not determined"
-        return TravelAnswer("undetermined", "undetermined", None, ds, cross, horizon, why)
+        fix = determination.fix if determination is not None else ""
+        return TravelAnswer("undetermined", "undetermined", None, ds, cross, horizon, why, fix)
     if not solved:
         if crossed:
             return crossing(f"no periodic orbit ({orbit.status}); the transient crosses")

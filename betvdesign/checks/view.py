@@ -28,7 +28,7 @@ from typing import Any, Literal
 from pydantic import BaseModel, ConfigDict, Field
 
 from betvdesign.checks.adequacy import AdequacyOut, adequacy_line
-from betvdesign.checks.rules import RuleResult, travel_axis
+from betvdesign.checks.rule import RuleResult, travel_axis
 from betvdesign.output.siformat import format_dimensionless as fmt_x
 from betvdesign.output.siformat import format_si, si_key
 
@@ -434,6 +434,23 @@ def _set_out(sc: Any, flt: RuleFilter) -> SetOut:
 _TAG = {"error": ("FAIL", "bold red"), "warning": ("warn", "yellow"), "info": ("note", "dim")}
 
 
+def _no_motion(sc: Any, mode: str, v: float | None) -> str:
+    """Why a set shows no speed, in a few words (never contradicting its rules)."""
+    ans = sc.travel
+    s = sc.derivation
+    if ans is not None and ans.basis == "no-crossing":
+        n = ans.horizon_cycles or 0
+        t = format_si(n / s.scales.f_act_hz, "s")
+        return (
+            f"does not cross its {format_si(s.travel_range_m, 'm')} travel within {n} cycles ({t})"
+        )
+    if ans is not None and ans.basis == "undetermined":
+        return "Δs not determined in float64 (see the mode rule)"
+    if mode == "not driven":
+        return "no periodic drive (impulsive hits only)"
+    return "the slider does not move" if v == 0.0 else "no speed (no exact orbit)"
+
+
 def set_headline(sc: Any) -> tuple[str, str]:
     """Two short lines for a set (plain text).
 
@@ -463,8 +480,7 @@ def set_headline(sc: Any) -> tuple[str, str]:
             f"{format_si(s.travel_range_m, 'm')} in {format_si(s.travel_range_m / v, 's')}"
         )
     else:
-        none = "no periodic drive (impulsive hits only)" if mode == "not driven" else None
-        motion = "the slider does not move" if v == 0.0 else none or "no speed (no exact orbit)"
+        motion = _no_motion(sc, mode, v)
     line1 = f"{head}, {motion}; {_margin(sc)[1]}"
     lam_mode = "push" if s.lam < 1.0 else "pull"
     word = "" if mode not in ("push", "pull") else (" agrees" if lam_mode == mode else " disagrees")

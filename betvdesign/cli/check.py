@@ -27,7 +27,7 @@ from betvdesign.errors import SpecError, UsageError
 
 if TYPE_CHECKING:  # the heavy layers load when a check runs, not for `betv --help`
     from betvdesign.checks.checker import CheckResult
-    from betvdesign.checks.rules import RuleResult
+    from betvdesign.checks.rule import RuleResult
 
 _STATUS = {
     (True, "error"): "[green]ok[/]",

@@ -78,6 +78,8 @@ class Determination:
         "pull", "stalled" or "undetermined".
     reason : str
         One sentence for a designer: what is (not) determined, and why.
+    fix : str
+        What to change when it is not determined ("" otherwise).
     perturbed : tuple of float
         Δs of each re-solve [-] (nan for a failed one), in the order of ``fields``.
     fields : tuple of str
@@ -93,6 +95,7 @@ class Determination:
     delta_s_error: float | None
     mode: str | None
     reason: str
+    fix: str = ""
     perturbed: tuple[float, ...] = ()
     fields: tuple[str, ...] = ()
     n_solves: int = 0
@@ -115,12 +118,13 @@ class Determination:
             "delta_s": num(self.delta_s),
             "delta_s_error": num(self.delta_s_error),
             "reason": self.reason,
+            "fix": self.fix,
             "perturbation": PERTURBATION,
             "n_solves": self.n_solves,
         }
 
 
-def degeneracy(p: ModelParams) -> str | None:
+def degeneracy(p: ModelParams) -> tuple[str, str] | None:
     """Why the design's answer cannot be resolved in float64, before solving; or None.
 
     Parameters
@@ -130,9 +134,9 @@ def degeneracy(p: ModelParams) -> str | None:
 
     Returns
     -------
-    str or None
-        A sentence naming the vanishing force, or None when no force of the model is
-        below :data:`ROUND_OFF_SCALE`.
+    tuple of str, or None
+        (why: a sentence naming the vanishing force, fix: what to change), or None when
+        no force of the model is below :data:`ROUND_OFF_SCALE`.
 
     Notes
     -----
@@ -149,14 +153,16 @@ def degeneracy(p: ModelParams) -> str | None:
         return (
             f"friction κ = μ·tanθ = {p.kappa:.3g} is below round-off of the normal force "
             f"(< {ROUND_OFF_SCALE:g}): the slider is not driven in float64 and no mode "
-            "can be computed; raise the impact angle or the friction coefficient"
+            "can be computed",
+            "raise the impact angle (κ = μ·tanθ) or the friction coefficient",
         )
     if p.beta * p.kappa < ROUND_OFF_SCALE:
         return (
             f"slider acceleration scale βκ = {p.beta * p.kappa:.3g} is below round-off "
             f"(< {ROUND_OFF_SCALE:g}): the slider is too heavy against the head (β = "
-            f"{p.beta:.3g}) for its motion to be resolved; use a lighter slider or a "
-            "heavier head"
+            f"{p.beta:.3g}) for its motion to be resolved",
+            "use a lighter slider (narrower, shorter or fewer beams) or a heavier head, or a "
+            "larger impact angle",
         )
     return None
 
@@ -209,9 +215,10 @@ def determine(
     |Δs| + error ≤ DELTA_S_STALL (stalled).
     """
     t0 = time.perf_counter()
-    why = degeneracy(p)
-    if why is not None:
-        return Determination("degenerate", None, None, "undetermined", why)
+    degenerate = degeneracy(p)
+    if degenerate is not None:
+        why, fix = degenerate
+        return Determination("degenerate", None, None, "undetermined", why, fix)
     if orbit is None or not orbit.success or orbit.delta_s is None:
         return Determination("not_solved", None, None, None, "no periodic orbit to assess")
     if solver is None:
@@ -257,6 +264,20 @@ def determine(
             "periodic answer here is round-off (slowest Floquet multiplier |μ| = "
             f"{max(orbit.floquet_moduli or [math.nan]):.12f})"
         )
+    fix = (
+        "move the design away from the edge of the parameter space where the slider's "
+        "motion is set by forces near round-off (friction κ or the mass ratio β near 0, "
+        "α·ϖ² near 1 without damping); `betv fix FILE` finds a change"
+    )
     return Determination(
-        "undetermined", ds, err, "undetermined", reason, tuple(values), tuple(fields), n, elapsed
+        "undetermined",
+        ds,
+        err,
+        "undetermined",
+        reason,
+        fix,
+        tuple(values),
+        tuple(fields),
+        n,
+        elapsed,
     )

@@ -25,7 +25,7 @@ from betvdesign.checks.checker import (
     check_derivation,
     load_solver,
 )
-from betvdesign.checks.rules import RuleResult, verdict
+from betvdesign.checks.rule import RuleResult, verdict
 from betvdesign.checks.view import rule_unit
 from betvdesign.nondim.device import DeviceDerivation, SetDerivation, derive_file
 from betvdesign.output.siformat import format_q, format_si
