@@ -59,8 +59,10 @@ def test_a_typical_design_is_determined_and_its_delta_s_is_what_the_transient_sh
 def test_friction_below_round_off_is_named_before_solving_and_the_slider_does_not_move() -> None:
     """Impact angle 1e-12° (κ ≈ 7e-15): the orbit the solver finds is noise (issue 24)."""
     p = ModelParams(1.2, 2.04, 0.509, 0.4 * math.tan(math.radians(1e-12)))
-    why = degeneracy(p)
-    assert why is not None and "friction κ" in why and "impact angle" in why
+    found = degeneracy(p)
+    assert found is not None
+    why, fix = found
+    assert "friction κ" in why and "impact angle" in fix
     d = determine(p, periodic_orbit(p))
     assert d.status == "degenerate" and d.mode == "undetermined"
     # truth: an independent integration (solve_ivp, its own switching) barely moves it
@@ -133,3 +135,119 @@ def test_near_resonance_without_damping_quotes_the_travel() -> None:
 def test_stall_threshold_unchanged_for_exact_reads() -> None:
     """error = 0 reads Δs as before: the stall threshold is the only cut."""
     assert mode_of(DELTA_S_STALL) == "stalled" and mode_of(2 * DELTA_S_STALL) == "push"
+
+
+# --- the verdict against the transient, over the edges of the parameter space -------------
+
+TRAVEL = 380.0  # travel range [units of u·cosθ], about 50 µm at u·cosθ = 0.13 µm
+
+
+def _transient_truth(p: ModelParams, horizon: int) -> tuple[int | None, float]:
+    """(first cycle at which |s| ≥ TRAVEL, s there) of a plain run from rest (no Newton,
+    no settling logic), or (None, s at the horizon)."""
+    tr = simulate(p, horizon, log_events=False)
+    s = tr.section[:, 4]
+    hit = np.nonzero(np.abs(s) >= TRAVEL)[0]
+    return (int(hit[0]), float(s[hit[0]])) if len(hit) else (None, float(s[-1]))
+
+
+def _assert_transient_agrees(p: ModelParams) -> dict:
+    from betvdesign.bench.verdictmap import classify
+
+    row = classify(p, TRAVEL)
+    if row["label"] in ("periodic", "crossing") and row["mode"] in ("push", "pull"):
+        n = row["cycles_to_cross"]
+        cross, s = _transient_truth(p, (n or 1000) + 10)
+        assert cross is not None, f"{p}: the verdict says it crosses; the transient does not"
+        assert (s > 0) == (row["mode"] == "push"), f"{p}: {row['mode']} but s = {s}"
+        if row["label"] == "crossing":
+            assert cross == n and row["delta_s"] == pytest.approx(s / cross, rel=1e-12)
+    elif row["label"] == "no-crossing":
+        cross, _ = _transient_truth(p, 200_000)
+        assert cross is None, f"{p}: no-crossing, but the transient crosses at {cross}"
+    elif row["label"] == "undetermined":
+        assert row["mode"] == "undetermined"
+        cross, _ = _transient_truth(p, 20_000)
+        assert cross is None
+    return row
+
+
+@pytest.mark.parametrize(
+    "p",
+    [
+        dataclasses.replace(PUSH, kappa=1e-14),  # κ → 0: friction below round-off
+        dataclasses.replace(PUSH, kappa=1e-9),  # κ → 0: determined, but never crosses
+        dataclasses.replace(PUSH, kappa=1e-5),  # κ → 0: crosses long before it settles
+        dataclasses.replace(PUSH, beta=1e-6),  # β → 0: heavy slider
+        dataclasses.replace(PUSH, beta=1e3),  # β → ∞: light slider
+        dataclasses.replace(PUSH, alpha=1e-5),  # α → 0: rigid contact, pull
+        dataclasses.replace(PUSH, alpha=1e3),  # α → ∞
+        ModelParams(1.0, 0.9999, 1.0, 0.4),  # α·ϖ² → 1, undamped
+        ModelParams(1.0, 0.9999, 1.0, 0.4, zeta_v=0.005, zeta_h=0.005),  # damped, Q = 100
+        dataclasses.replace(PUSH, varpi=0.5),  # lower window edge
+        dataclasses.replace(PUSH, varpi=1.99),  # upper window edge
+        dataclasses.replace(PUSH, restitution=0.9),  # e near its not-driven threshold
+    ],
+    ids=[
+        "kappa-1e-14",
+        "kappa-1e-9",
+        "kappa-1e-5",
+        "beta-1e-6",
+        "beta-1e3",
+        "alpha-1e-5",
+        "alpha-1e3",
+        "resonance",
+        "resonance-damped",
+        "varpi-0.5",
+        "varpi-1.99",
+        "restitution-0.9",
+    ],
+)
+def test_edge_families_the_verdict_is_what_the_transient_shows(p: ModelParams) -> None:
+    _assert_transient_agrees(p)
+
+
+def test_no_random_design_passes_with_a_mode_its_transient_contradicts() -> None:
+    """Designs drawn log-uniformly over many decades (seeded): every push/pull answer is
+    borne out by the plain transient from rest."""
+    rng = np.random.default_rng(20261125)
+    for _ in range(24):
+        p = ModelParams(
+            float(rng.uniform(0.5, 1.99)),
+            float(10 ** rng.uniform(-4, 3)),
+            float(10 ** rng.uniform(-8, 3)),
+            float(10 ** rng.uniform(-14, 1)),
+        )
+        _assert_transient_agrees(p)
+
+
+# --- what a designer reads: headline, settling line and verdict agree ----------------------
+
+DEVICES = __import__("pathlib").Path(__file__).resolve().parents[1] / "devices"
+
+
+@pytest.mark.parametrize(
+    "angle, verdict",
+    [("20.56 deg", "pass"), ("1e-12 deg", "fail"), ("1e-7 deg", "fail"), ("0.001 deg", None)],
+)
+def test_headline_and_settling_line_never_contradict(angle: str, verdict: str | None) -> None:
+    import betvdesign as bd
+
+    spec = bd.load_device(DEVICES / "push_demo.yaml").replace("contact.impact_angle", angle)
+    view = bd.check(spec)
+    text = view.text(width=400)
+    res = view.result
+    sc = res.sets[0]
+    settle = next((r for r in sc.rules if r.id == "settling"), None)
+    headline = text.splitlines()[1]
+    says_crosses = " in " in headline and "toward" in headline
+    if settle is not None and "does not cross" in settle.message:
+        assert not says_crosses and "does not cross" in headline
+        assert res.verdict == "fail"
+    if says_crosses:
+        assert settle is None or "does not cross" not in settle.message
+        assert sc.travel.basis in ("periodic", "crossing")
+    if sc.mode == "undetermined":
+        assert res.verdict == "fail" and "undetermined" in headline
+    if verdict is not None:
+        assert res.verdict == verdict

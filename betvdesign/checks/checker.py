@@ -35,9 +35,8 @@ from betvdesign.checks.rules import MARGIN_CORNERS, evaluate_device
 from betvdesign.checks.travel import TravelAnswer, travel_answer
 from betvdesign.dynamics.determination import Determination
 from betvdesign.dynamics.determination import determine as determine_delta_s
-from betvdesign.dynamics.settling import MAX_CYCLES as HORIZON_CYCLES
 from betvdesign.dynamics.settling import Settling, settling
-from betvdesign.model.domain import mode_of
+from betvdesign.model.domain import TRAVEL_HORIZON, mode_of
 from betvdesign.model.params import ModelParams
 from betvdesign.nondim.device import DeviceDerivation, SetDerivation
 
@@ -261,7 +260,7 @@ def check_derivation(
     target_speed_m_s: float | None = None,
     adequacy: DeviceAdequacy | bool | None = None,
     determine: bool | None = None,
-    horizon: int = HORIZON_CYCLES,
+    horizon: int = TRAVEL_HORIZON,
 ) -> CheckResult:
     """Check every actuator set with its exact orbit (see the module docstring).
 

@@ -111,11 +111,24 @@ class SetOut(_Out):
     intended_mode: Literal["push", "pull"]
     impact_direction: Literal["+x", "-x"]
     mode: str = Field(
-        description="push, pull, stalled, not driven (no contact recurs) or unknown (no "
-        "exact orbit)"
+        description="push, pull, stalled, undetermined (Δs not determined in float64 and "
+        "no crossing of the travel), not driven (no contact recurs) or unknown (no exact "
+        "orbit); the crossing's mode when basis is crossing"
     )
     passed: bool = Field(description="every error-severity rule of the set passes")
     delta_s: float | None = Field(description="periodic slider increment per cycle [-]")
+    delta_s_error: float | None = Field(
+        None,
+        description="how well delta_s is determined: its largest change under re-solves "
+        "with every parameter moved by 1e-12 [-] (None: not assessed or not finite)",
+    )
+    basis: str | None = Field(
+        None,
+        description="what the mode and speed quote: periodic (the settled orbit), crossing "
+        "(the transient from rest over the travel, not settled by then), no-crossing (does "
+        "not cross the travel within the horizon: fails), undetermined (Δs not determined "
+        "in float64: fails) or no-orbit",
+    )
     speed_m_s: float | None = Field(
         description="mean slider speed magnitude [m/s] (the speed rule's: periodic, or "
         "from rest over the travel range when it has not settled by then)"
@@ -376,6 +389,14 @@ def set_motion(sc: Any) -> tuple[float | None, float | None, str | None]:
     return ds, abs(float(v)), travel_axis(sc.derivation, v)
 
 
+def _error(sc: Any) -> float | None:
+    """The set's Δs error [-] when assessed and finite, else None."""
+    d = sc.determination
+    if d is None or d.delta_s_error is None or not math.isfinite(d.delta_s_error):
+        return None
+    return float(d.delta_s_error)
+
+
 def _margin(sc: Any) -> tuple[bool | None, str]:
     """(holds, short text) of the set's mode-margin rule."""
     r = next((r for r in sc.rules if r.id == "mode-margin"), None)
@@ -410,6 +431,8 @@ def _set_out(sc: Any, flt: RuleFilter) -> SetOut:
         mode=exact,
         passed=not any(r.severity == "error" and not r.passed for r in rules),
         delta_s=ds,
+        delta_s_error=_error(sc),
+        basis=None if sc.travel is None else sc.travel.basis,
         speed_m_s=v,
         travel_direction=direction,  # type: ignore[arg-type]
         time_to_cross_s=s.travel_range_m / v if v else None,

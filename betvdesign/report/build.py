@@ -303,7 +303,9 @@ def design_check(
         piece = verticals[(varpi, zeta_v, restitution)]
         return piece.value if piece.ok else None
 
-    return check_derivation(der, solver=solver, vertical=vertical, adequacy=adequacy_result)
+    return check_derivation(
+        der, solver=solver, vertical=vertical, adequacy=adequacy_result, determine=True
+    )
 
 
 def build_report(
