@@ -30,22 +30,18 @@ from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any, Literal
 
 from betvdesign.checks.adequacy import DeviceAdequacy, SetAdequacy, assess
-from betvdesign.checks.rules import (
-    MARGIN_CORNERS,
-    RuleResult,
-    evaluate_device,
-    format_speed,
-    format_time,
-    orbit_mode,
-    verdict,
-)
-from betvdesign.model.domain import mode_of
+from betvdesign.checks.rule import RuleResult, format_speed, format_time, orbit_mode, verdict
+from betvdesign.checks.rules import MARGIN_CORNERS, evaluate_device
+from betvdesign.checks.travel import TravelAnswer, travel_answer
+from betvdesign.dynamics.determination import Determination
+from betvdesign.dynamics.determination import determine as determine_delta_s
+from betvdesign.dynamics.settling import Settling, settling
+from betvdesign.model.domain import TRAVEL_HORIZON, mode_of
 from betvdesign.model.params import ModelParams
 from betvdesign.nondim.device import DeviceDerivation, SetDerivation
 
 if TYPE_CHECKING:
     from betvdesign.dynamics import PeriodicResult, VerticalResult
-    from betvdesign.dynamics.settling import Settling
 
 
 @dataclass
@@ -68,6 +64,12 @@ class SetCheck:
         Mode of the exact orbit at each perturbed corner (label -> mode or None).
     adequacy : SetAdequacy, optional
         Is the idealised model enough (:mod:`betvdesign.checks.adequacy`).
+    determination : Determination, optional
+        How well the orbit's Δs is determined
+        (:func:`betvdesign.dynamics.determination.determine`).
+    travel : TravelAnswer, optional
+        The answer the verdict quotes: the orbit, or the crossing of the travel from
+        rest (:func:`betvdesign.checks.travel.travel_answer`).
     """
 
     derivation: SetDerivation
@@ -77,10 +79,16 @@ class SetCheck:
     settling: Settling | SolverFailure | None = None
     margin: dict[str, str | None] | None = None
     adequacy: SetAdequacy | None = None
+    determination: Determination | None = None
+    travel: TravelAnswer | None = None
 
     @property
     def mode(self) -> str | None:
-        """Exact mode: "push", "pull", "stalled", or None when no orbit was found."""
+        """The mode the verdict quotes: "push", "pull", "stalled", "undetermined" (Δs not
+        determined and no crossing of the travel), or None when no orbit was found; the
+        crossing's mode when the slider crosses its travel before it settles."""
+        if self.travel is not None:
+            return self.travel.mode
         return orbit_mode(self.periodic)
 
     @property
@@ -251,6 +259,8 @@ def check_derivation(
     settle: bool = True,
     target_speed_m_s: float | None = None,
     adequacy: DeviceAdequacy | bool | None = None,
+    determine: bool | None = None,
+    horizon: int = TRAVEL_HORIZON,
 ) -> CheckResult:
     """Check every actuator set with its exact orbit (see the module docstring).
 
@@ -274,6 +284,15 @@ def check_derivation(
         ``model-adequacy``): None runs it with the exact solver unless ``solver`` is
         given, True always (with ``solver``), False never; or an already computed
         :class:`~betvdesign.checks.adequacy.DeviceAdequacy`.
+    determine : bool, optional
+        Assess how well each orbit's Δs is determined in float64
+        (:func:`betvdesign.dynamics.determination.determine`: re-solves with every
+        parameter moved by 1e-12; an undetermined Δs fails the mode rule unless the
+        slider crosses its travel from rest): None runs it with the exact solver unless
+        ``solver`` is given, True always, False never.
+    horizon : int
+        Cycles the transient from rest may run to cross the travel range [-]; a slider
+        that does not cross within them fails the mode rule (raise it for long travels).
 
     Returns
     -------
@@ -295,8 +314,12 @@ def check_derivation(
             solved[p] = _guarded(solver, p)
         return solved[p]
 
+    if determine is None:
+        determine = not custom
     notes: list[str] = []
     orbits, verticals, settlings, margins = {}, {}, {}, {}
+    determinations: dict[str, Determination] = {}
+    answers: dict[str, TravelAnswer] = {}
     settled: dict[Any, Any] = {}
     vert_of: dict[tuple[float, float, float], Any] = {}
     for s in derivation.sets:
@@ -310,13 +333,20 @@ def check_derivation(
             vert_of[vkey] = _guarded(vertical, p.varpi, zeta_v=p.zeta_v, restitution=p.restitution)
         if vert_of[vkey] is not None:
             verticals[s.name] = vert_of[vkey]
-        if margin and orbit_mode(po) in ("push", "pull"):
+        det = determine_delta_s(p, po, solver=orbit) if determine else None
+        if det is not None:
+            determinations[s.name] = det
+        moving = orbit_mode(po) in ("push", "pull")
+        unsure = det is not None and det.status in ("undetermined", "degenerate")
+        if margin and orbit_mode(po) in ("push", "pull") and not unsure:
             margins[s.name] = {k: orbit_mode(orbit(q)) for k, q in corner_params(p).items()}
-        if settle and orbit_mode(po) in ("push", "pull"):
+        if settle and (moving or unsure):
             key = (p, s.travel_range_m / s.scales.length_m)
             if key not in settled:
-                settled[key] = _settling(p, po, key[1])
+                settled[key] = _settling(p, po, key[1], horizon)
             settlings[s.name] = settled[key]
+        st = settlings.get(s.name)
+        answers[s.name] = travel_answer(po, det, None if isinstance(st, SolverFailure) else st)
     adq = _adequacy(derivation, adequacy, (lambda p, **_: orbit(p)) if custom else None)
     rules = evaluate_device(
         derivation,
@@ -326,6 +356,7 @@ def check_derivation(
         margins=margins if margin else None,
         target_speed_m_s=target_speed_m_s,
         adequacy=adq,
+        travel=answers,
     )
     sets = [
         SetCheck(
@@ -336,6 +367,8 @@ def check_derivation(
             settlings.get(s.name),
             margins.get(s.name),
             adq.get(s.name),
+            determinations.get(s.name),
+            answers.get(s.name),
         )
         for s in derivation.sets
     ]
@@ -355,18 +388,23 @@ def _adequacy(
     return {a.name: a for a in want.sets}
 
 
-def _settling(p: ModelParams, po: PeriodicResult, travel_s: float) -> Settling | SolverFailure:
-    """The transient from rest of a moving orbit ``po`` (a failure stand-in if it raised)."""
-    from betvdesign.dynamics.settling import settling
-
-    moduli = po.floquet_moduli
+def _settling(
+    p: ModelParams, po: PeriodicResult, travel_s: float, horizon: int
+) -> Settling | SolverFailure:
+    """The transient from rest against the orbit ``po`` over at most ``horizon`` cycles
+    (a failure stand-in if it raised)."""
+    moduli = po.floquet_moduli if po.success else None
+    ds = float(po.delta_s) if po.success and po.delta_s is not None else 0.0
     try:
         return settling(
             p,
-            float(po.delta_s),
-            period_cycles=1 if po.period_cycles is None else int(po.period_cycles),
+            ds,
+            period_cycles=1
+            if not po.success or po.period_cycles is None
+            else int(po.period_cycles),
             travel_s=travel_s,
             mu_max=max(moduli) if moduli else None,
+            max_cycles=horizon,
         )
     except Exception as exc:  # reported, never a crash
         return SolverFailure(f"settling: {type(exc).__name__}: {exc}")
@@ -395,6 +433,8 @@ def _set_dict(sc: SetCheck) -> dict[str, Any]:
         "speed_m_s": v,
         "simulation": None if p is None else simulation_summary(p),
         "settling": None if st is None or isinstance(st, SolverFailure) else st.as_dict(),
+        "determination": None if sc.determination is None else sc.determination.as_dict(),
+        "travel": None if sc.travel is None else sc.travel.as_dict(),
         "margin": sc.margin,
         "adequacy": None if sc.adequacy is None else sc.adequacy.as_dict(),
         "vertical": None if sc.vertical is None else _vertical_summary(sc.vertical),

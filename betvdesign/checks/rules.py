@@ -39,11 +39,19 @@ References
 
 from __future__ import annotations
 
-import math
-from dataclasses import asdict, dataclass
-from typing import TYPE_CHECKING, Any, Literal, Protocol
+from typing import TYPE_CHECKING
 
 from betvdesign.checks.adequacy import LIKELY_QUALITY, LIKELY_RESTITUTION, SetAdequacy
+from betvdesign.checks.rule import (
+    OrbitLike,
+    RuleResult,
+    format_speed,
+    format_time,
+    orbit_mode,
+    travel_axis,
+    travel_direction,
+)
+from betvdesign.checks.travel import SETTLE_SHARE, TravelAnswer, travel_answer
 from betvdesign.model.domain import (
     FIT_RANGE,
     TANGENTIAL_DETUNING,
@@ -65,6 +73,7 @@ __all__ = [
     "PUBLISHED_RTOL",
     "SETTLE_SHARE",
     "SRC_ADEQUACY",
+    "SRC_DETERMINATION",
     "SRC_LAMBDA",
     "SRC_MARGIN",
     "SRC_PUBLISHED",
@@ -73,23 +82,12 @@ __all__ = [
     "SRC_SPEED",
     "SRC_TANG",
     "SRC_WINDOW",
-    "OrbitLike",
-    "RuleResult",
-    "Severity",
     "adequacy_rule",
     "evaluate",
     "evaluate_device",
-    "format_speed",
-    "format_time",
     "mode_hint",
-    "orbit_mode",
     "speed_rules",
-    "travel_axis",
-    "travel_direction",
-    "verdict",
 ]
-
-Severity = Literal["error", "warning", "info"]
 
 #: Relative distance [-] within which a computed parameter matches a published one.
 PUBLISHED_RTOL = 0.1
@@ -100,8 +98,6 @@ MARGIN_CORNERS: tuple[tuple[float, float], ...] = (
     (1.0, 0.9),
     (1.0, 1.1),
 )
-#: Settling may take at most this share of the cycles that cross the travel range.
-SETTLE_SHARE = 0.25
 
 SRC_WINDOW = "MODEL.md, What the model shows: Vertical motion (Shin et al. 2004)"
 SRC_LAMBDA = "MODEL.md, Push/pull criterion (empirical fit, Shin et al. 2004, eq. 9)"
@@ -110,195 +106,15 @@ SRC_SPEED = "MODEL.md, Displacement per cycle: speed = Δs·u·cosθ·f_act"
 SRC_PUBLISHED = "device file: published_fit"
 SRC_SOLVER = "betvdesign.dynamics.periodic_orbit (exact event-driven solver, shooting)"
 SRC_SETTLE = "betvdesign.dynamics.settling (exact transient from rest, MODEL.md: Slider)"
+SRC_DETERMINATION = (
+    "betvdesign.dynamics.determination (periodic re-solves with every parameter moved by "
+    "1e-12; forces below round-off named before solving)"
+)
 SRC_MARGIN = "exact periodic orbits at ϖ·(1 ± 5 %) and α·(1 ± 10 %) (fabrication spread)"
 SRC_ADEQUACY = (
     "betvdesign.checks.adequacy: exact periodic orbits without and with head damping and "
     "restitution, Q and e scanned (MODEL.md, Beyond the paper's idealisation)"
 )
-
-
-class OrbitLike(Protocol):
-    """What the rules read of any periodic-orbit result, a failed one included.
-
-    A :class:`betvdesign.dynamics.PeriodicResult`, or a stand-in for a solver that failed
-    (``success`` False, ``status`` and ``message`` saying why). A successful orbit is a
-    ``PeriodicResult`` and also gives ``period_cycles`` [-].
-
-    Attributes
-    ----------
-    success : bool
-        A periodic orbit was found.
-    status : str
-        The solver's status ("success", "unbounded", "not_driven", "not_converged", ...).
-    message : str
-        The solver's explanation.
-    delta_s : float or None
-        Slider increment per actuation cycle on the orbit [-] (in units of u·cosθ).
-    """
-
-    success: bool
-    status: str
-    message: str
-    delta_s: float | None
-
-
-@dataclass(frozen=True)
-class RuleResult:
-    """Outcome of one design rule.
-
-    Parameters
-    ----------
-    id : str
-        Rule id (``mode``, ``frequency-window``, ``published-fit.alpha``, ...).
-    severity : {"error", "warning", "info"}
-        A failed error fails the verdict; warnings and infos do not.
-    passed : bool
-        The rule's condition holds.
-    value : float or None
-        The number checked, in ``unit`` (SI, or [-] when ``unit`` is ""); None when the
-        rule could not be evaluated.
-    threshold : str
-        The pass condition in words and maths.
-    message : str
-        What was found, in the designer's quantities.
-    source : str
-        Where the rule comes from (MODEL.md section, solver, device file).
-    set_name : str
-        The actuator set ("" for device-level rules).
-    fix : str
-        What to change when the rule fails ("" when it passes or no change is known).
-    unit : str
-        SI unit of ``value`` ("" when dimensionless).
-    """
-
-    id: str
-    severity: Severity
-    passed: bool
-    value: float | None
-    threshold: str
-    message: str
-    source: str
-    set_name: str = ""
-    fix: str = ""
-    unit: str = ""
-
-    def as_dict(self) -> dict[str, Any]:
-        """JSON-safe record of the rule.
-
-        Returns
-        -------
-        dict
-            Every field by name; a non-finite ``value`` as its string ("inf", "nan":
-            JSON has no inf/nan).
-        """
-        d = asdict(self)
-        if d["value"] is not None and not math.isfinite(d["value"]):
-            d["value"] = str(d["value"])  # JSON has no inf/nan
-        return d
-
-
-def verdict(results: list[RuleResult]) -> Literal["pass", "fail"]:
-    """The verdict of a list of rule results.
-
-    Parameters
-    ----------
-    results : list of RuleResult
-        The rules of a set or a device.
-
-    Returns
-    -------
-    {"pass", "fail"}
-        "fail" when any error-severity rule fails, else "pass".
-    """
-    return "fail" if any(r.severity == "error" and not r.passed for r in results) else "pass"
-
-
-def orbit_mode(orbit: OrbitLike | None) -> str | None:
-    """Mode of a successful exact orbit.
-
-    Parameters
-    ----------
-    orbit : OrbitLike or None
-        An exact periodic-orbit result (None: none was computed).
-
-    Returns
-    -------
-    str or None
-        "push", "pull" or "stalled" (:func:`betvdesign.model.domain.mode_of` of its Δs);
-        None without a successful orbit.
-    """
-    if orbit is None or not orbit.success:
-        return None
-    return mode_of(orbit.delta_s)
-
-
-def format_speed(v_m_s: float) -> str:
-    """A speed with its SI prefix.
-
-    Parameters
-    ----------
-    v_m_s : float
-        Speed [m/s].
-
-    Returns
-    -------
-    str
-        E.g. ``"38.9 µm/s"`` (:func:`betvdesign.output.siformat.format_si`).
-    """
-    return format_si(v_m_s, "m/s")
-
-
-def format_time(t_s: float) -> str:
-    """A duration with its SI prefix.
-
-    Parameters
-    ----------
-    t_s : float
-        Duration [s].
-
-    Returns
-    -------
-    str
-        E.g. ``"1.03 s"`` (:func:`betvdesign.output.siformat.format_si`).
-    """
-    return format_si(t_s, "s")
-
-
-def travel_direction(s: SetDerivation, mode: str) -> int:
-    """Direction of slider travel for a set working in ``mode``.
-
-    Parameters
-    ----------
-    s : SetDerivation
-        The actuator set (its impact direction).
-    mode : {"push", "pull"}
-        Push moves the slider along the impacts, pull against them (MODEL.md, Slider).
-
-    Returns
-    -------
-    int
-        +1 (toward +x) or −1 (toward −x).
-    """
-    return s.impact_sign if mode == "push" else -s.impact_sign
-
-
-def travel_axis(s: SetDerivation, delta_s: float) -> Literal["+x", "-x"]:
-    """Direction the slider travels for a signed increment (or speed) along the impacts.
-
-    Parameters
-    ----------
-    s : SetDerivation
-        The actuator set (its impact direction).
-    delta_s : float
-        Δs per cycle [-], or the signed speed [m/s]: positive along the set's impacts;
-        nonzero.
-
-    Returns
-    -------
-    {"+x", "-x"}
-        The direction of travel.
-    """
-    return "+x" if travel_direction(s, "push" if delta_s > 0 else "pull") > 0 else "-x"
 
 
 # --- per-set rules -----------------------------------------------------------------------
@@ -313,6 +129,7 @@ def evaluate(
     margin: dict[str, str | None] | None = None,
     target_speed_m_s: float | None = None,
     adequacy: SetAdequacy | None = None,
+    travel: TravelAnswer | None = None,
 ) -> list[RuleResult]:
     """Every rule for one actuator set (the module docstring gives the thresholds).
 
@@ -336,6 +153,10 @@ def evaluate(
     adequacy : SetAdequacy, optional
         The set's model adequacy (:mod:`betvdesign.checks.adequacy`); adds the rule
         ``model-adequacy``.
+    travel : TravelAnswer, optional
+        The answer the verdict quotes (:func:`betvdesign.checks.travel.travel_answer`:
+        the orbit, or the crossing of the travel from rest, or none); None chooses it
+        from ``orbit`` and ``settling`` with Δs read as exact.
 
     Returns
     -------
@@ -350,12 +171,12 @@ def evaluate(
     """
     out = [
         _frequency_window(s, vertical),
-        _mode(s, orbit),
+        _mode(s, orbit, travel),
         _lambda(s, orbit),
         *([_margin(s, orbit, margin)] if margin is not None else []),
         _tangential_resonance(s),
         *_published(s),
-        *speed_rules(s, orbit, settling, target_speed_m_s),
+        *speed_rules(s, orbit, settling, target_speed_m_s, travel),
         *([adequacy_rule(adequacy)] if adequacy is not None else []),
     ]
     return [_with_set(r, s.name) for r in out]
@@ -447,8 +268,10 @@ _STATUS_FIX = {
 }
 
 
-def _mode(s: SetDerivation, orbit: OrbitLike | None) -> RuleResult:
+def _mode(s: SetDerivation, orbit: OrbitLike | None, travel: TravelAnswer | None) -> RuleResult:
     want = f"intended {s.intended_mode}: Δs {'> 0' if s.intended_mode == 'push' else '< 0'}"
+    if travel is not None and travel.basis in ("undetermined", "no-crossing", "crossing"):
+        return _travel_mode(s, travel, want)
     if orbit is None:
         return RuleResult(
             "mode", "error", False, None, want, "no exact periodic orbit was computed", SRC_SOLVER
@@ -494,6 +317,60 @@ def _mode(s: SetDerivation, orbit: OrbitLike | None) -> RuleResult:
     )
     fix = "" if ok else mode_hint(s.intended_mode) + "; `betv fix FILE` finds the smallest change"
     return RuleResult("mode", "error", ok, ds, want, msg, SRC_SOLVER, fix=fix)
+
+
+def _travel_mode(s: SetDerivation, ans: TravelAnswer, want: str) -> RuleResult:
+    """The mode rule when the periodic orbit is not the answer (:mod:`betvdesign.checks.
+    travel`): Δs undetermined, no crossing of the travel, or the crossing from rest."""
+    travel = format_si(s.travel_range_m, "m")
+    f = s.scales.f_act_hz
+    periodic = ans.delta_s_periodic
+    if ans.basis == "undetermined":
+        return RuleResult(
+            "mode",
+            "error",
+            False,
+            None,
+            want,
+            f"mode undetermined: {ans.reason}",
+            SRC_DETERMINATION,
+            fix=ans.fix,
+        )
+    if ans.basis == "no-crossing":
+        n = ans.horizon_cycles or 0
+        shown = (
+            f"periodic orbit: Δs = {periodic:.4g} per cycle ({mode_of(periodic)}), not "
+            "reached over the travel"
+            if periodic is not None
+            else "no periodic answer"
+        )
+        return RuleResult(
+            "mode",
+            "error",
+            False,
+            None,
+            want,
+            f"does not cross its {travel} travel within {n} cycles ({format_time(n / f)}) "
+            f"from rest ({shown})",
+            SRC_SETTLE,
+            fix="choose a design that moves and settles faster (friction κ and the mass ratio "
+            "β not near 0, |α·ϖ² − 1| not small without damping), or raise the horizon "
+            "(`betv check --horizon N`) if the travel really takes that long",
+        )
+    ds = float(ans.delta_s)
+    mode = ans.mode
+    ok = mode == s.intended_mode
+    shown = (
+        f"periodic orbit Δs = {periodic:.4g}, not settled by then"
+        if periodic is not None and mode_of(periodic) in ("push", "pull")
+        else "periodic Δs not determined"
+    )
+    msg = (
+        f"transient from rest crosses the {travel} travel in {ans.cycles_to_cross} cycles, "
+        f"mean Δs = {ds:.4g} per cycle -> {mode} mode (intended {s.intended_mode}; {shown})"
+    )
+    fix = "" if ok else mode_hint(s.intended_mode) + "; `betv fix FILE` finds the smallest change"
+    return RuleResult("mode", "error", ok, ds, want, msg, SRC_SETTLE, fix=fix)
 
 
 def _lambda(s: SetDerivation, orbit: OrbitLike | None) -> RuleResult:
@@ -609,6 +486,7 @@ def speed_rules(
     orbit: OrbitLike | None,
     settling: Settling | None,
     target: float | None,
+    travel: TravelAnswer | None = None,
 ) -> list[RuleResult]:
     """The rules about motion along the travel range.
 
@@ -622,13 +500,17 @@ def speed_rules(
         The transient from rest; a failure stand-in (``status`` "failed") is ignored.
     target : float or None
         The speed the design must reach [m/s] (adds ``target-speed``).
+    travel : TravelAnswer, optional
+        The answer the verdict quotes (:func:`betvdesign.checks.travel.travel_answer`);
+        None chooses it from ``orbit`` and ``settling`` (Δs read as exact).
 
     Returns
     -------
     list of RuleResult
         ``speed`` (info; value [m/s], signed along the impacts): Δs·u·cosθ·f_act of the
-        orbit, or the crossing mean from rest when the slider has not settled within
-        :data:`SETTLE_SHARE` of the crossing; ``settling`` (warning; value: settling time
+        quoted answer — the orbit, or the crossing mean from rest when the slider has not
+        settled within :data:`SETTLE_SHARE` of the crossing; none when it does not cross
+        its travel within the horizon; ``settling`` (warning; value: settling time
         [s]) when a transient is given; ``target-speed`` (error) when a target is given.
 
     References
@@ -636,64 +518,44 @@ def speed_rules(
     .. [1] Shin, Pai, Lin, Hui and Tien, J. Appl. Phys. 96, 7603 (2004),
        doi:10.1063/1.1809773 (displacement per cycle).
     """
-    mode = orbit_mode(orbit)
-    if orbit is None or mode not in ("push", "pull"):
-        why = "the slider does not move" if mode == "stalled" else "no exact periodic orbit"
+    ans = travel if travel is not None else travel_answer(orbit, None, settling)
+    if ans.basis in ("no-crossing", "undetermined", "no-orbit") or not ans.moves:
+        if ans.basis == "no-crossing":
+            why = f"the slider does not cross its travel range: {ans.reason}"
+        elif ans.basis == "undetermined":
+            why = "the periodic Δs is not determined and the slider does not cross its travel"
+        elif ans.mode == "stalled":
+            why = "the slider does not move"
+        else:
+            why = "no exact periodic orbit"
         out = [RuleResult("speed", "info", False, None, "needs a moving orbit", why, SRC_SPEED)]
+        if ans.basis == "no-crossing" and settling is not None:
+            out.append(_settling_rule(s, settling, ok=False))
         if target is not None:
             out.append(_target(None, target, why))
         return out
-    ds = float(orbit.delta_s)
-    v_orbit = s.scales.speed_m_s(ds)
-    travel = s.travel_range_m
-    f = s.scales.f_act_hz
-    v, basis, out = v_orbit, "periodic orbit", []
-    if settling is not None and settling.status != "failed":
-        n_cross = settling.cycles_to_cross
-        n_settle = settling.settle_cycles  # a lower bound when not settled
-        share = n_settle / n_cross if n_cross else math.inf
-        ok = share <= SETTLE_SHARE
-        settle_txt = (
-            f"{n_settle:.4g} cycles ({format_time(n_settle / f)})"
-            if settling.cycles_to_settle is not None
-            else f"more than {settling.simulated_cycles} cycles (not settled)"
-        )
-        cross_txt = (
-            f"{n_cross} cycles ({format_time(n_cross / f)})"
-            if n_cross
-            else f"more than {settling.simulated_cycles} cycles"
-        )
-        out.append(
-            RuleResult(
-                "settling",
-                "warning",
-                ok,
-                n_settle / f,
-                f"settling ≤ {SETTLE_SHARE:.0%} of the cycles to cross the travel range",
-                f"from rest: within {settling.rtol:.0%} of the periodic Δs after {settle_txt}; "
-                f"crosses the {format_si(travel, 'm')} travel range after {cross_txt}"
-                + ("" if ok else ": the periodic speed is not what the travel shows"),
-                SRC_SETTLE,
-                fix=""
-                if ok
-                else "quote the crossing speed from rest (the speed rule does), or choose a "
-                "design that settles faster (slowest Floquet multiplier |μ| further below 1; "
-                "near ϖ → 2 settling slows sharply)",
-                unit="s",
-            )
-        )
-        if not ok and settling.crossing_delta_s is not None:
-            v = s.scales.speed_m_s(float(settling.crossing_delta_s))
-            basis = (
-                f"transient from rest over the travel range (periodic: "
-                f"{format_speed(abs(v_orbit))})"
-            )
+    periodic = ans.delta_s_periodic
+    travel_m = s.travel_range_m
+    out = []
+    if settling is not None and settling.status != "failed" and periodic is not None:
+        if mode_of(periodic) in ("push", "pull") and ans.basis in ("periodic", "crossing"):
+            out.append(_settling_rule(s, settling, ok=ans.basis == "periodic"))
+    ds = float(ans.delta_s)
+    v = s.scales.speed_m_s(ds)
+    if ans.basis == "crossing":
+        if periodic is not None and mode_of(periodic) in ("push", "pull"):
+            shown = format_speed(abs(s.scales.speed_m_s(periodic)))
+        else:
+            shown = "not determined"
+        basis = f"transient from rest over the travel range (periodic: {shown})"
+    else:
+        basis = "periodic orbit"
     if abs(v) > 0:
-        t_cross = travel / abs(v)
+        t_cross = travel_m / abs(v)
         msg = (
             f"mean speed {format_speed(abs(v))} toward {travel_axis(s, ds)} "
             f"({'with' if ds > 0 else 'against'} the impact direction "
-            f"{s.actuator_set.impact_direction}), crosses the {format_si(travel, 'm')} "
+            f"{s.actuator_set.impact_direction}), crosses the {format_si(travel_m, 'm')} "
             f"travel range in {format_time(t_cross)} [{basis}]"
         )
     else:
@@ -703,6 +565,56 @@ def speed_rules(
     if target is not None:
         out.append(_target(abs(v), target, ""))
     return out
+
+
+def _settling_rule(s: SetDerivation, settling: Settling, *, ok: bool) -> RuleResult:
+    """The rule ``settling``: settling from rest against the cycles to cross the travel."""
+    f = s.scales.f_act_hz
+    n_cross = settling.cycles_to_cross
+    n_settle = settling.settle_cycles  # a lower bound when not settled
+    settle_txt = (
+        f"{n_settle:.4g} cycles ({format_time(n_settle / f)})"
+        if settling.cycles_to_settle is not None
+        else f"more than {settling.simulated_cycles} cycles (not settled)"
+    )
+    travel = format_si(s.travel_range_m, "m")
+    if n_cross:
+        cross_txt = (
+            f"crosses the {travel} travel range after {n_cross} cycles ({format_time(n_cross / f)})"
+        )
+    else:
+        n = settling.simulated_cycles
+        cross_txt = (
+            f"does not cross the {travel} travel range within {n} cycles ({format_time(n / f)})"
+        )
+    if ok:
+        tail, fix = "", ""
+    elif n_cross:
+        tail = ": the periodic speed is not what the travel shows"
+        fix = (
+            "quote the crossing speed from rest (the speed rule does), or choose a design "
+            "that settles faster (slowest Floquet multiplier |μ| further below 1; near ϖ → 2 "
+            "settling slows sharply)"
+        )
+    else:
+        tail = ": no speed is shown over the travel"
+        fix = (
+            "choose a design that moves and settles faster (friction κ and the slider mass "
+            "ratio β not near 0, |α·ϖ² − 1| not small without damping), or raise the horizon "
+            "(`betv check --horizon N`) if the travel really takes that long"
+        )
+    return RuleResult(
+        "settling",
+        "warning",
+        ok,
+        n_settle / f,
+        f"settling ≤ {SETTLE_SHARE:.0%} of the cycles to cross the travel range",
+        f"from rest: within {settling.rtol:.0%} of the periodic Δs after {settle_txt}; "
+        f"{cross_txt}{tail}",
+        SRC_SETTLE,
+        fix=fix,
+        unit="s",
+    )
 
 
 def _target(v: float | None, target: float, why: str) -> RuleResult:
@@ -798,6 +710,7 @@ def evaluate_device(
     margins: dict[str, dict[str, str | None]] | None = None,
     target_speed_m_s: float | None = None,
     adequacy: dict[str, SetAdequacy] | None = None,
+    travel: dict[str, TravelAnswer] | None = None,
 ) -> list[RuleResult]:
     """Rules of every set, then the device rule ``bidirectional``.
 
@@ -805,9 +718,10 @@ def evaluate_device(
     ----------
     derivation : DeviceDerivation
         The derived device.
-    orbits, vertical, settling, margins, adequacy : dict, optional
+    orbits, vertical, settling, margins, adequacy, travel : dict, optional
         Per set name, what :func:`evaluate` takes as ``orbit``, ``vertical``,
-        ``settling``, ``margin`` and ``adequacy`` (a set not in a dict gets None).
+        ``settling``, ``margin``, ``adequacy`` and ``travel`` (a set not in a dict gets
+        None).
     target_speed_m_s : float, optional
         The speed every set must reach [m/s].
 
@@ -818,9 +732,9 @@ def evaluate_device(
         (warning: the sets must move the slider both ways).
     """
     orbits, vertical, adequacy = orbits or {}, vertical or {}, adequacy or {}
-    settling, margins = settling or {}, margins or {}
+    settling, margins, answers = settling or {}, margins or {}, travel or {}
     out: list[RuleResult] = []
-    travel: dict[str, int | None] = {}
+    directions: dict[str, int | None] = {}
     for s in derivation.sets:
         orbit = orbits.get(s.name)
         out.extend(
@@ -832,14 +746,17 @@ def evaluate_device(
                 margin=margins.get(s.name),
                 target_speed_m_s=target_speed_m_s,
                 adequacy=adequacy.get(s.name),
+                travel=answers.get(s.name),
             )
         )
-        mode = orbit_mode(orbit)
-        travel[s.name] = travel_direction(s, mode) if mode in ("push", "pull") else None
+        ans = answers.get(s.name)
+        mode = ans.mode if ans is not None else orbit_mode(orbit)
+        directions[s.name] = travel_direction(s, mode) if mode in ("push", "pull") else None
     if len(derivation.sets) >= 2:
-        dirs = set(travel.values())
+        dirs = set(directions.values())
         listing = ", ".join(
-            f"{k}: {'none' if v is None else '+x' if v > 0 else '-x'}" for k, v in travel.items()
+            f"{k}: {'none' if v is None else '+x' if v > 0 else '-x'}"
+            for k, v in directions.items()
         )
         ok = dirs == {1, -1}
         out.append(

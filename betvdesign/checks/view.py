@@ -28,7 +28,7 @@ from typing import Any, Literal
 from pydantic import BaseModel, ConfigDict, Field
 
 from betvdesign.checks.adequacy import AdequacyOut, adequacy_line
-from betvdesign.checks.rules import RuleResult, travel_axis
+from betvdesign.checks.rule import RuleResult, travel_axis
 from betvdesign.output.siformat import format_dimensionless as fmt_x
 from betvdesign.output.siformat import format_si, si_key
 
@@ -111,11 +111,24 @@ class SetOut(_Out):
     intended_mode: Literal["push", "pull"]
     impact_direction: Literal["+x", "-x"]
     mode: str = Field(
-        description="push, pull, stalled, not driven (no contact recurs) or unknown (no "
-        "exact orbit)"
+        description="push, pull, stalled, undetermined (Δs not determined in float64 and "
+        "no crossing of the travel), not driven (no contact recurs) or unknown (no exact "
+        "orbit); the crossing's mode when basis is crossing"
     )
     passed: bool = Field(description="every error-severity rule of the set passes")
     delta_s: float | None = Field(description="periodic slider increment per cycle [-]")
+    delta_s_error: float | None = Field(
+        None,
+        description="how well delta_s is determined: its largest change under re-solves "
+        "with every parameter moved by 1e-12 [-] (None: not assessed or not finite)",
+    )
+    basis: str | None = Field(
+        None,
+        description="what the mode and speed quote: periodic (the settled orbit), crossing "
+        "(the transient from rest over the travel, not settled by then), no-crossing (does "
+        "not cross the travel within the horizon: fails), undetermined (Δs not determined "
+        "in float64: fails) or no-orbit",
+    )
     speed_m_s: float | None = Field(
         description="mean slider speed magnitude [m/s] (the speed rule's: periodic, or "
         "from rest over the travel range when it has not settled by then)"
@@ -376,6 +389,14 @@ def set_motion(sc: Any) -> tuple[float | None, float | None, str | None]:
     return ds, abs(float(v)), travel_axis(sc.derivation, v)
 
 
+def _error(sc: Any) -> float | None:
+    """The set's Δs error [-] when assessed and finite, else None."""
+    d = sc.determination
+    if d is None or d.delta_s_error is None or not math.isfinite(d.delta_s_error):
+        return None
+    return float(d.delta_s_error)
+
+
 def _margin(sc: Any) -> tuple[bool | None, str]:
     """(holds, short text) of the set's mode-margin rule."""
     r = next((r for r in sc.rules if r.id == "mode-margin"), None)
@@ -410,6 +431,8 @@ def _set_out(sc: Any, flt: RuleFilter) -> SetOut:
         mode=exact,
         passed=not any(r.severity == "error" and not r.passed for r in rules),
         delta_s=ds,
+        delta_s_error=_error(sc),
+        basis=None if sc.travel is None else sc.travel.basis,
         speed_m_s=v,
         travel_direction=direction,  # type: ignore[arg-type]
         time_to_cross_s=s.travel_range_m / v if v else None,
@@ -432,6 +455,23 @@ def _set_out(sc: Any, flt: RuleFilter) -> SetOut:
 # --- text ---------------------------------------------------------------------------------
 
 _TAG = {"error": ("FAIL", "bold red"), "warning": ("warn", "yellow"), "info": ("note", "dim")}
+
+
+def _no_motion(sc: Any, mode: str, v: float | None) -> str:
+    """Why a set shows no speed, in a few words (never contradicting its rules)."""
+    ans = sc.travel
+    s = sc.derivation
+    if ans is not None and ans.basis == "no-crossing":
+        n = ans.horizon_cycles or 0
+        t = format_si(n / s.scales.f_act_hz, "s")
+        return (
+            f"does not cross its {format_si(s.travel_range_m, 'm')} travel within {n} cycles ({t})"
+        )
+    if ans is not None and ans.basis == "undetermined":
+        return "Δs not determined in float64 (see the mode rule)"
+    if mode == "not driven":
+        return "no periodic drive (impulsive hits only)"
+    return "the slider does not move" if v == 0.0 else "no speed (no exact orbit)"
 
 
 def set_headline(sc: Any) -> tuple[str, str]:
@@ -463,8 +503,7 @@ def set_headline(sc: Any) -> tuple[str, str]:
             f"{format_si(s.travel_range_m, 'm')} in {format_si(s.travel_range_m / v, 's')}"
         )
     else:
-        none = "no periodic drive (impulsive hits only)" if mode == "not driven" else None
-        motion = "the slider does not move" if v == 0.0 else none or "no speed (no exact orbit)"
+        motion = _no_motion(sc, mode, v)
     line1 = f"{head}, {motion}; {_margin(sc)[1]}"
     lam_mode = "push" if s.lam < 1.0 else "pull"
     word = "" if mode not in ("push", "pull") else (" agrees" if lam_mode == mode else " disagrees")

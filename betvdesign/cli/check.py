@@ -21,13 +21,15 @@ from rich.markup import escape as esc
 from rich.table import Table
 
 from betvdesign.cli import app
-from betvdesign.cli.common import EXIT_OK, EXIT_RULE_FAILED, user_errors
+from betvdesign.cli.common import EXIT_OK, EXIT_RULE_FAILED, int_option, user_errors
 from betvdesign.cli.config import load_config
 from betvdesign.errors import SpecError, UsageError
+from betvdesign.model.domain import TRAVEL_HORIZON
+from betvdesign.spec import limits
 
 if TYPE_CHECKING:  # the heavy layers load when a check runs, not for `betv --help`
     from betvdesign.checks.checker import CheckResult
-    from betvdesign.checks.rules import RuleResult
+    from betvdesign.checks.rule import RuleResult
 
 _STATUS = {
     (True, "error"): "[green]ok[/]",
@@ -70,6 +72,15 @@ def check_cmd(
         help="Judge the idealised model (rule model-adequacy: exact orbits with and without "
         "damping and restitution, Q and e scanned; about 0.2–0.7 s per set). "
         "--no-adequacy skips it.",
+    ),
+    horizon: int = typer.Option(
+        TRAVEL_HORIZON,
+        "--horizon",
+        metavar="CYCLES",
+        callback=int_option(1000, limits.MAX_CYCLES, why="cycles of the transient from rest"),
+        help="Cycles the transient from rest may take to cross the travel range; a slider "
+        "that does not cross within them fails the mode rule (raise it for long travels; "
+        "about 1 µs per cycle).",
     ),
     show_derivation: bool = typer.Option(False, "--derivation", hidden=True),
 ) -> None:
@@ -114,7 +125,12 @@ def check_cmd(
             raise SpecError(issues)
         results = []
         for f, d in derivations:
-            res = check_derivation(d, target_speed_m_s=target, adequacy=None if adequacy else False)
+            res = check_derivation(
+                d,
+                target_speed_m_s=target,
+                adequacy=None if adequacy else False,
+                horizon=horizon,
+            )
             res.source_file = str(f)
             results.append(res)
     for warning in flt.unmatched(results):

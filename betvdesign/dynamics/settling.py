@@ -32,15 +32,16 @@ import numpy as np
 
 from betvdesign.dynamics.result import SettlingStatus, SolverResult
 from betvdesign.dynamics.solver import simulate
+from betvdesign.model.domain import TRAVEL_HORIZON
 from betvdesign.model.params import ModelParams
 
 #: Settled means within this fraction of the periodic Δs [-].
 SETTLE_RTOL = 0.01
 #: Cycles within tolerance needed after the settling cycle before it is accepted.
 MIN_TAIL = 32
-#: First transient chunk and the cap on simulated cycles.
+#: First transient chunk (the cap on simulated cycles is the check's horizon,
+#: :data:`betvdesign.model.domain.TRAVEL_HORIZON`).
 FIRST_CHUNK = 512
-MAX_CYCLES = 200_000
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -116,7 +117,7 @@ def settling(
     travel_s: float = math.inf,
     mu_max: float | None = None,
     rtol: float = SETTLE_RTOL,
-    max_cycles: int = MAX_CYCLES,
+    max_cycles: int = TRAVEL_HORIZON,
 ) -> Settling:
     """Transient from rest against the periodic increment: how long until it shows.
 

@@ -25,7 +25,7 @@ from betvdesign.checks.checker import (
     check_derivation,
     load_solver,
 )
-from betvdesign.checks.rules import RuleResult, verdict
+from betvdesign.checks.rule import RuleResult, verdict
 from betvdesign.checks.view import rule_unit
 from betvdesign.nondim.device import derive_file
 from betvdesign.nondim.record import DeviceDerivation, SetDerivation
@@ -309,7 +309,9 @@ def design_check(
         piece = verticals[(varpi, zeta_v, restitution)]
         return piece.value if piece.ok else None
 
-    return check_derivation(der, solver=solver, vertical=vertical, adequacy=adequacy_result)
+    return check_derivation(
+        der, solver=solver, vertical=vertical, adequacy=adequacy_result, determine=True
+    )
 
 
 def build_report(
