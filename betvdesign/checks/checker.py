@@ -27,7 +27,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
-from typing import TYPE_CHECKING, Any, Literal
+from typing import Any, Literal
 
 from betvdesign.checks.adequacy import DeviceAdequacy, SetAdequacy, assess
 from betvdesign.checks.rule import RuleResult, format_speed, format_time, orbit_mode, verdict
@@ -35,13 +35,12 @@ from betvdesign.checks.rules import MARGIN_CORNERS, evaluate_device
 from betvdesign.checks.travel import TravelAnswer, travel_answer
 from betvdesign.dynamics.determination import Determination
 from betvdesign.dynamics.determination import determine as determine_delta_s
+from betvdesign.dynamics.result import PeriodicResult
 from betvdesign.dynamics.settling import Settling, settling
+from betvdesign.dynamics.vertical import VerticalResult
 from betvdesign.model.domain import TRAVEL_HORIZON, mode_of
 from betvdesign.model.params import ModelParams
 from betvdesign.nondim.device import DeviceDerivation, SetDerivation
-
-if TYPE_CHECKING:
-    from betvdesign.dynamics import PeriodicResult, VerticalResult
 
 
 @dataclass
@@ -54,11 +53,11 @@ class SetCheck:
         The derived set.
     rules : list of RuleResult
         Its rules (device-level rules are in :attr:`CheckResult.rules` only).
-    periodic : PeriodicResult or SolverFailure, optional
-        Its exact periodic orbit (a :class:`SolverFailure` when the solver raised).
-    vertical : VerticalResult or SolverFailure, optional
+    periodic : PeriodicResult, optional
+        Its exact periodic orbit (status "failed" with the error when the solver raised).
+    vertical : VerticalResult, optional
         Its exact vertical motion.
-    settling : Settling or SolverFailure, optional
+    settling : Settling, optional
         The transient from rest (only for a moving orbit and ``settle=True``).
     margin : dict, optional
         Mode of the exact orbit at each perturbed corner (label -> mode or None).
@@ -74,9 +73,9 @@ class SetCheck:
 
     derivation: SetDerivation
     rules: list[RuleResult]
-    periodic: PeriodicResult | SolverFailure | None = None
-    vertical: VerticalResult | SolverFailure | None = None
-    settling: Settling | SolverFailure | None = None
+    periodic: PeriodicResult | None = None
+    vertical: VerticalResult | None = None
+    settling: Settling | None = None
     margin: dict[str, str | None] | None = None
     adequacy: SetAdequacy | None = None
     determination: Determination | None = None
@@ -177,25 +176,6 @@ class CheckResult:
         return DeviceView(self)._repr_html_()
 
 
-@dataclass
-class SolverFailure:
-    """Stands in for a solver result when the solver raised: success False, with why.
-
-    Parameters
-    ----------
-    message : str
-        What the solver raised.
-    success, status, delta_s, mode
-        Those of a failed result (False, "failed", nan, "").
-    """
-
-    message: str
-    success: bool = False
-    status: str = "failed"
-    delta_s: float = math.nan
-    mode: str = ""
-
-
 def load_solver() -> Callable[[ModelParams], Any]:
     """The exact periodic-orbit solver, imported lazily.
 
@@ -222,11 +202,22 @@ def load_vertical() -> Callable[..., Any]:
     return vertical_motion
 
 
-def _guarded(fn: Callable[..., Any], arg: Any, **kw: Any) -> Any:
+def _guarded_orbit(solver: Callable[[ModelParams], Any], p: ModelParams) -> PeriodicResult:
+    """``solver(p)``, or a failed :class:`~betvdesign.dynamics.PeriodicResult` saying why
+    when it raised (a failing solver must not crash the check: the mode rule fails)."""
     try:
-        return fn(arg, **kw)
-    except Exception as exc:  # a failing solver must not crash the check: a failed rule
-        return SolverFailure(f"{type(exc).__name__}: {exc}")
+        return solver(p)
+    except Exception as exc:
+        return PeriodicResult.failure(p, "failed", f"{type(exc).__name__}: {exc}")
+
+
+def _guarded_vertical(vertical: Callable[..., Any], p: ModelParams) -> VerticalResult | None:
+    """The vertical motion of ``p`` (None when a stand-in has none), or a failed
+    :class:`~betvdesign.dynamics.VerticalResult` saying why when it raised."""
+    try:
+        return vertical(p.varpi, zeta_v=p.zeta_v, restitution=p.restitution)
+    except Exception as exc:
+        return VerticalResult.failure(p.varpi, f"{type(exc).__name__}: {exc}")
 
 
 def corner_params(p: ModelParams) -> dict[str, ModelParams]:
@@ -311,7 +302,7 @@ def check_derivation(
 
     def orbit(p: ModelParams) -> Any:
         if p not in solved:
-            solved[p] = _guarded(solver, p)
+            solved[p] = _guarded_orbit(solver, p)
         return solved[p]
 
     if determine is None:
@@ -330,7 +321,7 @@ def check_derivation(
             notes.append(f"set {s.name}: same parameters as an already solved set, reused")
         vkey = (p.varpi, p.zeta_v, p.restitution)
         if vkey not in vert_of:
-            vert_of[vkey] = _guarded(vertical, p.varpi, zeta_v=p.zeta_v, restitution=p.restitution)
+            vert_of[vkey] = _guarded_vertical(vertical, p)
         if vert_of[vkey] is not None:
             verticals[s.name] = vert_of[vkey]
         det = determine_delta_s(p, po, solver=orbit) if determine else None
@@ -346,7 +337,7 @@ def check_derivation(
                 settled[key] = _settling(p, po, key[1], horizon)
             settlings[s.name] = settled[key]
         st = settlings.get(s.name)
-        answers[s.name] = travel_answer(po, det, None if isinstance(st, SolverFailure) else st)
+        answers[s.name] = travel_answer(po, det, st)
     adq = _adequacy(derivation, adequacy, (lambda p, **_: orbit(p)) if custom else None)
     rules = evaluate_device(
         derivation,
@@ -388,9 +379,7 @@ def _adequacy(
     return {a.name: a for a in want.sets}
 
 
-def _settling(
-    p: ModelParams, po: PeriodicResult, travel_s: float, horizon: int
-) -> Settling | SolverFailure:
+def _settling(p: ModelParams, po: PeriodicResult, travel_s: float, horizon: int) -> Settling:
     """The transient from rest against the orbit ``po`` over at most ``horizon`` cycles
     (a failure stand-in if it raised)."""
     moduli = po.floquet_moduli if po.success else None
@@ -407,7 +396,13 @@ def _settling(
             max_cycles=horizon,
         )
     except Exception as exc:  # reported, never a crash
-        return SolverFailure(f"settling: {type(exc).__name__}: {exc}")
+        return Settling(
+            status="failed",
+            message=f"settling: {type(exc).__name__}: {exc}",
+            cycles_to_settle=None,
+            cycles_to_cross=None,
+            crossing_delta_s=None,
+        )
 
 
 def _set_dict(sc: SetCheck) -> dict[str, Any]:
@@ -432,7 +427,7 @@ def _set_dict(sc: SetCheck) -> dict[str, Any]:
         "lambda_agrees": sc.mode in (None, "stalled") or sc.mode == sc.lambda_mode,
         "speed_m_s": v,
         "simulation": None if p is None else simulation_summary(p),
-        "settling": None if st is None or isinstance(st, SolverFailure) else st.as_dict(),
+        "settling": None if st is None or st.status == "failed" else st.as_dict(),
         "determination": None if sc.determination is None else sc.determination.as_dict(),
         "travel": None if sc.travel is None else sc.travel.as_dict(),
         "margin": sc.margin,
@@ -462,13 +457,13 @@ def _set_dict(sc: SetCheck) -> dict[str, Any]:
     }
 
 
-def simulation_summary(p: PeriodicResult | SolverFailure) -> dict[str, Any]:
+def simulation_summary(p: PeriodicResult) -> dict[str, Any]:
     """JSON-safe summary of a periodic-orbit result.
 
     Parameters
     ----------
-    p : PeriodicResult or SolverFailure
-        The exact orbit, or the stand-in for a solver that raised.
+    p : PeriodicResult
+        The exact orbit (a failed one included).
 
     Returns
     -------
@@ -486,8 +481,6 @@ def simulation_summary(p: PeriodicResult | SolverFailure) -> dict[str, Any]:
         "mode": mode_of(p.delta_s) if p.success else None,
         "delta_s": _json_float(p.delta_s),
     }
-    if isinstance(p, SolverFailure):
-        return out
     out["residual"] = _json_float(p.residual)
     out["impacts_per_cycle"] = _json_float(p.impacts_per_cycle)
     out["contact_fraction"] = _json_float(p.contact_fraction)
@@ -504,7 +497,7 @@ def simulation_summary(p: PeriodicResult | SolverFailure) -> dict[str, Any]:
     return out
 
 
-def _vertical_summary(v: VerticalResult | SolverFailure) -> dict[str, Any]:
+def _vertical_summary(v: VerticalResult) -> dict[str, Any]:
     out: dict[str, Any] = {"success": bool(v.success), "message": str(v.message)}
     if v.success:
         out["regime"] = str(v.regime)

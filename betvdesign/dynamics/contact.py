@@ -23,7 +23,6 @@ from typing import NamedTuple
 import numpy as np
 
 from betvdesign.dynamics import damped
-from betvdesign.dynamics._jit import kernel
 from betvdesign.dynamics.bounds import EPS, NOISE
 from betvdesign.dynamics.evaluators import slip_evaluator, stick_evaluator
 from betvdesign.dynamics.flows import (
@@ -38,6 +37,7 @@ from betvdesign.dynamics.flows import (
     stick_flow,
     stick_velocity,
 )
+from betvdesign.dynamics.jit import kernel
 from betvdesign.dynamics.search import ROOT, SEARCH_FAILED, first_root, workspace
 
 #: Zero-length phases in a row before a contact is declared chattering.

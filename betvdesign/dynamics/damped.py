@@ -33,7 +33,6 @@ from __future__ import annotations
 
 import math
 
-from betvdesign.dynamics._jit import kernel
 from betvdesign.dynamics.bounds import (
     NOISE,
     envelope_prep,
@@ -52,6 +51,7 @@ from betvdesign.dynamics.flows import (
     STICK,
     PhaseTable,
 )
+from betvdesign.dynamics.jit import kernel
 
 #: search window [rad of the fastest rate ϖ, w0, 2g]: long enough for few steps, short
 #: enough for the energy radius R = E + |(F, G)|·W to stay tight (root evaluations per

@@ -28,11 +28,11 @@ import math
 
 import numpy as np
 
-from betvdesign.dynamics._jit import kernel
 from betvdesign.dynamics.bounds import (
     envelope_prep,
 )
 from betvdesign.dynamics.flows import SLIP, PhaseTable
+from betvdesign.dynamics.jit import kernel
 
 #: evaluator kinds
 SLIP_KIND, STICK_KIND, GAP_KIND = 0, 1, 2

@@ -43,7 +43,7 @@ from typing import Any
 
 import numpy as np
 
-from betvdesign.dynamics._jit import jit_enabled, kernel
+from betvdesign.dynamics.jit import jit_enabled, kernel
 from betvdesign.model.params import ModelParams, normal_force_phase
 
 # Phase codes (ints: they sit in the inner loops).

@@ -45,8 +45,8 @@ from typing import Any
 import numpy as np
 
 from betvdesign.dynamics import contact, shooting
-from betvdesign.dynamics._jit import compile_note
 from betvdesign.dynamics.flows import phase_table
+from betvdesign.dynamics.jit import compile_note
 from betvdesign.dynamics.result import PeriodicResult
 from betvdesign.dynamics.shooting import TRUST
 from betvdesign.dynamics.solver import CycleFailure, CycleRunner

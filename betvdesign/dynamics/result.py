@@ -62,8 +62,9 @@ PeriodicStatus = Literal["success", "unbounded", "not_converged", "not_driven", 
 #:
 #: - ``"success"``: the vertical motion is periodic (a contact recurs);
 #: - ``"not_periodic"``: no contact recurred within the horizon: impulsive hits only,
-#:   the slider is not driven.
-VerticalStatus = Literal["success", "not_periodic"]
+#:   the slider is not driven;
+#: - ``"failed"``: the vertical motion could not be computed (``message`` says why).
+VerticalStatus = Literal["success", "not_periodic", "failed"]
 
 #: How the rigid-limit periodic state ends:
 #:

@@ -22,10 +22,10 @@ from typing import NamedTuple
 import numpy as np
 
 from betvdesign.dynamics import damped
-from betvdesign.dynamics._jit import kernel
 from betvdesign.dynamics.bounds import EPS
 from betvdesign.dynamics.evaluators import gap_evaluator
 from betvdesign.dynamics.flows import vertical_flight
+from betvdesign.dynamics.jit import kernel
 from betvdesign.dynamics.search import NO_ROOT, ROOT, SEARCH_FAILED, first_root, workspace
 
 #: one cycle: section state (ξ, ξ'), contact-opening local time (NaN: none), its

@@ -18,9 +18,9 @@ from typing import NamedTuple
 
 import numpy as np
 
-from betvdesign.dynamics._jit import kernel
 from betvdesign.dynamics.bounds import EPS, MAX_STEPS, NOISE, safe_step
 from betvdesign.dynamics.evaluators import EVALUATOR_DTYPE
+from betvdesign.dynamics.jit import kernel
 from betvdesign.dynamics.values import clear, evaluate, probe, start_bound
 
 #: :func:`first_root` codes

@@ -14,8 +14,8 @@ import math
 
 import numpy as np
 
-from betvdesign.dynamics._jit import kernel
 from betvdesign.dynamics.contact import OK, run_cycles
+from betvdesign.dynamics.jit import kernel
 
 #: forward-difference step of the Jacobian (relative to max(1, |x_i|))
 FD_STEP = 1e-7

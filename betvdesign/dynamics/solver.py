@@ -15,9 +15,9 @@ import time
 import numpy as np
 
 from betvdesign.dynamics import contact
-from betvdesign.dynamics._jit import compile_note, jit_enabled
 from betvdesign.dynamics.flows import PHASE_NAMES, phase_table
 from betvdesign.dynamics.inputs import check_cycles, check_state0
+from betvdesign.dynamics.jit import compile_note, jit_enabled
 from betvdesign.dynamics.result import Event, Trajectory
 from betvdesign.dynamics.search import search_failure_message
 from betvdesign.dynamics.vertical import VerticalSchedule

@@ -19,8 +19,8 @@ from typing import ClassVar, get_args
 import numpy as np
 
 from betvdesign.dynamics import schedule
-from betvdesign.dynamics._jit import compile_note
 from betvdesign.dynamics.flows import normal_force_phase
+from betvdesign.dynamics.jit import compile_note
 from betvdesign.dynamics.result import SolverResult, VerticalStatus
 from betvdesign.dynamics.search import search_failure_message
 from betvdesign.errors import ParameterError
@@ -254,6 +254,35 @@ class VerticalResult(SolverResult):
     impulsive_per_cycle: float
     contact_fraction: float
     contact_phase: float | None
+
+    @classmethod
+    def failure(cls, varpi: float, message: str) -> VerticalResult:
+        """The answer when the vertical motion could not be computed.
+
+        Parameters
+        ----------
+        varpi : float
+            ϖ [-] asked for.
+        message : str
+            What failed.
+
+        Returns
+        -------
+        VerticalResult
+            Status "failed", regime "failed", no period, nan rates.
+        """
+        nan = float("nan")
+        return cls(
+            status="failed",
+            message=message,
+            varpi=varpi,
+            regime="failed",
+            period_cycles=None,
+            hits_per_cycle=nan,
+            impulsive_per_cycle=nan,
+            contact_fraction=nan,
+            contact_phase=None,
+        )
 
 
 def vertical_motion(

@@ -21,12 +21,12 @@ from betvdesign import __version__
 from betvdesign.checks.checker import (
     CheckResult,
     SetCheck,
-    SolverFailure,
     check_derivation,
     load_solver,
 )
 from betvdesign.checks.rule import RuleResult, verdict
 from betvdesign.checks.view import rule_unit
+from betvdesign.dynamics.result import PeriodicResult
 from betvdesign.nondim.device import derive_file
 from betvdesign.nondim.record import DeviceDerivation, SetDerivation
 from betvdesign.output.siformat import format_q, format_si
@@ -303,7 +303,7 @@ def design_check(
         piece = orbits.get(p)
         if piece is None:
             return exact(p)
-        return piece.value if piece.ok else SolverFailure(str(piece.reason))
+        return piece.value if piece.ok else PeriodicResult.failure(p, "failed", str(piece.reason))
 
     def vertical(varpi: float, *, zeta_v: float = 0.0, restitution: float = 0.0) -> Any:
         piece = verticals[(varpi, zeta_v, restitution)]
