@@ -30,6 +30,7 @@ from typing import Any, Literal
 import numpy as np
 
 from betvdesign.model.params import ModelParams
+from betvdesign.output.numbers import json_float
 
 Level = Literal["quick", "full"]
 
@@ -94,8 +95,7 @@ class Row:
         """JSON-safe: non-finite numbers become None."""
         d = asdict(self)
         for k in ("error", "seconds"):
-            if d[k] is not None and not math.isfinite(d[k]):
-                d[k] = None
+            d[k] = json_float(d[k])
         return d
 
 

@@ -53,6 +53,7 @@ from betvdesign.model.damping import quality_from_zeta, zeta_from_quality
 from betvdesign.model.domain import mode_of
 from betvdesign.model.params import ModelParams
 from betvdesign.nondim.record import DeviceDerivation, SetDerivation
+from betvdesign.output.numbers import json_float
 from betvdesign.output.siformat import format_dimensionless as fmt_x
 from betvdesign.output.siformat import format_si
 
@@ -119,10 +120,6 @@ def shown_mode(mode: str | None) -> str:
 
 def _qtext(q: float) -> str:
     return "∞" if math.isinf(q) else fmt_x(q)
-
-
-def _finite(x: float) -> float | None:
-    return x if math.isfinite(x) else None
 
 
 def _scanned(axis: Axis) -> str:
@@ -465,8 +462,8 @@ class AdequacyPointOut(BaseModel):
             Its fields; an infinite Q [-] (undamped) as None.
         """
         return cls(
-            quality_normal=_finite(p.quality),
-            quality_tangential=_finite(p.quality_tangential),
+            quality_normal=json_float(p.quality),
+            quality_tangential=json_float(p.quality_tangential),
             restitution=p.restitution,
             status=p.status,
             mode=p.mode,

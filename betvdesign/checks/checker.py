@@ -24,7 +24,6 @@ JSON contract.
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 from typing import Any, Literal
@@ -41,6 +40,7 @@ from betvdesign.dynamics.vertical import VerticalResult
 from betvdesign.model.domain import TRAVEL_HORIZON, mode_of
 from betvdesign.model.params import ModelParams
 from betvdesign.nondim.device import DeviceDerivation, SetDerivation
+from betvdesign.output.numbers import json_float
 
 
 @dataclass
@@ -472,19 +472,19 @@ def simulation_summary(p: PeriodicResult) -> dict[str, Any]:
         ``delta_s`` [-]; for a solver result also ``residual`` [-], ``impacts_per_cycle``,
         ``contact_fraction`` [-], ``elapsed_s`` [s], the cycle counts (``period_cycles``,
         ``n_cycles``, ``transient_cycles``, when known) and ``mu_max`` (slowest Floquet
-        modulus |μ| [-], when known). Non-finite floats as strings.
+        modulus |μ| [-], when known). Non-finite floats as None.
     """
     out: dict[str, Any] = {
         "status": str(p.status),
         "success": bool(p.success),
         "message": str(p.message),
         "mode": mode_of(p.delta_s) if p.success else None,
-        "delta_s": _json_float(p.delta_s),
+        "delta_s": json_float(p.delta_s),
     }
-    out["residual"] = _json_float(p.residual)
-    out["impacts_per_cycle"] = _json_float(p.impacts_per_cycle)
-    out["contact_fraction"] = _json_float(p.contact_fraction)
-    out["elapsed_s"] = _json_float(p.elapsed_s)
+    out["residual"] = json_float(p.residual)
+    out["impacts_per_cycle"] = json_float(p.impacts_per_cycle)
+    out["contact_fraction"] = json_float(p.contact_fraction)
+    out["elapsed_s"] = json_float(p.elapsed_s)
     counts = (
         ("period_cycles", p.period_cycles),
         ("n_cycles", p.n_cycles),
@@ -501,14 +501,7 @@ def _vertical_summary(v: VerticalResult) -> dict[str, Any]:
     out: dict[str, Any] = {"success": bool(v.success), "message": str(v.message)}
     if v.success:
         out["regime"] = str(v.regime)
-        out["hits_per_cycle"] = _json_float(v.hits_per_cycle)
-        out["impulsive_per_cycle"] = _json_float(v.impulsive_per_cycle)
-        out["contact_fraction"] = _json_float(v.contact_fraction)
+        out["hits_per_cycle"] = json_float(v.hits_per_cycle)
+        out["impulsive_per_cycle"] = json_float(v.impulsive_per_cycle)
+        out["contact_fraction"] = json_float(v.contact_fraction)
     return out
-
-
-def _json_float(x: float | None) -> float | str | None:
-    if x is None:
-        return None
-    x = float(x)
-    return x if math.isfinite(x) else str(x)

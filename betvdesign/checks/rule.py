@@ -9,12 +9,12 @@ formats and directions below are what rules write their values and messages in.
 
 from __future__ import annotations
 
-import math
 from dataclasses import asdict, dataclass
 from typing import Any, Literal, Protocol
 
 from betvdesign.model.domain import mode_of
 from betvdesign.nondim.record import SetDerivation
+from betvdesign.output.numbers import json_float
 from betvdesign.output.siformat import format_si
 
 Severity = Literal["error", "warning", "info"]
@@ -91,12 +91,11 @@ class RuleResult:
         Returns
         -------
         dict
-            Every field by name; a non-finite ``value`` as its string ("inf", "nan":
-            JSON has no inf/nan).
+            Every field by name; a non-finite ``value`` as None
+            (:func:`betvdesign.output.numbers.json_float`).
         """
         d = asdict(self)
-        if d["value"] is not None and not math.isfinite(d["value"]):
-            d["value"] = str(d["value"])  # JSON has no inf/nan
+        d["value"] = json_float(d["value"])
         return d
 
 

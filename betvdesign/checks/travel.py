@@ -34,6 +34,7 @@ from dataclasses import dataclass
 from typing import Any, Literal
 
 from betvdesign.model.domain import mode_of
+from betvdesign.output.numbers import json_float
 
 #: Settling may take at most this share of the cycles to cross the travel for the
 #: periodic Δs to be the speed quoted [-].
@@ -84,14 +85,11 @@ class TravelAnswer:
     def as_dict(self) -> dict[str, Any]:
         """JSON-ready record (non-finite floats as None)."""
 
-        def num(x: float | None) -> float | None:
-            return None if x is None or not math.isfinite(x) else float(x)
-
         return {
             "basis": self.basis,
             "mode": self.mode,
-            "delta_s": num(self.delta_s),
-            "delta_s_periodic": num(self.delta_s_periodic),
+            "delta_s": json_float(self.delta_s),
+            "delta_s_periodic": json_float(self.delta_s_periodic),
             "cycles_to_cross": self.cycles_to_cross,
             "horizon_cycles": self.horizon_cycles,
             "reason": self.reason,

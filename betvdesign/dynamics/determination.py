@@ -45,6 +45,7 @@ from typing import Any, Literal
 
 from betvdesign.model.domain import DETERMINED_RTOL, mode_of
 from betvdesign.model.params import ModelParams
+from betvdesign.output.numbers import json_float
 
 #: Relative perturbations of each parameter for the re-solves [-], one re-solve each: far
 #: above the round-off of a parameter (1.1e-16) so the perturbed problem is a different
@@ -113,14 +114,11 @@ class Determination:
     def as_dict(self) -> dict[str, Any]:
         """JSON-ready record (non-finite floats as None)."""
 
-        def num(x: float | None) -> float | None:
-            return None if x is None or not math.isfinite(x) else float(x)
-
         return {
             "status": self.status,
             "mode": self.mode,
-            "delta_s": num(self.delta_s),
-            "delta_s_error": num(self.delta_s_error),
+            "delta_s": json_float(self.delta_s),
+            "delta_s_error": json_float(self.delta_s_error),
             "reason": self.reason,
             "fix": self.fix,
             "perturbations": list(PERTURBATIONS),

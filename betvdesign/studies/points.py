@@ -26,6 +26,7 @@ import numpy as np
 from betvdesign.checks.fidelity import RUNGS
 from betvdesign.errors import UsageError
 from betvdesign.model.params import ModelParams
+from betvdesign.output.numbers import json_float
 from betvdesign.studies.terms import Terms, columns_with
 
 #: The rungs of the fidelity ladder a study of design points offers.
@@ -208,12 +209,12 @@ def periodic_point(task: Mapping[str, Any]) -> dict[str, Any]:
         status=str(res.status),
         converged=bool(res.success),
         mode=res.mode if res.success else None,
-        delta_s=_finite_or_none(res.delta_s),
+        delta_s=json_float(res.delta_s),
         period_cycles=None if res.period_cycles is None else int(res.period_cycles),
-        residual=_finite_or_none(res.residual),
+        residual=json_float(res.residual),
         floquet_radius=radius,
-        impacts_per_cycle=_finite_or_none(res.impacts_per_cycle),
-        contact_fraction=_finite_or_none(res.contact_fraction),
+        impacts_per_cycle=json_float(res.impacts_per_cycle),
+        contact_fraction=json_float(res.contact_fraction),
         cycles=int(res.transient_cycles),
         message=str(res.message),
     )
@@ -234,13 +235,6 @@ def solver_error(exc: BaseException) -> str:
         The message: a solver defect, to be reported with the point's parameters.
     """
     return f"solver raised {type(exc).__name__}: {exc} (a defect; report these parameters)"
-
-
-def _finite_or_none(x: float | None) -> float | None:
-    if x is None:
-        return None
-    x = float(x)
-    return x if np.isfinite(x) else None
 
 
 def vertical_precheck(
