@@ -3,11 +3,11 @@
 A design tool runs in CI pipelines and on files from colleagues and foundries, so
 it bounds its work before the work grows: a device file is refused before it is
 parsed when it is too large, before it is composed when its YAML nests too deep,
-expands too far through aliases or holds an over-long string, and before it is
-validated when it has too many actuator sets; a study is refused before it starts
-when it would not finish in reasonable time. Every refusal names the field (or
-option) and the limit. README ("Limits") and ``betv schema`` (``x-betv-limits``)
-list these values; :func:`describe` is what both show.
+expands too far through aliases, holds an over-long string or a number of too many
+digits, and before it is validated when it has too many actuator sets; a study is
+refused before it starts when it would not finish in reasonable time. Every refusal
+names the field (or option) and the limit. README ("Limits") and ``betv schema``
+(``x-betv-limits``) list these values; :func:`describe` is what both show.
 
 Nothing here imports from the rest of the package except :mod:`betvdesign.errors`.
 """
@@ -37,6 +37,9 @@ MAX_ACTUATOR_SETS = 64
 MAX_CALIBRATION_POINTS = 1_000
 #: Longest quantity string such as "2330 kg/m^3" [characters].
 MAX_QUANTITY_CHARS = 100
+#: Most digits of a number written in a file or an option (a YAML integer or float, the
+#: number of a quantity string): far below Python's 4300-digit limit of ``int()``.
+MAX_NUMBER_DIGITS = 100
 #: Largest |exponent| of a unit in a quantity string (m^3, V^-2, ...).
 MAX_UNIT_EXPONENT = 12
 #: Most unit factors in one quantity string ("kg/m^3" has 2).
@@ -91,6 +94,8 @@ def _env_number(name: str, default: Any, kind: type) -> Any:
     raw = os.environ.get(name)
     if raw is None or not raw.strip():
         return default
+    if sum(ch.isdigit() for ch in raw) > MAX_NUMBER_DIGITS:
+        raise UsageError(f"${name}: more than {MAX_NUMBER_DIGITS} digits")
     try:
         value = kind(raw)
     except ValueError:
@@ -160,6 +165,10 @@ def describe() -> dict[str, Any]:
         "calibration_points": {
             "value": MAX_CALIBRATION_POINTS,
             "what": "measured calibration points of one actuator",
+        },
+        "number_digits": {
+            "value": MAX_NUMBER_DIGITS,
+            "what": "digits of a number (a YAML integer or float, the number of a quantity)",
         },
         "quantity_chars": {
             "value": MAX_QUANTITY_CHARS,

@@ -6,7 +6,9 @@ UTF-16. :func:`check_events` walks the YAML *event* stream (ruamel's parser is
 iterative, unlike its composer, and stops at the first limit crossed, so a deeply
 nested or alias-bomb file is refused after a bounded amount of work) and raises a
 :class:`~betvdesign.errors.SpecError` at ``file:line:col`` naming the field and the
-limit. The limits live in :mod:`betvdesign.spec.limits`.
+limit; a number of more digits than the limit is refused there too, before Python's
+``int()`` would raise on it (:func:`number_digits`). The limits live in
+:mod:`betvdesign.spec.limits`.
 """
 
 from __future__ import annotations
@@ -25,9 +27,45 @@ from ruamel.yaml.events import (
     MappingStartEvent,
     ScalarEvent,
 )
+from ruamel.yaml.nodes import ScalarNode
+from ruamel.yaml.resolver import VersionedResolver
 
 from betvdesign.errors import Location, SpecError, SpecIssue
 from betvdesign.spec import limits
+
+#: Resolvers of plain scalars under YAML 1.2 (the default) and 1.1 (a ``%YAML 1.1``
+#: directive): a scalar either reads as a number is counted as one.
+_RESOLVERS = (VersionedResolver(version=(1, 2)), VersionedResolver(version=(1, 1)))
+_NUMBER_TAGS = ("tag:yaml.org,2002:int", "tag:yaml.org,2002:float")
+
+
+def number_digits(value: str, tag: str | None = None, plain: bool = True) -> int:
+    """How many digits a YAML scalar has when it reads as a number (0 otherwise).
+
+    Parameters
+    ----------
+    value : str
+        The scalar's text.
+    tag : str or None
+        Its explicit tag (``!!int``), if any.
+    plain : bool
+        True for an unquoted scalar (its type then follows from its text).
+
+    Returns
+    -------
+    int
+        The count of its digits (letters of a hexadecimal, ``nan`` or ``inf`` included)
+        when the YAML 1.2 or 1.1 rules make it an integer or a float, else 0.
+    """
+    if tag in _NUMBER_TAGS:
+        numeric = True
+    elif tag is None and plain:
+        numeric = any(
+            r.resolve(ScalarNode, value, (True, False)) in _NUMBER_TAGS for r in _RESOLVERS
+        )
+    else:
+        numeric = False
+    return sum(ch.isalnum() for ch in value) if numeric else 0
 
 
 def _one(filename: str, message: str, line: int | None = None, col: int | None = None):
@@ -160,6 +198,18 @@ def check_events(text: str, filename: str) -> None:
                     path,
                     f"string of {len(value):,} characters; the limit is "
                     f"{limits.MAX_STRING_CHARS:,}",
+                )
+            plain = bool(event.implicit and event.implicit[0])
+            digits = (
+                number_digits(value, event.tag, plain)
+                if len(value) > limits.MAX_NUMBER_DIGITS
+                else 0
+            )
+            if digits > limits.MAX_NUMBER_DIGITS:
+                fail(
+                    event,
+                    path,
+                    f"number of {digits:,} digits; the limit is {limits.MAX_NUMBER_DIGITS} digits",
                 )
             if stack and stack[-1].is_map and stack[-1].index % 2 == 0:
                 stack[-1].key = value

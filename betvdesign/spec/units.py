@@ -63,6 +63,12 @@ def _check_shape(text: str) -> None:
             f"cannot read {text!r} as a quantity: write a number and units such as "
             "'5 um' or '2330 kg/m^3' (one power per unit, no parentheses or arithmetic)"
         )
+    digits = sum(ch.isdigit() for ch in m.group("num") or "")
+    if digits > limits.MAX_NUMBER_DIGITS:
+        raise ValueError(
+            f"number of {digits:,} digits in a quantity; the limit is "
+            f"{limits.MAX_NUMBER_DIGITS} digits"
+        )
     units = m.group("units") or ""
     n_factors = len(_NAME.findall(_POWER.sub("", units)))
     if n_factors > limits.MAX_UNIT_FACTORS:
