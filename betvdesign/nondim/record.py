@@ -176,7 +176,12 @@ class Scales:
         Returns
         -------
         float
-            Speed [m/s] (MODEL.md, "Dimensionless model": displacement per cycle).
+            Speed [m/s].
+
+        References
+        ----------
+        MODEL.md, "Dimensionless model" (displacement per cycle); Shin et al., J. Appl.
+        Phys. 96, 7603 (2004), doi:10.1063/1.1809773.
         """
         return delta_s * self.length_m * self.f_act_hz
 

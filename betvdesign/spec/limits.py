@@ -70,7 +70,21 @@ REGIME_CYCLES = 400
 
 
 def point_cost_s(study: str, parameters: dict[str, Any]) -> float:
-    """Conservative cost of one point of ``study`` [s on one core] (for estimates)."""
+    """Conservative cost of one point of a study, for estimates.
+
+    Parameters
+    ----------
+    study : str
+        ``"regime"``, ``"tolerance"``, or a periodic-orbit study.
+    parameters : dict
+        The study's parameters (``fidelity``, ``max_cycles``).
+
+    Returns
+    -------
+    float
+        Cost of one point [s on one core] (:data:`POINT_COST_S`; a regime point scaled
+        by its cycles over :data:`REGIME_CYCLES`).
+    """
     fidelity = parameters.get("fidelity")
     if study == "regime":
         cycles = parameters.get("max_cycles") or REGIME_CYCLES
@@ -81,12 +95,34 @@ def point_cost_s(study: str, parameters: dict[str, Any]) -> float:
 
 
 def max_file_bytes() -> int:
-    """:data:`MAX_FILE_BYTES`, or the value of ``$BETV_MAX_FILE_BYTES`` when set."""
+    """The largest input file read.
+
+    Returns
+    -------
+    int
+        :data:`MAX_FILE_BYTES` [bytes], or the value of ``$BETV_MAX_FILE_BYTES`` when set.
+
+    Raises
+    ------
+    UsageError
+        The variable is not a finite number > 0.
+    """
     return _env_number(FILE_BYTES_ENV, MAX_FILE_BYTES, int)
 
 
 def max_study_hours() -> float:
-    """:data:`MAX_STUDY_HOURS`, or the value of ``$BETV_MAX_STUDY_HOURS`` when set."""
+    """The longest estimated study run.
+
+    Returns
+    -------
+    float
+        :data:`MAX_STUDY_HOURS` [h], or the value of ``$BETV_MAX_STUDY_HOURS`` when set.
+
+    Raises
+    ------
+    UsageError
+        The variable is not a finite number > 0.
+    """
     return _env_number(STUDY_HOURS_ENV, MAX_STUDY_HOURS, float)
 
 
@@ -106,7 +142,18 @@ def _env_number(name: str, default: Any, kind: type) -> Any:
 
 
 def format_duration(seconds: float) -> str:
-    """``"3.2 h"``, ``"12 min"``, ``"40 s"``, ``"21 days"``: for estimates in messages."""
+    """A duration for estimates in messages: ``"3.2 h"``, ``"12 min"``, ``"40 s"``.
+
+    Parameters
+    ----------
+    seconds : float
+        The duration [s].
+
+    Returns
+    -------
+    str
+        In days, hours, minutes or seconds (3 significant digits).
+    """
     if seconds >= 2 * 86400:
         return f"{seconds / 86400:.3g} days"
     if seconds >= 3600:
@@ -117,9 +164,26 @@ def format_duration(seconds: float) -> str:
 
 
 def refuse_long_study(what: str, points: int, cost_s: float, workers: int) -> None:
-    """Raise :class:`UsageError` when ``points`` × ``cost_s`` / ``workers`` exceeds the
-    study budget (:func:`max_study_hours`) or the points exceed :data:`MAX_STUDY_POINTS`;
-    the message gives the estimate and how to split the work."""
+    """Refuse a study that would run too long or has too many points.
+
+    Parameters
+    ----------
+    what : str
+        The study, as messages name it.
+    points : int
+        Points of the study.
+    cost_s : float
+        Cost of one point [s on one core] (:func:`point_cost_s`).
+    workers : int
+        Worker processes.
+
+    Raises
+    ------
+    UsageError
+        ``points`` exceeds :data:`MAX_STUDY_POINTS`, or ``points`` × ``cost_s`` /
+        ``workers`` exceeds the study budget (:func:`max_study_hours`); the message gives
+        the estimate and how to split the work.
+    """
     if points > MAX_STUDY_POINTS:
         took = points * cost_s / max(1, workers)
         est = f" (≈ {format_duration(took)} on {workers} worker(s))" if took else ""
@@ -139,7 +203,23 @@ def refuse_long_study(what: str, points: int, cost_s: float, workers: int) -> No
 
 
 def check_seed(seed: Any) -> int:
-    """A seed numpy's ``SeedSequence`` takes: an integer 0 <= seed < 2**128."""
+    """A seed numpy's ``SeedSequence`` takes.
+
+    Parameters
+    ----------
+    seed : Any
+        The seed given.
+
+    Returns
+    -------
+    int
+        The seed, an integer 0 <= seed < 2**128.
+
+    Raises
+    ------
+    UsageError
+        Not an integer, or out of range.
+    """
     if isinstance(seed, bool) or not hasattr(seed, "__index__"):
         raise UsageError(f"--seed must be an integer, got {seed!r}")
     if not 0 <= int(seed) < SEED_BOUND:
@@ -148,7 +228,13 @@ def check_seed(seed: Any) -> int:
 
 
 def describe() -> dict[str, Any]:
-    """Every limit with its value and what it bounds (``betv schema``, README "Limits")."""
+    """Every limit with its value and what it bounds (``betv schema``, README "Limits").
+
+    Returns
+    -------
+    dict
+        Limit name -> ``{"value": ..., "what": "..."}``.
+    """
     return {
         "file_bytes": {
             "value": MAX_FILE_BYTES,

@@ -25,7 +25,7 @@ from __future__ import annotations
 
 import difflib
 from collections.abc import Mapping, MutableMapping, Sequence
-from typing import Any
+from typing import Any, TypeVar
 
 import pint
 from pydantic import BaseModel
@@ -33,6 +33,11 @@ from pydantic import BaseModel
 #: A resolved path: the keys from the device down to the field, an actuator set by its
 #: index, e.g. ``("actuator_sets", 0, "drive", "voltage")``.
 Target = tuple[str | int, ...]
+
+#: A device: a spec (pydantic models), its plain data or the YAML tree of its file.
+Tree = BaseModel | Mapping[str, Any]
+#: The type :func:`replace` and :func:`with_values` copy and return.
+T = TypeVar("T", bound=BaseModel)
 
 #: First keys of the paths relative to an actuator set (applied to every set when the
 #: path names no set).
@@ -121,7 +126,7 @@ def _sets(tree: Any) -> Sequence[Any]:
     return _child(tree, "actuator_sets") or []
 
 
-def set_index(tree: Any, key: str) -> int | None:
+def set_index(tree: Tree, key: str) -> int | None:
     """The index of the actuator set a path names: by index, else by name.
 
     Parameters
@@ -143,7 +148,7 @@ def set_index(tree: Any, key: str) -> int | None:
     return names.index(key) if key in names else None
 
 
-def targets(tree: Any, field: str) -> list[Target]:
+def targets(tree: Tree, field: str) -> list[Target]:
     """The full key paths ``field`` addresses in ``tree``.
 
     Parameters
@@ -171,7 +176,7 @@ def targets(tree: Any, field: str) -> list[Target]:
     return [tuple(parts)]
 
 
-def value_at(tree: Any, target: Target) -> Any:
+def value_at(tree: Tree, target: Target) -> Any:
     """The value at a resolved path.
 
     Parameters
@@ -195,7 +200,7 @@ def value_at(tree: Any, target: Target) -> Any:
     return node
 
 
-def given(tree: Any, field: str) -> list[Any]:
+def given(tree: Tree, field: str) -> list[Any]:
     """The values ``field`` holds in ``tree``, absent ones left out.
 
     Parameters
@@ -307,7 +312,7 @@ def replace(tree: Any, target: Target, value: Any) -> Any:
     return {**tree, key: new}
 
 
-def with_values(spec: Any, values: Mapping[str, Any]) -> Any:
+def with_values(spec: T, values: Mapping[str, Any]) -> T:
     """``spec`` with each field path set to its value, *not* validated.
 
     Parameters

@@ -73,7 +73,24 @@ def _one(filename: str, message: str, line: int | None = None, col: int | None =
 
 
 def read_text(path: str | os.PathLike[str]) -> str:
-    """Text of a YAML input file, read with the size limit; :class:`SpecError` otherwise."""
+    """Text of a YAML input file, read within the size limit.
+
+    Parameters
+    ----------
+    path : str or PathLike
+        The file.
+
+    Returns
+    -------
+    str
+        The decoded text (:func:`decode`).
+
+    Raises
+    ------
+    SpecError
+        Not found, a directory, unreadable, larger than
+        :func:`~betvdesign.spec.limits.max_file_bytes` or not decodable.
+    """
     p = Path(path)
     fname = str(p)
     cap = limits.max_file_bytes()
@@ -104,8 +121,26 @@ def _size(p: Path) -> int | None:
 
 
 def decode(raw: bytes, fname: str) -> str:
-    """UTF-8 (BOM optional) or UTF-16 with a BOM, as YAML 1.2 allows; else a SpecError
-    naming the line and column of the first undecodable byte."""
+    """Decode the bytes of a YAML file: UTF-8 (BOM optional) or UTF-16 with a BOM, as YAML
+    1.2 allows.
+
+    Parameters
+    ----------
+    raw : bytes
+        The file's bytes.
+    fname : str
+        The file, for messages.
+
+    Returns
+    -------
+    str
+        The text, without a BOM.
+
+    Raises
+    ------
+    SpecError
+        Naming the line and column of the first undecodable byte.
+    """
     if raw.startswith((codecs.BOM_UTF16_LE, codecs.BOM_UTF16_BE)):
         try:
             return raw.decode("utf-16")
@@ -140,11 +175,27 @@ class _Frame:
 
 
 def check_events(text: str, filename: str) -> None:
-    """Walk the YAML events of ``text``; raise :class:`SpecError` at the first limit crossed.
+    """Walk the YAML events of a text; raise at the first limit crossed.
 
     Alias expansion is counted as the composer and the validation will see it: an
     alias (or a ``<<`` merge) costs the nodes and depth of what it names. Malformed
     YAML raises ruamel's own ``MarkedYAMLError`` (the loader reports it).
+
+    Parameters
+    ----------
+    text : str
+        The YAML text.
+    filename : str
+        The file, for messages.
+
+    Raises
+    ------
+    SpecError
+        At ``file:line:col`` with the field path: more nodes than
+        :data:`~betvdesign.spec.limits.MAX_YAML_NODES`, nesting deeper than
+        :data:`~betvdesign.spec.limits.MAX_YAML_DEPTH`, a recursive alias, a string
+        longer than :data:`~betvdesign.spec.limits.MAX_STRING_CHARS` or a number of
+        more than :data:`~betvdesign.spec.limits.MAX_NUMBER_DIGITS` digits.
     """
     sizes: dict[str, tuple[int, int]] = {}  # anchor -> (nodes, depth)
     stack: list[_Frame] = []

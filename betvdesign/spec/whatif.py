@@ -16,18 +16,21 @@ This module is the thin validated layer on top: an unvalidated copy
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, TypeVar
 
 import pint
-from pydantic import ValidationError
+from pydantic import BaseModel, ValidationError
 
 from betvdesign.errors import Location, SpecError, SpecIssue
 from betvdesign.spec.messages import dotted, known_fields, located
 from betvdesign.spec.paths import PathError, holder, targets
 from betvdesign.spec.units import format_quantity, ureg
 
+#: A spec model (a :class:`~betvdesign.spec.models.DeviceSpec`); the edit returns the same type.
+Spec = TypeVar("Spec", bound=BaseModel)
 
-def replace(spec: Any, path: str, value: Any, *more: tuple[str, Any]) -> Any:
+
+def replace(spec: Spec, path: str, value: Any, *more: tuple[str, Any]) -> Spec:
     """A copy of ``spec`` with ``path`` set to ``value`` (and each ``(path, value)`` of
     ``more``), validated like a device file.
 
