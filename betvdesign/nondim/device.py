@@ -239,10 +239,10 @@ def _derive_set(
         cols += [np.asarray(x, dtype=float) for x in (zeta_v, zeta_h, e)]
         return SampleDerivation(*(np.array(c) for c in np.broadcast_arrays(*cols)))
     params = ModelParams(
-        varpi=float(varpi.to(cached_unit("")).magnitude),
-        alpha=float(alpha.to(cached_unit("")).magnitude),
-        beta=float(beta.to(cached_unit("")).magnitude),
-        kappa=float(kappa.to(cached_unit("")).magnitude),
+        varpi=mag(varpi, ""),
+        alpha=mag(alpha, ""),
+        beta=mag(beta, ""),
+        kappa=mag(kappa, ""),
         zeta_v=zeta_v,
         zeta_h=zeta_h,
         restitution=e,
@@ -250,12 +250,12 @@ def _derive_set(
     lam = push_pull(rec, params)
     published = published_fit(rec, params, spec.published_fit)
     scales = Scales(
-        length_m=float(l_s.to(cached_unit("m")).magnitude),
-        time_s=float(t_s.to(cached_unit("s")).magnitude),
-        f_act_hz=float(f_act.to(cached_unit("Hz")).magnitude),
-        omega_rad_s=float(omega.to(cached_unit("rad/s")).magnitude),
-        u_m=float(u.to(cached_unit("m")).magnitude),
-        theta_rad=float(theta.to(cached_unit("rad")).magnitude),
+        length_m=mag(l_s, "m"),
+        time_s=mag(t_s, "s"),
+        f_act_hz=mag(f_act, "Hz"),
+        omega_rad_s=mag(omega, "rad/s"),
+        u_m=mag(u, "m"),
+        theta_rad=mag(theta, "rad"),
         **roll,
     )
     return SetDerivation(
@@ -266,7 +266,7 @@ def _derive_set(
         scales=scales,
         record=rec.steps,
         actuator_set=aset,
-        travel_range_m=float(spec.slider.travel_range.to(cached_unit("m")).magnitude),
+        travel_range_m=mag(spec.slider.travel_range, "m"),
         published=published,
     )
 
