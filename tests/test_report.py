@@ -271,10 +271,14 @@ def test_amplitude_without_calibration_says_why_no_voltage_curve(tmp_path: Path)
 
 
 def test_robustness_varies_designer_fields_through_the_spec() -> None:
-    """The robustness sweep changes fields a designer sets, each through spec -> nondim:
-    +10 % drive frequency is ϖ·1.1 (ϖ = 2·f_drive/f_v), +10 % tangential resonance is
-    α/1.21 (α = (f_v/f_h)²), +10 % beam width is β/1.1 (β = m/M, M ∝ w without extra
-    mass), friction κ·1.1 (κ = μ·tanθ); the 0 % point is the device itself."""
+    """The robustness sweep changes fields a designer sets (spec.fields, the list betv fix
+    uses too), each through spec -> nondim: +10 % drive frequency is ϖ·1.1 (ϖ =
+    2·f_drive/f_v), +10 % vertical resonance is ϖ/1.1 and α·1.21, +10 % tangential
+    resonance is α/1.21 (α = (f_v/f_h)²), +10 % beam width is β/1.1 (β = m/M, M ∝ w
+    without extra mass), +10 % head diameter is β·1.21 (m ∝ d²), friction κ·1.1 and the
+    impact angle κ = μ·tan(1.1·θ) (κ = μ·tanθ); the 0 % point is the device itself. The
+    drive voltage (it moves the stroke only), the beam length (the same quantity M as the
+    width, listed later) and the head thickness (m, after the diameter) are left out."""
     from betvdesign.nondim.device import derive
     from betvdesign.report.variants import field_variants, relative_changes
     from betvdesign.spec.loader import load_device
@@ -284,20 +288,31 @@ def test_robustness_varies_designer_fields_through_the_spec() -> None:
     changes = relative_changes(5, 0.2)
     assert list(changes) == pytest.approx([-0.2, -0.1, 0.0, 0.1, 0.2])
     vs = {(v.field, round(v.change, 3)): v for v in field_variants(spec, 0, changes)}
-    assert {f for f, _ in vs} == {
+    assert list(dict.fromkeys(f for f, _ in vs)) == [
         "drive.frequency",
-        "actuator.horizontal_resonance",
-        "head.geometry.thickness",
-        "contact.friction",
         "slider.beam_width",
-    }
+        "head.geometry.diameter",
+        "actuator.vertical_resonance",
+        "actuator.horizontal_resonance",
+        "contact.impact_angle",
+        "contact.friction",
+    ]
     assert vs[("drive.frequency", 0.1)].params.varpi == pytest.approx(1.1 * p.varpi, rel=1e-12)
+    fv = vs[("actuator.vertical_resonance", 0.1)].params
+    assert (fv.varpi, fv.alpha) == pytest.approx((p.varpi / 1.1, p.alpha * 1.21), rel=1e-12)
     assert vs[("actuator.horizontal_resonance", 0.1)].params.alpha == pytest.approx(
         p.alpha / 1.21, rel=1e-12
     )
     assert vs[("slider.beam_width", 0.1)].params.beta == pytest.approx(p.beta / 1.1, rel=1e-12)
+    assert vs[("head.geometry.diameter", 0.1)].params.beta == pytest.approx(
+        p.beta * 1.21, rel=1e-12
+    )
     assert vs[("contact.friction", 0.1)].params.kappa == pytest.approx(1.1 * p.kappa, rel=1e-12)
-    assert vs[("head.geometry.thickness", 0.0)].params == p
+    theta = math.radians(20.56)
+    assert vs[("contact.impact_angle", 0.1)].params.kappa == pytest.approx(
+        0.4 * math.tan(1.1 * theta), rel=1e-12
+    )
+    assert vs[("head.geometry.diameter", 0.0)].params == p
     assert vs[("drive.frequency", 0.0)].nominal == "3 kHz"
 
 

@@ -11,13 +11,16 @@ are still served from here for one release, with a ``DeprecationWarning``.
 from __future__ import annotations
 
 import importlib
+import pkgutil
 import types
 import warnings
 from typing import Any
 
 
 def __getattr__(name: str) -> Any:
-    if name.startswith("__"):
+    # a submodule not imported yet is not a name of the former module: ``from
+    # betvdesign.spec import limits`` while models is still importing must not import it
+    if name.startswith("__") or name in {m.name for m in pkgutil.iter_modules(__path__)}:
         raise AttributeError(name)
     models = importlib.import_module("betvdesign.spec.models")
     if not hasattr(models, name) or isinstance(getattr(models, name), types.ModuleType):

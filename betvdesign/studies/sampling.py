@@ -20,7 +20,7 @@ import pint
 from betvdesign.errors import BetvError, UsageError
 from betvdesign.model.params import ModelParams
 from betvdesign.spec import limits
-from betvdesign.spec.paths import numeric, replace, targets, value_at
+from betvdesign.spec.paths import given, numeric, with_values
 
 
 def nominal_values(spec: Any, tolerances: Sequence[Any]) -> dict[str, tuple[float, str]]:
@@ -48,8 +48,7 @@ def nominal_values(spec: Any, tolerances: Sequence[Any]) -> dict[str, tuple[floa
     for tol in tolerances:
         if tol.field in out:
             raise UsageError(f"{tol.source}: {tol.field}: given twice")
-        values = [value_at(spec, t) for t in targets(spec, tol.field)]
-        present = [v for v in values if v is not None]
+        present = given(spec, tol.field)
         if not present or not all(numeric(v) for v in present):
             raise UsageError(
                 f"{tol.source}: {tol.field}: not a numeric field of device {spec.name!r} "
@@ -185,11 +184,7 @@ def derive_all(
         mag, unit = nominal[t.field][0], nominal[t.field][1]
         col = np.where(x[:, j] > 0, x[:, j], mag)  # invalid draws: rejected per task
         values[t.field] = ureg.Quantity(col, unit) if unit else col
-    arrays = spec
-    for field, value in values.items():
-        for target in targets(spec, field):
-            if value_at(spec, target) is not None:
-                arrays = replace(arrays, target, value)
+    arrays = with_values(spec, values)
     try:
         with np.errstate(all="ignore"):
             d = derive_samples(arrays, arrays.actuator_sets[set_index])

@@ -46,7 +46,7 @@ from betvdesign.errors import BetvError, UsageError
 from betvdesign.model.damping import term_range
 from betvdesign.model.domain import in_window
 from betvdesign.spec import limits
-from betvdesign.spec.paths import replace, targets, value_at
+from betvdesign.spec.paths import with_values
 from betvdesign.studies.engine.runner import Study, StudyRun, run_study, split_run_args
 from betvdesign.studies.points import (
     MODEL_STATEMENT,
@@ -216,9 +216,7 @@ def _perturbed(task: Mapping[str, Any]) -> Any:
     check_sample(task["values"])
     for field, (mag, unit) in task["values"].items():
         value = ureg.Quantity(mag, unit) if unit else float(mag)
-        for target in targets(spec, field):
-            if value_at(spec, target) is not None:
-                spec = replace(spec, target, value)
+        spec = with_values(spec, {field: value})
     return spec
 
 
