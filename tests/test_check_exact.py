@@ -40,7 +40,7 @@ def _brute_force_delta_s(p: ModelParams, cycles: int = 6000, tail: int = 200) ->
 
 
 def test_lambda_says_pull_the_slider_pushes_and_the_check_says_so():
-    assert LIAR.lam == pytest.approx(4.08, abs=0.01) and LIAR.mode_predicted == "pull"
+    assert LIAR.lam == pytest.approx(4.08, abs=0.01) and LIAR.lambda_mode == "pull"
     brute = _brute_force_delta_s(LIAR)
     assert brute > 1.0  # push, by brute force (≈ +3.35)
     res = check_derivation(_device(LIAR, "pull"))

@@ -96,7 +96,7 @@ def test_json_conforms_to_its_published_schema(no_solver):
     """Every device's --json output validates against `betv schema check` (a generic
     draft-2020-12 walk of the schema, written below, not pydantic itself)."""
     schema = json.loads(run("schema", "check").stdout)
-    assert schema["properties"]["version"]["const"] == 1
+    assert schema["properties"]["version"]["const"] == 2
     r = run("check", "--json", *(str(p) for p in sorted(DEVICES.glob("*.yaml"))))
     doc = json.loads(r.stdout)
     assert [x["device"] for x in doc["devices"]] == [
@@ -281,7 +281,7 @@ def test_shin2004_orbit_and_speed_from_the_exact_solver():
     orbit = periodic_orbit(p)
     assert orbit.success
     assert s["simulation"]["delta_s"] == pytest.approx(orbit.delta_s, rel=1e-12)
-    assert d["mode_predicted"] == ("push" if orbit.delta_s > 0 else "pull")
+    assert d["mode"] == ("push" if orbit.delta_s > 0 else "pull")
     length = 0.11e-6 * math.cos(math.pi / 4)
     n = s["settling"]["cycles_to_cross"]
     tr = simulate(p, n, log_events=False)  # second method: the transient from rest

@@ -91,7 +91,7 @@ class SetCheck:
         return orbit_mode(self.periodic)
 
     @property
-    def mode_predicted(self) -> str:
+    def verdict_mode(self) -> str:
         """The mode the check reports: the exact one, "not driven" when no contact
         recurs (the slider is not moved), "unknown" without an orbit."""
         not_driven = self.periodic is not None and self.periodic.status == "not_driven"
@@ -102,7 +102,7 @@ class SetCheck:
     @property
     def lambda_mode(self) -> str:
         """The paper's λ prediction (shown beside the exact mode, never decisive)."""
-        return self.derivation.mode_predicted
+        return self.derivation.lambda_mode
 
     @property
     def speed_m_s(self) -> float | None:
@@ -146,9 +146,9 @@ class CheckResult:
         Returns
         -------
         dict
-            ``device``, ``file``, the first set's ``params``, ``derived`` and
-            ``mode_predicted``, every rule, the verdict, the notes and per set its
-            parameters, derivation record, solver summaries, settling, margin, adequacy
+            ``device``, ``file``, the first set's ``params``, ``derived`` and ``mode``
+            (the mode the verdict reports), every rule, the verdict, the notes and per
+            set its parameters, derivation record, solver summaries, settling, margin, adequacy
             and rules (JSON-safe).
         """
         sets = [_set_dict(sc) for sc in self.sets]
@@ -158,7 +158,7 @@ class CheckResult:
             "file": self.source_file,
             "params": first["params"],
             "derived": first["derived"],
-            "mode_predicted": first["mode_predicted"],
+            "mode": first["mode"],
             "rules": [r.as_dict() for r in self.rules],
             "verdict": self.verdict,
             "notes": list(self.notes),
@@ -166,7 +166,7 @@ class CheckResult:
         }
 
     def __repr__(self) -> str:
-        modes = ", ".join(f"{sc.derivation.name}: {sc.mode_predicted}" for sc in self.sets)
+        modes = ", ".join(f"{sc.derivation.name}: {sc.verdict_mode}" for sc in self.sets)
         return f"<CheckResult {self.derivation.name!r}: {self.verdict.upper()} ({modes})>"
 
     def _repr_html_(self) -> str:
@@ -421,7 +421,7 @@ def _set_dict(sc: SetCheck) -> dict[str, Any]:
         "impact_direction": s.actuator_set.impact_direction,
         "params": params,
         "derived": derived,
-        "mode_predicted": sc.mode_predicted,
+        "mode": sc.verdict_mode,
         "mode_source": "exact periodic orbit",
         "lambda_mode": sc.lambda_mode,
         "lambda_agrees": sc.mode in (None, "stalled") or sc.mode == sc.lambda_mode,

@@ -8,7 +8,7 @@ Quantities are written by :func:`betvdesign.output.siformat.format_si`
 (text) or as SI floats under unit-named keys (JSON).
 
 The JSON shape (``betv check --json``, :data:`JSON_SCHEMA_VERSION`) is the same for
-one or many files: ``{"schema": "betv-check", "version": 1, "verdict": ...,
+one or many files: ``{"schema": "betv-check", "version": 2, "verdict": ...,
 "devices": [...]}``; its JSON schema is :func:`check_json_schema` (``betv schema
 check``). Fields may be added in a minor change; removing or renaming one bumps the
 version.
@@ -29,10 +29,17 @@ from pydantic import BaseModel, ConfigDict, Field
 
 from betvdesign.checks.adequacy import AdequacyOut, adequacy_line
 from betvdesign.checks.rule import RuleResult, travel_axis
+from betvdesign.output.numbers import RULE as NUMBER_RULE
 from betvdesign.output.siformat import format_dimensionless as fmt_x
 from betvdesign.output.siformat import format_si, si_key
 
-JSON_SCHEMA_VERSION = 1
+JSON_SCHEMA_VERSION = 2
+#: What each version changed (``betv schema check``, ``x-betv-changes``; README).
+VERSION_CHANGES = {
+    2: "non-finite numbers are null (a rule value of inf was the string 'inf'); per set "
+    "basis and delta_s_error (how well Δs is determined; the mode may be 'undetermined'); "
+    "details: mode_predicted -> mode (the verdict's mode), lambda_mode (λ's)",
+}
 
 
 def rule_unit(r: RuleResult) -> str:
@@ -169,7 +176,7 @@ class CheckOutput(_Out):
     """``betv check --json``: one object for one or many files."""
 
     schema_: Literal["betv-check"] = Field("betv-check", alias="schema")
-    version: Literal[1] = JSON_SCHEMA_VERSION
+    version: Literal[2] = JSON_SCHEMA_VERSION
     betvdesign: str = Field(description="betvdesign version that wrote this")
     verdict: Literal["pass", "fail"] = Field(description="fail when any device fails")
     devices: list[DeviceOut]
@@ -187,6 +194,8 @@ def check_json_schema() -> dict[str, Any]:
     schema = CheckOutput.model_json_schema(by_alias=True, mode="serialization")
     schema["$schema"] = "https://json-schema.org/draft/2020-12/schema"
     schema["title"] = f"betv check --json, version {JSON_SCHEMA_VERSION} (betvdesign)"
+    schema["x-betv-numbers"] = NUMBER_RULE
+    schema["x-betv-changes"] = VERSION_CHANGES
     return schema
 
 
@@ -422,7 +431,7 @@ def _set_out(sc: Any, flt: RuleFilter) -> SetOut:
     rules = [r for r in sc.rules if flt.keeps(r.id)]
     p = s.params
     lam_mode = "push" if s.lam < 1.0 else "pull"
-    exact = sc.mode_predicted
+    exact = sc.verdict_mode
     holds, _ = _margin(sc)
     return SetOut(
         name=s.name,
@@ -491,7 +500,7 @@ def set_headline(sc: Any) -> tuple[str, str]:
     s = sc.derivation
     p = s.params
     _, v, direction = set_motion(sc)
-    mode = sc.mode_predicted
+    mode = sc.verdict_mode
     if mode in ("push", "pull"):
         agree = "as intended" if mode == s.intended_mode else f"instead of {s.intended_mode}"
         head = f"{mode} {agree}"

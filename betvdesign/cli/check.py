@@ -183,7 +183,7 @@ def render(result: CheckResult, console: Console, *, derivation: bool = False) -
         console.print(
             f"[bold]set {esc(s.name)}[/]: intended {s.intended_mode}, impacts "
             f"{s.actuator_set.impact_direction}; ϖ = {p.varpi:.4g}, α = {p.alpha:.4g}, "
-            f"β = {p.beta:.4g}, κ = {p.kappa:.4g} -> exact orbit: [bold]{sc.mode_predicted}[/] "
+            f"β = {p.beta:.4g}, κ = {p.kappa:.4g} -> exact orbit: [bold]{sc.verdict_mode}[/] "
             f"(λ = {s.lam:.4g} predicts {sc.lambda_mode})"
         )
         derived = [st for st in s.record if st.key in DERIVED_KEYS]

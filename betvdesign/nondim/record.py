@@ -253,9 +253,9 @@ class SetDerivation:
         raise KeyError(symbol)
 
     @property
-    def mode_predicted(self) -> Mode:
+    def lambda_mode(self) -> Mode:
         """The mode the λ criterion predicts (λ < 1 push)."""
-        return self.params.mode_predicted
+        return self.params.lambda_mode
 
     @property
     def impact_sign(self) -> int:

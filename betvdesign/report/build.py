@@ -133,7 +133,7 @@ def verdict_box(
         else f"{len(errors)} error-severity rule(s) fail: " + ", ".join(r.id for r in errors)
     )
     per = an.periodic.value
-    predicted = sc.mode_predicted if sc is not None else "unknown"
+    predicted = sc.verdict_mode if sc is not None else "unknown"
     rung, rung_reason = "periodic", "the verdict always rests on the exact periodic orbit"
     speed_rule = next((r for r in results if r.id == "speed"), None)
     v_m_s = speed_rule.value if speed_rule is not None else None
@@ -169,7 +169,7 @@ def verdict_box(
         predicted_mode=predicted,
         predicted_by=by,
         lam=fmt_num(sd.lam),
-        fit_mode=sd.params.mode_predicted,
+        fit_mode=sd.params.lambda_mode,
         speed=speed,
         crossing_time=crossing,
         warnings=top_warnings(results),

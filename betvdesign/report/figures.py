@@ -115,7 +115,7 @@ def pushpull(key: str, sd: SetDerivation) -> FigureBlock:
         f"against the λ = 1 boundary of the fit for its f_v = {format_si(f_v, 'Hz')}, "
         f"κ = {p.kappa:.3g}, β = {p.beta:.3g}: f_h² = f_act² + κ·c·f_v² with "
         "c = (1/β − β)/(22(κ+1)) (MODEL.md, eq. 9 rewritten in frequencies). "
-        f"λ = {p.lam:.4g} predicts {p.mode_predicted} mode. Below the curve λ < 1 (push), "
+        f"λ = {p.lam:.4g} predicts {p.lambda_mode} mode. Below the curve λ < 1 (push), "
         "above λ > 1 (pull); the dash-dotted lines bound the vertical design window "
         "0.5 ≤ ϖ < 2 (top axis: ϖ = f_act/f_v)."
     )

@@ -48,7 +48,7 @@ COLUMNS: dict[str, type] = {
     "beta": float,
     "kappa": float,
     "lam": float,
-    "mode_predicted": str,
+    "lambda_mode": str,
     "status": str,
     "converged": bool,
     "mode": str,
@@ -156,7 +156,7 @@ def point_row(task: Mapping[str, Any]) -> dict[str, Any]:
     """
     p = task_params(task)
     row: dict[str, Any] = dict.fromkeys(columns_with(COLUMNS, Terms.of(task), "kappa"))
-    row.update(key=task["key"], **p.as_dict(), lam=p.lam, mode_predicted=p.mode_predicted)
+    row.update(key=task["key"], **p.as_dict(), lam=p.lam, lambda_mode=p.lambda_mode)
     return row
 
 

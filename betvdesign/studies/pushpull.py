@@ -210,7 +210,7 @@ class PushPullSummary:
 
 #: What λ's agreement means on a map with damping or restitution.
 LAMBDA_NOTE = (
-    "λ and mode_predicted are the fit of the idealised model (undamped, plastic impacts); "
+    "λ and lambda_mode are the fit of the idealised model (undamped, plastic impacts); "
     "with damping or restitution their agreement with the simulated modes measures how far "
     "these terms move the push/pull boundary, not the fit's accuracy"
 )
@@ -281,9 +281,9 @@ def summarise(
     point = ("key", "varpi", "alpha", "beta", "kappa", "lam")
     conv = [r for r in rows if r["converged"]]
     disagree = [
-        _brief(r, (*point, "mode_predicted", "mode", "delta_s"))
+        _brief(r, (*point, "lambda_mode", "mode", "delta_s"))
         for r in conv
-        if r["mode"] != r["mode_predicted"]
+        if r["mode"] != r["lambda_mode"]
     ]
     failed = (
         [
@@ -301,7 +301,7 @@ def summarise(
         n_push=sum(r["mode"] == "push" for r in conv),
         n_pull=sum(r["mode"] == "pull" for r in conv),
         n_agree=len(conv) - len(disagree),
-        n_predicted_push=sum(r["mode_predicted"] == "push" for r in rows),
+        n_predicted_push=sum(r["lambda_mode"] == "push" for r in rows),
         disagreements=disagree,
         not_converged=failed,
         unbounded=[d for d in failed if d["status"] == "unbounded"],

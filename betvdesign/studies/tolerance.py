@@ -269,7 +269,7 @@ def tolerance_point(task: Mapping[str, Any]) -> dict[str, Any]:
     row.update(
         **p.as_dict(),
         lam=p.lam,
-        mode_predicted=p.mode_predicted,
+        lambda_mode=p.lambda_mode,
         intended=intended,
         in_window=in_window(p.varpi),
     )
@@ -301,7 +301,7 @@ BASE_COLUMNS: dict[str, type] = {
     "beta": float,
     "kappa": float,
     "lam": float,
-    "mode_predicted": str,
+    "lambda_mode": str,
     "intended": str,
     "in_window": bool,
     "mode": str,
@@ -491,7 +491,7 @@ def summarise(
         rs = [r for r in rows if r["set"] == name]
         n = len(rs)
         valid = [r for r in rs if r["status"] != "invalid-sample"]
-        mode_key = "mode" if fidelity == "periodic" else "mode_predicted"
+        mode_key = "mode" if fidelity == "periodic" else "lambda_mode"
         decided = [r for r in valid if r[mode_key] is not None]
         speeds = np.array([r["speed_um_s"] for r in valid if r["speed_um_s"] is not None])
         intended = rs[0]["intended"] if valid else None
