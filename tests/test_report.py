@@ -24,10 +24,10 @@ from typer.testing import CliRunner
 
 from betvdesign.cli import app
 from betvdesign.nondim.device import derive
+from betvdesign.output.files import write_atomic
 from betvdesign.report import ReportOptions, build_report, prepare, render_html, write_reports
 from betvdesign.report import analysis as report_analysis
 from betvdesign.report.build import fmt_num
-from betvdesign.report.render import write_atomic
 from betvdesign.spec.loader import load_device
 
 #: Section 4's figures per distinct set, plus the model-adequacy figure (section 5).

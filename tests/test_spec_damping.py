@@ -493,7 +493,8 @@ def test_check_shows_damping_and_restitution(monkeypatch, tmp_path):
 
 def test_margin_corners_keep_damping_and_restitution():
     """The mode-margin corners scale ϖ and α only: ζ_v, ζ_h, e are the device's."""
-    from betvdesign.checks.checker import MARGIN_CORNERS, corner_params
+    from betvdesign.checks.checker import corner_params
+    from betvdesign.checks.rules import MARGIN_CORNERS
 
     p = derive_file(DEMO).sets[0].params
     corners = corner_params(p)

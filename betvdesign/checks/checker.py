@@ -39,7 +39,7 @@ from betvdesign.dynamics.settling import Settling, settling
 from betvdesign.dynamics.vertical import VerticalResult
 from betvdesign.model.domain import TRAVEL_HORIZON, mode_of
 from betvdesign.model.params import ModelParams
-from betvdesign.nondim.device import DeviceDerivation, SetDerivation
+from betvdesign.nondim.record import DeviceDerivation, SetDerivation
 from betvdesign.output.numbers import json_float
 
 

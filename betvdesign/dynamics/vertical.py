@@ -19,11 +19,11 @@ from typing import ClassVar, get_args
 import numpy as np
 
 from betvdesign.dynamics import schedule
-from betvdesign.dynamics.flows import normal_force_phase
 from betvdesign.dynamics.jit import compile_note
 from betvdesign.dynamics.result import SolverResult, VerticalStatus
 from betvdesign.dynamics.search import search_failure_message
 from betvdesign.errors import ParameterError
+from betvdesign.model.params import normal_force_phase
 
 
 class VerticalSearchError(RuntimeError):
