@@ -62,7 +62,6 @@ def orbit_stand_in(
     values = {
         "params": ModelParams(1.0, 1.0, 1.0, 1.0),
         "status": status,
-        "success": ok,
         "message": message,
         "delta_s": delta_s,
         "mode": mode_of(delta_s) if ok else None,

@@ -27,7 +27,7 @@ def no_solver(monkeypatch):
         return orbit_stand_in(1.0 if p.lam < 1 else -1.0)
 
     monkeypatch.setattr(checker, "load_solver", lambda: orbit)
-    monkeypatch.setattr("betvdesign.checks.checker._settling", lambda p, po, travel: None)
+    monkeypatch.setattr("betvdesign.checks.checker._settling", lambda p, po, travel, horizon: None)
 
 
 def run(*args):
@@ -47,13 +47,13 @@ def test_shin2004_fails_the_window_and_shows_fit_mismatch(no_solver):
 
 def _device(stdout: str) -> dict:
     d = json.loads(stdout)
-    assert (d["schema"], d["version"]) == ("betv-check", 1)
+    assert (d["schema"], d["version"]) == ("betv-check", 2)
     assert len(d["devices"]) == 1
     return d["devices"][0]
 
 
 def test_shin2004_json_contract(no_solver):
-    """Version 1: SI floats under unit-named keys; hand-computed shin2004 parameters."""
+    """Version 2: SI floats under unit-named keys; hand-computed shin2004 parameters."""
     r = run("check", SHIN, "--json")
     assert r.exit_code == 1
     d = _device(r.stdout)
@@ -243,7 +243,7 @@ def test_check_reports_orbit_speed_and_json(monkeypatch):
 
     orbit = orbit_stand_in(0.25, message="ok", residual=1e-12, n_cycles=300, elapsed_s=0.01)
     monkeypatch.setattr(checker, "load_solver", lambda: lambda p: orbit)
-    monkeypatch.setattr("betvdesign.checks.checker._settling", lambda p, po, travel: None)
+    monkeypatch.setattr("betvdesign.checks.checker._settling", lambda p, po, travel, horizon: None)
     path = str(DEVICES / "push_demo.yaml")
     v = 0.25 * 0.14e-6 * math.cos(math.radians(20.56)) * 6000.0  # [m/s] = 196.6 µm/s
     r = run("check", path)

@@ -471,7 +471,7 @@ def test_check_shows_damping_and_restitution(monkeypatch, tmp_path):
         )
 
     monkeypatch.setattr(checker, "load_solver", lambda: orbit)
-    monkeypatch.setattr("betvdesign.checks.checker._settling", lambda p, po, travel: None)
+    monkeypatch.setattr("betvdesign.checks.checker._settling", lambda p, po, travel, horizon: None)
     (s,) = json.loads(run("check", DEMO, "--json").stdout)["devices"][0]["sets"]
     assert s["params"]["zeta_v"] == s["params"]["zeta_h"] == 1 / 60
     assert s["params"]["restitution"] == 0.1
