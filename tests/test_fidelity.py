@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 
 import numpy as np
 import pytest
@@ -115,17 +116,25 @@ def test_mode_outside_the_window_is_not_driven_as_a_long_run_shows():
     assert fidelity.answer(p, "mode", force="lambda").mode == "pull"
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="finding: fidelity.evaluate's full rung names a mode from the last Δs without "
-    "reading Trajectory.driven, so at ϖ = 2.3 `betv ladder mode --fidelity full` says push "
-    "while `betv simulate` says not driven (see the report of issue 20)",
-)
 def test_forced_full_rung_does_not_call_a_coasting_slider_push():
     """The same design as above, forced to the full rung: its transient coasts (previous
-    test), so it must not name a mode."""
-    ans = fidelity.answer(ModelParams(2.3, 0.1, 0.9, 0.4), "mode", force="full")
+    test), so it names no mode and says "not driven" as the periodic rung does (status
+    "not_driven", the same verdict); asked for the transient itself it still answers (s is
+    exact), with no mode and the verdict in its message."""
+    p = ModelParams(2.3, 0.1, 0.9, 0.4)
+    ans = fidelity.answer(p, "mode", force="full")
     assert ans.mode not in ("push", "pull")
+    po = periodic_orbit(p)
+    assert po.status == "not_driven"
+    assert ans.status == po.status and not ans.success and ans.mode is None
+
+    def words(m: str) -> str:
+        return re.sub(r"within \d+ cycles", "within N cycles", m)
+
+    assert words(po.message) in words(ans.message)
+    tr = fidelity.answer(p, "transient", force="full")
+    assert tr.success and tr.mode is None and "not driven" in tr.message
+    assert tr.value == pytest.approx(simulate(p, 100, log_events=False).s, rel=1e-12)
 
 
 @pytest.mark.parametrize(

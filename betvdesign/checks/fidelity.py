@@ -460,12 +460,7 @@ def evaluate(p: ModelParams, choice: Choice, *, cycles: int = 100) -> Answer:
         r = rigid.rigid_periodic(p)
         return Answer(choice, r.status, r.success, r.message, r.delta_s, r.mode, _dt(t0))
     if rung == "full":
-        tr = dynamics.simulate(p, cycles, log_events=False)
-        last = float(tr.delta_s[-1]) if len(tr.delta_s) else math.nan
-        mode = domain.mode_of(last) if tr.success else None
-        value = tr.s if q == "transient" else last
-        msg = tr.message if q == "transient" else f"{tr.message}; Δs of the last cycle only"
-        return Answer(choice, tr.status, tr.success, msg, value, mode, _dt(t0))
+        return _full(p, choice, cycles, t0)
     po = dynamics.periodic_orbit(p)
     value: Any = po.delta_s
     if q == "stability":
@@ -502,6 +497,54 @@ def answer(
         :func:`evaluate` of :func:`choose_rung`'s choice.
     """
     return evaluate(p, choose_rung(p, question, tol=tol, force=force))
+
+
+def _full(p: ModelParams, choice: Choice, cycles: int, t0: float) -> Answer:
+    """The "full" rung: a transient of ``cycles`` cycles from rest.
+
+    Parameters
+    ----------
+    p : ModelParams
+        The design's dimensionless parameters.
+    choice : Choice
+        The rung ("full") and the question.
+    cycles : int
+        Actuation cycles [-] simulated.
+    t0 : float
+        :func:`time.perf_counter` at the start [s].
+
+    Returns
+    -------
+    Answer
+        For "transient": the slider position s [-] after ``cycles`` cycles. Otherwise
+        the Δs [-] of the last cycle, and its mode by :func:`domain.mode_of`, unless no
+        contact recurs (``Trajectory.driven`` False): that Δs is then the slider
+        coasting on its first contacts, and the answer is the periodic rung's for that
+        case, status "not_driven", no mode, the same verdict in the same words
+        (:func:`betvdesign.dynamics.periodic.not_driven_message`), as ``betv simulate``
+        says "not driven". A coasting transient still answers "transient" (s is exact),
+        with no mode and the verdict in its message.
+    """
+    from betvdesign import dynamics
+    from betvdesign.dynamics.periodic import not_driven_message
+
+    tr = dynamics.simulate(p, cycles, log_events=False)
+    last = float(tr.delta_s[-1]) if len(tr.delta_s) else math.nan
+    coasting = tr.success and tr.driven is False
+    mode = domain.mode_of(last) if tr.success and not coasting else None
+    status, success, msg = tr.status, tr.success, tr.message
+    if coasting:
+        verdict = (
+            f"{not_driven_message(p, tr.n_cycles)}; the last cycle's Δs = {last:.6g} is the "
+            "slider coasting on its first contacts"
+        )
+        msg = f"{msg}; {verdict}"
+        if choice.question != "transient":
+            status, success = "not_driven", False
+    elif choice.question != "transient":
+        msg = f"{msg}; Δs of the last cycle only"
+    value = tr.s if choice.question == "transient" else last
+    return Answer(choice, status, success, msg, value, mode, _dt(t0))
 
 
 def _dt(t0: float) -> float:

@@ -273,6 +273,38 @@ def periodic_orbit(
     )
 
 
+def not_driven_message(p: ModelParams, cycles: int) -> str:
+    """Why the slider is not driven: no contact recurs (status "not_driven").
+
+    The one wording of that verdict, shared by the periodic orbit and the fidelity
+    ladder's transient rung (:mod:`betvdesign.checks.fidelity`).
+
+    Parameters
+    ----------
+    p : ModelParams
+        The design's dimensionless parameters.
+    cycles : int
+        Actuation cycles [-] within which no contact recurred.
+
+    Returns
+    -------
+    str
+        The verdict and its cause (restitution that never settles, or ϖ beyond the
+        design window).
+    """
+    return (
+        f"no contact recurs within {cycles} cycles at ϖ = {p.varpi:g}: hits are "
+        "impulsive only and the slider is not driven ("
+        + (
+            f"restitution e = {p.restitution:g}: the rebounds never settle into contact "
+            "before the normal force falls to zero; a lower ϖ or e lets them settle"
+            if p.restitution > 0.0 and p.varpi < 2.0
+            else "MODEL.md design window 0.5 ≤ ϖ < 2"
+        )
+        + ")"
+    )
+
+
 def _vertical_failure(p: ModelParams, msg: str, elapsed: float) -> PeriodicResult:
     """The result when the vertical motion itself cannot be computed (a search that did
     not terminate, a chattering sequence that did not accumulate)."""
@@ -341,18 +373,7 @@ def _periodic_orbit(
 
     phi: _Map | None = None
     if vs.period is None:
-        return result(
-            "not_driven",
-            f"no contact recurs within {vs.n_prefix} cycles at ϖ = {p.varpi:g}: hits are "
-            "impulsive only and the slider is not driven ("
-            + (
-                f"restitution e = {p.restitution:g}: the rebounds never settle into contact "
-                "before the normal force falls to zero; a lower ϖ or e lets them settle"
-                if p.restitution > 0.0 and p.varpi < 2.0
-                else "MODEL.md design window 0.5 ≤ ϖ < 2"
-            )
-            + ")",
-        )
+        return result("not_driven", not_driven_message(p, vs.n_prefix))
     kv = vs.period
     assert vs.first_end is not None
     m0 = vs.first_end + 1
