@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 
 import numpy as np
 import pytest
@@ -115,17 +116,25 @@ def test_mode_outside_the_window_is_not_driven_as_a_long_run_shows():
     assert fidelity.answer(p, "mode", force="lambda").mode == "pull"
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="finding: fidelity.evaluate's full rung names a mode from the last Δs without "
-    "reading Trajectory.driven, so at ϖ = 2.3 `betv ladder mode --fidelity full` says push "
-    "while `betv simulate` says not driven (see the report of issue 20)",
-)
 def test_forced_full_rung_does_not_call_a_coasting_slider_push():
     """The same design as above, forced to the full rung: its transient coasts (previous
-    test), so it must not name a mode."""
-    ans = fidelity.answer(ModelParams(2.3, 0.1, 0.9, 0.4), "mode", force="full")
+    test), so it names no mode and says "not driven" as the periodic rung does (status
+    "not_driven", the same verdict); asked for the transient itself it still answers (s is
+    exact), with no mode and the verdict in its message."""
+    p = ModelParams(2.3, 0.1, 0.9, 0.4)
+    ans = fidelity.answer(p, "mode", force="full")
     assert ans.mode not in ("push", "pull")
+    po = periodic_orbit(p)
+    assert po.status == "not_driven"
+    assert ans.status == po.status and not ans.success and ans.mode is None
+
+    def words(m: str) -> str:
+        return re.sub(r"within \d+ cycles", "within N cycles", m)
+
+    assert words(po.message) in words(ans.message)
+    tr = fidelity.answer(p, "transient", force="full")
+    assert tr.success and tr.mode is None and "not driven" in tr.message
+    assert tr.value == pytest.approx(simulate(p, 100, log_events=False).s, rel=1e-12)
 
 
 @pytest.mark.parametrize(
@@ -178,16 +187,40 @@ def test_delta_s_idealised_rungs_skipped_for_a_damped_design_would_miss_tol():
         fidelity.choose_rung(DAMPED, "delta_s", force="rigid")
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="finding: at α = 1e-6 the full model's stick/slip switching chatters (Zeno) "
-    "from the first contact, so the periodic rung the ladder picks for tol < the rigid "
-    "estimate cannot answer; the rigid limit could (see the report of issue 20)",
-)
 def test_delta_s_rung_chosen_at_tiny_alpha_answers():
+    """At α = 1e-6, ϖ = 0.6 (α·ϖ² = 3.6e-7, below the measured chatter limit) the full
+    model's stick/slip switching chatters from the first contact: the periodic rung, forced,
+    cannot answer. Asked for delta_s to a tol below the rigid limit's error estimate, the
+    ladder takes the rigid limit all the same, which answers, and its reason says that the
+    error exceeds tol and names the limit; "mode" goes there too (pull, the sign of a Δs
+    whose error measured near the limit stays below 1), and a rung that must run the full
+    model carries the caution."""
     p = ModelParams(0.6, 1e-6, 1.5, 0.4)
+    assert fidelity.below_chatter_limit(p)
+    forced = fidelity.answer(p, "delta_s", force="periodic")
+    assert not forced.success and "chatters" in forced.message
+    assert "caution" in forced.choice.reason and f"{fidelity.CHATTER_Q:g}" in forced.choice.reason
     ans = fidelity.answer(p, "delta_s", tol=fidelity.rigid_error_estimate(p.alpha) / 2)
     assert ans.success, ans.message
+    why = ans.choice.reason
+    assert ans.choice.rung == "rigid" and not ans.choice.forced
+    assert "exceeds tol" in why and "chatters" in why and f"{fidelity.CHATTER_Q:g}" in why
+    mode = fidelity.answer(p, "mode")
+    assert mode.choice.rung == "rigid" and mode.success and mode.mode == "pull"
+    assert "chatters" in mode.choice.reason
+    for q in ("stability", "transient"):
+        assert "caution" in fidelity.choose_rung(p, q).reason
+
+
+def test_chatter_limit_is_where_the_full_model_starts_to_run():
+    """Just above the limit (α·ϖ² = 1.1 CHATTER_Q) the ladder does not skip the full
+    model: for a tol below the rigid estimate it takes the periodic orbit, which answers."""
+    w = 0.6
+    p = ModelParams(w, 1.1 * fidelity.CHATTER_Q / w**2, 1.5, 0.4)
+    assert not fidelity.below_chatter_limit(p)
+    c = fidelity.choose_rung(p, "delta_s", tol=fidelity.rigid_error_estimate(p.alpha) / 2)
+    assert c.rung == "periodic" and "caution" not in c.reason
+    assert fidelity.evaluate(p, c).success
 
 
 def test_rigid_limit_chosen_at_tiny_alpha_is_where_the_full_model_converges():

@@ -319,6 +319,38 @@ def periodic_orbit(
     )
 
 
+def not_driven_message(p: ModelParams, cycles: int) -> str:
+    """Why the slider is not driven: no contact recurs (status "not_driven").
+
+    The one wording of that verdict, shared by the periodic orbit and the fidelity
+    ladder's transient rung (:mod:`betvdesign.checks.fidelity`).
+
+    Parameters
+    ----------
+    p : ModelParams
+        The design's dimensionless parameters.
+    cycles : int
+        Actuation cycles [-] within which no contact recurred.
+
+    Returns
+    -------
+    str
+        The verdict and its cause (restitution that never settles, or ϖ beyond the
+        design window).
+    """
+    return (
+        f"no contact recurs within {cycles} cycles at ϖ = {p.varpi:g}: hits are "
+        "impulsive only and the slider is not driven ("
+        + (
+            f"restitution e = {p.restitution:g}: the rebounds never settle into contact "
+            "before the normal force falls to zero; a lower ϖ or e lets them settle"
+            if p.restitution > 0.0 and p.varpi < 2.0
+            else "MODEL.md design window 0.5 ≤ ϖ < 2"
+        )
+        + ")"
+    )
+
+
 def _periodic_orbit(
     p: ModelParams, tol: float, max_cycles: int, max_period: int, transient: int
 ) -> PeriodicResult:
@@ -347,18 +379,7 @@ def _periodic_orbit(
     phi: _Map | None = None
     if vs.period is None:
         return PeriodicResult.failure(
-            p,
-            "not_driven",
-            f"no contact recurs within {vs.n_prefix} cycles at ϖ = {p.varpi:g}: hits are "
-            "impulsive only and the slider is not driven ("
-            + (
-                f"restitution e = {p.restitution:g}: the rebounds never settle into contact "
-                "before the normal force falls to zero; a lower ϖ or e lets them settle"
-                if p.restitution > 0.0 and p.varpi < 2.0
-                else "MODEL.md design window 0.5 ≤ ϖ < 2"
-            )
-            + ")",
-            **spent(),
+            p, "not_driven", not_driven_message(p, vs.n_prefix), **spent()
         )
     kv = vs.period
     assert vs.first_end is not None
