@@ -59,7 +59,7 @@ def test_status_words_are_the_published_strings():
         "failed",
     )
     assert get_args(TrajectoryStatus) == ("success", "failed")
-    assert get_args(VerticalStatus) == ("success", "not_periodic")
+    assert get_args(VerticalStatus) == ("success", "not_periodic", "failed")
     assert get_args(RigidStatus) == ("success", "no_contact")
     assert get_args(SettlingStatus) == ("settled", "not_settled", "failed")
 
