@@ -5,10 +5,9 @@ integrators fail; this module charts where the *verdict* stops meaning something
 From a base design, one family of designs per axis pushes a parameter to the edge of
 the parameter space over many decades (κ → 0, β → 0 and → ∞, α → 0 and → ∞, ϖ over and
 beyond the window, α·ϖ² → 1 with and without head damping, e → 1). Every point goes
-through the check's own path — exact periodic orbit, :func:`~betvdesign.dynamics.
-determination.determine`, the transient from rest against the travel
-(:func:`~betvdesign.dynamics.settling.settling`) and :func:`~betvdesign.checks.travel.
-travel_answer` — and is labelled by the basis of its answer:
+through the check's own path (exact periodic orbit, then :func:`betvdesign.checks.
+checker.answer_over_travel`: determination, transient from rest, the answer quoted)
+and is labelled by the basis of its answer:
 
 - "periodic": determined, and settled early in the travel (the periodic answer holds);
 - "crossing": slow to settle (or Δs undetermined) but the slider crosses its travel:
@@ -33,10 +32,8 @@ from typing import Any
 import numpy as np
 from matplotlib.figure import Figure
 
-from betvdesign.checks.travel import travel_answer
-from betvdesign.dynamics.determination import determine
+from betvdesign.checks.checker import answer_over_travel
 from betvdesign.dynamics.periodic import periodic_orbit
-from betvdesign.dynamics.settling import settling
 from betvdesign.model.params import ModelParams
 from betvdesign.plots.figure import figure_style, new_figure
 
@@ -129,16 +126,7 @@ def classify(p: ModelParams, travel_s: float = TRAVEL_S) -> dict[str, Any]:
         orbit = periodic_orbit(p)
     except Exception as exc:  # a crash is a measured outcome, shown as such
         return {"label": "no-orbit", "mode": None, "status": "failed", "reason": str(exc)}
-    det = determine(p, orbit)
-    settle = None
-    if orbit.success or det.status == "degenerate":
-        ds = orbit.delta_s if orbit.success else None
-        k = orbit.period_cycles if orbit.success else 1
-        try:
-            settle = settling(p, float(ds or 0.0), period_cycles=k or 1, travel_s=travel_s)
-        except Exception:  # reported through the answer ("no-orbit"/"undetermined")
-            settle = None
-    ans = travel_answer(orbit, det, settle)
+    det, _, ans = answer_over_travel(p, orbit, travel_s)
     return {
         "label": ans.basis,
         "mode": ans.mode,

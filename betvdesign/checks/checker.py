@@ -311,7 +311,7 @@ def check_derivation(
     orbits, verticals, settlings, margins = {}, {}, {}, {}
     determinations: dict[str, Determination] = {}
     answers: dict[str, TravelAnswer] = {}
-    settled: dict[Any, Any] = {}
+    answered: dict[tuple[ModelParams, float], tuple[Any, Any, TravelAnswer]] = {}
     vert_of: dict[tuple[float, float, float], Any] = {}
     for s in derivation.sets:
         p = s.params
@@ -324,20 +324,19 @@ def check_derivation(
             vert_of[vkey] = _guarded_vertical(vertical, p)
         if vert_of[vkey] is not None:
             verticals[s.name] = vert_of[vkey]
-        det = determine_delta_s(p, po, solver=orbit) if determine else None
+        key = (p, s.travel_range_m / s.scales.length_m)
+        if key not in answered:
+            answered[key] = answer_over_travel(
+                p, po, key[1], solver=orbit, determine=determine, settle=settle, horizon=horizon
+            )
+        det, st, answers[s.name] = answered[key]
         if det is not None:
             determinations[s.name] = det
-        moving = orbit_mode(po) in ("push", "pull")
+        if st is not None:
+            settlings[s.name] = st
         unsure = det is not None and det.status in ("undetermined", "degenerate")
         if margin and orbit_mode(po) in ("push", "pull") and not unsure:
             margins[s.name] = {k: orbit_mode(orbit(q)) for k, q in corner_params(p).items()}
-        if settle and (moving or unsure):
-            key = (p, s.travel_range_m / s.scales.length_m)
-            if key not in settled:
-                settled[key] = _settling(p, po, key[1], horizon)
-            settlings[s.name] = settled[key]
-        st = settlings.get(s.name)
-        answers[s.name] = travel_answer(po, det, st)
     adq = _adequacy(derivation, adequacy, (lambda p, **_: orbit(p)) if custom else None)
     rules = evaluate_device(
         derivation,
@@ -377,6 +376,52 @@ def _adequacy(
     if want is None or want is True:
         want = assess(derivation, solver=custom)
     return {a.name: a for a in want.sets}
+
+
+def answer_over_travel(
+    p: ModelParams,
+    po: PeriodicResult,
+    travel_s: float,
+    *,
+    solver: Callable[[ModelParams], Any] | None = None,
+    determine: bool = True,
+    settle: bool = True,
+    horizon: int = TRAVEL_HORIZON,
+) -> tuple[Determination | None, Settling | None, TravelAnswer]:
+    """What the check says one design does over its travel (unit-free).
+
+    The one sequence behind every verdict's mode and speed (the check, the verdict map of
+    :mod:`betvdesign.bench.verdictmap`): how well Δs is determined, the transient from
+    rest when the orbit moves or is not determined, and the answer quoted.
+
+    Parameters
+    ----------
+    p : ModelParams
+        The design [-].
+    po : PeriodicResult
+        Its periodic orbit.
+    travel_s : float
+        Travel range in units of u·cosθ [-].
+    solver : callable, optional
+        ``solver(params) -> PeriodicResult`` for the re-solves (default: the exact one).
+    determine, settle : bool
+        Run the determination / the transient from rest.
+    horizon : int
+        Cycles the transient may take to cross the travel [-].
+
+    Returns
+    -------
+    tuple
+        (:class:`~betvdesign.dynamics.determination.Determination` or None,
+        :class:`~betvdesign.dynamics.settling.Settling` or None,
+        :class:`~betvdesign.checks.travel.TravelAnswer`).
+    """
+    det = determine_delta_s(p, po, solver=solver) if determine else None
+    unsure = det is not None and det.status in ("undetermined", "degenerate")
+    st = None
+    if settle and (orbit_mode(po) in ("push", "pull") or unsure):
+        st = _settling(p, po, travel_s, horizon)
+    return det, st, travel_answer(po, det, st)
 
 
 def _settling(p: ModelParams, po: PeriodicResult, travel_s: float, horizon: int) -> Settling:

@@ -201,3 +201,26 @@ def travel_axis(s: SetDerivation, delta_s: float) -> Literal["+x", "-x"]:
         The direction of travel.
     """
     return "+x" if travel_direction(s, "push" if delta_s > 0 else "pull") > 0 else "-x"
+
+
+def no_crossing(travel_m: float, cycles: int, f_act_hz: float) -> str:
+    """The one wording of a slider that does not cross its travel range from rest.
+
+    Parameters
+    ----------
+    travel_m : float
+        Travel range [m].
+    cycles : int
+        Cycles simulated from rest [-].
+    f_act_hz : float
+        Actuation frequency [Hz] (the horizon in time is cycles / f_act).
+
+    Returns
+    -------
+    str
+        "does not cross its 50 µm travel within 200000 cycles (33.3 s)".
+    """
+    return (
+        f"does not cross its {format_si(travel_m, 'm')} travel within {cycles} cycles "
+        f"({format_time(cycles / f_act_hz)})"
+    )

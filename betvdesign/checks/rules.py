@@ -47,6 +47,7 @@ from betvdesign.checks.rule import (
     RuleResult,
     format_speed,
     format_time,
+    no_crossing,
     orbit_mode,
     travel_axis,
     travel_direction,
@@ -109,6 +110,12 @@ SRC_SETTLE = "betvdesign.dynamics.settling (exact transient from rest, MODEL.md:
 SRC_DETERMINATION = (
     "betvdesign.dynamics.determination (periodic re-solves with every parameter moved by "
     "1e-12; forces below round-off named before solving)"
+)
+#: What to change when the slider does not cross its travel within the horizon.
+NO_CROSSING_FIX = (
+    "choose a design that moves and settles faster (friction κ and the mass ratio β not near "
+    "0, |α·ϖ² − 1| not small without damping), or raise the horizon (`betv check --horizon "
+    "N`) if the travel really takes that long"
 )
 SRC_MARGIN = "exact periodic orbits at ϖ·(1 ± 5 %) and α·(1 ± 10 %) (fabrication spread)"
 SRC_ADEQUACY = (
@@ -350,12 +357,9 @@ def _travel_mode(s: SetDerivation, ans: TravelAnswer, want: str) -> RuleResult:
             False,
             None,
             want,
-            f"does not cross its {travel} travel within {n} cycles ({format_time(n / f)}) "
-            f"from rest ({shown})",
+            f"{no_crossing(s.travel_range_m, n, f)} from rest ({shown})",
             SRC_SETTLE,
-            fix="choose a design that moves and settles faster (friction κ and the mass ratio "
-            "β not near 0, |α·ϖ² − 1| not small without damping), or raise the horizon "
-            "(`betv check --horizon N`) if the travel really takes that long",
+            fix=NO_CROSSING_FIX,
         )
     ds = float(ans.delta_s)
     mode = ans.mode
@@ -583,10 +587,7 @@ def _settling_rule(s: SetDerivation, settling: Settling, *, ok: bool) -> RuleRes
             f"crosses the {travel} travel range after {n_cross} cycles ({format_time(n_cross / f)})"
         )
     else:
-        n = settling.simulated_cycles
-        cross_txt = (
-            f"does not cross the {travel} travel range within {n} cycles ({format_time(n / f)})"
-        )
+        cross_txt = no_crossing(s.travel_range_m, settling.simulated_cycles, f)
     if ok:
         tail, fix = "", ""
     elif n_cross:
@@ -598,11 +599,7 @@ def _settling_rule(s: SetDerivation, settling: Settling, *, ok: bool) -> RuleRes
         )
     else:
         tail = ": no speed is shown over the travel"
-        fix = (
-            "choose a design that moves and settles faster (friction κ and the slider mass "
-            "ratio β not near 0, |α·ϖ² − 1| not small without damping), or raise the horizon "
-            "(`betv check --horizon N`) if the travel really takes that long"
-        )
+        fix = NO_CROSSING_FIX
     return RuleResult(
         "settling",
         "warning",

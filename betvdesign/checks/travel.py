@@ -131,9 +131,7 @@ def travel_answer(orbit: Any, determination: Any, settling: Any) -> TravelAnswer
         c = float(settling.crossing_delta_s)
         return TravelAnswer("crossing", mode_of(c), c, ds, cross, horizon, why)
 
-    if mode == "undetermined" or (
-        determination is not None and determination.status == "degenerate"
-    ):
+    if mode == "undetermined":  # a degenerate design's determination says so too
         if crossed:
             return crossing(
                 "the periodic Δs is not determined; the transient from rest crosses the "

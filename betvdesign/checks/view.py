@@ -28,7 +28,7 @@ from typing import Any, Literal
 from pydantic import BaseModel, ConfigDict, Field
 
 from betvdesign.checks.adequacy import AdequacyOut, adequacy_line
-from betvdesign.checks.rule import RuleResult, travel_axis
+from betvdesign.checks.rule import RuleResult, no_crossing, travel_axis
 from betvdesign.output.numbers import RULE as NUMBER_RULE
 from betvdesign.output.siformat import format_dimensionless as fmt_x
 from betvdesign.output.siformat import format_si, si_key
@@ -471,11 +471,7 @@ def _no_motion(sc: Any, mode: str, v: float | None) -> str:
     ans = sc.travel
     s = sc.derivation
     if ans is not None and ans.basis == "no-crossing":
-        n = ans.horizon_cycles or 0
-        t = format_si(n / s.scales.f_act_hz, "s")
-        return (
-            f"does not cross its {format_si(s.travel_range_m, 'm')} travel within {n} cycles ({t})"
-        )
+        return no_crossing(s.travel_range_m, ans.horizon_cycles or 0, s.scales.f_act_hz)
     if ans is not None and ans.basis == "undetermined":
         return "Δs not determined in float64 (see the mode rule)"
     if mode == "not driven":
