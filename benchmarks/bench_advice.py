@@ -64,13 +64,13 @@ def passes(spec) -> bool:
 def random_designs(n: int, seed: int = SEED, *, failing: bool = True):
     """``n`` seeded designs: a shipped device with 2-3 of its fields moved by ×/÷ up to 2.5
     (impact angle within 15-70°); only failing ones when ``failing``."""
-    from betvdesign.errors import BetvError
-    from betvdesign.spec.loader import load_device
-    from betvdesign.studies.fixfields import current_value
-    from betvdesign.studies.fix import outcome_of
     from betvdesign.checks.checker import check_derivation
+    from betvdesign.errors import BetvError
     from betvdesign.nondim.device import derive
+    from betvdesign.spec.loader import load_device
     from betvdesign.spec.units import ureg
+    from betvdesign.studies.fix import outcome_of
+    from betvdesign.studies.fixfields import current_value
 
     rng = np.random.default_rng(seed)
     specs = [load_device(p) for p in DEVICES]
@@ -99,57 +99,65 @@ def random_designs(n: int, seed: int = SEED, *, failing: bool = True):
     return out
 
 
-def consistency(n: int) -> dict:
+def _one(args) -> dict:
+    """Consistency of one design (a worker of :func:`consistency`)."""
     from betvdesign.checks.checker import check_derivation
     from betvdesign.nondim.device import derive
-    from betvdesign.spec.loader import load_device
     from betvdesign.studies.fix import advice_text, advise, find_fixes, outcome_of, with_advice
     from betvdesign.studies.fixfields import parse_vary
 
-    cases = []
-    for p in DEVICES:
-        s = load_device(p)
-        cases.append((s, check_derivation(derive(s), adequacy=False)))
-    cases += random_designs(n)
-    rows, contradictions, hints = [], 0, 0
+    label, spec, compare = args
     t0 = time.perf_counter()
-    for i, (spec, res) in enumerate(cases):
-        answers = advise(res)
-        text = advice_text(answers) if answers else ""
-        res = with_advice(res, answers)
-        bad = []
-        for r in res.rules:
-            if not r.passed and (r.severity == "error" or r.id == "mode-margin"):
-                if r.fix != text:
-                    bad.append(f"{r.id}: fix text is not the advice")
-        for a in answers:
-            if a.value is None:
-                continue
-            hints += 1
-            v = parse_vary(spec, [a.field])[0]
-            if not passes(spec.replace(a.field, v.quantity(a.value))):
-                bad.append(f"{a.field} -> {a.text(a.value)} does not pass")
-            if i < len(DEVICES) + 40:  # betv fix --vary FIELD: the same value
-                fx = find_fixes(spec, [v], pairs=False)
-                best = fx.best
-                if best is None or abs(math.log(best.changes[a.field] / a.value)) > 1e-9:
-                    bad.append(f"{a.field}: betv fix gives {best and best.changes}")
-        contradictions += bool(bad)
-        rows.append(
-            {
-                "design": spec.name if i < len(DEVICES) else f"random-{i - len(DEVICES)}",
-                "failing": list(outcome_of(res).failing),
-                "advice": [a.as_dict() for a in answers],
-                "contradictions": bad,
-            }
-        )
+    res = check_derivation(derive(spec), adequacy=False)
+    answers = advise(res)
+    text = advice_text(answers) if answers else ""
+    res = with_advice(res, answers)
+    bad, hints = [], 0
+    for r in res.rules:
+        if not r.passed and (r.severity == "error" or r.id == "mode-margin") and r.fix != text:
+            bad.append(f"{r.id}: fix text is not the advice")
+    for a in answers:
+        if a.value is None:
+            continue
+        hints += 1
+        v = parse_vary(spec, [a.field])[0]
+        if not passes(spec.replace(a.field, v.quantity(a.value))):
+            bad.append(f"{a.field} -> {a.text(a.value)} does not pass")
+        if compare:  # betv fix --vary FIELD: the same value
+            best = find_fixes(spec, [v], pairs=False).best
+            if best is None or abs(math.log(best.changes[a.field] / a.value)) > 1e-9:
+                bad.append(f"{a.field}: betv fix gives {best and best.changes}")
     return {
-        "designs": len(cases),
+        "design": label,
+        "failing": list(outcome_of(res).failing),
+        "advice": [a.as_dict() for a in answers],
+        "hints": hints,
+        "contradictions": bad,
+        "seconds": time.perf_counter() - t0,
+    }
+
+
+def consistency(n: int, workers: int = 1, compare: int = 20) -> dict:
+    from concurrent.futures import ProcessPoolExecutor
+
+    from betvdesign.spec.loader import load_device
+
+    jobs = [(p.stem, load_device(p), True) for p in DEVICES]
+    jobs += [(f"random-{i}", s, i < compare) for i, (s, _) in enumerate(random_designs(n))]
+    t0 = time.perf_counter()
+    if workers > 1:
+        with ProcessPoolExecutor(workers) as pool:
+            rows = list(pool.map(_one, jobs))
+    else:
+        rows = [_one(j) for j in jobs]
+    return {
+        "designs": len(rows),
         "shipped": len(DEVICES),
         "random_failing": n,
-        "hints_applied": hints,
-        "designs_with_a_fix_hint": sum(any(a["to"] for a in r["advice"]) for r in rows),
-        "contradictions": contradictions,
+        "hints_applied": sum(r["hints"] for r in rows),
+        "designs_with_a_fix_hint": sum(r["hints"] > 0 for r in rows),
+        "contradictions": sum(bool(r["contradictions"]) for r in rows),
+        "fix_compared": len(DEVICES) + min(compare, n),
         "seconds": time.perf_counter() - t0,
         "rows": rows,
     }
@@ -219,8 +227,9 @@ def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("what", choices=["consistency", "boundary"])
     ap.add_argument("-n", type=int, default=200)
+    ap.add_argument("-j", type=int, default=1, help="worker processes (consistency)")
     args = ap.parse_args()
-    out = consistency(args.n) if args.what == "consistency" else boundary(args.n)
+    out = consistency(args.n, args.j) if args.what == "consistency" else boundary(args.n)
     path = ROOT / "benchmarks" / "out" / f"advice_{args.what}.json"
     path.parent.mkdir(exist_ok=True)
     path.write_text(json.dumps(out, indent=1, default=float))

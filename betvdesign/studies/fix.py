@@ -73,7 +73,7 @@ PAIR_FIELDS = 4
 REQUIRED_WARNINGS = ("mode-margin",)
 #: At most this many fields are searched for the advice of ``betv check``, and the
 #: search stops after this many fixes (:func:`advise`).
-ADVICE_FIELDS = 4
+ADVICE_FIELDS = 3
 ADVICE_FIXES = 2
 
 MARGIN_TEXT = (
@@ -493,7 +493,12 @@ def find_fixes(
     vmap = {v.field: v for v in varies}
     base = ev({})
     if base.passed and robust is None:
-        improve = _improve(base)
+        from betvdesign.checks.checker import check_derivation
+        from betvdesign.nondim.device import derive
+
+        kw = {} if horizon is None else {"horizon": horizon}
+        whole = check_derivation(derive(spec), target_speed_m_s=target_speed_m_s, **kw)
+        improve = _improve(outcome_of(whole))  # the check's own warnings, adequacy too
         msg = "the device already passes" + (
             "; it would still improve: " + ", ".join(i["rule"] for i in improve)
             if improve
