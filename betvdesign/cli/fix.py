@@ -102,8 +102,8 @@ def fix_cmd(
         res = fx.find_fixes(spec, varies, target_speed_m_s=target, robust=robust, p_min=p_min)
         if robust is not None:
             res.spread_note = (
-                f"P(pass) under the spreads ({', '.join(spread)}; {samples} samples, seed "
-                f"{seed}) counts every error rule: {SPREAD_RULES}"
+                f"P(pass) under the spreads ({'; '.join(_spread_text(t) for t in spread)}; "
+                f"{samples} samples, seed {seed}) counts every error rule: {SPREAD_RULES}"
             )
         text = None
         if output is not None and res.best is not None:
@@ -120,6 +120,17 @@ def fix_cmd(
         if not as_json:
             typer.echo(f"wrote {output} (betv check {output} passes)")
     raise typer.Exit(EXIT_OK if res.status in ("fixed", "already_passes") else EXIT_RULE_FAILED)
+
+
+def _spread_text(text: str) -> str:
+    """A spread as used, its distribution always stated (the default named as such)."""
+    from betvdesign.studies.tolerance import parse_tolerance
+
+    t = parse_tolerance(text)
+    width = "σ" if t.dist == "normal" else "half-width"
+    amount = f"{100 * t.relative:.3g} %" if t.relative is not None else f"{t.absolute}"
+    given = text.partition("=")[2].split(":")[0].strip().lower() in ("normal", "uniform")
+    return f"{t.field}: {t.dist} {width} {amount}" + ("" if given else " (normal: the default)")
 
 
 def _print(res, file: Path) -> None:
