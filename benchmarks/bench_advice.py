@@ -13,7 +13,7 @@ failing rule whose fix text is not the advice, or ``betv fix --vary FIELD`` givi
 another value or direction.
 
 boundary: seeded (device, field) cases; ``betv fix --vary FIELD`` gives the boundary b
-and the value b·(1 ± 5 %); a dense scan outward from the current value in 0.25 % steps
+and the value b·(1 ± 5 %); a dense scan outward from the current value in 0.5 % steps
 (alternating sides, the check itself) finds the nearest passing value p; the case is
 within tolerance when |ln(b/p)| ≤ 1 % and the value lies 5 % beyond b on the passing
 side. Writes benchmarks/out/advice_*.json.
@@ -163,7 +163,7 @@ def consistency(n: int, workers: int = 1, compare: int = 20) -> dict:
     }
 
 
-def dense_nearest(spec, v, limit: float, step: float = 0.0025) -> float | None:
+def dense_nearest(spec, v, limit: float, step: float = 0.005) -> float | None:
     """Nearest passing value of field ``v`` within |ln(x/x0)| ≤ limit, by the check."""
     k = 1
     while k * step <= limit:
