@@ -47,7 +47,7 @@ def test_shin2004_fails_the_window_and_shows_fit_mismatch(no_solver):
 
 def _device(stdout: str) -> dict:
     d = json.loads(stdout)
-    assert (d["schema"], d["version"]) == ("betv-check", 1)
+    assert (d["schema"], d["version"]) == ("betv-check", 2)
     assert len(d["devices"]) == 1
     return d["devices"][0]
 
