@@ -61,6 +61,12 @@ def passes(spec) -> bool:
     return res.verdict == "pass" and margin_ok
 
 
+def random_design(seed: int):
+    """The first failing design drawn by a generator seeded with ``seed`` (see
+    :func:`random_designs`); each seed gives one design, so workers draw in parallel."""
+    return random_designs(1, seed)[0]
+
+
 def random_designs(n: int, seed: int = SEED, *, failing: bool = True):
     """``n`` seeded designs: a shipped device with 2-3 of its fields moved by ×/÷ up to 2.5
     (impact angle within 15-70°); only failing ones when ``failing``."""
@@ -74,22 +80,25 @@ def random_designs(n: int, seed: int = SEED, *, failing: bool = True):
 
     rng = np.random.default_rng(seed)
     specs = [load_device(p) for p in DEVICES]
-    out = []
+    out, attempts = [], 0
     while len(out) < n:
         spec = specs[rng.integers(len(specs))]
         have = [f for f in FIELDS if current_value(spec, f) is not None]
         k = int(rng.integers(2, 4))
         chosen = rng.choice(have, size=min(k, len(have)), replace=False)
-        changes = []
+        changes: list[tuple[str, object]] = []
         for f in chosen:
             x0, unit = current_value(spec, f)
             if f == "contact.impact_angle":
                 x = float(rng.uniform(15, 70))
             else:
                 x = x0 * math.exp(rng.uniform(-math.log(2.5), math.log(2.5)))
-            changes.extend([f, ureg.Quantity(x, unit) if unit else x])
+            changes.append((str(f), ureg.Quantity(x, unit) if unit else x))
+        attempts += 1
+        if attempts > 100 * n:
+            raise RuntimeError(f"no {n} failing designs in {attempts} draws")
         try:
-            s = spec.replace(*changes)
+            s = spec.replace(*changes[0], *changes[1:])
             res = check_derivation(derive(s), adequacy=False)
         except (BetvError, ValueError):
             continue
@@ -108,6 +117,8 @@ def _one(args) -> dict:
 
     label, spec, compare = args
     t0 = time.perf_counter()
+    if isinstance(spec, int):  # a seed: draw the design here
+        spec = random_design(spec)[0]
     res = check_derivation(derive(spec), adequacy=False)
     answers = advise(res)
     text = advice_text(answers) if answers else ""
@@ -138,18 +149,24 @@ def _one(args) -> dict:
 
 
 def consistency(n: int, workers: int = 1, compare: int = 20) -> dict:
-    from concurrent.futures import ProcessPoolExecutor
+    from concurrent.futures import ProcessPoolExecutor, as_completed
 
     from betvdesign.spec.loader import load_device
 
     jobs = [(p.stem, load_device(p), True) for p in DEVICES]
-    jobs += [(f"random-{i}", s, i < compare) for i, (s, _) in enumerate(random_designs(n))]
+    jobs += [(f"random-{i}", SEED * 1000 + i, i < compare) for i in range(n)]
     t0 = time.perf_counter()
-    if workers > 1:
-        with ProcessPoolExecutor(workers) as pool:
-            rows = list(pool.map(_one, jobs))
-    else:
-        rows = [_one(j) for j in jobs]
+    rows = []
+    with ProcessPoolExecutor(workers) as pool:
+        futures = [pool.submit(_one, j) for j in jobs]
+        for k, fut in enumerate(as_completed(futures), 1):
+            r = fut.result()
+            rows.append(r)
+            print(
+                f"{k}/{len(jobs)} {r['design']} hints {r['hints']} "
+                f"contradictions {len(r['contradictions'])} {r['seconds']:.1f} s",
+                flush=True,
+            )
     return {
         "designs": len(rows),
         "shipped": len(DEVICES),
