@@ -119,6 +119,10 @@ def _one(args) -> dict:
     t0 = time.perf_counter()
     if isinstance(spec, int):  # a seed: draw the design here
         spec = random_design(spec)[0]
+    else:  # a path: load it here (quantities of this process's registry)
+        from betvdesign.spec.loader import load_device
+
+        spec = load_device(spec)
     res = check_derivation(derive(spec), adequacy=False)
     answers = advise(res)
     text = advice_text(answers) if answers else ""
@@ -151,9 +155,7 @@ def _one(args) -> dict:
 def consistency(n: int, workers: int = 1, compare: int = 20) -> dict:
     from concurrent.futures import ProcessPoolExecutor, as_completed
 
-    from betvdesign.spec.loader import load_device
-
-    jobs = [(p.stem, load_device(p), True) for p in DEVICES]
+    jobs = [(p.stem, str(p), True) for p in DEVICES]
     jobs += [(f"random-{i}", SEED * 1000 + i, i < compare) for i in range(n)]
     t0 = time.perf_counter()
     rows = []
