@@ -118,6 +118,12 @@ class _MovedModule(importlib.abc.MetaPathFinder, importlib.abc.Loader):
 sys.meta_path.insert(0, _MovedModule())
 
 
+def __dir__() -> list[str]:
+    """The module's names with the lazily imported public ones (``load_device``,
+    ``check``, ...), so ``dir(betvdesign)`` and tab completion show them."""
+    return sorted(set(globals()) | set(_LAZY))
+
+
 def __getattr__(name: str) -> Any:
     if name in _LAZY:
         value = getattr(importlib.import_module(_LAZY[name]), name)

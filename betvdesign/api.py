@@ -25,6 +25,7 @@ def check(
     select: Sequence[str] = (),
     ignore: Sequence[str] = (),
     target_speed: str | None = None,
+    advice: bool = True,
 ) -> DeviceView:
     """Check a device the way ``betv check`` does and return its view.
 
@@ -37,6 +38,10 @@ def check(
     target_speed : str, optional
         Required slider speed with its unit, e.g. ``"1 mm/s"`` (adds the rule
         ``target-speed``).
+    advice : bool
+        For a failing check, quote the nearest passing value of the fields that move
+        what fails as the rules' fix (the search of ``betv fix``;
+        :func:`betvdesign.studies.fix.advise`).
 
     Returns
     -------
@@ -72,6 +77,10 @@ def check(
         d, source = derive(device), ""
     target = None if target_speed is None else parse_speed(target_speed, "target_speed")
     res = check_derivation(d, target_speed_m_s=target)
+    if advice:
+        from betvdesign.studies.fix import advise, with_advice
+
+        res = with_advice(res, advise(res, target_speed_m_s=target))
     res.source_file = source
     flt = RuleFilter(tuple(select), tuple(ignore))
     for message in flt.unmatched([res]):

@@ -99,12 +99,12 @@ def test_failing_rules_grouped_across_mirrored_sets_with_fix():
     assert "FAIL frequency-window [right, left]: ϖ = 0.34 below the window" in r.stdout
     lines = r.stdout.splitlines()
     assert len(lines) <= 25 and max(len(x) for x in lines) <= 100
-    fix = next(i for i, x in enumerate(lines) if x.startswith("       fix: set drive.frequency"))
+    fix = next(i for i, x in enumerate(lines) if x.startswith("       fix: raise drive.frequency"))
     assert "FAIL frequency-window" in "\n".join(lines[fix - 4 : fix])
     d = json.loads(run("check", "--json", SHIN).stdout)["devices"][0]
     for s in d["sets"]:
         win = next(x for x in s["rules"] if x["id"] == "frequency-window")
-        assert win["fix"].startswith("set drive.frequency within")
+        assert win["fix"].startswith("raise drive.frequency 500 Hz -> 772.1 Hz")
 
 
 def test_quiet_prints_only_failing_devices():

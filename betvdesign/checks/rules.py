@@ -72,6 +72,7 @@ if TYPE_CHECKING:
 __all__ = [
     "MARGIN_CORNERS",
     "PUBLISHED_RTOL",
+    "SEARCH_HINT",
     "SETTLE_SHARE",
     "SRC_ADEQUACY",
     "SRC_DETERMINATION",
@@ -86,7 +87,6 @@ __all__ = [
     "adequacy_rule",
     "evaluate",
     "evaluate_device",
-    "mode_hint",
     "speed_rules",
 ]
 
@@ -224,7 +224,7 @@ def _frequency_window(s: SetDerivation, vertical: VerticalResult | None) -> Rule
         fix = (
             f"set drive.frequency within {_drive_range(s, lo, hi)}, or move the head's "
             f"vertical resonance (now {_hz(f_v)}) to {_hz(s.scales.f_act_hz / hi)}–"
-            f"{_hz(s.scales.f_act_hz / lo)}; `betv fix` finds the smallest change"
+            f"{_hz(s.scales.f_act_hz / lo)}; {SEARCH_HINT}"
         )
     if vertical is not None and vertical.success:
         msg += (
@@ -238,30 +238,19 @@ def _frequency_window(s: SetDerivation, vertical: VerticalResult | None) -> Rule
     return RuleResult("frequency-window", "error", lo <= v < hi, v, thr, msg, SRC_WINDOW, fix=fix)
 
 
-def mode_hint(intended: str) -> str:
-    """Which way to move the designer's fields toward a mode.
+#: The fix text of a mode rule before the search has run: no direction is claimed
+#: here (a direction table cannot know which way the nearest passing design lies); the
+#: check's callers replace it with the search's answer (:func:`betvdesign.studies.fix.
+#: advise`, the same search as ``betv fix``).
+SEARCH_HINT = (
+    "`betv fix FILE` finds the nearest passing value of each field (`betv check` names "
+    "it unless run with --no-advice)"
+)
 
-    Parameters
-    ----------
-    intended : {"push", "pull"}
-        The mode wanted.
 
-    Returns
-    -------
-    str
-        The change in words (MODEL.md: larger ϖ and α favour push; larger β and κ favour
-        pull).
-    """
-    if intended == "push":
-        return (
-            "toward push: raise ϖ (higher drive frequency, or a lower head vertical resonance) "
-            "or α (softer tangential contact), lower β (lighter head, wider or longer slider "
-            "beams) or κ (smaller impact angle)"
-        )
-    return (
-        "toward pull: lower ϖ (lower drive frequency) or α (stiffer tangential contact), "
-        "raise β (heavier head, narrower or shorter beams) or κ (larger impact angle)"
-    )
+def _margin_cause(flips: dict[str, str | None]) -> str:
+    """The corners where the mode changes (read off the check, no advice)."""
+    return ", ".join(f"{k} gives {v or 'no orbit'}" for k, v in flips.items())
 
 
 _STATUS_FIX = {
@@ -315,14 +304,14 @@ def _mode(s: SetDerivation, orbit: OrbitLike | None, travel: TravelAnswer | None
     per = f" (mean of a {k}-cycle orbit)" if k > 1 else ""
     if mode == "stalled":
         msg = f"exact periodic orbit: Δs = {ds:.3g} per cycle{per}: the slider does not move"
-        fix = mode_hint(s.intended_mode) + "; `betv fix FILE` finds the smallest change"
+        fix = SEARCH_HINT
         return RuleResult("mode", "error", False, ds, want, msg, SRC_SOLVER, fix=fix)
     ok = mode == s.intended_mode
     msg = (
         f"exact periodic orbit: Δs = {ds:.4g} per cycle{per} -> {mode} mode "
         f"(intended {s.intended_mode})"
     )
-    fix = "" if ok else mode_hint(s.intended_mode) + "; `betv fix FILE` finds the smallest change"
+    fix = "" if ok else SEARCH_HINT
     return RuleResult("mode", "error", ok, ds, want, msg, SRC_SOLVER, fix=fix)
 
 
@@ -373,7 +362,7 @@ def _travel_mode(s: SetDerivation, ans: TravelAnswer, want: str) -> RuleResult:
         f"transient from rest crosses the {travel} travel in {ans.cycles_to_cross} cycles, "
         f"mean Δs = {ds:.4g} per cycle -> {mode} mode (intended {s.intended_mode}; {shown})"
     )
-    fix = "" if ok else mode_hint(s.intended_mode) + "; `betv fix FILE` finds the smallest change"
+    fix = "" if ok else SEARCH_HINT
     return RuleResult("mode", "error", ok, ds, want, msg, SRC_SETTLE, fix=fix)
 
 
@@ -416,7 +405,7 @@ def _margin(
         if ok
         else f"the mode changes within fabrication spread ({listing})"
     )
-    fix = "" if ok else mode_hint(mode) + " to gain margin; `betv fix FILE` finds the change"
+    fix = "" if ok else f"move away from the flip ({_margin_cause(flips)}); {SEARCH_HINT}"
     return RuleResult(
         "mode-margin", "warning", ok, float(len(flips)), thr, msg, SRC_MARGIN, fix=fix
     )
@@ -631,8 +620,8 @@ def _target(v: float | None, target: float, why: str) -> RuleResult:
         SRC_SPEED,
         fix=""
         if ok
-        else "raise the drive voltage (stroke u) or frequency; `betv fix FILE "
-        "--target-speed Q` finds the change",
+        else "the speed is proportional to the stroke u (drive voltage); `betv fix FILE "
+        "--target-speed Q` finds the nearest passing value of each field",
         unit="m/s",
     )
 

@@ -82,13 +82,21 @@ def check_cmd(
         "that does not cross within them fails the mode rule (raise it for long travels; "
         "about 1 µs per cycle).",
     ),
+    advice: bool = typer.Option(
+        True,
+        "--advice/--no-advice",
+        help="For a failing check (or a mode that flips within the margin), search the "
+        "nearest passing value of the fields that move what fails (the search of `betv "
+        "fix`, a few seconds) and quote it as the rules' fix. --no-advice skips it.",
+    ),
     show_derivation: bool = typer.Option(False, "--derivation", hidden=True),
 ) -> None:
     """Check device files: design window, push/pull mode, speed, margin, resonance, settling.
 
     Prints one compact block per device: the verdict; per actuator set its mode, speed
     and margin (from the exact periodic orbit; the paper's λ fit beside it) and the
-    failing rules, each with what to change (`betv fix FILE` finds the smallest change).
+    failing rules, each with what to change: the nearest passing value of the fields
+    that move what fails, from the same search as `betv fix FILE`.
     Defaults for --select, --ignore and --target-speed may be set in a [tool.betv] table
     of pyproject.toml.
 
@@ -104,6 +112,7 @@ def check_cmd(
     )
     from betvdesign.nondim.device import derive_file
     from betvdesign.spec.units import parse_speed
+    from betvdesign.studies.fix import advise, with_advice
 
     verbose = verbose or show_derivation
     with user_errors():
@@ -132,6 +141,8 @@ def check_cmd(
                 horizon=horizon,
             )
             res.source_file = str(f)
+            if advice:
+                res = with_advice(res, advise(res, target_speed_m_s=target, horizon=horizon))
             results.append(res)
     for warning in flt.unmatched(results):
         print(f"warning: {warning}", file=sys.stderr)

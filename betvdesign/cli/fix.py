@@ -18,9 +18,22 @@ import typer
 from betvdesign.cli import app
 from betvdesign.cli.common import EXIT_OK, EXIT_RULE_FAILED, seed_option, user_errors
 from betvdesign.output.files import check_output_file, write_atomic
+from betvdesign.spec.fields import describe_change
+from betvdesign.studies.fix import SPREAD_RULES
+
+_FIX_HELP = (
+    "Find the nearest passing value of each field: stepped outward from the current "
+    "value, the boundary where the check starts to pass bisected to 0.2 %, then the "
+    "value proposed FIELD_MARGIN (5 %) inside it. Passing means what `betv check` calls "
+    "PASS (every error rule), with the mode also held at the margin corners ϖ·(1 ± 5 %) "
+    "and α·(1 ± 10 %); warnings that do not fail the check (slow settling, tangential "
+    "resonance) do not block a fix and are listed. Fixes by a drive setting or a drawn "
+    "dimension come first, resonances after (with what they mean for the suspension). "
+    "Only when no single field fixes the device are pairs tried."
+)
 
 
-@app.command("fix")
+@app.command("fix", help=_FIX_HELP)
 def fix_cmd(
     file: Annotated[Path, typer.Argument(help="Device YAML file.")],
     vary: Annotated[
@@ -43,13 +56,14 @@ def fix_cmd(
         list[str] | None,
         typer.Option(
             "--spread",
-            metavar="FIELD=DIST",
-            help="Fabrication spread (as in `betv tolerance --spread`, e.g. "
-            "slider.beam_width=normal:0.3um); the fix must keep P(intended mode) >= --p-min.",
+            metavar="FIELD=DIST:AMOUNT",
+            help="Fabrication spread with its distribution (as in `betv tolerance "
+            "--spread`, e.g. slider.beam_width=normal:0.3um or =uniform:5%); the fix must "
+            f"keep P(pass) >= --p-min, where pass counts every error rule ({SPREAD_RULES}).",
         ),
     ] = None,
     p_min: Annotated[
-        float, typer.Option("--p-min", min=0.5, max=0.9999, help="Required P(intended mode).")
+        float, typer.Option("--p-min", min=0.5, max=0.9999, help="Required P(pass).")
     ] = 0.99,
     samples: Annotated[
         int,
@@ -60,12 +74,15 @@ def fix_cmd(
     ] = 0,
     output: Annotated[
         Path | None,
-        typer.Option("-o", "--output", help="Write the device file with the best fix applied."),
+        typer.Option(
+            "-o",
+            "--output",
+            help="Write the device file with the best fix applied (only the changed lines "
+            "differ, each with a comment).",
+        ),
     ] = None,
     as_json: Annotated[bool, typer.Option("--json", help="Print JSON on stdout.")] = False,
 ) -> None:
-    """Find the smallest change (one field, then pairs) that passes every error rule with
-    margin; every candidate goes through the same exact check as `betv check`."""
     from betvdesign.spec.loader import load_device
     from betvdesign.spec.units import parse_speed
     from betvdesign.studies import fix as fx
@@ -77,10 +94,17 @@ def fix_cmd(
         varies = fx.parse_vary(spec, vary or [])
         robust = None
         if spread:
-            robust = fx.robust_probability(spec, list(spread), n=samples, seed=seed)
+            robust = fx.robust_probability(
+                spec, list(spread), n=samples, seed=seed, target_speed_m_s=target
+            )
         if output is not None:
             check_output_file(output, suffixes=(".yaml", ".yml"))
         res = fx.find_fixes(spec, varies, target_speed_m_s=target, robust=robust, p_min=p_min)
+        if robust is not None:
+            res.spread_note = (
+                f"P(pass) under the spreads ({'; '.join(_spread_text(t) for t in spread)}; "
+                f"{samples} samples, seed {seed}) counts every error rule: {SPREAD_RULES}"
+            )
         text = None
         if output is not None and res.best is not None:
             text = fixed_text(file, res, res.best)
@@ -98,33 +122,59 @@ def fix_cmd(
     raise typer.Exit(EXIT_OK if res.status in ("fixed", "already_passes") else EXIT_RULE_FAILED)
 
 
+def _spread_text(text: str) -> str:
+    """A spread as used, its distribution always stated (the default named as such)."""
+    from betvdesign.studies.tolerance import parse_tolerance
+
+    t = parse_tolerance(text)
+    width = "σ" if t.dist == "normal" else "half-width"
+    amount = f"{100 * t.relative:.3g} %" if t.relative is not None else f"{t.absolute}"
+    given = text.partition("=")[2].split(":")[0].strip().lower() in ("normal", "uniform")
+    return f"{t.field}: {t.dist} {width} {amount}" + ("" if given else " (normal: the default)")
+
+
 def _print(res, file: Path) -> None:
     from betvdesign.checks.rule import format_speed
+    from betvdesign.studies.fix import MARGIN_TEXT
 
     if res.status == "already_passes":
-        typer.echo(
-            f"{file}: already passes every error rule; nothing to change "
-            "(`betv check` lists its warnings)"
-        )
+        typer.echo(f"{file}: already passes `betv check` with its mode margin; nothing to fix.")
+        if res.improve:
+            typer.echo("it would still improve:")
+            for item in res.improve:
+                typer.echo(f"  {item['rule']}: {item['message']}")
+                if item["fix"]:
+                    typer.echo(f"    fix: {item['fix']}")
         return
     typer.echo(f"{file}: {res.message} ({res.evaluations} exact checks)")
-    rows = [c for c in res.candidates if c.passed][:6]
+    rows = [c for c in res.candidates if c.passed][:8]
     if rows:
-        typer.echo(f"{'#':>2} {'change':<58} {'mode':<6} {'speed':>11} {'margin':>7}")
+        typer.echo(f"{'#':>2} {'change':<58} {'mode':<6} {'speed':>11}")
         for i, c in enumerate(rows, 1):
             change = "; ".join(
                 f"{f}: {res.varies[f].text(res.varies[f].x0)} -> {res.varies[f].text(x)}"
                 for f, x in c.changes.items()
             )
             speed = "—" if c.speed_m_s is None else format_speed(c.speed_m_s)
-            margin = f"{100 * c.margin:.0f} %" if c.margin else "—"
-            typer.echo(f"{i:>2} {change:<58} {c.mode or '—':<6} {speed:>11} {margin:>7}")
+            typer.echo(f"{i:>2} {change:<58} {c.mode or '—':<6} {speed:>11}")
+            for a in c.answers:
+                if a.boundary is None:
+                    continue
+                typer.echo(f"   passes from {a.text(a.boundary)} (boundary, bisected)")
+                meaning = describe_change(a.field, a.x0, a.value)
+                if meaning:
+                    typer.echo(f"   means: {meaning}")
             typer.echo(
-                f"   why: {c.why}"
-                + (f"; P(intended) = {c.p_intended:.3f}" if c.p_intended is not None else "")
+                f"   why: {c.why}" + (f"; P(pass) = {c.p_pass:.3f}" if c.p_pass is not None else "")
             )
-    for f, why in res.blocking.items():
-        typer.echo(f"   {f}: no passing value within its bounds (blocked by {why})")
+        typer.echo(MARGIN_TEXT)
+    if res.spread_note:
+        typer.echo(res.spread_note)
+    for f, b in res.blocking.items():
+        typer.echo(
+            f"   {f}: no passing value from {b['bounds_tried'][0]} to {b['bounds_tried'][1]} "
+            f"(blocked by {b['rule'] or 'every value tried'})"
+        )
     if res.status == "none":
         print(
             f"{file}: no fix within the bounds; widen them with --vary FIELD=LO:HI", file=sys.stderr

@@ -22,7 +22,9 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Annotated, Any, TypeVar
 
+import click
 import typer
+from typer.core import TyperGroup
 
 from betvdesign.cli import app
 from betvdesign.cli.common import (
@@ -42,6 +44,7 @@ from betvdesign.cli.physics import (
     ZetaVOpt,
     physics_terms,
 )
+from betvdesign.errors import UsageError
 from betvdesign.output.files import atomic_path
 from betvdesign.spec import limits
 from betvdesign.studies.engine.executors import make_executor
@@ -54,9 +57,22 @@ __all__ = ["EXIT_INTERRUPTED", "interruptible"]  # re-exported for older imports
 MAX_LISTED = 40
 T = TypeVar("T")
 
+
+class _SweepGroup(TyperGroup):
+    """``betv sweep FILE --vary ...`` is ``betv sweep device FILE --vary ...``: a first
+    argument that is not a sub-command (a device file) goes to ``device``."""
+
+    def parse_args(self, ctx: click.Context, args: list[str]) -> list[str]:
+        if args and not args[0].startswith("-") and args[0] not in self.commands:
+            args = ["device", *args]
+        return super().parse_args(ctx, args)
+
+
 sweep_app = typer.Typer(
     name="sweep",
-    help="Design-space sweeps: push/pull map, vertical regime diagram, Δs against λ.",
+    cls=_SweepGroup,
+    help="Sweeps: a device file's own fields in physical units (`betv sweep FILE --vary "
+    "FIELD=LO:HI`), and the dimensionless push/pull map, regime diagram and Δs against λ.",
     no_args_is_help=True,
 )
 app.add_typer(sweep_app, name="sweep")
@@ -454,5 +470,89 @@ def regime_cmd(
                 f"(overview: periods > {LONG_PERIOD} cycles shown as aperiodic; "
                 "--json lists every interval)"
             )
+
+        emit(data, as_json, human)
+
+
+@sweep_app.command("device")
+def device_cmd(
+    file: Annotated[Path, typer.Argument(help="Device YAML file.")],
+    vary: Annotated[
+        list[str],
+        typer.Option(
+            "--vary",
+            metavar="FIELD=LO:HI",
+            help="A field of the file and its range in any unit of the field "
+            "(drive.frequency=1kHz:4kHz, slider.beam_width=5um:45um; an SI prefix alone "
+            "means the field's SI unit: drive.frequency=1k:4k). Once (speed against the "
+            "field) or twice (the exact-mode map).",
+        ),
+    ],
+    points: Annotated[
+        int,
+        typer.Option(
+            "--points", "-n", help="Points per field (2 to 400).", callback=int_option(2, 400)
+        ),
+    ] = 40,
+    log: Annotated[bool, typer.Option("--log", help="Log-spaced grid.")] = False,
+    set_name: Annotated[
+        str | None, typer.Option("--set", help="Actuator set (default: the first).")
+    ] = None,
+    residual_tol: ResidualTolOpt = 1e-10,
+    figure: Annotated[
+        Path | None, typer.Option("--figure", help="Write the figure (SVG/PNG/PDF).")
+    ] = None,
+    out: OutOpt = None,
+    overwrite: OverwriteOpt = False,
+    executor: ExecutorOpt = "process",
+    workers: WorkersOpt = None,
+    chunksize: ChunkOpt = None,
+    scheduler: SchedulerOpt = None,
+    as_json: JsonOpt = False,
+    quiet: QuietOpt = False,
+) -> None:
+    """Sweep a device file's own fields in physical units: 1-D, the speed against the
+    field with the exact mode's bands and every mode flip bisected; 2-D, the exact-mode
+    map (push/pull/stalled/not driven/unbounded) with the device marked and the paper's
+    λ = 1 curve over it. Every point is the device with those values through the same
+    derivation as `betv check` and its exact periodic orbit (speed: the periodic
+    orbit's Δs·u·cosθ·f_act)."""
+    from betvdesign.spec.loader import load_device
+    from betvdesign.studies.fieldsweep import parse_axis, run_fieldsweep
+
+    with user_errors(), interruptible(out):
+        if not 1 <= len(vary) <= 2:
+            raise UsageError("--vary: give one or two fields")
+        spec = load_device(file)
+        axes = [parse_axis(spec, v, points, log=log) for v in vary]
+        if figure is not None:
+            output_file(figure, suffixes=(".svg", ".png", ".pdf"))
+        execution = Execution(executor, workers, chunksize, scheduler, out, overwrite, quiet)
+        run, summary = execution.run(
+            "field sweep", run_fieldsweep, file, axes, set_name=set_name, tol=residual_tol
+        )
+        summary["name"] = spec.name
+        if figure is not None:
+            from betvdesign.plots.fieldsweep import save_fieldsweep_figure
+
+            with atomic_path(figure) as tmp:
+                save_fieldsweep_figure(run.rows, summary, tmp)
+        data = {"study": "fieldsweep", **run_block(run), **summary}
+        data["figure"] = str(figure) if figure else None
+
+        def human() -> None:
+            fields = " × ".join(
+                f"{f['field']} {f['lo']:.4g}–{f['hi']:.4g} {f['unit']}".rstrip()
+                for f in summary["fields"]
+            )
+            typer.echo(f"{spec.name} [{summary['set']}]: {fields}, {summary['points']} points")
+            typer.echo("exact modes: " + ", ".join(f"{k} {v}" for k, v in summary["modes"].items()))
+            for fl in summary.get("flips", []):
+                f0 = summary["fields"][0]
+                typer.echo(
+                    f"  mode flips at {f0['field']} = {fl['at']:.5g} {f0['unit']}: "
+                    f"{fl['below']} below, {fl['above']} above"
+                )
+            typer.echo(f"{run.computed} computed, {run.resumed} resumed in {run.elapsed_s:.2f} s")
 
         emit(data, as_json, human)

@@ -146,6 +146,12 @@ class Event(NamedTuple):
 class Trajectory(SolverResult):
     """A transient run of ``n_cycles`` actuation cycles from ``section[0]``.
 
+    Time origin: every time of the exact solver (``section``, ``events``, ``phases``) is
+    the kernel time τ_k = τ + δ/ϖ, where τ is the drive's phase time and δ =
+    atan(2ζ_v·ϖ) the phase of the normal force N ∝ sin(ϖτ + δ) (docs/MODEL.md,
+    "Damping"); without head damping δ = 0 and τ_k = τ. The drive-phase time is
+    τ = τ_k − δ/ϖ.
+
     Attributes
     ----------
     params : ModelParams

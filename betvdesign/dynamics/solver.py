@@ -177,6 +177,11 @@ def simulate(
 ) -> Trajectory:
     """Exact event-driven transient of ``cycles`` actuation cycles from ``state0`` at τ = 0.
 
+    Time origin: τ here and in the returned :class:`Trajectory` is the kernel time
+    τ_k = τ_drive + δ/ϖ, with δ = atan(2ζ_v·ϖ) the phase of the normal force (0 without
+    head damping, when τ_k is the drive's phase time); sections are at ϖτ_k = 2mπ
+    (docs/MODEL.md, "Damping"). Subtract δ/ϖ for the drive-phase time.
+
     Every phase is advanced in closed form to its next event, located by a certified
     search (MODEL.md "Dimensionless model"); the vertical motion is computed once
     (:class:`~betvdesign.dynamics.vertical.VerticalSchedule`), the tangential motion by

@@ -140,3 +140,40 @@ def bounds(path: str) -> Bounds:
     """
     known = BY_PATH.get(path)
     return known.bounds if known is not None else (0.5, 2.0)
+
+
+def describe_change(path: str, old: float, new: float) -> str:
+    """What a change of a field means physically (resonances and stiffnesses in the
+    suspension a designer draws); "" for fields that are drawn or set directly.
+
+    Parameters
+    ----------
+    path : str
+        Dotted field path.
+    old, new : float
+        The value before and after, in the same unit.
+
+    Returns
+    -------
+    str
+        E.g. for a resonance f → r·f: the suspension stiffness k ∝ f² (head mass kept)
+        ×r², i.e. its flexure beams ×r^(2/3) wide (k ∝ w³) or ×r^(−2/3) long (k ∝ 1/L³).
+    """
+    if old <= 0 or new <= 0:
+        return ""
+    r = new / old
+    if path in ("actuator.vertical_resonance", "actuator.horizontal_resonance"):
+        which = "vertical" if "vertical" in path else "tangential"
+        k = r**2
+    elif path == "actuator.horizontal_stiffness":
+        which, k = "tangential", r
+    elif path == "actuator.alpha":  # α = k_v/k_h: k_h × 1/r
+        which, k = "tangential", 1.0 / r
+    else:
+        return ""
+    soft = "stiffer" if k > 1 else "softer"
+    return (
+        f"the head's {which} suspension {abs(k - 1):.0%} {soft} (k ×{k:.3g}, head mass kept): "
+        f"its flexure beams ×{k ** (1 / 3):.3g} wide (k ∝ w³) or ×{k ** (-1 / 3):.3g} long "
+        "(k ∝ 1/L³)"
+    )

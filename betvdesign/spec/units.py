@@ -109,7 +109,7 @@ def parse_quantity(text: str) -> pint.Quantity:
     try:
         q = ureg.Quantity(text)
     except pint.UndefinedUnitError as exc:
-        raise ValueError(f"unknown unit in {text!r}: {exc}") from None
+        raise ValueError(f"unknown unit in {text!r}: {exc}{_unit_hint(text)}") from None
     except pint.OffsetUnitCalculusError:
         raise ValueError(
             f"{text!r}: offset units (degC, degF) have no meaning here; use kelvin or a "
@@ -120,6 +120,57 @@ def parse_quantity(text: str) -> pint.Quantity:
     if not isinstance(q, pint.Quantity):  # e.g. a bare unit name parses to a Unit
         q = ureg.Quantity(1.0, q)
     return q
+
+
+#: Units a did-you-mean suggests for a mistyped unit (case and spelling).
+COMMON_UNITS = (
+    "Hz",
+    "kHz",
+    "MHz",
+    "m",
+    "mm",
+    "um",
+    "nm",
+    "V",
+    "mV",
+    "kg",
+    "g",
+    "mg",
+    "ug",
+    "ng",
+    "s",
+    "ms",
+    "us",
+    "N/m",
+    "deg",
+    "rad",
+    "m/s",
+    "mm/s",
+    "um/s",
+    "kg/m^3",
+    "Pa",
+    "GPa",
+)
+
+
+def _unit_hint(text: str) -> str:
+    """ "; did you mean '2 kHz'?" for a unit written in the wrong case or nearly right."""
+    import difflib
+
+    number, _, unit = text.strip().partition(" ")
+    if not unit:
+        i = next((k for k, c in enumerate(text) if c.isalpha()), len(text))
+        number, unit = text[:i].strip(), text[i:].strip()
+    if not unit:
+        return ""
+    folded = {u.casefold(): u for u in COMMON_UNITS}
+    hit = folded.get(unit.casefold().replace("µ", "u"))
+    if hit is None:
+        close = difflib.get_close_matches(unit, COMMON_UNITS, n=1, cutoff=0.6)
+        hit = close[0] if close else None
+    if hit is None:
+        return ""
+    return f"; did you mean '{number} {hit}'?" if number else f"; did you mean '{hit}'?"
 
 
 def parse_positive(text: str, unit: str, what: str) -> float:
@@ -148,8 +199,16 @@ def parse_positive(text: str, unit: str, what: str) -> float:
 
     try:
         q = parse_quantity(text)
+        if q.dimensionless and not ureg.Quantity(1.0, unit).dimensionless:
+            raise UsageError(
+                f"{what}: missing unit in {text!r} (write e.g. '{text.strip()} {unit}')"
+            )
         v = float(q.to(unit).magnitude)
-    except (ValueError, pint.DimensionalityError, pint.PintError) as exc:
+    except pint.DimensionalityError as exc:  # e.g. "mm/S" (siemens) for "mm/s"
+        raise UsageError(
+            f"{what}: {exc} (expected a quantity in units of {unit}){_unit_hint(text)}"
+        ) from None
+    except (ValueError, pint.PintError) as exc:
         raise UsageError(f"{what}: {exc} (expected a quantity in units of {unit})") from None
     if not (math.isfinite(v) and v > 0):
         raise UsageError(f"{what}: must be finite and > 0, got {text!r}")

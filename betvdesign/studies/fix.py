@@ -1,25 +1,32 @@
-"""``betv fix``: the smallest change to a device file that makes it pass, with margin.
+"""``betv fix`` and the check's advice: the nearest passing value of each field.
 
-Every candidate goes through the same path as ``betv check``: spec (one field
-changed) -> :func:`betvdesign.nondim.device.derive` -> exact periodic orbit -> rules
-(:func:`betvdesign.checks.checker.check_derivation`). There is no separate model.
+One search answers both ``betv fix`` and the ``fix`` text of every failing rule of
+``betv check`` (:func:`advise`, attached by the check's callers): there is no second
+source of advice that could point another way.
 
-A candidate **passes** when every error-severity rule passes (window, intended mode,
-target speed when given), the tangential-resonance distance holds and the slider
-settles (within 1 % of its periodic Δs) before it has crossed its travel range; the
-chosen value must also lie at least :data:`FIELD_MARGIN` (relative) inside the
-passing interval of the field, and its full check must also pass the exact
-mode-margin corners (ϖ ± 5 %, α ± 10 %).
+**Passing** is what ``betv check`` calls PASS (every error rule: frequency window,
+mode, target speed when given) with the mode also held at the margin corners
+ϖ·(1 ± 5 %) and α·(1 ± 10 %) (the rule ``mode-margin``). Warnings that do not fail the
+check (slow settling, tangential resonance, model adequacy) do not block a fix; they are
+listed with the fix. Every candidate goes through
+:func:`betvdesign.checks.checker.check_derivation`, the same path as ``betv check``.
 
-Search: one field at a time (log-spaced scan over its bounds, passing intervals
-refined by bisection, the point nearest the current value that keeps the margin),
-then, only if no single field works, pairs of the :data:`PAIR_FIELDS` fields that
-came closest, on a coarse 2-D grid. The change is measured as |ln(x/x0)| (in
-quadrature for pairs); changes equal to 0.01 in that measure rank operating fields
-(drive) before geometry (the order of :data:`DEFAULT_BOUNDS`). With tolerances
-(``tol``), each passing candidate is also run through a Monte Carlo of the spreads
-and must keep P(intended mode) ≥ ``p_min``; moving further into the passing
-interval is tried before a candidate is given up (the robust optimum).
+**Search, one field at a time.** From the current value x0 the field is stepped outward
+in both directions (interleaved, nearest first) in log steps of :data:`SCAN_STEP`
+within its bounds; at the first passing step the boundary is bisected to
+:data:`BISECT_RTOL`, and the value proposed is :data:`FIELD_MARGIN` (relative) inside
+it, on the passing side (re-checked; if that point fails, the island is narrower than
+the margin and the scan goes on). A field with no passing value within its bounds says
+so with the bounds tried and the rule that blocks it. Only when no single field
+fixes the device are pairs searched (:data:`PAIR_FIELDS` fields, coarse grid).
+
+**Ranking.** The designer's own fields first (a drive setting or a drawn dimension,
+:mod:`betvdesign.spec.fields`), then resonances, stiffnesses and materials (shown with
+what the change means physically); within each, the smallest change |ln(x/x0)|.
+
+With spreads (``--spread``), a candidate must also keep P(pass) ≥ ``p_min`` in a
+seeded Monte Carlo that counts every error rule: the frequency window, the tangential
+resonance, the exact mode and the target speed (:func:`robust_probability`).
 """
 
 from __future__ import annotations
@@ -27,25 +34,309 @@ from __future__ import annotations
 import itertools
 import math
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
 
 from betvdesign.errors import BetvError, ParameterError
+from betvdesign.spec.fields import BY_PATH, describe_change
 from betvdesign.spec.paths import with_values
 from betvdesign.studies.fixfields import DEFAULT_BOUNDS, Vary, parse_vary
 
-__all__ = ["DEFAULT_BOUNDS", "FIELD_MARGIN", "Vary", "find_fixes", "parse_vary"]
+__all__ = [
+    "BISECT_RTOL",
+    "DEFAULT_BOUNDS",
+    "FIELD_MARGIN",
+    "SCAN_STEP",
+    "FieldAnswer",
+    "FixResult",
+    "Vary",
+    "advise",
+    "find_fixes",
+    "parse_vary",
+    "robust_probability",
+    "with_advice",
+]
 
-#: Relative distance a chosen value keeps from the edge of its passing interval.
+#: Relative distance [-] the proposed value keeps inside the passing boundary of its
+#: field (x = boundary·(1 ± FIELD_MARGIN), on the passing side).
 FIELD_MARGIN = 0.05
-#: Scan points per field and bisection steps per interval edge.
-SCAN_POINTS = 31
-BISECT_STEPS = 9
+#: Relative outward step [-] of the scan of a field (log-spaced from the current value).
+SCAN_STEP = 0.05
+#: Relative width [-] to which a boundary is bisected.
+BISECT_RTOL = 0.002
 PAIR_POINTS = 9
 #: Pairs are searched among this many fields, those that came closest on their own.
 PAIR_FIELDS = 4
+#: The rules a fix must pass besides the error rules (the mode at the margin corners).
+REQUIRED_WARNINGS = ("mode-margin",)
+#: At most this many fields are searched for the advice of ``betv check``, and the
+#: search stops after this many fixes (:func:`advise`).
+ADVICE_FIELDS = 3
+ADVICE_FIXES = 2
+
+MARGIN_TEXT = (
+    f"margin: the value proposed lies {FIELD_MARGIN:.0%} inside the boundary where the "
+    "check starts to pass (bisected to 0.2 %), and the mode also holds at ϖ·(1 ± 5 %) and "
+    "α·(1 ± 10 %)"
+)
+
+
+# --- evaluation ------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Outcome:
+    """One exact check of a candidate: passes, the failing rules (error rules and
+    :data:`REQUIRED_WARNINGS`), the warnings that fail but do not block, the check."""
+
+    passed: bool
+    failing: tuple[str, ...]
+    warnings: tuple[str, ...]
+    check: Any
+
+
+class Evaluator:
+    """Checks candidate specs through the same path as ``betv check`` (cached)."""
+
+    def __init__(
+        self,
+        spec: Any,
+        varies: Sequence[Vary],
+        target_speed_m_s: float | None,
+        horizon: int | None = None,
+    ):
+        self.spec = spec
+        self.varies = {v.field: v for v in varies}
+        self.target = target_speed_m_s
+        self.horizon = horizon
+        self.cache: dict[tuple[tuple[str, float], ...], Outcome] = {}
+        self.evaluations = 0
+
+    def spec_at(self, changes: dict[str, float]) -> Any:
+        return with_values(self.spec, {f: self.varies[f].quantity(x) for f, x in changes.items()})
+
+    def __call__(self, changes: dict[str, float]) -> Outcome:
+        key = tuple(sorted(changes.items()))
+        if key not in self.cache:
+            self.cache[key] = self._run(changes)
+        return self.cache[key]
+
+    def _run(self, changes: dict[str, float]) -> Outcome:
+        from betvdesign.checks.checker import check_derivation
+        from betvdesign.model.domain import in_window
+        from betvdesign.nondim.device import derive
+        from betvdesign.studies.sampling import check_sample
+
+        self.evaluations += 1
+        try:
+            check_sample({f: (x, self.varies[f].unit) for f, x in changes.items()})
+            d = derive(self.spec_at(changes))
+            if not all(in_window(s.params.varpi) for s in d.sets):  # no orbit needed
+                return Outcome(False, ("frequency-window",), (), None)
+            kw = {} if self.horizon is None else {"horizon": self.horizon}
+            res = check_derivation(d, target_speed_m_s=self.target, adequacy=False, **kw)
+        except (ParameterError, BetvError, ValueError) as exc:
+            return Outcome(False, (f"invalid: {exc}",), (), None)
+        return outcome_of(res)
+
+
+def outcome_of(res: Any) -> Outcome:
+    """The fix's verdict on a :class:`~betvdesign.checks.checker.CheckResult`."""
+    failing = sorted(
+        {
+            r.id
+            for r in res.rules
+            if not r.passed and (r.severity == "error" or r.id in REQUIRED_WARNINGS)
+        }
+    )
+    warnings = sorted(
+        {
+            r.id
+            for r in res.rules
+            if not r.passed and r.severity == "warning" and r.id not in REQUIRED_WARNINGS
+        }
+    )
+    return Outcome(not failing, tuple(failing), tuple(warnings), res)
+
+
+def _speed(check: Any) -> float | None:
+    speeds = [abs(v) for sc in check.sets if (v := sc.speed_m_s) is not None]
+    return min(speeds) if speeds else None
+
+
+def _mode(check: Any) -> str | None:
+    modes = {sc.verdict_mode for sc in check.sets}
+    return modes.pop() if len(modes) == 1 else ", ".join(sorted(str(m) for m in modes))
+
+
+# --- one field: the nearest passing value --------------------------------------------
+
+
+@dataclass
+class FieldAnswer:
+    """The nearest passing value of one field, or why there is none.
+
+    Attributes
+    ----------
+    field : str
+        Dotted field path.
+    x0, lo, hi : float
+        Current value and the bounds tried [``unit``].
+    unit : str
+        The field's unit as the device file gives it.
+    value : float or None
+        The value proposed: :data:`FIELD_MARGIN` inside ``boundary`` [``unit``].
+    boundary : float or None
+        Where the check starts to pass along the field, bisected [``unit``].
+    blocking : str
+        Without a value: the rule that fails most often over the values tried.
+    evaluations : int
+        Exact checks spent on the field.
+    """
+
+    field: str
+    x0: float
+    lo: float
+    hi: float
+    unit: str
+    value: float | None = None
+    boundary: float | None = None
+    blocking: str = ""
+    blocking_counts: dict[str, int] = field(default_factory=dict)
+    evaluations: int = 0
+    outcome: Outcome | None = None
+
+    @property
+    def direction(self) -> int:
+        """+1 raise, -1 lower, 0 no value."""
+        if self.value is None:
+            return 0
+        return 1 if self.value > self.x0 else -1
+
+    @property
+    def size(self) -> float:
+        return math.inf if self.value is None else abs(math.log(self.value / self.x0))
+
+    @property
+    def kind(self) -> str:
+        known = BY_PATH.get(self.field)
+        return known.kind if known is not None else "drawn dimension"
+
+    @property
+    def designer_field(self) -> bool:
+        """A drive setting or a drawn dimension (what the designer sets directly)."""
+        return self.kind in ("drive setting", "drawn dimension")
+
+    def text(self, x: float) -> str:
+        return f"{x:.4g} {self.unit}".strip()
+
+    def tried(self) -> str:
+        return f"{self.text(self.lo)} to {self.text(self.hi)}"
+
+    def advice(self) -> str:
+        """The change in words: direction, amount, boundary and physical meaning."""
+        if self.value is None:
+            return (
+                f"{self.field}: no passing value from {self.tried()} "
+                f"(blocked by {self.blocking or 'every value tried'})"
+            )
+        if self.boundary is None:
+            return f"keep {self.field} at {self.text(self.x0)} (passes)"
+        verb = "raise" if self.direction > 0 else "lower"
+        meaning = describe_change(self.field, self.x0, self.value)
+        return (
+            f"{verb} {self.field} {self.text(self.x0)} -> {self.text(self.value)} "
+            f"(passes from {self.text(self.boundary)}; {FIELD_MARGIN:.0%} margin)"
+            + (f" [{meaning}]" if meaning else "")
+        )
+
+    def as_dict(self) -> dict[str, Any]:
+        return {
+            "field": self.field,
+            "kind": self.kind,
+            "from": self.text(self.x0),
+            "to": None if self.value is None else self.text(self.value),
+            "boundary": None if self.boundary is None else self.text(self.boundary),
+            "direction": {1: "raise", -1: "lower", 0: None}[self.direction],
+            "relative_change": None if self.value is None else self.value / self.x0 - 1.0,
+            "meaning": None
+            if self.value is None
+            else describe_change(self.field, self.x0, self.value),
+            "bounds_tried": [self.text(self.lo), self.text(self.hi)],
+            "blocking": self.blocking or None,
+            "evaluations": self.evaluations,
+        }
+
+
+def _bisect(ev: Evaluator, name: str, good: float, bad: float) -> float:
+    """Bisect (in log) between a passing and a failing value: the last passing one."""
+    while abs(math.log(good / bad)) > BISECT_RTOL:
+        mid = math.sqrt(good * bad)
+        if ev({name: mid}).passed:
+            good = mid
+        else:
+            bad = mid
+    return good
+
+
+def _steps(v: Vary) -> list[tuple[float, float]]:
+    """Scan points as (previous, point), nearest first, alternating up and down."""
+    step = math.log1p(SCAN_STEP)
+    sides = []
+    for sign, end in ((1, v.hi), (-1, v.lo)):
+        pts, prev, k = [], v.x0, 1
+        while True:
+            x = v.x0 * math.exp(sign * k * step)
+            if (sign > 0 and x >= end) or (sign < 0 and x <= end):
+                if abs(math.log(end / prev)) > 1e-9 and (end - v.x0) * sign > 0:
+                    pts.append((prev, end))
+                break
+            pts.append((prev, x))
+            prev, k = x, k + 1
+        sides.append(pts)
+    out = []
+    for a, b in itertools.zip_longest(*sides):
+        out.extend(p for p in (a, b) if p is not None)
+    out.sort(key=lambda t: abs(math.log(t[1] / v.x0)))
+    return out
+
+
+def nearest(ev: Evaluator, v: Vary) -> FieldAnswer:
+    """The nearest passing value of field ``v`` (see the module docstring)."""
+    start = ev.evaluations
+    ans = FieldAnswer(v.field, v.x0, v.lo, v.hi, v.unit)
+    counts: dict[str, int] = {}
+    if v.x0 < v.lo or v.x0 > v.hi:  # current value outside the bounds: scan them
+        v = replace(v, x0=min(max(v.x0, v.lo), v.hi))
+    base = ev({})
+    if base.passed:  # already passing: the current value (a robust search goes on)
+        ans.value, ans.outcome, ans.evaluations = v.x0, base, ev.evaluations - start
+        return ans
+    for prev, x in _steps(v):
+        out = ev({v.field: x})
+        if not out.passed:
+            for rid in out.failing:
+                counts[rid] = counts.get(rid, 0) + 1
+            continue
+        prev_ok = ev({v.field: prev}).passed if prev != v.x0 else ev({}).passed
+        b = x if prev_ok else _bisect(ev, v.field, x, prev)
+        sign = 1 if x > v.x0 else -1
+        y = b * (1 + FIELD_MARGIN) ** sign
+        y = min(max(y, v.lo), v.hi)
+        oy = ev({v.field: y})
+        if oy.passed:
+            ans.value, ans.boundary, ans.outcome = y, b, oy
+            break
+    ans.blocking_counts = counts
+    if ans.value is None and counts:
+        ans.blocking = max(counts, key=lambda k: (counts[k], k))
+    ans.evaluations = ev.evaluations - start
+    return ans
+
+
+# --- the result ----------------------------------------------------------------------
 
 
 @dataclass
@@ -56,29 +347,31 @@ class Candidate:
     size: float
     mode: str | None
     speed_m_s: float | None
-    margin: float
     why: str
     passed: bool = False
     check: Any = None
-    p_intended: float | None = None
+    p_pass: float | None = None
     blocking: list[str] = field(default_factory=list)
+    answers: list[FieldAnswer] = field(default_factory=list)
 
     def as_dict(self, varies: dict[str, Vary]) -> dict[str, Any]:
         return {
             "changes": [
                 {
                     "field": f,
+                    "kind": BY_PATH[f].kind if f in BY_PATH else None,
                     "from": varies[f].text(varies[f].x0),
                     "to": varies[f].text(x),
                     "relative_change": x / varies[f].x0 - 1.0,
+                    "meaning": describe_change(f, varies[f].x0, x),
                 }
                 for f, x in self.changes.items()
             ],
+            "boundary": {a.field: a.text(a.boundary) for a in self.answers if a.boundary},
             "size": self.size,
             "mode": self.mode,
             "speed_m_s": self.speed_m_s,
-            "margin": self.margin,
-            "p_intended": self.p_intended,
+            "p_pass": self.p_pass,
             "passed": self.passed,
             "why": self.why,
         }
@@ -86,15 +379,22 @@ class Candidate:
 
 @dataclass
 class FixResult:
-    """Outcome of :func:`find_fixes`: ``status`` "already_passes", "fixed" or "none"."""
+    """Outcome of :func:`find_fixes`: ``status`` "already_passes", "fixed" or "none".
+
+    ``blocking``: per field that cannot fix the device, the bounds tried and the rule
+    that blocks it; ``improve``: for a passing device, what it would still improve
+    (the warnings that fail, with their fix).
+    """
 
     status: str
     message: str
     candidates: list[Candidate]
     varies: dict[str, Vary]
-    blocking: dict[str, str]
+    blocking: dict[str, dict[str, Any]]
     evaluations: int
     best_spec: Any = None
+    improve: list[dict[str, str]] = field(default_factory=list)
+    spread_note: str = ""
 
     @property
     def best(self) -> Candidate | None:
@@ -104,6 +404,9 @@ class FixResult:
         return {
             "status": self.status,
             "message": self.message,
+            "passing": "betv check PASS (every error rule) with the mode held at "
+            "ϖ·(1 ± 5 %) and α·(1 ± 10 %); warnings do not block",
+            "margin": {"relative": FIELD_MARGIN, "meaning": MARGIN_TEXT},
             "evaluations": self.evaluations,
             "varied": {
                 f: {"from": v.text(v.x0), "lo": v.text(v.lo), "hi": v.text(v.hi)}
@@ -111,170 +414,44 @@ class FixResult:
             },
             "candidates": [c.as_dict(self.varies) for c in self.candidates],
             "blocking": self.blocking,
+            "improve": self.improve,
+            "spread": self.spread_note or None,
         }
 
 
-# --- evaluation ------------------------------------------------------------------------
+def _rank(c: Candidate) -> tuple[int, float, int]:
+    order = {f: i for i, f in enumerate(DEFAULT_BOUNDS)}
+    designer = all(
+        (BY_PATH[f].kind if f in BY_PATH else "drawn dimension")
+        in ("drive setting", "drawn dimension")
+        for f in c.changes
+    )
+    return (0 if designer else 1, round(c.size, 3), min(order.get(f, 99) for f in c.changes))
 
 
-class Evaluator:
-    """Checks candidate specs through the same path as ``betv check`` (cached)."""
-
-    def __init__(self, spec: Any, varies: Sequence[Vary], target_speed_m_s: float | None):
-        self.spec = spec
-        self.varies = {v.field: v for v in varies}
-        self.target = target_speed_m_s
-        self.cache: dict[tuple[tuple[str, float], ...], tuple[bool, list[str], Any]] = {}
-        self.evaluations = 0
-
-    def spec_at(self, changes: dict[str, float]) -> Any:
-        return with_values(self.spec, {f: self.varies[f].quantity(x) for f, x in changes.items()})
-
-    def quick(self, changes: dict[str, float]) -> tuple[bool, list[str], Any]:
-        """(passes, failing rule ids, check) without the margin corners and settling
-        (both are required of every candidate by :meth:`full`)."""
-        key = tuple(sorted(changes.items()))
-        if key not in self.cache:
-            self.cache[key] = self._run(changes, full=False)
-        return self.cache[key]
-
-    def full(self, changes: dict[str, float]) -> tuple[bool, list[str], Any]:
-        """The complete check; also requires the mode-margin, settling and
-        tangential-resonance warnings to pass."""
-        return self._run(changes, full=True)
-
-    def _run(self, changes: dict[str, float], *, full: bool) -> tuple[bool, list[str], Any]:
-        from betvdesign.checks.checker import check_derivation
-        from betvdesign.nondim.device import derive
-        from betvdesign.studies.sampling import check_sample
-
-        self.evaluations += 1
-        try:
-            check_sample({f: (x, self.varies[f].unit) for f, x in changes.items()})
-            res = check_derivation(
-                derive(self.spec_at(changes)),
-                margin=full,
-                settle=full,
-                target_speed_m_s=self.target,
-                adequacy=False,  # not a criterion of the search (fixfile's check has it)
-            )
-        except (ParameterError, BetvError, ValueError) as exc:
-            return False, [f"invalid: {exc}"], None
-        need = {"tangential-resonance"} | ({"mode-margin"} if full else set())
-        failing = [
-            r.id for r in res.rules if not r.passed and (r.severity == "error" or r.id in need)
-        ]
-        for sc in res.sets:  # the slider must settle before it has crossed its travel
-            st = sc.settling
-            if st is not None and getattr(st, "cycles_to_cross", None):
-                if st.cycles_to_settle is None or st.cycles_to_settle > st.cycles_to_cross:
-                    failing.append("settling")
-        return not failing, sorted(set(failing)), res
-
-
-def _speed(check: Any) -> float | None:
-    speeds = [abs(v) for sc in check.sets if (v := sc.speed_m_s) is not None]
-    return min(speeds) if speeds else None
-
-
-def _mode(check: Any) -> str | None:
-    modes = {sc.mode for sc in check.sets}
-    return modes.pop() if len(modes) == 1 else ", ".join(sorted(str(m) for m in modes))
-
-
-# --- one field ---------------------------------------------------------------------------
-
-
-def _intervals(xs: np.ndarray, ok: np.ndarray) -> list[tuple[int, int]]:
-    """Index ranges [i, j] of consecutive passing scan points."""
-    out, start = [], None
-    for i, good in enumerate(ok):
-        if good and start is None:
-            start = i
-        if not good and start is not None:
-            out.append((start, i - 1))
-            start = None
-    if start is not None:
-        out.append((start, len(ok) - 1))
-    return out
-
-
-def _edge(ev: Evaluator, name: str, good: float, bad: float) -> float:
-    """Bisect (in log) between a passing and a failing value: the last passing one."""
-    for _ in range(BISECT_STEPS):
-        mid = math.sqrt(good * bad)
-        if ev.quick({name: mid})[0]:
-            good = mid
-        else:
-            bad = mid
-    return good
-
-
-def single_field(ev: Evaluator, v: Vary) -> tuple[list[tuple[float, float, float]], str, float]:
-    """Passing intervals of one field as (lo, hi, chosen value nearest x0 with margin),
-    nearest first; the rule that blocks most often where it fails; and how close the
-    field came (the fewest failing rules over the scan, for choosing pairs)."""
-    xs = np.geomspace(v.lo, v.hi, SCAN_POINTS)
-    res = [ev.quick({v.field: float(x)}) for x in xs]
-    ok = np.array([r[0] for r in res])
-    fails = [rid for r in res if not r[0] for rid in r[1]]
-    blocking = max(set(fails), key=fails.count) if fails else ""
-    closest = min(len(r[1]) for r in res) + _shortfall(ev, res)
-    out = []
-    for i, j in _intervals(xs, ok):
-        lo = xs[i] if i == 0 else _edge(ev, v.field, float(xs[i]), float(xs[i - 1]))
-        hi = xs[j] if j == len(xs) - 1 else _edge(ev, v.field, float(xs[j]), float(xs[j + 1]))
-        a, b = lo * (1 + FIELD_MARGIN), hi / (1 + FIELD_MARGIN)
-        if a > b:  # narrower than twice the margin: no robust point
-            continue
-        x = min(max(v.x0, a), b)
-        out.append((float(lo), float(hi), float(x)))
-    out.sort(key=lambda t: abs(math.log(t[2] / v.x0)))
-    return out, blocking, closest
-
-
-def _shortfall(ev: Evaluator, res: list[tuple[bool, list[str], Any]]) -> float:
-    """In [0, 1): how far the best scan point stays from the intended mode and the
-    target speed (0: reached), as a tie-break between fields with equal rule counts."""
-    best = 1.0
-    for _, _, check in res:
-        if check is None:
-            continue
-        worst = 0.0
-        for sc in check.sets:
-            ds = getattr(sc.periodic, "delta_s", None) if sc.mode else None
-            if ds is None:
-                worst = max(worst, 0.99)
-                continue
-            want = 1.0 if sc.derivation.intended_mode == "push" else -1.0
-            worst = max(worst, 0.5 - 0.5 * math.tanh(want * ds))
-        best = min(best, worst)
-    return min(best, 0.999)
-
-
-def _inward(x0: float, lo: float, hi: float, x: float) -> list[float]:
-    """The nearest point with margin, then points a quarter and half way into the
-    interval from that end (tried in turn when the full check, with its mode-margin
-    corners and settling, rejects the nearer one)."""
-    far = hi if abs(math.log(x / lo)) < abs(math.log(hi / x)) else lo
-    out = [x]
-    for frac in (0.25, 0.5):
-        y = math.exp(math.log(x) + frac * (math.log(far) - math.log(x)))
-        if all(abs(math.log(y / z)) > 1e-3 for z in out):
-            out.append(y)
-    return out
-
-
-def _why(before: list[str], check: Any) -> str:
+def _why(before: Sequence[str], out: Outcome) -> str:
     """What a passing candidate does: the rules it fixes, its exact mode and speed."""
     from betvdesign.checks.rule import format_speed
 
-    speed = _speed(check)
+    speed = _speed(out.check)
     parts = [f"fixes {', '.join(before)}" if before else "keeps every rule passing"]
-    parts.append(f"exact mode {_mode(check)}")
+    parts.append(f"exact mode {_mode(out.check)}")
     if speed is not None:
         parts.append(f"speed {format_speed(speed)}")
+    if out.warnings:
+        parts.append(f"still warns: {', '.join(out.warnings)}")
     return "; ".join(parts)
+
+
+def _improve(out: Outcome) -> list[dict[str, str]]:
+    """The failing warnings and infos of a passing check, with their fix text."""
+    seen, items = set(), []
+    for r in out.check.rules if out.check is not None else []:
+        if r.passed or r.severity == "error" or (r.id, r.fix) in seen:
+            continue
+        seen.add((r.id, r.fix))
+        items.append({"rule": r.id, "message": r.message, "fix": r.fix})
+    return items
 
 
 def find_fixes(
@@ -285,61 +462,98 @@ def find_fixes(
     pairs: bool = True,
     robust: Callable[[Any], float] | None = None,
     p_min: float = 0.99,
-    max_candidates: int = 12,
+    horizon: int | None = None,
 ) -> FixResult:
-    """Search the smallest passing change (see the module docstring).
+    """Search the nearest passing value of each field (see the module docstring).
 
-    robust: spec -> P(intended mode) under the user's spreads (a Monte Carlo); a
-    candidate must reach ``p_min``.
+    Parameters
+    ----------
+    spec : DeviceSpec
+        The device.
+    varies : sequence of Vary
+        The fields and their bounds (:func:`parse_vary`).
+    target_speed_m_s : float, optional
+        Required speed [m/s] (the error rule ``target-speed``).
+    pairs : bool
+        Search pairs of fields when no single field fixes the device.
+    robust : callable, optional
+        spec -> P(pass) under the user's spreads (:func:`robust_probability`); a
+        candidate must reach ``p_min``.
+    p_min : float
+        Required P(pass) [-].
+    horizon : int, optional
+        Cycles the transient may take to cross the travel (``betv check --horizon``).
+
+    Returns
+    -------
+    FixResult
+        Candidates ranked (designer's fields first, then the smallest change).
     """
-    ev = Evaluator(spec, varies, target_speed_m_s)
+    ev = Evaluator(spec, varies, target_speed_m_s, horizon)
     vmap = {v.field: v for v in varies}
-    ok0, failing0, _ = ev.full({})
-    if ok0 and robust is None:
-        return FixResult("already_passes", "the device already passes", [], vmap, {}, 1, spec)
+    base = ev({})
+    if base.passed and robust is None:
+        from betvdesign.checks.checker import check_derivation
+        from betvdesign.nondim.device import derive
+
+        kw = {} if horizon is None else {"horizon": horizon}
+        whole = check_derivation(derive(spec), target_speed_m_s=target_speed_m_s, **kw)
+        improve = _improve(outcome_of(whole))  # the check's own warnings, adequacy too
+        msg = "the device already passes" + (
+            "; it would still improve: " + ", ".join(i["rule"] for i in improve)
+            if improve
+            else "; every rule passes"
+        )
+        return FixResult("already_passes", msg, [], vmap, {}, ev.evaluations, spec, improve)
     cands: list[Candidate] = []
-    blocking: dict[str, str] = {}
-    closeness: dict[str, float] = {}
+    answers: dict[str, FieldAnswer] = {}
     for v in varies:
-        intervals, block, closeness[v.field] = single_field(ev, v)
-        if not intervals:
-            blocking[v.field] = block or "no passing value within the bounds"
-        for lo, hi, x in intervals:
-            for x_try in _inward(v.x0, lo, hi, x):
-                margin = min(math.log(x_try / lo), math.log(hi / x_try))
-                cands.append(
-                    Candidate({v.field: x_try}, abs(math.log(x_try / v.x0)), None, None, margin, "")
-                )
+        a = nearest(ev, v)
+        answers[v.field] = a
+        if a.value is not None:
+            cands.append(_candidate({v.field: a.value}, a.size, a.outcome, base, [a]))
+            if robust is not None:  # deeper into the passing side: the robust optimum
+                cands.extend(_deeper(ev, v, a, base))
+    blocking = {
+        f: {
+            "rule": a.blocking or None,
+            "bounds_tried": [a.text(a.lo), a.text(a.hi)],
+            "failing_counts": a.blocking_counts,
+            "message": a.advice(),
+        }
+        for f, a in answers.items()
+        if a.value is None
+    }
     if pairs and not cands and len(varies) >= 2:
-        near = sorted(varies, key=lambda v: closeness[v.field])[:PAIR_FIELDS]
-        cands = _pairs(ev, near)
-    order = {f: i for i, f in enumerate(DEFAULT_BOUNDS)}  # ties: operating fields first
-    cands.sort(key=lambda c: (round(c.size, 2), min(order.get(f, 99) for f in c.changes)))
-    verified: list[Candidate] = []
-    for c in cands:
-        if len(verified) >= max_candidates or (robust and sum(v.passed for v in verified) >= 2):
-            break
-        c = _verify(ev, c, failing0, robust, p_min)
-        verified.append(c)
-    verified.sort(
-        key=lambda c: (not c.passed, round(c.size, 2), min(order.get(f, 99) for f in c.changes))
-    )
-    best = verified[0] if verified and verified[0].passed else None
+        near = sorted(varies, key=lambda v: _closeness(answers[v.field]))[:PAIR_FIELDS]
+        cands = _pairs(ev, near, base)
+    cands.sort(key=_rank)
+    if robust is not None:
+        for c in cands:
+            c.p_pass = robust(ev.spec_at(c.changes))
+            if c.p_pass < p_min:
+                c.passed = False
+                c.why += f"; P(pass) = {c.p_pass:.3f} < {p_min:g} under the spreads"
+        cands.sort(key=lambda c: (not c.passed, *_rank(c)))
+    best = next((c for c in cands if c.passed), None)
     if best is None:
-        why = "; ".join(f"{f}: {b}" for f, b in blocking.items()) or "no candidate verified"
+        why = "; ".join(f"{f}: {b['rule']}" for f, b in blocking.items())
+        if robust is not None and cands:
+            why = "no passing change keeps P(pass) ≥ p_min under the spreads"
         return FixResult(
             "none",
-            f"no change within the bounds passes ({why})",
-            verified,
+            f"no change within the bounds passes ({why or 'no candidate'})",
+            cands,
             vmap,
             blocking,
             ev.evaluations,
         )
+    n = sum(c.passed for c in cands)
     return FixResult(
         "fixed",
-        f"{len([c for c in verified if c.passed])} passing change(s); best: "
+        f"{n} passing change(s); best: "
         + ", ".join(f"{f} -> {vmap[f].text(x)}" for f, x in best.changes.items()),
-        verified,
+        cands,
         vmap,
         blocking,
         ev.evaluations,
@@ -347,30 +561,49 @@ def find_fixes(
     )
 
 
-def _verify(
-    ev: Evaluator,
-    c: Candidate,
-    failing0: list[str],
-    robust: Callable[[Any], float] | None,
-    p_min: float,
+def _candidate(
+    changes: dict[str, float],
+    size: float,
+    out: Outcome | None,
+    base: Outcome,
+    answers: list[FieldAnswer],
 ) -> Candidate:
-    ok, failing, check = ev.full(c.changes)
-    c.passed, c.blocking, c.check = ok, failing, check
-    if check is not None:
-        c.mode, c.speed_m_s = _mode(check), _speed(check)
-        c.why = _why(failing0, check)
-    if not ok:
-        c.why = f"fails the full check: {', '.join(failing)}"
-        return c
-    if robust is not None:
-        c.p_intended = robust(ev.spec_at(c.changes))
-        if c.p_intended < p_min:
-            c.passed = False
-            c.why += f"; P(intended mode) = {c.p_intended:.3f} < {p_min:g} under the spreads"
-    return c
+    assert out is not None and out.passed
+    return Candidate(
+        changes,
+        size,
+        _mode(out.check),
+        _speed(out.check),
+        _why(base.failing, out),
+        passed=True,
+        check=out.check,
+        answers=answers,
+    )
 
 
-def _pairs(ev: Evaluator, varies: Sequence[Vary]) -> list[Candidate]:
+def _deeper(ev: Evaluator, v: Vary, a: FieldAnswer, base: Outcome) -> list[Candidate]:
+    """Passing values further from the boundary (for the robust search): steps of
+    :data:`FIELD_MARGIN` beyond the proposed value, both ways when already passing."""
+    out = []
+    signs = (1, -1) if a.direction == 0 else (a.direction,)
+    for sign in signs:
+        for k in (1, 2, 4, 8):
+            assert a.value is not None
+            x = a.value * (1 + FIELD_MARGIN) ** (sign * k)
+            if not v.lo <= x <= v.hi:
+                break
+            o = ev({v.field: x})
+            if o.passed:
+                out.append(_candidate({v.field: x}, abs(math.log(x / v.x0)), o, base, [a]))
+    return out
+
+
+def _closeness(a: FieldAnswer) -> float:
+    """How close a field came: the fewest rules failing at once (lower is closer)."""
+    return min(a.blocking_counts.values(), default=0) / max(a.evaluations, 1)
+
+
+def _pairs(ev: Evaluator, varies: Sequence[Vary], base: Outcome) -> list[Candidate]:
     """Coarse 2-D grids over every pair of fields: passing points, smallest change."""
     out = []
     for a, b in itertools.combinations(varies, 2):
@@ -378,20 +611,152 @@ def _pairs(ev: Evaluator, varies: Sequence[Vary]) -> list[Candidate]:
         xb = np.geomspace(b.lo, b.hi, PAIR_POINTS)
         for x, y in itertools.product(xa, xb):
             ch = {a.field: float(x), b.field: float(y)}
-            if ev.quick(ch)[0]:
+            o = ev(ch)
+            if o.passed:
                 size = math.hypot(math.log(x / a.x0), math.log(y / b.x0))
-                out.append(Candidate(ch, size, None, None, 0.0, ""))
+                out.append(_candidate(ch, size, o, base, []))
     return out
+
+
+# --- the check's advice: the same search ----------------------------------------------
+
+#: What each failing rule asks of a field: the model parameters it must move (the causal
+#: choice of fields to search; the amount and direction come from the search).
+_RULE_MOVES = {
+    "frequency-window": ("ϖ",),
+    "mode": ("ϖ", "α", "β", "κ"),
+    "mode-margin": ("ϖ", "α", "β", "κ"),
+    "target-speed": ("ℓ", "ϖ", "α", "β", "κ"),
+}
+
+
+def advice_fields(check: Any) -> list[str]:
+    """The designer fields a failing check's advice searches, in ranking order.
+
+    Parameters
+    ----------
+    check : CheckResult
+        The check.
+
+    Returns
+    -------
+    list of str
+        Fields of :data:`DEFAULT_BOUNDS` the device gives that move what a failing rule
+        needs (:data:`_RULE_MOVES`), designer's fields (drive, drawing) first.
+    """
+    from betvdesign.studies.fixfields import current_value
+
+    need: set[str] = set()
+    for r in check.rules:
+        if not r.passed and r.id in _RULE_MOVES:
+            need.update(_RULE_MOVES[r.id])
+    spec = check.derivation.spec
+    out = [
+        f
+        for f in DEFAULT_BOUNDS
+        if set(BY_PATH[f].moves) & need and current_value(spec, f) is not None
+    ]
+    out.sort(key=lambda f: BY_PATH[f].kind not in ("drive setting", "drawn dimension"))
+    return out
+
+
+def advise(
+    check: Any,
+    *,
+    target_speed_m_s: float | None = None,
+    fields: Sequence[str] | None = None,
+    horizon: int | None = None,
+) -> list[FieldAnswer]:
+    """The advice of a failing check: the nearest passing value of its fields.
+
+    The same search as ``betv fix`` (:func:`nearest`) over :func:`advice_fields`, until
+    :data:`ADVICE_FIXES` fixes are found or :data:`ADVICE_FIELDS` fields are searched.
+
+    Parameters
+    ----------
+    check : CheckResult
+        A check whose verdict fails or whose ``mode-margin`` fails.
+    target_speed_m_s : float, optional
+        The target speed the check was given [m/s].
+    fields : sequence of str, optional
+        The fields to search (default :func:`advice_fields`).
+    horizon : int, optional
+        ``betv check --horizon``.
+
+    Returns
+    -------
+    list of FieldAnswer
+        The fields searched, in order ([] when the check passes with its margin).
+    """
+    if outcome_of(check).passed:
+        return []
+    spec = check.derivation.spec
+    names = list(fields) if fields is not None else advice_fields(check)
+    try:
+        varies = parse_vary(spec, names[:ADVICE_FIELDS])
+    except BetvError:
+        return []
+    ev = Evaluator(spec, varies, target_speed_m_s, horizon)
+    out: list[FieldAnswer] = []
+    for v in varies:
+        out.append(nearest(ev, v))
+        if sum(a.value is not None for a in out) >= ADVICE_FIXES:
+            break
+    return out
+
+
+def advice_text(answers: Sequence[FieldAnswer]) -> str:
+    """One line of advice from :func:`advise`: the fixes, then the fields that cannot."""
+    fixes = [a.advice() for a in sorted(answers, key=_answer_rank) if a.value is not None]
+    if not fixes:
+        tried = "; ".join(a.advice() for a in answers)
+        return (
+            f"no single field fixes it ({tried}); `betv fix FILE` also tries pairs"
+            if tried
+            else "`betv fix FILE` searches the fields"
+        )
+    return " or ".join(fixes) + " (`betv fix FILE` lists every field)"
+
+
+def _answer_rank(a: FieldAnswer) -> tuple[int, float]:
+    return (0 if a.designer_field else 1, round(a.size, 3))
+
+
+def with_advice(check: Any, answers: Sequence[FieldAnswer]) -> Any:
+    """``check`` with the fix text of every failing error rule and ``mode-margin``
+    replaced by the search's answer (:func:`advice_text`)."""
+    if not answers:
+        return check
+    text = advice_text(answers)
+
+    def fix(r: Any) -> Any:
+        if r.passed or not (r.severity == "error" or r.id in REQUIRED_WARNINGS):
+            return r
+        return replace(r, fix=text)
+
+    check.rules = [fix(r) for r in check.rules]
+    for sc in check.sets:
+        sc.rules = [fix(r) for r in sc.rules]
+    return check
 
 
 # --- robustness under fabrication spread -------------------------------------------------
 
+SPREAD_RULES = "frequency window, tangential resonance, exact mode and target speed"
+
 
 def robust_probability(
-    spec: Any, items: Sequence[str], *, n: int = 400, seed: int = 0
+    spec: Any,
+    items: Sequence[str],
+    *,
+    n: int = 400,
+    seed: int = 0,
+    target_speed_m_s: float | None = None,
 ) -> Callable[[Any], float]:
-    """P(every set in its intended mode) under the spreads ``items`` (``betv tolerance``
-    syntax), by a seeded Monte Carlo of ``n`` exact orbits per candidate. Validates the
+    """P(pass) under the spreads ``items`` (``betv tolerance`` syntax): the share of a
+    seeded Monte Carlo of ``n`` samples in which every set passes every error rule —
+    the frequency window 0.5 ≤ ϖ < 2, the tangential resonance |a·ϖ² − 1| ≥ 0.1, the
+    exact mode (the intended one) and the target speed when given. Validates the
     spreads against ``spec`` now (:class:`UsageError`)."""
     from betvdesign.studies.sampling import draw, nominal_values
     from betvdesign.studies.tolerance import parse_tolerance
@@ -401,15 +766,18 @@ def robust_probability(
 
     def probability(candidate: Any) -> float:
         from betvdesign.checks.checker import load_solver
-        from betvdesign.model.domain import mode_of
-        from betvdesign.model.params import ModelParams
+        from betvdesign.model.domain import (
+            TANGENTIAL_DETUNING,
+            in_window,
+            mode_of,
+            resonance_detuning,
+        )
         from betvdesign.studies.sampling import check_sample, derive_all
 
         solver = load_solver()
         nominal = nominal_values(candidate, tols)
         x = draw(tols, nominal, n, seed)
         sets = candidate.actuator_sets
-        # every sample of every set derived at once, as in `betv tolerance`
         arrays = [derive_all(candidate, tols, nominal, x, i) for i in range(len(sets))]
         good = 0
         for j, row in enumerate(x):
@@ -418,16 +786,21 @@ def robust_probability(
             }
             try:
                 check_sample(values)
-                params = [_sample_params(candidate, a, i, j, values) for i, a in enumerate(arrays)]
+                derived = [_sample_set(candidate, a, i, j, values) for i, a in enumerate(arrays)]
             except (ParameterError, BetvError, ValueError):
                 continue  # an unphysical draw counts as a failure
-            solved: dict[ModelParams, str | None] = {}  # mirrored sets: one orbit
-            for p, aset in zip(params, sets, strict=True):
-                if p not in solved:
-                    po = solver(p)
-                    solved[p] = mode_of(po.delta_s) if po.success else None
-                if solved[p] != aset.intended_mode:
+            solved: dict[Any, Any] = {}  # mirrored sets: one orbit
+            for (p, length_m, f_act), aset in zip(derived, sets, strict=True):
+                if not in_window(p.varpi) or resonance_detuning(p)[1] < TANGENTIAL_DETUNING:
                     break
+                if p not in solved:
+                    solved[p] = solver(p)
+                po = solved[p]
+                if not po.success or mode_of(po.delta_s) != aset.intended_mode:
+                    break
+                if target_speed_m_s is not None:
+                    if abs(po.delta_s * length_m * f_act) < target_speed_m_s:
+                        break
             else:
                 good += 1
         return good / n
@@ -435,17 +808,18 @@ def robust_probability(
     return probability
 
 
-def _sample_params(
+def _sample_set(
     spec: Any, arrays: dict[str, Any] | None, i: int, j: int, values: dict[str, Any]
-) -> Any:
-    """Model parameters of set ``i`` at sample ``j``: from the vectorised derivation, or
-    (when it could not take every sample) by deriving that sample alone."""
+) -> tuple[Any, float, float]:
+    """Model parameters, length scale [m] and f_act [Hz] of set ``i`` at sample ``j``:
+    from the vectorised derivation, or by deriving that sample alone."""
     from betvdesign.nondim.device import derive_set
     from betvdesign.spec.units import ureg
     from betvdesign.studies.sampling import params_of
 
     if arrays is not None:
-        return params_of(arrays, j)
+        return params_of(arrays, j), float(arrays["length_m"][j]), float(arrays["f_act_hz"][j])
     q = {f: (ureg.Quantity(v, u) if u else v) for f, (v, u) in values.items()}
     s = with_values(spec, q)
-    return derive_set(s, s.actuator_sets[i]).params
+    d = derive_set(s, s.actuator_sets[i])
+    return d.params, d.scales.length_m, d.scales.f_act_hz

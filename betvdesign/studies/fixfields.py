@@ -45,7 +45,9 @@ class Vary:
         return f"{x:.4g} {self.unit}".strip()
 
 
-def _current(spec: Any, name: str) -> tuple[float, str] | None:
+def current_value(spec: Any, name: str) -> tuple[float, str] | None:
+    """The current magnitude and unit of a numeric field (None when the spec does not
+    give it or it is not numeric); :class:`UsageError` when the sets differ."""
     present = given(spec, name)
     if not present:
         return None
@@ -66,13 +68,13 @@ def parse_vary(spec: Any, items: Sequence[str]) -> list[Vary]:
     from betvdesign.spec.units import parse_quantity
 
     out: list[Vary] = []
-    names = list(items) or [f for f in DEFAULT_BOUNDS if _current(spec, f) is not None]
+    names = list(items) or [f for f in DEFAULT_BOUNDS if current_value(spec, f) is not None]
     for item in names:
         name, _, rng = item.partition("=")
         name = name.strip()
-        cur = _current(spec, name)
+        cur = current_value(spec, name)
         if cur is None:
-            known = ", ".join(f for f in DEFAULT_BOUNDS if _current(spec, f) is not None)
+            known = ", ".join(f for f in DEFAULT_BOUNDS if current_value(spec, f) is not None)
             raise UsageError(
                 f"--vary {name}: not a numeric field of device {spec.name!r}; it has {known}"
             )

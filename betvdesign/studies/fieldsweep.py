@@ -1,0 +1,518 @@
+"""Studies of a device's own fields, in physical units (``betv sweep FILE --vary ...``).
+
+A designer asks "what does the drive frequency do to my device?" or "where does the
+mode flip between beam width and frequency?", in the file's own units. One or two
+fields of the device file (any numeric field, :mod:`betvdesign.spec.paths`) are varied
+over a grid in physical units; every point is the device with those values, derived
+(:func:`betvdesign.nondim.device.derive_samples`, all points at once, the same
+formulas as ``betv check``) and solved to its exact periodic orbit
+(:func:`betvdesign.studies.points.periodic_point`).
+
+API (fields in physical units in, rows out; shared with other front ends):
+
+* :func:`parse_axis` -> :class:`FieldAxis` (``"drive.frequency=1kHz:4kHz"``);
+* :func:`fieldsweep_study` -> a resumable, parallel :class:`~betvdesign.studies.engine.
+  runner.Study`; :func:`run_fieldsweep` runs it;
+* rows: the fields' values [their units], ϖ, α, β, κ, λ [-], the exact ``mode``
+  (push, pull, stalled, not driven, unbounded, not converged), Δs [-], ``speed_m_s``
+  (Δs·u·cosθ·f_act [m/s], signed along the impacts) and its ``basis`` ("periodic": the
+  periodic orbit; ``betv check`` may quote the crossing mean from rest for a slider
+  that settles slowly);
+* :func:`locate_flips` (1-D): every change of the exact mode between neighbouring
+  points, bisected in the field to :data:`FLIP_RTOL`.
+
+The speed is the periodic orbit's; the mode is the exact orbit's, never λ's (λ = 1 is
+drawn beside it as the paper's fit).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import itertools
+import math
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from betvdesign.errors import BetvError, UsageError
+from betvdesign.model.domain import mode_of
+from betvdesign.spec.paths import with_values
+from betvdesign.studies.engine.runner import Study, StudyRun, run_study, split_run_args
+from betvdesign.studies.fixfields import current_value
+from betvdesign.studies.points import COLUMNS, periodic_point
+
+__all__ = [
+    "FLIP_RTOL",
+    "MODES",
+    "FieldAxis",
+    "Flip",
+    "exact_mode",
+    "fieldsweep_study",
+    "locate_flips",
+    "parse_axis",
+    "run_fieldsweep",
+]
+
+#: The exact modes a point can have (the map's categories).
+MODES = ("push", "pull", "stalled", "not driven", "unbounded", "not converged")
+#: Relative width [-] to which a mode flip is bisected along its field.
+FLIP_RTOL = 1e-3
+#: Points per axis by default.
+DEFAULT_POINTS = 40
+#: Most points per axis.
+MAX_POINTS = 400
+
+
+@dataclass(frozen=True)
+class FieldAxis:
+    """One field of the device varied over a grid.
+
+    Attributes
+    ----------
+    field : str
+        Dotted field path (as in the device file).
+    unit : str
+        The field's unit as the device file gives it ("" for a number).
+    x0 : float
+        The device's value [``unit``].
+    values : tuple of float
+        The grid [``unit``], ascending.
+    """
+
+    field: str
+    unit: str
+    x0: float
+    values: tuple[float, ...]
+
+    @property
+    def label(self) -> str:
+        return f"{self.field} [{self.unit}]" if self.unit else self.field
+
+    def quantity(self, x: Any) -> Any:
+        from betvdesign.spec.units import ureg
+
+        return ureg.Quantity(x, self.unit) if self.unit else x
+
+
+def _bound(text: str, field: str, unit: str) -> float:
+    """One bound in the field's unit: a quantity ("2 kHz"), or a number with an SI prefix
+    alone ("2k" = 2 k of the field's SI unit); a bare number only for a unit-less field."""
+    import pint
+
+    from betvdesign.spec.units import parse_quantity, ureg
+
+    t = text.strip()
+    try:
+        if unit and t and t[-1] in "kMGmunµp" and _is_number(t[:-1]):
+            named = next(
+                (
+                    n
+                    for n in _NAMED_UNITS
+                    if ureg.Quantity(1.0, n).check(ureg.Quantity(1.0, unit).dimensionality)
+                ),
+                None,
+            )
+            if named is None:
+                raise ValueError(f"give the unit (the field is in {unit})")
+            q = parse_quantity(f"{t[:-1]} {t[-1].replace('µ', 'u')}{named}")
+        else:
+            q = parse_quantity(t)
+        if not isinstance(q, pint.Quantity) or q.dimensionless:
+            mag = float(q.magnitude if isinstance(q, pint.Quantity) else q)
+            if unit and not ureg.Quantity(1.0, unit).dimensionless:
+                raise UsageError(
+                    f"--vary {field}: missing unit in {text!r} (the field is in {unit}; "
+                    f"write e.g. '{mag:g} {unit}')"
+                )
+            return mag
+        return float(q.to(unit).magnitude) if unit else float(q.to("dimensionless").magnitude)
+    except (ValueError, pint.PintError) as exc:
+        raise UsageError(f"--vary {field}={text}: {exc}") from None
+
+
+#: SI units an SI prefix alone refers to, by the field's dimension ("2k" = 2 kHz).
+_NAMED_UNITS = ("Hz", "m", "g", "V", "s", "N/m")
+
+
+def _is_number(s: str) -> bool:
+    try:
+        float(s)
+    except ValueError:
+        return False
+    return True
+
+
+def parse_axis(
+    spec: Any, text: str, points: int = DEFAULT_POINTS, *, log: bool = False
+) -> FieldAxis:
+    """``FIELD=LO:HI`` in any unit of the field -> a :class:`FieldAxis` of ``points``
+    values (linear, or log-spaced with ``log``).
+
+    Parameters
+    ----------
+    spec : DeviceSpec
+        The device.
+    text : str
+        E.g. ``"drive.frequency=1kHz:4kHz"``, ``"slider.beam_width=5um:45um"``,
+        ``"drive.frequency=1k:4k"`` (an SI prefix alone: of the field's SI unit).
+    points : int
+        Grid points (2 to :data:`MAX_POINTS`).
+    log : bool
+        Log-spaced grid.
+
+    Returns
+    -------
+    FieldAxis
+        The axis, in the unit the device file gives the field.
+
+    Raises
+    ------
+    UsageError
+        An unknown or non-numeric field, unreadable, unit-less or inverted bounds.
+    """
+    name, sep, rng = text.partition("=")
+    name = name.strip()
+    if not 2 <= points <= MAX_POINTS:
+        raise UsageError(f"--points: need 2 to {MAX_POINTS} (got {points})")
+    cur = current_value(spec, name)
+    if cur is None:
+        from betvdesign.spec.fields import FIELDS
+
+        known = ", ".join(f.path for f in FIELDS if current_value(spec, f.path) is not None)
+        raise UsageError(
+            f"--vary {name}: not a numeric field of device {spec.name!r}; it has {known}"
+        )
+    x0, unit = cur
+    lo_s, sep2, hi_s = rng.partition(":")
+    if not sep or not sep2:
+        raise UsageError(f"--vary {text}: give FIELD=LO:HI, e.g. {name}=1kHz:4kHz")
+    lo, hi = _bound(lo_s, name, unit), _bound(hi_s, name, unit)
+    if not (math.isfinite(lo) and math.isfinite(hi) and lo < hi):
+        raise UsageError(f"--vary {text}: need LO < HI (got {lo:g} to {hi:g} {unit})".rstrip())
+    if log and lo <= 0:
+        raise UsageError(f"--vary {text}: a log-spaced axis needs LO > 0")
+    grid = np.geomspace(lo, hi, points) if log else np.linspace(lo, hi, points)
+    return FieldAxis(name, unit, x0, tuple(float(v) for v in grid))
+
+
+def exact_mode(row: Mapping[str, Any]) -> str:
+    """The exact mode of a point's row: one of :data:`MODES`."""
+    status = row.get("status")
+    if row.get("converged") and row.get("delta_s") is not None:
+        return mode_of(float(row["delta_s"]))
+    if status == "not_driven":
+        return "not driven"
+    if status == "unbounded":
+        return "unbounded"
+    return "not converged"
+
+
+def _device_key(path: str | Path) -> tuple[str, int]:
+    p = Path(path)
+    return str(p.resolve()), p.stat().st_mtime_ns
+
+
+def _derive_grid(
+    spec: Any, axes: Sequence[FieldAxis], set_index: int
+) -> tuple[np.ndarray, list[dict[str, Any] | str]]:
+    """Every grid point derived at once: the points (n, fields) [units] and per point
+    its parameters, length scale [m], f_act [Hz], or the reason it cannot be derived."""
+    from betvdesign.nondim.device import derive_set
+    from betvdesign.studies.sampling import PARAM_FIELDS, derive_all
+
+    mesh = np.meshgrid(*[np.asarray(a.values) for a in axes], indexing="ij")
+    x = np.column_stack([m.ravel() for m in mesh])
+
+    class _F:  # derive_all reads .field of each sampled field
+        def __init__(self, f: str):
+            self.field = f
+
+    nominal = {a.field: (a.x0, a.unit) for a in axes}
+    arrays = None
+    if np.all(x > 0):
+        arrays = derive_all(spec, [_F(a.field) for a in axes], nominal, x, set_index)
+    out: list[dict[str, Any] | str] = []
+    for j, row in enumerate(x):
+        if arrays is not None:
+            rec = {k: float(arrays[k][j]) for k in (*PARAM_FIELDS, "length_m", "f_act_hz")}
+        else:
+            try:
+                s = with_values(
+                    spec, {a.field: a.quantity(float(v)) for a, v in zip(axes, row, strict=True)}
+                )
+                d = derive_set(s, s.actuator_sets[set_index])
+            except (BetvError, ValueError) as exc:
+                out.append(str(exc))
+                continue
+            rec = {
+                **d.params.as_dict(),
+                "length_m": d.scales.length_m,
+                "f_act_hz": d.scales.f_act_hz,
+            }
+        if (
+            not all(math.isfinite(v) for v in rec.values())
+            or min(rec[k] for k in ("varpi", "alpha", "beta")) <= 0
+        ):
+            out.append("the model cannot take this point (a parameter not positive)")
+            continue
+        out.append(rec)
+    return x, out
+
+
+def fieldsweep_point(task: Mapping[str, Any]) -> dict[str, Any]:
+    """Worker: one grid point's exact periodic orbit, with its physical speed.
+
+    Parameters
+    ----------
+    task : mapping
+        ``key``, the fields' ``values`` [their units], ϖ, α, β, κ, ζ_v, ζ_h, e [-],
+        ``length_m`` ℓ = u·cosθ [m], ``f_act_hz`` [Hz], ``tol`` [-]; or ``invalid`` (why
+        the point cannot be derived).
+
+    Returns
+    -------
+    dict
+        One row of :func:`columns`: the values, the point's row of
+        :data:`betvdesign.studies.points.COLUMNS`, ``exact_mode`` (:data:`MODES`),
+        ``speed_m_s`` [m/s] and ``basis`` ("periodic").
+    """
+    values = dict(task["values"])
+    if task.get("invalid"):
+        row = dict.fromkeys(task["columns"])
+        row.update(
+            key=task["key"],
+            **values,
+            status="invalid",
+            converged=False,
+            message=task["invalid"],
+            exact_mode="invalid",
+            basis=None,
+        )
+        return row
+    row = periodic_point(task)
+    row.update(values)
+    row["exact_mode"] = exact_mode(row)
+    ds = row.get("delta_s")
+    ok = row["exact_mode"] in ("push", "pull", "stalled") and ds is not None
+    row["speed_m_s"] = float(ds) * task["length_m"] * task["f_act_hz"] if ok else None
+    row["basis"] = "periodic" if ok else None
+    return {c: row.get(c) for c in task["columns"]}
+
+
+def columns(axes: Sequence[FieldAxis]) -> dict[str, type]:
+    """The result columns: the fields, the point's columns, exact mode, speed, basis."""
+    out: dict[str, type] = {"key": int}
+    out |= {a.field: float for a in axes}
+    out |= {k: t for k, t in COLUMNS.items() if k != "key"}
+    out |= {"zeta_v": float, "zeta_h": float, "restitution": float}
+    out |= {"exact_mode": str, "speed_m_s": float, "basis": str}
+    return out
+
+
+def fieldsweep_study(
+    device: str | Path,
+    axes: Sequence[FieldAxis],
+    *,
+    set_name: str | None = None,
+    tol: float = 1e-10,
+) -> Study:
+    """The study of ``axes`` of the device file ``device`` (one or two fields).
+
+    Parameters
+    ----------
+    device : path
+        The device YAML file.
+    axes : sequence of FieldAxis
+        One or two axes (:func:`parse_axis`).
+    set_name : str, optional
+        The actuator set studied (default: the first).
+    tol : float
+        Fixed-point residual accepted [-].
+
+    Returns
+    -------
+    Study
+        Tasks in row-major order of the grid (the first axis slowest); its parameters
+        (recorded for resume) name the file, its content hash, the set and the grids.
+    """
+    from betvdesign.spec.loader import load_device
+
+    if not 1 <= len(axes) <= 2 or len({a.field for a in axes}) != len(axes):
+        raise UsageError("--vary: give one or two different fields")
+    spec = load_device(device)
+    names = [s.name for s in spec.actuator_sets]
+    if set_name is None:
+        set_name = names[0]
+    if set_name not in names:
+        raise UsageError(f"--set {set_name}: the device has {', '.join(names)}")
+    index = names.index(set_name)
+    x, derived = _derive_grid(spec, axes, index)
+    cols = columns(axes)
+    tasks = []
+    for j, (pt, rec) in enumerate(zip(x, derived, strict=True)):
+        values = {a.field: float(v) for a, v in zip(axes, pt, strict=True)}
+        task: dict[str, Any] = {"key": j, "values": values, "tol": tol, "columns": list(cols)}
+        if isinstance(rec, str):
+            task["invalid"] = rec
+        else:
+            task.update(rec)
+        tasks.append(task)
+    digest = hashlib.sha256(Path(device).read_bytes()).hexdigest()[:16]
+    params = {
+        "device": str(device),
+        "device_sha256": digest,
+        "set": set_name,
+        "tol": tol,
+        "axes": {a.field: {"unit": a.unit, "values": list(a.values)} for a in axes},
+    }
+    return Study("fieldsweep", cols, params, tasks, fieldsweep_point)
+
+
+@dataclass(frozen=True)
+class Flip:
+    """A change of the exact mode along one field, bisected.
+
+    Attributes
+    ----------
+    field : str
+        The field.
+    at : float
+        Where the mode changes [the field's unit] (to :data:`FLIP_RTOL`).
+    below, above : str
+        The exact mode below and above it.
+    """
+
+    field: str
+    at: float
+    below: str
+    above: str
+
+    def as_dict(self) -> dict[str, Any]:
+        return {"field": self.field, "at": self.at, "below": self.below, "above": self.above}
+
+
+def _mode_at(spec: Any, axis: FieldAxis, x: float, index: int, tol: float) -> str:
+    from betvdesign.nondim.device import derive_set
+
+    try:
+        s = with_values(spec, {axis.field: axis.quantity(x)})
+        d = derive_set(s, s.actuator_sets[index])
+    except (BetvError, ValueError):
+        return "invalid"
+    task = {"key": 0, **d.params.as_dict(), "tol": tol}
+    return exact_mode(periodic_point(task))
+
+
+def locate_flips(
+    device: str | Path,
+    axis: FieldAxis,
+    rows: Sequence[Mapping[str, Any]],
+    *,
+    set_name: str | None = None,
+    tol: float = 1e-10,
+) -> list[Flip]:
+    """Every change of the exact mode between neighbouring points of a 1-D sweep,
+    bisected along the field to :data:`FLIP_RTOL` of the field's range.
+
+    Parameters
+    ----------
+    device : path
+        The device file the sweep was made of.
+    axis : FieldAxis
+        The swept field.
+    rows : sequence of mapping
+        The sweep's rows, in grid order.
+    set_name : str, optional
+        The set swept (default: the first).
+    tol : float
+        Fixed-point residual accepted [-].
+
+    Returns
+    -------
+    list of Flip
+        In ascending order of the field.
+    """
+    from betvdesign.spec.loader import load_device
+
+    spec = load_device(device)
+    names = [s.name for s in spec.actuator_sets]
+    index = names.index(set_name) if set_name else 0
+    span = axis.values[-1] - axis.values[0]
+    out = []
+    for a, b in itertools.pairwise(rows):
+        ma, mb = a["exact_mode"], b["exact_mode"]
+        if ma == mb:
+            continue
+        lo, hi = float(a[axis.field]), float(b[axis.field])
+        while hi - lo > FLIP_RTOL * span:
+            mid = 0.5 * (lo + hi)
+            m = _mode_at(spec, axis, mid, index, tol)
+            if m == ma:
+                lo = mid
+            elif m == mb:
+                hi = mid
+            else:  # a third mode in between: keep the first change
+                hi, mb = mid, m
+        out.append(Flip(axis.field, 0.5 * (lo + hi), ma, mb))
+    return out
+
+
+def run_fieldsweep(
+    device: str | Path,
+    axes: Sequence[FieldAxis],
+    **kwargs: Any,
+) -> tuple[StudyRun, dict[str, Any]]:
+    """Run :func:`fieldsweep_study` (executor, ``out``, resume as every study) and
+    summarise it.
+
+    Parameters
+    ----------
+    device : path
+        The device file.
+    axes : sequence of FieldAxis
+        One or two axes.
+    **kwargs
+        ``set_name``, ``tol``, and :class:`~betvdesign.studies.engine.runner.RunArgs`.
+
+    Returns
+    -------
+    tuple of (StudyRun, dict)
+        The run and its summary: counts per exact mode, the device's own point, and for
+        one axis the flips (:func:`locate_flips`).
+    """
+    study_kw, run_kw = split_run_args(kwargs)
+    study = fieldsweep_study(device, axes, **study_kw)
+    run = run_study(study, **run_kw)
+    counts = {m: 0 for m in (*MODES, "invalid")}
+    for r in run.rows:
+        counts[r["exact_mode"]] = counts.get(r["exact_mode"], 0) + 1
+    summary: dict[str, Any] = {
+        "device": str(device),
+        "set": study.parameters["set"],
+        "fields": [
+            {
+                "field": a.field,
+                "unit": a.unit,
+                "device_value": a.x0,
+                "lo": a.values[0],
+                "hi": a.values[-1],
+                "points": len(a.values),
+            }
+            for a in axes
+        ],
+        "points": len(run.rows),
+        "modes": {k: v for k, v in counts.items() if v},
+        "speed": "periodic orbit: Δs·u·cosθ·f_act [m/s], signed along the impacts",
+    }
+    if len(axes) == 1:
+        flips = locate_flips(
+            device,
+            axes[0],
+            run.rows,
+            **{k: v for k, v in study_kw.items() if k in ("set_name", "tol")},
+        )
+        summary["flips"] = [f.as_dict() for f in flips]
+    return run, summary
