@@ -108,3 +108,20 @@ def test_solver_failure_exit_1_with_message():
     assert r.exit_code == 1
     out = json.loads(r.stdout)
     assert out["status"] == "not_driven" and out["delta_s"] is None and out["mode"] is None
+
+
+def test_pull_device_states_travel_direction_beside_the_magnitude():
+    """One sign convention with ``betv check``: the speed signed along the impact
+    direction (− pull) in JSON, and in the text its magnitude and the travel direction."""
+    path = DEVICES / "pull_demo.yaml"
+    out = json.loads(_run([str(path), "--periodic", "--json"]).stdout)
+    ph = out["physical"]
+    assert out["mode"] == "pull" and ph["speed_m_s"] < 0
+    d = derive_file(path).sets[0]
+    assert out["impact_direction"] == ("+x" if d.impact_sign > 0 else "-x")
+    assert ph["travel_direction"] == ("-x" if d.impact_sign > 0 else "+x")
+    text = _run([str(path), "--periodic"]).stdout
+    magnitude = format_si(abs(ph["speed_m_s"]), "m/s", digits=4)
+    assert f"mean speed {magnitude} toward {ph['travel_direction']}" in text
+    check = CliRunner().invoke(app, ["check", str(path)]).stdout
+    assert f"toward {ph['travel_direction']}" in check

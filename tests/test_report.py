@@ -332,13 +332,13 @@ def test_robustness_figure_speaks_designer_units(monkeypatch: pytest.MonkeyPatch
     from betvdesign.model.params import ModelParams
 
     drawn: dict[str, Any] = {}
-    real = plots.figure_svg
+    real = plots.figure_svg_png
 
-    def keep(fig: Any, key: str) -> str:
+    def keep(fig: Any, key: str, **kw: Any) -> tuple[str, bytes]:
         drawn[key] = fig
-        return real(fig, key)
+        return real(fig, key, **kw)
 
-    monkeypatch.setattr(plots, "figure_svg", keep)
+    monkeypatch.setattr(plots, "figure_svg_png", keep)
     report = build_report(prepare(DEVICES / "push_demo.yaml"), options=SMALL)
     fig = next(f for f in report.figures() if f.key.endswith("robustness"))
     assert fig.svg is not None

@@ -156,3 +156,20 @@ def test_dominant_input_ranks_first():
     )
     sens = summary["sets"]["forward"]["sensitivities"]
     assert sens[0]["field"] == "actuator.horizontal_resonance" and abs(sens[0]["rho_lambda"]) > 0.9
+
+
+def test_pull_device_percentiles_signed_and_along_the_intended_travel():
+    """Sign convention (README "Versioned outputs"): ``speed_um_s_percentiles`` are signed
+    along the impact direction (a pull device: negative); the intended-direction
+    percentiles are positive for a pull device and their p5 is the slowest, not the fastest."""
+    dev = "devices/pull_demo.yaml"
+    tols = [parse_tolerance("drive.frequency=2%")]
+    run, summary = run_tolerance(dev, tols, samples=8, seed=3)
+    s = next(iter(summary["sets"].values()))
+    assert s["intended_mode"] == "pull" and s["p_pull"] == 1.0
+    speeds = np.array([r["speed_um_s"] for r in run.rows])
+    signed, along = s["speed_um_s_percentiles"], s["intended_speed_um_s_percentiles"]
+    assert all(v < 0 for v in signed.values())
+    assert along["p5"] == pytest.approx(np.percentile(-speeds, 5), rel=1e-12)
+    assert 0 < along["p5"] <= along["p50"] <= along["p95"]
+    assert along["p5"] == pytest.approx(-signed["p95"], rel=1e-12)  # the slowest pull

@@ -85,7 +85,12 @@ def _params_from_options(
             if not matches:
                 raise UsageError(f"{file}: no actuator set {set_name!r} (sets: {', '.join(names)})")
             chosen = matches[0]
-        return chosen.params, chosen.scales, {"device": der.name, "set": chosen.name}
+        ident = {
+            "device": der.name,
+            "set": chosen.name,
+            "impact_direction": "+x" if chosen.impact_sign > 0 else "-x",
+        }
+        return chosen.params, chosen.scales, ident
     if set_name is not None:
         raise UsageError("--set needs a device file")
     missing = [k for k, v in opts.items() if v is None]
@@ -98,9 +103,14 @@ def _params_from_options(
     return ModelParams(**opts, **terms), None, {}  # type: ignore[arg-type]
 
 
-def _physical(scales: Any, s: float, delta_s: float | None, cycles: int) -> dict[str, Any]:
+def _physical(
+    scales: Any, s: float, delta_s: float | None, cycles: int, impact_direction: str
+) -> dict[str, Any]:
     """Dimensional values as SI floats under unit-named keys, from the device scales
-    (MODEL.md "Displacement per cycle": length u·cosθ, speed Δs·u·cosθ·f_act)."""
+    (MODEL.md "Displacement per cycle": length u·cosθ, speed Δs·u·cosθ·f_act), signed
+    along the impact direction (README "Versioned outputs": + push, − pull), and the
+    device direction the slider travels (``travel_direction``: "+x", "-x", or None when
+    it does not move); ``impact_direction`` is the device direction of +Δs."""
     out: dict[str, Any] = {
         "length_scale_m": scales.length_m,
         "f_act_hz": scales.f_act_hz,
@@ -109,10 +119,14 @@ def _physical(scales: Any, s: float, delta_s: float | None, cycles: int) -> dict
         "s_m": s * scales.length_m,
         "delta_s_m": None,
         "speed_m_s": None,
+        "travel_direction": None,
     }
     if delta_s is not None:
         out["delta_s_m"] = delta_s * scales.length_m
         out["speed_m_s"] = delta_s * scales.length_m * scales.f_act_hz
+        if delta_s != 0.0:
+            flip = {"+x": "-x", "-x": "+x"}
+            out["travel_direction"] = impact_direction if delta_s > 0 else flip[impact_direction]
     return out
 
 
@@ -219,7 +233,9 @@ def simulate_cmd(
             success = tr.success
     out.update(ident)
     if scales is not None:
-        out["physical"] = _physical(scales, out["s"], out["delta_s"], out["cycles"])
+        out["physical"] = _physical(
+            scales, out["s"], out["delta_s"], out["cycles"], out["impact_direction"]
+        )
     if as_json:
         typer.echo(json.dumps(out, indent=2, ensure_ascii=False))
     else:
@@ -246,10 +262,15 @@ def _print_text(out: dict[str, Any], periodic: bool) -> None:
     if ds is not None:
         line = f"{what} = {ds:.10g} per cycle [u·cosθ]"
         if ph:
-            line += (
-                f" = {format_si(ph['delta_s_m'], 'm', digits=4)}; mean speed "
-                f"{format_si(ph['speed_m_s'], 'm/s', digits=4)}"
-            )
+            line += f" = {format_si(ph['delta_s_m'], 'm', digits=4)}"
+            toward = ph["travel_direction"]
+            if toward is not None:
+                line += (
+                    f"; mean speed {format_si(abs(ph['speed_m_s']), 'm/s', digits=4)} "
+                    f"toward {toward} "
+                    f"({format_si(ph['speed_m_s'], 'm/s', digits=4)} signed along the "
+                    "impact direction, + push, − pull)"
+                )
         if out["mode"] == "not driven":
             line += (
                 " -> not driven: no contact recurs, the slider coasts at the velocity of "

@@ -123,10 +123,12 @@ def tolerance_cmd(
                     typer.echo(f"    P(not driven: no contact recurs) {s['p_not_driven']:.3f}")
                 if s["invalid_samples"]:
                     typer.echo(f"    invalid samples: {s['invalid_samples']}")
-                pct = s["speed_um_s_percentiles"]
+                pct = s["intended_speed_um_s_percentiles"]
                 if pct:
                     typer.echo(
-                        "    speed [µm/s] " + "  ".join(f"{k} {v:.4g}" for k, v in pct.items())
+                        f"    speed in the intended {s['intended_mode']} direction [µm/s] "
+                        "(− the wrong way; p5 slowest) "
+                        + "  ".join(f"{k} {v:.4g}" for k, v in pct.items())
                     )
                 ranked = ", ".join(
                     f"{e['field']} ({e[s['ranked_by']]:+.2f})"

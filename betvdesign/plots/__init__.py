@@ -3,11 +3,17 @@
 Every function draws on the ``ax=`` it is given (or a fresh
 :class:`matplotlib.figure.Figure` when None) from plain, unit-free or explicitly
 unit-suffixed arrays; none computes physics. :func:`figure_svg` turns a figure
-into byte-reproducible inline SVG.
+into byte-reproducible inline SVG, :func:`figure_png` into a reproducible PNG.
 """
 
 from betvdesign.plots.adequacy import mode_speed_scan
-from betvdesign.plots.figure import figure_style, figure_svg, new_figure
+from betvdesign.plots.figure import (
+    figure_png,
+    figure_style,
+    figure_svg,
+    figure_svg_png,
+    new_figure,
+)
 from betvdesign.plots.phase import orbit_plane, vertical_phase_portrait
 from betvdesign.plots.pushpull import lambda_one_curve, pushpull_map, pushpull_map_frequencies
 from betvdesign.plots.regime import contact_fraction_strip, impact_period_strip
@@ -21,8 +27,10 @@ from betvdesign.plots.timeseries import slider_displacement, slider_velocity
 
 __all__ = [
     "contact_fraction_strip",
+    "figure_png",
     "figure_style",
     "figure_svg",
+    "figure_svg_png",
     "impact_period_strip",
     "lambda_one_curve",
     "mode_speed_scan",

@@ -12,7 +12,7 @@ See :mod:`betvdesign.report.build` (model), :mod:`~betvdesign.report.render`
 from betvdesign.report.analysis import ReportOptions
 from betvdesign.report.build import PreparedDevice, build_report, prepare
 from betvdesign.report.model import Report
-from betvdesign.report.render import render_html, render_pdf
+from betvdesign.report.render import render_html, render_pdf, report_pdf
 from betvdesign.report.write import write_reports
 
 __all__ = [
@@ -23,5 +23,6 @@ __all__ = [
     "prepare",
     "render_html",
     "render_pdf",
+    "report_pdf",
     "write_reports",
 ]

@@ -9,6 +9,7 @@ reason instead of an SVG (never an invented curve).
 
 from __future__ import annotations
 
+import base64
 import math
 from collections.abc import Callable
 from typing import Any
@@ -29,11 +30,20 @@ from betvdesign.studies.regime import LONG_PERIOD
 EXACT = "exact event-driven impact model (closed-form phases, MODEL.md)"
 
 
-def _svg(key: str, draw: Callable[[Any], None], *, size=(6.4, 3.4), **grid: Any) -> str:
+#: Resolution of the figures' PNG in the PDF report [dots per inch].
+PDF_DPI = 150.0
+
+
+def _render(
+    key: str, draw: Callable[[Any], None], *, size=(6.4, 3.4), **grid: Any
+) -> tuple[str, str]:
+    """One figure drawn once, exported twice: (inline SVG for the HTML, PNG data URI for
+    the PDF, where WeasyPrint would spend seconds drawing the SVG)."""
     with plots.figure_style():
         fig, axes = plots.new_figure(*size, **grid)
         draw(axes)
-        return plots.figure_svg(fig, key)
+        svg, png = plots.figure_svg_png(fig, key, dpi=PDF_DPI)
+    return svg, "data:image/png;base64," + base64.b64encode(png).decode("ascii")
 
 
 def _scale(max_abs: float, unit: str, per_unit: float, what: str) -> tuple[float, str]:
@@ -94,14 +104,9 @@ def figure_block(
         return FigureBlock(
             key, title, caption, model, unavailable=piece.reason, rung=rung[0], rung_reason=rung[1]
         )
+    svg, png = _render(key, draw, **layout)
     return FigureBlock(
-        key,
-        title,
-        caption,
-        model,
-        svg=_svg(key, draw, **layout),
-        rung=rung[0],
-        rung_reason=rung[1],
+        key, title, caption, model, svg=svg, png=png, rung=rung[0], rung_reason=rung[1]
     )
 
 

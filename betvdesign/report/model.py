@@ -53,7 +53,8 @@ class RuleRow:
 
 @dataclass(frozen=True)
 class FigureBlock:
-    """A numbered figure: inline SVG, or the reason it could not be drawn.
+    """A numbered figure: inline SVG (and the same figure as a PNG data URI, ``png``,
+    which the PDF shows), or the reason it could not be drawn.
 
     model: the model that produced the data ("λ fit", "vertical-only exact
     model", "exact event-driven model"...), stated in the caption; rung: the
@@ -69,6 +70,7 @@ class FigureBlock:
     unavailable: str | None = None
     rung: str = ""
     rung_reason: str = ""
+    png: str | None = None
 
 
 @dataclass(frozen=True)

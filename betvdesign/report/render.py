@@ -2,7 +2,8 @@
 
 HTML: one self-contained file (inline CSS, inline SVG, no scripts, no external
 references), from a Jinja2 template with autoescape on. PDF: WeasyPrint renders
-the same HTML and CSS. Both are byte-reproducible for the same report: no date
+the same HTML and CSS with each figure as the PNG matplotlib drew from the same
+figure (:func:`report_pdf`). Both are byte-reproducible for the same report: no date
 is written unless the report carries one (``betv report --timestamp``), and
 WeasyPrint's PDF is deterministic for the same HTML and fonts.
 """
@@ -18,7 +19,7 @@ from markupsafe import Markup
 from betvdesign.output.files import write_atomic
 from betvdesign.report.model import Report
 
-__all__ = ["render_html", "render_pdf", "render_template", "write_atomic"]
+__all__ = ["render_html", "render_pdf", "render_template", "report_pdf", "write_atomic"]
 
 _TEMPLATE = "report.html.j2"
 _CSS = "report.css"
@@ -57,21 +58,48 @@ def render_template(name: str, **context: object) -> str:
     return _environment().get_template(name).render(css=Markup(_css()), **context)
 
 
-def render_html(report: Report) -> str:
-    """The report as one self-contained HTML document [str]."""
-    return render_template(_TEMPLATE, r=report)
+def render_html(report: Report, *, raster: bool = False) -> str:
+    """The report as one self-contained HTML document.
+
+    Parameters
+    ----------
+    report : Report
+        The report model.
+    raster : bool
+        Show each figure as its PNG (:attr:`~betvdesign.report.model.FigureBlock.png`)
+        instead of its inline SVG: the document :func:`report_pdf` renders.
+
+    Returns
+    -------
+    str
+        The HTML document.
+    """
+    return render_template(_TEMPLATE, r=report, raster=raster)
+
+
+def report_pdf(report: Report) -> bytes:
+    """PDF bytes of ``report``: :func:`render_pdf` of its HTML with the figures as PNG
+    (drawn once by matplotlib; WeasyPrint drawing inline SVG took most of its time)."""
+    return render_pdf(render_html(report, raster=True))
 
 
 def render_pdf(html: str) -> bytes:
     """PDF bytes of ``html`` rendered by WeasyPrint (A4, fonts embedded).
 
-    Nothing outside the document is fetched: the HTML is self-contained and the
-    URL fetcher refuses every request.
+    Nothing outside the document is fetched: the HTML is self-contained (its images
+    are ``data:`` URIs) and the URL fetcher refuses every other scheme.
     """
     import weasyprint  # heavy import, only when a PDF is wanted
 
-    def no_fetch(url: str, *args: object, **kwargs: object) -> dict[str, object]:
-        raise ValueError(f"report references an external resource {url!r}")
+    fetcher: object
+    if hasattr(weasyprint.urls, "URLFetcher"):  # newer WeasyPrint: a fetcher object
+        fetcher = weasyprint.urls.URLFetcher(allowed_protocols={"data"}, fail_on_errors=True)
+    else:  # pragma: no cover - older WeasyPrint: a function
+
+        def fetcher(url: str, *args: object, **kwargs: object) -> object:
+            if not url.startswith("data:"):
+                raise ValueError(f"report references an external resource {url!r}")
+            return weasyprint.default_url_fetcher(url, *args, **kwargs)
 
     # Inline SVG style attributes (fill, stroke...) reach WeasyPrint's HTML cascade,
     # which warns that they are unknown CSS properties before the SVG renderer uses
@@ -80,7 +108,7 @@ def render_pdf(html: str) -> bytes:
     level = logger.level
     logger.setLevel(logging.ERROR)
     try:
-        doc = weasyprint.HTML(string=html, base_url=None, url_fetcher=no_fetch)
+        doc = weasyprint.HTML(string=html, base_url=None, url_fetcher=fetcher)
         return doc.write_pdf()
     finally:
         logger.setLevel(level)

@@ -16,7 +16,7 @@ from betvdesign.errors import SpecError, UsageError
 from betvdesign.output.files import check_output_dir, write_group
 from betvdesign.report.analysis import ReportOptions
 from betvdesign.report.build import build_report, prepare
-from betvdesign.report.render import render_html, render_pdf
+from betvdesign.report.render import render_html, report_pdf
 
 
 @dataclass(frozen=True)
@@ -92,7 +92,7 @@ def write_reports(
         files: dict[Path, str | bytes] = {html_path: html}
         step()
         if pdf_path is not None:
-            files[pdf_path] = render_pdf(html)
+            files[pdf_path] = report_pdf(report)
             step()
         write_group(files)  # HTML and PDF together, or neither
         written.append(

@@ -24,9 +24,12 @@ Samples are drawn in spec space with a seeded ``numpy.random.Generator``
 and speed) or ``lambda`` (closed-form fit only; P(push) from λ, no speed).
 
 Results: P(push), P(pull), P(not converged), P(outside the 0.5 ≤ ϖ < 2
-window), P(wrong mode: the opposite of the intended one), speed percentiles,
-and sensitivities as Spearman rank correlations of each input with speed
-(periodic) and λ.
+window), P(wrong mode: the opposite of the intended one), speed percentiles
+(signed along the impact direction, + push, − pull, as every output of the toolkit:
+``speed_um_s_percentiles``; and along the intended direction of travel, + the intended
+way, − the wrong way, so that p5 is the slowest 5 % for a push and a pull device alike:
+``intended_speed_um_s_percentiles``), and sensitivities as Spearman rank correlations
+of each input with speed (periodic) and λ.
 """
 
 from __future__ import annotations
@@ -458,6 +461,12 @@ def _spearman(x: np.ndarray, y: np.ndarray) -> float | None:
     return float(spearmanr(x[ok], y[ok]).statistic)
 
 
+def intended_sign(intended: str | None) -> float:
+    """+1 for a push set, −1 for a pull set: times a speed signed along the impact
+    direction it gives the speed along the intended direction of travel."""
+    return -1.0 if intended == "pull" else 1.0
+
+
 def summarise(
     rows: Sequence[Mapping[str, Any]], tolerances: Sequence[Tolerance], fidelity: str
 ) -> dict[str, Any]:
@@ -477,8 +486,8 @@ def summarise(
     dict
         Rung, model statement and why, and per set: P(push), P(pull), P(not converged),
         P(not driven), P(outside the window), P(wrong mode) [-], speed percentiles
-        [um/s], Spearman rank correlations [-] of each input with λ and speed, and the
-        first 50 failures.
+        [um/s] signed along the impact direction and along the intended travel, Spearman
+        rank correlations [-] of each input with λ and speed, and the first 50 failures.
     """
     out: dict[str, Any] = {
         "fidelity": fidelity,
@@ -517,8 +526,18 @@ def summarise(
             # the opposite of the intended mode (not converged counts separately)
             "p_wrong_mode": sum(r[mode_key] is not None and r[mode_key] != intended for r in valid)
             / n,
+            # signed along the impact direction (+ push, − pull): README "Versioned outputs"
             "speed_um_s_percentiles": (
                 {f"p{q:g}": float(np.percentile(speeds, q)) for q in PERCENTILES}
+                if speeds.size
+                else None
+            ),
+            # along the intended travel (+ the intended way): p5 is the slowest 5 %
+            "intended_speed_um_s_percentiles": (
+                {
+                    f"p{q:g}": float(np.percentile(speeds * intended_sign(intended), q))
+                    for q in PERCENTILES
+                }
                 if speeds.size
                 else None
             ),
