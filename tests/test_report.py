@@ -31,8 +31,9 @@ from betvdesign.report.build import fmt_num
 from betvdesign.report.variants import shown_fields
 from betvdesign.spec.loader import load_device
 
-#: Section 4's figures per distinct set, plus the model-adequacy figure (section 5).
-FIGURES_PER_SET = 7 + 1
+#: Section 4's figures per distinct set (the exact-mode map first), plus the
+#: model-adequacy and the speed-against-frequency figures (section 5).
+FIGURES_PER_SET = 1 + 7 + 2
 #: Small sweeps for tests about rendering, not about the numbers.
 SMALL = ReportOptions(regime_points=5, robustness_points=8)
 
@@ -77,14 +78,9 @@ def distinct_sets(path: Path) -> int:
 
 
 def expected_figures(path: Path) -> int:
-    """FIGURES_PER_SET per distinct set, plus the speed-frequency figure of each distinct
-    set whose file gives a thermal cut-off (read from the spec, not the derivation)."""
-    spec = load_device(path)
-    rolled = any(
-        a.actuator.thermal_cutoff is not None or a.actuator.thermal_time_constant is not None
-        for a in spec.actuator_sets
-    )
-    return (FIGURES_PER_SET + rolled) * distinct_sets(path)
+    """FIGURES_PER_SET per distinct set (every device has a speed-frequency figure, with
+    or without a thermal cut-off)."""
+    return FIGURES_PER_SET * distinct_sets(path)
 
 
 @pytest.mark.parametrize("device", device_files(), ids=lambda p: p.stem)
@@ -120,6 +116,8 @@ def test_report_content(reports_dir: Path, device: Path) -> None:
     assert [int(n) for n, _ in captions] == list(range(1, n_fig + 1))
     assert text.count("Model: ") == n_fig
     for title in (
+        "Where the mode holds: exact-mode map",
+        "Mean speed against actuation frequency",
         "Push/pull map",
         "Vertical regime strip",
         "Vertical phase portrait",
@@ -249,8 +247,8 @@ def test_missing_solver_is_stated_not_invented(monkeypatch: pytest.MonkeyPatch) 
     assert "not available" in box.predicted_by and box.predicted_mode == "unknown"
     assert box.verdict == "fail"  # no verdict without the exact orbit
     figs = report.figures()
-    assert figs[0].svg is not None  # the λ map needs no solver
-    assert all(f.svg is None and "(test)" in (f.unavailable or "") for f in figs[1:])
+    assert [f.key for f in figs if f.svg is not None] == ["s1-pushpull"]  # λ needs no solver
+    assert all("(test)" in (f.unavailable or "") for f in figs if f.svg is None)
     text = text_of(render_html(report))
     assert text.count("Not drawn:") == len(figs) - 1
     report_analysis._vertical.cache_clear()  # drop the failures cached for ϖ
@@ -265,7 +263,7 @@ def test_amplitude_without_calibration_says_why_no_voltage_curve(tmp_path: Path)
     f = tmp_path / "amp.yaml"
     f.write_text(src, "utf-8")
     figs = build_report(prepare(f), options=SMALL).figures()
-    speed = [x for x in figs if x.title.startswith("Mean speed")]
+    speed = [x for x in figs if x.title.startswith("Mean speed against drive voltage")]
     assert len(speed) == 1 and speed[0].svg is None
     assert "not a calibration u(V)" in (speed[0].unavailable or "")
     assert sum(x.svg is not None for x in figs) == len(figs) - 1

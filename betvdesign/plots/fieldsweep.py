@@ -21,7 +21,13 @@ from matplotlib.patches import Patch
 from betvdesign.plots.figure import DEVICE_COLOR, MODE_COLORS, new_figure
 from betvdesign.plots.studies import save_figure
 
-__all__ = ["FIELD_MODE_COLORS", "fieldsweep_figure", "save_fieldsweep_figure"]
+__all__ = [
+    "FIELD_MODE_COLORS",
+    "fieldsweep_figure",
+    "mode_map",
+    "save_fieldsweep_figure",
+    "speed_with_modes",
+]
 
 #: Colour of every exact mode of a field sweep.
 FIELD_MODE_COLORS: dict[str, str] = {
@@ -54,15 +60,21 @@ def fieldsweep_figure(rows: Sequence[Mapping[str, Any]], summary: Mapping[str, A
     Figure
         1-D: speed [µm/s] against the field with mode bands; 2-D: the exact-mode map.
     """
-    fields = summary["fields"]
-    if len(fields) == 1:
-        return _one(rows, summary)
-    return _two(rows, summary)
+    if len(summary["fields"]) == 1:
+        fig, ax = new_figure(6.4, 3.4)
+        speed_with_modes(rows, summary, ax=ax)
+    else:
+        fig, ax = new_figure(6.4, 4.4)
+        mode_map(rows, summary, ax=ax)
+    return fig
 
 
-def _one(rows: Sequence[Mapping[str, Any]], summary: Mapping[str, Any]) -> Figure:
+def speed_with_modes(
+    rows: Sequence[Mapping[str, Any]], summary: Mapping[str, Any], *, ax: Any
+) -> None:
+    """1-D: the periodic speed [µm/s] against the field on ``ax``, the exact mode as
+    coloured bands between the bisected flips, the device's value dashed."""
     (f,) = summary["fields"]
-    fig, ax = new_figure(6.4, 3.4)
     x = np.array([float(r[f["field"]]) for r in rows])
     v = np.array([np.nan if r["speed_m_s"] is None else 1e6 * r["speed_m_s"] for r in rows])
     edges = [x[0], *[fl["at"] for fl in summary.get("flips", [])], x[-1]]
@@ -81,10 +93,11 @@ def _one(rows: Sequence[Mapping[str, Any]], summary: Mapping[str, Any]) -> Figur
     handles = [Patch(color=FIELD_MODE_COLORS.get(m, "#fff"), alpha=0.4, label=m) for m in seen]
     handles.append(Patch(color=DEVICE_COLOR, label=f"device ({f['device_value']:g} {f['unit']})"))
     ax.legend(handles=handles, loc="best")
-    return fig
 
 
-def _two(rows: Sequence[Mapping[str, Any]], summary: Mapping[str, Any]) -> Figure:
+def mode_map(rows: Sequence[Mapping[str, Any]], summary: Mapping[str, Any], *, ax: Any) -> None:
+    """2-D: the exact-mode map on ``ax`` in the two fields' units, the device starred,
+    the paper's λ = 1 curve dashed over it (or where λ lies if it does not cross)."""
     fa, fb = summary["fields"]
     na, nb = fa["points"], fb["points"]
     xa = np.array([float(r[fa["field"]]) for r in rows]).reshape(na, nb)[:, 0]
@@ -92,7 +105,6 @@ def _two(rows: Sequence[Mapping[str, Any]], summary: Mapping[str, Any]) -> Figur
     names = list(FIELD_MODE_COLORS)
     code = np.array([names.index(r["exact_mode"]) for r in rows]).reshape(na, nb)
     lam = np.array([np.nan if r.get("lam") is None else r["lam"] for r in rows]).reshape(na, nb)
-    fig, ax = new_figure(6.4, 4.4)
     cmap = ListedColormap([FIELD_MODE_COLORS[n] for n in names])
     ax.pcolormesh(xa, xb, code.T, cmap=cmap, vmin=-0.5, vmax=len(names) - 0.5, shading="nearest")
     crosses = bool(np.isfinite(lam).any() and np.nanmin(lam) < 1.0 < np.nanmax(lam))
@@ -120,9 +132,8 @@ def _two(rows: Sequence[Mapping[str, Any]], summary: Mapping[str, Any]) -> Figur
     handles = [Patch(color=FIELD_MODE_COLORS[n], label=n) for n in present]
     handles.append(Patch(facecolor="none", edgecolor="k", ls="--", label=lam_label))
     handles.append(Patch(color=DEVICE_COLOR, label="device"))
-    ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    ax.legend(handles=handles, loc="best", framealpha=0.85)
     ax.set_title(f"{summary.get('name', '')} exact mode (periodic orbit)")
-    return fig
 
 
 def save_fieldsweep_figure(

@@ -56,6 +56,7 @@ def speed_vs_frequency(
     *,
     f_v_hz: float,
     cutoff_hz: float | None = None,
+    rolloff: bool = True,
     operating: tuple[float, float] | None = None,
     ax: Axes | None = None,
 ) -> Axes:
@@ -64,7 +65,8 @@ def speed_vs_frequency(
     calibrated stroke held constant (dashed, the idealised model); None: no periodic orbit
     there (crosses on zero). Top axis ϖ = f_act/f_v; the design window 0.5 ≤ ϖ < 2 is
     shaded, the cut-off f_c drawn where it falls inside the plot; ``operating``:
-    (f_act [Hz], speed [m/s]) of the device."""
+    (f_act [Hz], speed [m/s]) of the device. ``rolloff`` False: the device gives no
+    cut-off, one solid curve (the stroke constant)."""
     ax = axes_or_new(ax)
     f = np.asarray(f_act_hz, float)
     ok = np.array([v is not None for v in speed_m_s], dtype=bool)
@@ -73,22 +75,23 @@ def speed_vs_frequency(
     kf, f_unit = scale_for(float(f.max()) if f.size else 0.0, "Hz")
     top = max(float(np.abs(v[ok]).max(initial=0.0)), float(np.nanmax(np.abs(v0), initial=0.0)))
     kv, v_unit = scale_for(top, "m/s")
-    ax.plot(
-        f[ok] * kf,
-        v0[ok] * kv,
-        color="#7f7f7f",
-        ls="--",
-        marker="o",
-        ms=2.5,
-        label="calibrated stroke at every frequency (no roll-off)",
-    )
+    if rolloff:
+        ax.plot(
+            f[ok] * kf,
+            v0[ok] * kv,
+            color="#7f7f7f",
+            ls="--",
+            marker="o",
+            ms=2.5,
+            label="calibrated stroke at every frequency (no roll-off)",
+        )
     ax.plot(
         f[ok] * kf,
         v[ok] * kv,
         color="black",
         marker="o",
         ms=3,
-        label="with the thermal roll-off of the stroke",
+        label="with the thermal roll-off of the stroke" if rolloff else "stroke u constant",
     )
     if (~ok).any():
         ax.plot(
@@ -139,6 +142,7 @@ def speed_vs_field_change(
     series: Sequence[tuple[str, Sequence[float], Sequence[float | None], Sequence[bool]]],
     *,
     unit: str = "m/s",
+    flips: Sequence[tuple[str, float]] = (),
     ax: Axes | None = None,
 ) -> Axes:
     """Mean slider speed against the relative change [%] of each designer field.
@@ -146,13 +150,16 @@ def speed_vs_field_change(
     series: per field (label, change [%], speed [``unit``, positive: the intended
     direction of travel] or None where no periodic orbit exists, λ-fit miss flags). The
     speed axis takes an SI prefix by magnitude; None points are crosses on zero; points
-    where the λ fit predicts the other mode are ringed.
+    where the λ fit predicts the other mode are ringed. ``flips``: (label, change [%])
+    where a field's exact mode changes (bisected), drawn as a bar across zero in the
+    field's colour.
     """
     ax = axes_or_new(ax)
     vals = [abs(v) for _, _, ys, _ in series for v in ys if v is not None]
     factor, label_unit = scale_for(max(vals, default=0.0), unit)
     markers = "osD^v<>"
     missed = False
+    colors: dict[str, str] = {}
     for k, (label, xs, ys, misses) in enumerate(series):
         x = np.asarray(xs, dtype=float)
         ok = np.array([y is not None for y in ys], dtype=bool)
@@ -160,6 +167,7 @@ def speed_vs_field_change(
         (line,) = ax.plot(
             x[ok], y[ok], marker=markers[k % len(markers)], ms=3.5, lw=1.1, label=label
         )
+        colors[label] = line.get_color()
         if (~ok).any():
             ax.plot(x[~ok], y[~ok], ls="none", marker="x", ms=6, color=line.get_color())
         miss = ok & np.asarray(misses, dtype=bool)
@@ -176,6 +184,17 @@ def speed_vs_field_change(
             mfc="none",
             color=DEVICE_COLOR,
             label="λ fit predicts the other mode",
+        )
+    for k, (label, at) in enumerate(flips):
+        ax.plot(
+            [at],
+            [0.0],
+            ls="none",
+            marker="|",
+            ms=16,
+            mew=2.0,
+            color=colors.get(label, "k"),
+            label="mode flips (bisected)" if k == 0 else None,
         )
     ax.axhline(0.0, color="#7f7f7f", lw=0.8)
     ax.axvline(0.0, color=DEVICE_COLOR, lw=1.0, ls=":", label="the device as specified")

@@ -33,7 +33,7 @@ from typing import TYPE_CHECKING, Any, Generic, TypeVar
 import numpy as np
 
 from betvdesign.errors import BetvError
-from betvdesign.model.domain import VARPI_WINDOW
+from betvdesign.model.domain import VARPI_WINDOW, mode_of
 from betvdesign.model.params import ModelParams
 
 if TYPE_CHECKING:
@@ -62,6 +62,8 @@ class ReportOptions:
     voltage_points: drive voltages of the speed-voltage figure (no solver runs);
     frequency_points: actuation frequencies of the speed-frequency figure of a device with
     a thermal cut-off (one periodic orbit each, :mod:`betvdesign.report.frequency`);
+    map_points: values per field of the exact-mode map (:mod:`betvdesign.report.modemap`,
+    over the same ±robustness_span; map_points² periodic orbits);
     periodic_tol: fixed-point residual accepted for a periodic orbit [-];
     periodic_max_cycles: cycle budget of the device's periodic orbit (settling can take
     ~10⁵ cycles, MODEL.md "Slider"); sweep_max_cycles: the same for each λ-sweep orbit;
@@ -76,6 +78,7 @@ class ReportOptions:
     max_transient_cycles: int = 4000
     voltage_points: int = 41
     frequency_points: int = 21
+    map_points: int = 15
     periodic_tol: float = 1e-10
     periodic_max_cycles: int = 100_000
     sweep_max_cycles: int = 20_000
@@ -332,14 +335,34 @@ class FieldPoint:
     speed_m_s: float | None
     lam: float | None
     reason: str = ""
+    mode: str | None = None
+
+
+@dataclass(frozen=True)
+class FieldFlip:
+    """A change of the exact mode along one designer field: between the relative
+    changes ``lo`` and ``hi`` [-] (bisected) the mode goes from ``below`` to ``above``."""
+
+    field: str
+    lo: float
+    hi: float
+    below: str
+    above: str
+
+    @property
+    def at(self) -> float:
+        """The flip's relative change [-] (the bracket's middle)."""
+        return 0.5 * (self.lo + self.hi)
 
 
 @dataclass(frozen=True)
 class FieldSweep:
-    """Periodic speed as each designer field varies around the device (others fixed)."""
+    """Periodic speed as each designer field varies around the device (others fixed);
+    ``flips``: where the exact mode changes, bisected (:mod:`betvdesign.report.variants`)."""
 
     points: list[FieldPoint]
     n_orbits: int
+    flips: tuple[FieldFlip, ...] = ()
 
     @property
     def fields(self) -> list[str]:
@@ -370,7 +393,11 @@ def robustness(variants: list[FieldVariant], opts: ReportOptions) -> FieldSweep:
         res = solved[v.params]
         if res.success and res.delta_s is not None:
             speed = float(res.delta_s) * v.speed_per_ds
-            points.append(FieldPoint(v.field, v.nominal, v.change, speed, v.params.lam))
+            points.append(
+                FieldPoint(
+                    v.field, v.nominal, v.change, speed, v.params.lam, mode=mode_of(res.delta_s)
+                )
+            )
         else:
             why = f"{res.status}: {res.message}"
             points.append(FieldPoint(v.field, v.nominal, v.change, None, v.params.lam, why))
@@ -392,7 +419,10 @@ class SetAnalysis:
     orbit: Piece[OrbitData]
     robustness: Piece[FieldSweep]
     frequency: Piece[Any] = field(
-        default_factory=lambda: Piece(reason="the device gives no thermal cut-off")
+        default_factory=lambda: Piece(reason="not computed (a set with the same parameters)")
+    )
+    mode_map: Piece[Any] = field(
+        default_factory=lambda: Piece(reason="not computed (a set with the same parameters)")
     )
 
 

@@ -30,7 +30,7 @@ from betvdesign.dynamics.result import PeriodicResult
 from betvdesign.nondim.device import derive_file
 from betvdesign.nondim.record import DeviceDerivation, SetDerivation
 from betvdesign.output.siformat import format_q, format_si
-from betvdesign.report import adequacy, figures, frequency
+from betvdesign.report import adequacy, figures, frequency, modemap
 from betvdesign.report.analysis import Piece, ReportOptions, SetAnalysis, analyse_set, attempt
 from betvdesign.report.inputs import device_inputs
 from betvdesign.report.model import (
@@ -43,7 +43,7 @@ from betvdesign.report.model import (
     SetReport,
     VerdictBox,
 )
-from betvdesign.report.variants import field_variants, relative_changes
+from betvdesign.report.variants import field_variants, locate_flips, relative_changes
 
 MAX_WARNINGS = 5
 _SEVERITY_ORDER = {"error": 0, "warning": 1, "info": 2}
@@ -339,12 +339,20 @@ def build_report(
             continue
         variants = field_variants(der.spec, i, changes)
         an = analyse_set(sd.params, sd.travel_range_m, sd.scales.length_m, opts, variants)
-        if sd.scales.has_rolloff:
-            an.frequency = attempt(
-                lambda sd=sd, an=an: frequency.frequency_sweep(
-                    sd.params, sd.scales.f_act_hz, an.periodic, opts
-                )
+        if an.robustness.ok:
+            an.robustness = attempt(
+                lambda i=i, an=an: locate_flips(der.spec, i, an.robustness.value, opts)
             )
+        an.mode_map = attempt(
+            lambda i=i, sd=sd, an=an: modemap.compute(
+                der.spec, i, sd.params.varpi, an.robustness, opts
+            )
+        )
+        an.frequency = attempt(
+            lambda sd=sd, an=an: frequency.frequency_sweep(
+                sd.params, sd.scales.f_act_hz, an.periodic, opts
+            )
+        )
         analyses[key] = (sd.name, an)
         per_set.append((sd, an, None))
     adq = adequacy.compute(der)
@@ -356,7 +364,10 @@ def build_report(
         figs: list[FigureBlock] = (
             []
             if same_as
-            else figures.set_figures(f"s{i}", sd, an, opts.voltage_points, opts.periodic_tol)
+            else [
+                modemap.figure(f"s{i}-modemap", sd, an.mode_map),
+                *figures.set_figures(f"s{i}", sd, an, opts.voltage_points, opts.periodic_tol),
+            ]
         )
         adequate = (
             None

@@ -405,6 +405,17 @@ def robustness(key: str, sd: SetDerivation, an: SetAnalysis) -> FigureBlock:
             f"{f} = {next(p.nominal for p in data.points if p.field == f)}" for f in data.fields
         )
         caption += f" Specified values: {nominal}. {data.n_orbits} periodic orbits."
+        if data.flips:
+            caption += (
+                " The exact mode flips (bisected to 0.1 %; bars on zero): "
+                + "; ".join(
+                    f"{fl.field} {fl.below} → {fl.above} at {100 * fl.at:+.1f} %"
+                    for fl in data.flips
+                )
+                + "."
+            )
+        else:
+            caption += " The exact mode holds over the whole sweep."
         if data.failures:
             caption += " No periodic orbit or invalid value at: " + "; ".join(data.failures) + "."
     sign = 1.0 if sd.intended_mode == "push" else -1.0  # Δs > 0 is push
@@ -419,7 +430,8 @@ def robustness(key: str, sd: SetDerivation, an: SetAnalysis) -> FigureBlock:
                 for p in pts
             ]
             series.append((f, [100.0 * p.change for p in pts], speeds, misses))
-        plots.speed_vs_field_change(series, ax=ax)
+        flips = [(fl.field, 100.0 * fl.at) for fl in data.flips]
+        plots.speed_vs_field_change(series, flips=flips, ax=ax)
 
     model = f"periodic orbits of the {EXACT}, one per changed device (spec -> nondim -> orbit)"
     rung = (

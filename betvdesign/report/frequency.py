@@ -1,5 +1,5 @@
-"""Speed against actuation frequency with the actuator's thermal roll-off (report figure
-for devices that give a thermal cut-off).
+"""Speed against actuation frequency (report figure of every device), with the
+actuator's thermal roll-off for a device that gives a thermal cut-off.
 
 Only ϖ = f_act/f_v depends on the actuation frequency; α, β and κ do not, and every
 displacement scales with the stroke u (MODEL.md, "Displacement per cycle"). So one
@@ -119,17 +119,28 @@ def speed_frequency(
     """The figure block (see the module docstring)."""
     sc, p = sd.scales, sd.params
     f_v = sc.f_act_hz / p.varpi
-    caption = (
+    head = (
         "Mean slider speed along the impact direction against the actuation frequency "
         f"f_act (top axis ϖ = f_act/f_v, f_v = {format_si(f_v, 'Hz')}; design window "
-        "shaded). Solid: with the stroke's first-order thermal roll-off "
-        f"u(f) = u_cal·H(f)/H(f_cal), H(f) = 1/sqrt(1 + (f/f_c)²), f_c = "
-        f"{format_si(sc.cutoff_hz, 'Hz')}, f_cal = {format_si(sc.calibration_hz or 0.0, 'Hz')}; "
-        "dashed: the calibrated stroke u_cal at every frequency (no roll-off; the device's "
-        "damping and restitution in both curves). "
-        f"At the device's f_act = {format_si(sc.f_act_hz, 'Hz')} the stroke is "
-        f"{sc.rolloff_factor:.3g} × u_cal ({format_si(sc.u_m, 'm')})."
+        "shaded). "
     )
+    if sc.has_rolloff:
+        caption = head + (
+            "Solid: with the stroke's first-order thermal roll-off "
+            f"u(f) = u_cal·H(f)/H(f_cal), H(f) = 1/sqrt(1 + (f/f_c)²), f_c = "
+            f"{format_si(sc.cutoff_hz, 'Hz')}, f_cal = "
+            f"{format_si(sc.calibration_hz or 0.0, 'Hz')}; dashed: the calibrated stroke u_cal "
+            "at every frequency (no roll-off; the device's damping and restitution in both "
+            f"curves). At the device's f_act = {format_si(sc.f_act_hz, 'Hz')} the stroke is "
+            f"{sc.rolloff_factor:.3g} × u_cal ({format_si(sc.u_m, 'm')})."
+        )
+    else:
+        caption = head + (
+            f"The stroke u = {format_si(sc.u_m, 'm')} at every frequency: the device gives no "
+            "thermal cut-off (an electrothermal stroke falls above its thermal cut-off; give "
+            "actuator.thermal_cutoff to see it). The drive frequency is half of f_act with "
+            "AC doubling."
+        )
     rolled: list[float | None] = []
     constant: list[float | None] = []
     if piece.ok:
@@ -137,14 +148,20 @@ def speed_frequency(
         rolled, constant = speeds(sd, sweep)
         caption += f" {len(sweep.f_act_hz)} frequencies, one periodic orbit each (α, β, κ fixed)."
         sign = 1.0 if sd.intended_mode == "push" else -1.0
-        for label, vals in (("with roll-off", rolled), ("without", constant)):
+        curves = (
+            (("with roll-off", rolled), ("without", constant))
+            if sc.has_rolloff
+            else (("", rolled),)
+        )
+        for label, vals in curves:
             best = max(
                 ((sign * v, f) for v, f in zip(vals, sweep.f_act_hz, strict=True) if v is not None),
                 default=None,
             )
             if best is not None and best[0] > 0:
                 caption += (
-                    f" Fastest swept frequency in the intended direction {label}: "
+                    f" Fastest swept frequency in the intended direction{' ' * bool(label)}"
+                    f"{label}: "
                     f"{format_si(float(best[1]), 'Hz')} ({format_si(best[0], 'm/s')})."
                 )
         caption += _missing_text(sweep)
@@ -155,7 +172,8 @@ def speed_frequency(
             rolled,
             constant,
             f_v_hz=f_v,
-            cutoff_hz=sc.cutoff_hz,
+            cutoff_hz=sc.cutoff_hz if sc.has_rolloff else None,
+            rolloff=sc.has_rolloff,
             operating=(sc.f_act_hz, sc.speed_m_s(_device_ds(piece.value, p.varpi, f_v))),
             ax=ax,
         )
@@ -167,7 +185,8 @@ def speed_frequency(
     rung = ladder(p, "delta_s", "periodic", tol=tol)
     return figure_block(
         key,
-        "Mean speed against actuation frequency, with thermal roll-off",
+        "Mean speed against actuation frequency"
+        + (", with thermal roll-off" if sc.has_rolloff else ""),
         caption,
         model,
         rung,
@@ -186,7 +205,6 @@ def _device_ds(sweep: FrequencySweep, varpi: float, f_v: float) -> float:
 def figures(
     key: str, sd: SetDerivation, piece: Piece[FrequencySweep], tol: float
 ) -> list[FigureBlock]:
-    """The roll-off figure of a set that gives a thermal cut-off; none otherwise."""
-    if not sd.scales.has_rolloff:
-        return []
+    """The speed-against-frequency figure of a set (with the roll-off when it gives a
+    thermal cut-off)."""
     return [speed_frequency(key, sd, piece, tol)]

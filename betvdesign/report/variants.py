@@ -12,18 +12,25 @@ spec rejects (e.g. an impact angle past 90°) is kept with its reason, never dro
 
 from __future__ import annotations
 
+import itertools
 from typing import Any
 
 import numpy as np
 import pint
 
 from betvdesign.errors import BetvError
+from betvdesign.model.domain import mode_of
 from betvdesign.nondim.device import derive_set
-from betvdesign.report.analysis import FieldVariant
+from betvdesign.report import analysis
+from betvdesign.report.analysis import FieldFlip, FieldSweep, FieldVariant, ReportOptions
 from betvdesign.spec.fields import FIELDS
 from betvdesign.spec.models import DeviceSpec
 from betvdesign.spec.paths import given, in_set, numeric
 from betvdesign.spec.units import format_quantity
+from betvdesign.studies.fieldsweep import bisect_flip
+
+#: Width [-] of the relative-change bracket to which a robustness flip is bisected.
+FLIP_WIDTH = 1e-3
 
 
 def shown_fields(spec: DeviceSpec, set_index: int) -> list[tuple[str, Any]]:
@@ -87,3 +94,66 @@ def field_variants(spec: DeviceSpec, set_index: int, changes: np.ndarray) -> lis
                 )
             )
     return out
+
+
+def mode_at_change(
+    spec: DeviceSpec, set_index: int, field: str, change: float, opts: ReportOptions
+) -> str:
+    """The exact mode of the device with ``field`` of set ``set_index`` scaled by
+    (1 + ``change``): the periodic orbit's Δs read by :func:`~betvdesign.model.domain.
+    mode_of`, or "no orbit" (the spec refuses the value or the orbit does not converge).
+    """
+    path = in_set(field, set_index)
+    nominal = given(spec, path)[0]
+    try:
+        changed = spec.replace(path, nominal * (1.0 + change))
+        sd = derive_set(changed, changed.actuator_sets[set_index])
+    except BetvError:
+        return "no orbit"
+    res = analysis.dynamics_api("periodic_orbit")(
+        sd.params, tol=opts.periodic_tol, max_cycles=opts.sweep_max_cycles
+    )
+    mode = mode_of(res.delta_s) if res.success else None
+    return mode or "no orbit"
+
+
+def locate_flips(
+    spec: DeviceSpec, set_index: int, sweep: FieldSweep, opts: ReportOptions
+) -> FieldSweep:
+    """The sweep with every change of the exact mode between neighbouring changes of a
+    field bisected to :data:`FLIP_WIDTH` (a third mode met inside a bracket ends it).
+
+    Parameters
+    ----------
+    spec : DeviceSpec
+        The device.
+    set_index : int
+        Index of the actuator set.
+    sweep : FieldSweep
+        The robustness sweep of that set (:func:`~betvdesign.report.analysis.robustness`).
+    opts : ReportOptions
+        The periodic orbit's tolerance and cycle budget.
+
+    Returns
+    -------
+    FieldSweep
+        ``sweep`` with its ``flips``.
+    """
+    flips: list[FieldFlip] = []
+    for f in sweep.fields:
+        pts = [p for p in sweep.points if p.field == f]
+        for a, b in itertools.pairwise(pts):
+            ma, mb = a.mode or "no orbit", b.mode or "no orbit"
+            if ma == mb:
+                continue
+            at, above = bisect_flip(
+                lambda r, f=f: mode_at_change(spec, set_index, f, r, opts),
+                a.change,
+                b.change,
+                ma,
+                mb,
+                FLIP_WIDTH,
+            )
+            half = 0.5 * FLIP_WIDTH
+            flips.append(FieldFlip(f, at - half, at + half, ma, above))
+    return FieldSweep(sweep.points, sweep.n_orbits, tuple(flips))

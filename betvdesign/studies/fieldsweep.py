@@ -30,7 +30,7 @@ from __future__ import annotations
 import hashlib
 import itertools
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -49,11 +49,15 @@ __all__ = [
     "MODES",
     "FieldAxis",
     "Flip",
+    "bisect_flip",
     "exact_mode",
+    "field_map",
+    "field_tasks",
     "fieldsweep_study",
     "locate_flips",
     "parse_axis",
     "run_fieldsweep",
+    "summarise",
 ]
 
 #: The exact modes a point can have (the map's categories).
@@ -312,6 +316,85 @@ def columns(axes: Sequence[FieldAxis]) -> dict[str, type]:
     return out
 
 
+def _set_index(spec: Any, set_name: str | None) -> tuple[int, str]:
+    names = [s.name for s in spec.actuator_sets]
+    if set_name is None:
+        set_name = names[0]
+    if set_name not in names:
+        raise UsageError(f"--set {set_name}: the device has {', '.join(names)}")
+    return names.index(set_name), set_name
+
+
+def field_tasks(
+    spec: Any, axes: Sequence[FieldAxis], set_index: int, tol: float = 1e-10
+) -> list[dict[str, Any]]:
+    """The grid's tasks for :func:`fieldsweep_point` (row-major, first axis slowest).
+
+    Parameters
+    ----------
+    spec : DeviceSpec
+        The loaded device.
+    axes : sequence of FieldAxis
+        One or two axes.
+    set_index : int
+        Index of the actuator set.
+    tol : float
+        Fixed-point residual accepted [-].
+
+    Returns
+    -------
+    list of dict
+        One task per grid point: its values [the fields' units] and derived parameters,
+        or ``invalid`` (why the point cannot be derived).
+    """
+    if not 1 <= len(axes) <= 2 or len({a.field for a in axes}) != len(axes):
+        raise UsageError("--vary: give one or two different fields")
+    x, derived = _derive_grid(spec, axes, set_index)
+    cols = columns(axes)
+    tasks = []
+    for j, (pt, rec) in enumerate(zip(x, derived, strict=True)):
+        values = {a.field: float(v) for a, v in zip(axes, pt, strict=True)}
+        task: dict[str, Any] = {"key": j, "values": values, "tol": tol, "columns": list(cols)}
+        if isinstance(rec, str):
+            task["invalid"] = rec
+        else:
+            task.update(rec)
+        tasks.append(task)
+    return tasks
+
+
+def field_map(
+    spec: Any, axes: Sequence[FieldAxis], set_index: int = 0, tol: float = 1e-10
+) -> tuple[list[dict[str, Any]], dict[str, Any]]:
+    """The sweep of ``axes`` of a loaded device, solved in this process (no store, no
+    workers): for a report's few hundred points, where starting workers costs more
+    than the orbits.
+
+    Parameters
+    ----------
+    spec : DeviceSpec
+        The loaded device.
+    axes : sequence of FieldAxis
+        One or two axes.
+    set_index : int
+        Index of the actuator set.
+    tol : float
+        Fixed-point residual accepted [-].
+
+    Returns
+    -------
+    tuple of (list of dict, dict)
+        The rows in grid order and their summary (:func:`summarise`; with one axis the
+        bisected flips).
+    """
+    rows = [fieldsweep_point(t) for t in field_tasks(spec, axes, set_index, tol)]
+    summary = summarise(spec.actuator_sets[set_index].name, axes, rows)
+    if len(axes) == 1:
+        flips = locate_flips(spec, axes[0], rows, set_name=summary["set"], tol=tol)
+        summary["flips"] = [f.as_dict() for f in flips]
+    return rows, summary
+
+
 def fieldsweep_study(
     device: str | Path,
     axes: Sequence[FieldAxis],
@@ -340,26 +423,9 @@ def fieldsweep_study(
     """
     from betvdesign.spec.loader import load_device
 
-    if not 1 <= len(axes) <= 2 or len({a.field for a in axes}) != len(axes):
-        raise UsageError("--vary: give one or two different fields")
     spec = load_device(device)
-    names = [s.name for s in spec.actuator_sets]
-    if set_name is None:
-        set_name = names[0]
-    if set_name not in names:
-        raise UsageError(f"--set {set_name}: the device has {', '.join(names)}")
-    index = names.index(set_name)
-    x, derived = _derive_grid(spec, axes, index)
-    cols = columns(axes)
-    tasks = []
-    for j, (pt, rec) in enumerate(zip(x, derived, strict=True)):
-        values = {a.field: float(v) for a, v in zip(axes, pt, strict=True)}
-        task: dict[str, Any] = {"key": j, "values": values, "tol": tol, "columns": list(cols)}
-        if isinstance(rec, str):
-            task["invalid"] = rec
-        else:
-            task.update(rec)
-        tasks.append(task)
+    index, set_name = _set_index(spec, set_name)
+    tasks = field_tasks(spec, axes, index, tol)
     digest = hashlib.sha256(Path(device).read_bytes()).hexdigest()[:16]
     params = {
         "device": str(device),
@@ -368,7 +434,7 @@ def fieldsweep_study(
         "tol": tol,
         "axes": {a.field: {"unit": a.unit, "values": list(a.values)} for a in axes},
     }
-    return Study("fieldsweep", cols, params, tasks, fieldsweep_point)
+    return Study("fieldsweep", columns(axes), params, tasks, fieldsweep_point)
 
 
 @dataclass(frozen=True)
@@ -406,8 +472,43 @@ def _mode_at(spec: Any, axis: FieldAxis, x: float, index: int, tol: float) -> st
     return exact_mode(periodic_point(task))
 
 
+def bisect_flip(
+    mode_at: Callable[[float], str], lo: float, hi: float, below: str, above: str, width: float
+) -> tuple[float, str]:
+    """Where the mode changes between ``lo`` (mode ``below``) and ``hi`` (``above``),
+    bisected until the bracket is narrower than ``width``.
+
+    Parameters
+    ----------
+    mode_at : callable
+        The exact mode at a value of the varied quantity.
+    lo, hi : float
+        The bracket [the quantity's unit].
+    below, above : str
+        The modes at ``lo`` and ``hi`` (different).
+    width : float
+        The bracket's width at which bisection stops [the quantity's unit].
+
+    Returns
+    -------
+    tuple of (float, str)
+        The bracket's midpoint and the mode just above it (a third mode met in between
+        ends the bracket there: the first change is kept).
+    """
+    while hi - lo > width:
+        mid = 0.5 * (lo + hi)
+        m = mode_at(mid)
+        if m == below:
+            lo = mid
+        elif m == above:
+            hi = mid
+        else:
+            hi, above = mid, m
+    return 0.5 * (lo + hi), above
+
+
 def locate_flips(
-    device: str | Path,
+    device: Any,
     axis: FieldAxis,
     rows: Sequence[Mapping[str, Any]],
     *,
@@ -419,8 +520,8 @@ def locate_flips(
 
     Parameters
     ----------
-    device : path
-        The device file the sweep was made of.
+    device : path or DeviceSpec
+        The device file the sweep was made of (or the loaded device).
     axis : FieldAxis
         The swept field.
     rows : sequence of mapping
@@ -437,27 +538,51 @@ def locate_flips(
     """
     from betvdesign.spec.loader import load_device
 
-    spec = load_device(device)
-    names = [s.name for s in spec.actuator_sets]
-    index = names.index(set_name) if set_name else 0
+    spec = load_device(device) if isinstance(device, str | Path) else device
+    index, _ = _set_index(spec, set_name)
     span = axis.values[-1] - axis.values[0]
     out = []
     for a, b in itertools.pairwise(rows):
         ma, mb = a["exact_mode"], b["exact_mode"]
         if ma == mb:
             continue
-        lo, hi = float(a[axis.field]), float(b[axis.field])
-        while hi - lo > FLIP_RTOL * span:
-            mid = 0.5 * (lo + hi)
-            m = _mode_at(spec, axis, mid, index, tol)
-            if m == ma:
-                lo = mid
-            elif m == mb:
-                hi = mid
-            else:  # a third mode in between: keep the first change
-                hi, mb = mid, m
-        out.append(Flip(axis.field, 0.5 * (lo + hi), ma, mb))
+        at, above = bisect_flip(
+            lambda x: _mode_at(spec, axis, x, index, tol),
+            float(a[axis.field]),
+            float(b[axis.field]),
+            ma,
+            mb,
+            FLIP_RTOL * span,
+        )
+        out.append(Flip(axis.field, at, ma, above))
     return out
+
+
+def summarise(
+    set_name: str, axes: Sequence[FieldAxis], rows: Sequence[Mapping[str, Any]]
+) -> dict[str, Any]:
+    """A sweep's summary: the set, each axis (field, unit, device value, range, points),
+    the points and their count per exact mode, and what the speed is."""
+    counts = {m: 0 for m in (*MODES, "invalid")}
+    for r in rows:
+        counts[r["exact_mode"]] = counts.get(r["exact_mode"], 0) + 1
+    return {
+        "set": set_name,
+        "fields": [
+            {
+                "field": a.field,
+                "unit": a.unit,
+                "device_value": a.x0,
+                "lo": a.values[0],
+                "hi": a.values[-1],
+                "points": len(a.values),
+            }
+            for a in axes
+        ],
+        "points": len(rows),
+        "modes": {k: v for k, v in counts.items() if v},
+        "speed": "periodic orbit: Δs·u·cosθ·f_act [m/s], signed along the impacts",
+    }
 
 
 def run_fieldsweep(
@@ -486,26 +611,9 @@ def run_fieldsweep(
     study_kw, run_kw = split_run_args(kwargs)
     study = fieldsweep_study(device, axes, **study_kw)
     run = run_study(study, **run_kw)
-    counts = {m: 0 for m in (*MODES, "invalid")}
-    for r in run.rows:
-        counts[r["exact_mode"]] = counts.get(r["exact_mode"], 0) + 1
     summary: dict[str, Any] = {
         "device": str(device),
-        "set": study.parameters["set"],
-        "fields": [
-            {
-                "field": a.field,
-                "unit": a.unit,
-                "device_value": a.x0,
-                "lo": a.values[0],
-                "hi": a.values[-1],
-                "points": len(a.values),
-            }
-            for a in axes
-        ],
-        "points": len(run.rows),
-        "modes": {k: v for k, v in counts.items() if v},
-        "speed": "periodic orbit: Δs·u·cosθ·f_act [m/s], signed along the impacts",
+        **summarise(study.parameters["set"], axes, run.rows),
     }
     if len(axes) == 1:
         flips = locate_flips(
