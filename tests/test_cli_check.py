@@ -248,7 +248,7 @@ def test_check_reports_orbit_speed_and_json(monkeypatch):
     v = 0.25 * 0.14e-6 * math.cos(math.radians(20.56)) * 6000.0  # [m/s] = 196.6 µm/s
     r = run("check", path)
     assert r.exit_code == 0, r.stdout
-    assert "push as intended, 197 µm/s toward +x, 50 µm in 254 ms" in r.stdout  # 50 µm / v
+    assert "push as intended, 197 µm/s toward +x (periodic orbit), 50 µm in 254 ms" in r.stdout
     top = _device(run("check", "--json", "-v", path).stdout)
     s = top["details"]["sets"][0]
     assert s["simulation"]["delta_s"] == 0.25 and s["simulation"]["mode"] == "push"

@@ -36,12 +36,18 @@ def test_dir_shows_the_entry_points():
     assert {"load_device", "check", "adequacy", "ureg"} <= set(names)
 
 
-def test_fix_spread_states_its_distribution():
-    from betvdesign.cli.fix import _spread_text
+def test_spreads_state_their_distribution_in_fix_and_tolerance():
+    from betvdesign.studies.tolerance import parse_tolerance
 
-    assert _spread_text("slider.beam_width=5%") == (
+    assert parse_tolerance("slider.beam_width=5%").describe() == (
         "slider.beam_width: normal σ 5 % (normal: the default)"
     )
     assert (
-        _spread_text("slider.beam_width=uniform:5%") == "slider.beam_width: uniform half-width 5 %"
+        parse_tolerance("slider.beam_width=uniform:5%").describe()
+        == "slider.beam_width: uniform half-width 5 %"
     )
+    r = run(
+        "tolerance", DESIGNER, "--spread", "slider.beam_width=5%", "-n", "8", "--executor", "serial"
+    )
+    assert r.exit_code in (0, 1), r.stderr
+    assert "spread slider.beam_width: normal σ 5 % (normal: the default)" in r.stdout

@@ -246,3 +246,24 @@ def test_poor_fit_is_flagged_and_help_shows_the_csv_format():
     assert "# warning:" in r.snippet
     h = CliRunner().invoke(app, ["calibrate", "--help"], terminal_width=120)
     assert "voltage [V], speed [um/s]" in h.stdout and "time [ms], displacement [um]" in h.stdout
+
+
+def test_gain_and_alpha_from_speeds_say_they_cannot_be_told_apart():
+    """Issue 21: speeds against voltage with a σ column, fitting the linear gain and α,
+    said "no sigma column". With u = g·V the speed is g·V·Δs(α)·cosθ·f_act: g and α
+    act alike at every voltage (the Jacobian's columns are parallel), so no uncertainty
+    exists, and the warning says so and why, naming the parameters."""
+    _, _, a = _truth()
+    volts = np.array([4.0, 5.0, 6.0, 7.0, 8.0])
+    speeds = a * 0.0123e-6 * volts
+    r = calibrate(
+        DEVICE,
+        Measurements("speed", volts, speeds, np.full(5, 1e-7), "synthetic"),
+        law="linear",
+        fit_alpha=True,
+        signed=True,
+    )
+    assert r.stderr is None
+    text = " ".join(r.warnings)
+    assert "no sigma column" not in text
+    assert "cannot be told apart" in text and "alpha" in text and "gain" in text

@@ -463,6 +463,10 @@ def _set_out(sc: Any, flt: RuleFilter) -> SetOut:
 
 # --- text ---------------------------------------------------------------------------------
 
+#: How the quoted speed was obtained, by the travel answer's basis (one label in every
+#: output: check text, report, explore).
+SPEED_BASIS = {"periodic": "periodic orbit", "crossing": "crossing mean from rest"}
+
 _TAG = {"error": ("FAIL", "bold red"), "warning": ("warn", "yellow"), "info": ("note", "dim")}
 
 
@@ -503,8 +507,9 @@ def set_headline(sc: Any) -> tuple[str, str]:
     else:
         head = f"{mode} (intended {s.intended_mode})"
     if v:
+        basis = sc.travel.basis if sc.travel is not None else "periodic"
         motion = (
-            f"{format_si(v, 'm/s')} toward {direction}, "
+            f"{format_si(v, 'm/s')} toward {direction} ({SPEED_BASIS.get(basis, basis)}), "
             f"{format_si(s.travel_range_m, 'm')} in {format_si(s.travel_range_m / v, 's')}"
         )
     else:

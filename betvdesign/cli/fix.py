@@ -87,6 +87,7 @@ def fix_cmd(
     from betvdesign.spec.units import parse_speed
     from betvdesign.studies import fix as fx
     from betvdesign.studies.fixfile import fixed_text
+    from betvdesign.studies.tolerance import parse_tolerance
 
     with user_errors():
         target = None if target_speed is None else parse_speed(target_speed, "--target-speed")
@@ -101,8 +102,9 @@ def fix_cmd(
             check_output_file(output, suffixes=(".yaml", ".yml"))
         res = fx.find_fixes(spec, varies, target_speed_m_s=target, robust=robust, p_min=p_min)
         if robust is not None:
+            spreads = "; ".join(parse_tolerance(t).describe() for t in spread)
             res.spread_note = (
-                f"P(pass) under the spreads ({'; '.join(_spread_text(t) for t in spread)}; "
+                f"P(pass) under the spreads ({spreads}; "
                 f"{samples} samples, seed {seed}) counts every error rule: {SPREAD_RULES}"
             )
         text = None
@@ -120,17 +122,6 @@ def fix_cmd(
         if not as_json:
             typer.echo(f"wrote {output} (betv check {output} passes)")
     raise typer.Exit(EXIT_OK if res.status in ("fixed", "already_passes") else EXIT_RULE_FAILED)
-
-
-def _spread_text(text: str) -> str:
-    """A spread as used, its distribution always stated (the default named as such)."""
-    from betvdesign.studies.tolerance import parse_tolerance
-
-    t = parse_tolerance(text)
-    width = "σ" if t.dist == "normal" else "half-width"
-    amount = f"{100 * t.relative:.3g} %" if t.relative is not None else f"{t.absolute}"
-    given = text.partition("=")[2].split(":")[0].strip().lower() in ("normal", "uniform")
-    return f"{t.field}: {t.dist} {width} {amount}" + ("" if given else " (normal: the default)")
 
 
 def _print(res, file: Path) -> None:

@@ -110,6 +110,8 @@ def tolerance_cmd(
 
         def human() -> None:
             typer.echo(f"{device}: {samples} samples, seed {seed}, mode from {fidelity}")
+            for t in tols:
+                typer.echo(f"  spread {t.describe()}")
             for name, s in summary["sets"].items():
                 typer.echo(
                     f"  set {name} (intended {s['intended_mode']}): "

@@ -58,6 +58,9 @@ from betvdesign.studies.measurements import Kind, Measurements
 
 #: R² below which a fit is flagged as poor.
 POOR_FIT_R2 = 0.9
+#: Condition number of the fit's Jacobian above which its parameters are not told apart
+#: by the data (no uncertainty is quoted; the warning says which cannot be separated).
+MAX_CONDITION = 1e8
 
 
 class CalibrationMismatch(BetvError):
@@ -280,7 +283,8 @@ def calibrate(
             cov = np.linalg.inv(jac.T @ jac) * s2
             var = np.diag(cov)
             # a singular or ill-conditioned fit gives no usable uncertainty: say None
-            stderr = [float(x) for x in np.sqrt(var)] if np.all(var >= 0) else None
+            identifiable = np.all(var >= 0) and np.linalg.cond(res.jac) < MAX_CONDITION
+            stderr = [float(x) for x in np.sqrt(var)] if identifiable else None
         except np.linalg.LinAlgError:
             stderr = None
     alpha = float(theta[-1]) if fit_alpha else None
@@ -301,8 +305,19 @@ def calibrate(
         warns.append(f"R² = {r2:.3g} < {POOR_FIT_R2:g}: the model explains the data poorly")
     if chi2 is not None and not 0.2 < chi2 < 5.0:
         warns.append(f"χ²/dof = {chi2:.3g}: residuals and the given σ do not match")
-    if stderr is None:
+    if stderr is None and data.sigma is None and n <= p:
         warns.append(f"uncertainty unknown: {n} points for {p} parameters and no sigma column")
+    elif stderr is None:
+        hint = (
+            " (the speed scales with the stroke's gain and depends on α through Δs alike "
+            "over these data: measure u(V) separately, or give α and fit the gain)"
+            if fit_alpha
+            else ""
+        )
+        warns.append(
+            f"uncertainty unknown: {', '.join(labels)} cannot be told apart from these "
+            f"data (the fit's Jacobian is singular or ill-conditioned){hint}"
+        )
     out = CalibrationResult(
         set_name=set_name,
         kind=data.kind,

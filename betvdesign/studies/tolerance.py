@@ -75,6 +75,15 @@ class Tolerance:
     relative: float | None = None
     absolute: str | None = None
     source: str = "command line"
+    dist_given: bool = True
+
+    def describe(self) -> str:
+        """The spread as used, its distribution always stated (the default named as
+        such): ``slider.beam_width: normal σ 5 % (normal: the default)``."""
+        width = "σ" if self.dist == "normal" else "half-width"
+        amount = f"{100 * self.relative:.3g} %" if self.relative is not None else self.absolute
+        default = "" if self.dist_given else " (normal: the default)"
+        return f"{self.field}: {self.dist} {width} {amount}{default}"
 
     def as_dict(self) -> dict[str, Any]:
         """The tolerance as plain data.
@@ -141,7 +150,14 @@ def parse_tolerance(text: str, source: str = "command line") -> Tolerance:
         )
     field, dist, amount = m.group(1), (m.group(2) or "normal").lower(), m.group(3)
     rel, absolute = _amount(amount, field, source)
-    return Tolerance(field, dist, rel, absolute, source)  # type: ignore[arg-type]
+    return Tolerance(
+        field,
+        dist,
+        rel,
+        absolute,
+        source,
+        dist_given=m.group(2) is not None,  # type: ignore[arg-type]
+    )
 
 
 def load_tolerances(path: str | os.PathLike[str]) -> list[Tolerance]:
