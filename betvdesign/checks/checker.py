@@ -29,6 +29,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 from typing import Any, Literal
 
+from betvdesign.checks.process_rules import process_rules
 from betvdesign.checks.rules import (
     MARGIN_CORNERS,
     RuleResult,
@@ -172,6 +173,7 @@ def check_derivation(
     settle: bool = True,
     target_speed_m_s: float | None = None,
     adequacy: Any = None,
+    layout_rules: list[RuleResult] | None = None,
 ) -> CheckResult:
     """Check every actuator set with its exact orbit (see the module docstring).
 
@@ -181,7 +183,10 @@ def check_derivation(
     ``target-speed``); adequacy: is the idealised model enough
     (:mod:`betvdesign.checks.adequacy`, rule ``model-adequacy``): None runs it with the
     exact solver unless ``solver`` is given, True always (with ``solver``), False never,
-    or an already computed :class:`~betvdesign.checks.adequacy_data.DeviceAdequacy`.
+    or an already computed :class:`~betvdesign.checks.adequacy_data.DeviceAdequacy`;
+    layout_rules: the process rules measured on a drawn layout
+    (:mod:`betvdesign.layout.drc`), used instead of those of the device file
+    (:func:`betvdesign.checks.process_rules.process_rules`).
     """
     custom = solver is not None
     solver = solver or load_solver()
@@ -225,6 +230,7 @@ def check_derivation(
         target_speed_m_s=target_speed_m_s,
         adequacy=adq,
     )
+    rules += process_rules(derivation.spec) if layout_rules is None else layout_rules
     sets = [
         SetCheck(
             s,
