@@ -29,6 +29,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 from typing import Any, Literal
 
+from betvdesign.checks.actuator_rules import actuator_rules
 from betvdesign.checks.process_rules import process_rules
 from betvdesign.checks.rules import (
     MARGIN_CORNERS,
@@ -230,6 +231,7 @@ def check_derivation(
         target_speed_m_s=target_speed_m_s,
         adequacy=adq,
     )
+    rules += [r for s in derivation.sets for r in actuator_rules(s)]
     rules += process_rules(derivation.spec) if layout_rules is None else layout_rules
     sets = [
         SetCheck(

@@ -25,12 +25,15 @@ geometry (their rule list is unchanged otherwise).
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 from betvdesign.checks.ruledata import RuleResult
+from betvdesign.model.frame import head_covers_tip, head_radius_min
+from betvdesign.nondim.actuator import actuator_inputs, frame_geometry
 from betvdesign.output.siformat import format_si
 from betvdesign.spec.models import BoxGeometry, DeviceSpec, DiscGeometry
-from betvdesign.spec.process import Process
+from betvdesign.spec.process import Process, ProcessLayer
 
 __all__ = [
     "ARM_ASPECT_MIN",
@@ -39,7 +42,9 @@ __all__ = [
     "Gap",
     "drawn_features",
     "drawn_gaps",
+    "hole_share",
     "process_rules",
+    "release_pitch",
     "rules_from_measurements",
 ]
 
@@ -135,6 +140,13 @@ def drawn_features(spec: DeviceSpec) -> list[Feature]:
                     _m(head.thickness),
                 )
             )
+        elif geo is not None:  # a head given by its mass is drawn as the disc of that mass
+            r = _m(actuator_inputs(spec, s).head_x)
+            feats.append(
+                Feature(
+                    f"{where}.head.mass", f"set {s.name}: head (disc of its mass)", layer, 2 * r
+                )
+            )
         if geo is not None:
             t = None if geo.thickness is None else _m(geo.thickness)
             g = f"{where}.actuator.geometry"
@@ -194,6 +206,8 @@ def process_rules(spec: DeviceSpec) -> list[RuleResult]:
         out += [_min_spacing(p, drawn_gaps(spec)), _release(p, feats)]
     if spec.process is not None or has_geometry:
         out.append(_aspect(feats))
+    if has_geometry:
+        out.append(_head_tip(spec))
     return out
 
 
@@ -348,11 +362,24 @@ def _min_spacing(p: Process, gaps: list[Gap]) -> RuleResult:
     )
 
 
+def release_pitch(layer: ProcessLayer) -> float:
+    """Hole pitch [µm] a layout draws on ``layer``: the process's pitch, or less so that no
+    point of a square lattice lies farther than half the widest unreleased feature from a
+    hole: (pitch − size)/√2 ≤ w_max/2."""
+    h = layer.release_holes
+    assert h is not None and layer.max_unreleased_width is not None
+    size = float(h.size.to("um").magnitude)
+    w_max = float(layer.max_unreleased_width.to("um").magnitude)
+    return min(float(h.pitch.to("um").magnitude), size + w_max / math.sqrt(2) - 0.01)
+
+
 def hole_share(p: Process, layer: str) -> float:
-    """The share of a feature's area its release holes take [-]: size²/pitch²."""
-    h = p.structural(layer).release_holes
+    """The share of a feature's area its release holes take [-]: size²/pitch² at the
+    pitch :func:`release_pitch` draws."""
+    lay = p.structural(layer)
+    h = lay.release_holes
     assert h is not None
-    return float((h.size / h.pitch).to("").magnitude) ** 2
+    return (float(h.size.to("um").magnitude) / release_pitch(lay)) ** 2
 
 
 def _release(p: Process, feats: list[Feature]) -> RuleResult:
@@ -364,7 +391,7 @@ def _release(p: Process, feats: list[Feature]) -> RuleResult:
             h = lay.release_holes
             wide.append(
                 f"{f.what} {_fmt(f.width)} > {_fmt(mx)}: etch holes of {_fmt(_m(h.size))} at "
-                f"<= {_fmt(_m(h.pitch))} pitch on {h.layer} remove ≈ "
+                f"{release_pitch(lay):.3g} µm pitch on {h.layer} remove ≈ "
                 f"{hole_share(p, f.layer):.1%} of its mass (not in the model)"
             )
     widest = max((f for f in feats if not f.anchored), key=lambda f: f.width)
@@ -389,6 +416,42 @@ def _release(p: Process, feats: list[Feature]) -> RuleResult:
         if ok
         else "draw it with etch holes (`betv layout` does), or narrow it below the limit",
         unit="m",
+    )
+
+
+def _head_tip(spec: DeviceSpec) -> RuleResult:
+    """Each drawn head covers its actuator's tip connector end (no notch at the joint)."""
+    bad, seen = [], set()
+    for s in spec.actuator_sets:
+        if s.actuator.geometry is None:
+            continue
+        g = frame_geometry(spec, s)
+        key = repr(g)
+        if key in seen or bool(head_covers_tip(g)):
+            seen.add(key)
+            continue
+        seen.add(key)
+        if g.head_shape == "box":
+            need = f"a box at least {_fmt(float(g.tip_height))} wide"
+        else:
+            need = f"a disc at least {_fmt(2 * float(head_radius_min(g)))} across"
+        bad.append(f"set {s.name}: {need} covers the tip (H = {_fmt(float(g.tip_height))})")
+    ok = not bad
+    return RuleResult(
+        "geometry.head-tip",
+        "warning",
+        ok,
+        None,
+        "the head covers the tip connector's end",
+        "every head covers its tip connector's end: the outline meets it at obtuse angles"
+        if ok
+        else "the head leaves the tip's end exposed; the outline has acute notches there that "
+        "spacing rules flag and the etch rounds: " + "; ".join(bad),
+        "betvdesign.model.frame (the drawn actuator's convention)",
+        fix=""
+        if ok
+        else "a larger head, a longer tip (actuator.geometry.tip_length) or a narrower tip "
+        "(cold arm, gap, hot arm)",
     )
 
 

@@ -8,6 +8,10 @@ The only module that strips units. For each actuator set it computes
 - m                               head mass, given or ρ_head·V_head [kg]
 - k_v = m·(2π f_v)²               vertical contact stiffness [N/m]
 - α = k_v/k_h or (f_v/f_h)² or given
+- with a drawn actuator (``actuator.geometry``, :mod:`betvdesign.nondim.actuator`): the
+  frame's K_nn, K_tt at the head; k_v = K_nn where the file gives no f_v (then
+  f_v = √(k_v/m)/2π), k_h = K_tt where it gives no α, k_h or f_h; given values win and
+  the geometry's are recorded beside them (f_v,geom, α_geom) for the check to compare
 - f_act = 2 f_drive (AC, zero DC bias) or f_drive;  ω = 2π f_act
 - u = amplitude or calibration(V); with a thermal cut-off f_c (or τ_th) this is u_cal
   and u = u_cal·H(f_act)/H(f_cal), H(f) = 1/sqrt(1 + (f/f_c)²) (:mod:`betvdesign.model.rolloff`)
@@ -35,11 +39,13 @@ import pint
 from betvdesign.errors import Location, ParameterError, SpecError, SpecIssue
 from betvdesign.model.params import ModelParams
 from betvdesign.nondim import terms as nondim_terms
+from betvdesign.nondim.actuator import head_springs
 from betvdesign.nondim.record import (
     DERIVED_KEYS,
     DerivationStep,
     DeviceDerivation,
     FitComparison,
+    HeadSprings,
     SampleDerivation,
     Scales,
     SetDerivation,
@@ -202,20 +208,49 @@ def _derive_set(
     )
     m = _head_mass(rec, spec, aset)
 
-    f_v = rec.spec(
-        "f_v",
-        "head vertical resonance",
-        "actuator.vertical_resonance",
-        act.vertical_resonance.to(_unit("kHz")),
-    )
-    k_v = rec.add(
-        "k_v",
-        "vertical contact stiffness",
-        "m·(2π·f_v)²",
-        m * (2 * math.pi * f_v) ** 2,
-        ("m", "f_v"),
-        "N/m",
-    )
+    springs = head_springs(rec, spec, aset, m) if act.geometry is not None else None
+    if act.vertical_resonance is not None:
+        f_v = rec.spec(
+            "f_v",
+            "head vertical resonance",
+            "actuator.vertical_resonance",
+            act.vertical_resonance.to(_unit("kHz")),
+        )
+        k_v = rec.add(
+            "k_v",
+            "vertical contact stiffness",
+            "m·(2π·f_v)²",
+            m * (2 * math.pi * f_v) ** 2,
+            ("m", "f_v"),
+            "N/m",
+        )
+        if springs is not None:
+            rec.add(
+                "f_v,geom",
+                "head vertical resonance of the drawn actuator (not used: the file gives f_v)",
+                "√(K_nn/m)/2π",
+                (springs["k_nn"] / m) ** 0.5 / (2 * math.pi),
+                ("K_nn", "m"),
+                "kHz",
+            )
+    else:
+        assert springs is not None
+        k_v = rec.add(
+            "k_v",
+            "vertical contact stiffness: the drawn actuator's K_nn",
+            "K_nn",
+            springs["k_nn"],
+            ("K_nn",),
+            "N/m",
+        )
+        f_v = rec.add(
+            "f_v",
+            "head vertical resonance (drawn actuator)",
+            "√(k_v/m)/2π",
+            (k_v / m) ** 0.5 / (2 * math.pi),
+            ("k_v", "m"),
+            "kHz",
+        )
     if act.alpha is not None:
         alpha = rec.spec(
             "α",
@@ -231,7 +266,7 @@ def _derive_set(
             act.horizontal_stiffness.to(_unit("N/m")),
         )
         alpha = rec.add("α", "relative impact compliance", "k_v/k_h", k_v / k_h, ("k_v", "k_h"), "")
-    else:
+    elif act.horizontal_resonance is not None:
         f_h = rec.spec(
             "f_h",
             "head tangential resonance",
@@ -240,6 +275,26 @@ def _derive_set(
         )
         alpha = rec.add(
             "α", "relative impact compliance", "(f_v/f_h)²", (f_v / f_h) ** 2, ("f_v", "f_h"), ""
+        )
+    else:
+        assert springs is not None
+        k_h = rec.add(
+            "k_h",
+            "tangential contact stiffness: the drawn actuator's K_tt",
+            "K_tt",
+            springs["k_tt"],
+            ("K_tt",),
+            "N/m",
+        )
+        alpha = rec.add("α", "relative impact compliance", "k_v/k_h", k_v / k_h, ("k_v", "k_h"), "")
+    if springs is not None and _alpha_given(act):
+        rec.add(
+            "α_geom",
+            "relative impact compliance of the drawn actuator (not used: the file gives it)",
+            "K_nn/K_tt",
+            springs["k_nn"] / springs["k_tt"],
+            ("K_nn", "K_tt"),
+            "",
         )
 
     f_d = rec.spec(
@@ -366,6 +421,7 @@ def _derive_set(
         **roll,
     )
     return SetDerivation(
+        springs=None if springs is None else _springs(springs, m, f_v, alpha, act),
         name=aset.name,
         intended_mode=aset.intended_mode,
         params=params,
@@ -375,6 +431,35 @@ def _derive_set(
         actuator_set=aset,
         travel_range_m=float(sl.travel_range.to(_unit("m")).magnitude),
         published=published,
+    )
+
+
+def _alpha_given(act: Any) -> bool:
+    return any(
+        getattr(act, n) is not None
+        for n in ("alpha", "horizontal_stiffness", "horizontal_resonance")
+    )
+
+
+def _springs(
+    s: dict[str, Any], m: pint.Quantity, f_v: pint.Quantity, alpha: pint.Quantity, act: Any
+) -> HeadSprings:
+    """The drawn actuator's springs as plain data for the rules (record.HeadSprings)."""
+    file_fv = act.vertical_resonance is not None
+    file_alpha = _alpha_given(act)
+    return HeadSprings(
+        k_nn=float(s["k_nn"].to(_unit("N/m")).magnitude),
+        k_tt=float(s["k_tt"].to(_unit("N/m")).magnitude),
+        k_nt=float(s["k_nt"]),
+        rho=float(s["rho"]),
+        m_arm_kg=float(s["m_arm"]),
+        m_head_kg=float(m.to(_unit("kg")).magnitude),
+        used={
+            "k_v": "file" if file_fv else "geometry",
+            "alpha": "file" if file_alpha else "geometry",
+        },
+        file_f_v_hz=float(f_v.to(_unit("Hz")).magnitude) if file_fv else None,
+        file_alpha=float(alpha.to(_unit("")).magnitude) if file_alpha else None,
     )
 
 

@@ -152,6 +152,35 @@ class FitComparison:
 
 
 @dataclass(frozen=True)
+class HeadSprings:
+    """The head's springs from the drawn actuator (:mod:`betvdesign.nondim.actuator`),
+    float SI: k_nn, k_tt, k_nt [N/m] in the slider's frame, the coupling ρ [-], the arms'
+    first-mode mass m_arm [kg] against the head's m [kg]; ``used``: for "k_v" and
+    "alpha", "geometry" when the drawn actuator gave it, "file" when the device file's
+    value was used (then ``file_f_v_hz``/``file_alpha`` hold it for comparison)."""
+
+    k_nn: float
+    k_tt: float
+    k_nt: float
+    rho: float
+    m_arm_kg: float
+    m_head_kg: float
+    used: dict[str, str]
+    file_f_v_hz: float | None = None
+    file_alpha: float | None = None
+
+    @property
+    def f_v_hz(self) -> float:
+        """The geometry's vertical resonance sqrt(k_nn/m)/2π [Hz]."""
+        return math.sqrt(self.k_nn / self.m_head_kg) / (2 * math.pi)
+
+    @property
+    def alpha(self) -> float:
+        """The geometry's α = k_nn/k_tt [-]."""
+        return self.k_nn / self.k_tt
+
+
+@dataclass(frozen=True)
 class SetDerivation:
     """Model parameters and scales of one actuator set, with their derivation."""
 
@@ -164,6 +193,7 @@ class SetDerivation:
     actuator_set: ActuatorSet
     travel_range_m: float
     published: list[FitComparison] = field(default_factory=list)
+    springs: HeadSprings | None = None
 
     def step(self, symbol: str) -> DerivationStep:
         """The record entry for ``symbol`` (KeyError if absent)."""
@@ -234,14 +264,18 @@ class Recorder:
         value: pint.Quantity,
         inputs: tuple[str, ...] = (),
         unit: str | None = None,
+        *,
+        signed: bool = False,
     ) -> pint.Quantity:
+        """Record a step; its value must be finite and > 0 unless it is an input, λ, or
+        ``signed`` (a value that may take either sign, e.g. a coupling stiffness)."""
         if not isinstance(value, pint.Quantity):
             value = ureg.Quantity(value, cached_unit(""))
         if unit is not None:
             value = value.to(cached_unit(unit))
         if not formula.startswith("spec:") and symbol != "λ":
             mag = np.asarray(value.magnitude, dtype=float)
-            if not np.all(np.isfinite(mag) & (mag > 0.0)):
+            if not np.all(np.isfinite(mag) & ((mag > 0.0) | signed)):
                 shown = float(mag) if mag.ndim == 0 else "an invalid sample"
                 raise ParameterError(
                     f"{symbol} = {formula} = {shown!r}: must be finite and > 0 "

@@ -283,9 +283,10 @@ class ActuatorGeometry(_Model):
     - flexure (narrow part of the cold arm at its anchor): x in [0, flexure_length],
       centred on y = d, ``flexure_width`` wide;
     - tip: a connector x in [length, length + tip_length] joining both arms;
-    - head: the impact head's disc (or box) beyond the tip on y = d, overlapping half of
-      the connector;
-    - anchors: squares of ``anchor_size`` at x < 0 under the hot arm and the flexure.
+    - head: the impact head's disc (or box) beyond the tip at the connector's
+      mid-height, overlapping half of the connector;
+    - anchors: squares of ``anchor_size`` at x < 0 at the roots of the hot arm and the
+      flexure, reaching away from each other.
 
     Thickness, Young's modulus and Poisson's ratio are the structural layer's when the
     device names a process (``layer``: the process's default structural layer when
@@ -304,8 +305,8 @@ class ActuatorGeometry(_Model):
     """Width of the flexure."""
     gap: Length
     """Edge-to-edge gap between the hot arm and the cold arm."""
-    tip_length: Length = Field(default_factory=lambda: parse_quantity("5 um"))
-    """Length of the connector that joins both arms at the tip; '5 um' by default."""
+    tip_length: Length = Field(default_factory=lambda: parse_quantity("10 um"))
+    """Length of the connector that joins both arms at the tip; '10 um' by default."""
     anchor_size: Length = Field(default_factory=lambda: parse_quantity("20 um"))
     """Side of the square anchor pads; '20 um' by default."""
     layer: str | None = Field(default=None, max_length=limits.MAX_NAME_CHARS)
