@@ -17,6 +17,7 @@ a device file names its process by shipped name (``process: polymumps``) or by p
 
 from __future__ import annotations
 
+import os
 import re
 from pathlib import Path
 from typing import Annotated, Any, Literal
@@ -35,6 +36,8 @@ __all__ = [
     "Process",
     "ProcessLayer",
     "ReleaseHoles",
+    "process_ref",
+    "rebase",
     "shipped_process_path",
     "shipped_processes",
 ]
@@ -279,3 +282,26 @@ def shipped_process_path(name: str) -> Path | None:
         return None
     p = SHIPPED_DIR / f"{name}.yaml"
     return p if p.is_file() else None
+
+
+def rebase(ref: str, source_dir: str | Path, out: str | Path) -> str:
+    """A device's ``process`` reference as written in a file next to ``out``: a shipped
+    name as is, a path (relative to ``source_dir``, where it was read) re-based to ``out``'s
+    directory."""
+    if shipped_process_path(ref) is not None:
+        return ref
+    p = Path(ref)
+    p = p if p.is_absolute() else Path(source_dir) / p
+    return os.path.relpath(p.resolve(), Path(out).resolve().parent)
+
+
+def process_ref(path: str | Path) -> str | None:
+    """The ``process`` value of a device file as written (None when it names none)."""
+    from ruamel.yaml import YAML
+
+    try:
+        data = YAML(typ="safe").load(Path(path).read_text("utf-8"))
+    except Exception:  # the file was validated before; a second read failing is moot
+        return None
+    value = data.get("process") if isinstance(data, dict) else None
+    return value if isinstance(value, str) else None
