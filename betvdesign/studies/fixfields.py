@@ -34,7 +34,29 @@ DEFAULT_BOUNDS: dict[str, tuple[float, float] | tuple[float, float, str]] = {
     "actuator.horizontal_stiffness": (0.25, 4.0),
     "actuator.alpha": (0.25, 4.0),
     "contact.impact_angle": (15.0, 75.0, "deg"),
+    # the drawn actuator, where it gives the head's springs (the file gives no resonance)
+    "actuator.geometry.length": (0.5, 2.0),
+    "actuator.geometry.flexure_length": (0.5, 2.0),
+    "actuator.geometry.flexure_width": (0.5, 4.0),
+    "actuator.geometry.hot_arm_width": (0.5, 4.0),
+    "actuator.geometry.cold_arm_width": (0.5, 2.0),
+    "actuator.geometry.gap": (0.5, 4.0),
 }
+
+
+def _drawn_springs_inert(spec: Any, name: str) -> bool:
+    """A drawn-actuator field changes nothing when every set's file gives the head's
+    resonance and α (the file's values are used): not a default field then."""
+    if not name.startswith("actuator.geometry."):
+        return False
+    return all(
+        s.actuator.vertical_resonance is not None
+        and any(
+            getattr(s.actuator, k) is not None
+            for k in ("alpha", "horizontal_stiffness", "horizontal_resonance")
+        )
+        for s in spec.actuator_sets
+    )
 
 
 @dataclass(frozen=True)
@@ -78,7 +100,11 @@ def parse_vary(spec: Any, items: Sequence[str]) -> list[Vary]:
     from betvdesign.spec.units import parse_quantity
 
     out: list[Vary] = []
-    names = list(items) or [f for f in DEFAULT_BOUNDS if _current(spec, f) is not None]
+    names = list(items) or [
+        f
+        for f in DEFAULT_BOUNDS
+        if _current(spec, f) is not None and not _drawn_springs_inert(spec, f)
+    ]
     for item in names:
         name, _, rng = item.partition("=")
         name = name.strip()

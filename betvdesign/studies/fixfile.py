@@ -27,6 +27,17 @@ def _nodes(data: Any, field: str) -> list[tuple[Any, str]]:
     return out
 
 
+def fixed_values(res: Any, cand: Any) -> dict[str, Any]:
+    """The fix's new values as a device file writes them (quantities to 4 digits)."""
+    from betvdesign.spec.units import format_quantity
+
+    out = {}
+    for f, x in cand.changes.items():
+        v = res.varies[f]
+        out[f] = format_quantity(v.quantity(x), ".4g") if v.unit else float(f"{x:.4g}")
+    return out
+
+
 def fixed_text(path: str | Path, res: Any, cand: Any) -> str:
     """The text of ``path`` with ``cand``'s changes applied; raises :class:`BetvError`
     if the result does not load or does not pass ``betv check`` (never written then)."""
@@ -35,16 +46,15 @@ def fixed_text(path: str | Path, res: Any, cand: Any) -> str:
     from betvdesign.checks.checker import check_derivation
     from betvdesign.nondim.device import derive
     from betvdesign.spec.loader import load_device_text
-    from betvdesign.spec.units import format_quantity
 
     yaml = YAML(typ="rt")
     yaml.preserve_quotes = True
     yaml.width = 100
     data = yaml.load(Path(path).read_text("utf-8"))
-    for f, x in cand.changes.items():
+    new_values = fixed_values(res, cand)
+    for f in cand.changes:
         v = res.varies[f]
-        q = v.quantity(x)
-        new = format_quantity(q, ".4g") if v.unit else float(f"{x:.4g}")
+        new = new_values[f]
         old = v.text(v.x0)
         for node, key in _nodes(data, f):
             node[key] = new
