@@ -166,12 +166,7 @@ def layout(reps: int = 3) -> dict:
             check_derivation(derive_file(f), adequacy=False)
             t_yaml.append(time.perf_counter() - t0)
             t0 = time.perf_counter()
-            d, ex = derive_gds(
-                gds,
-                process=None
-                if spec.process.name == "polymumps"
-                else str(ROOT / "devices" / "processes" / f"{spec.process.name}.yaml"),
-            )
+            d, ex = derive_gds(gds)
             check_derivation(d, adequacy=False, layout_rules=ex.rules)
             t_gds.append(time.perf_counter() - t0)
         out[f.stem] = {

@@ -167,7 +167,7 @@ def test_klayout_reads_the_expected_cells_layers_and_areas(tmp_path):
     kdb = pytest.importorskip("klayout.db")
     spec = load_device(DEVICES / "push_demo.yaml")
     gds = tmp_path / "p.gds"
-    write_layout(spec, gds, process_ref="demo25.yaml")
+    write_layout(spec, gds)
     ly = kdb.Layout()
     ly.read(str(gds))
     assert ly.dbu == pytest.approx(0.001)
@@ -188,9 +188,10 @@ def test_klayout_reads_the_expected_cells_layers_and_areas(tmp_path):
     top = ly.top_cell()
     texts = [s.text_string for s in top.each_shape(ly.layer(63, 0)) if s.is_text()]
     assert texts.count("forward.lower.head") == 1 and texts.count("slider.beam") == 2
-    assert "process = demo25.yaml" in texts
+    assert "process = demo25" in texts  # a shipped process, by its name
+    own = spec.model_copy(update={"process": spec.process.model_copy(update={"name": "mine"})})
     with pytest.raises(BetvError, match="not a shipped one"):
-        write_layout(spec, tmp_path / "q.gds")
+        write_layout(own, tmp_path / "q.gds")
 
 
 def _klayout_findings(kdb, gds: Path, d_um: float) -> tuple[list, list]:
@@ -401,17 +402,26 @@ def test_check_gds_gives_the_yaml_verdict_with_layout_rules(tmp_path):
 
 
 def test_process_path_is_rebased(tmp_path):
-    """A device naming its process by a relative path: the layout's label and the
-    extracted file's `process:` point at it from where they are written."""
+    """A device naming its own process file by a relative path: the layout's label and
+    the extracted file's `process:` point at it from where they are written."""
+    (tmp_path / "procs").mkdir()
+    (tmp_path / "procs" / "mine.yaml").write_text(
+        (SHIPPED_DIR / "polymumps.yaml").read_text().replace("name: polymumps", "name: mine")
+    )
+    dev = tmp_path / "dev.yaml"
+    dev.write_text((DEVICES / "shin2004.yaml").read_text().replace(
+        "process: polymumps", "process: procs/mine.yaml"))  # fmt: skip
     sub = tmp_path / "deep" / "er"
     sub.mkdir(parents=True)
-    gds = sub / "push.gds"
-    assert run("layout", str(DEVICES / "push_demo.yaml"), "-o", str(gds)).exit_code == 0
+    gds = sub / "shin.gds"
+    assert run("layout", str(dev), "-o", str(gds)).exit_code == 0
+    texts = [lab.text for lab in gdstk.read_gds(gds).top_level()[0].labels]
+    assert "process = ../../procs/mine.yaml" in texts
     out = tmp_path / "back.yaml"
     assert run("extract", str(gds), "-o", str(out)).exit_code == 0
-    assert load_device(out).process.name == "demo25"
+    assert load_device(out).process.name == "mine"
     ref = re.search(r"\nprocess: (.*)\n", out.read_text()).group(1)
-    assert (tmp_path / ref).resolve() == (DEVICES / "processes" / "demo25.yaml").resolve()
+    assert ref == "procs/mine.yaml"
 
 
 def test_shipped_process_dir_is_packaged():

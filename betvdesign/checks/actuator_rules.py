@@ -4,12 +4,16 @@
   resonances (or α) too, they are used and compared with the drawn actuator's (warning
   when more than :data:`GEOMETRY_RTOL` apart); otherwise the drawn actuator's are used
   (information, with the closed form's stated error against FE).
-- ``actuator.coupling`` (warning): the frame's coupling ρ = K_nt/√(K_nn·K_tt) within
+- ``actuator.coupling``: the frame's coupling ρ = K_nt/√(K_nn·K_tt) within
   ±:data:`betvdesign.model.frame.RHO_MAX`; beyond it the model's decoupled springs
   misdescribe the head (a model-adequacy finding, MODEL.md).
-- ``actuator.arm-mass`` (warning): the arms' first-mode mass at most
+- ``actuator.arm-mass``: the arms' first-mode mass at most
   :data:`betvdesign.model.frame.ARM_MASS_SHARE_MAX` of the head's; the model's m is the
   head alone, so the message states the effective mass m + m_arm and the f_v it gives.
+
+Severity: warning where the drawing's springs are used; information where the file's
+resonances and α are (the comparison then says what the drawing would give, the verdict
+does not rest on it).
 """
 
 from __future__ import annotations
@@ -33,11 +37,16 @@ def actuator_rules(s: SetDerivation) -> list[RuleResult]:
     sp = s.springs
     if sp is None:
         return []
-    return [
-        _geometry(s),
-        _coupling(s),
-        _arm_mass(s),
-    ]
+    out = [_geometry(s), _coupling(s), _arm_mass(s)]
+    if set(sp.used.values()) == {"file"}:
+        note = "the file's resonances are used, not the drawing's: "
+        out = [
+            RuleResult(r.id, "info", r.passed, r.value, r.threshold,
+                       r.message if r.id == "actuator.geometry" else note + r.message,
+                       r.source, r.set_name, r.fix, r.unit)
+            for r in out
+        ]  # fmt: skip
+    return out
 
 
 def _ratio_text(a: float, b: float) -> str:

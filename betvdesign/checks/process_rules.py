@@ -390,9 +390,9 @@ def _release(p: Process, feats: list[Feature]) -> RuleResult:
         if not f.anchored and f.width > mx * (1 + _REL):
             h = lay.release_holes
             wide.append(
-                f"{f.what} {_fmt(f.width)} > {_fmt(mx)}: etch holes of {_fmt(_m(h.size))} at "
-                f"{release_pitch(lay):.3g} µm pitch on {h.layer} remove ≈ "
-                f"{hole_share(p, f.layer):.1%} of its mass (not in the model)"
+                f"{f.what} {_fmt(f.width)} > {_fmt(mx)} ({_fmt(_m(h.size))} holes at "
+                f"{release_pitch(lay):.3g} µm pitch take {hole_share(p, f.layer):.1%} of its "
+                "mass, not in the model)"
             )
     widest = max((f for f in feats if not f.anchored), key=lambda f: f.width)
     layers = sorted({f.layer for f in feats})
@@ -402,7 +402,7 @@ def _release(p: Process, feats: list[Feature]) -> RuleResult:
         f"every released feature is narrower than the widest the release etch frees without "
         f"holes ({mx}); widest: {widest.what} {_fmt(widest.width)}"
         if ok
-        else "needs etch holes to be released: " + "; ".join(wide)
+        else "needs etch holes: " + "; ".join(wide)
     )
     return RuleResult(
         "process.release",
@@ -412,9 +412,7 @@ def _release(p: Process, feats: list[Feature]) -> RuleResult:
         f"width <= {mx} or etch holes",
         msg,
         "; ".join(p.cite(f"layers.{n}.max_unreleased_width") for n in layers),
-        fix=""
-        if ok
-        else "draw it with etch holes (`betv layout` does), or narrow it below the limit",
+        fix="" if ok else "`betv layout` draws the holes; or narrow it below the limit",
         unit="m",
     )
 

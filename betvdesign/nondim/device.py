@@ -208,7 +208,10 @@ def _derive_set(
     )
     m = _head_mass(rec, spec, aset)
 
-    springs = head_springs(rec, spec, aset, m) if act.geometry is not None else None
+    springs = None
+    if act.geometry is not None:  # the frame's springs use θ: recorded before them
+        rec.spec("θ", "impact angle", "contact.impact_angle", aset.contact.impact_angle)
+        springs = head_springs(rec, spec, aset, m)
     if act.vertical_resonance is not None:
         f_v = rec.spec(
             "f_v",
@@ -350,7 +353,9 @@ def _derive_set(
     roll: dict[str, float] = {}
     if rolled:
         u, roll = nondim_terms.rolloff(rec, act, f_act, u, samples)
-    theta = rec.spec("θ", "impact angle", "contact.impact_angle", aset.contact.impact_angle)
+    theta = next((st.value for st in rec.steps if st.symbol == "θ"), None)
+    if theta is None:
+        theta = rec.spec("θ", "impact angle", "contact.impact_angle", aset.contact.impact_angle)
     mu = rec.spec(
         "μ",
         "Coulomb friction coefficient",
