@@ -416,7 +416,7 @@ def test_process_path_is_rebased(tmp_path):
     gds = sub / "shin.gds"
     assert run("layout", str(dev), "-o", str(gds)).exit_code == 0
     texts = [lab.text for lab in gdstk.read_gds(gds).top_level()[0].labels]
-    assert "process = ../../procs/mine.yaml" in texts
+    assert 'process = "../../procs/mine.yaml"' in texts  # a YAML value, quoted
     out = tmp_path / "back.yaml"
     assert run("extract", str(gds), "-o", str(out)).exit_code == 0
     assert load_device(out).process.name == "mine"

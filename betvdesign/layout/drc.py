@@ -102,9 +102,10 @@ def _edges(gdstk: Any, polys: list) -> np.ndarray:
         return np.zeros((0, 4))
     e = np.concatenate(out)
     e = e[np.hypot(e[:, 2] - e[:, 0], e[:, 3] - e[:, 1]) > 1e-9]
-    key = {tuple(np.round(r, 6)) for r in e}
-    rev = np.array([tuple(np.round(r[[2, 3, 0, 1]], 6)) in key for r in e])
-    return e[~rev]
+    k = np.ascontiguousarray(np.round(e * 1e6).astype(np.int64))
+    fwd = k.view(np.dtype((np.void, 32))).ravel()
+    back = np.ascontiguousarray(k[:, [2, 3, 0, 1]]).view(np.dtype((np.void, 32))).ravel()
+    return e[~np.isin(back, fwd)]
 
 
 def _seg_dist(a: np.ndarray, b: np.ndarray, p: np.ndarray) -> np.ndarray:
@@ -116,13 +117,15 @@ def _seg_dist(a: np.ndarray, b: np.ndarray, p: np.ndarray) -> np.ndarray:
 
 
 def edge_violations(
-    gdstk: Any, polys: list, d: float, kind: str, layer: str = "", gds: str = ""
-) -> list[Violation]:
+    gdstk: Any, polys: list, d: float, kind: str, layer: str = "", gds: str = "",
+    edges: np.ndarray | None = None,
+) -> list[Violation]:  # fmt: skip
     """Edge pairs of the union of ``polys`` closer than ``d`` [µm] across material
     (``kind`` "width") or across space ("space"): each edge lies on the other's material
     (or empty) side, they meet at less than :data:`IGNORE_ANGLE_DEG`, and their Euclidean
-    distance is below d (KLayout's width/space check with its Euclidean metric)."""
-    e = _edges(gdstk, polys)
+    distance is below d (KLayout's width/space check with its Euclidean metric). ``edges``:
+    the union's boundary if already computed (:func:`_edges`)."""
+    e = _edges(gdstk, polys) if edges is None else edges
     n = len(e)
     if n < 2:
         return []
@@ -276,8 +279,10 @@ def findings(gdstk: Any, process: Process, by_layer: dict[tuple[int, int], list]
         anchors = by_layer.get(process.layers[lay.anchor].gds.pair, []) if lay.anchor else []
         um = lambda q: float(q.to("um").magnitude)  # noqa: E731
         g = str(lay.gds)
-        width += width_violations(gdstk, polys, holes, um(lay.min_width), name, g)
-        space += space_violations(gdstk, polys, holes, um(lay.min_spacing), name, g)
+        body = _not(gdstk, weld(gdstk, polys), holes)
+        e = _edges(gdstk, body)
+        width += edge_violations(gdstk, body, um(lay.min_width), "width", name, g, e)
+        space += edge_violations(gdstk, body, um(lay.min_spacing), "space", name, g, e)
         release += unreleased(gdstk, polys, holes, anchors, um(lay.max_unreleased_width), name, g)
     return LayerFindings(width, space, release)
 

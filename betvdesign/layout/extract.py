@@ -31,6 +31,7 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+from pydantic import ValidationError
 from ruamel.yaml import YAML
 
 from betvdesign.errors import Location, ParameterError, SpecError, SpecIssue
@@ -71,15 +72,22 @@ def max_gds_bytes() -> int:
 
 @dataclass
 class Extracted:
-    """What a layout says: the device file's text and spec, where each value came from,
-    notes (what was read but is not in the model), and the layout's process rules."""
+    """What a layout says: the device (``doc``, plain data as a device file holds it, and
+    its validated ``spec``), notes (what was read but is not in the model), and the
+    layout's process rules; :attr:`text` is the device file's text."""
 
-    text: str
+    doc: dict
     spec: DeviceSpec
     process_ref: str
     cell: str
+    path: Path
     notes: list[str] = field(default_factory=list)
     rules: list[Any] = field(default_factory=list)
+
+    @property
+    def text(self) -> str:
+        """The device file (YAML) the layout makes."""
+        return _yaml(self.doc, self.path)
 
 
 class _Problems:
@@ -495,14 +503,17 @@ def extract(path: str | os.PathLike[str], *, process: str | None = None) -> Extr
     probs.raise_if_any()
     doc, where = _document(data, sl, acts, proc, ref, path, probs)
     probs.raise_if_any()
-    text = _yaml(doc, path)
-    try:
-        spec = load_device_text(text, str(path))
-    except SpecError as exc:
-        raise SpecError([_relocate(i, where, path, top.name) for i in exc.issues]) from None
+    try:  # the common case without a round trip through YAML text
+        spec = DeviceSpec.model_validate({**doc, "process": proc})
+    except ValidationError:  # the device file's own messages, located in the layout
+        try:
+            load_device_text(_yaml(doc, path), str(path))
+        except SpecError as exc:
+            raise SpecError([_relocate(i, where, path, top.name) for i in exc.issues]) from None
+        raise
     f = findings(gdstk, proc, by_layer)
     rules = layout_rules(spec, f, top.name)
-    return Extracted(text, spec, ref, top.name, notes, rules)
+    return Extracted(doc, spec, ref, top.name, path, notes, rules)
 
 
 def _document(

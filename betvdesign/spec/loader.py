@@ -50,11 +50,28 @@ _DEVICE_HINT = "expected a mapping with 'name', 'slider', 'actuator_sets'"
 
 def load_process(path: str | Path) -> Process:
     """Read and validate one process file (:mod:`betvdesign.spec.process`); raises
-    :class:`SpecError` listing every issue as ``file:line:col: field: message``."""
+    :class:`SpecError` listing every issue as ``file:line:col: field: message``. A file
+    read before and unchanged since (same size and modification time) is not read again
+    (a process is frozen data)."""
     path = Path(path)
-    return load_model_text(
+    try:
+        st = path.stat()
+        key = (str(path.resolve()), str(path), st.st_mtime_ns, st.st_size)
+    except OSError:
+        key = None
+    if key is not None and key in _PROCESSES:
+        return _PROCESSES[key]
+    proc = load_model_text(
         safeyaml.read_text(path), str(path), Process, "expected a mapping with 'name', 'layers'"
     )
+    if key is not None:
+        if len(_PROCESSES) >= 64:
+            _PROCESSES.clear()
+        _PROCESSES[key] = proc
+    return proc
+
+
+_PROCESSES: dict[tuple, Process] = {}
 
 
 def resolve_process(ref: str, base_dir: str | Path | None = None) -> Process:
