@@ -249,6 +249,10 @@ def test_width_and_space_agree_with_klayout_on_deliberate_violations(seed, tmp_p
         by.setdefault((poly.layer, poly.datatype), []).append(poly)
     f = findings(gdstk, p, by)
     assert kw and ks and f.width and f.space
+    assert extract(gds).notes == [
+        "2 polygon(s) of a structural layer carry no label: not part of the model (the "
+        "process rules check them all)"
+    ]
     for kbox in kw:
         assert any(_near(kbox, v) for v in f.width), (kbox, f.width)
     for v in f.width:

@@ -237,6 +237,9 @@ def _elements(
     probs.raise_if_any()
     _overlaps(elements, probs, gdstk)
     probs.raise_if_any()
+    free = len(struct) - len(used)
+    if free:
+        data.append(DataLabel(None, "_unlabelled", str(free)))
     return elements, data, by_layer
 
 
@@ -461,6 +464,13 @@ def extract(path: str | os.PathLike[str], *, process: str | None = None) -> Extr
     ref, proc = _process(top, labels, path, process, probs)
     grid = float(proc.grid.to("um").magnitude)
     elements, data, by_layer = _elements(top, proc, labels, probs, gdstk)
+    notes: list[str] = []
+    for d in [d for d in data if d.path == "_unlabelled"]:
+        data.remove(d)
+        notes.append(
+            f"{d.value} polygon(s) of a structural layer carry no label: not part of the "
+            "model (the process rules check them all)"
+        )
     slider_els = [e for e in elements if e.label.set_name is None]
     sl = _slider(slider_els, grid, probs)
     groups: dict[str, dict[str, dict[str, _Element]]] = defaultdict(lambda: defaultdict(dict))
@@ -474,7 +484,6 @@ def extract(path: str | os.PathLike[str], *, process: str | None = None) -> Extr
                   f"actuator's parts {', '.join(ACTUATOR_PARTS)}")  # fmt: skip
         probs.raise_if_any()
     acts: dict[str, _Actuator] = {}
-    notes: list[str] = []
     for name, sides in groups.items():
         got = {side: _actuator(name, side, parts, sl, grid, probs) for side, parts in sides.items()}
         got = {k: v for k, v in got.items() if v is not None}
