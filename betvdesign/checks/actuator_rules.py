@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import math
 
-from betvdesign.checks.ruledata import RuleResult
+from betvdesign.checks.rule import RuleResult
 from betvdesign.model.frame import ARM_MASS_SHARE_MAX, CLOSED_FORM_RTOL, RHO_MAX
 from betvdesign.nondim.record import SetDerivation
 from betvdesign.output.siformat import format_si

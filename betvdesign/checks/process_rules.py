@@ -1,7 +1,7 @@
 """The process's design rules, applied to a device file (``betv check``; the same rule ids
 come from the drawn polygons when a GDS layout is checked, :mod:`betvdesign.layout.drc`).
 
-Rules (each a :class:`~betvdesign.checks.ruledata.RuleResult` with its source in the
+Rules (each a :class:`~betvdesign.checks.rule.RuleResult` with its source in the
 process file and a fix; device-level, the message names the element):
 
 - ``process.thickness`` (error): every drawn element's thickness is that of its
@@ -28,7 +28,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from betvdesign.checks.ruledata import RuleResult
+from betvdesign.checks.rule import RuleResult
 from betvdesign.model.frame import head_covers_tip, head_radius_min
 from betvdesign.nondim.actuator import actuator_inputs, frame_geometry
 from betvdesign.output.siformat import format_si

@@ -26,7 +26,7 @@ from typing import Any
 import numpy as np
 
 from betvdesign.checks.process_rules import process_rules
-from betvdesign.checks.ruledata import RuleResult
+from betvdesign.checks.rule import RuleResult
 from betvdesign.layout.shapes import min_box
 from betvdesign.spec.models import DeviceSpec
 from betvdesign.spec.process import Process

@@ -45,7 +45,8 @@ from betvdesign.layout.drc import findings, layout_rules
 from betvdesign.layout.shapes import Box, centroid, extent, min_box, span_along
 from betvdesign.layout.write import gdstk_module
 from betvdesign.model.frame import FrameGeometry
-from betvdesign.nondim.device import DeviceDerivation, derive
+from betvdesign.nondim.device import derive
+from betvdesign.nondim.record import DeviceDerivation
 from betvdesign.spec.loader import load_device_text, resolve_process
 from betvdesign.spec.models import DeviceSpec
 from betvdesign.spec.process import Process

@@ -14,7 +14,11 @@ and the record gets:
 - m_arm: the arms' first-mode mass at the head (Rayleigh, along the softest direction).
 
 :func:`head_springs` is called by :mod:`betvdesign.nondim.device`, which decides which of
-k_v = K_nn and k_h = K_tt it uses (the file's resonances win where given).
+k_v = K_nn and k_h = K_tt it uses (the file's resonances win where given) through the
+steps here: :func:`drawn_springs` (θ, then :func:`head_springs`),
+:func:`drawn_vertical_stiffness` or :func:`drawn_resonance_beside`,
+:func:`drawn_compliance_ratio` or :func:`drawn_alpha_beside`, and :func:`springs_data`
+(the plain data the rules read).
 """
 
 from __future__ import annotations
@@ -32,12 +36,23 @@ from betvdesign.model.frame import (
     head_disc_diameter,
     slider_springs,
 )
-from betvdesign.nondim.record import Recorder
-from betvdesign.nondim.record import cached_unit as _unit
-from betvdesign.spec.models import ActuatorSet, BoxGeometry, DeviceSpec, DiscGeometry
+from betvdesign.nondim.record import HeadSprings, Recorder, cached_unit, mag
+from betvdesign.spec.models import Actuator, ActuatorSet, BoxGeometry, DeviceSpec, DiscGeometry
 from betvdesign.spec.units import ureg
 
-__all__ = ["ActuatorInputs", "actuator_inputs", "frame_geometry", "head_springs"]
+__all__ = [
+    "ActuatorInputs",
+    "actuator_inputs",
+    "alpha_given",
+    "drawn_alpha_beside",
+    "drawn_compliance_ratio",
+    "drawn_resonance_beside",
+    "drawn_springs",
+    "drawn_vertical_stiffness",
+    "frame_geometry",
+    "head_springs",
+    "springs_data",
+]
 
 #: Poisson's ratio used by the FE check when neither the geometry nor the process gives one
 #: (polysilicon, Sharpe et al. 1997).
@@ -157,7 +172,7 @@ def head_springs(
     k = frame_stiffness(fg)
     src = "Euler–Bernoulli frame, flexibility method, rigid tip (MODEL.md; Lobontiu & Garcia ch. 4)"
     ins = ("E", "t_a", "L_a", "w_hot", "w_cold", "L_flex", "w_flex", "g_a", "l_tip", "r_head")
-    nm = _unit("N/m")
+    nm = cached_unit("N/m")
     rec.add("K_xx", f"head stiffness along the arms ({src})", "frame closed form",
             ureg.Quantity(k.k_xx, nm), ins, "N/m")  # fmt: skip
     rec.add("K_yy", "head stiffness along the stroke", "frame closed form",
@@ -175,7 +190,7 @@ def head_springs(
     rec.add("K_nt", "head stiffness coupling normal × along (the model has none)",
             qkq + " (n, t)", ureg.Quantity(k_nt, nm), tn, "N/m", signed=True)  # fmt: skip
     rho = k_nt / np.sqrt(k_nn * k_tt)
-    rec.add("ρ_K", "spring coupling", "K_nt/√(K_nn·K_tt)", ureg.Quantity(rho, _unit("")),
+    rec.add("ρ_K", "spring coupling", "K_nt/√(K_nn·K_tt)", ureg.Quantity(rho, cached_unit("")),
             ("K_nt", "K_nn", "K_tt"), "", signed=True)  # fmt: skip
     # the softest direction of K: the first mode's
     kxx, kyy, kxy = (np.asarray(v, dtype=float) for v in (k.k_xx, k.k_yy, k.k_xy))
@@ -186,8 +201,208 @@ def head_springs(
         "arms' share of the first mode's mass at the head (Rayleigh, softest direction); "
         "the model's m is the head alone",
         "ρ·Σ A∫(u² + v²)dx / δ²",
-        ureg.Quantity(m_arm, "kg").to(_unit("ug")),
+        ureg.Quantity(m_arm, "kg").to(cached_unit("ug")),
         ("E", "t_a", "L_a", "w_hot", "w_cold", "L_flex", "w_flex"),
         "ug",
     )
     return {"k_nn": knn, "k_tt": ktt, "k_nt": k_nt, "rho": rho, "m_arm": m_arm}
+
+
+def drawn_springs(
+    rec: Recorder, spec: DeviceSpec, aset: ActuatorSet, m: pint.Quantity
+) -> dict[str, Any] | None:
+    """The head's springs of a drawn actuator (``actuator.geometry``), recorded.
+
+    The frame's springs are turned into the slider's frame at the impact angle θ, so θ is
+    recorded first (:func:`betvdesign.nondim.device.impact_contact` then reuses it).
+
+    Parameters
+    ----------
+    rec : Recorder
+        The record being built.
+    spec : DeviceSpec
+        The device (its process: film thickness and Young's modulus).
+    aset : ActuatorSet
+        The actuator set (its actuator's geometry, its head, its contact's θ [deg]).
+    m : pint.Quantity
+        Head mass [kg].
+
+    Returns
+    -------
+    dict or None
+        As :func:`head_springs`; None without a drawn actuator (nothing recorded).
+
+    References
+    ----------
+    MODEL.md, "From the drawn actuator to the head's springs".
+    """
+    if aset.actuator.geometry is None:
+        return None
+    rec.spec("θ", "impact angle", "contact.impact_angle", aset.contact.impact_angle)
+    return head_springs(rec, spec, aset, m)
+
+
+def drawn_vertical_stiffness(
+    rec: Recorder, springs: dict[str, Any], m: pint.Quantity
+) -> tuple[pint.Quantity, pint.Quantity]:
+    """k_v = K_nn and f_v = √(k_v/m)/2π, where the file gives no vertical resonance.
+
+    Parameters
+    ----------
+    rec : Recorder
+        The record being built.
+    springs : dict
+        As :func:`head_springs`.
+    m : pint.Quantity
+        Head mass [kg].
+
+    Returns
+    -------
+    tuple of pint.Quantity
+        f_v [kHz] and k_v [N/m].
+    """
+    k_v = rec.add(
+        "k_v",
+        "vertical contact stiffness: the drawn actuator's K_nn",
+        "K_nn",
+        springs["k_nn"],
+        ("K_nn",),
+        "N/m",
+    )
+    f_v = rec.add(
+        "f_v",
+        "head vertical resonance (drawn actuator)",
+        "√(k_v/m)/2π",
+        (k_v / m) ** 0.5 / (2 * math.pi),
+        ("k_v", "m"),
+        "kHz",
+    )
+    return f_v, k_v
+
+
+def drawn_resonance_beside(rec: Recorder, springs: dict[str, Any], m: pint.Quantity) -> None:
+    """Record the drawn actuator's √(K_nn/m)/2π (``f_v,geom``) beside the file's f_v, which
+    is the one used.
+
+    Parameters
+    ----------
+    rec : Recorder
+        The record being built.
+    springs : dict
+        As :func:`head_springs`.
+    m : pint.Quantity
+        Head mass [kg].
+    """
+    rec.add(
+        "f_v,geom",
+        "head vertical resonance of the drawn actuator (not used: the file gives f_v)",
+        "√(K_nn/m)/2π",
+        (springs["k_nn"] / m) ** 0.5 / (2 * math.pi),
+        ("K_nn", "m"),
+        "kHz",
+    )
+
+
+def drawn_compliance_ratio(
+    rec: Recorder, springs: dict[str, Any], k_v: pint.Quantity
+) -> pint.Quantity:
+    """k_h = K_tt and α = k_v/k_h, where the file gives none of α, k_h, f_h.
+
+    Parameters
+    ----------
+    rec : Recorder
+        The record being built.
+    springs : dict
+        As :func:`head_springs`.
+    k_v : pint.Quantity
+        Vertical contact stiffness [N/m].
+
+    Returns
+    -------
+    pint.Quantity
+        α [-].
+    """
+    k_h = rec.add(
+        "k_h",
+        "tangential contact stiffness: the drawn actuator's K_tt",
+        "K_tt",
+        springs["k_tt"],
+        ("K_tt",),
+        "N/m",
+    )
+    return rec.add("α", "relative impact compliance", "k_v/k_h", k_v / k_h, ("k_v", "k_h"), "")
+
+
+def drawn_alpha_beside(rec: Recorder, springs: dict[str, Any]) -> None:
+    """Record the drawn actuator's K_nn/K_tt (``α_geom``) beside the file's α, which is the
+    one used.
+
+    Parameters
+    ----------
+    rec : Recorder
+        The record being built.
+    springs : dict
+        As :func:`head_springs`.
+    """
+    rec.add(
+        "α_geom",
+        "relative impact compliance of the drawn actuator (not used: the file gives it)",
+        "K_nn/K_tt",
+        springs["k_nn"] / springs["k_tt"],
+        ("K_nn", "K_tt"),
+        "",
+    )
+
+
+def alpha_given(act: Actuator) -> bool:
+    """True when the file gives α, k_h or f_h (then the drawn actuator's α is not used)."""
+    return (
+        act.alpha is not None
+        or act.horizontal_stiffness is not None
+        or act.horizontal_resonance is not None
+    )
+
+
+def springs_data(
+    springs: dict[str, Any],
+    m: pint.Quantity,
+    f_v: pint.Quantity,
+    alpha: pint.Quantity,
+    act: Actuator,
+) -> HeadSprings:
+    """The drawn actuator's springs as plain data for the rules.
+
+    Parameters
+    ----------
+    springs : dict
+        As :func:`head_springs`.
+    m : pint.Quantity
+        Head mass [kg].
+    f_v : pint.Quantity
+        The vertical resonance used [Hz].
+    alpha : pint.Quantity
+        The α used [-].
+    act : Actuator
+        The actuator (which of f_v and α its file gives).
+
+    Returns
+    -------
+    HeadSprings
+        Float SI, with which values came from the file.
+    """
+    file_fv = act.vertical_resonance is not None
+    file_alpha = alpha_given(act)
+    return HeadSprings(
+        k_nn=mag(springs["k_nn"], "N/m"),
+        k_tt=mag(springs["k_tt"], "N/m"),
+        k_nt=float(springs["k_nt"]),
+        rho=float(springs["rho"]),
+        m_arm_kg=float(springs["m_arm"]),
+        m_head_kg=mag(m, "kg"),
+        used={
+            "k_v": "file" if file_fv else "geometry",
+            "alpha": "file" if file_alpha else "geometry",
+        },
+        file_f_v_hz=mag(f_v, "Hz") if file_fv else None,
+        file_alpha=mag(alpha, "") if file_alpha else None,
+    )

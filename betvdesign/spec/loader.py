@@ -18,6 +18,7 @@ from ruamel.yaml import YAML
 from ruamel.yaml.comments import CommentedMap, CommentedSeq
 from ruamel.yaml.error import MarkedYAMLError, YAMLError, YAMLWarning
 from ruamel.yaml.nodes import MappingNode, Node, SequenceNode
+from ruamel.yaml.reader import ReaderError
 
 from betvdesign.errors import Location, SpecError, SpecIssue
 from betvdesign.spec import limits, safeyaml
@@ -27,21 +28,55 @@ from betvdesign.spec.process import Process, shipped_process_path, shipped_proce
 
 
 def load_device(path: str | Path) -> DeviceSpec:
-    """Read and validate one device file. Raises :class:`SpecError` listing every issue.
+    """Read and validate one device file.
 
-    The file is read within the size limit of :mod:`betvdesign.spec.limits` (UTF-8, with or
-    without BOM, or UTF-16 with a BOM) and checked by :func:`load_device_text`.
+    The file is read within the size limit of :mod:`betvdesign.spec.limits` (UTF-8, with
+    or without BOM, or UTF-16 with a BOM) and checked by :func:`load_device_text`.
+
+    Parameters
+    ----------
+    path : str or Path
+        The device YAML file.
+
+    Returns
+    -------
+    DeviceSpec
+        The validated device.
+
+    Raises
+    ------
+    SpecError
+        Listing every issue, each at ``file:line:col`` with its field path.
     """
     path = Path(path)
     return load_device_text(safeyaml.read_text(path), str(path))
 
 
 def load_device_text(text: str, filename: str = "<string>") -> DeviceSpec:
-    """Validate device YAML given as text; ``filename`` is used in messages.
+    """Validate device YAML given as text.
 
     A ``process:`` naming a shipped process or a file (relative to ``filename``'s
-    directory) is loaded here (:func:`resolve_process`); its problems are reported at
-    the ``process`` line of the device file, with the process file's own positions."""
+    directory) is loaded here (:func:`resolve_process`); its problems are reported at the
+    ``process`` line of the device file, with the process file's own positions.
+
+    Parameters
+    ----------
+    text : str
+        The YAML text.
+    filename : str
+        Used in messages.
+
+    Returns
+    -------
+    DeviceSpec
+        The validated device.
+
+    Raises
+    ------
+    SpecError
+        Listing every issue (limits of :mod:`betvdesign.spec.limits`, malformed YAML,
+        duplicate keys, validation), each at ``file:line:col`` with its field path.
+    """
     return load_model_text(text, filename, DeviceSpec, _DEVICE_HINT)
 
 
@@ -49,10 +84,26 @@ _DEVICE_HINT = "expected a mapping with 'name', 'slider', 'actuator_sets'"
 
 
 def load_process(path: str | Path) -> Process:
-    """Read and validate one process file (:mod:`betvdesign.spec.process`); raises
-    :class:`SpecError` listing every issue as ``file:line:col: field: message``. A file
-    read before and unchanged since (same size and modification time) is not read again
-    (a process is frozen data)."""
+    """Read and validate one process file (:mod:`betvdesign.spec.process`).
+
+    A file read before and unchanged since (same size and modification time) is not
+    read again (a process is frozen data).
+
+    Parameters
+    ----------
+    path : str or Path
+        The process YAML file.
+
+    Returns
+    -------
+    Process
+        The validated process.
+
+    Raises
+    ------
+    SpecError
+        Listing every issue, each at ``file:line:col`` with its field path.
+    """
     path = Path(path)
     try:
         st = path.stat()
@@ -75,9 +126,25 @@ _PROCESSES: dict[tuple, Process] = {}
 
 
 def resolve_process(ref: str, base_dir: str | Path | None = None) -> Process:
-    """The process a device names: a shipped name (``polymumps``) or a path to a process
-    file (relative to ``base_dir``, the device file's directory). Raises
-    :class:`SpecError` (an unknown name lists the shipped ones)."""
+    """The process a device names.
+
+    Parameters
+    ----------
+    ref : str
+        A shipped process's name (``polymumps``) or the path of a process file.
+    base_dir : str or Path, optional
+        The directory a relative path is taken from (the device file's).
+
+    Returns
+    -------
+    Process
+        The validated process.
+
+    Raises
+    ------
+    SpecError
+        An unknown name (listing the shipped ones), or the process file's issues.
+    """
     shipped = shipped_process_path(ref)
     if shipped is not None:
         return load_process(shipped)
@@ -95,8 +162,31 @@ def resolve_process(ref: str, base_dir: str | Path | None = None) -> Process:
 
 
 def load_model_text(text: str, filename: str, model: Any, empty_hint: str) -> Any:
-    """Validate YAML text against a pydantic ``model`` with the device file's rules and
-    messages (size and structure limits, duplicate keys, ``file:line:col``)."""
+    """Validate YAML text against a pydantic model with the device file's rules.
+
+    Parameters
+    ----------
+    text : str
+        The YAML text.
+    filename : str
+        Used in messages (and, for a device, the directory a relative ``process:`` path
+        is taken from).
+    model : type
+        The pydantic model (:class:`DeviceSpec`, :class:`Process`).
+    empty_hint : str
+        What an empty file should have held.
+
+    Returns
+    -------
+    Any
+        The validated model instance.
+
+    Raises
+    ------
+    SpecError
+        Listing every issue (size and structure limits, malformed YAML, duplicate keys,
+        validation), each at ``file:line:col`` with its field path.
+    """
     cap = limits.max_file_bytes()
     if len(text) > cap:
         raise _one(
@@ -123,7 +213,7 @@ def load_model_text(text: str, filename: str, model: Any, empty_hint: str) -> An
             problem += f" ({exc.context} at line {cm.line + 1}, column {cm.column + 1})"
         raise SpecError([*issues, SpecIssue(loc, "", f"invalid YAML: {problem}")]) from None
     except YAMLError as exc:  # a ReaderError (control character) knows only its offset
-        pos = getattr(exc, "position", None)
+        pos = exc.position if isinstance(exc, ReaderError) else None
         loc = Location(filename)
         msg = str(exc).split("\n")[0]
         if isinstance(pos, int) and 0 <= pos <= len(text):
@@ -181,7 +271,7 @@ def _duplicate_keys(node: Node | None, filename: str) -> list[SpecIssue]:
         if isinstance(n, MappingNode):
             seen: dict[Any, int] = {}
             for knode, vnode in n.value:
-                key = getattr(knode, "value", None)
+                key = knode.value
                 if isinstance(key, str) and key in seen:
                     m = knode.start_mark
                     out.append(
@@ -230,7 +320,7 @@ def _key_pos(node: CommentedMap, key: Any, *, value: bool) -> tuple[int, int]:
     if key in data:
         entry = data[key]
         return (entry[2], entry[3]) if value else (entry[0], entry[1])
-    for item in getattr(node, "merge", None) or []:
+    for item in node.merge:
         # ruamel versions differ: (index, map) tuples or the maps themselves
         merged = item[1] if isinstance(item, tuple) else item
         if isinstance(merged, CommentedMap) and key in merged:
