@@ -62,6 +62,7 @@ def _springs(k, theta):
 def stiffness(n: int, levels: int) -> dict:
     from betvdesign.model.frame import frame_stiffness, random_geometries
     from betvdesign.model.frame_fe import frame_fe
+    from betvdesign.output.numbers import json_float
 
     cases = _shipped() + [(f"random {i}", g, th) for i, (g, th) in enumerate(random_geometries(n))]
     rows = []
@@ -113,8 +114,8 @@ def stiffness(n: int, levels: int) -> dict:
             "max_time_s": float(times.max()),
         }
         shipped = [r for r in rows if not r["case"].startswith("random")]
-        summary[meth]["shipped_max_err"] = float(
-            max(max(r[meth]["err"]) for r in shipped) if shipped else math.nan
+        summary[meth]["shipped_max_err"] = json_float(
+            max(max(r[meth]["err"]) for r in shipped) if shipped else None
         )
     return {"rows": rows, "summary": summary}
 
@@ -192,12 +193,12 @@ def main() -> None:
     OUT.mkdir(parents=True, exist_ok=True)
     if args.what == "stiffness":
         doc = stiffness(args.n, args.levels)
-        (OUT / "stiffness.json").write_text(json.dumps(doc, indent=1))
+        (OUT / "stiffness.json").write_text(json.dumps(doc, indent=1, allow_nan=False))
         chart(doc, OUT / "stiffness_wp.png")
         print(json.dumps(doc["summary"], indent=1))
     else:
         doc = layout()
-        (OUT / "layout.json").write_text(json.dumps(doc, indent=1))
+        (OUT / "layout.json").write_text(json.dumps(doc, indent=1, allow_nan=False))
 
 
 if __name__ == "__main__":
