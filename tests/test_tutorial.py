@@ -78,3 +78,8 @@ def test_tutorial_runs(tmp_path):
     assert "Q_v 40 Q_h 25 e" in text and "e ≈ 0.165 (→ not driven)" in text
     assert len(re.findall(r"P\(push\) 1\.000", text)) == 2
     assert skipped == (0 if has_fix else 1)
+    # section 7: the layout, read back, edited in KLayout
+    assert "my_motor: PASS  (my_motor_poly.yaml)" in text and "(my_motor.gds)" in text
+    assert "wrote my_motor_back.yaml" in text and "my_motor_edited.gds): PASS" in text
+    assert re.search(r"w_flex .* 4 µm", text)
+    assert "already passes every error rule" in text

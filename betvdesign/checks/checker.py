@@ -28,7 +28,9 @@ from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 from typing import Any, Literal
 
+from betvdesign.checks.actuator_rules import actuator_rules
 from betvdesign.checks.adequacy import DeviceAdequacy, SetAdequacy, assess
+from betvdesign.checks.process_rules import process_rules
 from betvdesign.checks.rule import RuleResult, format_speed, format_time, orbit_mode, verdict
 from betvdesign.checks.rules import MARGIN_CORNERS, evaluate_device
 from betvdesign.checks.travel import TravelAnswer, travel_answer
@@ -252,6 +254,7 @@ def check_derivation(
     adequacy: DeviceAdequacy | bool | None = None,
     determine: bool | None = None,
     horizon: int = TRAVEL_HORIZON,
+    layout_rules: list[RuleResult] | None = None,
 ) -> CheckResult:
     """Check every actuator set with its exact orbit (see the module docstring).
 
@@ -284,6 +287,10 @@ def check_derivation(
     horizon : int
         Cycles the transient from rest may run to cross the travel range [-]; a slider
         that does not cross within them fails the mode rule (raise it for long travels).
+    layout_rules : list of RuleResult, optional
+        The process rules measured on a drawn layout (:mod:`betvdesign.layout.drc`),
+        used instead of those of the device file
+        (:func:`betvdesign.checks.process_rules.process_rules`).
 
     Returns
     -------
@@ -348,6 +355,8 @@ def check_derivation(
         adequacy=adq,
         travel=answers,
     )
+    rules += [r for s in derivation.sets for r in actuator_rules(s)]
+    rules += process_rules(derivation.spec) if layout_rules is None else layout_rules
     sets = [
         SetCheck(
             s,

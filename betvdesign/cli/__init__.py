@@ -53,6 +53,8 @@ _COMMANDS: tuple[str, ...] = (
     "report",
     "bench",
     "simulate",
+    "layout",
+    "extract",
 )
 
 for _name in _COMMANDS:

@@ -43,7 +43,9 @@ _STATUS = {
 
 @app.command("check")
 def check_cmd(
-    files: list[Path] = typer.Argument(..., help="Device YAML files (see devices/)."),
+    files: list[Path] = typer.Argument(
+        ..., help="Device YAML files (see devices/) or GDS layouts labelled as `betv layout` does."
+    ),
     as_json: bool = typer.Option(
         False, "--json", help="Print JSON (one versioned shape; `betv schema check`)."
     ),
@@ -110,7 +112,6 @@ def check_cmd(
         output_json,
         quiet_line,
     )
-    from betvdesign.nondim.device import derive_file
     from betvdesign.spec.units import parse_speed
     from betvdesign.studies.fix import advise, with_advice
 
@@ -127,20 +128,23 @@ def check_cmd(
         derivations, issues = [], []
         for f in files:  # collect the issues of every file before giving up
             try:
-                derivations.append((f, derive_file(f)))
+                derivations.append((f, *_derive(f)))
             except SpecError as exc:
                 issues.extend(exc.issues)
         if issues:
             raise SpecError(issues)
         results = []
-        for f, d in derivations:
+        for f, d, layout in derivations:
             res = check_derivation(
                 d,
                 target_speed_m_s=target,
                 adequacy=None if adequacy else False,
                 horizon=horizon,
+                layout_rules=None if layout is None else layout.rules,
             )
             res.source_file = str(f)
+            if layout is not None:
+                res.notes.extend(layout.notes)
             if advice:
                 res = with_advice(res, advise(res, target_speed_m_s=target, horizon=horizon))
             results.append(res)
@@ -175,6 +179,17 @@ def check_cmd(
             )
     failed = any(v.verdict == "fail" for v in views)
     raise typer.Exit(EXIT_RULE_FAILED if failed else EXIT_OK)
+
+
+def _derive(f: Path) -> tuple:
+    """(derivation, extracted layout or None) of a device file or a GDS layout."""
+    if f.suffix.lower() == ".gds":
+        from betvdesign.layout.extract import derive_gds
+
+        return derive_gds(f)
+    from betvdesign.nondim.device import derive_file
+
+    return derive_file(f), None
 
 
 def render(result: CheckResult, console: Console, *, derivation: bool = False) -> None:

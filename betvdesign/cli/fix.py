@@ -17,6 +17,7 @@ import typer
 
 from betvdesign.cli import app
 from betvdesign.cli.common import EXIT_OK, EXIT_RULE_FAILED, seed_option, user_errors
+from betvdesign.errors import UsageError
 from betvdesign.output.files import check_output_file, write_atomic
 from betvdesign.spec.fields import describe_change
 from betvdesign.studies.fix import SPREAD_RULES
@@ -35,7 +36,10 @@ _FIX_HELP = (
 
 @app.command("fix", help=_FIX_HELP)
 def fix_cmd(
-    file: Annotated[Path, typer.Argument(help="Device YAML file.")],
+    file: Annotated[
+        Path,
+        typer.Argument(help="Device YAML file, or a GDS layout labelled as `betv layout` does."),
+    ],
     vary: Annotated[
         list[str] | None,
         typer.Option(
@@ -77,13 +81,18 @@ def fix_cmd(
         typer.Option(
             "-o",
             "--output",
-            help="Write the device file with the best fix applied (only the changed lines "
-            "differ, each with a comment).",
+            help="Write the best fix: a device file (.yaml; only the changed lines differ, "
+            "each with a comment) or, for a layout, its layout (.gds).",
         ),
+    ] = None,
+    layout: Annotated[
+        Path | None,
+        typer.Option("--layout", help="Also draw the fixed device as a GDS layout (verified)."),
     ] = None,
     as_json: Annotated[bool, typer.Option("--json", help="Print JSON on stdout.")] = False,
 ) -> None:
     from betvdesign.spec.loader import load_device
+    from betvdesign.spec.process import process_ref, rebase
     from betvdesign.spec.units import parse_speed
     from betvdesign.studies import fix as fx
     from betvdesign.studies.fixfile import fixed_text
@@ -91,7 +100,25 @@ def fix_cmd(
 
     with user_errors():
         target = None if target_speed is None else parse_speed(target_speed, "--target-speed")
-        spec = load_device(file)
+        is_gds = file.suffix.lower() == ".gds"
+        if output is not None and output.suffix.lower() == ".gds":
+            if layout is not None:
+                raise UsageError("-o FILE.gds and --layout: give one layout output")
+            output, layout = None, output
+        if is_gds and output is not None:
+            raise UsageError(
+                f"-o {output}: a layout is fixed into a layout (-o FIXED.gds); "
+                "`betv extract` writes its device file"
+            )
+        if layout is not None:
+            check_output_file(layout, suffixes=(".gds",))
+        if is_gds:
+            from betvdesign.layout.extract import extract
+
+            ex = extract(file)
+            spec, ref = ex.spec, ex.process_ref
+        else:
+            spec, ref = load_device(file), process_ref(file)
         varies = fx.parse_vary(spec, vary or [])
         robust = None
         if spread:
@@ -110,10 +137,21 @@ def fix_cmd(
         text = None
         if output is not None and res.best is not None:
             text = fixed_text(file, res, res.best)
+        drawn = None
+        if layout is not None and res.best is not None:
+            from betvdesign.layout.fixlayout import write_fixed_layout
+
+            if ref is None:
+                raise UsageError(f"--layout: {file} names no process to draw on")
+            drawn = write_fixed_layout(
+                spec, res, res.best, layout, process_ref=rebase(ref, file.parent, layout)
+            )
     if as_json:
         doc = {"file": str(file), **res.as_dict()}
         if output is not None:
             doc["output"] = str(output) if text is not None else None
+        if layout is not None:
+            doc["layout"] = str(drawn) if drawn is not None else None
         typer.echo(json.dumps(doc, indent=2, ensure_ascii=False))
     else:
         _print(res, file)
@@ -121,6 +159,8 @@ def fix_cmd(
         write_atomic(output, text)
         if not as_json:
             typer.echo(f"wrote {output} (betv check {output} passes)")
+    if drawn is not None and not as_json:
+        typer.echo(f"wrote {drawn} (betv check {drawn} passes)")
     raise typer.Exit(EXIT_OK if res.status in ("fixed", "already_passes") else EXIT_RULE_FAILED)
 
 

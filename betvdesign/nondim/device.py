@@ -6,13 +6,18 @@ relations", "Dimensionless model"; Shin et al., J. Appl. Phys. 96, 7603 (2004),
 doi:10.1063/1.1809773) are one step each, in the order :func:`derive_set` takes them:
 
 1. :func:`slider_mass`          M = (n·ρ·L·w·t + m_extra)/2
-2. :func:`head_mass`            m given, or ρ_head·V_head
-3. :func:`vertical_stiffness`   k_v = m·(2π·f_v)²
-4. :func:`compliance_ratio`     α given, k_v/k_h or (f_v/f_h)²
+2. :func:`head_mass`            m given, or ρ_head·V_head; with a drawn actuator
+   (``actuator.geometry``) θ, then the frame's K_nn, K_tt at the head
+   (:mod:`betvdesign.nondim.actuator`)
+3. :func:`vertical_stiffness`   k_v = m·(2π·f_v)², or K_nn of the drawn actuator where the
+   file gives no f_v (then f_v = √(k_v/m)/2π)
+4. :func:`compliance_ratio`     α given, k_v/k_h or (f_v/f_h)², or K_nn/K_tt of the drawn
+   actuator where the file gives none of them; given values win and the drawn
+   actuator's are recorded beside them (f_v,geom, α_geom) for the check to compare
 5. :func:`actuation_frequency`  f_act = 2·f_drive (AC, zero DC bias) or f_drive; ω = 2π·f_act
 6. :func:`amplitude`            u given or from the calibration u(V); with a thermal cut-off
    this is u_cal and u = u_cal·H(f_act)/H(f_cal) (:func:`betvdesign.nondim.terms.rolloff`)
-7. :func:`impact_contact`       θ, μ
+7. :func:`impact_contact`       θ (unless a drawn actuator recorded it), μ
 8. :func:`model_scales`         t_s = sqrt(m/k_v), ℓ = u·cosθ
 9. :func:`normalised_frequency` ϖ = ω·t_s;  :func:`mass_ratio` β = m/M;
    :func:`normalised_friction`  κ = μ·tanθ
@@ -38,7 +43,7 @@ import pint
 
 from betvdesign.errors import Location, ParameterError, SpecError, SpecIssue
 from betvdesign.model.params import ModelParams
-from betvdesign.nondim import terms
+from betvdesign.nondim import actuator, terms
 from betvdesign.nondim.record import (
     DERIVED_KEYS,
     DerivationStep,
@@ -218,8 +223,9 @@ def _derive_set(
     act = aset.actuator
     M = slider_mass(rec, spec)
     m = head_mass(rec, spec, aset)
-    f_v, k_v = vertical_stiffness(rec, act, m)
-    alpha = compliance_ratio(rec, act, f_v, k_v)
+    springs = actuator.drawn_springs(rec, spec, aset, m)
+    f_v, k_v = vertical_stiffness(rec, act, m, springs)
+    alpha = compliance_ratio(rec, act, f_v, k_v, springs)
     f_act, omega = actuation_frequency(rec, aset.drive)
     u, roll = amplitude(rec, aset, f_act, samples)
     theta, mu = impact_contact(rec, aset.contact)
@@ -259,6 +265,7 @@ def _derive_set(
         **roll,
     )
     return SetDerivation(
+        springs=None if springs is None else actuator.springs_data(springs, m, f_v, alpha, act),
         name=aset.name,
         intended_mode=aset.intended_mode,
         params=params,
@@ -376,11 +383,14 @@ def head_mass(rec: Recorder, spec: DeviceSpec, aset: ActuatorSet) -> pint.Quanti
 
 
 def vertical_stiffness(
-    rec: Recorder, act: Actuator, m: pint.Quantity
+    rec: Recorder, act: Actuator, m: pint.Quantity, springs: dict[str, Any] | None = None
 ) -> tuple[pint.Quantity, pint.Quantity]:
     """The head's vertical (normal) contact stiffness: k_v = m·(2π·f_v)².
 
     From the head's vertical resonance f_v, sqrt(k_v/m) = 2π·f_v. Records f_v and k_v.
+    Where the file gives no f_v, k_v is the drawn actuator's K_nn and
+    f_v = √(k_v/m)/2π; where it gives both, the drawn actuator's resonance is recorded
+    beside it (``f_v,geom``, not used).
 
     Parameters
     ----------
@@ -390,6 +400,8 @@ def vertical_stiffness(
         The actuator (its vertical resonance f_v [Hz]).
     m : pint.Quantity
         Head mass [kg].
+    springs : dict or None
+        The drawn actuator's springs (:func:`betvdesign.nondim.actuator.drawn_springs`).
 
     Returns
     -------
@@ -401,6 +413,9 @@ def vertical_stiffness(
     MODEL.md, "Device-to-parameter relations"; Shin et al., J. Appl. Phys. 96, 7603
     (2004), doi:10.1063/1.1809773.
     """
+    if act.vertical_resonance is None:
+        assert springs is not None
+        return actuator.drawn_vertical_stiffness(rec, springs, m)
     f_v = rec.spec(
         "f_v",
         "head vertical resonance",
@@ -415,28 +430,39 @@ def vertical_stiffness(
         ("m", "f_v"),
         "N/m",
     )
+    if springs is not None:
+        actuator.drawn_resonance_beside(rec, springs, m)
     return f_v, k_v
 
 
 def compliance_ratio(
-    rec: Recorder, act: Actuator, f_v: pint.Quantity, k_v: pint.Quantity
+    rec: Recorder,
+    act: Actuator,
+    f_v: pint.Quantity,
+    k_v: pint.Quantity,
+    springs: dict[str, Any] | None = None,
 ) -> pint.Quantity:
     """The relative impact compliance α = k_v/k_h [-].
 
     Phenomenological: given directly, through the tangential stiffness k_h
     (α = k_v/k_h), or through a tangential resonance f_h (α = (f_v/f_h)²). Records the
-    input and α.
+    input and α. Where the file gives none of them, k_h is the drawn actuator's K_tt;
+    where it gives one, the drawn actuator's K_nn/K_tt is recorded beside it
+    (``α_geom``, not used).
 
     Parameters
     ----------
     rec : Recorder
         The record being built.
     act : Actuator
-        The actuator (exactly one of α, k_h [N/m], f_h [Hz]).
+        The actuator (at most one of α, k_h [N/m], f_h [Hz]; none only with a drawn
+        actuator).
     f_v : pint.Quantity
         Vertical resonance [Hz].
     k_v : pint.Quantity
         Vertical contact stiffness [N/m].
+    springs : dict or None
+        The drawn actuator's springs (:func:`betvdesign.nondim.actuator.drawn_springs`).
 
     Returns
     -------
@@ -448,30 +474,38 @@ def compliance_ratio(
     MODEL.md, "Device-to-parameter relations"; Shin et al., J. Appl. Phys. 96, 7603
     (2004), doi:10.1063/1.1809773.
     """
+    if not actuator.alpha_given(act):
+        assert springs is not None
+        return actuator.drawn_compliance_ratio(rec, springs, k_v)
     if act.alpha is not None:
-        return rec.spec(
+        alpha = rec.spec(
             "α",
             "relative impact compliance k_v/k_h",
             "actuator.alpha",
             ureg.Quantity(act.alpha, cached_unit("")),
         )
-    if act.horizontal_stiffness is not None:
+    elif act.horizontal_stiffness is not None:
         k_h = rec.spec(
             "k_h",
             "tangential contact stiffness",
             "actuator.horizontal_stiffness",
             act.horizontal_stiffness.to(cached_unit("N/m")),
         )
-        return rec.add("α", "relative impact compliance", "k_v/k_h", k_v / k_h, ("k_v", "k_h"), "")
-    f_h = rec.spec(
-        "f_h",
-        "head tangential resonance",
-        "actuator.horizontal_resonance",
-        act.horizontal_resonance.to(cached_unit("kHz")),
-    )
-    return rec.add(
-        "α", "relative impact compliance", "(f_v/f_h)²", (f_v / f_h) ** 2, ("f_v", "f_h"), ""
-    )
+        alpha = rec.add("α", "relative impact compliance", "k_v/k_h", k_v / k_h, ("k_v", "k_h"), "")
+    else:
+        assert act.horizontal_resonance is not None
+        f_h = rec.spec(
+            "f_h",
+            "head tangential resonance",
+            "actuator.horizontal_resonance",
+            act.horizontal_resonance.to(cached_unit("kHz")),
+        )
+        alpha = rec.add(
+            "α", "relative impact compliance", "(f_v/f_h)²", (f_v / f_h) ** 2, ("f_v", "f_h"), ""
+        )
+    if springs is not None:
+        actuator.drawn_alpha_beside(rec, springs)
+    return alpha
 
 
 def actuation_frequency(rec: Recorder, drive: Drive) -> tuple[pint.Quantity, pint.Quantity]:
@@ -593,6 +627,9 @@ def amplitude(
 def impact_contact(rec: Recorder, contact: Contact) -> tuple[pint.Quantity, pint.Quantity]:
     """The contact's impact angle θ and Coulomb friction coefficient μ (inputs).
 
+    θ is recorded once: a drawn actuator's springs record it first
+    (:func:`betvdesign.nondim.actuator.drawn_springs`).
+
     Parameters
     ----------
     rec : Recorder
@@ -609,7 +646,9 @@ def impact_contact(rec: Recorder, contact: Contact) -> tuple[pint.Quantity, pint
     ----------
     MODEL.md, "Physical quantities".
     """
-    theta = rec.spec("θ", "impact angle", "contact.impact_angle", contact.impact_angle)
+    theta = rec.recorded("θ")
+    if theta is None:
+        theta = rec.spec("θ", "impact angle", "contact.impact_angle", contact.impact_angle)
     mu = rec.spec(
         "μ",
         "Coulomb friction coefficient",

@@ -216,6 +216,35 @@ class FitComparison:
 
 
 @dataclass(frozen=True)
+class HeadSprings:
+    """The head's springs from the drawn actuator (:mod:`betvdesign.nondim.actuator`),
+    float SI: k_nn, k_tt, k_nt [N/m] in the slider's frame, the coupling ρ [-], the arms'
+    first-mode mass m_arm [kg] against the head's m [kg]; ``used``: for "k_v" and
+    "alpha", "geometry" when the drawn actuator gave it, "file" when the device file's
+    value was used (then ``file_f_v_hz``/``file_alpha`` hold it for comparison)."""
+
+    k_nn: float
+    k_tt: float
+    k_nt: float
+    rho: float
+    m_arm_kg: float
+    m_head_kg: float
+    used: dict[str, str]
+    file_f_v_hz: float | None = None
+    file_alpha: float | None = None
+
+    @property
+    def f_v_hz(self) -> float:
+        """The geometry's vertical resonance sqrt(k_nn/m)/2π [Hz]."""
+        return math.sqrt(self.k_nn / self.m_head_kg) / (2 * math.pi)
+
+    @property
+    def alpha(self) -> float:
+        """The geometry's α = k_nn/k_tt [-]."""
+        return self.k_nn / self.k_tt
+
+
+@dataclass(frozen=True)
 class SetDerivation:
     """Model parameters and scales of one actuator set, with their derivation."""
 
@@ -228,6 +257,7 @@ class SetDerivation:
     actuator_set: ActuatorSet
     travel_range_m: float
     published: list[FitComparison] = field(default_factory=list)
+    springs: HeadSprings | None = None
 
     def step(self, symbol: str) -> DerivationStep:
         """The record entry of a symbol.
@@ -352,6 +382,8 @@ class Recorder:
         value: Any,
         inputs: tuple[str, ...] = (),
         unit: str | None = None,
+        *,
+        signed: bool = False,
     ) -> pint.Quantity:
         """Record a computed value (or, with a ``spec:`` formula, an input).
 
@@ -369,6 +401,9 @@ class Recorder:
             Symbols the formula uses.
         unit : str or None
             The unit it is best read in (None: as given).
+        signed : bool
+            The value may take either sign (e.g. a coupling stiffness): only finiteness
+            is required.
 
         Returns
         -------
@@ -378,7 +413,8 @@ class Recorder:
         Raises
         ------
         ParameterError
-            A computed value (other than λ) that is not finite and > 0.
+            A computed value (other than λ) that is not finite and > 0 (finite if
+            ``signed``).
         """
         if not isinstance(value, pint.Quantity):
             value = ureg.Quantity(value, cached_unit(""))
@@ -386,7 +422,7 @@ class Recorder:
             value = value.to(cached_unit(unit))
         if not formula.startswith("spec:") and symbol != "λ":
             got = np.asarray(value.magnitude, dtype=float)
-            if not np.all(np.isfinite(got) & (got > 0.0)):
+            if not np.all(np.isfinite(got) & ((got > 0.0) | signed)):
                 shown = float(got) if got.ndim == 0 else "an invalid sample"
                 raise ParameterError(
                     f"{symbol} = {formula} = {shown!r}: must be finite and > 0 "
@@ -415,3 +451,18 @@ class Recorder:
             The value, as given.
         """
         return self.add(symbol, description, f"spec: {path}", value)
+
+    def recorded(self, symbol: str) -> pint.Quantity | None:
+        """The value recorded for ``symbol`` so far (the first), or None.
+
+        Parameters
+        ----------
+        symbol : str
+            Its symbol (``"θ"``).
+
+        Returns
+        -------
+        pint.Quantity or None
+            The value as recorded; None if no step has that symbol yet.
+        """
+        return next((st.value for st in self.steps if st.symbol == symbol), None)

@@ -2,8 +2,10 @@
 
 A designer sets drive frequencies, beam widths, head sizes, resonances and contact
 surfaces, not ϖ, α, β or κ. :data:`FIELDS` lists those fields of a device file, each with
-what it moves in the model and how it is set, in the order that ranks them: operating
-(drive) settings first, then the drawing, the head's suspension, the contact. Read by
+what it moves in the model and how it is set, in the order that ranks them:
+operating (drive) settings first, then the drawing, the head's suspension, the impact
+angle, the drawn actuator's dimensions (in place of the suspension where the file gives
+none), the contact's friction. Read by
 
 - ``betv fix`` (:mod:`betvdesign.studies.fixfields`): the fields the designer chooses
   (:attr:`DesignField.chosen`) are varied by default, within :attr:`DesignField.bounds`;
@@ -57,7 +59,8 @@ class DesignField:
         The physical quantity it gives (MODEL.md, "Physical quantities"): ``ω`` [rad/s],
         ``u`` [m], ``M``, ``m`` [kg], ``k_v`` [N/m], ``α`` [-] (= k_v/k_h), ``θ`` [rad],
         ``μ`` [-]. Fields with the same quantity are alternatives or give it together
-        (``head.mass`` or the head's geometry).
+        (``head.mass`` or the head's geometry; the head's resonance or the drawn
+        actuator's dimensions, which give k_v and k_h together).
     moves : tuple of str
         What a change of it moves, the other fields kept: of the model parameters ϖ, α,
         β, κ and the length scale ℓ = u·cosθ (as written for the usual device: f_v moves
@@ -115,6 +118,20 @@ FIELDS: tuple[DesignField, ...] = (
                 "resonance", (0.25, 4.0)),
     DesignField("contact.impact_angle", "impact angle", "θ", ("κ", "ℓ"), "drawn dimension",
                 (15.0, 75.0, "deg")),
+    # the drawn actuator (actuator.geometry): its springs give k_v and k_h where the file
+    # gives no resonance or α (betv fix leaves them out where the file's are used)
+    DesignField("actuator.geometry.length", "actuator hot-arm length", "k_v", ("ϖ", "α"),
+                "drawn dimension"),
+    DesignField("actuator.geometry.flexure_length", "actuator flexure length", "k_v",
+                ("ϖ", "α"), "drawn dimension"),
+    DesignField("actuator.geometry.flexure_width", "actuator flexure width", "k_v",
+                ("ϖ", "α"), "drawn dimension", (0.5, 4.0)),
+    DesignField("actuator.geometry.hot_arm_width", "actuator hot-arm width", "k_v",
+                ("ϖ", "α"), "drawn dimension", (0.5, 4.0)),
+    DesignField("actuator.geometry.cold_arm_width", "actuator cold-arm width", "k_v",
+                ("ϖ", "α"), "drawn dimension"),
+    DesignField("actuator.geometry.gap", "actuator hot-to-cold arm gap", "k_v", ("ϖ", "α"),
+                "drawn dimension", (0.5, 4.0)),
     DesignField("contact.friction", "friction coefficient of head on slider", "μ", ("κ",),
                 "material"),
 )

@@ -1,4 +1,5 @@
-"""YAML device files -> :class:`~betvdesign.spec.models.DeviceSpec`, with errors a user can act on.
+"""YAML device files -> :class:`~betvdesign.spec.models.DeviceSpec` (and process files ->
+:class:`~betvdesign.spec.process.Process`), with errors a user can act on.
 
 Every problem found in a file is collected and raised together as one
 :class:`~betvdesign.errors.SpecError` whose issues print as
@@ -23,6 +24,7 @@ from betvdesign.errors import Location, SpecError, SpecIssue
 from betvdesign.spec import limits, safeyaml
 from betvdesign.spec.messages import known_fields, located, message
 from betvdesign.spec.models import DeviceSpec
+from betvdesign.spec.process import Process, shipped_process_path, shipped_processes
 
 
 def load_device(path: str | Path) -> DeviceSpec:
@@ -53,6 +55,10 @@ def load_device(path: str | Path) -> DeviceSpec:
 def load_device_text(text: str, filename: str = "<string>") -> DeviceSpec:
     """Validate device YAML given as text.
 
+    A ``process:`` naming a shipped process or a file (relative to ``filename``'s
+    directory) is loaded here (:func:`resolve_process`); its problems are reported at the
+    ``process`` line of the device file, with the process file's own positions.
+
     Parameters
     ----------
     text : str
@@ -70,6 +76,116 @@ def load_device_text(text: str, filename: str = "<string>") -> DeviceSpec:
     SpecError
         Listing every issue (limits of :mod:`betvdesign.spec.limits`, malformed YAML,
         duplicate keys, validation), each at ``file:line:col`` with its field path.
+    """
+    return load_model_text(text, filename, DeviceSpec, _DEVICE_HINT)
+
+
+_DEVICE_HINT = "expected a mapping with 'name', 'slider', 'actuator_sets'"
+
+
+def load_process(path: str | Path) -> Process:
+    """Read and validate one process file (:mod:`betvdesign.spec.process`).
+
+    A file read before and unchanged since (same size and modification time) is not
+    read again (a process is frozen data).
+
+    Parameters
+    ----------
+    path : str or Path
+        The process YAML file.
+
+    Returns
+    -------
+    Process
+        The validated process.
+
+    Raises
+    ------
+    SpecError
+        Listing every issue, each at ``file:line:col`` with its field path.
+    """
+    path = Path(path)
+    try:
+        st = path.stat()
+        key = (str(path.resolve()), str(path), st.st_mtime_ns, st.st_size)
+    except OSError:
+        key = None
+    if key is not None and key in _PROCESSES:
+        return _PROCESSES[key]
+    proc = load_model_text(
+        safeyaml.read_text(path), str(path), Process, "expected a mapping with 'name', 'layers'"
+    )
+    if key is not None:
+        if len(_PROCESSES) >= 64:
+            _PROCESSES.clear()
+        _PROCESSES[key] = proc
+    return proc
+
+
+_PROCESSES: dict[tuple, Process] = {}
+
+
+def resolve_process(ref: str, base_dir: str | Path | None = None) -> Process:
+    """The process a device names.
+
+    Parameters
+    ----------
+    ref : str
+        A shipped process's name (``polymumps``) or the path of a process file.
+    base_dir : str or Path, optional
+        The directory a relative path is taken from (the device file's).
+
+    Returns
+    -------
+    Process
+        The validated process.
+
+    Raises
+    ------
+    SpecError
+        An unknown name (listing the shipped ones), or the process file's issues.
+    """
+    shipped = shipped_process_path(ref)
+    if shipped is not None:
+        return load_process(shipped)
+    path = Path(ref)
+    if not path.is_absolute() and base_dir is not None:
+        path = Path(base_dir) / path
+    if path.suffix.lower() not in (".yaml", ".yml") or not path.is_file():
+        known = ", ".join(shipped_processes())
+        raise _one(
+            ref,
+            f"no shipped process {ref!r} and no process file {str(path)!r} "
+            f"(shipped: {known}; or give the path of your own process file)",
+        )
+    return load_process(path)
+
+
+def load_model_text(text: str, filename: str, model: Any, empty_hint: str) -> Any:
+    """Validate YAML text against a pydantic model with the device file's rules.
+
+    Parameters
+    ----------
+    text : str
+        The YAML text.
+    filename : str
+        Used in messages (and, for a device, the directory a relative ``process:`` path
+        is taken from).
+    model : type
+        The pydantic model (:class:`DeviceSpec`, :class:`Process`).
+    empty_hint : str
+        What an empty file should have held.
+
+    Returns
+    -------
+    Any
+        The validated model instance.
+
+    Raises
+    ------
+    SpecError
+        Listing every issue (size and structure limits, malformed YAML, duplicate keys,
+        validation), each at ``file:line:col`` with its field path.
     """
     cap = limits.max_file_bytes()
     if len(text) > cap:
@@ -107,9 +223,7 @@ def load_device_text(text: str, filename: str = "<string>") -> DeviceSpec:
         raise SpecError([*issues, SpecIssue(loc, "", f"invalid YAML: {msg}")]) from None
 
     if data is None:
-        raise _one(
-            filename, "empty file: expected a mapping with 'name', 'slider', 'actuator_sets'"
-        )
+        raise _one(filename, f"empty file: {empty_hint}")
     if not isinstance(data, CommentedMap):
         raise SpecError(
             [
@@ -121,10 +235,20 @@ def load_device_text(text: str, filename: str = "<string>") -> DeviceSpec:
                 )
             ]
         )
+    plain = _plain(data)
+    if model is DeviceSpec and isinstance(plain.get("process"), str):
+        try:
+            base = Path(filename).parent if not filename.startswith("<") else None
+            plain["process"] = resolve_process(plain["process"], base)
+        except SpecError as exc:
+            line, col = _key_pos(data, "process", value=True)
+            nested = "; ".join(str(i) for i in exc.issues)
+            issues.append(SpecIssue(Location(filename, line + 1, col + 1), "process", nested))
+            raise SpecError(issues) from None
     try:
-        spec = DeviceSpec.model_validate(_plain(data))
+        spec = model.model_validate(plain)
     except ValidationError as exc:
-        issues.extend(_validation_issues(exc, data, filename))
+        issues.extend(_validation_issues(exc, data, filename, model))
         raise SpecError(issues) from None
     if issues:
         raise SpecError(issues)
@@ -252,12 +376,14 @@ def _last_key_value_pos(root: CommentedMap, loc: tuple[Any, ...]) -> tuple[int, 
     return None if pos is None else (pos[0] + 1, pos[1] + 1)
 
 
-def _validation_issues(exc: ValidationError, root: CommentedMap, filename: str) -> list[SpecIssue]:
+def _validation_issues(
+    exc: ValidationError, root: CommentedMap, filename: str, model: Any = DeviceSpec
+) -> list[SpecIssue]:
     grouped: dict[tuple[int, int, str], list[str]] = {}
     for err in exc.errors():
-        msg = message(err, known_fields(DeviceSpec))
+        msg = message(err, known_fields(model))
         relocated = msg.startswith("@") and ": " in msg  # spec.at(): a sub-field's error
-        loc, msg = located(err, known_fields(DeviceSpec))
+        loc, msg = located(err, known_fields(model))
         # a last loc element absent from the data names a missing field; otherwise it is
         # a union tag (e.g. "measured", "float") and is left out of the path
         name_missing = relocated or err["type"] in ("missing", "extra_forbidden")

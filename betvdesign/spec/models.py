@@ -21,6 +21,7 @@ from betvdesign.model import damping
 from betvdesign.model.rolloff import calibration_problem
 from betvdesign.model.rolloff import cutoff_from_time_constant as cutoff_hz
 from betvdesign.spec import limits
+from betvdesign.spec.process import MIN_DRAWN, Modulus, Process
 from betvdesign.spec.units import (
     Density,
     Duration,
@@ -124,6 +125,22 @@ def _named_material(value: Any) -> Any:
     return value
 
 
+def _drawable(value: Any) -> Any:
+    """A drawn dimension of at least :data:`~betvdesign.spec.process.MIN_DRAWN` (1 nm, the
+    layout database unit): below it nothing can be drawn or fabricated."""
+    if isinstance(value, pint.Quantity) and value < MIN_DRAWN:
+        raise ValueError(
+            f"{format_quantity(value)} is below {format_quantity(MIN_DRAWN)}, the smallest "
+            "length a layout can draw: not a dimension a device can have"
+        )
+    return value
+
+
+def drawable(*fields: str) -> Any:
+    """Validator: the named length fields are drawable (see :func:`_drawable`)."""
+    return field_validator(*fields)(_drawable)
+
+
 class Slider(_Model):
     """The slider: parallel beams joined at both ends.
 
@@ -143,6 +160,11 @@ class Slider(_Model):
     """Mass of connectors/extras on top of the beams; '0 ug' by default."""
     travel_range: Length
     """Distance the slider can travel; used for the time-to-cross estimate."""
+    layer: str | None = Field(default=None, max_length=limits.MAX_NAME_CHARS)
+    """Structural layer of the device's process the slider is made in (the process's
+    default structural layer when absent; only with ``process``)."""
+
+    _drawn = drawable("beam_length", "beam_width", "beam_thickness", "travel_range")
 
 
 class DiscGeometry(_Model):
@@ -152,6 +174,8 @@ class DiscGeometry(_Model):
     diameter: Length
     thickness: Length
 
+    _drawn = drawable("diameter", "thickness")
+
 
 class BoxGeometry(_Model):
     """A rectangular impact head [lengths]."""
@@ -160,6 +184,8 @@ class BoxGeometry(_Model):
     length: Length
     width: Length
     thickness: Length
+
+    _drawn = drawable("length", "width", "thickness")
 
 
 HeadGeometry = Annotated[DiscGeometry | BoxGeometry, Field(discriminator="shape")]
@@ -259,6 +285,75 @@ Calibration = Annotated[
 ]
 
 
+class ActuatorGeometry(_Model):
+    """The drawn hot/cold-arm electrothermal actuator (MODEL.md, "From the drawn actuator
+    to the head's springs"). In its own frame x runs along the arms from the anchors
+    (x = 0) to the tip, y across them toward the cold arm (the stroke direction):
+
+    - hot arm: x in [0, length], centred on y = 0, ``hot_arm_width`` wide;
+    - cold arm (the wide impact element): x in [flexure_length, length], centred on
+      y = d = hot_arm_width/2 + gap + cold_arm_width/2;
+    - flexure (narrow part of the cold arm at its anchor): x in [0, flexure_length],
+      centred on y = d, ``flexure_width`` wide;
+    - tip: a connector x in [length, length + tip_length] joining both arms;
+    - head: the impact head's disc (or box) beyond the tip at the connector's
+      mid-height, overlapping half of the connector;
+    - anchors: squares of ``anchor_size`` at x < 0 at the roots of the hot arm and the
+      flexure, reaching away from each other.
+
+    Thickness, Young's modulus and Poisson's ratio are the structural layer's when the
+    device names a process (``layer``: the process's default structural layer when
+    absent); without a process give ``thickness`` and ``youngs_modulus``.
+    """
+
+    length: Length
+    """Hot-arm length, from the anchor edge to the tip connector, e.g. '200 um'."""
+    hot_arm_width: Length
+    """Width of the (narrow, current-heated) hot arm."""
+    cold_arm_width: Length
+    """Width of the wide cold arm (the impact element)."""
+    flexure_length: Length
+    """Length of the narrow flexure between the cold arm and its anchor."""
+    flexure_width: Length
+    """Width of the flexure."""
+    gap: Length
+    """Edge-to-edge gap between the hot arm and the cold arm."""
+    tip_length: Length = Field(default_factory=lambda: parse_quantity("10 um"))
+    """Length of the connector that joins both arms at the tip; '10 um' by default."""
+    anchor_size: Length = Field(default_factory=lambda: parse_quantity("20 um"))
+    """Side of the square anchor pads; '20 um' by default."""
+    layer: str | None = Field(default=None, max_length=limits.MAX_NAME_CHARS)
+    """Structural layer of the device's process (its default one when absent)."""
+    thickness: Length | None = None
+    """Film thickness (the process layer's when the device names a process)."""
+    youngs_modulus: Modulus | None = None
+    """Young's modulus E (the process layer's when the device names a process)."""
+    poisson_ratio: float | None = Field(default=None, ge=0.0, lt=0.5)
+    """Poisson's ratio ν [-] for the finite-element check (the layer's, or 0.22)."""
+
+    _drawn = drawable(
+        "length",
+        "hot_arm_width",
+        "cold_arm_width",
+        "flexure_length",
+        "flexure_width",
+        "gap",
+        "tip_length",
+        "anchor_size",
+        "thickness",
+    )
+
+    @model_validator(mode="after")
+    def _flexure_shorter(self) -> ActuatorGeometry:
+        if self.flexure_length >= self.length:
+            raise at(
+                "flexure_length",
+                f"must be shorter than the hot arm (length {format_quantity(self.length)}): "
+                "the cold arm runs from the flexure to the tip",
+            )
+        return self
+
+
 class Actuator(_Model):
     """An electrothermal actuator with its head's contact compliance and amplitude.
 
@@ -266,6 +361,10 @@ class Actuator(_Model):
     Tangential compliance: exactly one of ``alpha`` (α = k_v/k_h, the published
     devices' phenomenological value), ``horizontal_stiffness`` k_h or
     ``horizontal_resonance`` f_h (α = (f_v/f_h)²).
+    With a drawn ``geometry`` the head's springs k_v, k_h come from the actuator frame
+    (:mod:`betvdesign.nondim.actuator`) where the file gives no resonance, stiffness or α:
+    each given one is used (and compared with the geometry's), each missing one is the
+    geometry's.
     Amplitude u: exactly one of ``amplitude`` or ``calibration`` (law of the drive voltage).
     Thermal roll-off (optional, MODEL.md "Thermal roll-off of the actuator"): at most one of
     ``thermal_cutoff`` f_c or ``thermal_time_constant`` τ_th (f_c = 1/(2π τ_th)), then
@@ -276,8 +375,10 @@ class Actuator(_Model):
     ``damping_ratio_*`` ζ or ``quality_factor_*`` Q = 1/(2ζ); absent: undamped.
     """
 
-    vertical_resonance: Frequency
-    """Head vertical resonance f_v: sqrt(k_v/m) = 2π·f_v."""
+    vertical_resonance: Frequency | None = None
+    """Head vertical resonance f_v: sqrt(k_v/m) = 2π·f_v (optional with a geometry)."""
+    geometry: ActuatorGeometry | None = None
+    """The drawn actuator (optional): gives k_v and k_h where the file does not."""
     alpha: float | None = Field(default=None, gt=0.0)
     """α = k_v/k_h [-] given directly (phenomenological, e.g. from a published fit)."""
     horizontal_stiffness: Stiffness | None = None
@@ -310,11 +411,18 @@ class Actuator(_Model):
             ("horizontal_resonance", self.horizontal_resonance),
         )
         given = [n for n, v in sources if v is not None]
-        if len(given) != 1:
+        if self.geometry is None and len(given) != 1:
             raise ValueError(
                 "give exactly one of 'alpha', 'horizontal_stiffness' or 'horizontal_resonance'"
-                + (f" (got {', '.join(given)})" if given else "")
+                + (f" (got {', '.join(given)})" if given else " (or a drawn 'geometry')")
             )
+        if len(given) > 1:
+            raise ValueError(
+                "give at most one of 'alpha', 'horizontal_stiffness' or "
+                f"'horizontal_resonance' (got {', '.join(given)})"
+            )
+        if self.vertical_resonance is None and self.geometry is None:
+            raise ValueError("give 'vertical_resonance' (or a drawn 'geometry')")
         if (self.amplitude is None) == (self.calibration is None):
             raise ValueError("give exactly one of 'amplitude' or 'calibration'")
         if self.amplitude is not None and self.amplitude.to("m").magnitude <= 0:
@@ -466,8 +574,47 @@ class DeviceSpec(_Model):
     """One set per direction of travel (two opposing sets for a bidirectional device)."""
     published_fit: PublishedFit | None = None
     """Optional: parameters a publication fitted; `betv check` compares, never uses them."""
+    process: Process | None = None
+    """Optional: the fabrication process (a shipped name such as 'polymumps', or the path
+    of a process file relative to this file): its layers, materials and design rules
+    (``betv check`` applies them; ``betv layout`` draws on its layers)."""
 
     _material = field_validator("material", mode="before")(_named_material)
+
+    @model_validator(mode="after")
+    def _layers(self) -> DeviceSpec:
+        """Layers named must be the process's structural ones; a geometry without a
+        process gives its own thickness and Young's modulus."""
+        p = self.process
+        if p is None and self.slider.layer is not None:
+            raise at("slider.layer", "only applies with 'process'")
+        if p is not None and self.slider.layer is not None:
+            try:
+                p.structural(self.slider.layer)
+            except ValueError as exc:
+                raise at("slider.layer", str(exc)) from None
+        for i, s in enumerate(self.actuator_sets):
+            geo = s.actuator.geometry
+            if geo is None:
+                continue
+            where = f"actuator_sets[{i}].actuator.geometry"
+            if p is None:
+                drawn = (("thickness", geo.thickness), ("youngs_modulus", geo.youngs_modulus))
+                missing = [f for f, v in drawn if v is None]
+                if geo.layer is not None:
+                    raise at(f"{where}.layer", "only applies with 'process'")
+                if missing:
+                    raise at(
+                        where,
+                        f"give {' and '.join(missing)} (or name the device's 'process', whose "
+                        "structural layer gives them)",
+                    )
+            elif geo.layer is not None:
+                try:
+                    p.structural(geo.layer)
+                except ValueError as exc:
+                    raise at(f"{where}.layer", str(exc)) from None
+        return self
 
     @model_validator(mode="after")
     def _unique_names(self) -> DeviceSpec:

@@ -2,7 +2,9 @@
 
 The fields and their bounds are those of :mod:`betvdesign.spec.fields` (the one list of
 the fields a designer changes); by default ``betv fix`` varies the ones the designer
-chooses (:attr:`~betvdesign.spec.fields.DesignField.chosen`). A field is a dotted path
+chooses (:attr:`~betvdesign.spec.fields.DesignField.chosen`; the drawn actuator's
+dimensions only where they give the head's springs, not where every set's file gives
+its resonance and α). A field is a dotted path
 as in the device file (:mod:`betvdesign.spec.paths`); its bounds are factors of the
 current value, or absolute values in a unit.
 """
@@ -19,11 +21,28 @@ import pint
 from betvdesign.errors import UsageError
 from betvdesign.model.damping import term_range
 from betvdesign.spec.fields import FIELDS, Bounds, bounds
+from betvdesign.spec.models import DeviceSpec
 from betvdesign.spec.paths import given
 
 #: Default fields of ``betv fix`` and their search bounds, in ranking order: the fields
 #: of :data:`betvdesign.spec.fields.FIELDS` the designer chooses.
 DEFAULT_BOUNDS: dict[str, Bounds] = {f.path: f.bounds for f in FIELDS if f.chosen}
+
+
+def _drawn_springs_inert(spec: DeviceSpec, name: str) -> bool:
+    """A drawn-actuator field changes nothing when every set's file gives the head's
+    resonance and α (the file's values are used): not a default field then."""
+    if not name.startswith("actuator.geometry."):
+        return False
+    return all(
+        a.vertical_resonance is not None
+        and (
+            a.alpha is not None
+            or a.horizontal_stiffness is not None
+            or a.horizontal_resonance is not None
+        )
+        for a in (s.actuator for s in spec.actuator_sets)
+    )
 
 
 @dataclass(frozen=True)
@@ -68,7 +87,11 @@ def parse_vary(spec: Any, items: Sequence[str]) -> list[Vary]:
     from betvdesign.spec.units import parse_quantity
 
     out: list[Vary] = []
-    names = list(items) or [f for f in DEFAULT_BOUNDS if current_value(spec, f) is not None]
+    names = list(items) or [
+        f
+        for f in DEFAULT_BOUNDS
+        if current_value(spec, f) is not None and not _drawn_springs_inert(spec, f)
+    ]
     for item in names:
         name, _, rng = item.partition("=")
         name = name.strip()

@@ -39,6 +39,17 @@ def _value_end(line: str, col: int, flow: bool) -> int:
     return end
 
 
+def fixed_values(res: Any, cand: Any) -> dict[str, Any]:
+    """The fix's new values as a device file writes them (quantities to 4 digits)."""
+    from betvdesign.spec.units import format_quantity
+
+    out = {}
+    for f, x in cand.changes.items():
+        v = res.varies[f]
+        out[f] = format_quantity(v.quantity(x), ".4g") if v.unit else float(f"{x:.4g}")
+    return out
+
+
 def fixed_text(path: str | Path, res: Any, cand: Any) -> str:
     """The text of ``path`` with ``cand``'s changes applied.
 
@@ -52,14 +63,14 @@ def fixed_text(path: str | Path, res: Any, cand: Any) -> str:
     from betvdesign.checks.checker import check_derivation
     from betvdesign.nondim.device import derive
     from betvdesign.spec.loader import load_device_text
-    from betvdesign.spec.units import format_quantity
 
     original = Path(path).read_text("utf-8")
     data = YAML(typ="rt").load(original)
     lines = original.splitlines(keepends=True)
-    for f, x in cand.changes.items():
+    new_values = fixed_values(res, cand)
+    for f in cand.changes:
         v = res.varies[f]
-        new = format_quantity(v.quantity(x), ".4g") if v.unit else f"{x:.4g}"
+        new = str(new_values[f])
         note = f"betv fix: was {v.text(v.x0)}; {cand.why}"
         for target in targets(data, f):  # every actuator set that gives the field
             if value_at(data, target) is None:

@@ -1,0 +1,333 @@
+"""The process's rules on drawn polygons (``betv check FILE.gds``).
+
+Per structural layer, on the union of its polygons (holes of its hole layer removed):
+
+- **width** and **spacing**: pairs of boundary edges closer than the minimum across
+  material (width) or across empty space (spacing: between polygons, notches, holes),
+  with KLayout's semantics for all-angle layouts: Euclidean distance, edges meeting at
+  :data:`IGNORE_ANGLE_DEG` or more are not a pair (a rounded 90° corner is not a
+  violation, an acute notch is);
+- **release**: points of the released part farther than half the widest unreleased
+  feature from every edge (erosion by a disc, round joins) need etch holes; points within
+  that distance of an anchor opening are held by it.
+
+Slivers of the grid's size that the release erosion leaves are dropped (a region
+survives only if an erosion by two grid steps leaves something). The results replace the
+device file's ``process.min-width``, ``process.min-spacing`` and ``process.release`` rules
+(:mod:`betvdesign.checks.process_rules`), located by layer and position; KLayout's own
+width and space checks are the tests' independent reference.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from betvdesign.checks.process_rules import process_rules
+from betvdesign.checks.rule import RuleResult
+from betvdesign.layout.shapes import min_box
+from betvdesign.spec.models import DeviceSpec
+from betvdesign.spec.process import Process
+
+__all__ = ["Violation", "layout_rules", "space_violations", "unreleased", "width_violations"]
+
+_GRID = 1e-3  # µm
+
+
+@dataclass(frozen=True)
+class Violation:
+    """One region breaking a rule: its layer, bounding box [µm] and narrowest extent."""
+
+    layer: str
+    gds: str
+    bbox: tuple[float, float, float, float]
+    extent: float
+
+    @property
+    def where(self) -> str:
+        x0, y0, x1, y1 = self.bbox
+        return f"{self.layer} ({self.gds}) at ({(x0 + x1) / 2:.3f}, {(y0 + y1) / 2:.3f}) µm"
+
+
+def _real(gdstk: Any, polys: list) -> list:
+    return [
+        p
+        for p in polys
+        if gdstk.offset([p], -2 * _GRID, join="miter", precision=_GRID, use_union=True)
+    ]
+
+
+def _violations(gdstk: Any, polys: list, layer: str, gds: str) -> list[Violation]:
+    out = []
+    for p in _real(gdstk, polys):
+        pts = np.asarray(p.points)
+        (x0, y0), (x1, y1) = p.bounding_box()
+        out.append(Violation(layer, gds, (x0, y0, x1, y1), min_box(pts).width))
+    return sorted(out, key=lambda v: v.bbox)
+
+
+def _off(gdstk: Any, polys: list, d: float, join: str = "miter") -> list:
+    """Offset after a union of the input (a hole stays a hole, never a cut)."""
+    if not polys:
+        return []
+    kw = {"tolerance": 64} if join == "round" else {}
+    return gdstk.offset(polys, d, join=join, precision=_GRID, use_union=True, **kw)
+
+
+def _not(gdstk: Any, a: list, b: list) -> list:
+    if not a:
+        return []
+    return gdstk.boolean(a, b, "not", precision=_GRID) if b else gdstk.boolean(a, [], "or")
+
+
+#: Edge pairs meeting at this angle or more are not checked (as KLayout's ``ignore_angle``):
+#: a corner of about 90° is no violation, an acute one is.
+IGNORE_ANGLE_DEG = 80.0
+
+
+def _edges(gdstk: Any, polys: list) -> np.ndarray:
+    """Boundary edges (n, 4) of the union of ``polys``, material on each edge's left; the
+    zero-width cuts by which a polygon with holes is written are dropped."""
+    out = []
+    for p in gdstk.boolean(polys, [], "or", precision=_GRID) if polys else []:
+        pts = np.asarray(p.points, dtype=float)
+        x, y = pts[:, 0], pts[:, 1]
+        if float(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1))) < 0:
+            pts = pts[::-1]
+        nxt = np.roll(pts, -1, axis=0)
+        out.append(np.column_stack([pts, nxt]))
+    if not out:
+        return np.zeros((0, 4))
+    e = np.concatenate(out)
+    e = e[np.hypot(e[:, 2] - e[:, 0], e[:, 3] - e[:, 1]) > 1e-9]
+    k = np.ascontiguousarray(np.round(e * 1e6).astype(np.int64))
+    fwd = k.view(np.dtype((np.void, 32))).ravel()
+    back = np.ascontiguousarray(k[:, [2, 3, 0, 1]]).view(np.dtype((np.void, 32))).ravel()
+    return e[~np.isin(back, fwd)]
+
+
+def _seg_dist(a: np.ndarray, b: np.ndarray, p: np.ndarray) -> np.ndarray:
+    """Distance of points p (…, 2) from segments a→b (…, 2)."""
+    ab = b - a
+    t = np.clip(np.sum((p - a) * ab, -1) / np.maximum(np.sum(ab * ab, -1), 1e-300), 0, 1)
+    q = a + t[..., None] * ab
+    return np.hypot(*(p - q).transpose(-1, *range(p.ndim - 1)))
+
+
+def edge_violations(
+    gdstk: Any, polys: list, d: float, kind: str, layer: str = "", gds: str = "",
+    edges: np.ndarray | None = None,
+) -> list[Violation]:  # fmt: skip
+    """Edge pairs of the union of ``polys`` closer than ``d`` [µm] across material
+    (``kind`` "width") or across space ("space"): each edge lies on the other's material
+    (or empty) side, they meet at less than :data:`IGNORE_ANGLE_DEG`, and their Euclidean
+    distance is below d (KLayout's width/space check with its Euclidean metric). ``edges``:
+    the union's boundary if already computed (:func:`_edges`)."""
+    e = _edges(gdstk, polys) if edges is None else edges
+    n = len(e)
+    if n < 2:
+        return []
+    a, b = e[:, :2], e[:, 2:]
+    u = (b - a) / np.hypot(*(b - a).T)[:, None]
+    left = np.column_stack([-u[:, 1], u[:, 0]])  # toward the material
+    side = left if kind == "width" else -left
+    i, j = np.triu_indices(n, 1)
+    # the angle between e_i and the reversed e_j
+    cos = -np.sum(u[i] * u[j], axis=1)
+    ok = cos > np.cos(np.radians(IGNORE_ANGLE_DEG))
+    i, j = i[ok], j[ok]
+    lo = np.minimum(a, b)
+    hi = np.maximum(a, b)
+    near = np.all((lo[i] - d < hi[j]) & (lo[j] - d < hi[i]), axis=1)
+    i, j = i[near], j[near]
+    if i.size == 0:
+        return []
+
+    def ahead(k: np.ndarray, m: np.ndarray) -> np.ndarray:  # e_m partly on e_k's side
+        s1 = np.sum((a[m] - a[k]) * side[k], axis=1)
+        s2 = np.sum((b[m] - a[k]) * side[k], axis=1)
+        return np.maximum(s1, s2) > 1e-9
+
+    facing = ahead(i, j) & ahead(j, i)
+    i, j = i[facing], j[facing]
+    dist = np.minimum.reduce([
+        _seg_dist(a[i], b[i], a[j]), _seg_dist(a[i], b[i], b[j]),
+        _seg_dist(a[j], b[j], a[i]), _seg_dist(a[j], b[j], b[i]),
+    ])  # fmt: skip
+    bad = dist < d - 1e-6
+    i, j, dist = i[bad], j[bad], dist[bad]
+    boxes = [
+        (
+            min(a[k, 0], b[k, 0], a[m, 0], b[m, 0]), min(a[k, 1], b[k, 1], a[m, 1], b[m, 1]),
+            max(a[k, 0], b[k, 0], a[m, 0], b[m, 0]), max(a[k, 1], b[k, 1], a[m, 1], b[m, 1]),
+            float(dd),
+        )
+        for k, m, dd in zip(i, j, dist, strict=True)
+    ]  # fmt: skip
+    return _clusters(boxes, layer, gds)
+
+
+def _clusters(boxes: list[tuple], layer: str, gds: str) -> list[Violation]:
+    """Overlapping edge-pair boxes as one violation each (the narrowest distance kept)."""
+    groups: list[list[float]] = []
+    for x0, y0, x1, y1, dd in sorted(boxes):
+        for g in groups:
+            if (
+                x0 <= g[2] + _GRID
+                and x1 >= g[0] - _GRID
+                and y0 <= g[3] + _GRID
+                and y1 >= g[1] - _GRID
+            ):
+                g[0], g[1], g[2], g[3] = min(g[0], x0), min(g[1], y0), max(g[2], x1), max(g[3], y1)
+                g[4] = min(g[4], dd)
+                break
+        else:
+            groups.append([x0, y0, x1, y1, dd])
+    return [Violation(layer, gds, (g[0], g[1], g[2], g[3]), g[4]) for g in groups]
+
+
+def weld(gdstk: Any, polys: list) -> list:
+    """The polygons with every vertex of another that lies on one of their edges (to
+    1e-6 µm) inserted there: shapes that abut in a rotated cell, flattened in floating
+    point, then share their boundary vertex for vertex and merge without the sub-grid
+    slivers rounding would leave (a designer's edit in KLayout breaks the shared vertices
+    ``betv layout`` draws)."""
+    if len(polys) < 2:
+        return list(polys)
+    pts = [np.asarray(p.points, dtype=float) for p in polys]
+    lo = np.array([q.min(axis=0) for q in pts]) - 1e-6
+    hi = np.array([q.max(axis=0) for q in pts]) + 1e-6
+    out = []
+    for k, (p, q) in enumerate(zip(polys, pts, strict=True)):
+        near = np.nonzero(np.all((lo <= hi[k]) & (hi >= lo[k]), axis=1))[0]
+        others = [pts[m] for m in near if m != k]
+        if not others:
+            out.append(p)
+            continue
+        cand = np.concatenate(others)
+        a, b = q, np.roll(q, -1, axis=0)
+        ab = b - a
+        n2 = np.maximum(np.sum(ab * ab, axis=1), 1e-300)
+        rel = cand[None, :, :] - a[:, None, :]  # (edges, points, 2)
+        t = np.einsum("epk,ek->ep", rel, ab) / n2[:, None]
+        cross = rel[:, :, 0] * ab[:, None, 1] - rel[:, :, 1] * ab[:, None, 0]
+        on = (t > 1e-9) & (t < 1 - 1e-9) & (np.abs(cross) < 1e-6 * np.sqrt(n2)[:, None])
+        if not on.any():
+            out.append(p)
+            continue
+        e_idx, p_idx = np.nonzero(on)
+        key = np.concatenate([np.arange(len(q), dtype=float), e_idx + t[e_idx, p_idx]])
+        pts_all = np.concatenate([q, a[e_idx] + t[e_idx, p_idx][:, None] * ab[e_idx]])
+        order = np.argsort(key, kind="stable")
+        out.append(gdstk.Polygon(pts_all[order], layer=p.layer, datatype=p.datatype))
+    return out
+
+
+def width_violations(
+    gdstk: Any, polys: list, holes: list, w_min: float, layer: str = "", gds: str = ""
+) -> list[Violation]:
+    """Material narrower than ``w_min`` [µm]: :func:`edge_violations` across material."""
+    body = _not(gdstk, weld(gdstk, polys), holes)
+    return edge_violations(gdstk, body, w_min, "width", layer, gds)
+
+
+def space_violations(
+    gdstk: Any, polys: list, holes: list, s_min: float, layer: str = "", gds: str = ""
+) -> list[Violation]:
+    """Gaps (between polygons, or notches of one, or holes) narrower than ``s_min`` [µm]:
+    :func:`edge_violations` across space."""
+    body = _not(gdstk, weld(gdstk, polys), holes)
+    return edge_violations(gdstk, body, s_min, "space", layer, gds)
+
+
+def unreleased(
+    gdstk: Any, polys: list, holes: list, anchors: list, w_max: float, layer: str = "",
+    gds: str = "",
+) -> list[Violation]:  # fmt: skip
+    """Released regions farther than ``w_max``/2 [µm] from every edge (module doc):
+    erode(B) = erode(A) − dilate(H), less what lies within w_max/2 of an anchor."""
+    r = w_max / 2 - _GRID
+    core = _not(gdstk, _off(gdstk, polys, -r, "round"), _off(gdstk, holes, r, "round"))
+    if core and anchors:
+        core = _not(gdstk, core, _off(gdstk, anchors, w_max / 2, "round"))
+    return _violations(gdstk, core, layer, gds)
+
+
+@dataclass(frozen=True)
+class LayerFindings:
+    """DRC findings of the structural layers (by rule)."""
+
+    width: list[Violation]
+    space: list[Violation]
+    release: list[Violation]
+
+
+def findings(gdstk: Any, process: Process, by_layer: dict[tuple[int, int], list]) -> LayerFindings:
+    """Width, spacing and release findings of every structural layer of ``process`` in
+    ``by_layer`` (gdstk polygons by (layer, datatype), flattened)."""
+    width, space, release = [], [], []
+    for name, lay in process.layers.items():
+        if lay.role != "structural":
+            continue
+        polys = by_layer.get(lay.gds.pair, [])
+        if not polys:
+            continue
+        h = lay.release_holes
+        holes = by_layer.get(process.layers[h.layer].gds.pair, []) if h is not None else []
+        anchors = by_layer.get(process.layers[lay.anchor].gds.pair, []) if lay.anchor else []
+        um = lambda q: float(q.to("um").magnitude)  # noqa: E731
+        g = str(lay.gds)
+        body = _not(gdstk, weld(gdstk, polys), holes)
+        e = _edges(gdstk, body)
+        width += edge_violations(gdstk, body, um(lay.min_width), "width", name, g, e)
+        space += edge_violations(gdstk, body, um(lay.min_spacing), "space", name, g, e)
+        release += unreleased(gdstk, polys, holes, anchors, um(lay.max_unreleased_width), name, g)
+    return LayerFindings(width, space, release)
+
+
+def _listing(vs: list[Violation], limit: int = 6) -> str:
+    shown = "; ".join(f"{v.where} (≈ {v.extent:.3g} µm)" for v in vs[:limit])
+    return shown + (f"; and {len(vs) - limit} more" if len(vs) > limit else "")
+
+
+def layout_rules(spec: DeviceSpec, f: LayerFindings, cell: str) -> list[RuleResult]:
+    """The device's process rules with width, spacing and release measured on the drawn
+    polygons of ``cell`` instead of the device file's fields."""
+    assert spec.process is not None
+    p = spec.process
+    out = []
+    for r in process_rules(spec):
+        if r.id == "process.min-width":
+            ok = not f.width
+            r = RuleResult(
+                r.id, "error", ok, None if ok else min(v.extent for v in f.width) * 1e-6,
+                r.threshold,
+                f"cell {cell}: every drawn feature is at least the minimum width"
+                if ok else f"cell {cell}: narrower than the minimum width: {_listing(f.width)}",
+                r.source, fix="" if ok else "widen the listed features to the minimum width",
+                unit="m",
+            )  # fmt: skip
+        elif r.id == "process.min-spacing":
+            ok = not f.space
+            r = RuleResult(
+                r.id, "error", ok, None if ok else min(v.extent for v in f.space) * 1e-6,
+                r.threshold,
+                f"cell {cell}: every drawn gap is at least the minimum spacing"
+                if ok else f"cell {cell}: gaps below the minimum spacing: {_listing(f.space)}",
+                r.source, fix="" if ok else "open the listed gaps to the minimum spacing",
+                unit="m",
+            )  # fmt: skip
+        elif r.id == "process.release":
+            ok = not f.release
+            r = RuleResult(
+                r.id, "error", ok, None, r.threshold,
+                f"cell {cell}: every released feature is within reach of the release etch"
+                if ok else f"cell {cell}: not released (too far from an edge or etch hole): "
+                f"{_listing(f.release)}",
+                r.source + f"; {p.cite('layers.' + p.default_structural + '.release_holes')}",
+                fix="" if ok else "add etch holes there (`betv layout` draws them)",
+            )  # fmt: skip
+        out.append(r)
+    return out

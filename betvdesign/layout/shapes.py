@@ -1,0 +1,115 @@
+"""Measuring drawn polygons: area, centroid, the smallest enclosing rectangle (length,
+width, direction), discs, projections. Plain numpy on (n, 2) vertex arrays [µm]."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+__all__ = ["Box", "area", "centroid", "extent", "min_box", "radius_about", "span_along"]
+
+
+def area(p: np.ndarray) -> float:
+    """Signed area (counter-clockwise positive) [µm²] (shoelace)."""
+    x, y = p[:, 0], p[:, 1]
+    return 0.5 * float(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1)))
+
+
+def centroid(p: np.ndarray) -> np.ndarray:
+    """Area centroid of a simple polygon [µm]."""
+    x, y = p[:, 0], p[:, 1]
+    xn, yn = np.roll(x, -1), np.roll(y, -1)
+    cr = x * yn - xn * y
+    a = cr.sum() / 2
+    if abs(a) < 1e-18:
+        return p.mean(axis=0)
+    return np.array([((x + xn) * cr).sum(), ((y + yn) * cr).sum()]) / (6 * a)
+
+
+@dataclass(frozen=True)
+class Box:
+    """The smallest-area rectangle around a polygon: ``length`` ≥ ``width`` [µm], unit
+    ``axis`` along the length, ``centre``, and ``fill`` = polygon area / box area (1 for a
+    rectangle)."""
+
+    centre: np.ndarray
+    length: float
+    width: float
+    axis: np.ndarray
+    fill: float
+
+    @property
+    def normal(self) -> np.ndarray:
+        """The unit vector across (axis turned +90°)."""
+        return np.array([-self.axis[1], self.axis[0]])
+
+
+def _hull(p: np.ndarray) -> np.ndarray:
+    pts = sorted(map(tuple, np.round(p, 9)))
+    if len(pts) <= 2:
+        return np.array(pts)
+
+    def half(points):
+        out: list = []
+        for q in points:
+            while (
+                len(out) >= 2
+                and (
+                    (out[-1][0] - out[-2][0]) * (q[1] - out[-2][1])
+                    - (out[-1][1] - out[-2][1]) * (q[0] - out[-2][0])
+                )
+                <= 0
+            ):
+                out.pop()
+            out.append(q)
+        return out
+
+    lower, upper = half(pts), half(pts[::-1])
+    return np.array(lower[:-1] + upper[:-1])
+
+
+def min_box(p: np.ndarray) -> Box:
+    """Rotating calipers over the convex hull's edges."""
+    h = _hull(p)
+    best = None
+    for i in range(len(h)):
+        e = h[(i + 1) % len(h)] - h[i]
+        n = math.hypot(*e)
+        if n == 0:
+            continue
+        u = e / n
+        v = np.array([-u[1], u[0]])
+        a, b = h @ u, h @ v
+        ar = (a.max() - a.min()) * (b.max() - b.min())
+        if best is None or ar < best[0] - 1e-12:
+            best = (ar, u, v, a, b)
+    assert best is not None
+    ar, u, v, a, b = best
+    la, lb = a.max() - a.min(), b.max() - b.min()
+    c = u * (a.max() + a.min()) / 2 + v * (b.max() + b.min()) / 2
+    if lb > la:
+        u, la, lb = v, lb, la
+    if u[0] < -1e-12 or (abs(u[0]) <= 1e-12 and u[1] < 0):
+        u = -u
+    return Box(c, float(la), float(lb), u, abs(area(p)) / ar if ar > 0 else 0.0)
+
+
+def extent(p: np.ndarray) -> float:
+    """The largest distance between two vertices [µm] (a drawn disc's diameter: its
+    vertices lie on the circle, opposite ones on each axis)."""
+    h = _hull(p)
+    d = h[:, None, :] - h[None, :, :]
+    return float(np.sqrt(np.max(np.sum(d * d, axis=-1))))
+
+
+def radius_about(p: np.ndarray, c: np.ndarray) -> float:
+    """Largest distance of a vertex from ``c`` [µm] (a drawn disc's radius)."""
+    return float(np.max(np.hypot(p[:, 0] - c[0], p[:, 1] - c[1])))
+
+
+def span_along(p: np.ndarray, u: np.ndarray) -> tuple[float, float]:
+    """(min, max) of the vertices' projections on ``u``."""
+    s = p @ u
+    return float(s.min()), float(s.max())
