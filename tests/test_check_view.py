@@ -83,9 +83,7 @@ def test_push_demo_fits_one_screen_and_names_mode_speed_margin():
     p = derive_file(PUSH).sets[0].params
     v = periodic_orbit(p).delta_s * 0.14e-6 * math.cos(math.radians(20.56)) * 6000.0
     assert v > 0
-    assert (
-        f"push as intended, {format_si(v, 'm/s')} toward +x (periodic orbit), 50 µm in" in r.stdout
-    )
+    assert f"push as intended, {format_si(v, 'm/s')} toward +x, 50 µm in" in r.stdout
     assert "mode holds at ϖ ±5 %, α ±10 %" in r.stdout  # the margin (rule mode-margin)
     assert re.search(r"λ 0\.334 → push agrees", r.stdout)
     assert "f_act 6 kHz, u 140 nm" in r.stdout

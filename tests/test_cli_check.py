@@ -254,7 +254,7 @@ def test_check_reports_orbit_speed_and_json(monkeypatch):
     v = 0.25 * 0.14e-6 * math.cos(math.radians(20.56)) * 6000.0  # [m/s] = 196.6 µm/s
     r = run("check", path)
     assert r.exit_code == 0, r.stdout
-    assert "push as intended, 197 µm/s toward +x (periodic orbit), 50 µm in 254 ms" in r.stdout
+    assert "push as intended, 197 µm/s toward +x, 50 µm in 254 ms" in r.stdout
     top = _device(run("check", "--json", "-v", path).stdout)
     s = top["details"]["sets"][0]
     assert s["simulation"]["delta_s"] == 0.25 and s["simulation"]["mode"] == "push"
@@ -295,10 +295,15 @@ def test_shin2004_orbit_and_speed_from_the_exact_solver():
     settle = next(x for x in s["rules"] if x["id"] == "settling")
     speed = s["speed_m_s"]
     assert top["sets"][0]["speed_m_s"] == pytest.approx(abs(speed), rel=1e-12)
+    text = run("check", SHIN).stdout
     if settle["passed"]:
         assert speed == pytest.approx(orbit.delta_s * length * 1000.0, rel=1e-9)
+        assert "(crossing mean from rest)" not in text
     else:
         assert speed == pytest.approx(tr.s / n * length * 1000.0, rel=1e-9)
+        # the text names the speed that is not the periodic orbit's
+        assert top["sets"][0]["basis"] == "crossing"
+        assert "(crossing mean from rest)" in text
     assert d["sets"][1]["simulation"] == s["simulation"]  # the mirrored set reuses it
 
 

@@ -463,8 +463,9 @@ def _set_out(sc: Any, flt: RuleFilter) -> SetOut:
 
 # --- text ---------------------------------------------------------------------------------
 
-#: How the quoted speed was obtained, by the travel answer's basis (one label in every
-#: output: check text, report, explore).
+#: How the quoted speed was obtained, by the travel answer's basis. The check's text
+#: names the exception (a crossing from rest); a speed without a label is the periodic
+#: orbit's, as the JSON's ``basis`` says.
 SPEED_BASIS = {"periodic": "periodic orbit", "crossing": "crossing mean from rest"}
 
 _TAG = {"error": ("FAIL", "bold red"), "warning": ("warn", "yellow"), "info": ("note", "dim")}
@@ -508,8 +509,9 @@ def set_headline(sc: Any) -> tuple[str, str]:
         head = f"{mode} (intended {s.intended_mode})"
     if v:
         basis = sc.travel.basis if sc.travel is not None else "periodic"
+        label = "" if basis == "periodic" else f" ({SPEED_BASIS.get(basis, basis)})"
         motion = (
-            f"{format_si(v, 'm/s')} toward {direction} ({SPEED_BASIS.get(basis, basis)}), "
+            f"{format_si(v, 'm/s')} toward {direction}{label}, "
             f"{format_si(s.travel_range_m, 'm')} in {format_si(s.travel_range_m / v, 's')}"
         )
     else:
