@@ -53,6 +53,7 @@ _COMMANDS: tuple[str, ...] = (
     "report",
     "bench",
     "simulate",
+    "explore",
 )
 
 for _name in _COMMANDS:
