@@ -81,7 +81,7 @@ GROUPS: tuple[tuple[str, tuple[tuple[str, str], ...]], ...] = (
             ("actuator.damping_ratio_normal", "ζ normal"),
             ("actuator.quality_factor_tangential", "Q tangential (empty: undamped)"),
             ("actuator.damping_ratio_tangential", "ζ tangential"),
-            ("contact.restitution", "restitution e"),
+            ("contact.restitution", "restitution e (empty: plastic, e = 0)"),
         ),
     ),
 )

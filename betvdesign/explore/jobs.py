@@ -13,8 +13,10 @@ before it starts.
 
 from __future__ import annotations
 
+import contextlib
 import functools
 import multiprocessing
+import os
 import threading
 from collections.abc import Callable
 from dataclasses import asdict
@@ -26,12 +28,20 @@ __all__ = ["LANES", "Workers", "check_job", "fix_job", "map_job", "report_job"]
 LANES = ("check", "map", "report")
 #: Sessions that can run jobs at once without sharing generation slots.
 SLOTS = 64
+#: Niceness added to the worker processes (the server's own updates come first).
+NICE = 10
 _GEN: Any = None  # the shared generations, in each worker (set by _init)
 
 
 def _init(gen: Any) -> None:
+    import signal
+
     global _GEN
     _GEN = gen
+    # Ctrl-C reaches the whole process group: the server stops the workers itself
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    with contextlib.suppress(OSError):  # the page's own updates come first
+        os.nice(NICE)
     try:  # load the compiled kernels now, not in the first job
         from betvdesign.dynamics import periodic_orbit
         from betvdesign.model.params import ModelParams

@@ -22,6 +22,7 @@ import contextlib
 import math
 import secrets
 import threading
+import time
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from functools import partial
@@ -46,7 +47,14 @@ from betvdesign.explore import jobs
 from betvdesign.explore.compute import STAGES, Evaluation, evaluate
 from betvdesign.explore.design import Design, free_name, set_path
 from betvdesign.explore.fields import FieldControl, designer_fields
-from betvdesign.explore.views import legend_html, map_cells, status_html, verdict_html
+from betvdesign.explore.views import (
+    MAP_COLUMNS,
+    error_html,
+    legend_html,
+    map_cells,
+    status_html,
+    verdict_html,
+)
 from betvdesign.studies.fieldmap import FieldAxis, FieldMap, MapRows
 
 #: Quiet time after the last change before the slow stages start [ms].
@@ -129,6 +137,8 @@ class ExplorePage:
         self.qlock = threading.Lock()  # the queue of changes
         self.queue: dict[str, tuple[Any, frozenset[str]]] = {}
         self.running = False
+        self.since = math.inf  # when the oldest queued change arrived [perf_counter s]
+        self.timing: tuple[float, float] = (math.nan, math.nan)
         self.closed = False
         self.seq = 0
         self.slot = app.workers.slot()
@@ -261,7 +271,7 @@ class ExplorePage:
         self.phase_fig = figure(
             width=370,
             height=300,
-            title="Head: normal gap against its rate (one period)",
+            title="Head gap and its rate (one period)",
             x_axis_label="head gap [µm]",
             y_axis_label="gap rate [mm/s]",
             toolbar_location=None,
@@ -293,12 +303,7 @@ class ExplorePage:
         self.map_x.on_change("value", partial(self._on_axes, self.map_x))
         self.map_y.on_change("value", partial(self._on_axes, self.map_y))
         self.map_axes = row(self.map_x, self.map_y)
-        self.map_src = ColumnDataSource(
-            data={
-                k: []
-                for k in ("left", "right", "bottom", "top", "color", "mode", "speed", "xv", "yv")
-            }
-        )
+        self.map_src = ColumnDataSource(data={k: [] for k in MAP_COLUMNS})
         self.dev_src = ColumnDataSource(data={"x": [], "y": []})
         self.fix_src = ColumnDataSource(data={"x": [], "y": [], "x0": [], "y0": [], "label": []})
         self.legend = Div(text=legend_html(), width=460)
@@ -330,11 +335,21 @@ class ExplorePage:
             source=self.map_src,
             fill_color="color",
             line_color=None,
+            hatch_pattern="hatch",
+            hatch_color="#444444",
+            hatch_alpha=0.35,
+            hatch_scale=8,
         )
         fig.add_tools(
             HoverTool(
                 renderers=[quads],
-                tooltips=[("mode", "@mode"), ("speed", "@speed"), ("x", "@xv"), ("y", "@yv")],
+                tooltips=[
+                    ("mode", "@mode"),
+                    ("speed", "@speed"),
+                    ("ϖ", "@varpi"),
+                    ("x", "@xv"),
+                    ("y", "@yv"),
+                ],
             )
         )
         fig.segment(
@@ -525,9 +540,11 @@ class ExplorePage:
 
     def _request(self, changes: dict[str, Any], fields: frozenset[str]) -> None:
         with self.qlock:
+            now = time.perf_counter()
             for path, value in changes.items():
                 self.queue.pop(path, None)
                 self.queue[path] = (value, fields)
+            self.since = min(self.since, now)
             if self.running:
                 return
             self.running = True
@@ -535,22 +552,29 @@ class ExplorePage:
 
     def _drain(self) -> None:
         """The compute thread: apply every queued change, then the orbit stage."""
+        ok: set[str] = set()
+        errors: dict[str, str] = {}
         try:
             while not self.closed:
                 with self.qlock:
                     batch, self.queue = self.queue, {}
-                    first = self.seq == 0
-                    if not batch and not first:
+                    since, self.since = self.since, math.inf
+                    if not batch and self.seq > 0:
                         self.running = False
                         return
-                errors = self._apply(batch)
+                t0 = time.perf_counter()
+                failed = self._apply(batch)
+                errors.update(failed)
+                done = {f for _, fs in batch.values() for f in fs} - set(failed)
+                ok = (ok | done) - set(failed)
+                for f in done:
+                    errors.pop(f, None)
                 with self.qlock:
-                    newer = bool(self.queue)
-                if newer and not errors:
-                    continue  # the latest value wins: skip evaluating a stale point
+                    if self.queue and not failed:  # the latest value wins: skip a stale point
+                        self.since = min(self.since, since)
+                        continue
                 with self.dlock:
                     spec = self.design.spec
-                    edits = dict(self.design.edits)
                     self.seq += 1
                     seq = self.seq
                 ev = evaluate(
@@ -560,8 +584,9 @@ class ExplorePage:
                     with_traces=True,
                     **self.app.options,
                 )
-                ok = {f for _, fs in batch.values() for f in fs} - set(errors)
-                self._later(self._show_orbit, seq, ev, errors, ok, edits)()
+                timing = (since, time.perf_counter() - t0)
+                self._later(self._show_orbit, seq, ev, dict(errors), set(ok), timing)()
+                ok, errors = set(), {}
         except Exception as exc:  # the server never dies: say it in the page
             self._later(self._crashed, f"{type(exc).__name__}: {exc}")()
             with self.qlock:
@@ -611,22 +636,27 @@ class ExplorePage:
     # --- showing results (on the loop) -----------------------------------------------------
 
     def _show_orbit(
-        self, seq: int, ev: Evaluation, errors: dict[str, str], ok: set[str], edits: dict[str, Any]
+        self,
+        seq: int,
+        ev: Evaluation,
+        errors: dict[str, str],
+        ok: set[str],
+        timing: tuple[float, float],
     ) -> None:
         for f, msg in errors.items():
             if f in self.controls:
-                self.controls[
-                    f
-                ].message.text = f'<span class="betv-error" style="color:#cf222e">{status_html(msg, busy=False)}</span>'
+                self.controls[f].message.text = error_html(msg)
         for f in ok:
             if f in self.controls:
                 self.controls[f].message.text = ""
-        self._sync_controls(skip=set(errors))
+        self._sync_controls(only=ok)
         if seq < self.seq:
             return
         self.last = ev
         self.settling = {}
         self.pending = {k: v for k, v in STAGES.items() if k != "orbit"}
+        since, compute_s = timing
+        self.timing = (time.perf_counter() - since, compute_s)
         self._show_verdict(seq, ev)
         self._show_traces(ev)
         self._show_device()
@@ -635,7 +665,12 @@ class ExplorePage:
     def _show_verdict(self, seq: int, ev: Evaluation) -> None:
         pending = list(self.pending.values())
         self.verdict.text = verdict_html(
-            ev.out, seq=seq, stage=ev.stage, settling=self.settling, pending=pending
+            ev.out,
+            seq=seq,
+            stage=ev.stage,
+            settling=self.settling,
+            pending=pending,
+            timing={"server-ms": 1e3 * self.timing[0], "compute-ms": 1e3 * self.timing[1]},
         )
         self._status()
 
@@ -653,7 +688,7 @@ class ExplorePage:
             return
         self.phase_src.data = {"x": tr.gap_um, "y": tr.gap_rate_mm_s}
         self.disp_src.data = {"x": tr.t_ms, "y": tr.x_um}
-        self.phase_fig.title.text = "Head: normal gap against its rate (one period)" + (
+        self.phase_fig.title.text = "Head gap and its rate (one period)" + (
             f": {tr.reason}" if tr.reason else ""
         )
 
@@ -673,15 +708,17 @@ class ExplorePage:
             x, y = self._axis_value(cx), self._axis_value(cy)
         self.dev_src.data = {"x": [] if x is None else [x], "y": [] if y is None else [y]}
 
-    def _sync_controls(self, skip: set[str] | None = None) -> None:
-        """Controls show the design's values (after a map click, a fix, a set change)."""
+    def _sync_controls(self, only: set[str] | None = None) -> None:
+        """Controls (all, or those in ``only``) show the design's values (after a map
+        click, a fix, a set change). A slider within half a step of the value is left
+        where the user put it."""
         from betvdesign.explore.fields import current_value
 
         with self.dlock:
             spec = self.design.spec
         with self._quietly():
             for f, ctl in self.controls.items():
-                if skip and f in skip:
+                if only is not None and f not in only:
                     continue
                 v = current_value(spec, self.set_index, f)
                 c = ctl.spec
@@ -698,7 +735,7 @@ class ExplorePage:
                 if (
                     math.isfinite(sv)
                     and ctl.widget.start <= sv <= ctl.widget.end
-                    and abs(ctl.widget.value - sv) > 1e-9 * max(1.0, abs(sv))
+                    and abs(ctl.widget.value - sv) > 0.5 * ctl.widget.step
                 ):
                     ctl.widget.value = sv
 
@@ -819,7 +856,7 @@ class ExplorePage:
             x0, y0 = self._axis_value(cx), self._axis_value(cy)
         for k, c in enumerate(self.fixes):
             change = "; ".join(f"{ch['field']} {ch['from']} → {ch['to']}" for ch in c["changes"])
-            line = status_html(f"{k + 1}. {change}: {c['why']}", busy=False)
+            line = status_html(f"{change}: {c['why']}", busy=False)
             items.append(f'<li class="betv-fix-item">{line}</li>')
             self.fix_buttons[k].visible = True
             values = c["values"]
@@ -881,12 +918,15 @@ class ExplorePage:
             result["mode"],
             result["delta_s"],
             result["speed_m_s"],
+            result["varpi"],
             {(j, i): r for j, i, r in result["reasons"]},
         )
         fmap.fill(part)
         nx = len(fmap.x.values)
         cells = map_cells(fmap)
-        patch: dict[str, list[tuple[int, Any]]] = {k: [] for k in ("color", "mode", "speed")}
+        patch: dict[str, list[tuple[int, Any]]] = {
+            k: [] for k in ("color", "mode", "speed", "hatch", "varpi")
+        }
         for j in part.rows:
             for i in range(nx):
                 k = j * nx + i

@@ -13,6 +13,7 @@ import html
 import math
 from typing import Any
 
+from betvdesign.model.domain import VARPI_WINDOW, in_window
 from betvdesign.output.siformat import format_si
 from betvdesign.studies.fieldmap import MAP_MODES, FieldMap
 
@@ -36,7 +37,7 @@ _STATUS = {
     (False, "info"): ("note", "#57606a"),
 }
 
-__all__ = ["MODE_COLORS", "map_cells", "status_html", "verdict_html"]
+__all__ = ["MODE_COLORS", "error_html", "legend_html", "map_cells", "status_html", "verdict_html"]
 
 
 def _e(x: Any) -> str:
@@ -90,8 +91,10 @@ def verdict_html(
     stage: str,
     settling: dict[str, dict[str, Any] | None] | None = None,
     pending: list[str] | None = None,
+    timing: dict[str, float] | None = None,
 ) -> str:
-    """The verdict block: overall verdict, one line per set, every rule with its fix."""
+    """The verdict block: overall verdict, one line per set, every rule with its fix;
+    ``timing`` (name -> value) goes into ``data-`` attributes (benchmarks read them)."""
     verdict = out["verdict"]
     colour = "#1a7f37" if verdict == "pass" else "#cf222e"
     rows = []
@@ -127,8 +130,10 @@ def verdict_html(
         if pending
         else '<div class="betv-pending" style="color:#57606a">every stage of betv check done</div>'
     )
+    extra = "".join(f' data-{_e(k)}="{v:.3f}"' for k, v in (timing or {}).items())
     return (
-        f'<div class="betv-verdict" data-verdict="{_e(verdict)}" data-seq="{seq}" data-stage="{_e(stage)}">'
+        f'<div class="betv-verdict" data-verdict="{_e(verdict)}" data-seq="{seq}" '
+        f'data-stage="{_e(stage)}"{extra}>'
         f'<div style="font-size:22px;font-weight:bold;color:{colour}">{verdict.upper()}'
         f'<span style="font-size:13px;color:#57606a;font-weight:normal"> design #{seq}</span></div>'
         f"{waiting}"
@@ -143,12 +148,19 @@ def status_html(text: str, *, busy: bool) -> str:
     return f'<span style="color:{colour}">{_e(text)}</span>'
 
 
+def error_html(text: str) -> str:
+    """A refused value's message, beside its control."""
+    return f'<span class="betv-error" style="color:#cf222e">{_e(text)}</span>'
+
+
+#: Columns of the map's data source (see :func:`map_cells`).
+MAP_COLUMNS = ("left", "right", "bottom", "top", "color", "mode", "speed", "xv", "yv", "hatch", "varpi")
+
+
 def map_cells(fmap: FieldMap) -> dict[str, list[Any]]:
     """Quads of the map (edges in the fields' units), colour and hover text per cell."""
     xe, ye = fmap.x.edges(), fmap.y.edges()
-    data: dict[str, list[Any]] = {
-        k: [] for k in ("left", "right", "bottom", "top", "color", "mode", "speed", "xv", "yv")
-    }
+    data: dict[str, list[Any]] = {k: [] for k in MAP_COLUMNS}
     for j in range(len(fmap.y.values)):
         for i in range(len(fmap.x.values)):
             data["left"].append(float(xe[i]))
@@ -160,6 +172,10 @@ def map_cells(fmap: FieldMap) -> dict[str, list[Any]]:
             data["mode"].append(m or "computing")
             v = fmap.speed_m_s[j, i]
             data["speed"].append("" if not math.isfinite(v) else format_si(abs(v), "m/s"))
+            w = fmap.varpi[j, i]
+            outside = math.isfinite(w) and not in_window(float(w))
+            data["hatch"].append("/" if outside else " ")
+            data["varpi"].append("" if not math.isfinite(w) else f"{w:.3g}")
             data["xv"].append(f"{fmap.x.values[i]:.4g} {fmap.x.unit}".strip())
             data["yv"].append(f"{fmap.y.values[j]:.4g} {fmap.y.unit}".strip())
     return data
@@ -172,4 +188,6 @@ def legend_html() -> str:
         f'border:1px solid #888;margin:0 3px 0 8px"></span>{_e(m)}'
         for m in MAP_MODES
     ]
+    lo, hi = VARPI_WINDOW
+    items.append(f" · hatched: outside the design window {lo:g} ≤ ϖ < {hi:g}")
     return f'<div style="font-size:12px">{"".join(items)}</div>'

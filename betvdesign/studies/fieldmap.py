@@ -94,20 +94,23 @@ class FieldAxis:
 @dataclass(frozen=True)
 class MapRows:
     """Rows ``rows`` (indices of the y axis) of a map: per point its mode, Δs [-] per
-    cycle, speed [m/s] along the impact direction (NaN without an orbit) and, for
-    points without a mode, the reason."""
+    cycle, speed [m/s] along the impact direction (NaN without an orbit), ϖ [-] (NaN
+    where the device cannot take the values) and, for points without a mode, the
+    reason."""
 
     rows: tuple[int, ...]
     mode: list[list[str]]
     delta_s: list[list[float]]
     speed_m_s: list[list[float]]
+    varpi: list[list[float]]
     reasons: dict[tuple[int, int], str] = field(default_factory=dict)
 
 
 @dataclass
 class FieldMap:
     """The exact-mode map of actuator set ``set_name``: ``mode[j][i]`` at
-    (x.values[i], y.values[j]); ``speed_m_s`` along the set's impact direction [m/s]."""
+    (x.values[i], y.values[j]); ``speed_m_s`` along the set's impact direction [m/s];
+    ``varpi`` the normalised frequency ϖ [-] of each point (the design window's test)."""
 
     x: FieldAxis
     y: FieldAxis
@@ -115,6 +118,7 @@ class FieldMap:
     mode: np.ndarray
     delta_s: np.ndarray
     speed_m_s: np.ndarray
+    varpi: np.ndarray
     reasons: dict[tuple[int, int], str] = field(default_factory=dict)
     done: np.ndarray = field(default=None)  # type: ignore[assignment]
 
@@ -128,6 +132,7 @@ class FieldMap:
             np.full(shape, "", dtype=object),
             np.full(shape, math.nan),
             np.full(shape, math.nan),
+            np.full(shape, math.nan),
             {},
             np.zeros(shape[0], dtype=bool),
         )
@@ -138,6 +143,7 @@ class FieldMap:
             self.mode[j, :] = part.mode[k]
             self.delta_s[j, :] = part.delta_s[k]
             self.speed_m_s[j, :] = part.speed_m_s[k]
+            self.varpi[j, :] = part.varpi[k]
             self.done[j] = True
         self.reasons.update(part.reasons)
 
@@ -235,6 +241,7 @@ def map_rows(
     mode = [["invalid"] * nx for _ in rows]
     ds = [[math.nan] * nx for _ in rows]
     speed = [[math.nan] * nx for _ in rows]
+    varpi = [[math.nan] * nx for _ in rows]
     reasons: dict[tuple[int, int], str] = {}
     for k, p in enumerate(params):
         r, i = divmod(k, nx)
@@ -242,6 +249,7 @@ def map_rows(
         if p is None:
             reasons[(j, i)] = why[k] or "the device cannot take these values"
             continue
+        varpi[r][i] = p.varpi
         if p not in solved:
             try:
                 solved[p] = _solve(p, max_cycles)
@@ -258,7 +266,7 @@ def map_rows(
             speed[r][i] = float(res.delta_s) * float(scale[k])
         else:
             reasons[(j, i)] = f"{res.status}: {res.message}".splitlines()[0]
-    return MapRows(rows, mode, ds, speed, reasons)
+    return MapRows(rows, mode, ds, speed, varpi, reasons)
 
 
 def mode_map(
