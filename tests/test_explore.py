@@ -9,6 +9,7 @@ is computed by the check path the page must reproduce; nothing is hand-copied).
 from __future__ import annotations
 
 import difflib
+import itertools
 import json
 import math
 import shutil
@@ -28,7 +29,6 @@ from betvdesign.explore.fields import current_value, designer_fields
 from betvdesign.nondim.device import derive
 from betvdesign.spec.loader import load_device, load_device_text
 from betvdesign.studies.fieldmap import FieldAxis, map_rows, mode_map, point_mode
-
 
 #: The command line, as the user runs it (the console script's entry point).
 BETV = [sys.executable, "-c", "from betvdesign.cli import main; main()"]
@@ -226,7 +226,7 @@ def test_map_point_at_the_device_has_the_checks_mode() -> None:
     rows = map_rows(spec, 0, x, y, [2])
     assert rows.mode[0] == list(fmap.mode[2])
     edges = x.edges()
-    assert all(a < b for a, b in zip(edges, edges[1:], strict=False))
+    assert all(a < b for a, b in itertools.pairwise(edges))
     assert edges[0] < x.values[0] and edges[-1] > x.values[-1]
 
 

@@ -223,7 +223,9 @@ def test_keyboard_moves_save_and_betv_check_agree(browser, push_server: Server) 
     saved = push_server.workdir / "moved.yaml"
     dev = _check_json(saved)
     assert dev["verdict"] == shown["verdict"]
-    assert {s["name"]: s["mode"] for s in dev["sets"]} == {k: v[0] for k, v in shown["sets"].items()}
+    assert {s["name"]: s["mode"] for s in dev["sets"]} == {
+        k: v[0] for k, v in shown["sets"].items()
+    }
     for s in dev["sets"]:
         assert shown["sets"][s["name"]][1] == pytest.approx(s["speed_m_s"], rel=1e-12)
     original = (push_server.workdir / "push_demo.yaml").read_text()
@@ -267,7 +269,7 @@ def test_map_click_refused_value_and_the_server_still_answers(browser, push_serv
 
 
 def test_report_download_is_betv_reports_html(browser, push_server) -> None:
-    """"Build report" gives, byte for byte, the HTML `betv report` writes for the
+    """ "Build report" gives, byte for byte, the HTML `betv report` writes for the
     design saved under the name in the save box."""
     page = Page(browser, push_server)
     name = page.p.locator(".betv-save-name input").input_value()

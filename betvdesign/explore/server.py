@@ -122,9 +122,8 @@ def serve(
         )
         server.start()
         url = f"http://{ADDRESS}:{chosen}/"
-        say(
-            f"betv explore: {design.original.name} at {url} (ready in {time.perf_counter() - t0:.1f} s; Ctrl-C stops)"
-        )
+        ready = time.perf_counter() - t0
+        say(f"betv explore: {design.original.name} at {url} (ready in {ready:.1f} s; Ctrl-C stops)")
         sys.stdout.flush()
         if open_browser:
             server.io_loop.add_callback(lambda: _open(url))

@@ -37,7 +37,17 @@ _STATUS = {
     (False, "info"): ("note", "#57606a"),
 }
 
-__all__ = ["MODE_COLORS", "error_html", "legend_html", "map_cells", "status_html", "verdict_html"]
+_CELL = "font-weight:bold;padding-right:6px;vertical-align:top"
+
+__all__ = [
+    "MODE_COLORS",
+    "error_html",
+    "fixes_html",
+    "legend_html",
+    "map_cells",
+    "status_html",
+    "verdict_html",
+]
 
 
 def _e(x: Any) -> str:
@@ -57,9 +67,11 @@ def _motion(s: dict[str, Any], settling: dict[str, Any] | None) -> str:
     v = s.get("speed_m_s")
     parts = [f"<b>{_e(head)}</b>"]
     if v:
+        travel = format_si(s["travel_range_m"], "m")
+        cross = format_si(s["time_to_cross_s"], "s")
+        speed = format_si(v, "m/s")
         parts.append(
-            f"{_e(format_si(v, 'm/s'))} toward {_e(s['travel_direction'])}; "
-            f"{_e(format_si(s['travel_range_m'], 'm'))} travel in {_e(format_si(s['time_to_cross_s'], 's'))}"
+            f"{_e(speed)} toward {_e(s['travel_direction'])}; {_e(travel)} travel in {_e(cross)}"
         )
     elif v == 0.0:
         parts.append("the slider does not move")
@@ -120,16 +132,21 @@ def verdict_html(
             if r["fix"] and not r["passed"]
             else ""
         )
+        passed = str(r["passed"]).lower()
         lines.append(
-            f'<tr class="betv-rule" data-rule="{_e(r["id"])}" data-passed="{str(r["passed"]).lower()}">'
-            f'<td style="color:{col};font-weight:bold;padding-right:6px;vertical-align:top">{tag}</td>'
-            f'<td style="vertical-align:top"><code>{_e(r["id"])}</code>{where}: {_e(r["message"])}{fix}</td></tr>'
+            f'<tr class="betv-rule" data-rule="{_e(r["id"])}" data-passed="{passed}">'
+            f'<td style="color:{col};{_CELL}">{tag}</td>'
+            f'<td style="vertical-align:top"><code>{_e(r["id"])}</code>{where}: '
+            f"{_e(r['message'])}{fix}</td></tr>"
         )
-    waiting = (
-        f'<div class="betv-pending" style="color:#9a6700">still computing: {_e(", ".join(pending))}…</div>'
-        if pending
-        else '<div class="betv-pending" style="color:#57606a">every stage of betv check done</div>'
-    )
+    if pending:
+        waiting = f"still computing: {_e(', '.join(pending))}…"
+        waiting = f'<div class="betv-pending" style="color:#9a6700">{waiting}</div>'
+    else:
+        waiting = (
+            '<div class="betv-pending" style="color:#57606a">every stage of betv check done</div>'
+        )
+
     extra = "".join(f' data-{_e(k)}="{v:.3f}"' for k, v in (timing or {}).items())
     return (
         f'<div class="betv-verdict" data-verdict="{_e(verdict)}" data-seq="{seq}" '
@@ -148,13 +165,40 @@ def status_html(text: str, *, busy: bool) -> str:
     return f'<span style="color:{colour}">{_e(text)}</span>'
 
 
+def fixes_html(fixes: list[dict[str, Any]], message: str) -> str:
+    """The changes ``betv fix`` found (its JSON candidates), numbered as the apply
+    buttons; ``message``: what ``betv fix`` said when it found none."""
+    if not fixes:
+        return status_html(f"betv fix: {message}", busy=False) if message else ""
+    items = []
+    for c in fixes:
+        change = "; ".join(f"{ch['field']} {ch['from']} → {ch['to']}" for ch in c["changes"])
+        items.append(f'<li class="betv-fix-item">{_e(change)}: {_e(c["why"])}</li>')
+    return (
+        "<b>betv fix finds (drawn on the map when on its axes):</b>"
+        f'<ol style="margin:2px 0;padding-left:18px">{"".join(items)}</ol>'
+    )
+
+
 def error_html(text: str) -> str:
     """A refused value's message, beside its control."""
     return f'<span class="betv-error" style="color:#cf222e">{_e(text)}</span>'
 
 
 #: Columns of the map's data source (see :func:`map_cells`).
-MAP_COLUMNS = ("left", "right", "bottom", "top", "color", "mode", "speed", "xv", "yv", "hatch", "varpi")
+MAP_COLUMNS = (
+    "left",
+    "right",
+    "bottom",
+    "top",
+    "color",
+    "mode",
+    "speed",
+    "xv",
+    "yv",
+    "hatch",
+    "varpi",
+)
 
 
 def map_cells(fmap: FieldMap) -> dict[str, list[Any]]:
