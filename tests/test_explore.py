@@ -300,3 +300,45 @@ def test_cli_bad_file_and_missing_extra(tmp_path: Path, monkeypatch: pytest.Monk
     r = runner.invoke(app, ["explore", str(DEVICES / "push_demo.yaml"), "--no-browser"])
     assert r.exit_code == 2 and "pip install 'betvdesign[explore]'" in r.output
     assert "Traceback" not in r.output
+
+
+def test_worker_lanes_drop_stale_jobs_survive_a_dead_worker_and_close() -> None:
+    """Jobs run on a worker process; a job queued for an older generation returns None
+    at once; a killed worker fails its job (never hangs the page) and the next job
+    starts a new one; close() stops it."""
+    import threading
+
+    from betvdesign.explore import jobs
+
+    w = jobs.Workers()
+    results: list[object] = []
+    got = threading.Event()
+
+    def done(value: object) -> None:
+        results.append(value)
+        got.set()
+
+    def failed(exc: BaseException) -> None:
+        results.append(exc)
+        got.set()
+
+    text = (DEVICES / "push_demo.yaml").read_text()
+    try:
+        gen = w.bump("check", 3)
+        w.submit("check", 3, gen - 1, jobs.check_job, (text, "p.yaml", "orbit", {}), done, failed)
+        assert got.wait(300) and results == [None]
+        got.clear()
+        w.submit("check", 3, gen, jobs.check_job, (text, "p.yaml", "orbit", {}), done, failed)
+        assert got.wait(300) and results[-1]["out"]["verdict"] == "pass"
+        lane = w.lanes["check"]
+        got.clear()
+        lane.proc.kill()
+        w.submit("check", 3, gen, jobs.check_job, (text, "p.yaml", "full", {}), done, failed)
+        assert got.wait(300)
+        got.clear()
+        w.submit("check", 3, gen, jobs.check_job, (text, "p.yaml", "orbit", {}), done, failed)
+        assert got.wait(300) and results[-1]["stage"] == "orbit"
+        proc = lane.proc
+    finally:
+        w.close()
+    assert not proc.is_alive()

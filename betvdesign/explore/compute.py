@@ -31,8 +31,10 @@ STAGES: dict[str, str] = {
     "settling": "settling from rest",
     "full": "model-adequacy scan over Q and e",
 }
-#: Samples per actuation cycle of the plotted orbit; cycles of slider motion plotted.
-SAMPLES_PER_CYCLE = 100
+#: Samples of the plotted orbit: per cycle of the phase portrait's period, per cycle of
+#: the slider motion after it; cycles of slider motion plotted.
+PORTRAIT_SAMPLES = 120
+MOTION_SAMPLES = 20
 PLOT_CYCLES = 4
 
 __all__ = ["PLOT_CYCLES", "STAGES", "Evaluation", "SetTraces", "evaluate", "traces"]
@@ -79,10 +81,11 @@ def evaluate(
     select: tuple[str, ...] = (),
     ignore: tuple[str, ...] = (),
     source_file: str = "",
-    with_traces: bool = False,
+    with_traces: bool | str = False,
 ) -> Evaluation:
     """Check ``spec`` (a DeviceSpec) up to ``stage`` (see the module docstring);
-    ``select``/``ignore`` as ``betv check --select/--ignore``."""
+    ``select``/``ignore`` as ``betv check --select/--ignore``; ``with_traces``: sample
+    the orbit of every set (True) or of the set of that name."""
     from betvdesign.checks.checker import check_derivation
     from betvdesign.checks.view import DeviceView, RuleFilter
     from betvdesign.nondim.device import derive
@@ -108,7 +111,7 @@ def evaluate(
                 if st is not None and hasattr(st, "as_dict")
                 else None
             )
-        if with_traces and name not in tr:
+        if with_traces is True or with_traces == name:
             tr[name] = traces(sc.derivation, sc.periodic)
     return Evaluation(stage, out, settling, tr, time.perf_counter() - t0)
 
@@ -132,9 +135,11 @@ def traces(sd: Any, periodic: Any) -> SetTraces:
     if not run.success:
         return SetTraces(reason=str(run.message).splitlines()[0])
     period = 2.0 * math.pi / p.varpi
-    tau = np.linspace(0.0, n * period, n * SAMPLES_PER_CYCLE + 1)
+    first = np.linspace(0.0, k * period, k * PORTRAIT_SAMPLES + 1)
+    rest = np.linspace(k * period, n * period, (n - k) * MOTION_SAMPLES + 1)[1:]
+    tau = np.concatenate([first, rest])
     states = np.asarray(run.sample(tau), dtype=float)
-    one = slice(0, k * SAMPLES_PER_CYCLE + 1)
+    one = slice(0, len(first))
     gap_m = sc.u_m * math.sin(sc.theta_rad)  # ξ = gap/(u sinθ), MODEL.md
     rate = gap_m / sc.time_s  # [m/s] per unit ξ'
     x = sd.impact_sign * (states[:, 4] - states[0, 4]) * sc.length_m

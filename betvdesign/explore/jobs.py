@@ -1,9 +1,12 @@
 """The slow work of ``betv explore`` on worker processes, never in the page's way.
 
 The settling transient, the model-adequacy scan, the fix search, the field map and the
-report run on :class:`Workers`: forkserver process pools (one process per lane, so
-the page's own updates keep the server's process to themselves). Every job takes the
-design as its YAML text (what a saved file would hold) and returns plain data.
+report run on :class:`Workers`: one worker process per lane (spawned at its first job,
+niced, deaf to Ctrl-C; the page's own updates keep the server's process to
+themselves). A worker exits when its pipe to the server closes, so it never outlives
+the server, and a worker that dies fails its jobs (the page says so) and is started
+again by the next job. Every job takes the design as its YAML text (what a saved file
+would hold) and returns plain data.
 
 A job carries the generation of its lane when it was queued; a session bumps its lane
 (:meth:`Workers.bump`) when the design moves on, and a queued job that finds its lane
@@ -132,24 +135,113 @@ def report_job(slot: int, gen: int, text: str, filename: str, name: str) -> str 
         return render_html(build_report(prepared))
 
 
+class _Lane:
+    """One worker process and its jobs (started at the first job, again after a crash)."""
+
+    def __init__(self, ctx: Any, name: str, gen: Any) -> None:
+        self.ctx, self.name, self.gen = ctx, name, gen
+        self.lock = threading.Lock()
+        self.proc: Any = None
+        self.conn: Any = None
+        self.jobs: dict[int, tuple[Callable[[Any], None], Callable[[BaseException], None]]] = {}
+        self.next_id = 0
+        self.closed = False
+
+    def _ensure(self) -> None:
+        if self.proc is not None and self.proc.is_alive():
+            return
+        parent, child = self.ctx.Pipe()
+        proc = self.ctx.Process(
+            target=_serve, args=(child, self.gen), name=f"betv-explore-{self.name}", daemon=True
+        )
+        proc.start()
+        child.close()
+        self.proc, self.conn = proc, parent
+        threading.Thread(
+            target=self._read, args=(parent, proc), name=f"betv-explore-{self.name}", daemon=True
+        ).start()
+
+    def submit(
+        self,
+        fn: Callable[..., Any],
+        args: tuple[Any, ...],
+        done: Callable[[Any], None],
+        failed: Callable[[BaseException], None],
+    ) -> None:
+        try:
+            with self.lock:
+                if self.closed:
+                    return
+                self._ensure()
+                self.next_id += 1
+                self.jobs[self.next_id] = (done, failed)
+                self.conn.send((self.next_id, fn, args))
+        except (OSError, EOFError, ValueError) as exc:  # the worker cannot start or is gone
+            failed(exc)
+
+    def _read(self, conn: Any, proc: Any) -> None:
+        """Deliver results until the worker's pipe closes or the worker exits."""
+        from multiprocessing.connection import wait
+
+        while True:
+            ready = wait([conn, proc.sentinel])
+            if conn not in ready:
+                break
+            try:
+                jid, ok, value = conn.recv()
+            except (EOFError, OSError):
+                break
+            with self.lock:
+                callbacks = self.jobs.pop(jid, None)
+            if callbacks is not None:
+                callbacks[0 if ok else 1](value)
+        with self.lock:
+            lost, self.jobs = (self.jobs, {}) if self.proc is proc else ({}, self.jobs)
+            if self.proc is proc:
+                self.proc = None
+        for _, failed in lost.values():
+            failed(RuntimeError(f"the {self.name} worker stopped (exit code {proc.exitcode})"))
+
+    def close(self) -> None:
+        with self.lock:
+            self.closed = True
+            proc, self.proc, self.jobs = self.proc, None, {}
+        if proc is not None:
+            proc.terminate()
+            proc.join(5)
+            if proc.is_alive():
+                proc.kill()
+                proc.join(5)
+
+
+def _serve(conn: Any, gen: Any) -> None:
+    """A worker: run the jobs the server sends until its pipe closes."""
+    _init(gen)
+    while True:
+        try:
+            jid, fn, args = conn.recv()
+        except (EOFError, OSError, KeyboardInterrupt):
+            return
+        try:
+            reply = (jid, True, fn(*args))
+        except BaseException as exc:  # reported to the page, never a dead worker
+            reply = (jid, False, RuntimeError(f"{type(exc).__name__}: {exc}"))
+        try:
+            conn.send(reply)
+        except (OSError, EOFError):
+            return
+
+
 class Workers:
-    """The job lanes (see the module docstring); ``start`` before use, ``close`` at the
-    end (kills what still runs)."""
+    """The job lanes (see the module docstring): one worker process per lane, started
+    by its first job; :meth:`close` at the end (kills what still runs)."""
 
     def __init__(self) -> None:
-        ctx = multiprocessing.get_context("forkserver")
-        self._ctx = ctx
+        ctx = multiprocessing.get_context("spawn")
         self.gen = ctx.Array("q", SLOTS * len(LANES), lock=False)
-        self.pools: dict[str, Any] = {}
+        self.lanes = {name: _Lane(ctx, name, self.gen) for name in LANES}
         self._lock = threading.Lock()
         self._slots = 0
-
-    def start(self, lanes: tuple[str, ...] = ("check", "map")) -> None:
-        """Start the pools of ``lanes`` (each warms its kernels in the background)."""
-        with self._lock:
-            for lane in lanes:
-                if lane not in self.pools:
-                    self.pools[lane] = self._ctx.Pool(1, initializer=_init, initargs=(self.gen,))
 
     def slot(self) -> int:
         """A generation slot for a new session."""
@@ -173,17 +265,13 @@ class Workers:
         done: Callable[[Any], None],
         failed: Callable[[BaseException], None],
     ) -> None:
-        """Queue ``fn(slot', gen, *args)`` on ``lane``; ``done(result)`` or ``failed(exc)``
-        run on a pool thread (results of stale jobs are None)."""
-        self.start((lane,))
+        """Queue ``fn(slot', gen, *args)`` (a module-level function) on ``lane``;
+        ``done(result)`` or ``failed(exc)`` run on a reader thread (stale jobs give
+        None)."""
         index = LANES.index(lane) * SLOTS + slot
-        self.pools[lane].apply_async(fn, (index, gen, *args), callback=done, error_callback=failed)
+        self.lanes[lane].submit(fn, (index, gen, *args), done, failed)
 
     def close(self) -> None:
-        """Stop every pool now (running jobs are killed)."""
-        with self._lock:
-            pools, self.pools = self.pools, {}
-        for pool in pools.values():
-            pool.terminate()
-        for pool in pools.values():
-            pool.join()
+        """Stop every worker now (running jobs are killed)."""
+        for lane in self.lanes.values():
+            lane.close()

@@ -93,6 +93,7 @@ class ExplorePage:
         self.qlock = threading.Lock()  # the queue of changes
         self.queue: dict[str, tuple[Any, frozenset[str]]] = {}
         self.running = False
+        self.again = False  # recompute without changes
         self.since = math.inf  # when the oldest queued change arrived [perf_counter s]
         self.timing: tuple[float, float] = (math.nan, math.nan)
         self.closed = False
@@ -226,8 +227,7 @@ class ExplorePage:
         with self.dlock:
             self.panel.sync(self.design.spec, self.set_index)
         self.map.rebuild()
-        if self.last is not None:
-            self._show_traces(self.last)
+        self._request({}, frozenset())  # the orbit of this set
         self._on_axes()
 
     def _on_axes(self) -> None:
@@ -276,8 +276,10 @@ class ExplorePage:
     # --- the queue of changes ------------------------------------------------------------
 
     def _request(self, changes: dict[str, Any], fields: frozenset[str]) -> None:
-        """Queue ``changes`` (edit path -> file value) made through ``fields``."""
+        """Queue ``changes`` (edit path -> file value) made through ``fields``; no
+        changes: compute the design again (another set shown)."""
         with self.qlock:
+            self.again = self.again or not changes
             for path, value in changes.items():
                 self.queue.pop(path, None)
                 self.queue[path] = (value, fields)
@@ -296,9 +298,10 @@ class ExplorePage:
                 with self.qlock:
                     batch, self.queue = self.queue, {}
                     since, self.since = self.since, math.inf
-                    if not batch and self.seq > 0:
+                    if not batch and self.seq > 0 and not self.again:
                         self.running = False
                         return
+                    self.again = False
                 t0 = time.perf_counter()
                 failed = self._apply(batch)
                 done = {f for _, fs in batch.values() for f in fs} - set(failed)

@@ -106,7 +106,6 @@ def serve(
         "select": tuple(select),
         "ignore": tuple(ignore),
     }
-    evaluate(design.spec, "orbit", with_traces=True, **options)  # compiled kernels loaded now
     chosen = _free_port(DEFAULT_PORT if port is None else port, explicit=port is not None)
     workers = jobs.Workers()
     app = ExploreApp(design.text, str(path), options, workers)
@@ -121,13 +120,16 @@ def serve(
             num_procs=1,
         )
         server.start()
+        # the compiled kernels load on the compute thread while the browser loads the
+        # page (its first update queues behind); the worker processes start with the
+        # first slow stage, so they do not compete with the first page
+        app.compute.submit(evaluate, design.spec, "orbit", with_traces=True, **options)
         url = f"http://{ADDRESS}:{chosen}/"
         ready = time.perf_counter() - t0
         say(f"betv explore: {design.original.name} at {url} (ready in {ready:.1f} s; Ctrl-C stops)")
         sys.stdout.flush()
         if open_browser:
             server.io_loop.add_callback(lambda: _open(url))
-        workers.start()  # warms the worker processes while the page loads
         server.io_loop.start()
     except KeyboardInterrupt:
         pass
