@@ -110,7 +110,8 @@ def server_updates(n: int) -> dict[str, object]:
         print(
             f"server {name:12s} update median {wall['median']:6.1f} ms, p95 {wall['p95']:6.1f} ms;"
             f" CPU median {cpu['median']:5.1f} ms, p95 {cpu['p95']:5.1f} ms (wall: validation "
-            f"{statistics.median(apply_ms):.1f} ms, orbit stage {statistics.median(eval_ms):.1f} ms)"
+            f"{statistics.median(apply_ms):.1f} ms, orbit stage "
+            f"{statistics.median(eval_ms):.1f} ms)"
         )
     return out
 
