@@ -165,7 +165,7 @@ def browser(keys: int) -> dict[str, object]:
             try:
                 server.ready.wait(300)
                 t_ready = time.perf_counter() - server.t0
-                page = b.new_page(viewport={"width": 1500, "height": 1100})
+                page = b.new_page(viewport={"width": 1650, "height": 1100})
                 page.goto(server.url)
                 page.locator("[data-seq='1']").first.wait_for(timeout=300_000)
                 page.locator(".betv-map canvas").first.wait_for(timeout=300_000)

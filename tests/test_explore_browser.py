@@ -135,7 +135,7 @@ class Page:
     """A page of the explore server, with its console errors and foreign requests."""
 
     def __init__(self, browser, server: Server):
-        self.p = browser.new_page(viewport={"width": 1500, "height": 1100}, accept_downloads=True)
+        self.p = browser.new_page(viewport={"width": 1650, "height": 1100}, accept_downloads=True)
         self.errors: list[str] = []
         self.foreign: list[str] = []
         local = server.url.rstrip("/")
@@ -245,7 +245,9 @@ def test_map_click_refused_value_and_the_server_still_answers(browser, push_serv
     page = Page(browser, push_server)
     seq = page.seq_now()
     freq, width = page.text("drive-frequency"), page.text("slider-beam-width")
-    box = page.p.locator(".betv-map canvas").first.bounding_box()
+    canvas = page.p.locator(".betv-map canvas").first
+    canvas.scroll_into_view_if_needed()
+    box = canvas.bounding_box()
     assert box is not None
     page.p.mouse.click(box["x"] + 0.7 * box["width"], box["y"] + 0.3 * box["height"])
     page.wait_seq(seq + 1)

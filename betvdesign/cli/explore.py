@@ -7,6 +7,8 @@ Thin: the rule options come from ``[tool.betv]`` as for ``betv check``, the serv
 
 from __future__ import annotations
 
+import os
+import sys
 from pathlib import Path
 from typing import Annotated
 
@@ -69,3 +71,8 @@ def explore_cmd(
             ignore=tuple(cfg.ignore),
             say=typer.echo,
         )
+    # stopped cleanly (port closed, workers ended, files written whole): leave now, not
+    # after the interpreter has garbage-collected the solver's and Bokeh's heaps (seconds)
+    sys.stdout.flush()
+    sys.stderr.flush()
+    os._exit(0)

@@ -93,7 +93,7 @@ class ControlPanel:
 
     def _control(self, c: FieldControl) -> Any:
         css = ["betv-control", css_name(c.field)]
-        message = Div(text="", width=360, css_classes=["betv-message", css[1]], margin=(0, 5, 4, 5))
+        message = Div(text="", width=350, css_classes=["betv-message", css[1]], margin=(0, 5, 4, 5))
         if c.kind == "choice":
             widget = Select(
                 title=c.label,
@@ -113,10 +113,10 @@ class ControlPanel:
             value=_slider_value(c, c.value if c.value is not None else c.lo),
             step=1.0 if c.kind == "integer" else (hi - lo) / SLIDER_STEPS,
             show_value=False,
-            width=230,
+            width=215,
             css_classes=[*css, "betv-slider"],
         )
-        text = TextInput(value=c.text(c.value), width=120, css_classes=[*css, "betv-text"])
+        text = TextInput(value=c.text(c.value), width=115, css_classes=[*css, "betv-text"])
         widget.on_change("value", partial(self._on_slider, c))
         text.on_change("value", partial(self._on_text, c))
         self.controls[c.field] = Control(c, widget, text, message)

@@ -1,10 +1,13 @@
 """The page's exact-mode map of two fields: its figure, its computation and what is on it.
 
+``box`` (figure, axis choices, legend) and ``status`` (the progress line) are separate
+roots of the page, so a progress line does not lay the figure out again.
+
 The map (:mod:`betvdesign.studies.fieldmap`) is computed on the "map" worker lane a few
 rows per job and drawn as the rows arrive; it is recomputed only when a field off its
 axes changes (the key of :meth:`MapView.key`). On it: the design (a star), the changes
 ``betv fix`` finds that lie in the map's plane (diamonds, dashed from the design), and
-a hatch where the design window 0.5 ≤ ϖ < 2 is left. A click hands the clicked point
+paler colours where the design window 0.5 ≤ ϖ < 2 is left. A click hands the clicked point
 to ``on_move(changes, fields)``.
 """
 
@@ -87,13 +90,10 @@ class MapView:
         self.cells = ColumnDataSource(data={k: [] for k in MAP_COLUMNS})
         self.device = ColumnDataSource(data={"x": [], "y": []})
         self.fixes = ColumnDataSource(data={k: [] for k in _FIX_COLUMNS})
-        self.status = Div(text="", width=460, css_classes=["betv-map-status"])
+        self.status = Div(text="", width=460, height=20, css_classes=["betv-map-status"])
         self.fig = self._figure()
         self.box = column(
-            self.fig,
-            row(self.x_select, self.y_select),
-            Div(text=legend_html(), width=460),
-            self.status,
+            self.fig, row(self.x_select, self.y_select), Div(text=legend_html(), width=460)
         )
 
     def options(self) -> list[str]:
@@ -151,12 +151,15 @@ class MapView:
             source=self.cells,
             fill_color="color",
             line_color=None,
-            hatch_pattern="hatch",
-            hatch_color="#444444",
-            hatch_alpha=0.35,
-            hatch_scale=8,
+            nonselection_fill_alpha=1.0,  # a click moves the design, it selects nothing
         )
-        tips = [("mode", "@mode"), ("speed", "@speed"), ("ϖ", "@varpi"), ("x", "@xv"), ("y", "@yv")]
+        tips = [
+            ("mode", "@mode"),
+            ("speed", "@speed"),
+            ("ϖ", "@varpi @window"),
+            ("x", "@xv"),
+            ("y", "@yv"),
+        ]
         fig.add_tools(HoverTool(renderers=[quads], tooltips=tips))
         fig.segment(
             "x0",
@@ -186,6 +189,8 @@ class MapView:
             fill_color="#cf222e",
             line_color="black",
         )
+        for r in fig.renderers[1:]:
+            r.nonselection_glyph = r.glyph
         fig.on_event(Tap, self._on_tap)
         return fig
 
@@ -281,7 +286,7 @@ class MapView:
         nx = len(fmap.x.values)
         cells = map_cells(fmap)
         if len(self.cells.data["color"]) == len(cells["color"]):
-            names = ("color", "mode", "speed", "hatch", "varpi")
+            names = ("color", "mode", "speed", "window", "varpi")
             ks = [j * nx + i for j in part.rows for i in range(nx)]
             self.cells.patch({n: [(k, cells[n][k]) for k in ks] for n in names})
         else:

@@ -50,6 +50,11 @@ SETTLE_MS = 250
 #: Fix candidates listed (each with an "apply" button).
 MAX_FIXES = 4
 ALL_SETS = "all sets"
+#: Widths of the page's three columns [px] (controls, verdict and orbit, map and
+#: actions); on a narrow screen the map column goes below.
+COLUMNS = (370, 730, 470)
+#: Height of the verdict box [px] (it scrolls when a device has many rules).
+VERDICT_HEIGHT = 470
 
 __all__ = ["ALL_SETS", "MAX_FIXES", "SETTLE_MS", "ExploreApp", "ExplorePage"]
 
@@ -76,6 +81,28 @@ class ExploreApp:
     def __call__(self, doc: Any) -> None:
         """Bokeh's application hook: a new page."""
         ExplorePage(doc, self)
+
+
+#: The page: every part a root of its own (Bokeh lays out a root whole whenever one of
+#: its texts changes, so a new verdict must not lay out the controls and the map).
+PAGE = """{% extends base %}
+{% block contents %}
+<div>{{ embed(roots.header) }}</div>
+<div style="display:flex;flex-wrap:wrap;align-items:flex-start;column-gap:8px">
+  <div style="width:{{ widths[0] }}px">{{ embed(roots.controls) }}</div>
+  <div style="width:{{ widths[1] }}px">{{ embed(roots.verdict) }}{{ embed(roots.status) }}
+    {{ embed(roots.plots) }}</div>
+  <div style="width:{{ widths[2] }}px">{{ embed(roots.map) }}{{ embed(roots.map_status) }}
+    {{ embed(roots.actions) }}</div>
+</div>
+{% endblock %}
+"""
+
+
+def _template() -> Any:
+    from jinja2 import Template
+
+    return Template(PAGE)
 
 
 def _spec_message(exc: SpecError) -> str:
@@ -132,10 +159,21 @@ class ExplorePage:
             f"<span style='color:#57606a'>({Path(app.filename).name})</span>",
             width=900,
         )
-        left = column(self.set_select, self.panel.box, width=390)
-        middle = column(self.verdict, self.status, row(self.phase_fig, self.disp_fig), width=760)
-        right = column(self.map.box, self.fix_box, self.save_box, self.report_box, width=470)
-        doc.add_root(column(header, row(left, middle, right)))
+        roots = {
+            "header": header,
+            "controls": column(self.set_select, self.panel.box, width=COLUMNS[0]),
+            "verdict": self.verdict,
+            "status": self.status,
+            "plots": row(self.phase_fig, self.disp_fig),
+            "map": self.map.box,
+            "map_status": self.map.status,
+            "actions": column(self.fix_box, self.save_box, self.report_box, width=COLUMNS[2]),
+        }
+        for name, model in roots.items():
+            model.name = name
+            doc.add_root(model)
+        doc.template = _template()
+        doc.template_variables["widths"] = COLUMNS
         doc.on_session_destroyed(self._destroyed)
         self._request({}, frozenset())
 
@@ -155,11 +193,17 @@ class ExplorePage:
     # --- widgets -----------------------------------------------------------------------
 
     def _build_views(self) -> None:
-        self.verdict = Div(text="<i>computing the exact orbit…</i>", width=740)
-        self.status = Div(text="", width=740, css_classes=["betv-status"])
+        # fixed sizes: a new verdict redraws this box, not the page's layout
+        self.verdict = Div(
+            text="<i>computing the exact orbit…</i>",
+            width=COLUMNS[1] - 10,
+            height=VERDICT_HEIGHT,
+            styles={"overflow-y": "auto"},
+        )
+        self.status = Div(text="", width=COLUMNS[1] - 10, height=20, css_classes=["betv-status"])
         self.phase_src = ColumnDataSource(data={"x": [], "y": []})
         self.disp_src = ColumnDataSource(data={"x": [], "y": []})
-        common = {"width": 370, "height": 300, "toolbar_location": None}
+        common = {"width": COLUMNS[1] // 2 - 5, "height": 300, "toolbar_location": None}
         self.phase_fig = figure(
             title="Head gap and its rate (one period)",
             x_axis_label="head gap [µm]",

@@ -196,9 +196,15 @@ MAP_COLUMNS = (
     "speed",
     "xv",
     "yv",
-    "hatch",
+    "window",
     "varpi",
 )
+
+
+def _pale(colour: str) -> str:
+    """``colour`` (#rrggbb) mixed half and half with white."""
+    rgb = [int(colour[k : k + 2], 16) for k in (1, 3, 5)]
+    return "#" + "".join(f"{(c + 255) // 2:02x}" for c in rgb)
 
 
 def map_cells(fmap: FieldMap) -> dict[str, list[Any]]:
@@ -212,13 +218,14 @@ def map_cells(fmap: FieldMap) -> dict[str, list[Any]]:
             data["bottom"].append(float(ye[j]))
             data["top"].append(float(ye[j + 1]))
             m = str(fmap.mode[j, i])
-            data["color"].append(MODE_COLORS.get(m, "#fafafa"))
+            w = fmap.varpi[j, i]
+            outside = math.isfinite(w) and not in_window(float(w))
+            colour = MODE_COLORS.get(m, "#fafafa")
+            data["color"].append(_pale(colour) if outside else colour)
             data["mode"].append(m or "computing")
             v = fmap.speed_m_s[j, i]
             data["speed"].append("" if not math.isfinite(v) else format_si(abs(v), "m/s"))
-            w = fmap.varpi[j, i]
-            outside = math.isfinite(w) and not in_window(float(w))
-            data["hatch"].append("/" if outside else " ")
+            data["window"].append("(outside the design window)" if outside else "")
             data["varpi"].append("" if not math.isfinite(w) else f"{w:.3g}")
             data["xv"].append(f"{fmap.x.values[i]:.4g} {fmap.x.unit}".strip())
             data["yv"].append(f"{fmap.y.values[j]:.4g} {fmap.y.unit}".strip())
@@ -233,5 +240,5 @@ def legend_html() -> str:
         for m in MAP_MODES
     ]
     lo, hi = VARPI_WINDOW
-    items.append(f" · hatched: outside the design window {lo:g} ≤ ϖ < {hi:g}")
+    items.append(f" · pale: outside the design window {lo:g} ≤ ϖ < {hi:g}")
     return f'<div style="font-size:12px">{"".join(items)}</div>'
