@@ -550,7 +550,10 @@ class ExplorePage:
 
     def _job_failed(self, what: str, exc: BaseException) -> None:
         self.pending.pop(what, None)
-        self._status()
+        if what == "full":
+            self.pending.pop("settling", None)
+        if self.last is not None:
+            self._show_verdict(self.seq, self.last)
         msg = status_html(f"{what} failed: {type(exc).__name__}: {exc}", busy=False)
         if what == "report":
             self.report_button.disabled = False
@@ -581,7 +584,8 @@ class ExplorePage:
         if result is None or seq != self.seq:
             return
         self.pending.pop("fix", None)
-        self._status()
+        if self.last is not None:
+            self._show_verdict(seq, self.last)
         self.fixes = [c for c in result.get("candidates", []) if c.get("passed")][:MAX_FIXES]
         self.fix_message = str(result.get("message", ""))
         self._show_fixes()
