@@ -312,6 +312,31 @@ def test_failing_device_fix_is_listed_drawn_and_applied(browser, shin_server) ->
     page.close()
 
 
+def test_one_set_of_a_bidirectional_device(browser, shin_server) -> None:
+    """With one set selected, a change goes to that set only (the saved file differs
+    in that set's line)."""
+    page = Page(browser, shin_server)
+    seq = page.seq_now()
+    page.p.locator(".betv-set-select select").select_option("left")
+    page.wait_seq(seq + 1)  # the orbit of the set shown
+    friction = page.p.locator(".betv-field-contact-friction.betv-text input")
+    friction.fill("0.3")
+    friction.press("Enter")
+    page.wait_seq(seq + 2)
+    page.p.locator(".betv-save-name input").fill("left-only.yaml")
+    page.p.locator(".betv-save-name input").press("Enter")
+    page.p.locator(".betv-save button").click()
+    page.p.locator(".betv-saved").first.wait_for(state="attached", timeout=WAIT_MS)
+    original = (shin_server.workdir / "shin2004.yaml").read_text().splitlines()
+    saved = (shin_server.workdir / "left-only.yaml").read_text().splitlines()
+    changed = [i for i, (a, b) in enumerate(zip(original, saved, strict=True)) if a != b]
+    assert len(changed) == 1
+    line = changed[0]
+    assert saved[line].strip() == "friction: 0.3"
+    assert original.index("  - name: left") < line
+    page.close()
+
+
 def test_ctrl_c_stops_cleanly(push_server: Server) -> None:
     assert push_server.stop() == 0
     err = "".join(push_server.err)

@@ -140,6 +140,7 @@ class ExplorePage:
             options=([ALL_SETS] if several else []) + self.set_names,
             value=ALL_SETS if several else self.set_names[0],
             width=300,
+            css_classes=["betv-set-select"],
         )
         self.set_select.on_change("value", self._on_set)
         self.panel = ControlPanel(self._request, lambda: self.set_name)
