@@ -60,11 +60,18 @@ def _slider_value(c: FieldControl, x: Any) -> float:
 class ControlPanel:
     """The controls of one actuator set (rebuilt by :meth:`build` when the set changes).
 
-    ``set_name()`` is the set the edits go to (None: every set).
+    ``set_name()`` is the set the edits go to (None: every set); ``guard(fn)`` wraps
+    every widget callback (the page shows an error instead of losing it).
     """
 
-    def __init__(self, on_change: OnChange, set_name: Callable[[], str | None]) -> None:
+    def __init__(
+        self,
+        on_change: OnChange,
+        set_name: Callable[[], str | None],
+        guard: Callable[[Callable[..., None]], Callable[..., None]] = lambda fn: fn,
+    ) -> None:
         self.on_change = on_change
+        self.guard = guard
         self.set_name = set_name
         self.controls: dict[str, Control] = {}
         self.box = column()
@@ -102,7 +109,7 @@ class ControlPanel:
                 width=200,
                 css_classes=css,
             )
-            widget.on_change("value", partial(self._on_choice, c))
+            widget.on_change("value", self.guard(partial(self._on_choice, c)))
             self.controls[c.field] = Control(c, widget, None, message)
             return column(widget, message)
         lo, hi = (math.log10(c.lo), math.log10(c.hi)) if c.log else (c.lo, c.hi)
@@ -117,8 +124,8 @@ class ControlPanel:
             css_classes=[*css, "betv-slider"],
         )
         text = TextInput(value=c.text(c.value), width=115, css_classes=[*css, "betv-text"])
-        widget.on_change("value", partial(self._on_slider, c))
-        text.on_change("value", partial(self._on_text, c))
+        widget.on_change("value", self.guard(partial(self._on_slider, c)))
+        text.on_change("value", self.guard(partial(self._on_text, c)))
         self.controls[c.field] = Control(c, widget, text, message)
         return column(row(widget, text), message)
 

@@ -65,7 +65,7 @@ def _fix_value(axis: FieldControl, values: dict[str, Any], current: float) -> fl
 class MapView:
     """The map panel (see the module docstring); ``controls()`` gives the current
     :class:`~betvdesign.explore.fields.FieldControl` by field, ``set_name()`` the set
-    edits go to."""
+    edits go to; ``guard(fn)`` wraps every widget callback."""
 
     def __init__(
         self,
@@ -73,7 +73,9 @@ class MapView:
         set_name: Callable[[], str | None],
         on_move: Callable[[dict[str, Any], frozenset[str]], None],
         on_axes: Callable[[], None],
+        guard: Callable[[Callable[..., None]], Callable[..., None]] = lambda fn: fn,
     ) -> None:
+        self.guard = guard
         self.controls = controls
         self.set_name = set_name
         self.on_move = on_move
@@ -85,8 +87,8 @@ class MapView:
         y = next((f for f in MAP_Y if f in opts and f != x), next(f for f in opts if f != x))
         self.x_select = Select(title="map x", options=opts, value=x, width=220)
         self.y_select = Select(title="map y", options=opts, value=y, width=220)
-        self.x_select.on_change("value", partial(self._on_axis, self.x_select))
-        self.y_select.on_change("value", partial(self._on_axis, self.y_select))
+        self.x_select.on_change("value", guard(partial(self._on_axis, self.x_select)))
+        self.y_select.on_change("value", guard(partial(self._on_axis, self.y_select)))
         self.cells = ColumnDataSource(data={k: [] for k in MAP_COLUMNS})
         self.device = ColumnDataSource(data={"x": [], "y": []})
         self.fixes = ColumnDataSource(data={k: [] for k in _FIX_COLUMNS})
@@ -191,7 +193,7 @@ class MapView:
         )
         for r in fig.renderers[1:]:
             r.nonselection_glyph = r.glyph
-        fig.on_event(Tap, self._on_tap)
+        fig.on_event(Tap, self.guard(self._on_tap))
         return fig
 
     def _on_tap(self, event: Any) -> None:

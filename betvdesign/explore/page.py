@@ -22,6 +22,7 @@ The controls are :mod:`~betvdesign.explore.controls`, the map
 from __future__ import annotations
 
 import contextlib
+import functools
 import math
 import secrets
 import threading
@@ -142,8 +143,8 @@ class ExplorePage:
             width=300,
             css_classes=["betv-set-select"],
         )
-        self.set_select.on_change("value", self._on_set)
-        self.panel = ControlPanel(self._request, lambda: self.set_name)
+        self.set_select.on_change("value", self._safe(self._on_set))
+        self.panel = ControlPanel(self._request, lambda: self.set_name, self._safe)
         self.panel.build(self.design.original, self.set_index)
         self.panel.sync(self.design.spec, self.set_index)
         self.map = MapView(
@@ -151,6 +152,7 @@ class ExplorePage:
             lambda: self.set_name,
             self._request,
             self._on_axes,
+            self._safe,
         )
         self._build_views()
         self._build_actions()
@@ -230,7 +232,7 @@ class ExplorePage:
                 width=140,
                 css_classes=["betv-apply-fix", f"betv-apply-fix-{k + 1}"],
             )
-            b.on_click(partial(self._on_apply_fix, k))
+            b.on_click(self._safe(partial(self._on_apply_fix, k)))
             self.fix_buttons.append(b)
         self.fix_box = column(self.fix_div, row(*self.fix_buttons[:2]), row(*self.fix_buttons[2:]))
         original = Path(self.app.filename)
@@ -253,8 +255,8 @@ class ExplorePage:
             css_classes=["betv-overwrite"],
         )
         self.save_msg = Div(text="", width=460, css_classes=["betv-save-message"])
-        self.save_button.on_click(lambda: self._on_save(False))
-        self.overwrite_button.on_click(lambda: self._on_save(True))
+        self.save_button.on_click(self._safe(partial(self._on_save, False)))
+        self.overwrite_button.on_click(self._safe(partial(self._on_save, True)))
         self.save_box = column(
             row(self.save_name, self.save_button), self.overwrite_button, self.save_msg
         )
@@ -262,7 +264,7 @@ class ExplorePage:
             label="Build report (HTML)", width=180, css_classes=["betv-report"]
         )
         self.report_msg = Div(text="", width=460, css_classes=["betv-report-link"])
-        self.report_button.on_click(self._on_report)
+        self.report_button.on_click(self._safe(self._on_report))
         self.report_box = column(self.report_button, self.report_msg)
 
     # --- user actions (on the server's loop) ------------------------------------------------
@@ -292,7 +294,7 @@ class ExplorePage:
         try:
             with self.dlock:
                 res = self.design.save(name, overwrite=overwrite)
-        except BetvError as exc:
+        except (BetvError, OSError, ValueError) as exc:
             self.save_msg.text = status_html(f"not saved: {exc}", busy=False)
             return
         self.overwrite_button.visible = not res.written and res.path.exists()
@@ -307,7 +309,7 @@ class ExplorePage:
             except BetvError as exc:
                 self.report_msg.text = status_html(f"no report: {exc}", busy=False)
                 return
-        target = Path(self.app.filename).with_name(self.save_name.value.strip() or "design.yaml")
+        target = Path(self.app.filename).parent / (self.save_name.value.strip() or "design.yaml")
         self.report_msg.text = status_html("building the report (about 10 s)…", busy=True)
         self.report_button.disabled = True
         self._submit(
@@ -392,6 +394,16 @@ class ExplorePage:
                 except SpecError as exc:
                     errors.update(dict.fromkeys(fields, _spec_message(exc)))
             return errors
+
+    def _safe(self, fn: Callable[..., None]) -> Callable[..., None]:
+        """``fn`` as a widget callback that never loses an error: it shows in the page
+        (``fn``'s signature kept: Bokeh checks it)."""
+
+        @functools.wraps(fn)
+        def call(*args: Any) -> None:
+            self._guard(fn, *args)
+
+        return call
 
     def _later(self, fn: Callable[..., None], *args: Any) -> Callable[..., None]:
         """A callable that runs ``fn(*args, *more)`` on the page's loop (from any thread)."""
