@@ -203,10 +203,17 @@ def browser(keys: int) -> dict[str, object]:
     return out
 
 
+def _metrics(cdp) -> dict[str, float]:
+    return {m["name"]: m["value"] for m in cdp.send("Performance.getMetrics")["metrics"]}
+
+
 def _keys(page, keys: int) -> dict[str, object]:
+    cdp = page.context.new_cdp_session(page)
+    cdp.send("Performance.enable")
+    before = _metrics(cdp)
     seq = int(page.locator(".betv-verdict").first.get_attribute("data-seq"))
     page.locator(".betv-field-drive-frequency.betv-slider .noUi-handle").first.focus()
-    browser_ms, server_ms, compute_ms = [], [], []
+    browser_ms, server_ms, compute_ms, cpu_ms = [], [], [], []
     for k in range(keys):
         t0 = time.perf_counter()
         page.keyboard.press("ArrowRight" if (k // 10) % 2 == 0 else "ArrowLeft")
@@ -216,14 +223,27 @@ def _keys(page, keys: int) -> dict[str, object]:
         browser_ms.append(1e3 * (time.perf_counter() - t0))
         server_ms.append(float(el.get_attribute("data-server-ms")))
         compute_ms.append(float(el.get_attribute("data-compute-ms")))
+        cpu_ms.append(float(el.get_attribute("data-compute-cpu-ms")))
         time.sleep(0.05)
-    res = {
+    after = _metrics(cdp)
+    res: dict[str, object] = {
         "key_to_redraw_ms": _stats(browser_ms),
         "server_change_to_redraw_ms": _stats(server_ms),
         "server_compute_ms": _stats(compute_ms),
+        "server_compute_cpu_ms": _stats(cpu_ms),
     }
-    for name, st in res.items():
+    for name, st in list(res.items()):
         print(f"browser {name:28s} median {st['median']:7.1f} ms, p95 {st['p95']:7.1f} ms")
+    # the page's main thread, per change (CPU work in the renderer, not waiting)
+    per = {
+        k: 1e3 * (after[k] - before[k]) / keys
+        for k in ("TaskDuration", "ScriptDuration", "LayoutDuration", "RecalcStyleDuration")
+    }
+    res["renderer_main_thread_ms_per_change"] = per
+    print(
+        "browser renderer main thread per change: "
+        + ", ".join(f"{k.removesuffix('Duration').lower()} {v:.1f} ms" for k, v in per.items())
+    )
     return res
 
 
