@@ -16,6 +16,7 @@ import socket
 import sys
 import time
 from collections.abc import Callable
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 from typing import Any
 
@@ -93,22 +94,28 @@ def serve(
     from betvdesign.explore.design import Design
 
     design = Design.from_file(path)  # bad input stops here, before any server
-    from bokeh.server.server import Server
-
-    from betvdesign.explore import jobs
-    from betvdesign.explore.compute import evaluate
-    from betvdesign.explore.page import ExploreApp
-
-    for name in ("tornado.access", "bokeh", "tornado.application"):
-        logging.getLogger(name).setLevel(logging.CRITICAL)
     options = {
         "target_speed_m_s": target_speed_m_s,
         "select": tuple(select),
         "ignore": tuple(ignore),
     }
+    # the compiled kernels load on the compute thread while Bokeh is imported and the
+    # browser loads the page (the page's first update queues behind); the worker
+    # processes start with the first slow stage, so they do not compete with it
+    from betvdesign.explore.compute import evaluate
+
+    compute = ThreadPoolExecutor(1, thread_name_prefix="betv-explore")
+    compute.submit(evaluate, design.spec, "orbit", with_traces=True, **options)
+    from bokeh.server.server import Server
+
+    from betvdesign.explore import jobs
+    from betvdesign.explore.page import ExploreApp
+
+    for name in ("tornado.access", "bokeh", "tornado.application"):
+        logging.getLogger(name).setLevel(logging.CRITICAL)
     chosen = _free_port(DEFAULT_PORT if port is None else port, explicit=port is not None)
     workers = jobs.Workers()
-    app = ExploreApp(design.text, str(path), options, workers)
+    app = ExploreApp(design.text, str(path), options, workers, compute=compute)
     server = None
     try:
         server = Server(
@@ -120,10 +127,6 @@ def serve(
             num_procs=1,
         )
         server.start()
-        # the compiled kernels load on the compute thread while the browser loads the
-        # page (its first update queues behind); the worker processes start with the
-        # first slow stage, so they do not compete with the first page
-        app.compute.submit(evaluate, design.spec, "orbit", with_traces=True, **options)
         url = f"http://{ADDRESS}:{chosen}/"
         ready = time.perf_counter() - t0
         say(f"betv explore: {design.original.name} at {url} (ready in {ready:.1f} s; Ctrl-C stops)")
