@@ -15,6 +15,7 @@ not give yet added beside its siblings; the text is read back by
 
 from __future__ import annotations
 
+import difflib
 from collections.abc import Iterable
 from dataclasses import dataclass
 from pathlib import Path
@@ -172,8 +173,8 @@ class Design:
             return SaveResult(p, False, f"{p} exists; overwrite it, or give another name")
         text = self.yaml_text()
         write_atomic(p, text)
-        n = sum(a != b for a, b in zip(self.text.splitlines(), text.splitlines(), strict=False))
-        n += abs(len(self.text.splitlines()) - len(text.splitlines()))
+        diff = difflib.unified_diff(self.text.splitlines(), text.splitlines(), n=0, lineterm="")
+        n = sum(1 for d in diff if d.startswith("+") and not d.startswith("+++"))
         return SaveResult(p, True, f"wrote {p} ({n} changed line{'s' * (n != 1)})")
 
 
