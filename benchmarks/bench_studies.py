@@ -26,7 +26,8 @@ import numpy as np
 
 from betvdesign.studies.engine.executors import ProcessExecutor, SerialExecutor
 from betvdesign.studies.engine.runner import run_study
-from betvdesign.studies.pushpull import periodic_point, pushpull_study, summarise
+from betvdesign.studies.points import periodic_point
+from betvdesign.studies.pushpull import pushpull_study, summarise
 from betvdesign.studies.regime import run_regime
 from betvdesign.studies.tolerance import parse_tolerance, run_tolerance
 

@@ -116,7 +116,7 @@ def one(design: tuple[float, float, float, float, str]) -> dict:
         "brute_mode": bf,
         "brute_delta_s": bf_ds,
         "brute_cycles": cycles,
-        "lambda_mode": p.mode_predicted,
+        "lambda_mode": p.lambda_mode,
         "check_s": t_check,
     }
 

@@ -54,9 +54,9 @@ def ladder(out_path: Path, reuse_map: bool) -> None:
 
     previous = None
     if reuse_map:
-        from betvdesign.checks.fidelity import _measured
+        from betvdesign.checks.fidelity import measured
 
-        previous = {k: v for k, v in _measured()["lambda"].items() if k != "held_out"}
+        previous = {k: v for k, v in measured()["lambda"].items() if k != "held_out"}
     m = measure(reuse_map=previous)
     write_measured(m, out_path)
     lam = m["lambda"]

@@ -10,13 +10,17 @@ from __future__ import annotations
 import os
 import warnings
 from collections.abc import Sequence
-from typing import Any
+from typing import TYPE_CHECKING
 
 from betvdesign.checks.view import DeviceView, RuleFilter
 
+if TYPE_CHECKING:
+    from betvdesign.checks.adequacy_data import DeviceAdequacy
+    from betvdesign.spec.models import DeviceSpec
+
 
 def check(
-    device: Any,
+    device: str | os.PathLike[str] | DeviceSpec,
     *,
     select: Sequence[str] = (),
     ignore: Sequence[str] = (),
@@ -40,6 +44,23 @@ def check(
         ``repr`` is the compact block, ``_repr_html_`` a notebook table, ``.out`` the
         JSON (:class:`~betvdesign.checks.view.DeviceOut`), ``.result`` the full
         :class:`~betvdesign.checks.checker.CheckResult`.
+
+    Raises
+    ------
+    SpecError
+        The device file or spec is invalid (the message names file, line and field).
+    UsageError
+        A ``target_speed`` that is not a speed.
+
+    Notes
+    -----
+    The rules judge the model of Shin et al. [1]_: the push/pull fit
+    λ = (κ/ϖ²)(1/(ακ) − (1/β − β)/(22(κ+1))) [-], the exact periodic orbit's Δs [-] and
+    the speed Δs·u·cosθ·f_act [m/s].
+
+    References
+    ----------
+    .. [1] K. Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773
     """
     from betvdesign.checks.checker import check_derivation
     from betvdesign.nondim.device import derive, derive_file
@@ -58,12 +79,12 @@ def check(
     return DeviceView(res, flt)
 
 
-def adequacy(device: Any) -> Any:
+def adequacy(device: str | os.PathLike[str] | DeviceSpec) -> DeviceAdequacy:
     """Is the paper's idealised model (undamped, plastic impacts) adequate for a device?
 
-    Compares the exact periodic orbit of every actuator set without and with head damping
-    and restitution (the device's, or Q = 30 and e = 0.1 when it gives none) and scans Q
-    over 1–1000 and e over 0–0.9 for a change of mode
+    Compares the exact periodic orbit of the model of Shin et al. [1]_ for every actuator
+    set without and with head damping and restitution (the device's, or Q = 30 and e = 0.1
+    when it gives none) and scans Q over 1–1000 and e over 0–0.9 for a change of mode
     (:mod:`betvdesign.checks.adequacy`).
 
     Parameters
@@ -77,6 +98,15 @@ def adequacy(device: Any) -> Any:
         ``status`` ("adequate", "speed-differs", "mode-flips", "ideal-fails", "failed"),
         ``adequate``, ``message``, ``text()``; per set (``sets``) the idealised and the
         richer answer (mode, Δs [-], speed [m/s]) and the Q / e at which the mode flips.
+
+    Raises
+    ------
+    SpecError
+        The device file or spec is invalid.
+
+    References
+    ----------
+    .. [1] K. Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773
     """
     from betvdesign.checks.adequacy import adequacy as _adequacy
 

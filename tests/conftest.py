@@ -12,11 +12,13 @@ import importlib
 import os
 import shutil
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pytest
 from hypothesis import settings
 
+from betvdesign.model.domain import mode_of
 from betvdesign.model.params import ModelParams
 
 # CI gates on a reproducible suite: the same hypothesis examples on every run
@@ -46,6 +48,37 @@ def _window_sets(n: int = 20, seed: int = 20041) -> list[ModelParams]:
 
 #: 20 designs spread over the window (tests of the exact solver against other methods).
 WINDOW_SETS = _window_sets()
+
+
+def orbit_stand_in(
+    delta_s: float | None, *, status: str = "success", message: str = "stand-in", **fields
+) -> Any:
+    """A :class:`betvdesign.dynamics.PeriodicResult` as a stand-in solver returns it
+    (nothing is solved): Δs per cycle [-] and status as given, period 1, the rest neutral
+    or ``fields``."""
+    from betvdesign.dynamics.result import PeriodicResult
+
+    ok = status == "success"
+    values = {
+        "params": ModelParams(1.0, 1.0, 1.0, 1.0),
+        "status": status,
+        "message": message,
+        "delta_s": delta_s,
+        "mode": mode_of(delta_s) if ok else None,
+        "period_cycles": 1 if ok else None,
+        "residual": None,
+        "floquet": None,
+        "stable": None,
+        "state": None,
+        "impacts_per_cycle": 1.0,
+        "contact_fraction": 0.5,
+        "n_cycles": 0,
+        "n_newton": 0,
+        "n_events": 0,
+        "n_root_evals": 0,
+        "elapsed_s": 0.0,
+    }
+    return PeriodicResult(**(values | fields))
 
 
 def device_files() -> list[Path]:

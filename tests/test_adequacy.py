@@ -20,16 +20,17 @@ import pytest
 from conftest import DEVICES
 
 import betvdesign
-from betvdesign.checks.adequacy import adequacy, assess_set
-from betvdesign.checks.adequacy_data import (
+from betvdesign.checks.adequacy import (
     DEFAULT_QUALITY,
     DEFAULT_RESTITUTION,
     LIKELY_QUALITY,
     LIKELY_RESTITUTION,
     QUALITY_RANGE,
     RESTITUTION_RANGE,
+    adequacy,
+    assess_set,
 )
-from betvdesign.checks.rules_adequacy import adequacy_rule
+from betvdesign.checks.rules import adequacy_rule
 from betvdesign.dynamics import periodic_orbit
 from betvdesign.errors import ParameterError, SpecError
 from betvdesign.model.damping import zeta_from_quality

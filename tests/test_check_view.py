@@ -9,6 +9,7 @@ import math
 import re
 from pathlib import Path
 
+import numpy as np
 import pytest
 from typer.testing import CliRunner
 
@@ -133,7 +134,15 @@ def test_select_and_ignore_decide_what_counts():
 
 def test_pyproject_defaults_and_command_line_precedence(tmp_path, monkeypatch):
     """shin2004 moves at 348 µm/s (from rest over its 40 µm travel): a configured target of
-    0.3 mm/s passes, 1 mm/s fails; the command line replaces the configured values."""
+    0.3 mm/s passes, 1 mm/s fails; the command line replaces the configured values.
+
+    The speed the target is held against is recounted from a plain transient from rest
+    of the model worked out by hand (ϖ = 2·500 Hz/2.94 kHz, α = 0.1, β = m/(ρ·L·w·t) with
+    m = 0.036 µg, κ = 0.4·tan 45°; ℓ = 0.11 µm·cos 45°, f_act = 1 kHz): the mean over the
+    cycles until |s|·ℓ first reaches 40 µm."""
+    from betvdesign.dynamics import simulate
+    from betvdesign.model.params import ModelParams
+
     cfg = tmp_path / "pyproject.toml"
     cfg.write_text(
         '[project]\nname = "x"\n[tool.betv]\nignore = ["frequency-window"]\n'
@@ -145,7 +154,15 @@ def test_pyproject_defaults_and_command_line_precedence(tmp_path, monkeypatch):
     r = run("check", SHIN)
     assert r.exit_code == 0 and "ignored: frequency-window" in r.stdout, r.stdout
     d = json.loads(run("check", "--json", SHIN).stdout)["devices"][0]
-    assert any(x["id"] == "target-speed" and x["passed"] for x in d["sets"][0]["rules"])
+    target = next(x for x in d["sets"][0]["rules"] if x["id"] == "target-speed")
+    assert target["passed"]
+    p = ModelParams(1000 / 2940, 0.1, 0.036e-9 / (2330 * 170e-6 * 5e-6 * 2e-6), 0.4)
+    ell = 0.11e-6 * math.cos(math.pi / 4)
+    s = np.abs(simulate(p, 3000, log_events=False).section[:, 4]) * ell
+    n = int(np.argmax(s >= 40e-6))
+    assert n > 0
+    assert target["value"] == pytest.approx(s[n] / n * 1000.0, rel=1e-9)
+    assert target["value"] == pytest.approx(348e-6, abs=0.5e-6)
     r = run("check", "--target-speed", "1 mm/s", SHIN)
     assert r.exit_code == 1 and "target-speed" in r.stdout
     r = run("check", "--ignore", "published-fit", SHIN)  # the window counts again

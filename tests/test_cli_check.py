@@ -5,6 +5,7 @@ import json
 from pathlib import Path
 
 import pytest
+from conftest import orbit_stand_in
 from typer.testing import CliRunner
 
 from betvdesign.checks import checker
@@ -21,16 +22,12 @@ OWN = ["push_demo", "pull_demo", "bidir_demo", "rolloff_demo", "damped_demo"]
 def no_solver(monkeypatch):
     """A stand-in solver (Δs = ±1 per cycle, with the sign λ predicts) instead of the exact
     one: the CLI's presentation is tested apart from the dynamics."""
-    from types import SimpleNamespace
 
     def orbit(p):
-        ds = 1.0 if p.lam < 1 else -1.0
-        return SimpleNamespace(
-            status="success", success=True, message="stand-in", delta_s=ds, period_cycles=1
-        )
+        return orbit_stand_in(1.0 if p.lam < 1 else -1.0)
 
     monkeypatch.setattr(checker, "load_solver", lambda: orbit)
-    monkeypatch.setattr("betvdesign.checks.checker._settling", lambda p, po, travel: None)
+    monkeypatch.setattr("betvdesign.checks.checker._settling", lambda p, po, travel, horizon: None)
 
 
 def run(*args):
@@ -50,13 +47,13 @@ def test_shin2004_fails_the_window_and_shows_fit_mismatch(no_solver):
 
 def _device(stdout: str) -> dict:
     d = json.loads(stdout)
-    assert (d["schema"], d["version"]) == ("betv-check", 1)
+    assert (d["schema"], d["version"]) == ("betv-check", 2)
     assert len(d["devices"]) == 1
     return d["devices"][0]
 
 
 def test_shin2004_json_contract(no_solver):
-    """Version 1: SI floats under unit-named keys; hand-computed shin2004 parameters."""
+    """Version 2: SI floats under unit-named keys; hand-computed shin2004 parameters."""
     r = run("check", SHIN, "--json")
     assert r.exit_code == 1
     d = _device(r.stdout)
@@ -99,7 +96,7 @@ def test_json_conforms_to_its_published_schema(no_solver):
     """Every device's --json output validates against `betv schema check` (a generic
     draft-2020-12 walk of the schema, written below, not pydantic itself)."""
     schema = json.loads(run("schema", "check").stdout)
-    assert schema["properties"]["version"]["const"] == 1
+    assert schema["properties"]["version"]["const"] == 2
     r = run("check", "--json", *(str(p) for p in sorted(DEVICES.glob("*.yaml"))))
     doc = json.loads(r.stdout)
     assert [x["device"] for x in doc["devices"]] == [
@@ -243,20 +240,10 @@ def test_check_reports_orbit_speed_and_json(monkeypatch):
     """With a stand-in solver returning Δs = 0.25, the mode is the orbit's and the speed
     is Δs·u·cosθ·f_act (push_demo: u = 0.14 um, θ = 20.56°, f_act = 6 kHz)."""
     import math
-    from types import SimpleNamespace
 
-    orbit = SimpleNamespace(
-        status="success",
-        success=True,
-        message="ok",
-        delta_s=0.25,
-        period_cycles=1,
-        residual=1e-12,
-        n_cycles=300,
-        elapsed_s=0.01,
-    )
+    orbit = orbit_stand_in(0.25, message="ok", residual=1e-12, n_cycles=300, elapsed_s=0.01)
     monkeypatch.setattr(checker, "load_solver", lambda: lambda p: orbit)
-    monkeypatch.setattr("betvdesign.checks.checker._settling", lambda p, po, travel: None)
+    monkeypatch.setattr("betvdesign.checks.checker._settling", lambda p, po, travel, horizon: None)
     path = str(DEVICES / "push_demo.yaml")
     v = 0.25 * 0.14e-6 * math.cos(math.radians(20.56)) * 6000.0  # [m/s] = 196.6 µm/s
     r = run("check", path)
@@ -294,7 +281,7 @@ def test_shin2004_orbit_and_speed_from_the_exact_solver():
     orbit = periodic_orbit(p)
     assert orbit.success
     assert s["simulation"]["delta_s"] == pytest.approx(orbit.delta_s, rel=1e-12)
-    assert d["mode_predicted"] == ("push" if orbit.delta_s > 0 else "pull")
+    assert d["mode"] == ("push" if orbit.delta_s > 0 else "pull")
     length = 0.11e-6 * math.cos(math.pi / 4)
     n = s["settling"]["cycles_to_cross"]
     tr = simulate(p, n, log_events=False)  # second method: the transient from rest

@@ -218,7 +218,21 @@ def test_lambda_and_regime_commands():
     assert [iv["label"] for iv in data["overview"]] == ["period-1", "impulsive"]
 
 
-def test_tolerance_periodic_rung_cli():
+def test_tolerance_periodic_rung_cli(tmp_path):
+    """`betv tolerance` on push_demo with f_h and f_drive spread: every row's speed is
+    Δs·u·cosθ·f_act worked out by hand from the sampled values (f_act = 2·f_drive, AC;
+    ϖ = f_act/f_v, α = (f_v/f_h)², f_v = 5 kHz; u = 0.14 µm, θ = 20.56°; Δs from the
+    periodic orbit of those parameters), and the summary's percentiles and push share
+    are those of the rows (numpy's percentile, a count)."""
+    import csv
+    import math
+
+    import numpy as np
+
+    from betvdesign.dynamics import periodic_orbit
+    from betvdesign.model.params import ModelParams
+
+    out = tmp_path / "tol.csv"
     r = _run(
         [
             "tolerance",
@@ -234,12 +248,32 @@ def test_tolerance_periodic_rung_cli():
             "-x",
             "serial",
             "--json",
+            "-o",
+            str(out),
         ]
     )
     assert r.exit_code == 0, r.stderr
     s = json.loads(r.stdout)["sets"]["forward"]
-    assert s["mode_from"] == "periodic orbit" and s["p_push"] + s["p_pull"] <= 1.0
-    assert s["speed_um_s_percentiles"] is not None
+    assert s["mode_from"] == "periodic orbit"
+    with out.open(newline="", encoding="utf-8") as fh:
+        rows = list(csv.DictReader(fh))
+    assert len(rows) == 3
+    theta = math.radians(20.56)
+    beta = (math.pi / 4 * 36**2 * 2.5) / (200 * 10 * 2.5)
+    speeds = []
+    for row in rows:
+        f_h = float(row["in:actuator.horizontal_resonance"])  # kHz, as the file gives it
+        f_act = 2 * float(row["in:drive.frequency"])  # kHz
+        p = ModelParams(f_act / 5, (5 / f_h) ** 2, beta, 0.4 * math.tan(theta))
+        po = periodic_orbit(p)
+        assert po.success, po.message
+        speed_um_s = po.delta_s * 0.14 * math.cos(theta) * f_act * 1e3
+        assert float(row["speed_um_s"]) == pytest.approx(speed_um_s, rel=1e-9)
+        speeds.append(speed_um_s)
+    assert s["p_push"] == sum(v > 0 for v in speeds) / 3 and s["p_pull"] == 0.0
+    pct = s["speed_um_s_percentiles"]
+    for q in (5, 25, 50, 75, 95):
+        assert pct[f"p{q}"] == pytest.approx(np.percentile(speeds, q), rel=1e-9)
 
 
 def test_ctrl_c_keeps_finished_points_and_exits_130(tmp_path, monkeypatch):

@@ -42,12 +42,7 @@ def test_general_form_at_zero_damping_reproduces_the_undamped_fast_path(monkeypa
     designs = _designs(8, 11)
     ideal = [simulate(p, 100, log_events=False).section for p in designs]
 
-    def general_table(p):
-        row = flows._damped_row(p, p.alpha * p.kappa * (1 + p.beta), p.alpha * (1 + 1 / p.beta))
-        t = np.array([row], dtype=flows.TABLE_DTYPE)
-        return t if flows.jit_enabled() else t.view(np.recarray)
-
-    monkeypatch.setattr(solver, "phase_table", general_table)
+    monkeypatch.setattr(solver, "phase_table", lambda p: flows.phase_table(p, general=True))
     for p, a in zip(designs, ideal, strict=True):
         b = simulate(p, 100, log_events=False)
         assert b.success, b.message

@@ -7,10 +7,10 @@ import math
 import numpy as np
 import pytest
 
-from betvdesign.dynamics import simulate, vertical_motion
+from betvdesign.dynamics import damped, evaluators, simulate, vertical_motion
 from betvdesign.dynamics.bounds import envelope_at, envelope_prep, safe_step
-from betvdesign.dynamics.evaluators import gap_evaluator
-from betvdesign.dynamics.flows import oscillator
+from betvdesign.dynamics.evaluators import EVALUATOR_DTYPE, gap_evaluator
+from betvdesign.dynamics.flows import REVERSE, SLIP, oscillator, phase_table
 from betvdesign.dynamics.search import ROOT, first_root, workspace
 from betvdesign.errors import ParameterError
 from betvdesign.model.params import ModelParams
@@ -140,3 +140,30 @@ def test_envelope_time_closed_form_and_grid():
             assert t > 20.0 - 1e-3
         else:
             assert t == pytest.approx(expect, abs=2e-4)
+
+
+@pytest.mark.parametrize("general", [False, True])
+@pytest.mark.parametrize("kind", ["slip", "reverse", "stick", "gap"])
+def test_an_evaluator_writes_every_field_of_its_record(kind, general):
+    """Each evaluator fills its record by field name from a neutral start: what the record
+    held before (a previous phase's evaluator, here garbage) never shows through."""
+    table = phase_table(ModelParams(1.2, 0.5, 1.0, 0.4), general=general)
+    c = table[0]
+    mod = damped if general else evaluators
+    sp0, cp0 = 0.3, math.sqrt(1.0 - 0.09)
+    out = []
+    for fill in (0x00, 0xFF):
+        rec = np.empty(1, EVALUATOR_DTYPE)
+        rec.view(np.uint8)[:] = fill
+        e = rec[0]
+        if kind == "stick":
+            mod.stick_evaluator(c, 0.1, 0.2, sp0, cp0, 1.0, -1, e)
+        elif kind == "gap" and general:
+            mod.gap_evaluator(float(c["varpi"]), 0.0, 1.0, 0.1, 0.2, sp0, cp0, 1.0, e)
+        elif kind == "gap":
+            mod.gap_evaluator(float(c["varpi"]), 0.1, 0.2, sp0, cp0, 1.0, e)
+        else:
+            phase = SLIP if kind == "slip" else REVERSE
+            mod.slip_evaluator(c, phase, 0.1, 0.2, 0.0, 0.05, sp0, cp0, 1.0, False, e)
+        out.append(rec.tobytes())
+    assert out[0] == out[1]

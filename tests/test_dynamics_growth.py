@@ -148,7 +148,8 @@ def test_pushpull_summary_lists_unbounded_points_separately():
 def test_unbounded_orbit_fails_the_mode_rule_with_its_reason():
     """rules: an unbounded result fails the mode rule (no steady motion, so the verdict
     fails) and says what to change; a plain solver failure fails it too."""
-    from betvdesign.checks.rules import evaluate, verdict
+    from betvdesign.checks.rule import verdict
+    from betvdesign.checks.rules import evaluate
     from betvdesign.nondim.device import derive
     from betvdesign.spec.loader import load_device
 

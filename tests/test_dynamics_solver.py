@@ -182,20 +182,20 @@ def test_a_call_that_compiles_says_so_on_stderr(monkeypatch, capsys):
     silent."""
     import time
 
-    from betvdesign.dynamics import _jit
+    from betvdesign.dynamics import jit
 
     count = [0]
-    monkeypatch.setattr(_jit, "_misses", lambda: count[0])
-    monkeypatch.setattr(_jit, "_ready", set())
+    monkeypatch.setattr(jit, "_misses", lambda: count[0])
+    monkeypatch.setattr(jit, "_ready", set())
 
     def compiling():
         count[0] += 1
         time.sleep(0.6)
         return 7
 
-    assert _jit.compile_note("demo", compiling) == 7
+    assert jit.compile_note("demo", compiling) == 7
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "compiling the solver kernels for demo" in err
     assert "done in" in err
-    assert _jit.compile_note("demo", lambda: 8) == 8  # loaded, nothing compiled
+    assert jit.compile_note("demo", lambda: 8) == 8  # loaded, nothing compiled
     assert capsys.readouterr().err == ""

@@ -16,7 +16,8 @@ from typer.testing import CliRunner
 
 from betvdesign.cli import app
 from betvdesign.spec.loader import load_device
-from betvdesign.studies.fix import FIELD_MARGIN, find_fixes, parse_vary
+from betvdesign.studies.fix import FIELD_MARGIN, find_fixes
+from betvdesign.studies.fixfields import parse_vary
 
 DEVICES = Path(__file__).resolve().parents[1] / "devices"
 SHIN = DEVICES / "shin2004.yaml"

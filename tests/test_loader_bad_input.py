@@ -198,3 +198,88 @@ def test_anchors_and_merge_keys_build_mirrored_sets():
     right, left = spec.actuator_sets
     assert (right.name, left.name) == ("right", "left")
     assert left.impact_direction == "-x" and left.drive == right.drive
+
+
+# --- numbers of too many digits (issue 24): refused at their line, before int() ---------
+
+HUGE = "9" * 5000
+
+
+@pytest.mark.parametrize(
+    ("old", "new", "line", "col", "field", "digits"),
+    [
+        (
+            "  travel_range: 40 um\n",
+            f"  travel_range: 40 um\n  beam_count: {HUGE}\n",
+            8,
+            15,
+            "slider.beam_count",
+            5000,
+        ),
+        ("friction: 0.4", f"friction: {HUGE}", 15, 17, "actuator_sets[0].contact.friction", 5000),
+        ("alpha: 0.1", f"alpha: 0.{HUGE}", 18, 14, "actuator_sets[0].actuator.alpha", 5001),
+        ("alpha: 0.1", f'alpha: !!int "{HUGE}"', 18, 14, "actuator_sets[0].actuator.alpha", 5000),
+    ],
+    ids=["integer-beam_count", "integer-in-float-field", "float", "tagged-string"],
+)
+def test_number_of_too_many_digits_exits_2_at_its_line(
+    tmp_path, old, new, line, col, field, digits
+):
+    """A 5000-digit number (Python's int() refuses more than 4300 digits with a
+    ValueError) is refused by the YAML pre-pass at file:line:col, naming the field and
+    the limit of spec.limits; the CLI exits 2 without a traceback."""
+    from betvdesign.spec import limits
+
+    text = (SPECS / "valid_base.yaml").read_text()
+    assert old in text
+    bad = tmp_path / "huge.yaml"
+    bad.write_text(text.replace(old, new, 1))
+    with pytest.raises(SpecError) as exc:
+        load_device(bad)
+    (issue,) = exc.value.issues
+    assert (issue.location.line, issue.location.col, issue.field) == (line, col, field)
+    assert issue.message == (
+        f"number of {digits:,} digits; the limit is {limits.MAX_NUMBER_DIGITS} digits"
+    )
+    r = CliRunner().invoke(app, ["check", str(bad)])
+    assert r.exit_code == 2 and r.stdout == ""
+    assert "Traceback" not in r.stderr and "Exceeds the limit" not in r.stderr
+    assert r.stderr.strip() == f"error: {bad}:{line}:{col}: {field}: {issue.message}"
+
+
+def test_number_at_the_digit_limit_is_read():
+    """A number of exactly the limit's digits is read as usual (then judged by its
+    field: 100 digits of beam_count exceed 16)."""
+    from betvdesign.spec import limits
+
+    text = (SPECS / "valid_base.yaml").read_text()
+    n = "0" * (limits.MAX_NUMBER_DIGITS - 1) + "2"
+    spec = load_device_text(text.replace("  travel_range", f"  beam_count: {n}\n  travel_range"))
+    assert spec.slider.beam_count == 2
+    with pytest.raises(SpecError, match="less than or equal to 16"):
+        load_device_text(
+            text.replace("  travel_range", f"  beam_count: {'9' * 100}\n  travel_range")
+        )
+
+
+def test_quantity_number_digits_bounded(monkeypatch):
+    """The number of a quantity string has the same digit limit (it binds when the
+    quantity-string limit is raised above it)."""
+    from betvdesign.spec import limits
+    from betvdesign.spec.units import parse_quantity
+
+    monkeypatch.setattr(limits, "MAX_QUANTITY_CHARS", 10_000)
+    with pytest.raises(ValueError, match="number of 5,000 digits in a quantity"):
+        parse_quantity(f"{HUGE} um")
+    assert parse_quantity(f"{'1' * limits.MAX_NUMBER_DIGITS} um").magnitude > 0
+    assert "number_digits" in limits.describe()
+
+
+def test_limit_override_of_too_many_digits(monkeypatch):
+    """$BETV_MAX_FILE_BYTES of 5000 digits: a UsageError naming the variable."""
+    from betvdesign.errors import UsageError
+    from betvdesign.spec import limits
+
+    monkeypatch.setenv(limits.FILE_BYTES_ENV, HUGE)
+    with pytest.raises(UsageError, match=r"BETV_MAX_FILE_BYTES: more than 100 digits"):
+        limits.max_file_bytes()

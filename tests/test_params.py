@@ -14,13 +14,13 @@ def test_lambda_hand_value():
     assert lambda_criterion(0.9, 0.1, 0.9, 0.4) == pytest.approx(expected, rel=1e-15)
     p = ModelParams(0.9, 0.1, 0.9, 0.4)
     assert p.lam == pytest.approx(expected, rel=1e-15)
-    assert p.mode_predicted == "pull"
+    assert p.lambda_mode == "pull"
 
 
 def test_push_when_lambda_below_one():
     p = ModelParams(varpi=1.5, alpha=2.0, beta=0.5, kappa=0.1)
     assert p.lam < 1.0
-    assert p.mode_predicted == "push"
+    assert p.lambda_mode == "push"
 
 
 @pytest.mark.parametrize("bad", [0.0, -1.0, math.nan, math.inf, "x"])

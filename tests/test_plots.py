@@ -224,7 +224,7 @@ def test_study_map_figure_is_readable(tmp_path) -> None:
             "status": "ok",
             "converged": True,
             "mode": m,
-            "mode_predicted": m,
+            "lambda_mode": m,
         }
         for w, a, m in [(0.9, 0.1, "pull"), (1.3, 4.0, "push"), (1.3, 0.1, "pull")]
     ]

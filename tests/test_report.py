@@ -11,20 +11,24 @@ typer's CliRunner.
 
 from __future__ import annotations
 
+import math
 import re
 from html.parser import HTMLParser
 from pathlib import Path
+from typing import Any
 
+import numpy as np
 import pytest
 from conftest import DEVICES, device_files
 from typer.testing import CliRunner
 
 from betvdesign.cli import app
 from betvdesign.nondim.device import derive
+from betvdesign.output.files import write_atomic
 from betvdesign.report import ReportOptions, build_report, prepare, render_html, write_reports
 from betvdesign.report import analysis as report_analysis
 from betvdesign.report.build import fmt_num
-from betvdesign.report.render import write_atomic
+from betvdesign.report.variants import shown_fields
 from betvdesign.spec.loader import load_device
 
 #: Section 4's figures per distinct set, plus the model-adequacy figure (section 5).
@@ -268,10 +272,14 @@ def test_amplitude_without_calibration_says_why_no_voltage_curve(tmp_path: Path)
 
 
 def test_robustness_varies_designer_fields_through_the_spec() -> None:
-    """The robustness sweep changes fields a designer sets, each through spec -> nondim:
-    +10 % drive frequency is ϖ·1.1 (ϖ = 2·f_drive/f_v), +10 % tangential resonance is
-    α/1.21 (α = (f_v/f_h)²), +10 % beam width is β/1.1 (β = m/M, M ∝ w without extra
-    mass), friction κ·1.1 (κ = μ·tanθ); the 0 % point is the device itself."""
+    """The robustness sweep changes fields a designer sets (spec.fields, the list betv fix
+    uses too), each through spec -> nondim: +10 % drive frequency is ϖ·1.1 (ϖ =
+    2·f_drive/f_v), +10 % vertical resonance is ϖ/1.1 and α·1.21, +10 % tangential
+    resonance is α/1.21 (α = (f_v/f_h)²), +10 % beam width is β/1.1 (β = m/M, M ∝ w
+    without extra mass), +10 % head diameter is β·1.21 (m ∝ d²), friction κ·1.1 and the
+    impact angle κ = μ·tan(1.1·θ) (κ = μ·tanθ); the 0 % point is the device itself. The
+    drive voltage (it moves the stroke only), the beam length (the same quantity M as the
+    width, listed later) and the head thickness (m, after the diameter) are left out."""
     from betvdesign.nondim.device import derive
     from betvdesign.report.variants import field_variants, relative_changes
     from betvdesign.spec.loader import load_device
@@ -281,26 +289,56 @@ def test_robustness_varies_designer_fields_through_the_spec() -> None:
     changes = relative_changes(5, 0.2)
     assert list(changes) == pytest.approx([-0.2, -0.1, 0.0, 0.1, 0.2])
     vs = {(v.field, round(v.change, 3)): v for v in field_variants(spec, 0, changes)}
-    assert {f for f, _ in vs} == {
+    assert list(dict.fromkeys(f for f, _ in vs)) == [
         "drive.frequency",
-        "actuator.horizontal_resonance",
-        "head.geometry.thickness",
-        "contact.friction",
         "slider.beam_width",
-    }
+        "head.geometry.diameter",
+        "actuator.vertical_resonance",
+        "actuator.horizontal_resonance",
+        "contact.impact_angle",
+        "contact.friction",
+    ]
     assert vs[("drive.frequency", 0.1)].params.varpi == pytest.approx(1.1 * p.varpi, rel=1e-12)
+    fv = vs[("actuator.vertical_resonance", 0.1)].params
+    assert (fv.varpi, fv.alpha) == pytest.approx((p.varpi / 1.1, p.alpha * 1.21), rel=1e-12)
     assert vs[("actuator.horizontal_resonance", 0.1)].params.alpha == pytest.approx(
         p.alpha / 1.21, rel=1e-12
     )
     assert vs[("slider.beam_width", 0.1)].params.beta == pytest.approx(p.beta / 1.1, rel=1e-12)
+    assert vs[("head.geometry.diameter", 0.1)].params.beta == pytest.approx(
+        p.beta * 1.21, rel=1e-12
+    )
     assert vs[("contact.friction", 0.1)].params.kappa == pytest.approx(1.1 * p.kappa, rel=1e-12)
-    assert vs[("head.geometry.thickness", 0.0)].params == p
+    theta = math.radians(20.56)
+    assert vs[("contact.impact_angle", 0.1)].params.kappa == pytest.approx(
+        0.4 * math.tan(1.1 * theta), rel=1e-12
+    )
+    assert vs[("head.geometry.diameter", 0.0)].params == p
     assert vs[("drive.frequency", 0.0)].nominal == "3 kHz"
 
 
-def test_robustness_figure_speaks_designer_units() -> None:
+def test_robustness_figure_speaks_designer_units(monkeypatch: pytest.MonkeyPatch) -> None:
     """Speed at 0 % equals the device's periodic speed; the figure's axes are the field
-    change in % and the speed with an SI prefix, never α or λ."""
+    change in % and the speed with an SI prefix, never α or λ.
+
+    The speed is read off the plotted points (the matplotlib figure the SVG is written
+    from, in the unit its axis label names) and checked against Δs·u·cosθ·f_act worked
+    out by hand from push_demo.yaml (MODEL.md, "Displacement per cycle"): f_act = 2·3 kHz
+    (AC doubling), f_v = 5 kHz, f_h = 3.5 kHz, u = 0.14 µm (linear between the measured
+    8 V and 10 V points, at 9 V), θ = 20.56°, μ = 0.4, a 36 µm × 2.5 µm disc head against
+    one 200 × 10 × 2.5 µm beam; Δs from the periodic orbit of those parameters."""
+    from betvdesign import plots
+    from betvdesign.dynamics import periodic_orbit
+    from betvdesign.model.params import ModelParams
+
+    drawn: dict[str, Any] = {}
+    real = plots.figure_svg
+
+    def keep(fig: Any, key: str) -> str:
+        drawn[key] = fig
+        return real(fig, key)
+
+    monkeypatch.setattr(plots, "figure_svg", keep)
     report = build_report(prepare(DEVICES / "push_demo.yaml"), options=SMALL)
     fig = next(f for f in report.figures() if f.key.endswith("robustness"))
     assert fig.svg is not None
@@ -308,6 +346,29 @@ def test_robustness_figure_speaks_designer_units() -> None:
     assert "change of the field from its specified value" in text and "mm/s" in text
     assert "drive.frequency" in text and "λ  [-]" not in text
     assert "Specified values: drive.frequency = 3 kHz" in fig.caption
+
+    theta = math.radians(20.56)
+    f_act, u = 2 * 3e3, 0.11e-6 + (0.17e-6 - 0.11e-6) * (9 - 8) / (10 - 8)
+    beta = (math.pi / 4 * 36**2 * 2.5) / (200 * 10 * 2.5)
+    po = periodic_orbit(ModelParams(6 / 5, (5 / 3.5) ** 2, beta, 0.4 * math.tan(theta)))
+    assert po.success and po.delta_s > 0  # push, the intended mode: plotted positive
+    speed = po.delta_s * u * math.cos(theta) * f_act  # [m/s]
+
+    ax = drawn[fig.key].axes[0]
+    unit = re.search(r"\[(\S+)/s\]", ax.get_ylabel())
+    assert unit, ax.get_ylabel()
+    per = {"m": 1.0, "mm": 1e-3, "µm": 1e-6, "nm": 1e-9}[unit.group(1)]
+    at_zero = {}
+    for line in ax.get_lines():  # one marked, labelled line per field (not the 0 % rule)
+        x, y = (np.asarray(v, dtype=float) for v in line.get_data())
+        if line.get_marker() != "None" and not line.get_label().startswith("_") and 0 in x:
+            at_zero[line.get_label()] = float(y[x == 0.0][0]) * per
+    # one line per field the report varies (spec.fields, the one list), each through 0 %
+    spec = load_device(DEVICES / "push_demo.yaml")
+    assert set(at_zero) == {f for f, _ in shown_fields(spec, 0)}
+    assert {"drive.frequency", "actuator.horizontal_resonance", "slider.beam_width"} <= set(at_zero)
+    for name, v in at_zero.items():
+        assert v == pytest.approx(speed, rel=1e-8), name
 
 
 # --------------------------------------------------------------------------- CLI

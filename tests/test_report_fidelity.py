@@ -50,9 +50,12 @@ def test_report_verdict_equals_the_check_and_refuses_a_forced_rung(tmp_path: Pat
     `--fidelity` no longer exists on `betv report` (exit 2, nothing written)."""
     report = build_report(prepare(PULL), options=SMALL)
     check = check_derivation(derive_file(PULL))
+    shown = {r.id: (r.severity, r.passed, r.message) for r in report.sets[0].rules}
+    solved = {r.id: (r.severity, r.passed, r.message) for r in check.sets[0].rules}
+    assert shown == solved  # messages carry the numbers: Δs, speed, λ, margins
     text = text_of(render_html(report))
     for r in check.sets[0].rules:
-        assert r.id in text
+        assert r.id in text and r.message in text
     assert report.sets[0].verdict.verdict == check.verdict
     bad = CliRunner().invoke(
         app, ["report", str(PULL), "-o", str(tmp_path / "x"), "--fidelity", "lambda"]

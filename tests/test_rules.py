@@ -13,7 +13,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from betvdesign.checks.checker import check_derivation
-from betvdesign.checks.rules import RuleResult, evaluate, evaluate_device, verdict
+from betvdesign.checks.rule import RuleResult, verdict
+from betvdesign.checks.rules import evaluate, evaluate_device
 from betvdesign.model.domain import DELTA_S_STALL, mode_of
 from betvdesign.model.params import ModelParams
 from betvdesign.nondim.device import derive

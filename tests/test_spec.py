@@ -7,8 +7,8 @@ import pytest
 from pydantic import ValidationError
 
 from betvdesign.errors import ParameterError
-from betvdesign.nondim.device import amplitude_at as amplitude_at_nondim
 from betvdesign.spec.models import MATERIALS, POLYSILICON, ActuatorSet, DeviceSpec, amplitude_at
+from betvdesign.spec.models import amplitude_at as amplitude_at_nondim
 from betvdesign.spec.units import ureg
 
 SET = {

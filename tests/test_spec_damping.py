@@ -471,7 +471,7 @@ def test_check_shows_damping_and_restitution(monkeypatch, tmp_path):
         )
 
     monkeypatch.setattr(checker, "load_solver", lambda: orbit)
-    monkeypatch.setattr("betvdesign.checks.checker._settling", lambda p, po, travel: None)
+    monkeypatch.setattr("betvdesign.checks.checker._settling", lambda p, po, travel, horizon: None)
     (s,) = json.loads(run("check", DEMO, "--json").stdout)["devices"][0]["sets"]
     assert s["params"]["zeta_v"] == s["params"]["zeta_h"] == 1 / 60
     assert s["params"]["restitution"] == 0.1
@@ -493,7 +493,8 @@ def test_check_shows_damping_and_restitution(monkeypatch, tmp_path):
 
 def test_margin_corners_keep_damping_and_restitution():
     """The mode-margin corners scale ϖ and α only: ζ_v, ζ_h, e are the device's."""
-    from betvdesign.checks.checker import MARGIN_CORNERS, corner_params
+    from betvdesign.checks.checker import corner_params
+    from betvdesign.checks.rules import MARGIN_CORNERS
 
     p = derive_file(DEMO).sets[0].params
     corners = corner_params(p)

@@ -13,7 +13,8 @@ from betvdesign.errors import UsageError
 from betvdesign.model.params import ModelParams
 from betvdesign.studies.engine.runner import run_study
 from betvdesign.studies.lambda_scan import lambda_study, run_lambda_scan
-from betvdesign.studies.pushpull import periodic_point, pushpull_study, run_pushpull
+from betvdesign.studies.points import periodic_point
+from betvdesign.studies.pushpull import pushpull_study, run_pushpull
 from betvdesign.studies.regime import regime_study, run_regime
 from betvdesign.studies.terms import Terms
 

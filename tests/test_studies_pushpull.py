@@ -8,7 +8,8 @@ import pytest
 from betvdesign.dynamics import simulate
 from betvdesign.model.params import ModelParams
 from betvdesign.plots.studies import save_pushpull_figure
-from betvdesign.studies.pushpull import periodic_point, pushpull_study, run_pushpull, summarise
+from betvdesign.studies.points import periodic_point
+from betvdesign.studies.pushpull import pushpull_study, run_pushpull, summarise
 
 
 def _task(varpi, alpha, beta=0.5, kappa=0.4, **kw):
@@ -55,7 +56,7 @@ def test_summary_accounts_for_every_point_and_lists_failures():
     assert [f["key"] for f in s.not_converged] == [r["key"] for r in failed]
     assert all(r["mode"] is None and r["delta_s"] is None for r in failed)
     assert all(f["message"] for f in s.not_converged)
-    dis = [r for r in rows if r["converged"] and r["mode"] != r["mode_predicted"]]
+    dis = [r for r in rows if r["converged"] and r["mode"] != r["lambda_mode"]]
     assert [d["key"] for d in s.disagreements] == [r["key"] for r in dis]
 
 
@@ -69,7 +70,7 @@ def test_disagreement_is_reported():
             "beta": 0.5,
             "kappa": 0.4,
             "lam": 0.8,
-            "mode_predicted": "push",
+            "lambda_mode": "push",
             "mode": "pull",
             "delta_s": -0.1,
             "converged": True,
@@ -81,7 +82,7 @@ def test_disagreement_is_reported():
             "beta": 0.5,
             "kappa": 0.4,
             "lam": 0.4,
-            "mode_predicted": "push",
+            "lambda_mode": "push",
             "mode": "push",
             "delta_s": 0.2,
             "converged": True,

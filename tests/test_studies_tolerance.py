@@ -8,10 +8,9 @@ from betvdesign.errors import UsageError
 from betvdesign.nondim.device import derive_set
 from betvdesign.spec.loader import load_device
 from betvdesign.studies.engine.executors import ProcessExecutor
+from betvdesign.studies.sampling import draw, nominal_values
 from betvdesign.studies.tolerance import (
-    draw,
     load_tolerances,
-    nominal_values,
     parse_tolerance,
     run_tolerance,
     tolerance_study,

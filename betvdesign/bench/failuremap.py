@@ -20,7 +20,7 @@ from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
 from betvdesign.bench.chart import ERROR_FLOOR, STYLES
-from betvdesign.bench.workprecision import Method, _exact, _reference, _rk4
+from betvdesign.bench.workprecision import Method, reference_runner, rk4_runner, run_exact
 from betvdesign.model.params import ModelParams
 from betvdesign.plots.figure import figure_style, new_figure
 
@@ -44,9 +44,9 @@ def default_varpis(n: int = 16, base: dict[str, float] | None = None) -> list[fl
 def scan_methods() -> list[Method]:
     """The methods compared along ϖ (one typical setting each)."""
     return [
-        Method("solve_ivp-RK45", "rtol=1e-06", _reference("RK45", 1e-6, "exact", None)),
-        Method("tanh-LSODA", "eps=1e-03", _reference("LSODA", 1e-10, "tanh", 1e-3)),
-        Method("rk4-post", "h=T/200", _rk4(200)),
+        Method("solve_ivp-RK45", "rtol=1e-06", reference_runner("RK45", 1e-6, "exact", None)),
+        Method("tanh-LSODA", "eps=1e-03", reference_runner("LSODA", 1e-10, "tanh", 1e-3)),
+        Method("rk4-post", "h=T/200", rk4_runner(200)),
     ]
 
 
@@ -55,11 +55,11 @@ def scan(
 ) -> list[dict[str, Any]]:
     """Relative error in s after ``cycles`` cycles, per method and ϖ."""
     b = base or BASE
-    best = _reference("DOP853", 1e-13, "exact", None)
+    best = reference_runner("DOP853", 1e-13, "exact", None)
     rows: list[dict[str, Any]] = []
     for w in varpis:
         p = ModelParams(float(w), b["alpha"], b["beta"], b["kappa"])
-        ref = _exact(p, cycles, None)
+        ref = run_exact(p, cycles, None)
         s_ref = float(ref.s_section[-1])
         indep = best(p, cycles, None)
         runs = [("exact", "closed-form events", indep)]

@@ -16,28 +16,50 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass
+from typing import ClassVar, get_args
 
 import numpy as np
 
+from betvdesign.dynamics.result import SolverResult, TrajectoryStatus
 from betvdesign.model.params import ModelParams
 
 FREE, SLIP, STICK, REVERSE = "free", "slip", "stick", "reverse"
 
 
-@dataclass
-class FixedStepResult:
-    """Transient from rest over ``n_cycles`` cycles; ``s`` final position [-, u·cosθ]."""
+@dataclass(frozen=True, kw_only=True)
+class FixedStepResult(SolverResult):
+    """Transient from rest over ``n_cycles`` cycles by fixed-step RK4.
 
-    status: str
-    success: bool
-    message: str
+    Attributes
+    ----------
+    status : TrajectoryStatus
+        "success" or "failed" (a non-finite state: the step is too large); with the other
+        fields of :class:`SolverResult` (``n_events``: the post-detected events;
+        ``n_root_evals`` stays 0: no event is located).
+    s : float
+        Final slider position [-, units of u·cosθ] (NaN when failed).
+    delta_s : numpy.ndarray
+        Per-cycle increments [-].
+    section : numpy.ndarray
+        States (ξ, ξ', ζ, ζ', s, s') [-] at τ = 2mπ/ϖ, shape (n_cycles + 1, 6).
+    n_steps : int
+        RK4 steps taken [-].
+    n_fev : int
+        Right-hand-side evaluations [-] (4 per step).
+    n_contacts : int
+        Contacts opened [-].
+    n_impulsive : int
+        Impulsive hits [-].
+    """
+
+    STATUSES: ClassVar[tuple[str, ...]] = get_args(TrajectoryStatus)
+
+    status: TrajectoryStatus
     s: float
     delta_s: np.ndarray
     section: np.ndarray
     n_steps: int
     n_fev: int
-    n_events: int
-    elapsed_s: float
     n_contacts: int = 0
     n_impulsive: int = 0
 
@@ -142,33 +164,33 @@ def rk4_post(
         if not all(math.isfinite(v) for v in y):
             arr = np.asarray(section)
             return FixedStepResult(
-                "failed",
-                False,
-                f"non-finite state in cycle {m} (step too large for the stiff tangential "
-                f"oscillator 1/sqrt(α) = {1 / math.sqrt(p.alpha):.3g}?)",
-                float("nan"),
-                np.diff(arr[:-1, 4]),
-                arr[:-1],
-                (m + 1) * steps_per_cycle,
-                4 * (m + 1) * steps_per_cycle,
-                n_events,
-                time.perf_counter() - t0,
-                n_con,
-                n_imp,
+                status="failed",
+                message=f"non-finite state in cycle {m} (step too large for the stiff "
+                f"tangential oscillator 1/sqrt(α) = {1 / math.sqrt(p.alpha):.3g}?)",
+                s=float("nan"),
+                delta_s=np.diff(arr[:-1, 4]),
+                section=arr[:-1],
+                n_cycles=m,
+                n_steps=(m + 1) * steps_per_cycle,
+                n_fev=4 * (m + 1) * steps_per_cycle,
+                n_events=n_events,
+                elapsed_s=time.perf_counter() - t0,
+                n_contacts=n_con,
+                n_impulsive=n_imp,
             )
     arr = np.asarray(section)
     n = cycles * steps_per_cycle
     return FixedStepResult(
-        "success",
-        True,
-        f"{cycles} cycles, {n} RK4 steps, {n_events} post-detected events",
-        float(arr[-1, 4]),
-        np.diff(arr[:, 4]),
-        arr,
-        n,
-        4 * n,
-        n_events,
-        time.perf_counter() - t0,
-        n_con,
-        n_imp,
+        status="success",
+        message=f"{cycles} cycles, {n} RK4 steps, {n_events} post-detected events",
+        s=float(arr[-1, 4]),
+        delta_s=np.diff(arr[:, 4]),
+        section=arr,
+        n_cycles=cycles,
+        n_steps=n,
+        n_fev=4 * n,
+        n_events=n_events,
+        elapsed_s=time.perf_counter() - t0,
+        n_contacts=n_con,
+        n_impulsive=n_imp,
     )

@@ -49,7 +49,7 @@ def lambda_disagreement(
     run, summary = run_pushpull(g["varpi"], g["alpha"], g["beta"], g["kappa"], executor=executor)
     rows = run.rows
     conv = [r for r in rows if r.get("converged") and r.get("mode") in ("push", "pull")]
-    wrong = [r for r in conv if r["mode_predicted"] != r["mode"]]
+    wrong = [r for r in conv if r["lambda_mode"] != r["mode"]]
     keys = ("kappa", "beta", "alpha", "varpi", "lam", "mode", "delta_s")
     wrong_list = sorted(
         ({k: r[k] for k in keys} for r in wrong), key=lambda d: abs(d["lam"] - 1.0), reverse=True
@@ -63,7 +63,7 @@ def lambda_disagreement(
     edges = [0.0, 0.1, 0.2, 0.5, 1.0, 2.0, math.inf]
     for lo, hi in itertools.pairwise(edges):
         inside = [r for r in conv if lo <= abs(r["lam"] - 1.0) < hi]
-        bad = [r for r in inside if r["mode_predicted"] != r["mode"]]
+        bad = [r for r in inside if r["lambda_mode"] != r["mode"]]
         top = hi if math.isfinite(hi) else None  # None: open band (JSON/Python-literal safe)
         bands.append({"lo": lo, "hi": top, "points": len(inside), "mispredicted": len(bad)})
     return {
@@ -155,7 +155,7 @@ def _periodic_row(args: tuple[float, float, float, float]) -> dict[str, Any]:
     return {
         **p.as_dict(),
         "lam": p.lam,
-        "mode_predicted": p.mode_predicted,
+        "lambda_mode": p.lambda_mode,
         "status": po.status,
         "mode": mode_of(po.delta_s) if po.success else None,
         "delta_s": po.delta_s if po.success else None,
@@ -205,13 +205,13 @@ def upper_bound(errors: int, n: int, confidence: float = 0.95) -> float:
 def sample_summary(rows: Sequence[dict[str, Any]]) -> dict[str, Any]:
     """λ against the exact mode on a sample: rate, 95 % upper bound, per |λ − 1| band."""
     conv = [r for r in rows if r["mode"] in ("push", "pull")]
-    wrong = [r for r in conv if r["mode"] != r["mode_predicted"]]
+    wrong = [r for r in conv if r["mode"] != r["lambda_mode"]]
     keys = ("kappa", "beta", "alpha", "varpi", "lam", "mode", "delta_s")
     bands = []
     edges = [0.0, 0.2, 0.5, 1.0, 2.0, 5.0, math.inf]
     for lo, hi in itertools.pairwise(edges):
         inside = [r for r in conv if lo <= abs(r["lam"] - 1.0) < hi]
-        bad = sum(1 for r in inside if r["mode_predicted"] != r["mode"])
+        bad = sum(1 for r in inside if r["lambda_mode"] != r["mode"])
         bands.append(
             {
                 "lo": lo,

@@ -30,6 +30,7 @@ from typing import Any, Literal
 import numpy as np
 
 from betvdesign.model.params import ModelParams
+from betvdesign.output.numbers import json_float
 
 Level = Literal["quick", "full"]
 
@@ -64,13 +65,17 @@ class RunOut:
     message: str
 
 
+#: One method run: (parameters, cycles, start state or None) -> :class:`RunOut`.
+Runner = Callable[[ModelParams, int, Any], RunOut]
+
+
 @dataclass(frozen=True)
 class Method:
     """One method at one setting; ``run(p, cycles, state0)`` -> :class:`RunOut`."""
 
     method: str
     setting: str
-    run: Callable[[ModelParams, int, Any], RunOut]
+    run: Runner
 
 
 @dataclass
@@ -90,20 +95,54 @@ class Row:
         """JSON-safe: non-finite numbers become None."""
         d = asdict(self)
         for k in ("error", "seconds"):
-            if d[k] is not None and not math.isfinite(d[k]):
-                d[k] = None
+            d[k] = json_float(d[k])
         return d
 
 
 # ---------------------------------------------------------------- method adapters
-def _exact(p: ModelParams, cycles: int, state0: Any) -> RunOut:
+def run_exact(p: ModelParams, cycles: int, state0: Any) -> RunOut:
+    """The exact solver's run (:func:`betvdesign.dynamics.simulate`, no event log).
+
+    Parameters
+    ----------
+    p
+        Model parameters (ϖ, α, β, κ and the optional terms) [-].
+    cycles
+        Actuation cycles to run.
+    state0
+        Section state (ξ, ξ', ζ, ζ', s, s') [-] to start from; None: from rest.
+
+    Returns
+    -------
+    RunOut
+        Slider position s [-] at every section, status and message.
+    """
     from betvdesign.dynamics import simulate
 
     tr = simulate(p, cycles, state0=state0, log_events=False)
     return RunOut(tr.section[:, 4], tr.status, tr.message)
 
 
-def _reference(method: str, rtol: float, friction: str, eps: float | None):
+def reference_runner(method: str, rtol: float, friction: str, eps: float | None) -> Runner:
+    """A run of the ``solve_ivp`` reference (:mod:`betvdesign.dynamics.reference`).
+
+    Parameters
+    ----------
+    method
+        ``solve_ivp`` method ("RK45", "DOP853", "Radau", "LSODA").
+    rtol
+        Relative tolerance [-] (absolute tolerance: ``rtol`` × 10⁻²).
+    friction
+        "exact" (event-located switching) or "tanh" (regularised friction).
+    eps
+        Regularisation width ε [-] of tanh(v/ε); None: the reference's default.
+
+    Returns
+    -------
+    Runner
+        ``run(p, cycles, state0) -> RunOut``, as :func:`run_exact`.
+    """
+
     def run(p: ModelParams, cycles: int, state0: Any) -> RunOut:
         from betvdesign.dynamics import reference
 
@@ -123,7 +162,20 @@ def _reference(method: str, rtol: float, friction: str, eps: float | None):
     return run
 
 
-def _rk4(steps: int):
+def rk4_runner(steps: int) -> Runner:
+    """A run of fixed-step RK4 with event post-detection (:mod:`betvdesign.bench.fixedstep`).
+
+    Parameters
+    ----------
+    steps
+        Steps per actuation cycle (h = T/steps).
+
+    Returns
+    -------
+    Runner
+        ``run(p, cycles, state0) -> RunOut``, as :func:`run_exact`.
+    """
+
     def run(p: ModelParams, cycles: int, state0: Any) -> RunOut:
         from betvdesign.bench.fixedstep import rk4_post
 
@@ -139,7 +191,7 @@ BEST_INDEPENDENT = ("DOP853", 1e-13)
 
 def methods(level: Level = "quick") -> list[Method]:
     """Methods and settings of a run; "quick" is a small subset (seconds)."""
-    out = [Method("exact", "closed-form events", _exact)]
+    out = [Method("exact", "closed-form events", run_exact)]
     if level == "quick":
         rtols = {"RK45": [1e-6], "DOP853": [1e-8, 1e-11], "Radau": [1e-6], "LSODA": [1e-6]}
         epss = [1e-3]
@@ -156,12 +208,16 @@ def methods(level: Level = "quick") -> list[Method]:
     for name, tols in rtols.items():
         for rt in tols:
             out.append(
-                Method(f"solve_ivp-{name}", f"rtol={rt:.0e}", _reference(name, rt, "exact", None))
+                Method(
+                    f"solve_ivp-{name}", f"rtol={rt:.0e}", reference_runner(name, rt, "exact", None)
+                )
             )
     for eps in epss:
-        out.append(Method("tanh-LSODA", f"eps={eps:.0e}", _reference("LSODA", 1e-10, "tanh", eps)))
+        out.append(
+            Method("tanh-LSODA", f"eps={eps:.0e}", reference_runner("LSODA", 1e-10, "tanh", eps))
+        )
     for n in steps:
-        out.append(Method("rk4-post", f"h=T/{n}", _rk4(n)))
+        out.append(Method("rk4-post", f"h=T/{n}", rk4_runner(n)))
     return out
 
 
@@ -248,7 +304,7 @@ def bound_exact_error(rows: list[Row], cases: Sequence[Case]) -> None:
     best = Method(
         f"solve_ivp-{BEST_INDEPENDENT[0]}",
         f"rtol={BEST_INDEPENDENT[1]:.0e}",
-        _reference(BEST_INDEPENDENT[0], BEST_INDEPENDENT[1], "exact", None),
+        reference_runner(BEST_INDEPENDENT[0], BEST_INDEPENDENT[1], "exact", None),
     )
     for case in cases:
         indep = {r.metric: r for r in measure(case, best)}

@@ -24,54 +24,85 @@ JSON contract.
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 from typing import Any, Literal
 
-from betvdesign.checks.rules import (
-    MARGIN_CORNERS,
-    RuleResult,
-    evaluate_device,
-    format_speed,
-    format_time,
-    orbit_mode,
-    verdict,
-)
-from betvdesign.model.domain import mode_of
+from betvdesign.checks.adequacy import DeviceAdequacy, SetAdequacy, assess
+from betvdesign.checks.rule import RuleResult, format_speed, format_time, orbit_mode, verdict
+from betvdesign.checks.rules import MARGIN_CORNERS, evaluate_device
+from betvdesign.checks.travel import TravelAnswer, travel_answer
+from betvdesign.dynamics.determination import Determination
+from betvdesign.dynamics.determination import determine as determine_delta_s
+from betvdesign.dynamics.result import PeriodicResult
+from betvdesign.dynamics.settling import Settling, settling
+from betvdesign.dynamics.vertical import VerticalResult
+from betvdesign.model.domain import TRAVEL_HORIZON, mode_of
 from betvdesign.model.params import ModelParams
-from betvdesign.nondim.device import DeviceDerivation, SetDerivation
+from betvdesign.nondim.record import DeviceDerivation, SetDerivation
+from betvdesign.output.numbers import json_float
 
 
 @dataclass
 class SetCheck:
-    """Check outcome of one actuator set (``periodic`` is the exact orbit)."""
+    """Check outcome of one actuator set.
+
+    Parameters
+    ----------
+    derivation : SetDerivation
+        The derived set.
+    rules : list of RuleResult
+        Its rules (device-level rules are in :attr:`CheckResult.rules` only).
+    periodic : PeriodicResult, optional
+        Its exact periodic orbit (status "failed" with the error when the solver raised).
+    vertical : VerticalResult, optional
+        Its exact vertical motion.
+    settling : Settling, optional
+        The transient from rest (only for a moving orbit and ``settle=True``).
+    margin : dict, optional
+        Mode of the exact orbit at each perturbed corner (label -> mode or None).
+    adequacy : SetAdequacy, optional
+        Is the idealised model enough (:mod:`betvdesign.checks.adequacy`).
+    determination : Determination, optional
+        How well the orbit's Δs is determined
+        (:func:`betvdesign.dynamics.determination.determine`).
+    travel : TravelAnswer, optional
+        The answer the verdict quotes: the orbit, or the crossing of the travel from
+        rest (:func:`betvdesign.checks.travel.travel_answer`).
+    """
 
     derivation: SetDerivation
     rules: list[RuleResult]
-    periodic: Any | None = None
-    vertical: Any | None = None
-    settling: Any | None = None
+    periodic: PeriodicResult | None = None
+    vertical: VerticalResult | None = None
+    settling: Settling | None = None
     margin: dict[str, str | None] | None = None
-    adequacy: Any | None = None
+    adequacy: SetAdequacy | None = None
+    determination: Determination | None = None
+    travel: TravelAnswer | None = None
 
     @property
     def mode(self) -> str | None:
-        """Exact mode: "push", "pull", "stalled", or None when no orbit was found."""
+        """The mode the verdict quotes: "push", "pull", "stalled", "undetermined" (Δs not
+        determined and no crossing of the travel), or None when no orbit was found; the
+        crossing's mode when the slider crosses its travel before it settles."""
+        if self.travel is not None:
+            return self.travel.mode
         return orbit_mode(self.periodic)
 
     @property
-    def mode_predicted(self) -> str:
+    def verdict_mode(self) -> str:
         """The mode the check reports: the exact one, "not driven" when no contact
         recurs (the slider is not moved), "unknown" without an orbit."""
-        if self.mode is None and getattr(self.periodic, "status", None) == "not_driven":
+        not_driven = self.periodic is not None and self.periodic.status == "not_driven"
+        if self.mode is None and not_driven:
             return "not driven"
         return self.mode or "unknown"
 
     @property
     def lambda_mode(self) -> str:
         """The paper's λ prediction (shown beside the exact mode, never decisive)."""
-        return self.derivation.mode_predicted
+        return self.derivation.lambda_mode
 
     @property
     def speed_m_s(self) -> float | None:
@@ -82,7 +113,21 @@ class SetCheck:
 
 @dataclass
 class CheckResult:
-    """Everything ``betv check`` reports for one device."""
+    """Everything ``betv check`` reports for one device.
+
+    Parameters
+    ----------
+    derivation : DeviceDerivation
+        The derived device.
+    sets : list of SetCheck
+        One per actuator set, in the device's order.
+    rules : list of RuleResult
+        Every rule: each set's, then the device-level ones.
+    notes : list of str
+        Remarks of the check (e.g. a mirrored set reused).
+    source_file : str
+        The device file ("" when checked from a spec).
+    """
 
     derivation: DeviceDerivation
     sets: list[SetCheck]
@@ -92,10 +137,20 @@ class CheckResult:
 
     @property
     def verdict(self) -> Literal["pass", "fail"]:
+        """ "fail" when any error-severity rule fails, else "pass"."""
         return verdict(self.rules)
 
     def as_dict(self) -> dict[str, Any]:
-        """The JSON contract of ``betv check --json`` for one device."""
+        """The checker's full record of one device (``betv check --json --verbose``).
+
+        Returns
+        -------
+        dict
+            ``device``, ``file``, the first set's ``params``, ``derived`` and ``mode``
+            (the mode the verdict reports), every rule, the verdict, the notes and per
+            set its parameters, derivation record, solver summaries, settling, margin, adequacy
+            and rules (JSON-safe).
+        """
         sets = [_set_dict(sc) for sc in self.sets]
         first = sets[0]
         return {
@@ -103,7 +158,7 @@ class CheckResult:
             "file": self.source_file,
             "params": first["params"],
             "derived": first["derived"],
-            "mode_predicted": first["mode_predicted"],
+            "mode": first["mode"],
             "rules": [r.as_dict() for r in self.rules],
             "verdict": self.verdict,
             "notes": list(self.notes),
@@ -111,7 +166,7 @@ class CheckResult:
         }
 
     def __repr__(self) -> str:
-        modes = ", ".join(f"{sc.derivation.name}: {sc.mode_predicted}" for sc in self.sets)
+        modes = ", ".join(f"{sc.derivation.name}: {sc.verdict_mode}" for sc in self.sets)
         return f"<CheckResult {self.derivation.name!r}: {self.verdict.upper()} ({modes})>"
 
     def _repr_html_(self) -> str:
@@ -121,41 +176,64 @@ class CheckResult:
         return DeviceView(self)._repr_html_()
 
 
-@dataclass
-class SolverFailure:
-    """Stands in for a solver result when the solver raised: success False, with why."""
-
-    message: str
-    success: bool = False
-    status: str = "failed"
-    delta_s: float = math.nan
-    mode: str = ""
-
-
 def load_solver() -> Callable[[ModelParams], Any]:
-    """The exact solver's ``periodic_orbit`` (imported lazily)."""
+    """The exact periodic-orbit solver, imported lazily.
+
+    Returns
+    -------
+    callable
+        :func:`betvdesign.dynamics.periodic_orbit`.
+    """
     from betvdesign.dynamics import periodic_orbit
 
     return periodic_orbit
 
 
 def load_vertical() -> Callable[..., Any]:
-    """The exact vertical-motion fast path ``dynamics.vertical_motion`` (lazy import)."""
+    """The exact vertical-motion fast path, imported lazily.
+
+    Returns
+    -------
+    callable
+        :func:`betvdesign.dynamics.vertical_motion`.
+    """
     from betvdesign.dynamics import vertical_motion
 
     return vertical_motion
 
 
-def _guarded(fn: Callable[..., Any], arg: Any, **kw: Any) -> Any:
+def _guarded_orbit(solver: Callable[[ModelParams], Any], p: ModelParams) -> PeriodicResult:
+    """``solver(p)``, or a failed :class:`~betvdesign.dynamics.PeriodicResult` saying why
+    when it raised (a failing solver must not crash the check: the mode rule fails)."""
     try:
-        return fn(arg, **kw)
-    except Exception as exc:  # a failing solver must not crash the check: a failed rule
-        return SolverFailure(f"{type(exc).__name__}: {exc}")
+        return solver(p)
+    except Exception as exc:
+        return PeriodicResult.failure(p, "failed", f"{type(exc).__name__}: {exc}")
+
+
+def _guarded_vertical(vertical: Callable[..., Any], p: ModelParams) -> VerticalResult | None:
+    """The vertical motion of ``p`` (None when a stand-in has none), or a failed
+    :class:`~betvdesign.dynamics.VerticalResult` saying why when it raised."""
+    try:
+        return vertical(p.varpi, zeta_v=p.zeta_v, restitution=p.restitution)
+    except Exception as exc:
+        return VerticalResult.failure(p.varpi, f"{type(exc).__name__}: {exc}")
 
 
 def corner_params(p: ModelParams) -> dict[str, ModelParams]:
-    """The perturbed parameter sets of the mode-margin rule, by label (damping and
-    restitution kept)."""
+    """The perturbed parameter sets of the mode-margin rule.
+
+    Parameters
+    ----------
+    p : ModelParams
+        The set's parameters.
+
+    Returns
+    -------
+    dict
+        Label (``ϖ×0.95``, ``α×1.1``, ...) -> ``p`` with ϖ and α scaled by
+        :data:`~betvdesign.checks.rules.MARGIN_CORNERS` (damping and restitution kept).
+    """
     out = {}
     for fw, fa in MARGIN_CORNERS:
         label = f"ϖ×{fw:g}" if fa == 1.0 else f"α×{fa:g}"
@@ -171,17 +249,51 @@ def check_derivation(
     margin: bool = True,
     settle: bool = True,
     target_speed_m_s: float | None = None,
-    adequacy: Any = None,
+    adequacy: DeviceAdequacy | bool | None = None,
+    determine: bool | None = None,
+    horizon: int = TRAVEL_HORIZON,
 ) -> CheckResult:
     """Check every actuator set with its exact orbit (see the module docstring).
 
-    solver / vertical: override ``dynamics.periodic_orbit`` / ``dynamics.vertical_motion``
-    (tests, studies); margin: run the mode-margin corners; settle: run the transient
-    from rest; target_speed_m_s: a required speed [m/s] (adds the error rule
-    ``target-speed``); adequacy: is the idealised model enough
-    (:mod:`betvdesign.checks.adequacy`, rule ``model-adequacy``): None runs it with the
-    exact solver unless ``solver`` is given, True always (with ``solver``), False never,
-    or an already computed :class:`~betvdesign.checks.adequacy_data.DeviceAdequacy`.
+    Parameters
+    ----------
+    derivation : DeviceDerivation
+        The derived device.
+    solver : callable, optional
+        Stand-in for :func:`betvdesign.dynamics.periodic_orbit` (tests, studies, the
+        report's own orbits); returns a PeriodicResult.
+    vertical : callable, optional
+        Stand-in for :func:`betvdesign.dynamics.vertical_motion`; may return None.
+    margin : bool
+        Run the mode-margin corners (:func:`corner_params`).
+    settle : bool
+        Run the transient from rest (:func:`betvdesign.dynamics.settling.settling`).
+    target_speed_m_s : float, optional
+        A required speed [m/s] (adds the error rule ``target-speed``).
+    adequacy : DeviceAdequacy or bool, optional
+        Is the idealised model enough (:mod:`betvdesign.checks.adequacy`, rule
+        ``model-adequacy``): None runs it with the exact solver unless ``solver`` is
+        given, True always (with ``solver``), False never; or an already computed
+        :class:`~betvdesign.checks.adequacy.DeviceAdequacy`.
+    determine : bool, optional
+        Assess how well each orbit's Δs is determined in float64
+        (:func:`betvdesign.dynamics.determination.determine`: re-solves with every
+        parameter moved by 1e-12; an undetermined Δs fails the mode rule unless the
+        slider crosses its travel from rest): None runs it with the exact solver unless
+        ``solver`` is given, True always, False never.
+    horizon : int
+        Cycles the transient from rest may run to cross the travel range [-]; a slider
+        that does not cross within them fails the mode rule (raise it for long travels).
+
+    Returns
+    -------
+    CheckResult
+        The sets with their orbits and rules, every rule, the verdict.
+
+    References
+    ----------
+    .. [1] Shin, Pai, Lin, Hui and Tien, J. Appl. Phys. 96, 7603 (2004),
+       doi:10.1063/1.1809773.
     """
     custom = solver is not None
     solver = solver or load_solver()
@@ -190,12 +302,16 @@ def check_derivation(
 
     def orbit(p: ModelParams) -> Any:
         if p not in solved:
-            solved[p] = _guarded(solver, p)
+            solved[p] = _guarded_orbit(solver, p)
         return solved[p]
 
+    if determine is None:
+        determine = not custom
     notes: list[str] = []
     orbits, verticals, settlings, margins = {}, {}, {}, {}
-    settled: dict[Any, Any] = {}
+    determinations: dict[str, Determination] = {}
+    answers: dict[str, TravelAnswer] = {}
+    answered: dict[tuple[ModelParams, float], tuple[Any, Any, TravelAnswer]] = {}
     vert_of: dict[tuple[float, float, float], Any] = {}
     for s in derivation.sets:
         p = s.params
@@ -205,16 +321,22 @@ def check_derivation(
             notes.append(f"set {s.name}: same parameters as an already solved set, reused")
         vkey = (p.varpi, p.zeta_v, p.restitution)
         if vkey not in vert_of:
-            vert_of[vkey] = _guarded(vertical, p.varpi, zeta_v=p.zeta_v, restitution=p.restitution)
+            vert_of[vkey] = _guarded_vertical(vertical, p)
         if vert_of[vkey] is not None:
             verticals[s.name] = vert_of[vkey]
-        if margin and orbit_mode(po) in ("push", "pull"):
+        key = (p, s.travel_range_m / s.scales.length_m)
+        if key not in answered:
+            answered[key] = answer_over_travel(
+                p, po, key[1], solver=orbit, determine=determine, settle=settle, horizon=horizon
+            )
+        det, st, answers[s.name] = answered[key]
+        if det is not None:
+            determinations[s.name] = det
+        if st is not None:
+            settlings[s.name] = st
+        unsure = det is not None and det.status in ("undetermined", "degenerate")
+        if margin and orbit_mode(po) in ("push", "pull") and not unsure:
             margins[s.name] = {k: orbit_mode(orbit(q)) for k, q in corner_params(p).items()}
-        if settle and orbit_mode(po) in ("push", "pull"):
-            key = (p, s.travel_range_m / s.scales.length_m)
-            if key not in settled:
-                settled[key] = _settling(p, po, key[1])
-            settlings[s.name] = settled[key]
     adq = _adequacy(derivation, adequacy, (lambda p, **_: orbit(p)) if custom else None)
     rules = evaluate_device(
         derivation,
@@ -224,6 +346,7 @@ def check_derivation(
         margins=margins if margin else None,
         target_speed_m_s=target_speed_m_s,
         adequacy=adq,
+        travel=answers,
     )
     sets = [
         SetCheck(
@@ -234,6 +357,8 @@ def check_derivation(
             settlings.get(s.name),
             margins.get(s.name),
             adq.get(s.name),
+            determinations.get(s.name),
+            answers.get(s.name),
         )
         for s in derivation.sets
     ]
@@ -241,32 +366,88 @@ def check_derivation(
 
 
 def _adequacy(
-    derivation: DeviceDerivation, want: Any, custom: Callable[..., Any] | None
-) -> dict[str, Any]:
+    derivation: DeviceDerivation,
+    want: DeviceAdequacy | bool | None,
+    custom: Callable[..., Any] | None,
+) -> dict[str, SetAdequacy]:
     """Adequacy results by set name ({} when not wanted; see :func:`check_derivation`)."""
     if want is False or (want is None and custom is not None):
         return {}
     if want is None or want is True:
-        from betvdesign.checks.adequacy import assess
-
         want = assess(derivation, solver=custom)
     return {a.name: a for a in want.sets}
 
 
-def _settling(p: ModelParams, po: Any, travel_s: float) -> Any:
-    from betvdesign.dynamics.settling import settling
+def answer_over_travel(
+    p: ModelParams,
+    po: PeriodicResult,
+    travel_s: float,
+    *,
+    solver: Callable[[ModelParams], Any] | None = None,
+    determine: bool = True,
+    settle: bool = True,
+    horizon: int = TRAVEL_HORIZON,
+) -> tuple[Determination | None, Settling | None, TravelAnswer]:
+    """What the check says one design does over its travel (unit-free).
 
-    moduli = getattr(po, "floquet_moduli", None)
+    The one sequence behind every verdict's mode and speed (the check, the verdict map of
+    :mod:`betvdesign.bench.verdictmap`): how well Δs is determined, the transient from
+    rest when the orbit moves or is not determined, and the answer quoted.
+
+    Parameters
+    ----------
+    p : ModelParams
+        The design [-].
+    po : PeriodicResult
+        Its periodic orbit.
+    travel_s : float
+        Travel range in units of u·cosθ [-].
+    solver : callable, optional
+        ``solver(params) -> PeriodicResult`` for the re-solves (default: the exact one).
+    determine, settle : bool
+        Run the determination / the transient from rest.
+    horizon : int
+        Cycles the transient may take to cross the travel [-].
+
+    Returns
+    -------
+    tuple
+        (:class:`~betvdesign.dynamics.determination.Determination` or None,
+        :class:`~betvdesign.dynamics.settling.Settling` or None,
+        :class:`~betvdesign.checks.travel.TravelAnswer`).
+    """
+    det = determine_delta_s(p, po, solver=solver) if determine else None
+    unsure = det is not None and det.status in ("undetermined", "degenerate")
+    st = None
+    if settle and (orbit_mode(po) in ("push", "pull") or unsure):
+        st = _settling(p, po, travel_s, horizon)
+    return det, st, travel_answer(po, det, st)
+
+
+def _settling(p: ModelParams, po: PeriodicResult, travel_s: float, horizon: int) -> Settling:
+    """The transient from rest against the orbit ``po`` over at most ``horizon`` cycles
+    (a failure stand-in if it raised)."""
+    moduli = po.floquet_moduli if po.success else None
+    ds = float(po.delta_s) if po.success and po.delta_s is not None else 0.0
     try:
         return settling(
             p,
-            float(po.delta_s),
-            period_cycles=int(getattr(po, "period_cycles", 1) or 1),
+            ds,
+            period_cycles=1
+            if not po.success or po.period_cycles is None
+            else int(po.period_cycles),
             travel_s=travel_s,
             mu_max=max(moduli) if moduli else None,
+            max_cycles=horizon,
         )
     except Exception as exc:  # reported, never a crash
-        return SolverFailure(f"settling: {type(exc).__name__}: {exc}")
+        return Settling(
+            status="failed",
+            message=f"settling: {type(exc).__name__}: {exc}",
+            cycles_to_settle=None,
+            cycles_to_cross=None,
+            crossing_delta_s=None,
+        )
 
 
 def _set_dict(sc: SetCheck) -> dict[str, Any]:
@@ -285,13 +466,15 @@ def _set_dict(sc: SetCheck) -> dict[str, Any]:
         "impact_direction": s.actuator_set.impact_direction,
         "params": params,
         "derived": derived,
-        "mode_predicted": sc.mode_predicted,
+        "mode": sc.verdict_mode,
         "mode_source": "exact periodic orbit",
         "lambda_mode": sc.lambda_mode,
         "lambda_agrees": sc.mode in (None, "stalled") or sc.mode == sc.lambda_mode,
         "speed_m_s": v,
         "simulation": None if p is None else simulation_summary(p),
-        "settling": None if st is None or not hasattr(st, "as_dict") else st.as_dict(),
+        "settling": None if st is None or st.status == "failed" else st.as_dict(),
+        "determination": None if sc.determination is None else sc.determination.as_dict(),
+        "travel": None if sc.travel is None else sc.travel.as_dict(),
         "margin": sc.margin,
         "adequacy": None if sc.adequacy is None else sc.adequacy.as_dict(),
         "vertical": None if sc.vertical is None else _vertical_summary(sc.vertical),
@@ -319,41 +502,51 @@ def _set_dict(sc: SetCheck) -> dict[str, Any]:
     }
 
 
-def simulation_summary(p: Any) -> dict[str, Any]:
-    """JSON-safe summary of a periodic-orbit result (fields the solver provides)."""
+def simulation_summary(p: PeriodicResult) -> dict[str, Any]:
+    """JSON-safe summary of a periodic-orbit result.
+
+    Parameters
+    ----------
+    p : PeriodicResult
+        The exact orbit (a failed one included).
+
+    Returns
+    -------
+    dict
+        ``status``, ``success``, ``message``, ``mode`` (None without an orbit),
+        ``delta_s`` [-]; for a solver result also ``residual`` [-], ``impacts_per_cycle``,
+        ``contact_fraction`` [-], ``elapsed_s`` [s], the cycle counts (``period_cycles``,
+        ``n_cycles``, ``transient_cycles``, when known) and ``mu_max`` (slowest Floquet
+        modulus |μ| [-], when known). Non-finite floats as None.
+    """
     out: dict[str, Any] = {
-        "status": str(getattr(p, "status", "")),
-        "success": bool(getattr(p, "success", False)),
-        "message": str(getattr(p, "message", "")),
-        "mode": mode_of(getattr(p, "delta_s", None)) if getattr(p, "success", False) else None,
+        "status": str(p.status),
+        "success": bool(p.success),
+        "message": str(p.message),
+        "mode": mode_of(p.delta_s) if p.success else None,
+        "delta_s": json_float(p.delta_s),
     }
-    for name in ("delta_s", "residual", "impacts_per_cycle", "contact_fraction", "elapsed_s"):
-        if hasattr(p, name):
-            out[name] = _json_float(getattr(p, name))
-    for name in ("period_cycles", "n_cycles", "transient_cycles"):
-        v = getattr(p, name, None)
-        if v is not None:
-            out[name] = int(v)
-    moduli = getattr(p, "floquet_moduli", None)
+    out["residual"] = json_float(p.residual)
+    out["impacts_per_cycle"] = json_float(p.impacts_per_cycle)
+    out["contact_fraction"] = json_float(p.contact_fraction)
+    out["elapsed_s"] = json_float(p.elapsed_s)
+    counts = (
+        ("period_cycles", p.period_cycles),
+        ("n_cycles", p.n_cycles),
+        ("transient_cycles", p.transient_cycles),
+    )
+    out |= {name: int(k) for name, k in counts if k is not None}
+    moduli = p.floquet_moduli
     if moduli:
         out["mu_max"] = float(max(moduli))
     return out
 
 
-def _vertical_summary(v: Any) -> dict[str, Any]:
-    out: dict[str, Any] = {
-        "success": bool(getattr(v, "success", False)),
-        "message": str(getattr(v, "message", "")),
-    }
-    if out["success"]:
+def _vertical_summary(v: VerticalResult) -> dict[str, Any]:
+    out: dict[str, Any] = {"success": bool(v.success), "message": str(v.message)}
+    if v.success:
         out["regime"] = str(v.regime)
-        for name in ("hits_per_cycle", "impulsive_per_cycle", "contact_fraction"):
-            out[name] = _json_float(getattr(v, name, None))
+        out["hits_per_cycle"] = json_float(v.hits_per_cycle)
+        out["impulsive_per_cycle"] = json_float(v.impulsive_per_cycle)
+        out["contact_fraction"] = json_float(v.contact_fraction)
     return out
-
-
-def _json_float(x: Any) -> float | str | None:
-    if x is None:
-        return None
-    x = float(x)
-    return x if math.isfinite(x) else str(x)

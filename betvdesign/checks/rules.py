@@ -1,13 +1,13 @@
 """Design rules as data: each check of a derived design gives a :class:`RuleResult`.
 
 The rules turn docs/MODEL.md, "What the model shows", into checks a designer can act
-on. **The mode and the speed always come from the exact periodic orbit** (an object
-with ``success``, ``status``, ``message``, ``delta_s``, ``period_cycles``,
-``floquet_moduli``, as :class:`betvdesign.dynamics.PeriodicResult`); the paper's λ
-fit is shown beside it ("agrees"/"disagrees"), never used for a verdict. Each failed
-rule carries a ``fix``: what to change, in the designer's quantities.
+on. **The mode and the speed always come from the exact periodic orbit** (a
+:class:`betvdesign.dynamics.PeriodicResult`, or the checker's failure stand-in, which
+has ``success`` False and says why); the paper's λ fit is shown beside it
+("agrees"/"disagrees"), never used for a verdict. Each failed rule carries a ``fix``:
+what to change, in the designer's quantities.
 
-Thresholds (one home: :mod:`betvdesign.model.domain`, except the two below):
+Thresholds (one home: :mod:`betvdesign.model.domain`, except the ones defined here):
 
 - frequency window 0.5 ≤ ϖ < 2 (one hit per cycle, finite contact);
 - mode: the intended one, |Δs| above round-off (else "stalled");
@@ -15,33 +15,44 @@ Thresholds (one home: :mod:`betvdesign.model.domain`, except the two below):
   (:data:`MARGIN_CORNERS`: ±5 % on the resonance frequency or ±10 % on the tangential
   compliance is a typical fabrication spread);
 - tangential resonance |a·ϖ² − 1| ≥ 0.1 for a = α and a = α(1 + 1/β);
+- speed Δs·u·cosθ·f_act from the exact orbit (MODEL.md, "Displacement per cycle"), or
+  the mean over the crossing of the travel range from rest when the slider has not
+  settled by then (:mod:`betvdesign.dynamics.settling`);
 - settling: from rest the slider is within 1 % of its periodic Δs before
   :data:`SETTLE_SHARE` of the cycles that cross the travel range are spent;
 - speed ≥ the target, when one is given;
-- published fit: computed parameters within 10 % of a published value.
+- published fit: computed parameters within :data:`PUBLISHED_RTOL` (10 %) of a published
+  value;
+- model adequacy (:func:`adequacy_rule`, from :mod:`betvdesign.checks.adequacy`): info
+  when the idealised model's mode holds with the device's (or plausible default) head
+  damping and restitution and throughout the likely bands of Q and e; warning when the
+  mode flips within them, or when the idealised model has no periodic orbit while the
+  richer one has (e.g. unbounded tangential growth at α·ϖ² = 1 without damping);
+- device: two or more sets move the slider both ways (``bidirectional``).
+
+References
+----------
+.. [1] Shin, Pai, Lin, Hui and Tien, J. Appl. Phys. 96, 7603 (2004),
+   doi:10.1063/1.1809773 (the window 0.5 ≤ ϖ < 2, the λ criterion of eq. 9, the
+   displacement per cycle).
 """
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING
 
-from betvdesign.checks.ruledata import (
-    MARGIN_CORNERS,
-    PUBLISHED_RTOL,
-    SETTLE_SHARE,
-    SRC_LAMBDA,
-    SRC_MARGIN,
-    SRC_PUBLISHED,
-    SRC_SOLVER,
-    SRC_TANG,
-    SRC_WINDOW,
+from betvdesign.checks.adequacy import LIKELY_QUALITY, LIKELY_RESTITUTION, SetAdequacy
+from betvdesign.checks.rule import (
     OrbitLike,
     RuleResult,
+    format_speed,
+    format_time,
+    no_crossing,
     orbit_mode,
-    verdict,
+    travel_axis,
+    travel_direction,
 )
-from betvdesign.checks.rules_adequacy import adequacy_rule
-from betvdesign.checks.rules_motion import format_speed, format_time, speed_rules
+from betvdesign.checks.travel import SETTLE_SHARE, TravelAnswer, travel_answer
 from betvdesign.model.domain import (
     FIT_RANGE,
     TANGENTIAL_DETUNING,
@@ -51,22 +62,66 @@ from betvdesign.model.domain import (
     outside_fit_range,
     resonance_detuning,
 )
-from betvdesign.nondim.device import DeviceDerivation, SetDerivation
+from betvdesign.nondim.record import DeviceDerivation, SetDerivation
 from betvdesign.output.siformat import format_si
+
+if TYPE_CHECKING:
+    from betvdesign.dynamics import VerticalResult
+    from betvdesign.dynamics.settling import Settling
 
 __all__ = [
     "MARGIN_CORNERS",
+    "PUBLISHED_RTOL",
     "SETTLE_SHARE",
-    "RuleResult",
+    "SRC_ADEQUACY",
+    "SRC_DETERMINATION",
+    "SRC_LAMBDA",
+    "SRC_MARGIN",
+    "SRC_PUBLISHED",
+    "SRC_SETTLE",
+    "SRC_SOLVER",
+    "SRC_SPEED",
+    "SRC_TANG",
+    "SRC_WINDOW",
+    "adequacy_rule",
     "evaluate",
     "evaluate_device",
-    "format_speed",
-    "format_time",
     "mode_hint",
-    "orbit_mode",
-    "travel_direction",
-    "verdict",
+    "speed_rules",
 ]
+
+#: Relative distance [-] within which a computed parameter matches a published one.
+PUBLISHED_RTOL = 0.1
+#: Relative perturbations of (ϖ, α) the mode must survive (fabrication spread).
+MARGIN_CORNERS: tuple[tuple[float, float], ...] = (
+    (0.95, 1.0),
+    (1.05, 1.0),
+    (1.0, 0.9),
+    (1.0, 1.1),
+)
+
+SRC_WINDOW = "MODEL.md, What the model shows: Vertical motion (Shin et al. 2004)"
+SRC_LAMBDA = "MODEL.md, Push/pull criterion (empirical fit, Shin et al. 2004, eq. 9)"
+SRC_TANG = "MODEL.md, What the model shows: tangential vibration undamped off contact"
+SRC_SPEED = "MODEL.md, Displacement per cycle: speed = Δs·u·cosθ·f_act"
+SRC_PUBLISHED = "device file: published_fit"
+SRC_SOLVER = "betvdesign.dynamics.periodic_orbit (exact event-driven solver, shooting)"
+SRC_SETTLE = "betvdesign.dynamics.settling (exact transient from rest, MODEL.md: Slider)"
+SRC_DETERMINATION = (
+    "betvdesign.dynamics.determination (periodic re-solves with every parameter moved by "
+    "1e-12; forces below round-off named before solving)"
+)
+#: What to change when the slider does not cross its travel within the horizon.
+NO_CROSSING_FIX = (
+    "choose a design that moves and settles faster (friction κ and the mass ratio β not near "
+    "0, |α·ϖ² − 1| not small without damping), or raise the horizon (`betv check --horizon "
+    "N`) if the travel really takes that long"
+)
+SRC_MARGIN = "exact periodic orbits at ϖ·(1 ± 5 %) and α·(1 ± 10 %) (fabrication spread)"
+SRC_ADEQUACY = (
+    "betvdesign.checks.adequacy: exact periodic orbits without and with head damping and "
+    "restitution, Q and e scanned (MODEL.md, Beyond the paper's idealisation)"
+)
 
 
 # --- per-set rules -----------------------------------------------------------------------
@@ -76,29 +131,59 @@ def evaluate(
     s: SetDerivation,
     *,
     orbit: OrbitLike | None = None,
-    vertical: Any | None = None,
-    settling: Any | None = None,
+    vertical: VerticalResult | None = None,
+    settling: Settling | None = None,
     margin: dict[str, str | None] | None = None,
     target_speed_m_s: float | None = None,
-    adequacy: Any | None = None,
+    adequacy: SetAdequacy | None = None,
+    travel: TravelAnswer | None = None,
 ) -> list[RuleResult]:
-    """Every rule for one actuator set (see the module docstring for thresholds).
+    """Every rule for one actuator set (the module docstring gives the thresholds).
 
-    orbit: exact periodic orbit (decides the mode, gives the speed); vertical: exact
-    vertical motion (quoted by the window rule); settling: a
-    :class:`betvdesign.dynamics.settling.Settling` from rest; margin: mode of the exact
-    orbit at each perturbed corner (label -> mode or None); target_speed_m_s: the
-    speed the design must reach [m/s] (adds an error rule); adequacy: a
-    :class:`betvdesign.checks.adequacy_data.SetAdequacy` (adds ``model-adequacy``).
+    Parameters
+    ----------
+    s : SetDerivation
+        The derived actuator set.
+    orbit : OrbitLike, optional
+        Its exact periodic orbit (decides the mode, gives the speed).
+    vertical : VerticalResult, optional
+        Its exact vertical motion (quoted by the window rule), or a failure stand-in
+        (``success`` False, ``message``).
+    settling : Settling, optional
+        The transient from rest (:func:`betvdesign.dynamics.settling.settling`), or a
+        failure stand-in with ``status`` "failed" (then ignored).
+    margin : dict, optional
+        Mode of the exact orbit at each perturbed corner (label -> mode or None); adds
+        the rule ``mode-margin``.
+    target_speed_m_s : float, optional
+        The speed the design must reach [m/s]; adds the error rule ``target-speed``.
+    adequacy : SetAdequacy, optional
+        The set's model adequacy (:mod:`betvdesign.checks.adequacy`); adds the rule
+        ``model-adequacy``.
+    travel : TravelAnswer, optional
+        The answer the verdict quotes (:func:`betvdesign.checks.travel.travel_answer`:
+        the orbit, or the crossing of the travel from rest, or none); None chooses it
+        from ``orbit`` and ``settling`` with Δs read as exact.
+
+    Returns
+    -------
+    list of RuleResult
+        In a fixed order: window, mode, λ, margin, tangential resonance, published fit,
+        speed, settling, target speed, model adequacy; ``set_name`` is ``s.name``.
+
+    References
+    ----------
+    .. [1] Shin, Pai, Lin, Hui and Tien, J. Appl. Phys. 96, 7603 (2004),
+       doi:10.1063/1.1809773.
     """
     out = [
         _frequency_window(s, vertical),
-        _mode(s, orbit),
+        _mode(s, orbit, travel),
         _lambda(s, orbit),
         *([_margin(s, orbit, margin)] if margin is not None else []),
         _tangential_resonance(s),
         *_published(s),
-        *speed_rules(s, orbit, settling, target_speed_m_s),
+        *speed_rules(s, orbit, settling, target_speed_m_s, travel),
         *([adequacy_rule(adequacy)] if adequacy is not None else []),
     ]
     return [_with_set(r, s.name) for r in out]
@@ -122,7 +207,7 @@ def _drive_range(s: SetDerivation, lo_varpi: float, hi_varpi: float) -> str:
     return f"{_hz(lo_varpi * f_v / k)}–{_hz(hi_varpi * f_v / k)}{note}"
 
 
-def _frequency_window(s: SetDerivation, vertical: Any | None = None) -> RuleResult:
+def _frequency_window(s: SetDerivation, vertical: VerticalResult | None) -> RuleResult:
     v = s.params.varpi
     lo, hi = VARPI_WINDOW
     f_v = s.scales.f_act_hz / v
@@ -141,21 +226,32 @@ def _frequency_window(s: SetDerivation, vertical: Any | None = None) -> RuleResu
             f"vertical resonance (now {_hz(f_v)}) to {_hz(s.scales.f_act_hz / hi)}–"
             f"{_hz(s.scales.f_act_hz / lo)}; `betv fix` finds the smallest change"
         )
-    if vertical is not None and getattr(vertical, "success", False):
+    if vertical is not None and vertical.success:
         msg += (
             f" [exact vertical motion: {vertical.regime}, {vertical.hits_per_cycle:g} hit(s) "
             f"per cycle ({vertical.impulsive_per_cycle:g} impulsive), in contact "
             f"{vertical.contact_fraction:.0%} of the time]"
         )
     elif vertical is not None:
-        msg += f" [exact vertical motion: {getattr(vertical, 'message', '')}]"
+        msg += f" [exact vertical motion: {vertical.message}]"
     thr = f"{lo:g} <= varpi < {hi:g}"
     return RuleResult("frequency-window", "error", lo <= v < hi, v, thr, msg, SRC_WINDOW, fix=fix)
 
 
 def mode_hint(intended: str) -> str:
-    """Which way to move the designer's fields for ``intended`` (MODEL.md: larger ϖ and
-    α favour push; larger β and κ favour pull)."""
+    """Which way to move the designer's fields toward a mode.
+
+    Parameters
+    ----------
+    intended : {"push", "pull"}
+        The mode wanted.
+
+    Returns
+    -------
+    str
+        The change in words (MODEL.md: larger ϖ and α favour push; larger β and κ favour
+        pull).
+    """
     if intended == "push":
         return (
             "toward push: raise ϖ (higher drive frequency, or a lower head vertical resonance) "
@@ -179,15 +275,16 @@ _STATUS_FIX = {
 }
 
 
-def _mode(s: SetDerivation, orbit: OrbitLike | None) -> RuleResult:
+def _mode(s: SetDerivation, orbit: OrbitLike | None, travel: TravelAnswer | None) -> RuleResult:
     want = f"intended {s.intended_mode}: Δs {'> 0' if s.intended_mode == 'push' else '< 0'}"
+    if travel is not None and travel.basis in ("undetermined", "no-crossing", "crossing"):
+        return _travel_mode(s, travel, want)
     if orbit is None:
         return RuleResult(
             "mode", "error", False, None, want, "no exact periodic orbit was computed", SRC_SOLVER
         )
-    if not getattr(orbit, "success", False):
-        status = str(getattr(orbit, "status", "failed"))
-        msg = getattr(orbit, "message", "")
+    if not orbit.success:
+        status = str(orbit.status)
         what = {
             "unbounded": "no periodic orbit exists: the head's tangential motion grows "
             "without bound",
@@ -203,11 +300,18 @@ def _mode(s: SetDerivation, orbit: OrbitLike | None) -> RuleResult:
                 "`betv fix FILE` finds the change"
             )
         return RuleResult(
-            "mode", "error", False, None, want, f"{what} ({status}): {msg}", SRC_SOLVER, fix=fix
+            "mode",
+            "error",
+            False,
+            None,
+            want,
+            f"{what} ({status}): {orbit.message}",
+            SRC_SOLVER,
+            fix=fix,
         )
     ds = float(orbit.delta_s)
     mode = mode_of(ds)
-    k = getattr(orbit, "period_cycles", 1) or 1
+    k = 1 if orbit.period_cycles is None else orbit.period_cycles  # a PeriodicResult
     per = f" (mean of a {k}-cycle orbit)" if k > 1 else ""
     if mode == "stalled":
         msg = f"exact periodic orbit: Δs = {ds:.3g} per cycle{per}: the slider does not move"
@@ -220,6 +324,57 @@ def _mode(s: SetDerivation, orbit: OrbitLike | None) -> RuleResult:
     )
     fix = "" if ok else mode_hint(s.intended_mode) + "; `betv fix FILE` finds the smallest change"
     return RuleResult("mode", "error", ok, ds, want, msg, SRC_SOLVER, fix=fix)
+
+
+def _travel_mode(s: SetDerivation, ans: TravelAnswer, want: str) -> RuleResult:
+    """The mode rule when the periodic orbit is not the answer (:mod:`betvdesign.checks.
+    travel`): Δs undetermined, no crossing of the travel, or the crossing from rest."""
+    travel = format_si(s.travel_range_m, "m")
+    f = s.scales.f_act_hz
+    periodic = ans.delta_s_periodic
+    if ans.basis == "undetermined":
+        return RuleResult(
+            "mode",
+            "error",
+            False,
+            None,
+            want,
+            f"mode undetermined: {ans.reason}",
+            SRC_DETERMINATION,
+            fix=ans.fix,
+        )
+    if ans.basis == "no-crossing":
+        n = ans.horizon_cycles or 0
+        shown = (
+            f"periodic orbit: Δs = {periodic:.4g} per cycle ({mode_of(periodic)}), not "
+            "reached over the travel"
+            if periodic is not None
+            else "no periodic answer"
+        )
+        return RuleResult(
+            "mode",
+            "error",
+            False,
+            None,
+            want,
+            f"{no_crossing(s.travel_range_m, n, f)} from rest ({shown})",
+            SRC_SETTLE,
+            fix=NO_CROSSING_FIX,
+        )
+    ds = float(ans.delta_s)
+    mode = ans.mode
+    ok = mode == s.intended_mode
+    shown = (
+        f"periodic orbit Δs = {periodic:.4g}, not settled by then"
+        if periodic is not None and mode_of(periodic) in ("push", "pull")
+        else "periodic Δs not determined"
+    )
+    msg = (
+        f"transient from rest crosses the {travel} travel in {ans.cycles_to_cross} cycles, "
+        f"mean Δs = {ds:.4g} per cycle -> {mode} mode (intended {s.intended_mode}; {shown})"
+    )
+    fix = "" if ok else mode_hint(s.intended_mode) + "; `betv fix FILE` finds the smallest change"
+    return RuleResult("mode", "error", ok, ds, want, msg, SRC_SETTLE, fix=fix)
 
 
 def _lambda(s: SetDerivation, orbit: OrbitLike | None) -> RuleResult:
@@ -327,30 +482,256 @@ def _published(s: SetDerivation) -> list[RuleResult]:
     return out
 
 
+# --- motion along the travel: speed, settling from rest, target speed ---------------------
+
+
+def speed_rules(
+    s: SetDerivation,
+    orbit: OrbitLike | None,
+    settling: Settling | None,
+    target: float | None,
+    travel: TravelAnswer | None = None,
+) -> list[RuleResult]:
+    """The rules about motion along the travel range.
+
+    Parameters
+    ----------
+    s : SetDerivation
+        The derived actuator set (scales, travel range).
+    orbit : OrbitLike or None
+        Its exact periodic orbit.
+    settling : Settling or None
+        The transient from rest; a failure stand-in (``status`` "failed") is ignored.
+    target : float or None
+        The speed the design must reach [m/s] (adds ``target-speed``).
+    travel : TravelAnswer, optional
+        The answer the verdict quotes (:func:`betvdesign.checks.travel.travel_answer`);
+        None chooses it from ``orbit`` and ``settling`` (Δs read as exact).
+
+    Returns
+    -------
+    list of RuleResult
+        ``speed`` (info; value [m/s], signed along the impacts): Δs·u·cosθ·f_act of the
+        quoted answer — the orbit, or the crossing mean from rest when the slider has not
+        settled within :data:`SETTLE_SHARE` of the crossing; none when it does not cross
+        its travel within the horizon; ``settling`` (warning; value: settling time
+        [s]) when a transient is given; ``target-speed`` (error) when a target is given.
+
+    References
+    ----------
+    .. [1] Shin, Pai, Lin, Hui and Tien, J. Appl. Phys. 96, 7603 (2004),
+       doi:10.1063/1.1809773 (displacement per cycle).
+    """
+    ans = travel if travel is not None else travel_answer(orbit, None, settling)
+    if ans.basis in ("no-crossing", "undetermined", "no-orbit") or not ans.moves:
+        if ans.basis == "no-crossing":
+            why = f"the slider does not cross its travel range: {ans.reason}"
+        elif ans.basis == "undetermined":
+            why = "the periodic Δs is not determined and the slider does not cross its travel"
+        elif ans.mode == "stalled":
+            why = "the slider does not move"
+        else:
+            why = "no exact periodic orbit"
+        out = [RuleResult("speed", "info", False, None, "needs a moving orbit", why, SRC_SPEED)]
+        if ans.basis == "no-crossing" and settling is not None:
+            out.append(_settling_rule(s, settling, ok=False))
+        if target is not None:
+            out.append(_target(None, target, why))
+        return out
+    periodic = ans.delta_s_periodic
+    travel_m = s.travel_range_m
+    out = []
+    if settling is not None and settling.status != "failed" and periodic is not None:
+        if mode_of(periodic) in ("push", "pull") and ans.basis in ("periodic", "crossing"):
+            out.append(_settling_rule(s, settling, ok=ans.basis == "periodic"))
+    ds = float(ans.delta_s)
+    v = s.scales.speed_m_s(ds)
+    if ans.basis == "crossing":
+        if periodic is not None and mode_of(periodic) in ("push", "pull"):
+            shown = format_speed(abs(s.scales.speed_m_s(periodic)))
+        else:
+            shown = "not determined"
+        basis = f"transient from rest over the travel range (periodic: {shown})"
+    else:
+        basis = "periodic orbit"
+    if abs(v) > 0:
+        t_cross = travel_m / abs(v)
+        msg = (
+            f"mean speed {format_speed(abs(v))} toward {travel_axis(s, ds)} "
+            f"({'with' if ds > 0 else 'against'} the impact direction "
+            f"{s.actuator_set.impact_direction}), crosses the {format_si(travel_m, 'm')} "
+            f"travel range in {format_time(t_cross)} [{basis}]"
+        )
+    else:
+        msg = "the slider does not advance over the travel range"
+    speed = RuleResult("speed", "info", True, v, "Δs·u·cosθ·f_act", msg, SRC_SPEED, unit="m/s")
+    out.insert(0, speed)
+    if target is not None:
+        out.append(_target(abs(v), target, ""))
+    return out
+
+
+def _settling_rule(s: SetDerivation, settling: Settling, *, ok: bool) -> RuleResult:
+    """The rule ``settling``: settling from rest against the cycles to cross the travel."""
+    f = s.scales.f_act_hz
+    n_cross = settling.cycles_to_cross
+    n_settle = settling.settle_cycles  # a lower bound when not settled
+    settle_txt = (
+        f"{n_settle:.4g} cycles ({format_time(n_settle / f)})"
+        if settling.cycles_to_settle is not None
+        else f"more than {settling.simulated_cycles} cycles (not settled)"
+    )
+    travel = format_si(s.travel_range_m, "m")
+    if n_cross:
+        cross_txt = (
+            f"crosses the {travel} travel range after {n_cross} cycles ({format_time(n_cross / f)})"
+        )
+    else:
+        cross_txt = no_crossing(s.travel_range_m, settling.simulated_cycles, f)
+    if ok:
+        tail, fix = "", ""
+    elif n_cross:
+        tail = ": the periodic speed is not what the travel shows"
+        fix = (
+            "quote the crossing speed from rest (the speed rule does), or choose a design "
+            "that settles faster (slowest Floquet multiplier |μ| further below 1; near ϖ → 2 "
+            "settling slows sharply)"
+        )
+    else:
+        tail = ": no speed is shown over the travel"
+        fix = NO_CROSSING_FIX
+    return RuleResult(
+        "settling",
+        "warning",
+        ok,
+        n_settle / f,
+        f"settling ≤ {SETTLE_SHARE:.0%} of the cycles to cross the travel range",
+        f"from rest: within {settling.rtol:.0%} of the periodic Δs after {settle_txt}; "
+        f"{cross_txt}{tail}",
+        SRC_SETTLE,
+        fix=fix,
+        unit="s",
+    )
+
+
+def _target(v: float | None, target: float, why: str) -> RuleResult:
+    ok = v is not None and v >= target
+    msg = (
+        f"speed {format_speed(v)} {'≥' if ok else '<'} target {format_speed(target)}"
+        if v is not None
+        else f"no speed ({why}); target {format_speed(target)}"
+    )
+    return RuleResult(
+        "target-speed",
+        "error",
+        ok,
+        v,
+        f"speed >= {format_speed(target)}",
+        msg,
+        SRC_SPEED,
+        fix=""
+        if ok
+        else "raise the drive voltage (stroke u) or frequency; `betv fix FILE "
+        "--target-speed Q` finds the change",
+        unit="m/s",
+    )
+
+
+# --- model adequacy: is the paper's idealised model enough here? --------------------------
+
+_ADEQUACY_FIX = {
+    "mode-flips": "give the measured Q and e (actuator.quality_factor_*, contact.restitution) "
+    "and stay clear of the flip; ",
+    "ideal-fails": "give the head's damping (actuator.quality_factor_*) so the check uses the "
+    "finite damped orbit, or detune the tangential resonance; ",
+    "failed": "`betv simulate FILE --periodic` shows why no orbit was found; ",
+}
+
+
+def adequacy_rule(a: SetAdequacy) -> RuleResult:
+    """The rule ``model-adequacy`` of one set's adequacy result.
+
+    Parameters
+    ----------
+    a : SetAdequacy
+        The set's adequacy (:func:`betvdesign.checks.adequacy.assess_set`); its long
+        ``message`` is in the JSON and the report, the rule quotes ``summary()``.
+
+    Returns
+    -------
+    RuleResult
+        Info when the idealised model's mode holds with the device's (or plausible
+        default) head damping and restitution and throughout the likely bands
+        :data:`~betvdesign.checks.adequacy.LIKELY_QUALITY` and
+        :data:`~betvdesign.checks.adequacy.LIKELY_RESTITUTION` (a flip only beyond them
+        is stated in the message); warning otherwise. Value: the relative speed change
+        (v_richer − v_ideal)/v_ideal [-], None without both speeds.
+    """
+    status = str(a.status)
+    ok = bool(a.adequate)
+    thr = (
+        f"same mode without and with damping/restitution, and for {LIKELY_QUALITY[0]:g} ≤ Q ≤ "
+        f"{LIKELY_QUALITY[1]:g}, {LIKELY_RESTITUTION[0]:g} ≤ e ≤ {LIKELY_RESTITUTION[1]:g}"
+    )
+    change = a.speed_change
+    head = _ADEQUACY_FIX.get(status, "")
+    if status == "mode-flips" and a.source == "device":
+        head = (
+            "the file's Q and e are given, but the mode flips within their likely range: "
+            "check how sure they are (`betv tolerance FILE --spread "
+            "contact.restitution=uniform:0.05`) and keep clear of the flip (a lower ϖ "
+            "tolerates a larger e); "
+        )
+    fix = "" if ok else head + "`betv report FILE` draws mode and speed against Q and e"
+    return RuleResult(
+        "model-adequacy",
+        "info" if ok else "warning",
+        ok,
+        None if change is None else float(change),
+        thr,
+        f"{status}: {a.summary()}",
+        SRC_ADEQUACY,
+        fix=fix,
+    )
+
+
 # --- device-level ------------------------------------------------------------------------
-
-
-def travel_direction(s: SetDerivation, mode: str) -> int:
-    """+1/−1: slider travel for a set working in ``mode`` (push: along its impacts)."""
-    return s.impact_sign if mode == "push" else -s.impact_sign
 
 
 def evaluate_device(
     derivation: DeviceDerivation,
     *,
     orbits: dict[str, OrbitLike] | None = None,
-    vertical: dict[str, Any] | None = None,
-    settling: dict[str, Any] | None = None,
+    vertical: dict[str, VerticalResult] | None = None,
+    settling: dict[str, Settling] | None = None,
     margins: dict[str, dict[str, str | None]] | None = None,
     target_speed_m_s: float | None = None,
-    adequacy: dict[str, Any] | None = None,
+    adequacy: dict[str, SetAdequacy] | None = None,
+    travel: dict[str, TravelAnswer] | None = None,
 ) -> list[RuleResult]:
-    """Rules of every set (dicts keyed by set name) plus the device rule
-    ``bidirectional`` (two or more sets must move the slider both ways)."""
+    """Rules of every set, then the device rule ``bidirectional``.
+
+    Parameters
+    ----------
+    derivation : DeviceDerivation
+        The derived device.
+    orbits, vertical, settling, margins, adequacy, travel : dict, optional
+        Per set name, what :func:`evaluate` takes as ``orbit``, ``vertical``,
+        ``settling``, ``margin``, ``adequacy`` and ``travel`` (a set not in a dict gets
+        None).
+    target_speed_m_s : float, optional
+        The speed every set must reach [m/s].
+
+    Returns
+    -------
+    list of RuleResult
+        The rules of each set in order, then, for two or more sets, ``bidirectional``
+        (warning: the sets must move the slider both ways).
+    """
     orbits, vertical, adequacy = orbits or {}, vertical or {}, adequacy or {}
-    settling, margins = settling or {}, margins or {}
+    settling, margins, answers = settling or {}, margins or {}, travel or {}
     out: list[RuleResult] = []
-    travel: dict[str, int | None] = {}
+    directions: dict[str, int | None] = {}
     for s in derivation.sets:
         orbit = orbits.get(s.name)
         out.extend(
@@ -362,14 +743,17 @@ def evaluate_device(
                 margin=margins.get(s.name),
                 target_speed_m_s=target_speed_m_s,
                 adequacy=adequacy.get(s.name),
+                travel=answers.get(s.name),
             )
         )
-        mode = orbit_mode(orbit)
-        travel[s.name] = travel_direction(s, mode) if mode in ("push", "pull") else None
+        ans = answers.get(s.name)
+        mode = ans.mode if ans is not None else orbit_mode(orbit)
+        directions[s.name] = travel_direction(s, mode) if mode in ("push", "pull") else None
     if len(derivation.sets) >= 2:
-        dirs = set(travel.values())
+        dirs = set(directions.values())
         listing = ", ".join(
-            f"{k}: {'none' if v is None else '+x' if v > 0 else '-x'}" for k, v in travel.items()
+            f"{k}: {'none' if v is None else '+x' if v > 0 else '-x'}"
+            for k, v in directions.items()
         )
         ok = dirs == {1, -1}
         out.append(

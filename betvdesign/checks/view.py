@@ -8,7 +8,7 @@ Quantities are written by :func:`betvdesign.output.siformat.format_si`
 (text) or as SI floats under unit-named keys (JSON).
 
 The JSON shape (``betv check --json``, :data:`JSON_SCHEMA_VERSION`) is the same for
-one or many files: ``{"schema": "betv-check", "version": 1, "verdict": ...,
+one or many files: ``{"schema": "betv-check", "version": 2, "verdict": ...,
 "devices": [...]}``; its JSON schema is :func:`check_json_schema` (``betv schema
 check``). Fields may be added in a minor change; removing or renaming one bumps the
 version.
@@ -27,17 +27,35 @@ from typing import Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Field
 
-from betvdesign.checks.rules import RuleResult
-from betvdesign.checks.view_adequacy import AdequacyOut, adequacy_line, adequacy_out
+from betvdesign.checks.adequacy import AdequacyOut, adequacy_line
+from betvdesign.checks.rule import RuleResult, no_crossing, travel_axis
+from betvdesign.output.numbers import RULE as NUMBER_RULE
 from betvdesign.output.siformat import format_dimensionless as fmt_x
 from betvdesign.output.siformat import format_si, si_key
 
-JSON_SCHEMA_VERSION = 1
+JSON_SCHEMA_VERSION = 2
+#: What each version changed (``betv schema check``, ``x-betv-changes``; README).
+VERSION_CHANGES = {
+    2: "non-finite numbers are null (a rule value of inf was the string 'inf'); per set "
+    "basis and delta_s_error (how well Δs is determined; the mode may be 'undetermined'); "
+    "details: mode_predicted -> mode (the verdict's mode), lambda_mode (λ's)",
+}
 
 
-def rule_unit(r: Any) -> str:
-    """SI unit of a rule's ``value`` ("" when dimensionless): the rule's own ``unit``."""
-    return str(getattr(r, "unit", "") or "")
+def rule_unit(r: RuleResult) -> str:
+    """SI unit of a rule's value.
+
+    Parameters
+    ----------
+    r : RuleResult
+        A rule's outcome.
+
+    Returns
+    -------
+    str
+        The rule's own ``unit`` ("" when dimensionless).
+    """
+    return r.unit
 
 
 #: Record symbols reported as SI floats: (record symbol, JSON name, SI unit).
@@ -100,11 +118,24 @@ class SetOut(_Out):
     intended_mode: Literal["push", "pull"]
     impact_direction: Literal["+x", "-x"]
     mode: str = Field(
-        description="push, pull, stalled, not driven (no contact recurs) or unknown (no "
-        "exact orbit)"
+        description="push, pull, stalled, undetermined (Δs not determined in float64 and "
+        "no crossing of the travel), not driven (no contact recurs) or unknown (no exact "
+        "orbit); the crossing's mode when basis is crossing"
     )
     passed: bool = Field(description="every error-severity rule of the set passes")
     delta_s: float | None = Field(description="periodic slider increment per cycle [-]")
+    delta_s_error: float | None = Field(
+        None,
+        description="how well delta_s is determined: its largest change under re-solves "
+        "with every parameter moved by 1e-12 [-] (None: not assessed or not finite)",
+    )
+    basis: str | None = Field(
+        None,
+        description="what the mode and speed quote: periodic (the settled orbit), crossing "
+        "(the transient from rest over the travel, not settled by then), no-crossing (does "
+        "not cross the travel within the horizon: fails), undetermined (Δs not determined "
+        "in float64: fails) or no-orbit",
+    )
     speed_m_s: float | None = Field(
         description="mean slider speed magnitude [m/s] (the speed rule's: periodic, or "
         "from rest over the travel range when it has not settled by then)"
@@ -145,17 +176,26 @@ class CheckOutput(_Out):
     """``betv check --json``: one object for one or many files."""
 
     schema_: Literal["betv-check"] = Field("betv-check", alias="schema")
-    version: Literal[1] = JSON_SCHEMA_VERSION
+    version: Literal[2] = JSON_SCHEMA_VERSION
     betvdesign: str = Field(description="betvdesign version that wrote this")
     verdict: Literal["pass", "fail"] = Field(description="fail when any device fails")
     devices: list[DeviceOut]
 
 
 def check_json_schema() -> dict[str, Any]:
-    """JSON schema of ``betv check --json`` (version :data:`JSON_SCHEMA_VERSION`)."""
+    """JSON schema of ``betv check --json`` (``betv schema check``).
+
+    Returns
+    -------
+    dict
+        The draft 2020-12 schema of :class:`CheckOutput`, version
+        :data:`JSON_SCHEMA_VERSION`.
+    """
     schema = CheckOutput.model_json_schema(by_alias=True, mode="serialization")
     schema["$schema"] = "https://json-schema.org/draft/2020-12/schema"
     schema["title"] = f"betv check --json, version {JSON_SCHEMA_VERSION} (betvdesign)"
+    schema["x-betv-numbers"] = NUMBER_RULE
+    schema["x-betv-changes"] = VERSION_CHANGES
     return schema
 
 
@@ -164,21 +204,53 @@ def check_json_schema() -> dict[str, Any]:
 
 @dataclass(frozen=True)
 class RuleFilter:
-    """Which rules count: ``select`` (empty: all) minus ``ignore``. A selector matches a
-    rule id exactly or as a dotted prefix (``fit-range`` matches ``fit-range.beta``)."""
+    """Which rules count: ``select`` minus ``ignore``.
+
+    A selector matches a rule id exactly or as a dotted prefix (``fit-range`` matches
+    ``fit-range.beta``).
+
+    Parameters
+    ----------
+    select : tuple of str
+        Rules that count (empty: all).
+    ignore : tuple of str
+        Rules left out.
+    """
 
     select: tuple[str, ...] = ()
     ignore: tuple[str, ...] = ()
 
     def keeps(self, rule_id: str) -> bool:
+        """Does a rule count?
+
+        Parameters
+        ----------
+        rule_id : str
+            The rule's id.
+
+        Returns
+        -------
+        bool
+            Selected (or no selection) and not ignored.
+        """
         if self.select and not any(self._hit(rule_id, s) for s in self.select):
             return False
         return not any(self._hit(rule_id, s) for s in self.ignore)
 
     def unmatched(self, results: Sequence[Any]) -> list[str]:
-        """A warning per selector that matches no rule of ``results`` (a typo, or a rule
-        these devices do not have, e.g. published-fit without a published fit), with the
-        closest rule id."""
+        """Selectors that match no rule (a typo, or a rule these devices do not have, e.g.
+        published-fit without a published fit).
+
+        Parameters
+        ----------
+        results : sequence of CheckResult
+            The checked devices.
+
+        Returns
+        -------
+        list of str
+            A warning per such selector, with the closest rule id.
+        """
         ids = sorted({r.id for res in results for r in res.rules})
         known = sorted(set(ids) | {i.split(".")[0] for i in ids})
         out = []
@@ -202,8 +274,13 @@ class RuleFilter:
 class DeviceView:
     """A checked device as a designer reads it (``repr`` one screen, ``_repr_html_``).
 
-    ``result`` is the full :class:`~betvdesign.checks.checker.CheckResult`; ``out`` its JSON
-    (:class:`DeviceOut`); ``rules`` the rules that count under ``rule_filter``.
+    Parameters
+    ----------
+    result : CheckResult
+        The full :class:`~betvdesign.checks.checker.CheckResult` (not imported here: the
+        checker renders itself through this module).
+    rule_filter : RuleFilter
+        The rules that count (``--select``/``--ignore``).
     """
 
     result: Any  # betvdesign.checks.checker.CheckResult
@@ -211,6 +288,7 @@ class DeviceView:
 
     @property
     def rules(self) -> list[RuleResult]:
+        """The rules that count under ``rule_filter``."""
         return [r for r in self.result.rules if self.rule_filter.keeps(r.id)]
 
     @property
@@ -220,14 +298,27 @@ class DeviceView:
 
     @property
     def failed(self) -> list[str]:
+        """Ids of the counted error-severity rules that fail (each once)."""
         return _unique(r.id for r in self.rules if r.severity == "error" and not r.passed)
 
     @property
     def out(self) -> DeviceOut:
+        """The JSON of this device (:meth:`as_out` without details)."""
         return self.as_out()
 
     def as_out(self, *, details: bool = False) -> DeviceOut:
-        """The JSON of this device (``details``: add the checker's full record)."""
+        """The JSON of this device.
+
+        Parameters
+        ----------
+        details : bool
+            Add the checker's full record (``--verbose``).
+
+        Returns
+        -------
+        DeviceOut
+            Verdict, failing rules, sets (SI floats under unit-named keys), rules, notes.
+        """
         res = self.result
         return DeviceOut(
             device=res.derivation.name,
@@ -242,7 +333,18 @@ class DeviceView:
         )
 
     def text(self, width: int = 100) -> str:
-        """The compact block (plain text, ``width`` columns)."""
+        """The compact block in plain text.
+
+        Parameters
+        ----------
+        width : int
+            Columns to wrap at.
+
+        Returns
+        -------
+        str
+            :func:`compact_lines` without markup.
+        """
         return "\n".join(compact_lines(self, width=width, markup=False))
 
     def __repr__(self) -> str:
@@ -266,23 +368,42 @@ def _rule_out(r: RuleResult) -> RuleOut:
         value_unit=rule_unit(r),
         threshold=r.threshold,
         message=r.message,
-        fix=str(getattr(r, "fix", "") or ""),
+        fix=r.fix,
         source=r.source,
     )
 
 
 def set_motion(sc: Any) -> tuple[float | None, float | None, str | None]:
-    """(Δs [-], speed magnitude [m/s], travel direction) of a set: Δs of its exact periodic
-    orbit, the speed its speed rule reports; Nones where there is none."""
+    """How a set moves the slider.
+
+    Parameters
+    ----------
+    sc : SetCheck
+        A set of a :class:`~betvdesign.checks.checker.CheckResult`.
+
+    Returns
+    -------
+    tuple
+        (Δs [-] of its exact periodic orbit, speed magnitude [m/s] its speed rule
+        reports, travel direction "+x"/"-x"); None where there is none (speed 0.0 when
+        the slider does not advance).
+    """
     p = sc.periodic
     ds = None
-    if p is not None and getattr(p, "success", False) and p.delta_s is not None:
+    if p is not None and p.success and p.delta_s is not None:
         ds = float(p.delta_s) if math.isfinite(float(p.delta_s)) else None
-    v = getattr(sc, "speed_m_s", None)
+    v = sc.speed_m_s
     if v is None or not math.isfinite(v) or v == 0.0:
         return ds, (0.0 if v == 0.0 else None), None
-    direction = "+x" if sc.derivation.impact_sign * (1 if v > 0 else -1) > 0 else "-x"
-    return ds, abs(float(v)), direction
+    return ds, abs(float(v)), travel_axis(sc.derivation, v)
+
+
+def _error(sc: Any) -> float | None:
+    """The set's Δs error [-] when assessed and finite, else None."""
+    d = sc.determination
+    if d is None or d.delta_s_error is None or not math.isfinite(d.delta_s_error):
+        return None
+    return float(d.delta_s_error)
 
 
 def _margin(sc: Any) -> tuple[bool | None, str]:
@@ -310,7 +431,7 @@ def _set_out(sc: Any, flt: RuleFilter) -> SetOut:
     rules = [r for r in sc.rules if flt.keeps(r.id)]
     p = s.params
     lam_mode = "push" if s.lam < 1.0 else "pull"
-    exact = sc.mode_predicted
+    exact = sc.verdict_mode
     holds, _ = _margin(sc)
     return SetOut(
         name=s.name,
@@ -319,6 +440,8 @@ def _set_out(sc: Any, flt: RuleFilter) -> SetOut:
         mode=exact,
         passed=not any(r.severity == "error" and not r.passed for r in rules),
         delta_s=ds,
+        delta_s_error=_error(sc),
+        basis=None if sc.travel is None else sc.travel.basis,
         speed_m_s=v,
         travel_direction=direction,  # type: ignore[arg-type]
         time_to_cross_s=s.travel_range_m / v if v else None,
@@ -331,8 +454,8 @@ def _set_out(sc: Any, flt: RuleFilter) -> SetOut:
                 agrees=(lam_mode == exact) if exact in ("push", "pull") else None,
             )
         },
-        margin=MarginOut(holds=holds, corners=dict(getattr(sc, "margin", None) or {})),
-        adequacy=adequacy_out(sc),
+        margin=MarginOut(holds=holds, corners=dict(sc.margin or {})),
+        adequacy=None if sc.adequacy is None else AdequacyOut.of(sc.adequacy),
         derived=derived,
         rules=[_rule_out(r) for r in rules],
     )
@@ -343,12 +466,37 @@ def _set_out(sc: Any, flt: RuleFilter) -> SetOut:
 _TAG = {"error": ("FAIL", "bold red"), "warning": ("warn", "yellow"), "info": ("note", "dim")}
 
 
+def _no_motion(sc: Any, mode: str, v: float | None) -> str:
+    """Why a set shows no speed, in a few words (never contradicting its rules)."""
+    ans = sc.travel
+    s = sc.derivation
+    if ans is not None and ans.basis == "no-crossing":
+        return no_crossing(s.travel_range_m, ans.horizon_cycles or 0, s.scales.f_act_hz)
+    if ans is not None and ans.basis == "undetermined":
+        return "Δs not determined in float64 (see the mode rule)"
+    if mode == "not driven":
+        return "no periodic drive (impulsive hits only)"
+    return "the slider does not move" if v == 0.0 else "no speed (no exact orbit)"
+
+
 def set_headline(sc: Any) -> tuple[str, str]:
-    """Two short lines for a set: mode, speed and margin; drive and parameters (plain)."""
+    """Two short lines for a set (plain text).
+
+    Parameters
+    ----------
+    sc : SetCheck
+        A set of a :class:`~betvdesign.checks.checker.CheckResult`.
+
+    Returns
+    -------
+    tuple of str
+        Mode, speed [m/s], travel and margin; drive (f_act [Hz], stroke u [m]) and the
+        dimensionless parameters with λ's prediction.
+    """
     s = sc.derivation
     p = s.params
     _, v, direction = set_motion(sc)
-    mode = sc.mode_predicted
+    mode = sc.verdict_mode
     if mode in ("push", "pull"):
         agree = "as intended" if mode == s.intended_mode else f"instead of {s.intended_mode}"
         head = f"{mode} {agree}"
@@ -360,8 +508,7 @@ def set_headline(sc: Any) -> tuple[str, str]:
             f"{format_si(s.travel_range_m, 'm')} in {format_si(s.travel_range_m / v, 's')}"
         )
     else:
-        none = "no periodic drive (impulsive hits only)" if mode == "not driven" else None
-        motion = "the slider does not move" if v == 0.0 else none or "no speed (no exact orbit)"
+        motion = _no_motion(sc, mode, v)
     line1 = f"{head}, {motion}; {_margin(sc)[1]}"
     lam_mode = "push" if s.lam < 1.0 else "pull"
     word = "" if mode not in ("push", "pull") else (" agrees" if lam_mode == mode else " disagrees")
@@ -386,8 +533,23 @@ def _beyond(p: Any) -> str:
 
 
 def compact_lines(view: DeviceView, *, width: int = 100, markup: bool = True) -> list[str]:
-    """The default ``betv check`` block: verdict, one or two lines per set, the failing
-    rules (grouped across sets) with their fix. ``markup``: rich colour tags."""
+    """The default ``betv check`` block.
+
+    Parameters
+    ----------
+    view : DeviceView
+        The checked device.
+    width : int
+        Columns to wrap at.
+    markup : bool
+        Rich colour tags (text escaped for rich).
+
+    Returns
+    -------
+    list of str
+        Verdict, two or three lines per set, the failing rules (grouped across sets) with
+        their fix.
+    """
     from rich.markup import escape
 
     esc = escape if markup else (lambda t: t)
@@ -403,13 +565,13 @@ def compact_lines(view: DeviceView, *, width: int = 100, markup: bool = True) ->
         label = f"  {sc.derivation.name}: "
         lines += _wrap(label + l1, width, len(label), esc)
         lines += _wrap(" " * len(label) + l2, width, len(label), esc)
-        if (l3 := adequacy_line(sc)) is not None:
+        if (l3 := adequacy_line(sc.adequacy)) is not None:
             lines += _wrap(" " * len(label) + l3, width, len(label), esc)
     groups: dict[tuple[str, str, str, str], list[str]] = {}
     for r in view.rules:
         if r.passed or r.severity == "info":
             continue
-        key = (r.severity, r.id, r.message, str(getattr(r, "fix", "") or ""))
+        key = (r.severity, r.id, r.message, r.fix)
         groups.setdefault(key, []).append(r.set_name)
     for (sev, rid, msg, fix), names in sorted(groups.items(), key=lambda kv: kv[0][0] != "error"):
         tag, style = _TAG[sev]
@@ -440,7 +602,18 @@ def _wrap(text: str, width: int, indent: int, esc: Any) -> list[str]:
 
 
 def quiet_line(view: DeviceView) -> str | None:
-    """One line for a failing device (``--quiet``), None when it passes."""
+    """One line for a failing device (``--quiet``).
+
+    Parameters
+    ----------
+    view : DeviceView
+        The checked device.
+
+    Returns
+    -------
+    str or None
+        ``FILE: FAIL rule, ...``; None when the device passes.
+    """
     if view.verdict == "pass":
         return None
     return (
@@ -449,7 +622,20 @@ def quiet_line(view: DeviceView) -> str | None:
 
 
 def output(views: Sequence[DeviceView], *, details: bool = False) -> CheckOutput:
-    """The whole ``--json`` document for ``views`` (``details``: ``--verbose``)."""
+    """The whole ``--json`` document.
+
+    Parameters
+    ----------
+    views : sequence of DeviceView
+        The checked devices.
+    details : bool
+        Add each checker's full record (``--verbose``).
+
+    Returns
+    -------
+    CheckOutput
+        One object for one or many files; its verdict fails when any device fails.
+    """
     from betvdesign import __version__
 
     devices = [v.as_out(details=details) for v in views]
@@ -458,7 +644,20 @@ def output(views: Sequence[DeviceView], *, details: bool = False) -> CheckOutput
 
 
 def output_json(views: Sequence[DeviceView], *, details: bool = False) -> str:
-    """``betv check --json`` text (``details`` with ``--verbose``); None fields kept."""
+    """The text of ``betv check --json``.
+
+    Parameters
+    ----------
+    views : sequence of DeviceView
+        The checked devices.
+    details : bool
+        Add each checker's full record (``--verbose``).
+
+    Returns
+    -------
+    str
+        :func:`output` as indented JSON (None fields kept, ``details`` only with it).
+    """
     doc = output(views, details=details).model_dump(mode="json", by_alias=True)
     if not details:
         for d in doc["devices"]:
@@ -470,14 +669,25 @@ def output_json(views: Sequence[DeviceView], *, details: bool = False) -> str:
 
 
 def device_html(view: DeviceView) -> str:
-    """A small HTML table of the check (Jupyter ``_repr_html_``), escaped."""
+    """A small HTML table of the check (Jupyter ``_repr_html_``).
+
+    Parameters
+    ----------
+    view : DeviceView
+        The checked device.
+
+    Returns
+    -------
+    str
+        Verdict, a row per set and per failing rule; every text escaped.
+    """
     e = html.escape
     res = view.result
     colour = "#1a7f37" if view.verdict == "pass" else "#cf222e"
     rows = []
     for sc in res.sets:
         l1, l2 = set_headline(sc)
-        l3 = adequacy_line(sc)
+        l3 = adequacy_line(sc.adequacy)
         l2 += "" if l3 is None else "\n" + l3
         rows.append(
             f"<tr><th>{e(sc.derivation.name)}</th><td>{e(l1)}<br><small>"
@@ -486,7 +696,7 @@ def device_html(view: DeviceView) -> str:
     for r in view.rules:
         if r.passed or r.severity == "info":
             continue
-        fix = str(getattr(r, "fix", "") or "")
+        fix = r.fix
         where = f" [{e(r.set_name)}]" if r.set_name else ""
         rows.append(
             f"<tr><th>{e(_TAG[r.severity][0])}</th><td><code>{e(r.id)}</code>{where}: "

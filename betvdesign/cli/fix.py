@@ -99,7 +99,7 @@ def fix_cmd(
 
 
 def _print(res, file: Path) -> None:
-    from betvdesign.checks.rules import format_speed
+    from betvdesign.checks.rule import format_speed
 
     if res.status == "already_passes":
         typer.echo(

@@ -20,7 +20,6 @@ floquet, impacts_per_cycle, contact_fraction`` (+ ``device``, ``set`` and
 from __future__ import annotations
 
 import json
-import math
 from pathlib import Path
 from typing import Any
 
@@ -47,6 +46,7 @@ from betvdesign.cli.physics import (
 )
 from betvdesign.errors import UsageError
 from betvdesign.model.params import ModelParams
+from betvdesign.output.numbers import json_float
 from betvdesign.output.siformat import format_si
 from betvdesign.spec import limits
 
@@ -114,10 +114,6 @@ def _physical(scales: Any, s: float, delta_s: float | None, cycles: int) -> dict
         out["delta_s_m"] = delta_s * scales.length_m
         out["speed_m_s"] = delta_s * scales.length_m * scales.f_act_hz
     return out
-
-
-def _finite(x: float | None) -> float | None:
-    return None if x is None or not math.isfinite(x) else float(x)
 
 
 @app.command("simulate")
@@ -194,10 +190,10 @@ def simulate_cmd(
                 "message": po.message,
                 "cycles": po.transient_cycles,
                 "s": po.transient_s,
-                "delta_s": _finite(po.delta_s),
+                "delta_s": json_float(po.delta_s),
                 "mode": po.mode,
                 "period_cycles": po.period_cycles,
-                "residual": _finite(po.residual),
+                "residual": json_float(po.residual),
                 "floquet": po.floquet_moduli,
                 "impacts_per_cycle": po.impacts_per_cycle,
                 "contact_fraction": po.contact_fraction,

@@ -5,6 +5,10 @@
 - :func:`vertical_motion`: vertical-only fast path (:mod:`vertical`).
 - :mod:`reference`: the same model with scipy ``solve_ivp`` and its own switching rules
   (cross-checks, studies); it shares no code with the exact solver.
+- :mod:`result`: what every answer carries (:class:`SolverResult`: ``status`` from a
+  documented vocabulary per kind of answer, ``success``, ``message``, counters,
+  ``elapsed_s``); a cycle that cannot be advanced raises :class:`solver.CycleFailure`
+  inside the solvers, which turn it into a "failed" answer.
 
 Where each piece of MODEL.md lives (one function each; all compiled by numba, one
 implementation, the same source runs as Python under ``NUMBA_DISABLE_JIT=1``):
@@ -41,13 +45,14 @@ chattering accumulation (Budd & Dux)             :func:`schedule.accumulation`
 """
 
 from betvdesign.dynamics.periodic import periodic_orbit
-from betvdesign.dynamics.result import Event, PeriodicResult, Trajectory
+from betvdesign.dynamics.result import Event, PeriodicResult, SolverResult, Trajectory
 from betvdesign.dynamics.solver import simulate
 from betvdesign.dynamics.vertical import VerticalResult, vertical_motion
 
 __all__ = [
     "Event",
     "PeriodicResult",
+    "SolverResult",
     "Trajectory",
     "VerticalResult",
     "periodic_orbit",

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import math
 
-from betvdesign.dynamics._jit import kernel
+from betvdesign.dynamics.jit import kernel
 
 EPS = 2.220446049250313e-16
 TWO_PI = 2.0 * math.pi

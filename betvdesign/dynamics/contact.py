@@ -23,7 +23,6 @@ from typing import NamedTuple
 import numpy as np
 
 from betvdesign.dynamics import damped
-from betvdesign.dynamics._jit import kernel
 from betvdesign.dynamics.bounds import EPS, NOISE
 from betvdesign.dynamics.evaluators import slip_evaluator, stick_evaluator
 from betvdesign.dynamics.flows import (
@@ -38,6 +37,7 @@ from betvdesign.dynamics.flows import (
     stick_flow,
     stick_velocity,
 )
+from betvdesign.dynamics.jit import kernel
 from betvdesign.dynamics.search import ROOT, SEARCH_FAILED, first_root, workspace
 
 #: Zero-length phases in a row before a contact is declared chattering.
@@ -131,9 +131,28 @@ def decide_phase(
     (1 − b) sin ϖτ ≤ ζ ≤ (1 + b) sin ϖτ (b = ακ(1 + β)), compared lexicographically on
     the Taylor coefficients of ζ − q sin ϖτ under the stick flow α(1 + 1/β) ζ'' + ζ =
     sin ϖτ: stick inside, slip below, reverse slip above (this also settles the limit
-    sin ϖτ → 0⁺ at a contact opening at τ = 0). ``on``: the event just located (0: ζ' = s'
-    in slip, 1: lower band edge, 2: upper band edge), zero by construction whatever its
-    round-off; −1 at a contact start.
+    sin ϖτ → 0⁺ at a contact opening at τ = 0). With damping: :func:`damped.decide_band`.
+
+    Parameters
+    ----------
+    c : PhaseTable
+        The constants of the parameter set (a record of :func:`phase_table`).
+    z, zd, sd : float
+        ζ, ζ', s' [-].
+    sp, cp : float
+        sin ϖτ, cos ϖτ [-] now.
+    on : int
+        The event just located, zero by construction whatever its round-off: 0 ζ' = s'
+        in slip, 1 the lower band edge, 2 the upper band edge; −1 at a contact start.
+
+    Returns
+    -------
+    int
+        ``SLIP``, ``STICK`` or ``REVERSE``.
+
+    References
+    ----------
+    Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773.
     """
     if on < 0:
         v = zd - sd
@@ -263,14 +282,43 @@ def contact(c, m, tc, z, zd, s, sd, ws, log, nlog, segs, nseg):
 def run_cycles(table, tab, idx, imp, m0, z, zd, s, sd, rows, check_finite, log, nlog, segs, nseg):
     """Cycles m0 + j, j = 0..n−1 (n = idx.size) of the exact solver from (ζ, ζ', s, s').
 
-    table: :func:`flows.phase_table`; tab: the vertical schedule's distinct cycles
-    (:data:`schedule.CYCLE_DTYPE`), idx[j] the row of cycle m0 + j; imp: impulsive-hit
-    local times (rows index them). rows (n + 1, 4), when it has rows, receives the state
-    at every cycle start and at the end. nlog / nseg: entries already in log / segs, −1
-    to keep none. Returns (code, j, events, evaluations, a, b, nlog, nseg, ζ, ζ', s, s'):
-    code OK, SEARCH_FAILED_CODE, CHATTER or NON_FINITE (with check_finite) in cycle
-    m0 + j, or BUFFER_FULL (go on from cycle m0 + j with the state returned, which is
-    then the one at its start).
+    The only implementation of the cycle loop: free flight in one closed-form step, each
+    contact as its sequence of phases to their certified events (:func:`contact`).
+
+    Parameters
+    ----------
+    table : numpy.ndarray
+        :func:`flows.phase_table` (one record).
+    tab : numpy.ndarray
+        The vertical schedule's distinct cycles (:data:`schedule.CYCLE_DTYPE`).
+    idx : numpy.ndarray
+        idx[j]: the row of ``tab`` of cycle m0 + j.
+    imp : numpy.ndarray
+        Impulsive-hit local times [-] (the rows of ``tab`` index them).
+    m0 : int
+        First cycle [-].
+    z, zd, s, sd : float
+        ζ, ζ', s, s' [-] at the start of cycle m0.
+    rows : numpy.ndarray
+        (n + 1, 4), when it has rows: receives the state at every cycle start and at the
+        end.
+    check_finite : bool
+        Stop with NON_FINITE on a non-finite state.
+    log, segs : numpy.ndarray
+        Event log (:data:`LOG_DTYPE`) and dense-output pieces (:data:`SEG_DTYPE`).
+    nlog, nseg : int
+        Entries already in ``log`` / ``segs``; −1 to keep none.
+
+    Returns
+    -------
+    CyclesRun
+        ``code`` OK, SEARCH_FAILED_CODE, CHATTER or NON_FINITE in cycle m0 + j, or
+        BUFFER_FULL (go on from cycle m0 + j with the state returned, the one at its
+        start); the counters and the state reached.
+
+    References
+    ----------
+    Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773.
     """
     c = table[0]
     ws = workspace()
@@ -325,8 +373,25 @@ def run_cycles(table, tab, idx, imp, m0, z, zd, s, sd, rows, check_finite, log, 
 
 @kernel
 def sample_segments(table, segs, which, h, out) -> None:
-    """Tangential states (ζ, ζ', s, s') at local offsets h[k] into segment which[k]
-    (dense output) into out[k, 2:6]; table: :func:`flows.phase_table`."""
+    """Dense output: tangential states at local offsets into closed-form segments.
+
+    Parameters
+    ----------
+    table : numpy.ndarray
+        :func:`flows.phase_table` (one record).
+    segs : numpy.ndarray
+        The segments (:data:`SEG_DTYPE`).
+    which : numpy.ndarray
+        Segment of each sample.
+    h : numpy.ndarray
+        Offset [-] of each sample into its segment.
+    out : numpy.ndarray
+        (n, 6): receives (ζ, ζ', s, s') [-] in out[k, 2:6].
+
+    References
+    ----------
+    Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773.
+    """
     c = table[0]
     for k in range(which.size):
         r = segs[which[k]]

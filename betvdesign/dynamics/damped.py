@@ -33,18 +33,25 @@ from __future__ import annotations
 
 import math
 
-from betvdesign.dynamics._jit import kernel
 from betvdesign.dynamics.bounds import (
     NOISE,
     envelope_prep,
 )
-from betvdesign.dynamics.evaluators import GAP_KIND, SLIP_KIND, STICK_KIND, _store
+from betvdesign.dynamics.evaluators import (
+    GAP_KIND,
+    SLIP_KIND,
+    STICK_KIND,
+    init_record,
+    put_forcing,
+    put_start,
+)
 from betvdesign.dynamics.flows import (
     REVERSE,
     SLIP,
     STICK,
     PhaseTable,
 )
+from betvdesign.dynamics.jit import kernel
 
 #: search window [rad of the fastest rate ϖ, w0, 2g]: long enough for few steps, short
 #: enough for the energy radius R = E + |(F, G)|·W to stay tight (root evaluations per
@@ -174,8 +181,31 @@ def _split(e, w0, g, wf, F, G, y, yd, sp0, cp0, kind: int, sig: float, ds: float
 def slip_evaluator(
     c: PhaseTable, phase: int, z, zd, s, sd, sp0, cp0, H: float, from_edge: bool, e
 ) -> None:
-    """f = σ(ζ' − s') of damped slip/reverse slip from (ζ, ζ', s, s') at φ0, window H;
-    ``from_edge``: entered at a band edge, where f' = σ(R − σbA sin φ)/α is 0 exactly."""
+    """Evaluator of f = σ(ζ' − s') with damping in slip (σ = +1) or reverse slip (σ = −1).
+
+    The phase ends (ζ' = s') where f reaches 0.
+
+    Parameters
+    ----------
+    c : PhaseTable
+        The constants of the parameter set (a record of :func:`phase_table`).
+    phase : int
+        ``SLIP`` or ``REVERSE``.
+    z, zd, s, sd : float
+        ζ, ζ', s, s' at the window start [-].
+    sp0, cp0 : float
+        sin φ0, cos φ0 [-] of the forcing phase at the start.
+    H : float
+        Window length [-].
+    from_edge : bool
+        Entered at a band edge, where f' = σ(R − σbA sin φ)/α is 0 exactly.
+    e : numpy.void
+        The evaluator filled (a record of :data:`evaluators.EVALUATOR_DTYPE`), by field name.
+
+    References
+    ----------
+    Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773.
+    """
     ph = c.slip if phase == SLIP else c.reverse
     sig, w0, F, G, g, ds = ph.sig, ph.w0, ph.F, ph.G, ph.g, ph.ds
     wf = c.varpi
@@ -207,61 +237,45 @@ def slip_evaluator(
     )
     m2 = derivative_bounds(w0, g, Af, wf, R0, 3) + ads * wf
     r = E0 + Af * H
-    _store(
-        e,
-        SLIP_KIND,
-        1,
-        H,
-        W,
-        False,
-        False,
-        math.atan2(sp0, cp0),
-        0.0,
-        wf,
-        w0,
-        F,
-        sp0,
-        cp0,
-        math.nan,
-        0.0,
-        0.0,
-        0.0,
-        0.0,
-        ds,
-        sig,
-        c.alpha,
-        z,
-        zd,
-        s,
-        sd,
-        math.inf,
-        R0,
-        1.0,
-        0,
-        0.0,
-        0.0,
-        0.0,
-        0.0,
-        (ph.q, 0.0),
-        (0.0, 0.0),
-        (math.inf, 0.0),
-        (0.0, 0.0),
-        (m2, 0.0),
-        (0, 0),
-        (0.0, 0.0),
-        (0.0, 0.0),
-        (r + abs(sd) + abs(zd) + 1e-300, 0.0),
-        start,
-        noise,
-    )
+    init_record(e, SLIP_KIND, H, W)
+    put_forcing(e, wf, w0, F, sp0, cp0)
+    put_start(e, start, noise)
+    e["R0"], e["bj"] = R0, 0
+    e["z"], e["zd"], e["s"], e["sd"] = z, zd, s, sd
+    e["ds"], e["sig"], e["al"] = ds, sig, c.alpha
+    e["q"][0], e["m2s"][0] = ph.q, m2
+    e["scale"][0] = r + abs(sd) + abs(zd) + 1e-300
     _general(e, g, G, Af, c.bA, c.a_stick)
     _split(e, w0, g, wf, F, G, z, zd, sp0, cp0, SLIP_KIND, sig, ds, sd)
 
 
 @kernel
 def stick_evaluator(c: PhaseTable, z, zd, sp0, cp0, H: float, on_edge: int, e) -> None:
-    """Damped stick-band distances g_lo, g_hi (module doc) from (ζ, ζ') at φ0, window H;
-    ``on_edge``: stick re-entered on that edge (0 lower, 1 upper), its distance 0 exactly."""
+    """Evaluator of the stick-band distances g_lo, g_hi with damping.
+
+    Stick ends where one reaches 0: below the band slip, above it reverse slip (module
+    doc).
+
+    Parameters
+    ----------
+    c : PhaseTable
+        The constants of the parameter set (a record of :func:`phase_table`).
+    z, zd : float
+        ζ, ζ' (= s') at the window start [-].
+    sp0, cp0 : float
+        sin φ0, cos φ0 [-] of the forcing phase at the start.
+    H : float
+        Window length [-].
+    on_edge : int
+        Stick re-entered on that edge (0 lower, 1 upper), whose distance is 0 exactly; −1
+        none.
+    e : numpy.void
+        The evaluator filled (a record of :data:`evaluators.EVALUATOR_DTYPE`), by field name.
+
+    References
+    ----------
+    Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773.
+    """
     st = c.stick
     w0, F, G, g = st.w0, st.F, st.G, st.g
     wf, bA, ast = c.varpi, c.bA, c.a_stick
@@ -288,62 +302,46 @@ def stick_evaluator(c: PhaseTable, z, zd, sp0, cp0, H: float, on_edge: int, e) -
     m2 = bA * wf * wf + ast * derivative_bounds(w0, g, Af, wf, R0, 4)
     r = E0 + Af * H
     sc = bA + ast * ((2.0 * g + w0) * r + Af)
-    _store(
-        e,
-        STICK_KIND,
-        2,
-        H,
-        W,
-        False,
-        False,
-        math.atan2(sp0, cp0),
-        0.5 * math.pi,
-        wf,
-        w0,
-        F,
-        sp0,
-        cp0,
-        math.nan,
-        0.0,
-        0.0,
-        0.0,
-        0.0,
-        0.0,
-        1.0,
-        1.0,
-        z,
-        zd,
-        0.0,
-        0.0,
-        math.inf,
-        R0,
-        1.0,
-        1,
-        0.0,
-        0.0,
-        0.0,
-        0.0,
-        (st.q[0], st.q[1]),
-        (0.0, 0.0),
-        (math.inf, math.inf),
-        (0.0, 0.0),
-        (m2, m2),
-        (0, 0),
-        (0.0, 0.0),
-        (0.0, 0.0),
-        (sc, sc),
-        start,
-        noise,
-    )
+    init_record(e, STICK_KIND, H, W)
+    put_forcing(e, wf, w0, F, sp0, cp0)
+    put_start(e, start, noise)
+    e["R0"], e["z"], e["zd"] = R0, z, zd
+    e["q"][0], e["q"][1] = st.q[0], st.q[1]
+    e["m2s"][0], e["m2s"][1] = m2, m2
+    e["scale"][0], e["scale"][1] = sc, sc
     _general(e, g, G, Af, bA, ast)
     _split(e, w0, g, wf, F, G, z, zd, sp0, cp0, STICK_KIND, 1.0, 0.0, 0.0)
 
 
 @kernel
 def gap_evaluator(wf, zv, A, xi, xid, sp0, cp0, H: float, e) -> None:
-    """The gap ξ in damped free flight (ξ'' + 2ζ_v ξ' + ξ = −A sin φ) from (ξ, ξ') at φ0
-    (also undamped with restitution: its round-off scale follows the window, so the tiny
-    flights of a chattering sequence are located to their own precision)."""
+    """Evaluator of the gap ξ in damped free flight (ξ'' + 2ζ_v ξ' + ξ = −A sin φ).
+
+    Also used undamped with restitution: its round-off scale follows the window, so the
+    tiny flights of a chattering sequence are located to their own precision.
+
+    Parameters
+    ----------
+    wf : float
+        ϖ [-].
+    zv : float
+        Normal damping ratio ζ_v [-].
+    A : float
+        Normal-force amplitude [-].
+    xi, xid : float
+        ξ, ξ' at the window start [-].
+    sp0, cp0 : float
+        sin φ0, cos φ0 [-] of the forcing phase at the start.
+    H : float
+        Window length [-].
+    e : numpy.void
+        The evaluator filled (a record of :data:`evaluators.EVALUATOR_DTYPE`), by field name.
+
+    References
+    ----------
+    Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773.
+    Budd & Dux, Phil. Trans. R. Soc. A 347 (1994), doi:10.1098/rsta.1994.0044.
+    """
     w0, g, F = 1.0, zv, -A
     W = _window(H, w0, wf, g)
     E0 = math.sqrt(xid * xid + xi * xi)
@@ -353,63 +351,46 @@ def gap_evaluator(wf, zv, A, xi, xid, sp0, cp0, H: float, e) -> None:
     start = (xi, xid, y2, y3, 0.0, 0.0, 0.0, 0.0)
     noise = (sc, sc, sc, sc, 0.0, 0.0, 0.0, 0.0)
     m2 = derivative_bounds(w0, g, A, wf, R0, 2)
-    _store(
-        e,
-        GAP_KIND,
-        1,
-        H,
-        W,
-        False,
-        False,
-        math.atan2(sp0, cp0),
-        0.5 * math.pi,
-        wf,
-        w0,
-        F,
-        sp0,
-        cp0,
-        math.nan,
-        0.0,
-        0.0,
-        0.0,
-        0.0,
-        0.0,
-        1.0,
-        1.0,
-        xi,
-        xid,
-        0.0,
-        0.0,
-        math.inf,
-        R0,
-        1.0,
-        1,
-        0.0,
-        0.0,
-        0.0,
-        0.0,
-        (0.0, 0.0),
-        (0.0, 0.0),
-        (math.inf, 0.0),
-        (0.0, 0.0),
-        (m2, 0.0),
-        (0, 0),
-        (0.0, 0.0),
-        (0.0, 0.0),
-        (sc, 0.0),
-        start,
-        noise,
-    )
+    init_record(e, GAP_KIND, H, W)
+    put_forcing(e, wf, w0, F, sp0, cp0)
+    put_start(e, start, noise)
+    e["R0"], e["z"], e["zd"] = R0, xi, xid
+    e["m2s"][0], e["scale"][0] = m2, sc
     _general(e, g, 0.0, A, 0.0, 0.0)
     _split(e, w0, g, wf, F, 0.0, xi, xid, sp0, cp0, GAP_KIND, 1.0, 0.0, 0.0)
 
 
 @kernel
 def decide_band(c: PhaseTable, z: float, vs: float, sp: float, cp: float, on: int) -> int:
-    """The stick-band rule of :func:`contact.decide_phase` with damping: g_lo, g_hi
-    (module doc) compared lexicographically on their Taylor coefficients under the damped
-    stick flow from (ζ, common velocity vs): stick inside, slip below, reverse slip above.
-    ``on``: 1 / 2 when on the lower / upper edge (its distance 0 exactly)."""
+    """The stick-band rule of :func:`contact.decide_phase` with damping.
+
+    g_lo, g_hi (module doc) are compared lexicographically on their Taylor coefficients
+    under the damped stick flow from (ζ, common velocity vs): stick inside, slip below,
+    reverse slip above.
+
+    Parameters
+    ----------
+    c : PhaseTable
+        The constants of the parameter set (a record of :func:`phase_table`).
+    z : float
+        ζ [-].
+    vs : float
+        The common velocity ζ' = s' [-].
+    sp, cp : float
+        sin φ, cos φ [-] now.
+    on : int
+        1 / 2 when on the lower / upper edge (its distance 0 exactly), else 0 or −1.
+
+    Returns
+    -------
+    int
+        ``SLIP``, ``STICK`` or ``REVERSE``.
+
+    References
+    ----------
+    Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773 (the band; damping:
+    docs/damping.md).
+    """
     st = c.stick
     w0, F, G, g = st.w0, st.F, st.G, st.g
     wf, bA, ast = c.varpi, c.bA, c.a_stick

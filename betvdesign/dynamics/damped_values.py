@@ -12,11 +12,11 @@ from __future__ import annotations
 
 import math
 
-from betvdesign.dynamics._jit import kernel
 from betvdesign.dynamics.bounds import cos_range_prep, cos_range_to, envelope_at, local_m2
 from betvdesign.dynamics.damped import derivative_bounds
 from betvdesign.dynamics.evaluators import GAP_KIND, SLIP_KIND
 from betvdesign.dynamics.flows import decaying_basis, forced, rotate
+from betvdesign.dynamics.jit import kernel
 
 
 @kernel(inline=True)

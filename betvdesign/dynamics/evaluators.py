@@ -28,11 +28,11 @@ import math
 
 import numpy as np
 
-from betvdesign.dynamics._jit import kernel
 from betvdesign.dynamics.bounds import (
     envelope_prep,
 )
 from betvdesign.dynamics.flows import SLIP, PhaseTable
+from betvdesign.dynamics.jit import kernel
 
 #: evaluator kinds
 SLIP_KIND, STICK_KIND, GAP_KIND = 0, 1, 2
@@ -105,101 +105,54 @@ EVALUATOR_DTYPE = np.dtype(
 )
 
 
-@kernel
-def _store(
-    e,
-    kind,
-    n,
-    H,
-    W,
-    fast,
-    clearable,
-    phi0,
-    off,
-    wf,
-    w0,
-    F,
-    sp0,
-    cp0,
-    P,
-    ac,
-    as_,
-    pwf,
-    sdc,
-    ds,
-    sig,
-    al,
-    z,
-    zd,
-    s,
-    sd,
-    Eh,
-    R0,
-    bdiv,
-    bj,
-    cc,
-    ct,
-    w02,
-    wf2,
-    q,
-    qw,
-    m2b,
-    m3b,
-    m2s,
-    env_mode,
-    env_acos,
-    K,
-    scale,
-    start,
-    noise,
-):
-    """Write an evaluator's fields into the record e (undamped form: ``gen`` False)."""
+@kernel(inline=True)
+def init_record(e, kind: int, H: float, W: float) -> None:
+    """Start the evaluator e of ``kind`` on the window [0, H], searched by windows W [-].
+
+    Sets ``kind``, ``n`` (2 for stick, else 1), ``H``, ``W`` and ``off`` (the phase of
+    the slow part's cosine: 0 for slip, π/2 for stick and the gap), and every other
+    field to its neutral value, so that each kind then writes, by name, only what it
+    has: no split (``fast``, ``clearable`` False, ``P`` NaN, ``Eh`` inf, ``ac``, ``as_``,
+    ``pwf``, ``sdc``, ``cc``, ``ct``, ``w02``, ``wf2`` 0), no slider (``ds``, ``s``,
+    ``sd`` 0), ``sig`` = ``al`` = ``bdiv`` = 1, ``bj`` = 1, per-function entries 0
+    but ``m2b`` inf (no global bound), Taylor coefficients 0 and the undamped form
+    (``gen`` False, ``g``, ``G``, ``Af``, ``bA``, ``ast``, ``offs`` 0: :mod:`damped`
+    writes its general form after this).
+    """
+    n = 2 if kind == STICK_KIND else 1
+    e["kind"], e["n"], e["H"], e["W"] = kind, n, H, W
+    e["off"] = 0.0 if kind == SLIP_KIND else 0.5 * math.pi
+    e["fast"], e["clearable"] = False, False
+    e["P"], e["Eh"] = math.nan, math.inf
+    e["ac"], e["as_"], e["pwf"], e["sdc"] = 0.0, 0.0, 0.0, 0.0
+    e["cc"], e["ct"], e["w02"], e["wf2"] = 0.0, 0.0, 0.0, 0.0
+    e["ds"], e["s"], e["sd"] = 0.0, 0.0, 0.0
+    e["sig"], e["al"], e["bdiv"], e["bj"] = 1.0, 1.0, 1.0, 1
+    for i in range(2):
+        e["q"][i], e["qw"][i], e["m3b"][i], e["m2s"][i] = 0.0, 0.0, 0.0, 0.0
+        e["env_mode"][i], e["env_acos"][i], e["K"][i], e["scale"][i] = 0, 0.0, 0.0, 0.0
+        e["m2b"][i] = math.inf if i < n else 0.0
+        e["offs"][i] = 0.0
+    for k in range(8):
+        e["start"][k], e["noise"][k] = 0.0, 0.0
     e["gen"] = False
-    e["kind"] = kind
-    e["n"] = n
-    e["H"] = H
-    e["W"] = W
-    e["fast"] = fast
-    e["clearable"] = clearable
-    e["phi0"] = phi0
-    e["off"] = off
-    e["wf"] = wf
-    e["w0"] = w0
-    e["F"] = F
-    e["sp0"] = sp0
-    e["cp0"] = cp0
-    e["P"] = P
-    e["ac"] = ac
-    e["as_"] = as_
-    e["pwf"] = pwf
-    e["sdc"] = sdc
-    e["ds"] = ds
-    e["sig"] = sig
-    e["al"] = al
-    e["z"] = z
-    e["zd"] = zd
-    e["s"] = s
-    e["sd"] = sd
-    e["Eh"] = Eh
-    e["R0"] = R0
-    e["bdiv"] = bdiv
-    e["bj"] = bj
-    e["cc"] = cc
-    e["ct"] = ct
-    e["w02"] = w02
-    e["wf2"] = wf2
-    e["q"][0], e["q"][1] = q
-    e["qw"][0], e["qw"][1] = qw
-    e["m2b"][0], e["m2b"][1] = m2b
-    e["m3b"][0], e["m3b"][1] = m3b
-    e["m2s"][0], e["m2s"][1] = m2s
-    e["env_mode"][0], e["env_mode"][1] = env_mode
-    e["env_acos"][0], e["env_acos"][1] = env_acos
-    e["K"][0], e["K"][1] = K
-    e["scale"][0], e["scale"][1] = scale
+    e["g"], e["G"], e["Af"], e["bA"], e["ast"] = 0.0, 0.0, 0.0, 0.0, 0.0
+
+
+@kernel(inline=True)
+def put_forcing(e, wf: float, w0: float, F: float, sp0: float, cp0: float) -> None:
+    """The oscillator y'' + w0² y = F sin φ of the evaluator e, φ = φ0 + ϖh (ϖ = wf), and
+    its forcing phase at the window start: (sin φ0, cos φ0) = (sp0, cp0) and φ0 [rad]."""
+    e["wf"], e["w0"], e["F"] = wf, w0, F
+    e["sp0"], e["cp0"], e["phi0"] = sp0, cp0, math.atan2(sp0, cp0)
+
+
+@kernel(inline=True)
+def put_start(e, start, noise) -> None:
+    """The Taylor coefficients 0..3 of each event function at the window start (entries
+    4i..4i+3 of the 8-tuple ``start``) and their round-off floors (``noise``)."""
     for k in range(8):
         e["start"][k] = start[k]
-    for k in range(8):
         e["noise"][k] = noise[k]
 
 
@@ -217,8 +170,31 @@ def slip_evaluator(
     from_edge: bool,
     e,
 ) -> None:
-    """f = σ(ζ' − s') in slip/reverse slip from (ζ, ζ', s, s') at φ0, window H.
-    ``from_edge``: entered at a band edge, where f' = σ(q sin φ − ζ)/α is 0 exactly."""
+    """Evaluator of f = σ(ζ' − s') in slip (σ = +1) or reverse slip (σ = −1).
+
+    The phase ends (ζ' = s') where f reaches 0.
+
+    Parameters
+    ----------
+    c : PhaseTable
+        The constants of the parameter set (a record of :func:`phase_table`).
+    phase : int
+        ``SLIP`` or ``REVERSE``.
+    z, zd, s, sd : float
+        ζ, ζ', s, s' at the window start [-].
+    sp0, cp0 : float
+        sin φ0, cos φ0 [-] of the forcing phase at the start.
+    H : float
+        Window length [-].
+    from_edge : bool
+        Entered at a band edge, where f' = σ(q sin φ − ζ)/α is 0 exactly.
+    e : numpy.void
+        The evaluator filled (a record of :data:`EVALUATOR_DTYPE`), by field name.
+
+    References
+    ----------
+    Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773.
+    """
     ph = c.slip if phase == SLIP else c.reverse
     sig, q, w0, F, ds = ph.sig, ph.q, ph.w0, ph.F, ph.ds
     P, apq, K, fast = ph.P, ph.apq, ph.K, ph.fast
@@ -265,61 +241,49 @@ def slip_evaluator(
     )
     R0 = math.sqrt(zd * zd + w0 * w0 * z * z) + abs(F) * W  # energy radius over W
     m2s = m2b if fast else min((abs(q) * wf + R0) / al, m2b)
-    _store(
-        e,
-        SLIP_KIND,
-        1,
-        H,
-        W,
-        fast,
-        fast,
-        math.atan2(sp0, cp0),
-        0.0,
-        wf,
-        w0,
-        F,
-        sp0,
-        cp0,
-        P,
-        ac,
-        as_,
-        pwf,
-        sdc,
-        ds,
-        sig,
-        al,
-        z,
-        zd,
-        s,
-        sd,
-        Eh,
-        R0,
-        al,
-        0,
-        cc,
-        ct,
-        0.0,
-        0.0,
-        (q, 0.0),
-        (q * wf, 0.0),
-        (m2b, 0.0),
-        (m3b, 0.0),
-        (m2s, 0.0),
-        (mode, 0),
-        (acs, 0.0),
-        (K, 0.0),
-        (r + asd + azd + 1e-300, 0.0),
-        start,
-        noise,
-    )
+    init_record(e, SLIP_KIND, H, W)
+    put_forcing(e, wf, w0, F, sp0, cp0)
+    put_start(e, start, noise)
+    e["fast"], e["clearable"] = fast, fast
+    e["P"], e["ac"], e["as_"], e["pwf"], e["Eh"], e["R0"] = P, ac, as_, pwf, Eh, R0
+    e["z"], e["zd"], e["s"], e["sd"], e["sdc"] = z, zd, s, sd, sdc
+    e["ds"], e["sig"], e["al"], e["bdiv"], e["bj"] = ds, sig, al, al, 0
+    e["cc"], e["ct"] = cc, ct
+    e["q"][0], e["qw"][0], e["K"][0] = q, q * wf, K
+    e["m2b"][0], e["m3b"][0], e["m2s"][0] = m2b, m3b, m2s
+    e["env_mode"][0], e["env_acos"][0] = mode, acs
+    e["scale"][0] = r + asd + azd + 1e-300
 
 
 @kernel
 def stick_evaluator(
     c: PhaseTable, z: float, zd: float, sp0: float, cp0: float, H: float, on_edge: int, e
 ) -> None:
-    """Stick-band distances g_lo, g_hi from (ζ, ζ') at φ0, window H. ``on_edge``: stick
-    re-entered on that edge (0 lower, 1 upper), whose distance is 0 exactly."""
+    """Evaluator of the stick-band distances g_lo, g_hi.
+
+    Stick ends where one reaches 0: below the band slip, above it reverse slip (module
+    doc).
+
+    Parameters
+    ----------
+    c : PhaseTable
+        The constants of the parameter set (a record of :func:`phase_table`).
+    z, zd : float
+        ζ, ζ' (= s') at the window start [-].
+    sp0, cp0 : float
+        sin φ0, cos φ0 [-] of the forcing phase at the start.
+    H : float
+        Window length [-].
+    on_edge : int
+        Stick re-entered on that edge (0 lower, 1 upper), whose distance is 0 exactly; −1
+        none.
+    e : numpy.void
+        The evaluator filled (a record of :data:`EVALUATOR_DTYPE`), by field name.
+
+    References
+    ----------
+    Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773.
+    """
     st = c.stick
     w0, F, P, fast, w3 = st.w0, st.F, st.P, st.fast, st.w3
     ql, qh = st.q[0], st.q[1]
@@ -377,58 +341,43 @@ def stick_evaluator(
     else:
         m2s0 = min(w0 * R0 + abs(F) + abs(ql) * wf * wf, m2b0)
         m2s1 = min(w0 * R0 + abs(F) + abs(qh) * wf * wf, m2b1)
-    _store(
-        e,
-        STICK_KIND,
-        2,
-        H,
-        W,
-        fast,
-        fast,
-        math.atan2(sp0, cp0),
-        0.5 * math.pi,
-        wf,
-        w0,
-        F,
-        sp0,
-        cp0,
-        P,
-        ac,
-        as_,
-        pwf,
-        0.0,
-        0.0,
-        1.0,
-        1.0,
-        z,
-        zd,
-        0.0,
-        0.0,
-        Eh,
-        R0,
-        1.0,
-        1,
-        0.0,
-        ct,
-        w02,
-        wf2,
-        (ql, qh),
-        (ql * wf, qh * wf),
-        (m2b0, m2b1),
-        (m3b0, m3b1),
-        (m2s0, m2s1),
-        (mode0, mode1),
-        (acs0, acs1),
-        (st.K[0], st.K[1]),
-        (r / w0 + abs(ql), r / w0 + abs(qh)),
-        start,
-        noise,
-    )
+    init_record(e, STICK_KIND, H, W)
+    put_forcing(e, wf, w0, F, sp0, cp0)
+    put_start(e, start, noise)
+    e["fast"], e["clearable"] = fast, fast
+    e["P"], e["ac"], e["as_"], e["pwf"], e["Eh"], e["R0"] = P, ac, as_, pwf, Eh, R0
+    e["z"], e["zd"] = z, zd
+    e["ct"], e["w02"], e["wf2"] = ct, w02, wf2
+    e["q"][0], e["q"][1], e["qw"][0], e["qw"][1] = ql, qh, ql * wf, qh * wf
+    e["m2b"][0], e["m2b"][1], e["m3b"][0], e["m3b"][1] = m2b0, m2b1, m3b0, m3b1
+    e["m2s"][0], e["m2s"][1] = m2s0, m2s1
+    e["env_mode"][0], e["env_mode"][1] = mode0, mode1
+    e["env_acos"][0], e["env_acos"][1] = acs0, acs1
+    e["K"][0], e["K"][1] = st.K[0], st.K[1]
+    e["scale"][0], e["scale"][1] = r / w0 + abs(ql), r / w0 + abs(qh)
 
 
 @kernel
 def gap_evaluator(wf: float, xi: float, xid: float, sp0: float, cp0: float, H: float, e) -> None:
-    """The gap ξ in free flight (ξ'' + ξ = −sin φ) from (ξ, ξ') at φ0, window H."""
+    """Evaluator of the gap ξ in free flight (ξ'' + ξ = −sin φ): the head hits where ξ = 0.
+
+    Parameters
+    ----------
+    wf : float
+        ϖ [-].
+    xi, xid : float
+        ξ, ξ' at the window start [-].
+    sp0, cp0 : float
+        sin φ0, cos φ0 [-] of the forcing phase at the start.
+    H : float
+        Window length [-].
+    e : numpy.void
+        The evaluator filled (a record of :data:`EVALUATOR_DTYPE`), by field name.
+
+    References
+    ----------
+    Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773.
+    """
     w0, F = 1.0, -1.0
     den = w0 * w0 - wf * wf
     if den == 0.0:  # vertical resonance ϖ = 1: no split
@@ -445,50 +394,11 @@ def gap_evaluator(wf: float, xi: float, xid: float, sp0: float, cp0: float, H: f
     R0 = math.sqrt(xid * xid + w0 * w0 * xi * xi) + abs(F) * W  # energy radius over W
     start = (xi, xid, -sp0 - xi, -wf * cp0 - xid, 0.0, 0.0, 0.0, 0.0)
     noise = (sc, sc, sc, sc, 0.0, 0.0, 0.0, 0.0)
-    _store(
-        e,
-        GAP_KIND,
-        1,
-        H,
-        W,
-        False,
-        clearable,
-        math.atan2(sp0, cp0),
-        0.5 * math.pi,
-        wf,
-        w0,
-        F,
-        sp0,
-        cp0,
-        P,
-        0.0,
-        0.0,
-        0.0,
-        0.0,
-        0.0,
-        1.0,
-        1.0,
-        xi,
-        xid,
-        0.0,
-        0.0,
-        Eh,
-        R0,
-        1.0,
-        1,
-        0.0,
-        Eh,
-        0.0,
-        0.0,
-        (0.0, 0.0),
-        (0.0, 0.0),
-        (m2b, 0.0),
-        (0.0, 0.0),
-        (min(R0 + 1.0, m2b), 0.0),
-        (0, 0),
-        (0.0, 0.0),
-        (P, 0.0),
-        (sc, 0.0),
-        start,
-        noise,
-    )
+    init_record(e, GAP_KIND, H, W)
+    put_forcing(e, wf, w0, F, sp0, cp0)
+    put_start(e, start, noise)
+    e["clearable"] = clearable
+    e["P"], e["Eh"], e["R0"], e["ct"] = P, Eh, R0, Eh
+    e["z"], e["zd"] = xi, xid
+    e["m2b"][0], e["m2s"][0] = m2b, min(R0 + 1.0, m2b)
+    e["K"][0], e["scale"][0] = P, sc

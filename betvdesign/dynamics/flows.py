@@ -39,10 +39,11 @@ so w0 = 1/sqrt(a) and F = c/a for a ζ'' + ζ = c sin ϖτ.
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 
-from betvdesign.dynamics._jit import jit_enabled, kernel
+from betvdesign.dynamics.jit import jit_enabled, kernel
 from betvdesign.model.params import ModelParams, normal_force_phase
 
 # Phase codes (ints: they sit in the inner loops).
@@ -135,26 +136,55 @@ def _split_ok(P: float, w0: float, F: float) -> bool:
     return P == P and abs(P) * w0 * w0 <= 10.0 * abs(F)
 
 
-def _slip_phase(sig: float, b: float, w0: float, F: float, wf: float, ds: float) -> tuple:
+def _record(dtype: np.dtype, fields: dict[str, Any]) -> tuple:
+    """The tuple numpy builds one record of ``dtype`` from, taken from ``fields`` by name
+    (a nested record from a nested dict); a missing or unknown name is a KeyError."""
+    names = dtype.names or ()
+    unknown = set(fields) - set(names)
+    if unknown:
+        raise KeyError(f"not fields of the record: {sorted(unknown)}")
+    return tuple(_record(dtype[n], fields[n]) if dtype[n].names else fields[n] for n in names)
+
+
+def _slip_phase(sig: float, b: float, w0: float, F: float, wf: float, ds: float) -> dict[str, Any]:
+    """The fields of :data:`SLIP_DTYPE` of the undamped slip (σ = +1) or reverse slip."""
     q = 1.0 - sig * b
     P = _forced_amplitude(w0, F, wf)
     fast = _split_ok(P, w0, F)
     apq = 0.0 if P != P else abs(P - q) * wf
     K = sig * (P * wf + ds / wf) if fast else 0.0
-    return (sig, q, w0, F, ds, P, apq, K, fast, 0.0, 0.0)
+    return dict(sig=sig, q=q, w0=w0, F=F, ds=ds, P=P, apq=apq, K=K, fast=fast, g=0.0, G=0.0)
 
 
-def phase_table(p: ModelParams) -> np.ndarray:
-    """The constants of parameters p, a one-record array of :data:`TABLE_DTYPE`
-    (w0 = 1/sqrt(a), F = c/a per phase); a record array (attribute access in plain
-    Python) when the kernels run as Python (``NUMBA_DISABLE_JIT=1``)."""
+def phase_table(p: ModelParams, *, general: bool = False) -> np.ndarray:
+    """The constants of every phase of one parameter set (MODEL.md phase table).
+
+    Parameters
+    ----------
+    p : ModelParams
+        The model, with its optional damping (then every phase takes its general form,
+        :func:`_damped_fields`).
+    general : bool
+        Every phase in its general (damped) form even without damping: a second
+        implementation of the same events, which must agree with the undamped one at
+        zero damping (tests).
+
+    Returns
+    -------
+    numpy.ndarray
+        A one-record array of :data:`TABLE_DTYPE` (w0 = 1/sqrt(a), F = c/a per phase);
+        a record array (attribute access in plain Python) when the kernels run as Python
+        (``NUMBA_DISABLE_JIT=1``).
+
+    References
+    ----------
+    Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773.
+    """
     al, be, ka, wf = p.alpha, p.beta, p.kappa, p.varpi
     a_st = al * (1.0 + 1.0 / be)
     w_free = 1.0 / math.sqrt(al)
     w_st = 1.0 / math.sqrt(a_st)
     b = al * ka * (1.0 + be)
-    slip = _slip_phase(1.0, b, w_free, (1.0 - al * ka) / al, wf, be * ka)
-    reverse = _slip_phase(-1.0, b, w_free, (1.0 + al * ka) / al, wf, -be * ka)
     F_st = 1.0 / a_st
     qs = (1.0 - b, 1.0 + b)
     P = _forced_amplitude(w_st, F_st, wf)
@@ -162,17 +192,37 @@ def phase_table(p: ModelParams) -> np.ndarray:
     a2 = (0.0, 0.0) if P != P else (abs(P - qs[0]) * wf * wf, abs(P - qs[1]) * wf * wf)
     a3 = (abs(P - qs[0]) * wf**3, abs(P - qs[1]) * wf**3) if fast else (0.0, 0.0)
     K = (P - qs[0], -1.0 * (P - qs[1])) if fast else (0.0, 0.0)
-    stick = (w_st, F_st, qs, P, a2, a3, K, wf**3, fast, 0.0, 0.0)
-    row = (wf, al, be, ka, b, a_st, w_free, 1.0 / al, slip, reverse, stick)
-    row = (*row, False, 0.0, 0.0, 0.0, 1.0, b, p.restitution)
-    if p.zeta_v != 0.0 or p.zeta_h != 0.0:
-        row = _damped_row(p, b, a_st)
-    table = np.array([row], dtype=TABLE_DTYPE)
+    row: dict[str, Any] = dict(
+        varpi=wf,
+        alpha=al,
+        beta=be,
+        kappa=ka,
+        b=b,
+        a_stick=a_st,
+        w_free=w_free,
+        F_free=1.0 / al,
+        slip=_slip_phase(1.0, b, w_free, (1.0 - al * ka) / al, wf, be * ka),
+        reverse=_slip_phase(-1.0, b, w_free, (1.0 + al * ka) / al, wf, -be * ka),
+        stick=dict(
+            w0=w_st, F=F_st, q=qs, P=P, a2=a2, a3=a3, K=K, w3=wf**3, fast=fast, g=0.0, G=0.0
+        ),
+        damped=False,
+        g_free=0.0,
+        G_free=0.0,
+        zeta_v=0.0,
+        A=1.0,
+        bA=b,
+        e=p.restitution,
+    )
+    if general or p.zeta_v != 0.0 or p.zeta_h != 0.0:
+        row.update(_damped_fields(p, b, a_st))
+    table = np.array([_record(TABLE_DTYPE, row)], dtype=TABLE_DTYPE)
     return table if jit_enabled() else table.view(np.recarray)
 
 
-def _damped_row(p: ModelParams, b: float, a_st: float) -> tuple:
-    """The table row with damping (docs/damping.md, kernel time φ = ϖτ, N ∝ A sin φ).
+def _damped_fields(p: ModelParams, b: float, a_st: float) -> dict[str, Any]:
+    """The fields of the table row that damping changes (docs/damping.md, kernel time
+    φ = ϖτ, N ∝ A sin φ).
 
     Every phase is y'' + 2g y' + w0² y = F sin φ + G cos φ with inertia a (α, or
     α(1 + 1/β) in stick): w0 = 1/sqrt(a), g = ζ_h sqrt(α)/a,
@@ -189,58 +239,39 @@ def _damped_row(p: ModelParams, b: float, a_st: float) -> tuple:
     # exactly 0 when the tangential and normal dampers balance (ζ_h√α = ζ_v), not ±1e-18
     Fs, Gc = cd + D * sd, 2.0 * wf * cd * (p.zeta_h * math.sqrt(al) - p.zeta_v)
 
-    def phase(sig: float) -> tuple:
+    def phase(sig: float) -> dict[str, Any]:
         w0, ds = 1.0 / math.sqrt(al), sig * be * ka * A
         F = (Fs - sig * al * ka * A) / al
-        return (
-            sig,
-            1.0 - sig * b,
-            w0,
-            F,
-            ds,
-            math.nan,
-            0.0,
-            0.0,
-            False,
-            p.zeta_h * math.sqrt(al) / al,
-            Gc / al,
-        )
+        g = p.zeta_h * math.sqrt(al) / al
+        return dict(
+            sig=sig, q=1.0 - sig * b, w0=w0, F=F, ds=ds, P=math.nan, apq=0.0, K=0.0,
+            fast=False, g=g, G=Gc / al,
+        )  # fmt: skip
 
-    w_st = 1.0 / math.sqrt(a_st)
-    qs = (1.0 - b, 1.0 + b)
-    stick = (
-        w_st,
-        Fs / a_st,
-        qs,
-        math.nan,
-        (0.0, 0.0),
-        (0.0, 0.0),
-        (0.0, 0.0),
-        wf**3,
-        False,
-        p.zeta_h * math.sqrt(al) / a_st,
-        Gc / a_st,
+    stick = dict(
+        w0=1.0 / math.sqrt(a_st),
+        F=Fs / a_st,
+        q=(1.0 - b, 1.0 + b),
+        P=math.nan,
+        a2=(0.0, 0.0),
+        a3=(0.0, 0.0),
+        K=(0.0, 0.0),
+        w3=wf**3,
+        fast=False,
+        g=p.zeta_h * math.sqrt(al) / a_st,
+        G=Gc / a_st,
     )
-    w_free = 1.0 / math.sqrt(al)
-    return (
-        wf,
-        al,
-        be,
-        ka,
-        b,
-        a_st,
-        w_free,
-        Fs / al,
-        phase(1.0),
-        phase(-1.0),
-        stick,
-        True,
-        p.zeta_h * math.sqrt(al) / al,
-        Gc / al,
-        p.zeta_v,
-        A,
-        b * A,
-        p.restitution,
+    return dict(
+        F_free=Fs / al,
+        slip=phase(1.0),
+        reverse=phase(-1.0),
+        stick=stick,
+        damped=True,
+        g_free=p.zeta_h * math.sqrt(al) / al,
+        G_free=Gc / al,
+        zeta_v=p.zeta_v,
+        A=A,
+        bA=b * A,
     )
 
 
@@ -257,10 +288,34 @@ def sinc(x: float) -> float:
 def oscillator(
     w0: float, wf: float, F: float, y0: float, v0: float, sp0: float, cp0: float, h: float
 ) -> tuple[float, float, float, float]:
-    """State after time h of y'' + w0² y = F sin(φ0 + wf h) [all dimensionless].
+    """State after time h of y'' + w0² y = F sin(φ0 + wf h), uniformly valid through resonance.
 
-    Starts from (y0, v0) at h = 0 with sin φ0 = sp0, cos φ0 = cp0. Returns
-    (y, y', sin φ, cos φ) at h. Uniformly valid through resonance (w0 = wf).
+    Closed form in divided differences (module docstring): no cancellation near w0 = wf
+    and exactly the secular solution at w0 = wf.
+
+    Parameters
+    ----------
+    w0 : float
+        Natural angular frequency [-] (> 0).
+    wf : float
+        Forcing angular frequency ϖ [-] (> 0).
+    F : float
+        Forcing amplitude [-].
+    y0, v0 : float
+        y and y' at h = 0 [-].
+    sp0, cp0 : float
+        sin φ0, cos φ0 [-] of the forcing phase at the start.
+    h : float
+        Time advanced [-] (τ units).
+
+    Returns
+    -------
+    tuple of 4 floats
+        (y, y', sin φ, cos φ) at h [-].
+
+    References
+    ----------
+    Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773.
     """
     c0 = math.cos(w0 * h)
     s0 = math.sin(w0 * h)
@@ -318,14 +373,40 @@ def forced(
     cp0: float,
     h: float,
 ) -> tuple[float, float]:
-    """(y, y') after time h of y'' + 2g y' + w0² y = F sin φ + G cos φ, φ = φ0 + wf h,
-    from (y0, v0), (sin φ0, cos φ0) = (sp0, cp0) [all dimensionless]; g ≥ 0.
+    """State after time h of y'' + 2g y' + w0² y = F sin φ + G cos φ, φ = φ0 + wf h.
 
     g = 0: :func:`oscillator` (resonance exact; G through the rotated forcing). g > 0:
     the steady response a sin φ + b cos φ, (a, b) = (ΔF + 2gϖG, ΔG − 2gϖF)/(Δ² + 4g²ϖ²),
     Δ = w0² − ϖ², plus the free damped oscillation (:func:`decaying_basis`) of the
     remaining initial state. Near resonance the split cancels up to |a|/|y| ≲ 1/(2ζ)
     (≤ 4 digits for ζ ≥ params.ZETA_MIN).
+
+    Parameters
+    ----------
+    w0 : float
+        Natural angular frequency [-] (> 0).
+    g : float
+        Damping rate [-] (≥ 0).
+    wf : float
+        Forcing angular frequency ϖ [-] (> 0).
+    F, G : float
+        Amplitudes of the sine and cosine forcing [-].
+    y0, v0 : float
+        y and y' at h = 0 [-].
+    sp0, cp0 : float
+        sin φ0, cos φ0 [-] of the forcing phase at the start.
+    h : float
+        Time advanced [-] (τ units).
+
+    Returns
+    -------
+    tuple of 2 floats
+        (y, y') at h [-].
+
+    References
+    ----------
+    Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773 (the undamped model; damping:
+    docs/damping.md).
     """
     if g == 0.0:
         if G == 0.0:
@@ -367,10 +448,33 @@ def slider(
     cp: float,
     h: float,
 ) -> tuple[float, float]:
-    """Slider (s, s') after h under s'' = ds·sin(φ0 + wf h) (free, slip, reverse).
+    """Slider state after h under s'' = ds·sin(φ0 + wf h) (free flight, slip, reverse slip).
 
     s' = s0' + ds (cos φ0 − cos φ)/wf,  s = s0 + s0' h + ds (h cos φ0 − (sin φ − sin φ0)/wf)/wf.
-    (sp0, cp0) and (sp, cp) are sin/cos of the phase at the start and at h.
+
+    Parameters
+    ----------
+    ds : float
+        Slider forcing amplitude [-] (±βκ in slip, 0 in free flight).
+    wf : float
+        ϖ [-].
+    s0, sd0 : float
+        s and s' at the start [-].
+    sp0, cp0 : float
+        sin φ0, cos φ0 [-] of the forcing phase at the start.
+    sp, cp : float
+        sin φ, cos φ [-] at h.
+    h : float
+        Time advanced [-] (τ units).
+
+    Returns
+    -------
+    tuple of 2 floats
+        (s, s') at h [-].
+
+    References
+    ----------
+    Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773.
     """
     if ds == 0.0:
         return s0 + sd0 * h, sd0
@@ -383,8 +487,32 @@ def slider(
 def vertical_flight(
     wf: float, zv: float, A: float, xi: float, xid: float, sp0: float, cp0: float, h: float
 ) -> tuple[float, float, float, float]:
-    """No contact, vertical: ξ'' + 2ζ_v ξ' + ξ = −A sin ϖτ over h (ζ_v = zv; undamped:
-    ξ'' + ξ = −sin ϖτ): (ξ, ξ', sin φ, cos φ)."""
+    """No contact, vertical: ξ'' + 2ζ_v ξ' + ξ = −A sin ϖτ over h (undamped: ξ'' + ξ = −sin ϖτ).
+
+    Parameters
+    ----------
+    wf : float
+        ϖ [-].
+    zv : float
+        Normal damping ratio ζ_v [-].
+    A : float
+        Normal-force amplitude [-] (1 undamped).
+    xi, xid : float
+        ξ and ξ' at the start [-].
+    sp0, cp0 : float
+        sin φ0, cos φ0 [-] of the forcing phase at the start.
+    h : float
+        Time advanced [-] (τ units).
+
+    Returns
+    -------
+    tuple of 4 floats
+        (ξ, ξ', sin φ, cos φ) at h [-].
+
+    References
+    ----------
+    Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773.
+    """
     if zv == 0.0:
         return oscillator(1.0, wf, -1.0, xi, xid, sp0, cp0, h)
     y, yd = forced(1.0, zv, wf, -A, 0.0, xi, xid, sp0, cp0, h)
@@ -396,8 +524,29 @@ def vertical_flight(
 def free_flight(
     c: PhaseTable, z: float, zd: float, s: float, sd: float, cp0: float, h: float
 ) -> tuple[float, float, float, float]:
-    """No contact, tangential: α ζ'' + ζ = sin ϖτ, s'' = 0, over h from a forcing phase
-    0 or π (cp0 = ±1: a section or a contact end): (ζ, ζ', s, s')."""
+    """No contact, tangential: α ζ'' + ζ = sin ϖτ, s'' = 0, over h.
+
+    Parameters
+    ----------
+    c : PhaseTable
+        The constants of the parameter set (a record of :func:`phase_table`).
+    z, zd, s, sd : float
+        ζ, ζ', s, s' at the start [-].
+    cp0 : float
+        cos φ0 = ±1 [-]: the flight starts at a forcing phase 0 (a section) or π (a contact
+        end).
+    h : float
+        Time advanced [-] (τ units).
+
+    Returns
+    -------
+    tuple of 4 floats
+        (ζ, ζ', s, s') at h [-].
+
+    References
+    ----------
+    Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773.
+    """
     w0 = c.w_free
     if c.damped:
         y, yd = forced(w0, c.g_free, c.varpi, c.F_free, c.G_free, z, zd, 0.0, cp0, h)
@@ -419,8 +568,32 @@ def slip_flow(
     cp0: float,
     h: float,
 ) -> tuple[float, float, float, float]:
-    """Contact, slip (ζ' > s') or reverse slip (ζ' < s'): α ζ'' + ζ = (1 ∓ ακ) sin ϖτ,
-    s'' = ±βκ sin ϖτ, over h: (ζ, ζ', s, s')."""
+    """Contact, slip (ζ' > s') or reverse slip (ζ' < s'), over h.
+
+    α ζ'' + ζ = (1 ∓ ακ) sin ϖτ, s'' = ±βκ sin ϖτ (with damping: docs/damping.md).
+
+    Parameters
+    ----------
+    c : PhaseTable
+        The constants of the parameter set (a record of :func:`phase_table`).
+    phase : int
+        ``SLIP`` or ``REVERSE``.
+    z, zd, s, sd : float
+        ζ, ζ', s, s' at the start [-].
+    sp0, cp0 : float
+        sin φ0, cos φ0 [-] of the forcing phase at the start.
+    h : float
+        Time advanced [-] (τ units).
+
+    Returns
+    -------
+    tuple of 4 floats
+        (ζ, ζ', s, s') at h [-].
+
+    References
+    ----------
+    Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773.
+    """
     ph = c.slip if phase == SLIP else c.reverse
     if c.damped:
         zn, zdn = forced(ph.w0, ph.g, c.varpi, ph.F, ph.G, z, zd, sp0, cp0, h)
@@ -435,8 +608,30 @@ def slip_flow(
 def stick_flow(
     c: PhaseTable, z: float, zd: float, s: float, sp0: float, cp0: float, h: float
 ) -> tuple[float, float, float, float]:
-    """Contact, stick (ζ' = s'): α(1 + 1/β) ζ'' + ζ = sin ϖτ, s'' = ζ'' (s − ζ constant),
-    over h: (ζ, ζ', s, s')."""
+    """Contact, stick (ζ' = s'), over h: α(1 + 1/β) ζ'' + ζ = sin ϖτ, s'' = ζ''.
+
+    The slider and the head move together: s − ζ stays constant.
+
+    Parameters
+    ----------
+    c : PhaseTable
+        The constants of the parameter set (a record of :func:`phase_table`).
+    z, zd, s : float
+        ζ, ζ' (= s') and s at the start [-].
+    sp0, cp0 : float
+        sin φ0, cos φ0 [-] of the forcing phase at the start.
+    h : float
+        Time advanced [-] (τ units).
+
+    Returns
+    -------
+    tuple of 4 floats
+        (ζ, ζ', s, s') at h [-].
+
+    References
+    ----------
+    Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773.
+    """
     st = c.stick
     if c.damped:
         zn, zdn = forced(st.w0, st.g, c.varpi, st.F, st.G, z, zd, sp0, cp0, h)
@@ -447,7 +642,24 @@ def stick_flow(
 
 @kernel
 def stick_velocity(zd: float, sd: float, beta: float) -> float:
-    """Common velocity on entering stick: the one conserving the momentum ζ' + s'/β."""
+    """Common velocity on entering stick: the one conserving the momentum ζ' + s'/β.
+
+    Parameters
+    ----------
+    zd, sd : float
+        ζ' and s' just before [-].
+    beta : float
+        β = m/M [-].
+
+    Returns
+    -------
+    float
+        The common velocity ζ' = s' [-].
+
+    References
+    ----------
+    Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773.
+    """
     return (zd + sd / beta) / (1.0 + 1.0 / beta)
 
 
@@ -463,8 +675,30 @@ def flow(
     cp0: float,
     h: float,
 ) -> tuple[float, float, float, float]:
-    """(ζ, ζ', s, s') after h in any ``phase`` from a forcing phase (sin, cos) =
-    (sp0, cp0); free flight from any phase (dense output) through the general form."""
+    """State after h in any phase (dense output), free flight from any forcing phase.
+
+    Parameters
+    ----------
+    c : PhaseTable
+        The constants of the parameter set (a record of :func:`phase_table`).
+    phase : int
+        ``FREE``, ``SLIP``, ``STICK`` or ``REVERSE``.
+    z, zd, s, sd : float
+        ζ, ζ', s, s' at the start [-].
+    sp0, cp0 : float
+        sin φ0, cos φ0 [-] of the forcing phase at the start.
+    h : float
+        Time advanced [-] (τ units).
+
+    Returns
+    -------
+    tuple of 4 floats
+        (ζ, ζ', s, s') at h [-].
+
+    References
+    ----------
+    Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773.
+    """
     if phase == STICK:
         return stick_flow(c, z, zd, s, sp0, cp0, h)
     if phase == FREE:

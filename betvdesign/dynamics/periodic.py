@@ -40,15 +40,16 @@ from __future__ import annotations
 
 import math
 import time
+from typing import Any
 
 import numpy as np
 
 from betvdesign.dynamics import contact, shooting
-from betvdesign.dynamics._jit import compile_note
 from betvdesign.dynamics.flows import phase_table
+from betvdesign.dynamics.jit import compile_note
 from betvdesign.dynamics.result import PeriodicResult
 from betvdesign.dynamics.shooting import TRUST
-from betvdesign.dynamics.solver import CycleRunner, SolverFailure
+from betvdesign.dynamics.solver import CycleFailure, CycleRunner
 from betvdesign.dynamics.vertical import VerticalSchedule, VerticalSearchError
 from betvdesign.errors import ParameterError
 from betvdesign.model.domain import mode_of
@@ -70,9 +71,25 @@ BRACKET_BISECT = 40
 
 
 def resonance_growth_bound(p: ModelParams) -> float | None:
-    """Proven least fall of ζ per cycle at the section [-/cycle], π(1 − ακ/2), when
-    α·ϖ² = 1 (within :data:`RESONANCE_RTOL`) and ακ < 2; None when the bound does not
-    apply (module docstring; MODEL.md "Dimensionless model", no-contact and slip)."""
+    """Proven least fall of ζ per cycle at the section at the free-flight resonance.
+
+    Parameters
+    ----------
+    p : ModelParams
+        The model.
+
+    Returns
+    -------
+    float or None
+        π(1 − ακ/2) [-/cycle] when α·ϖ² = 1 (within :data:`RESONANCE_RTOL`), ακ < 2 and
+        the model is the paper's (no damping, no restitution); None when the bound does
+        not apply (module docstring; MODEL.md "Dimensionless model", no-contact and slip).
+
+    References
+    ----------
+    Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773 (the model; unbounded
+    tangential motion near a·ϖ² = 1).
+    """
     ak = p.alpha * p.kappa
     if not p.ideal or abs(p.alpha * p.varpi**2 - 1.0) > RESONANCE_RTOL or ak >= 2.0:
         return None
@@ -127,7 +144,7 @@ class _Map:
         ok, y, s = shooting.section_map(*self.shot(n), np.asarray(x, dtype=float))
         if not ok:  # run again where the failure is explained (rare path)
             CycleRunner(self.c, self.vs).run(self.m0, n, x[0], x[1], 0.0, x[2], check_finite=False)
-            raise SolverFailure(f"a contact could not be advanced from cycle {self.m0}", self.m0)
+            raise CycleFailure(f"a contact could not be advanced from cycle {self.m0}", self.m0)
         return y, s
 
     def residual(self, x: np.ndarray, n: int) -> tuple[float, np.ndarray, float]:
@@ -136,7 +153,7 @@ class _Map:
     def jacobian(self, x: np.ndarray, n: int, y: np.ndarray, central: bool = False) -> np.ndarray:
         ok, J = shooting.jacobian(*self.shot(n), x, y, central)
         if not ok:
-            raise SolverFailure("a contact could not be advanced (Jacobian)", self.m0)
+            raise CycleFailure("a contact could not be advanced (Jacobian)", self.m0)
         return J
 
 
@@ -256,13 +273,42 @@ def periodic_orbit(
 ) -> PeriodicResult:
     """Periodic state reached from rest (MODEL.md "Initial state"), by shooting.
 
-    tol: accepted fixed-point residual ‖Φⁿ(x) − x‖∞ [-]; max_cycles: brute-force budget
-    (cycles from rest) before giving up; max_period: periods j·k_v tried, j ≤ max_period;
-    transient: cycles from rest before the first Newton attempt.
+    Newton (with Anderson-accelerated starts) on the exact Poincaré map of the section
+    state (ζ, ζ', s'), accepted on the fixed-point residual only, stable orbits only
+    (module docstring).
 
-    status: "success"; "unbounded" (exact free-flight tangential resonance α·ϖ² = 1 with
-    ακ < 2: no bounded motion exists, proven and measured, see the module docstring);
-    "not_converged" (budget spent); "not_driven" (no contact recurs); "failed".
+    Parameters
+    ----------
+    p : ModelParams
+        The model, with its optional damping and restitution.
+    tol : float
+        Accepted fixed-point residual ‖Φⁿ(x) − x‖∞ [-].
+    max_cycles : int
+        Brute-force budget [cycles from rest] before giving up.
+    max_period : int
+        Periods j·k_v tried, j ≤ max_period [-] (k_v the vertical period).
+    transient : int
+        Cycles from rest before the first Newton attempt [-].
+
+    Returns
+    -------
+    PeriodicResult
+        Status (:data:`~betvdesign.dynamics.result.PeriodicStatus`): "success";
+        "unbounded" (exact free-flight tangential resonance α·ϖ² = 1 with ακ < 2: no
+        bounded motion exists, proven and measured, see the module docstring);
+        "not_converged" (budget spent); "not_driven" (no contact recurs); "failed".
+
+    Raises
+    ------
+    ParameterError
+        For a ``p`` that is not a ModelParams or a ``tol`` that is not finite and > 0.
+
+    References
+    ----------
+    Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773 (the model; the slider
+    settles to a periodic motion of the actuator's period).
+    Budd & Dux, Phil. Trans. R. Soc. A 347 (1994), doi:10.1098/rsta.1994.0044 (chattering, with
+    restitution).
     """
     if not isinstance(p, ModelParams):
         raise ParameterError(f"p must be a ModelParams, got {type(p).__name__}")
@@ -273,30 +319,35 @@ def periodic_orbit(
     )
 
 
-def _vertical_failure(p: ModelParams, msg: str, elapsed: float) -> PeriodicResult:
-    """The result when the vertical motion itself cannot be computed (a search that did
-    not terminate, a chattering sequence that did not accumulate)."""
-    return PeriodicResult(
-        params=p,
-        status="failed",
-        success=False,
-        message=f"vertical motion: {msg}",
-        impacts_per_cycle=math.nan,
-        contact_fraction=math.nan,
-        n_cycles=0,
-        n_events=0,
-        n_root_evals=0,
-        elapsed_s=elapsed,
-        delta_s=None,
-        mode=None,
-        period_cycles=None,
-        residual=None,
-        floquet=None,
-        stable=None,
-        state=None,
-        n_newton=0,
-        transient_cycles=0,
-        transient_s=0.0,
+def not_driven_message(p: ModelParams, cycles: int) -> str:
+    """Why the slider is not driven: no contact recurs (status "not_driven").
+
+    The one wording of that verdict, shared by the periodic orbit and the fidelity
+    ladder's transient rung (:mod:`betvdesign.checks.fidelity`).
+
+    Parameters
+    ----------
+    p : ModelParams
+        The design's dimensionless parameters.
+    cycles : int
+        Actuation cycles [-] within which no contact recurred.
+
+    Returns
+    -------
+    str
+        The verdict and its cause (restitution that never settles, or ϖ beyond the
+        design window).
+    """
+    return (
+        f"no contact recurs within {cycles} cycles at ϖ = {p.varpi:g}: hits are "
+        "impulsive only and the slider is not driven ("
+        + (
+            f"restitution e = {p.restitution:g}: the rebounds never settle into contact "
+            "before the normal force falls to zero; a lower ϖ or e lets them settle"
+            if p.restitution > 0.0 and p.varpi < 2.0
+            else "MODEL.md design window 0.5 ≤ ϖ < 2"
+        )
+        + ")"
     )
 
 
@@ -308,50 +359,27 @@ def _periodic_orbit(
     try:
         vs = VerticalSchedule(p.varpi, horizon=1000, zeta_v=p.zeta_v, restitution=p.restitution)
     except VerticalSearchError as exc:
-        return _vertical_failure(p, str(exc), time.perf_counter() - t0)
+        return PeriodicResult.failure(
+            p, "failed", f"vertical motion: {exc}", elapsed_s=time.perf_counter() - t0
+        )
     hits, frac = vs.hits_per_cycle(), vs.contact_fraction()
 
-    def result(status: str, msg: str, **kw: object) -> PeriodicResult:
-        base: dict[str, object] = dict(
-            delta_s=None,
-            mode=None,
-            period_cycles=None,
-            residual=None,
-            floquet=None,
-            stable=None,
-            state=None,
-            n_newton=0,
-            transient_cycles=0,
-            transient_s=0.0,
-        )
-        base.update(kw)
-        return PeriodicResult(
-            params=p,
-            status=status,
-            success=status == "success",
-            message=msg,
+    def spent() -> dict[str, Any]:
+        """What every answer from here on carries: the vertical motion's hits and contact
+        fraction, the counters so far and the time taken."""
+        return dict(
             impacts_per_cycle=hits,
             contact_fraction=frac,
             n_cycles=phi.n_cycles if phi else 0,
             n_events=phi.n_events if phi else 0,
             n_root_evals=(phi.n_evals if phi else 0) + vs.n_root_evals,
             elapsed_s=time.perf_counter() - t0,
-            **base,  # type: ignore[arg-type]
         )
 
     phi: _Map | None = None
     if vs.period is None:
-        return result(
-            "not_driven",
-            f"no contact recurs within {vs.n_prefix} cycles at ϖ = {p.varpi:g}: hits are "
-            "impulsive only and the slider is not driven ("
-            + (
-                f"restitution e = {p.restitution:g}: the rebounds never settle into contact "
-                "before the normal force falls to zero; a lower ϖ or e lets them settle"
-                if p.restitution > 0.0 and p.varpi < 2.0
-                else "MODEL.md design window 0.5 ≤ ϖ < 2"
-            )
-            + ")",
+        return PeriodicResult.failure(
+            p, "not_driven", not_driven_message(p, vs.n_prefix), **spent()
         )
     kv = vs.period
     assert vs.first_end is not None
@@ -361,8 +389,8 @@ def _periodic_orbit(
     pre = _Map(k, vs, 0)
     try:
         x, s_total = pre(np.zeros(3), m0)
-    except (SolverFailure, RuntimeError) as exc:
-        return result("failed", f"transient from rest failed: {exc}")
+    except (CycleFailure, RuntimeError) as exc:
+        return PeriodicResult.failure(p, "failed", f"transient from rest failed: {exc}", **spent())
     brute = m0
     bound = resonance_growth_bound(p)
     if bound is not None:
@@ -370,11 +398,13 @@ def _periodic_orbit(
         grown = _measure_growth(phi, x.copy(), bound, kv, window)
         if grown is not None:
             rate, n, amp, s_win = grown
-            return result(
+            return PeriodicResult.failure(
+                p,
                 "unbounded",
                 _unbounded_message(p, bound, rate, n, amp, m0 + n),
                 transient_cycles=m0 + n,
                 transient_s=s_total + s_win,
+                **spent(),
             )
     chunk = max(kv, (transient // kv) * kv)
     n_newton = 0
@@ -384,11 +414,15 @@ def _periodic_orbit(
         try:
             x, s_chunk = phi(x, chunk)
             s_total += s_chunk
-        except (SolverFailure, RuntimeError) as exc:
-            return result("failed", f"brute-force iteration failed after {brute} cycles: {exc}")
+        except (CycleFailure, RuntimeError) as exc:
+            return PeriodicResult.failure(
+                p, "failed", f"brute-force iteration failed after {brute} cycles: {exc}", **spent()
+            )
         brute += chunk
         if not np.all(np.isfinite(x)):
-            return result("failed", f"state became non-finite after {brute} cycles")
+            return PeriodicResult.failure(
+                p, "failed", f"state became non-finite after {brute} cycles", **spent()
+            )
         for j in range(1, max_period + 1):
             n = j * kv
             xs, r, s, it = _newton(phi, x.copy(), n, tol, POLISH)
@@ -422,9 +456,10 @@ def _periodic_orbit(
             if r_final > tol:
                 continue
             ds = s / n
-            return result(
-                "success",
-                f"periodic orbit of {n} cycle(s), residual {r_final:.2e} ≤ {tol:.0e}, "
+            return PeriodicResult(
+                params=p,
+                status="success",
+                message=f"periodic orbit of {n} cycle(s), residual {r_final:.2e} ≤ {tol:.0e}, "
                 f"|μ|max = {abs(mu[0]):.6f}",
                 delta_s=ds,
                 mode=mode_of(ds),
@@ -436,9 +471,11 @@ def _periodic_orbit(
                 n_newton=n_newton,
                 transient_cycles=brute,
                 transient_s=s_total,
+                **spent(),
             )
         if brute >= max_cycles:
-            return result(
+            return PeriodicResult.failure(
+                p,
                 "not_converged",
                 f"no stable periodic orbit of period ≤ {max_period * kv} cycles found within "
                 f"{brute} cycles (best residual {best[0]:.2e} for period {best[1]}); the "
@@ -448,6 +485,7 @@ def _periodic_orbit(
                 transient_cycles=brute,
                 transient_s=s_total,
                 residual=best[0],
+                **spent(),
             )
         chunk = min(2 * chunk, max(kv, ((max_cycles - brute) // kv) * kv))
 
@@ -471,7 +509,7 @@ def _measure_growth(
             s_total += s
             if z_prev - float(x[0]) < kv * bound - 1e-9 * max(1.0, abs(z_prev)):
                 return None
-    except (SolverFailure, RuntimeError):
+    except (CycleFailure, RuntimeError):
         return None
     if not np.all(np.isfinite(x)):
         return None

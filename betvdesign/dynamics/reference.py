@@ -237,24 +237,42 @@ def simulate(
     p : ModelParams
         The model, with its optional damping and restitution.
     cycles : int
-        Actuation cycles to integrate.
+        Actuation cycles to integrate [-] (≥ 0).
     method : str
-        A solve_ivp method; ``rtol``, ``atol`` its tolerances [-].
+        A solve_ivp method (:data:`METHODS`).
+    rtol, atol : float
+        solve_ivp's relative and absolute tolerances [-].
     friction : str
-        "exact" (switching Coulomb) or "tanh" (regularised, width ``eps`` [-] in
-        relative velocity).
+        "exact" (switching Coulomb) or "tanh" (regularised).
+    eps : float
+        Width of the tanh regularisation in relative velocity [-].
     max_step : float
         solve_ivp's max_step [-].
     state0 : sequence of 6 floats, optional
-        As in :func:`solver.simulate`.
+        (ξ, ξ', ζ, ζ', s, s') [-] at τ = 0, as in
+        :func:`betvdesign.dynamics.solver.simulate`.
     dense : bool
         Keep the dense output (:meth:`Trajectory.sample`).
 
     Returns
     -------
     Trajectory
-        Sections at τ = 2mπ/ϖ, events, counters; with e > 0 ``message`` names the
-        chattering sequences closed and the largest error bound of their tails.
+        Sections at τ = 2mπ/ϖ, events, counters (``n_fev``), status "success" or
+        "failed" (:data:`~betvdesign.dynamics.result.TrajectoryStatus`); with e > 0
+        ``message`` names the chattering sequences closed and the largest error bound of
+        their tails.
+
+    Raises
+    ------
+    ParameterError
+        For an invalid ``p``, ``cycles``, ``state0``, ``method``, ``friction`` or
+        tolerance.
+
+    References
+    ----------
+    Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773 (the model).
+    Budd & Dux, Phil. Trans. R. Soc. A 347 (1994), doi:10.1098/rsta.1994.0044 (chattering, with
+    restitution).
     """
     if not isinstance(p, ModelParams):
         raise ParameterError(f"p must be a ModelParams, got {type(p).__name__}")
@@ -441,7 +459,6 @@ def simulate(
         params=p,
         solver=f"solve_ivp:{method}/{friction}",
         status=status,
-        success=status == "success",
         message=message,
         s=float(section[-1, 4]),
         delta_s=np.diff(section[:, 4]),

@@ -36,10 +36,12 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass, field
+from typing import ClassVar, get_args
 
 import numpy as np
 from scipy.optimize import brentq
 
+from betvdesign.dynamics.result import Mode, RigidStatus, SolverResult, TrajectoryStatus
 from betvdesign.dynamics.vertical import VerticalSchedule
 from betvdesign.errors import ParameterError
 from betvdesign.model.domain import mode_of
@@ -56,53 +58,79 @@ class Contact:
     end: float
 
 
-@dataclass
-class RigidTrajectory:
+@dataclass(frozen=True, kw_only=True)
+class RigidTrajectory(SolverResult):
     """Transient of the rigid-limit model over whole actuation cycles.
 
-    ``s`` final slider position [-, in units of u·cosθ]; ``v`` final slider velocity;
-    ``delta_s`` per-cycle increments s(2(m+1)π/ϖ) − s(2mπ/ϖ); ``events`` the log of
-    (τ, kind, phase_before, phase_after).
+    Attributes
+    ----------
+    status : TrajectoryStatus
+        Always "success": the closed form cannot fail (bad input raises); with the other
+        fields of :class:`SolverResult` (``n_events``: contact starts and ends and
+        impulsive hits; ``n_root_evals``: the vertical motion's).
+    params : ModelParams
+        The model (its α is not used: α → 0).
+    s : float
+        Final slider position [-, units of u·cosθ].
+    v : float
+        Final slider velocity [-].
+    delta_s : numpy.ndarray
+        Per-cycle increments s(2(m+1)π/ϖ) − s(2mπ/ϖ) [-].
+    events : list of (float, str, str, str)
+        The log of (τ [-], kind, phase before, phase after), when asked.
     """
 
-    status: str
-    success: bool
-    message: str
+    STATUSES: ClassVar[tuple[str, ...]] = get_args(TrajectoryStatus)
+
+    status: TrajectoryStatus
     params: ModelParams
-    n_cycles: int
     s: float
     v: float
     delta_s: np.ndarray
     events: list[tuple[float, str, str, str]] = field(default_factory=list)
-    n_events: int = 0
-    n_root_evals: int = 0
-    elapsed_s: float = 0.0
 
 
-@dataclass
-class RigidPeriodic:
+@dataclass(frozen=True, kw_only=True)
+class RigidPeriodic(SolverResult):
     """Periodic state of the rigid-limit model.
 
-    ``delta_s`` periodic increment per actuation cycle [-, u·cosθ]; ``mode`` "push"
-    (Δs > 0), "pull" (Δs < 0) or None (not driven); ``period_cycles`` the vertical
-    period in cycles; ``v_section`` the slider velocity at the contact end that
-    starts the period; ``residual`` |F(v) − v| of the velocity map at the fixed point.
+    Attributes
+    ----------
+    status : RigidStatus
+        "success" or "no_contact" (:data:`RigidStatus`); with the other fields of
+        :class:`SolverResult` (``n_root_evals``: the vertical motion's).
+    params : ModelParams
+        The model (its α is not used: α → 0).
+    delta_s : float
+        Periodic increment per actuation cycle [-, units of u·cosθ] (0 with "no_contact").
+    mode : {"push", "pull", "stalled"} or None
+        "push" (Δs > 0), "pull" (Δs < 0), "stalled", or None (not driven).
+    period_cycles : int
+        The vertical period [cycles] (0 with "no_contact").
+    v_section : float
+        Slider velocity [-] at the contact end that starts the period.
+    residual : float
+        |F(v) − v| [-] of the velocity map at the fixed point.
+    contacts : list of Contact
+        The contacts the period was built from.
+    impacts_per_cycle : float
+        Hits per cycle [-].
+    contact_fraction : float
+        Fraction of the time in contact [-].
     """
 
-    status: str
-    success: bool
-    message: str
+    STATUSES: ClassVar[tuple[str, ...]] = get_args(RigidStatus)
+
+    status: RigidStatus
     params: ModelParams
     delta_s: float
-    mode: str | None
+    mode: Mode | None
     period_cycles: int
     v_section: float
     residual: float
     contacts: list[Contact]
     impacts_per_cycle: float
     contact_fraction: float
-    n_root_evals: int = 0
-    elapsed_s: float = 0.0
 
 
 # --------------------------------------------------------------------------- slider
@@ -183,8 +211,25 @@ def contact_schedule(varpi: float, tau_end: float, *, max_contacts: int | None =
 
     From rest at a contact start at τ = 0 (docs/MODEL.md "Initial state"); the exact
     vertical motion is :class:`betvdesign.dynamics.vertical.VerticalSchedule` (the
-    same one the full model uses). Stops after ``max_contacts`` contacts.
-    Returns (contacts, impulsive_hit_times, n_root_evals).
+    same one the full model uses).
+
+    Parameters
+    ----------
+    varpi : float
+        ϖ [-].
+    tau_end : float
+        End of the span τ_end [-].
+    max_contacts : int, optional
+        Stop after this many contacts.
+
+    Returns
+    -------
+    contacts : list of Contact
+        The finite-duration contacts [τ].
+    impulsive : list of float
+        Times of the impulsive hits [-].
+    n_root_evals : int
+        Evaluations of the gap by the hit search [-].
     """
     period = TWO_PI / varpi
     n_cyc = math.ceil(tau_end / period - 1e-12)
@@ -211,8 +256,36 @@ def rigid_simulate(
 ) -> RigidTrajectory:
     """Integrate the rigid-limit model over ``cycles`` actuation cycles, exactly.
 
-    ``state0`` = (s, s') at τ = 0 (a contact start). ``alpha`` of ``p`` is ignored
-    (α → 0). See the module docstring for the equations (docs/MODEL.md).
+    See the module docstring for the equations (docs/MODEL.md): the head's tangential
+    motion is slaved to the actuator and the slider feels Coulomb friction only.
+
+    Parameters
+    ----------
+    p : ModelParams
+        The paper's model (no damping, no restitution); its α is ignored (α → 0).
+    cycles : int
+        Actuation cycles [-] (≥ 1).
+    state0 : tuple of 2 floats
+        (s, s') [-] at τ = 0 (a contact start).
+    log : bool
+        Keep the event log.
+
+    Returns
+    -------
+    RigidTrajectory
+        Always "success".
+
+    Raises
+    ------
+    ParameterError
+        For a ``p`` with damping or restitution.
+    ValueError
+        For ``cycles`` < 1.
+
+    References
+    ----------
+    Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773 (α → 0 always gives pull
+    mode).
     """
     if not p.ideal:
         raise ParameterError(
@@ -252,7 +325,6 @@ def rigid_simulate(
     msg = f"{cycles} cycles, {k} contacts, {len(impulsive)} impulsive hits (rigid limit α → 0)"
     return RigidTrajectory(
         status="success",
-        success=True,
         message=msg,
         params=p,
         n_cycles=cycles,
@@ -273,8 +345,30 @@ def rigid_periodic(p: ModelParams, *, max_cycles: int = 200) -> RigidPeriodic:
     vertical motion; over one period the slider velocity map F is monotone
     non-decreasing with F(v) − v non-increasing, so its fixed point is bracketed
     and refined to round-off. ``delta_s`` is the displacement per cycle there.
-    Status "no_contact" when the head never makes a finite-duration contact within
-    ``max_cycles`` (ϖ beyond the window: the model does not drive the slider).
+
+    Parameters
+    ----------
+    p : ModelParams
+        The paper's model (no damping, no restitution); its α is ignored (α → 0).
+    max_cycles : int
+        Horizon [cycles] within which two finite-duration contacts must occur.
+
+    Returns
+    -------
+    RigidPeriodic
+        "success", or "no_contact" when the head makes no finite-duration contact
+        within ``max_cycles`` (ϖ beyond the window: the model does not drive the slider)
+        (:data:`~betvdesign.dynamics.result.RigidStatus`).
+
+    Raises
+    ------
+    ParameterError
+        For a ``p`` with damping or restitution.
+
+    References
+    ----------
+    Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773 (α → 0 always gives pull
+    mode).
     """
     if not p.ideal:
         raise ParameterError(
@@ -288,7 +382,6 @@ def rigid_periodic(p: ModelParams, *, max_cycles: int = 200) -> RigidPeriodic:
     if len(contacts) < 2:
         return RigidPeriodic(
             status="no_contact",
-            success=False,
             message=(
                 f"no finite-duration contact within {max_cycles} cycles after the first: "
                 f"ϖ = {wv:g} is outside the window where this model drives the slider"
@@ -325,7 +418,6 @@ def rigid_periodic(p: ModelParams, *, max_cycles: int = 200) -> RigidPeriodic:
     duration = cycle_contact.end - cycle_contact.start
     return RigidPeriodic(
         status="success",
-        success=True,
         message=f"periodic (rigid limit α → 0), period {n_cyc} cycle(s), Δs = {delta_s:.12g}",
         params=p,
         delta_s=delta_s,

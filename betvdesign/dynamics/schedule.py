@@ -22,10 +22,10 @@ from typing import NamedTuple
 import numpy as np
 
 from betvdesign.dynamics import damped
-from betvdesign.dynamics._jit import kernel
 from betvdesign.dynamics.bounds import EPS
 from betvdesign.dynamics.evaluators import gap_evaluator
 from betvdesign.dynamics.flows import vertical_flight
+from betvdesign.dynamics.jit import kernel
 from betvdesign.dynamics.search import NO_ROOT, ROOT, SEARCH_FAILED, first_root, workspace
 
 #: one cycle: section state (ξ, ξ'), contact-opening local time (NaN: none), its
@@ -76,15 +76,48 @@ class VerticalRun(NamedTuple):
 
 @kernel
 def plastic_hit(xid: float) -> float:
-    """Normal velocity just after a hit of velocity ξ' < 0: plastic impact, ξ' → 0 (no
-    rebound, MODEL.md "Impacts and separation")."""
+    """Normal velocity just after a hit: plastic impact, ξ' → 0 (MODEL.md "Impacts and
+    separation": no rebound).
+
+    Parameters
+    ----------
+    xid : float
+        ξ' at the hit [-] (< 0).
+
+    Returns
+    -------
+    float
+        0.0.
+
+    References
+    ----------
+    Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773.
+    """
     return 0.0
 
 
 @kernel
 def rebound(xid: float, e: float) -> float:
-    """Normal velocity just after a hit of velocity ξ' < 0 with restitution e: −e ξ'
-    (MODEL.md "Beyond the paper's idealisation"; e = 0: :func:`plastic_hit`)."""
+    """Normal velocity just after a hit with restitution e: −e ξ'.
+
+    MODEL.md "Beyond the paper's idealisation"; e = 0 is :func:`plastic_hit`.
+
+    Parameters
+    ----------
+    xid : float
+        ξ' at the hit [-] (< 0).
+    e : float
+        Coefficient of restitution [-] (0 ≤ e < 1).
+
+    Returns
+    -------
+    float
+        ξ' just after the hit [-].
+
+    References
+    ----------
+    Budd & Dux, Phil. Trans. R. Soc. A 347 (1994), doi:10.1098/rsta.1994.0044.
+    """
     if e == 0.0:
         return plastic_hit(xid)
     return -e * xid
@@ -92,8 +125,7 @@ def rebound(xid: float, e: float) -> float:
 
 @kernel
 def accumulation(wf: float, zv: float, A: float, e: float, t: float, v: float) -> float:
-    """Time left until a chattering sequence accumulates [-], or −1 when its first-order
-    error bound is not yet below the round-off of the contact time (go on bouncing).
+    """Time left until a chattering sequence accumulates, when it can be closed.
 
     After a hit at local time t in contact conditions (N ∝ A sin ϖt > 0) the head leaves
     at v = e|ξ'| and is pulled back by a ≈ A sin ϖt: flights of 2v_k/a with v_k = eᵏv
@@ -102,6 +134,31 @@ def accumulation(wf: float, zv: float, A: float, e: float, t: float, v: float) -
     relative change ρ, so the sum is T(1 ± 3ρ/(1 − e)) to first order. T is taken when
     that error, 3Tρ/(1 − e), is below EPS·π/ϖ and the sequence ends before contact
     would end (π/ϖ). docs/damping.md.
+
+    Parameters
+    ----------
+    wf : float
+        ϖ [-].
+    zv : float
+        Normal damping ratio ζ_v [-].
+    A : float
+        Normal-force amplitude [-].
+    e : float
+        Coefficient of restitution [-].
+    t : float
+        Local time of the hit [-].
+    v : float
+        Rebound velocity e|ξ'| [-].
+
+    Returns
+    -------
+    float
+        The time left T [-], or −1 when its error bound is not yet below the round-off of
+        the contact time (go on bouncing).
+
+    References
+    ----------
+    Budd & Dux, Phil. Trans. R. Soc. A 347 (1994), doi:10.1098/rsta.1994.0044.
     """
     if v == 0.0:
         return 0.0
@@ -230,12 +287,40 @@ def _piece(cyc, m, pieces, nf, t, xi, xid, sp, cp) -> int:
 
 @kernel
 def vertical_run(wf, zv, A, e, xi, xid, horizon, cyc, imp, pieces):
-    """Vertical motion from (ξ, ξ') at τ = 0 (see module doc) into cyc, imp, pieces.
+    """Vertical motion from (ξ, ξ') at τ = 0 into the tables cyc, imp, pieces (module doc).
 
-    zv: damping ratio ζ_v; A: normal-force amplitude (1 undamped); e: restitution (kernel
-    time, docs/damping.md). Returns a :class:`VerticalRun`; with e > 0 a chattering
-    sequence is followed hit by hit until :func:`accumulation` can close it (its hits
-    count as impulsive), at most MAX_BOUNCES hits per cycle (else CHATTERED).
+    With e > 0 a chattering sequence is followed hit by hit until :func:`accumulation`
+    can close it (its hits count as impulsive), at most MAX_BOUNCES hits per cycle.
+
+    Parameters
+    ----------
+    wf : float
+        ϖ [-].
+    zv : float
+        Normal damping ratio ζ_v [-].
+    A : float
+        Normal-force amplitude [-] (1 undamped).
+    e : float
+        Coefficient of restitution [-].
+    xi, xid : float
+        ξ, ξ' at τ = 0 [-].
+    horizon : int
+        Cycles [-] within which a contact must recur.
+    cyc, imp, pieces : numpy.ndarray
+        The tables filled: cycles (:data:`CYCLE_DTYPE`), impulsive-hit local times [-],
+        free-flight pieces (:data:`PIECE_DTYPE`).
+
+    Returns
+    -------
+    VerticalRun
+        ``code`` DONE, FULL (a table is too small: enlarge and call again), FAILED (the
+        gap search did not terminate) or CHATTERED (a sequence did not accumulate); rows
+        used, the first contact end, the period and the root evaluations.
+
+    References
+    ----------
+    Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773 (vertical motion).
+    Budd & Dux, Phil. Trans. R. Soc. A 347 (1994), doi:10.1098/rsta.1994.0044 (chattering).
     """
     T = 2.0 * math.pi / wf
     te = math.pi / wf

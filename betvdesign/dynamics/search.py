@@ -18,9 +18,9 @@ from typing import NamedTuple
 
 import numpy as np
 
-from betvdesign.dynamics._jit import kernel
 from betvdesign.dynamics.bounds import EPS, MAX_STEPS, NOISE, safe_step
 from betvdesign.dynamics.evaluators import EVALUATOR_DTYPE
+from betvdesign.dynamics.jit import kernel
 from betvdesign.dynamics.values import clear, evaluate, probe, start_bound
 
 #: :func:`first_root` codes
@@ -122,8 +122,30 @@ def refine(
 
 @kernel
 def first_root(e, H: float, ws: Workspace) -> tuple[int, float, int, int]:
-    """First h in [0, H] where one of e's functions reaches 0, certified:
-    (code, h, index, evaluations), code NO_ROOT, ROOT at (h, index) or SEARCH_FAILED."""
+    """First h in [0, H] where one of the evaluator's event functions reaches 0, certified.
+
+    Walks the window by certified safe steps (never over a crossing, even a grazing one)
+    and refines the bracket found to round-off (module docstring).
+
+    Parameters
+    ----------
+    e : numpy.void
+        The evaluator (a record of :data:`evaluators.EVALUATOR_DTYPE`).
+    H : float
+        Window length [-].
+    ws : Workspace
+        Scratch arrays (:func:`workspace`).
+
+    Returns
+    -------
+    tuple of (int, float, int, int)
+        (code, h [-], index of the function, evaluations): code NO_ROOT, ROOT at (h,
+        index) or SEARCH_FAILED (no termination within MAX_STEPS steps).
+
+    References
+    ----------
+    Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773 (the event functions).
+    """
     look, steps, act = ws.look, ws.steps, ws.active
     ws.end[3] = 0.0
     n = e["n"]

@@ -24,42 +24,70 @@ under-predicts the settling of the whole transient by factors of 2 to 25
 from __future__ import annotations
 
 import math
+import time
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, ClassVar, get_args
 
 import numpy as np
 
+from betvdesign.dynamics.result import SettlingStatus, SolverResult
+from betvdesign.dynamics.solver import simulate
+from betvdesign.model.domain import TRAVEL_HORIZON
 from betvdesign.model.params import ModelParams
 
 #: Settled means within this fraction of the periodic Δs [-].
 SETTLE_RTOL = 0.01
 #: Cycles within tolerance needed after the settling cycle before it is accepted.
 MIN_TAIL = 32
-#: First transient chunk and the cap on simulated cycles.
+#: First transient chunk (the cap on simulated cycles is the check's horizon,
+#: :data:`betvdesign.model.domain.TRAVEL_HORIZON`).
 FIRST_CHUNK = 512
-MAX_CYCLES = 200_000
 
 
-@dataclass(frozen=True)
-class Settling:
+@dataclass(frozen=True, kw_only=True)
+class Settling(SolverResult):
     """Settling and crossing from rest (all counts in actuation cycles).
 
-    status: "settled" (within ``rtol`` of the periodic Δs for the rest of the run),
-    "not_settled" (not within ``simulated_cycles``, a lower bound on settling), or
-    "failed" (the transient itself failed; ``message`` says why).
+    Attributes
+    ----------
+    status : SettlingStatus
+        "settled" (within ``rtol`` of the periodic Δs for the rest of the run, the
+        success word), "not_settled" (not within ``simulated_cycles``, a lower bound on
+        settling) or "failed" (the transient itself failed; ``message`` says why)
+        (:data:`SettlingStatus`); with the other fields of :class:`SolverResult`
+        (``n_cycles``: the cycles simulated from rest, ``n_events`` and ``n_root_evals``
+        of the transient).
+    cycles_to_settle : int or None
+        First cycle from which the running mean increment stays within ``rtol`` of the
+        periodic Δs (None: not settled).
+    cycles_to_cross : int or None
+        First cycle at which |s| reaches the travel range (None: not reached or not
+        asked).
+    crossing_delta_s : float or None
+        s/m at that cycle [-, units of u·cosθ]: the mean increment over the whole travel
+        from rest.
+    rtol : float
+        Settled means within this fraction of the periodic Δs [-].
     """
 
-    status: str
-    message: str
+    STATUSES: ClassVar[tuple[str, ...]] = get_args(SettlingStatus)
+    SUCCESS: ClassVar[str] = "settled"
+
+    status: SettlingStatus
     cycles_to_settle: int | None
     cycles_to_cross: int | None
     crossing_delta_s: float | None
-    simulated_cycles: int
     rtol: float = SETTLE_RTOL
 
     @property
     def settled(self) -> bool:
-        return self.status == "settled"
+        """True when the slider settled (``status`` "settled": :attr:`success`)."""
+        return self.success
+
+    @property
+    def simulated_cycles(self) -> int:
+        """The cycles simulated from rest [-] (``n_cycles``)."""
+        return self.n_cycles
 
     @property
     def settle_cycles(self) -> float:
@@ -69,6 +97,7 @@ class Settling:
         return float(self.simulated_cycles)
 
     def as_dict(self) -> dict[str, Any]:
+        """The fields a report shows (JSON-friendly)."""
         return {
             "status": self.status,
             "message": self.message,
@@ -88,37 +117,76 @@ def settling(
     travel_s: float = math.inf,
     mu_max: float | None = None,
     rtol: float = SETTLE_RTOL,
-    max_cycles: int = MAX_CYCLES,
+    max_cycles: int = TRAVEL_HORIZON,
 ) -> Settling:
-    """Transient from rest against the periodic increment ``delta_s`` [-] per cycle.
+    """Transient from rest against the periodic increment: how long until it shows.
 
-    period_cycles: the orbit's period k (the running mean is taken over k cycles);
-    travel_s: travel range in units of u·cosθ [-] (inf: no crossing asked);
-    mu_max: slowest Floquet modulus |μ|max, quoted when settling is not reached.
+    Parameters
+    ----------
+    p : ModelParams
+        The model.
+    delta_s : float
+        The periodic slider increment Δs* per actuation cycle [-, units of u·cosθ]
+        (:attr:`PeriodicResult.delta_s <betvdesign.dynamics.result.PeriodicResult>`).
+    period_cycles : int
+        The orbit's period k [cycles]; the running mean is taken over k cycles.
+    travel_s : float
+        Travel range [-, units of u·cosθ]; inf: no crossing asked.
+    mu_max : float, optional
+        Slowest Floquet modulus |μ|max [-], quoted when settling is not reached.
+    rtol : float
+        Settled means within ``rtol``·|Δs*| of Δs* [-].
+    max_cycles : int
+        Cap on the cycles simulated [-].
+
+    Returns
+    -------
+    Settling
+        "settled", "not_settled" (``simulated_cycles`` is then a lower bound) or "failed".
+
+    References
+    ----------
+    Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773 (settling from rest takes
+    from a few hundred to about 10⁵ cycles).
     """
-    from betvdesign.dynamics import simulate
-
+    t0 = time.perf_counter()
     k = max(1, int(period_cycles))
     target = float(delta_s)
     tol = rtol * abs(target)
     s_all = [np.zeros(1)]
     state = None
     done, chunk = 0, FIRST_CHUNK
+    n_events = n_root_evals = 0
     if math.isfinite(travel_s) and target != 0.0:
         chunk = max(chunk, min(max_cycles, int(2 * travel_s / abs(target)) + 1))
     settle: int | None = None
     cross: int | None = None
+
+    def result(status: SettlingStatus, message: str, cycles: int, **fields: Any) -> Settling:
+        return Settling(
+            status=status,
+            message=message,
+            rtol=rtol,
+            cycles_to_cross=cross,
+            n_cycles=cycles,
+            n_events=n_events,
+            n_root_evals=n_root_evals,
+            elapsed_s=time.perf_counter() - t0,
+            **fields,
+        )
+
     while True:
         n = min(chunk, max_cycles - done)
         tr = simulate(p, n, state0=state, log_events=False)
+        n_events += tr.n_events
+        n_root_evals += tr.n_root_evals
         if not tr.success:
-            return Settling(
+            return result(
                 "failed",
                 f"transient from rest failed after {done} cycles: {tr.message}",
-                None,
-                cross,
-                None,
                 done + len(tr.delta_s),
+                cycles_to_settle=None,
+                crossing_delta_s=None,
             )
         s_all.append(s_all[-1][-1] + tr.section[1:, 4] - tr.section[0, 4])
         state = tr.section[-1].copy()
@@ -135,23 +203,21 @@ def settling(
         chunk = done  # double the horizon
     crossing = None if cross is None else float(s[cross] / cross)
     if settle is not None:
-        return Settling(
+        return result(
             "settled",
             f"within {rtol:.0%} of the periodic Δs from cycle {settle} on "
             f"({done} cycles simulated from rest)",
-            settle,
-            cross,
-            crossing,
             done,
+            cycles_to_settle=settle,
+            crossing_delta_s=crossing,
         )
     shown = f" (slowest Floquet multiplier |μ| = {mu_max:.6g})" if mu_max is not None else ""
-    return Settling(
+    return result(
         "not_settled",
         f"not within {rtol:.0%} of the periodic Δs after {done} cycles from rest{shown}",
-        None,
-        cross,
-        crossing,
         done,
+        cycles_to_settle=None,
+        crossing_delta_s=crossing,
     )
 
 

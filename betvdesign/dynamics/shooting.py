@@ -14,8 +14,8 @@ import math
 
 import numpy as np
 
-from betvdesign.dynamics._jit import kernel
 from betvdesign.dynamics.contact import OK, run_cycles
+from betvdesign.dynamics.jit import kernel
 
 #: forward-difference step of the Jacobian (relative to max(1, |x_i|))
 FD_STEP = 1e-7
@@ -35,8 +35,26 @@ SHOT = ("table", "tab", "idx", "imp", "m0", "rows", "log", "segs", "count")
 
 @kernel
 def section_map(table, tab, idx, imp, m0, rows, log, segs, count, x):
-    """Φⁿ(x): (ok, (ζ, ζ', s') after n cycles, slider increment s); ok False when a
-    contact could not be advanced."""
+    """The section map Φⁿ over n cycles.
+
+    Parameters
+    ----------
+    table, tab, idx, imp, m0, rows, log, segs, count
+        The map's arguments (:data:`SHOT`): n = idx.size cycles from cycle m0; ``count``
+        accumulates [cycles, events, evaluations].
+    x : numpy.ndarray
+        Section state (ζ, ζ', s') [-].
+
+    Returns
+    -------
+    tuple of (bool, numpy.ndarray, float)
+        (ok, Φⁿ(x) = (ζ, ζ', s') after n cycles [-], slider increment s [-]); ok False
+        when a contact could not be advanced.
+
+    References
+    ----------
+    Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773.
+    """
     run = run_cycles(
         table, tab, idx, imp, m0, x[0], x[1], 0.0, x[2], rows, False, log, -1, segs, -1
     )
@@ -53,7 +71,22 @@ def section_map(table, tab, idx, imp, m0, rows, log, segs, count, x):
 
 @kernel
 def residual(table, tab, idx, imp, m0, rows, log, segs, count, x):
-    """(‖Φⁿ(x) − x‖∞, Φⁿ(x), s); (inf, x, NaN) when the map fails, inf when non-finite."""
+    """The fixed-point residual of the section map.
+
+    Parameters
+    ----------
+    table, tab, idx, imp, m0, rows, log, segs, count
+        The map's arguments (:data:`SHOT`): n = idx.size cycles from cycle m0; ``count``
+        accumulates [cycles, events, evaluations].
+    x : numpy.ndarray
+        Section state (ζ, ζ', s') [-].
+
+    Returns
+    -------
+    tuple of (float, numpy.ndarray, float)
+        (‖Φⁿ(x) − x‖∞ [-], Φⁿ(x), s [-]); (inf, x, NaN) when the map fails, inf when the
+        state is non-finite.
+    """
     ok, y, s = section_map(table, tab, idx, imp, m0, rows, log, segs, count, x)
     if not ok:
         return math.inf, x, math.nan
@@ -69,7 +102,23 @@ def residual(table, tab, idx, imp, m0, rows, log, segs, count, x):
 
 @kernel
 def jacobian(table, tab, idx, imp, m0, rows, log, segs, count, x, y, central):
-    """Finite-difference Jacobian of Φⁿ at x (forward from y = Φⁿ(x), or central)."""
+    """Finite-difference Jacobian of Φⁿ at x (forward from y = Φⁿ(x), or central).
+
+    Parameters
+    ----------
+    table, tab, idx, imp, m0, rows, log, segs, count
+        The map's arguments (:data:`SHOT`): n = idx.size cycles from cycle m0; ``count``
+        accumulates [cycles, events, evaluations].
+    x, y : numpy.ndarray
+        Section state (ζ, ζ', s') [-] and its image Φⁿ(x).
+    central : bool
+        Central differences (Floquet multipliers) instead of forward ones (Newton).
+
+    Returns
+    -------
+    tuple of (bool, numpy.ndarray)
+        (ok, J (3, 3) [-]); ok False when a contact could not be advanced.
+    """
     J = np.empty((3, 3))
     for i in range(3):
         h = FD_STEP * max(1.0, abs(x[i]))
@@ -94,13 +143,35 @@ def jacobian(table, tab, idx, imp, m0, rows, log, segs, count, x, y, central):
 
 @kernel
 def newton(table, tab, idx, imp, m0, rows, log, segs, count, x, tol, polish):
-    """Newton on Φⁿ(x) − x = 0: (x, residual, s-increment, iterations).
+    """Newton on Φⁿ(x) − x = 0.
 
     Gives up after two iterations in a row that do not halve the residual (not in
     Newton's basin yet: more brute force is cheaper). Once the residual is ≤ tol it goes
     on while the residual keeps halving, down to ``polish``. Steps are limited to the
     trust region TRUST·(1 + ‖x‖∞) (a step far beyond the state's own size leaves the
     region where the linearisation holds) and halved until the residual falls.
+
+    Parameters
+    ----------
+    table, tab, idx, imp, m0, rows, log, segs, count
+        The map's arguments (:data:`SHOT`): n = idx.size cycles from cycle m0; ``count``
+        accumulates [cycles, events, evaluations].
+    x : numpy.ndarray
+        Start (ζ, ζ', s') [-].
+    tol : float
+        Accepted residual [-].
+    polish : float
+        Residual [-] down to which a converging iteration goes on.
+
+    Returns
+    -------
+    tuple of (numpy.ndarray, float, float, int)
+        (x, residual [-], slider increment s [-], iterations).
+
+    References
+    ----------
+    Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773 (the slider settles to a
+    periodic motion).
     """
     r, y, s = residual(table, tab, idx, imp, m0, rows, log, segs, count, x)
     it = 0

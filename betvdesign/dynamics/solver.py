@@ -15,9 +15,9 @@ import time
 import numpy as np
 
 from betvdesign.dynamics import contact
-from betvdesign.dynamics._jit import compile_note, jit_enabled
 from betvdesign.dynamics.flows import PHASE_NAMES, phase_table
 from betvdesign.dynamics.inputs import check_cycles, check_state0
+from betvdesign.dynamics.jit import compile_note, jit_enabled
 from betvdesign.dynamics.result import Event, Trajectory
 from betvdesign.dynamics.search import search_failure_message
 from betvdesign.dynamics.vertical import VerticalSchedule
@@ -25,9 +25,17 @@ from betvdesign.errors import ParameterError
 from betvdesign.model.params import ModelParams
 
 
-class SolverFailure(RuntimeError):
-    """Cycle ``cycle`` could not be advanced (chattering contact, a non-terminating event
-    search or a non-finite state); the message says why."""
+class CycleFailure(RuntimeError):
+    """Raised when a cycle cannot be advanced: a chattering contact (a Zeno point), a
+    non-terminating event search or a non-finite state; the message says which.
+
+    Parameters
+    ----------
+    message : str
+        What failed and where.
+    cycle : int
+        The cycle that could not be advanced [-] (0-based; the ones before it are done).
+    """
 
     def __init__(self, message: str, cycle: int):
         super().__init__(message)
@@ -35,7 +43,22 @@ class SolverFailure(RuntimeError):
 
 
 def chatter_message(tau: float, m: int, n_switch: int) -> str:
-    """What a chattering contact (a Zeno point) at τ [-] in cycle m reports."""
+    """What a chattering contact (a Zeno point) reports.
+
+    Parameters
+    ----------
+    tau : float
+        Time of the chattering switches τ [-].
+    m : int
+        Its cycle [-].
+    n_switch : int
+        Phase switches counted in this contact [-].
+
+    Returns
+    -------
+    str
+        The message of the :class:`CycleFailure`.
+    """
     return (
         f"contact phases of (near) zero length repeat at τ = {tau:.12g} "
         f"(cycle {m}, {n_switch} switches in this contact): the stick/slip "
@@ -83,7 +106,7 @@ class CycleRunner:
         """State (ζ, ζ', s, s') after cycles m0..m0+n−1 from the state at m0's start.
 
         rows (n + 1, 4): receives the state at every cycle start and at the end. Raises
-        :class:`SolverFailure` naming the cycle that failed (rows up to its start filled).
+        :class:`CycleFailure` naming the cycle that failed (rows up to its start filled).
         """
         idx = self._idx(m0, n)
         buf = self._norows if rows is None else rows
@@ -127,7 +150,7 @@ class CycleRunner:
             msg = chatter_message(m * self.T + run.where, m, int(run.switches))
         else:
             msg = f"non-finite state in cycle {m}"
-        raise SolverFailure(msg, m)
+        raise CycleFailure(msg, m)
 
     def events(self) -> list[Event]:
         """The event log as :class:`~betvdesign.dynamics.result.Event` (τ = mT + t)."""
@@ -152,11 +175,45 @@ def simulate(
     state0: object = None,
     log_events: bool = True,
 ) -> Trajectory:
-    """Exact transient of ``cycles`` actuation cycles from ``state0`` at τ = 0.
+    """Exact event-driven transient of ``cycles`` actuation cycles from ``state0`` at τ = 0.
 
-    p: parameters; state0: (ξ, ξ', ζ, ζ', s, s') at τ = 0, default all zero (MODEL.md
-    "Initial state"); dense: keep the phase segments for :meth:`Trajectory.sample`;
-    log_events: keep the event log (counters are kept either way).
+    Every phase is advanced in closed form to its next event, located by a certified
+    search (MODEL.md "Dimensionless model"); the vertical motion is computed once
+    (:class:`~betvdesign.dynamics.vertical.VerticalSchedule`), the tangential motion by
+    the compiled contact loop (:func:`~betvdesign.dynamics.contact.run_cycles`).
+
+    Parameters
+    ----------
+    p : ModelParams
+        The model, with its optional damping and restitution.
+    cycles : int
+        Actuation cycles to simulate [-] (≥ 0).
+    dense : bool
+        Keep the closed-form phase pieces for :meth:`Trajectory.sample` and
+        ``Trajectory.phases``.
+    state0 : sequence of 6 floats, optional
+        (ξ, ξ', ζ, ζ', s, s') [-] at τ = 0, with ξ ≥ 0; default all zero (MODEL.md
+        "Initial state": a contact start).
+    log_events : bool
+        Keep the event log (the counters are kept either way).
+
+    Returns
+    -------
+    Trajectory
+        Status "success", or "failed" with the cycles before the one that could not be
+        advanced (:data:`~betvdesign.dynamics.result.TrajectoryStatus`).
+
+    Raises
+    ------
+    ParameterError
+        For a ``p`` that is not a ModelParams, a negative or non-integer ``cycles`` or an
+        invalid ``state0``.
+
+    References
+    ----------
+    Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773 (the model).
+    Budd & Dux, Phil. Trans. R. Soc. A 347 (1994), doi:10.1098/rsta.1994.0044 (chattering, with
+    restitution).
     """
     if not isinstance(p, ModelParams):
         raise ParameterError(f"p must be a ModelParams, got {type(p).__name__}")
@@ -181,7 +238,7 @@ def _simulate(p: ModelParams, n: int, st: tuple, dense: bool, log_events: bool) 
     status, message, done = "success", f"{n} cycles simulated", n
     try:
         cyc.run(0, n, *st[2:], rows=rows)
-    except SolverFailure as exc:
+    except CycleFailure as exc:
         status, message, done = "failed", f"{exc}; results up to cycle {exc.cycle} kept", exc.cycle
     section = np.empty((done + 1, 6))
     section[:, 2:] = rows[: done + 1]
@@ -203,7 +260,6 @@ def _simulate(p: ModelParams, n: int, st: tuple, dense: bool, log_events: bool) 
         params=p,
         solver="exact",
         status=status,
-        success=status == "success",
         message=message,
         s=float(section[-1, 4]),
         delta_s=np.diff(section[:, 4]),

@@ -13,7 +13,6 @@ from __future__ import annotations
 import math
 
 from betvdesign.dynamics import damped_values as damped
-from betvdesign.dynamics._jit import kernel
 from betvdesign.dynamics.bounds import (
     cos_range_prep,
     cos_range_to,
@@ -23,6 +22,7 @@ from betvdesign.dynamics.bounds import (
 )
 from betvdesign.dynamics.evaluators import SLIP_KIND, STICK_KIND
 from betvdesign.dynamics.flows import oscillator, slider
+from betvdesign.dynamics.jit import kernel
 
 
 @kernel(inline=True)

@@ -14,14 +14,16 @@ import math
 import time
 from dataclasses import dataclass, field
 from functools import cached_property
+from typing import ClassVar, get_args
 
 import numpy as np
 
 from betvdesign.dynamics import schedule
-from betvdesign.dynamics._jit import compile_note
-from betvdesign.dynamics.flows import normal_force_phase
+from betvdesign.dynamics.jit import compile_note
+from betvdesign.dynamics.result import SolverResult, VerticalStatus
 from betvdesign.dynamics.search import search_failure_message
 from betvdesign.errors import ParameterError
+from betvdesign.model.params import normal_force_phase
 
 
 class VerticalSearchError(RuntimeError):
@@ -185,6 +187,12 @@ class VerticalSchedule:
         tc = sum(self.te - t for t in tcs if t == t)
         return hits / n, tc / (self.T * n)
 
+    def n_hits(self) -> int:
+        """Hits (contact starts + impulsive) located in the cycles of ``table`` (the
+        prefix and one period, or the whole horizon when there is none)."""
+        rows = self.table
+        return int(rows["imp_count"].sum()) + int(np.count_nonzero(~np.isnan(rows["tc"])))
+
     def hits_per_cycle(self) -> float:
         """Hits (contact starts + impulsive) per cycle over one period (or the horizon)."""
         return self._per_period[0]
@@ -207,32 +215,74 @@ class VerticalSchedule:
         return n
 
 
-@dataclass(frozen=True, slots=True)
-class VerticalResult:
+@dataclass(frozen=True, kw_only=True)
+class VerticalResult(SolverResult):
     """Vertical-only answer (no slider): MODEL.md "Vertical motion".
 
-    ``period_cycles``: cycles between contacts once periodic (None: no contact recurs
-    within ``n_cycles``); ``hits_per_cycle`` counts contact-opening and impulsive hits;
-    ``contact_fraction`` [-] of the time in contact; ``contact_phase`` [rad] ϖτ at the
-    contact-opening hit; ``regime``: "single-impact" (the design window: one hit per
-    cycle with finite contact), "chattering-contact" (one contact per cycle, reached by
-    a chattering sequence of rebounds: restitution), "multi-impact", "period-k", or
-    "impulsive-only".
+    Attributes
+    ----------
+    varpi : float
+        ϖ [-].
+    status : VerticalStatus
+        "success" (periodic) or "not_periodic" (:data:`VerticalStatus`); with the other
+        fields of :class:`SolverResult` (``n_cycles``: cycles computed, up to the end of
+        the first period; ``n_events``: the hits located in them).
+    regime : str
+        "single-impact" (the design window: one hit per cycle with finite contact),
+        "chattering-contact" (one contact per cycle, reached by a chattering sequence of
+        rebounds: restitution), "multi-impact", "period-k", or "impulsive-only".
+    period_cycles : int or None
+        Cycles between contacts once periodic (None: no contact recurs within
+        ``n_cycles``).
+    hits_per_cycle : float
+        Contact-opening and impulsive hits per cycle [-].
+    impulsive_per_cycle : float
+        Impulsive hits per cycle [-].
+    contact_fraction : float
+        Fraction of the time in contact [-].
+    contact_phase : float or None
+        ϖτ at the contact-opening hit [rad].
     """
 
+    STATUSES: ClassVar[tuple[str, ...]] = get_args(VerticalStatus)
+
+    status: VerticalStatus
     varpi: float
-    status: str
-    success: bool
-    message: str
     regime: str
     period_cycles: int | None
     hits_per_cycle: float
     impulsive_per_cycle: float
     contact_fraction: float
     contact_phase: float | None
-    n_cycles: int
-    n_root_evals: int
-    elapsed_s: float
+
+    @classmethod
+    def failure(cls, varpi: float, message: str) -> VerticalResult:
+        """The answer when the vertical motion could not be computed.
+
+        Parameters
+        ----------
+        varpi : float
+            ϖ [-] asked for.
+        message : str
+            What failed.
+
+        Returns
+        -------
+        VerticalResult
+            Status "failed", regime "failed", no period, nan rates.
+        """
+        nan = float("nan")
+        return cls(
+            status="failed",
+            message=message,
+            varpi=varpi,
+            regime="failed",
+            period_cycles=None,
+            hits_per_cycle=nan,
+            impulsive_per_cycle=nan,
+            contact_fraction=nan,
+            contact_phase=None,
+        )
 
 
 def vertical_motion(
@@ -240,9 +290,39 @@ def vertical_motion(
 ) -> VerticalResult:
     """Vertical motion from rest (the "model no more than a scene needs" fast path).
 
-    varpi: ϖ [-] (> 0, finite); zeta_v: normal damping ratio ζ_v [-]; restitution: e [-]
-    (both 0: the paper's model; docs/damping.md); max_cycles: horizon within which a
-    contact must recur.
+    The head's normal motion does not depend on the slider (MODEL.md "Vertical
+    motion"): it is computed exactly until it repeats, and classified.
+
+    Parameters
+    ----------
+    varpi : float
+        ϖ [-] (> 0, finite).
+    zeta_v : float
+        Normal damping ratio ζ_v [-] (0: the paper's model; docs/damping.md).
+    restitution : float
+        Coefficient of restitution e [-] of normal impacts (0: plastic).
+    max_cycles : int
+        Horizon [cycles] within which a contact must recur.
+
+    Returns
+    -------
+    VerticalResult
+        "success" with the regime, or "not_periodic" (impulsive hits only)
+        (:data:`~betvdesign.dynamics.result.VerticalStatus`).
+
+    Raises
+    ------
+    ParameterError
+        For a ϖ that is not a finite number > 0, or invalid ζ_v or e.
+    VerticalSearchError
+        When the certified hit search does not terminate or a chattering sequence does
+        not accumulate.
+
+    References
+    ----------
+    Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773 (vertical regimes against ϖ).
+    Budd & Dux, Phil. Trans. R. Soc. A 347 (1994), doi:10.1098/rsta.1994.0044 (chattering, with
+    restitution).
     """
     return vertical_motion_schedule(
         varpi, zeta_v=zeta_v, restitution=restitution, max_cycles=max_cycles
@@ -252,8 +332,24 @@ def vertical_motion(
 def vertical_motion_schedule(
     varpi: float, *, zeta_v: float = 0.0, restitution: float = 0.0, max_cycles: int = 1000
 ) -> tuple[VerticalResult, VerticalSchedule]:
-    """:func:`vertical_motion` and the schedule it was read from (for further analysis,
-    e.g. the hit phases of impulsive-only motion, without computing it again)."""
+    """:func:`vertical_motion` and the schedule it was read from.
+
+    Parameters
+    ----------
+    varpi, zeta_v, restitution, max_cycles
+        As in :func:`vertical_motion`.
+
+    Returns
+    -------
+    tuple of (VerticalResult, VerticalSchedule)
+        The answer and its schedule, for further analysis (e.g. the hit phases of
+        impulsive-only motion) without computing the motion again.
+
+    Raises
+    ------
+    ParameterError, VerticalSearchError
+        As :func:`vertical_motion`.
+    """
     try:
         v = float(varpi)
     except (TypeError, ValueError):
@@ -269,10 +365,9 @@ def vertical_motion_schedule(
     if vs.period is None:
         imp = vs.hits_per_cycle()
         res = VerticalResult(
-            v,
-            "not_periodic",
-            False,
-            f"no contact recurred within {max_cycles} cycles: hits are impulsive only "
+            varpi=v,
+            status="not_periodic",
+            message=f"no contact recurred within {max_cycles} cycles: hits are impulsive only "
             "and the slider is not driven ("
             + (
                 f"restitution e = {vs.restitution:g}: the rebounds never settle into contact "
@@ -281,15 +376,16 @@ def vertical_motion_schedule(
                 else ""
             )
             + "MODEL.md: ϖ beyond about 2); increase max_cycles to look further",
-            "impulsive-only",
-            None,
-            imp,
-            imp,
-            0.0,
-            None,
-            vs.n_prefix,
-            vs.n_root_evals,
-            el,
+            regime="impulsive-only",
+            period_cycles=None,
+            hits_per_cycle=imp,
+            impulsive_per_cycle=imp,
+            contact_fraction=0.0,
+            contact_phase=None,
+            n_cycles=vs.n_prefix,
+            n_events=vs.n_hits(),
+            n_root_evals=vs.n_root_evals,
+            elapsed_s=el,
         )
         return res, vs
     k = vs.period
@@ -307,23 +403,23 @@ def vertical_motion_schedule(
     tcs = vs.period_rows()["tc"]
     tc = float(tcs[~np.isnan(tcs)][0])
     res = VerticalResult(
-        v,
-        "success",
-        True,
-        f"vertical motion periodic with {k} cycle(s) per period"
+        varpi=v,
+        status="success",
+        message=f"vertical motion periodic with {k} cycle(s) per period"
         + (
             f"; its contact is reached by a chattering sequence of {chatter} rebound(s)"
             if chatter
             else ""
         ),
-        regime,
-        k,
-        hits,
-        imp,
-        vs.contact_fraction(),
-        v * tc,
-        (vs.first_end or 0) + 1 + k,
-        vs.n_root_evals,
-        el,
+        regime=regime,
+        period_cycles=k,
+        hits_per_cycle=hits,
+        impulsive_per_cycle=imp,
+        contact_fraction=vs.contact_fraction(),
+        contact_phase=v * tc,
+        n_cycles=(vs.first_end or 0) + 1 + k,
+        n_events=vs.n_hits(),
+        n_root_evals=vs.n_root_evals,
+        elapsed_s=el,
     )
     return res, vs

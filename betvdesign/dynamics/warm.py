@@ -3,7 +3,7 @@
 ``make demo`` runs it, so that no user command compiles silently later. It runs each
 public entry point of the dynamics once on a small design (transient with event log and
 dense output, transient without, periodic orbit, vertical motion), which compiles every
-kernel they use and stores the machine code in the cache (:func:`_jit.cache_dir`).
+kernel they use and stores the machine code in the cache (:func:`jit.cache_dir`).
 """
 
 from __future__ import annotations
@@ -27,7 +27,7 @@ def warm() -> float:
 
 
 def main() -> int:
-    from betvdesign.dynamics._jit import cache_dir, jit_enabled
+    from betvdesign.dynamics.jit import cache_dir, jit_enabled
 
     if not jit_enabled():
         print("betv: NUMBA_DISABLE_JIT is set: the solver runs as plain Python, nothing to compile")

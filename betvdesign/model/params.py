@@ -91,9 +91,21 @@ class ModelParams:
         return lambda_criterion(self.varpi, self.alpha, self.beta, self.kappa)
 
     @property
-    def mode_predicted(self) -> Mode:
+    def lambda_mode(self) -> Mode:
         """Mode predicted by the λ fit: push when λ < 1, pull otherwise."""
         return "push" if self.lam < 1.0 else "pull"
+
+    @property
+    def mode_predicted(self) -> Mode:
+        """Deprecated name of :attr:`lambda_mode` (removed in the next release)."""
+        import warnings
+
+        warnings.warn(
+            "ModelParams.mode_predicted is now lambda_mode (the λ fit's mode, never the exact one)",
+            DeprecationWarning,
+            stacklevel=2,
+        )
+        return self.lambda_mode
 
     @property
     def ideal(self) -> bool:

@@ -1,25 +1,29 @@
 """Device spec -> dimensionless model parameters, scales and a derivation record.
 
-The only module that strips units. For each actuator set it computes
-(docs/MODEL.md, "Physical quantities", "Device-to-parameter relations",
-"Dimensionless model"):
+The only module that strips units (with :mod:`betvdesign.nondim.terms`, the optional
+terms). The paper's relations (MODEL.md, "Physical quantities", "Device-to-parameter
+relations", "Dimensionless model"; Shin et al., J. Appl. Phys. 96, 7603 (2004),
+doi:10.1063/1.1809773) are one step each, in the order :func:`derive_set` takes them:
 
-- M = (n·ρ·L·w·t + m_extra)/2    half the slider mass [kg]
-- m                               head mass, given or ρ_head·V_head [kg]
-- k_v = m·(2π f_v)²               vertical contact stiffness [N/m]
-- α = k_v/k_h or (f_v/f_h)² or given
-- f_act = 2 f_drive (AC, zero DC bias) or f_drive;  ω = 2π f_act
-- u = amplitude or calibration(V); with a thermal cut-off f_c (or τ_th) this is u_cal
-  and u = u_cal·H(f_act)/H(f_cal), H(f) = 1/sqrt(1 + (f/f_c)²) (:mod:`betvdesign.model.rolloff`)
-- ζ_v, ζ_h: head damping ratios (given, or 1/(2Q)); e: restitution of normal impacts;
-  with ζ_v > 0 the normal force's phase δ = atan(2ζ_v ϖ) and factor A = sqrt(1 + (2ζ_v ϖ)²)
-  (:mod:`betvdesign.model.damping`; these terms and the roll-off are recorded by
-  :mod:`betvdesign.nondim.terms`). All absent: the paper's model, recorded as before.
-- ϖ = ω·sqrt(m/k_v) = f_act/f_v,  β = m/M,  κ = μ·tanθ,  λ (MODEL.md, "Push/pull criterion")
-- scales: length u·cosθ [m], time sqrt(m/k_v) [s]
+1. :func:`slider_mass`          M = (n·ρ·L·w·t + m_extra)/2
+2. :func:`head_mass`            m given, or ρ_head·V_head
+3. :func:`vertical_stiffness`   k_v = m·(2π·f_v)²
+4. :func:`compliance_ratio`     α given, k_v/k_h or (f_v/f_h)²
+5. :func:`actuation_frequency`  f_act = 2·f_drive (AC, zero DC bias) or f_drive; ω = 2π·f_act
+6. :func:`amplitude`            u given or from the calibration u(V); with a thermal cut-off
+   this is u_cal and u = u_cal·H(f_act)/H(f_cal) (:func:`betvdesign.nondim.terms.rolloff`)
+7. :func:`impact_contact`       θ, μ
+8. :func:`model_scales`         t_s = sqrt(m/k_v), ℓ = u·cosθ
+9. :func:`normalised_frequency` ϖ = ω·t_s;  :func:`mass_ratio` β = m/M;
+   :func:`normalised_friction`  κ = μ·tanθ
+10. the optional terms (:func:`betvdesign.nondim.terms.damping_terms`: ζ_v, ζ_h, e, δ, A;
+    all absent: the paper's model, recorded as before)
+11. :func:`push_pull`           λ (MODEL.md, "Push/pull criterion");
+    :func:`published_fit`       the published values beside the computed ones
 
 Every input, formula and intermediate value is kept as a :class:`DerivationStep`
-so a report can show how each number was obtained.
+so a report can show how each number was obtained. Each step works on floats and on
+numpy arrays of samples alike (:func:`derive_samples`).
 """
 
 from __future__ import annotations
@@ -34,24 +38,28 @@ import pint
 
 from betvdesign.errors import Location, ParameterError, SpecError, SpecIssue
 from betvdesign.model.params import ModelParams
-from betvdesign.nondim import terms as nondim_terms
+from betvdesign.nondim import terms
 from betvdesign.nondim.record import (
     DERIVED_KEYS,
     DerivationStep,
     DeviceDerivation,
     FitComparison,
+    Recorder,
     SampleDerivation,
     Scales,
     SetDerivation,
+    cached_unit,
+    mag,
 )
-from betvdesign.nondim.record import Recorder as _Record
-from betvdesign.nondim.record import cached_unit as _unit
 from betvdesign.spec.loader import load_device
 from betvdesign.spec.models import (
+    Actuator,
     ActuatorSet,
     BoxGeometry,
+    Contact,
     DeviceSpec,
     DiscGeometry,
+    Drive,
     PublishedFit,
     amplitude_at,
 )
@@ -72,12 +80,29 @@ __all__ = [
     "derive_set",
 ]
 
+#: Fields of an actuator set that name or orient it but do not enter the derivation.
+_SET_IDENTITY = {"name", "intended_mode", "impact_direction"}
+
 
 def derive(spec: DeviceSpec) -> DeviceDerivation:
     """Derive the model parameters of every actuator set of ``spec``.
 
-    Raises :class:`~betvdesign.errors.ParameterError` if the numbers give parameters
-    the model cannot take (non-finite, non-positive).
+    Parameters
+    ----------
+    spec : DeviceSpec
+        A validated device.
+
+    Returns
+    -------
+    DeviceDerivation
+        One :class:`SetDerivation` per actuator set; sets that differ only in name,
+        intended mode or impact direction (mirrored sets) are
+        derived once.
+
+    Raises
+    ------
+    ParameterError
+        The numbers give parameters the model cannot take (non-finite, non-positive).
     """
     sets: list[SetDerivation] = []
     done: list[tuple[dict, SetDerivation]] = []  # mirrored sets: derived once
@@ -94,13 +119,25 @@ def derive(spec: DeviceSpec) -> DeviceDerivation:
     return DeviceDerivation(name=spec.name, spec=spec, sets=sets)
 
 
-#: Fields of an actuator set that name or orient it but do not enter the derivation.
-_SET_IDENTITY = {"name", "intended_mode", "impact_direction"}
-
-
 def derive_file(path: str | Path) -> DeviceDerivation:
-    """Load a device file and derive it; every problem is a :class:`SpecError` naming the
-    file (derived parameters the model cannot take, e.g. overflow, included)."""
+    """Load a device file and derive it.
+
+    Parameters
+    ----------
+    path : str or Path
+        The device YAML file.
+
+    Returns
+    -------
+    DeviceDerivation
+        As :func:`derive`.
+
+    Raises
+    ------
+    SpecError
+        Every problem, naming the file (derived parameters the model cannot take, e.g.
+        overflow, included).
+    """
     spec = load_device(path)
     try:
         return derive(spec)
@@ -110,10 +147,207 @@ def derive_file(path: str | Path) -> DeviceDerivation:
         ) from None
 
 
-def _head_mass(rec: _Record, spec: DeviceSpec, aset: ActuatorSet) -> pint.Quantity:
+def derive_set(spec: DeviceSpec, aset: ActuatorSet) -> SetDerivation:
+    """Derivation of one actuator set (the steps of the module docstring).
+
+    Parameters
+    ----------
+    spec : DeviceSpec
+        The device (material, slider, published fit).
+    aset : ActuatorSet
+        One of its actuator sets.
+
+    Returns
+    -------
+    SetDerivation
+        Model parameters, scales and the record of every step.
+
+    Raises
+    ------
+    ParameterError
+        Naming the set, when a derived value is not finite and positive or the
+        arithmetic overflows.
+
+    References
+    ----------
+    Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773.
+    """
+    try:
+        return _derive_set(spec, aset)
+    except (ZeroDivisionError, OverflowError, FloatingPointError) as exc:
+        raise ParameterError(
+            f"set {aset.name!r}: arithmetic failed ({exc}); check for extreme values"
+        ) from None
+    except ParameterError as exc:
+        raise ParameterError(f"set {aset.name!r}: {exc}") from None
+
+
+def derive_samples(spec: DeviceSpec, aset: ActuatorSet) -> SampleDerivation:
+    """The derivation of :func:`derive_set` (the same steps) for a spec whose numeric
+    fields hold numpy arrays of samples (Monte Carlo studies).
+
+    Vectorised, so a 10⁴-sample study derives in milliseconds.
+
+    Parameters
+    ----------
+    spec : DeviceSpec
+        A device copied with arrays of samples (:func:`betvdesign.spec.paths.with_values`).
+    aset : ActuatorSet
+        One of its actuator sets.
+
+    Returns
+    -------
+    SampleDerivation
+        Model parameters and scales of every sample.
+
+    Raises
+    ------
+    ParameterError
+        Any sample gives values the model cannot take (the caller then derives one by
+        one).
+    """
+    out = _derive_set(spec, aset, samples=True)
+    assert isinstance(out, SampleDerivation)
+    return out
+
+
+def _derive_set(
+    spec: DeviceSpec, aset: ActuatorSet, *, samples: bool = False
+) -> SetDerivation | SampleDerivation:
+    rec = Recorder()
+    act = aset.actuator
+    M = slider_mass(rec, spec)
+    m = head_mass(rec, spec, aset)
+    f_v, k_v = vertical_stiffness(rec, act, m)
+    alpha = compliance_ratio(rec, act, f_v, k_v)
+    f_act, omega = actuation_frequency(rec, aset.drive)
+    u, roll = amplitude(rec, aset, f_act, samples)
+    theta, mu = impact_contact(rec, aset.contact)
+    t_s, l_s = model_scales(rec, m, k_v, u, theta)
+    varpi = normalised_frequency(rec, omega, t_s)
+    beta = mass_ratio(rec, m, M)
+    kappa = normalised_friction(rec, mu, theta)
+    zeta_v, zeta_h, e = terms.damping_terms(rec, aset, mag(varpi, ""))
+
+    if samples:
+
+        def arr(q: pint.Quantity, unit: str) -> np.ndarray:
+            return np.asarray(q.to(cached_unit(unit)).magnitude, dtype=float)
+
+        cols = [arr(q, "") for q in (varpi, alpha, beta, kappa)]
+        cols += [arr(l_s, "m"), arr(f_act, "Hz")]
+        cols += [np.asarray(x, dtype=float) for x in (zeta_v, zeta_h, e)]
+        return SampleDerivation(*(np.array(c) for c in np.broadcast_arrays(*cols)))
+    params = ModelParams(
+        varpi=mag(varpi, ""),
+        alpha=mag(alpha, ""),
+        beta=mag(beta, ""),
+        kappa=mag(kappa, ""),
+        zeta_v=zeta_v,
+        zeta_h=zeta_h,
+        restitution=e,
+    )
+    lam = push_pull(rec, params)
+    published = published_fit(rec, params, spec.published_fit)
+    scales = Scales(
+        length_m=mag(l_s, "m"),
+        time_s=mag(t_s, "s"),
+        f_act_hz=mag(f_act, "Hz"),
+        omega_rad_s=mag(omega, "rad/s"),
+        u_m=mag(u, "m"),
+        theta_rad=mag(theta, "rad"),
+        **roll,
+    )
+    return SetDerivation(
+        name=aset.name,
+        intended_mode=aset.intended_mode,
+        params=params,
+        lam=lam,
+        scales=scales,
+        record=rec.steps,
+        actuator_set=aset,
+        travel_range_m=mag(spec.slider.travel_range, "m"),
+        published=published,
+    )
+
+
+# --- the steps -------------------------------------------------------------------------
+
+
+def slider_mass(rec: Recorder, spec: DeviceSpec) -> pint.Quantity:
+    """Half the slider mass, the model's M: M = (n·ρ·L·w·t + m_extra)/2.
+
+    Records ρ, L, w, t, n, m_extra and M.
+
+    Parameters
+    ----------
+    rec : Recorder
+        The record being built.
+    spec : DeviceSpec
+        The device: its material's density ρ [kg/m³] and its slider (n beams of length
+        L, width w, thickness t [m]; extra mass m_extra [kg]).
+
+    Returns
+    -------
+    pint.Quantity
+        M [ug].
+
+    References
+    ----------
+    MODEL.md, "Physical quantities"; Shin et al., J. Appl. Phys. 96, 7603 (2004),
+    doi:10.1063/1.1809773 (half the device is modelled, by symmetry).
+    """
+    sl = spec.slider
+    rho = rec.spec(
+        "ρ", f"slider density ({spec.material.name})", "material.density", spec.material.density
+    )
+    L = rec.spec("L", "beam length", "slider.beam_length", sl.beam_length)
+    w = rec.spec("w", "beam width", "slider.beam_width", sl.beam_width)
+    t = rec.spec("t", "beam thickness", "slider.beam_thickness", sl.beam_thickness)
+    n = rec.spec(
+        "n", "beam count", "slider.beam_count", ureg.Quantity(sl.beam_count, cached_unit(""))
+    )
+    m_x = rec.spec(
+        "m_extra", "extra slider mass", "slider.extra_mass", sl.extra_mass.to(cached_unit("ug"))
+    )
+    return rec.add(
+        "M",
+        "half the slider mass (the model's M)",
+        "(n·ρ·L·w·t + m_extra)/2",
+        (n * rho * L * w * t + m_x) / 2,
+        ("n", "ρ", "L", "w", "t", "m_extra"),
+        "ug",
+    )
+
+
+def head_mass(rec: Recorder, spec: DeviceSpec, aset: ActuatorSet) -> pint.Quantity:
+    """The impact head's mass m: given, or m = ρ_head·V_head.
+
+    V_head = π·d²/4·t for a disc of diameter d, l·w·t for a box (thickness t [m]);
+    ρ_head [kg/m³] is the head's material, the device's by default. Records the inputs,
+    V_head and m.
+
+    Parameters
+    ----------
+    rec : Recorder
+        The record being built.
+    spec : DeviceSpec
+        The device (its material).
+    aset : ActuatorSet
+        The actuator set (its head).
+
+    Returns
+    -------
+    pint.Quantity
+        m [ug].
+
+    References
+    ----------
+    MODEL.md, "Physical quantities".
+    """
     head = aset.head
     if head.mass is not None:
-        return rec.spec("m", "impact head mass", "head.mass", head.mass.to(_unit("ug")))
+        return rec.spec("m", "impact head mass", "head.mass", head.mass.to(cached_unit("ug")))
     geo = head.geometry
     mat = head.material or spec.material
     rho_h = rec.spec("ρ_head", f"head density ({mat.name})", "head.material", mat.density)
@@ -141,72 +375,37 @@ def _head_mass(rec: _Record, spec: DeviceSpec, aset: ActuatorSet) -> pint.Quanti
     )
 
 
-def derive_set(spec: DeviceSpec, aset: ActuatorSet) -> SetDerivation:
-    """Derivation of one actuator set (see the module docstring for the formulas).
+def vertical_stiffness(
+    rec: Recorder, act: Actuator, m: pint.Quantity
+) -> tuple[pint.Quantity, pint.Quantity]:
+    """The head's vertical (normal) contact stiffness: k_v = m·(2π·f_v)².
 
-    Raises :class:`ParameterError` (naming the set) when a derived value is not finite
-    and positive, or the arithmetic overflows.
+    From the head's vertical resonance f_v, sqrt(k_v/m) = 2π·f_v. Records f_v and k_v.
+
+    Parameters
+    ----------
+    rec : Recorder
+        The record being built.
+    act : Actuator
+        The actuator (its vertical resonance f_v [Hz]).
+    m : pint.Quantity
+        Head mass [kg].
+
+    Returns
+    -------
+    tuple of pint.Quantity
+        f_v [kHz] and k_v [N/m].
+
+    References
+    ----------
+    MODEL.md, "Device-to-parameter relations"; Shin et al., J. Appl. Phys. 96, 7603
+    (2004), doi:10.1063/1.1809773.
     """
-    try:
-        return _derive_set(spec, aset)
-    except (ZeroDivisionError, OverflowError, FloatingPointError) as exc:
-        raise ParameterError(
-            f"set {aset.name!r}: arithmetic failed ({exc}); check for extreme values"
-        ) from None
-    except ParameterError as exc:
-        raise ParameterError(f"set {aset.name!r}: {exc}") from None
-
-
-def _cos(x: Any) -> Any:
-    return math.cos(x) if np.ndim(x) == 0 else np.cos(x)
-
-
-def _tan(x: Any) -> Any:
-    return math.tan(x) if np.ndim(x) == 0 else np.tan(x)
-
-
-def derive_samples(spec: DeviceSpec, aset: ActuatorSet) -> SampleDerivation:
-    """The derivation of :func:`derive_set` (the same code) for a spec whose numeric
-    fields hold numpy arrays of samples (Monte Carlo studies): vectorised, so a
-    10⁴-sample study derives in milliseconds. Raises :class:`ParameterError` when any
-    sample gives values the model cannot take (the caller then derives one by one)."""
-    out = _derive_set(spec, aset, samples=True)
-    assert isinstance(out, SampleDerivation)
-    return out
-
-
-def _derive_set(
-    spec: DeviceSpec, aset: ActuatorSet, *, samples: bool = False
-) -> SetDerivation | SampleDerivation:
-    rec = _Record()
-    sl = spec.slider
-    act = aset.actuator
-
-    rho = rec.spec(
-        "ρ", f"slider density ({spec.material.name})", "material.density", spec.material.density
-    )
-    L = rec.spec("L", "beam length", "slider.beam_length", sl.beam_length)
-    w = rec.spec("w", "beam width", "slider.beam_width", sl.beam_width)
-    t = rec.spec("t", "beam thickness", "slider.beam_thickness", sl.beam_thickness)
-    n = rec.spec("n", "beam count", "slider.beam_count", ureg.Quantity(sl.beam_count, _unit("")))
-    m_x = rec.spec(
-        "m_extra", "extra slider mass", "slider.extra_mass", sl.extra_mass.to(_unit("ug"))
-    )
-    M = rec.add(
-        "M",
-        "half the slider mass (the model's M)",
-        "(n·ρ·L·w·t + m_extra)/2",
-        (n * rho * L * w * t + m_x) / 2,
-        ("n", "ρ", "L", "w", "t", "m_extra"),
-        "ug",
-    )
-    m = _head_mass(rec, spec, aset)
-
     f_v = rec.spec(
         "f_v",
         "head vertical resonance",
         "actuator.vertical_resonance",
-        act.vertical_resonance.to(_unit("kHz")),
+        act.vertical_resonance.to(cached_unit("kHz")),
     )
     k_v = rec.add(
         "k_v",
@@ -216,39 +415,96 @@ def _derive_set(
         ("m", "f_v"),
         "N/m",
     )
+    return f_v, k_v
+
+
+def compliance_ratio(
+    rec: Recorder, act: Actuator, f_v: pint.Quantity, k_v: pint.Quantity
+) -> pint.Quantity:
+    """The relative impact compliance α = k_v/k_h [-].
+
+    Phenomenological: given directly, through the tangential stiffness k_h
+    (α = k_v/k_h), or through a tangential resonance f_h (α = (f_v/f_h)²). Records the
+    input and α.
+
+    Parameters
+    ----------
+    rec : Recorder
+        The record being built.
+    act : Actuator
+        The actuator (exactly one of α, k_h [N/m], f_h [Hz]).
+    f_v : pint.Quantity
+        Vertical resonance [Hz].
+    k_v : pint.Quantity
+        Vertical contact stiffness [N/m].
+
+    Returns
+    -------
+    pint.Quantity
+        α [-].
+
+    References
+    ----------
+    MODEL.md, "Device-to-parameter relations"; Shin et al., J. Appl. Phys. 96, 7603
+    (2004), doi:10.1063/1.1809773.
+    """
     if act.alpha is not None:
-        alpha = rec.spec(
+        return rec.spec(
             "α",
             "relative impact compliance k_v/k_h",
             "actuator.alpha",
-            ureg.Quantity(act.alpha, _unit("")),
+            ureg.Quantity(act.alpha, cached_unit("")),
         )
-    elif act.horizontal_stiffness is not None:
+    if act.horizontal_stiffness is not None:
         k_h = rec.spec(
             "k_h",
             "tangential contact stiffness",
             "actuator.horizontal_stiffness",
-            act.horizontal_stiffness.to(_unit("N/m")),
+            act.horizontal_stiffness.to(cached_unit("N/m")),
         )
-        alpha = rec.add("α", "relative impact compliance", "k_v/k_h", k_v / k_h, ("k_v", "k_h"), "")
-    else:
-        f_h = rec.spec(
-            "f_h",
-            "head tangential resonance",
-            "actuator.horizontal_resonance",
-            act.horizontal_resonance.to(_unit("kHz")),
-        )
-        alpha = rec.add(
-            "α", "relative impact compliance", "(f_v/f_h)²", (f_v / f_h) ** 2, ("f_v", "f_h"), ""
-        )
+        return rec.add("α", "relative impact compliance", "k_v/k_h", k_v / k_h, ("k_v", "k_h"), "")
+    f_h = rec.spec(
+        "f_h",
+        "head tangential resonance",
+        "actuator.horizontal_resonance",
+        act.horizontal_resonance.to(cached_unit("kHz")),
+    )
+    return rec.add(
+        "α", "relative impact compliance", "(f_v/f_h)²", (f_v / f_h) ** 2, ("f_v", "f_h"), ""
+    )
 
+
+def actuation_frequency(rec: Recorder, drive: Drive) -> tuple[pint.Quantity, pint.Quantity]:
+    """The actuation frequency f_act and ω = 2π·f_act.
+
+    A pure AC drive with zero DC bias heats on both half waves: f_act = 2·f_drive (AC
+    doubling); a DC-biased or unipolar drive: f_act = f_drive. Records f_drive, f_act
+    and ω.
+
+    Parameters
+    ----------
+    rec : Recorder
+        The record being built.
+    drive : Drive
+        The electrical drive (waveform, frequency f_drive [Hz]).
+
+    Returns
+    -------
+    tuple of pint.Quantity
+        f_act [Hz] and ω [rad/s].
+
+    References
+    ----------
+    MODEL.md, "Device-to-parameter relations"; Shin et al., J. Appl. Phys. 96, 7603
+    (2004), doi:10.1063/1.1809773.
+    """
     f_d = rec.spec(
         "f_drive",
-        f"drive frequency ({aset.drive.waveform})",
+        f"drive frequency ({drive.waveform})",
         "drive.frequency",
-        aset.drive.frequency.to(_unit("Hz")),
+        drive.frequency.to(cached_unit("Hz")),
     )
-    if aset.drive.doubled:
+    if drive.doubled:
         f_act = rec.add(
             "f_act",
             "actuation frequency: AC with zero DC bias heats on both half waves (AC doubling)",
@@ -260,7 +516,7 @@ def _derive_set(
     else:
         f_act = rec.add(
             "f_act",
-            f"actuation frequency ({aset.drive.waveform} drive: not doubled)",
+            f"actuation frequency ({drive.waveform} drive: not doubled)",
             "f_drive",
             f_d,
             ("f_drive",),
@@ -269,12 +525,49 @@ def _derive_set(
     omega = rec.add(
         "ω", "angular actuation frequency", "2π·f_act", 2 * math.pi * f_act, ("f_act",), "rad/s"
     )
+    return f_act, omega
 
+
+def amplitude(
+    rec: Recorder, aset: ActuatorSet, f_act: pint.Quantity, samples: bool
+) -> tuple[pint.Quantity, dict[str, float]]:
+    """The actuator amplitude u at the actuation frequency.
+
+    u is given, or follows from the drive voltage V through the calibration (gain·V,
+    gain·V² or interpolated measured points). With a thermal cut-off that value is u_cal,
+    at the calibration frequency, and u = u_cal·H(f_act)/H(f_cal)
+    (:func:`betvdesign.nondim.terms.rolloff`). Records the inputs and u (u_cal).
+
+    Parameters
+    ----------
+    rec : Recorder
+        The record being built.
+    aset : ActuatorSet
+        The actuator set (its actuator and drive voltage V [V]).
+    f_act : pint.Quantity
+        Actuation frequency [Hz].
+    samples : bool
+        True for arrays of samples (then no cut-off is returned for the scales).
+
+    Returns
+    -------
+    tuple
+        u [um], and the thermal cut-off and calibration frequency [Hz] for
+        :class:`Scales` (empty without a cut-off).
+
+    References
+    ----------
+    MODEL.md, "Device-to-parameter relations" and "Thermal roll-off of the actuator".
+    """
+    act = aset.actuator
     rolled = act.thermal_cutoff is not None or act.thermal_time_constant is not None
     sym, at_cal = ("u_cal", " at the calibration frequency") if rolled else ("u", "")
     if act.amplitude is not None:
         u = rec.spec(
-            sym, "actuator amplitude" + at_cal, "actuator.amplitude", act.amplitude.to(_unit("um"))
+            sym,
+            "actuator amplitude" + at_cal,
+            "actuator.amplitude",
+            act.amplitude.to(cached_unit("um")),
         )
     else:
         rec.spec("V", "drive voltage", "drive.voltage", aset.drive.voltage)
@@ -292,17 +585,71 @@ def _derive_set(
             ("V",),
             "um",
         )
-    roll: dict[str, float] = {}
-    if rolled:
-        u, roll = nondim_terms.rolloff(rec, act, f_act, u, samples)
-    theta = rec.spec("θ", "impact angle", "contact.impact_angle", aset.contact.impact_angle)
+    if not rolled:
+        return u, {}
+    return terms.rolloff(rec, act, f_act, u, samples)
+
+
+def impact_contact(rec: Recorder, contact: Contact) -> tuple[pint.Quantity, pint.Quantity]:
+    """The contact's impact angle θ and Coulomb friction coefficient μ (inputs).
+
+    Parameters
+    ----------
+    rec : Recorder
+        The record being built.
+    contact : Contact
+        The head/slider contact: θ [deg], μ [-].
+
+    Returns
+    -------
+    tuple of pint.Quantity
+        θ [deg] and μ [-].
+
+    References
+    ----------
+    MODEL.md, "Physical quantities".
+    """
+    theta = rec.spec("θ", "impact angle", "contact.impact_angle", contact.impact_angle)
     mu = rec.spec(
         "μ",
         "Coulomb friction coefficient",
         "contact.friction",
-        ureg.Quantity(aset.contact.friction, _unit("")),
+        ureg.Quantity(contact.friction, cached_unit("")),
     )
+    return theta, mu
 
+
+def model_scales(
+    rec: Recorder, m: pint.Quantity, k_v: pint.Quantity, u: pint.Quantity, theta: pint.Quantity
+) -> tuple[pint.Quantity, pint.Quantity]:
+    """The scales of the dimensionless model: t_s = sqrt(m/k_v), ℓ = u·cosθ.
+
+    τ = t/t_s; the slider and the head's tangential motion are in units of ℓ. Records
+    t_s and ℓ.
+
+    Parameters
+    ----------
+    rec : Recorder
+        The record being built.
+    m : pint.Quantity
+        Head mass [kg].
+    k_v : pint.Quantity
+        Vertical contact stiffness [N/m].
+    u : pint.Quantity
+        Actuator amplitude at f_act [m].
+    theta : pint.Quantity
+        Impact angle [rad].
+
+    Returns
+    -------
+    tuple of pint.Quantity
+        t_s [us] and ℓ [nm].
+
+    References
+    ----------
+    MODEL.md, "Dimensionless model"; Shin et al., J. Appl. Phys. 96, 7603 (2004),
+    doi:10.1063/1.1809773.
+    """
     t_s = rec.add(
         "t_s", "time scale sqrt(m/k_v)", "sqrt(m/k_v)", (m / k_v) ** 0.5, ("m", "k_v"), "us"
     )
@@ -310,94 +657,174 @@ def _derive_set(
         "ℓ",
         "length scale u·cosθ (slider, tangential)",
         "u·cosθ",
-        u * _cos(theta.to(_unit("rad")).magnitude),
+        u * _cos(theta.to(cached_unit("rad")).magnitude),
         ("u", "θ"),
         "nm",
     )
-    varpi = rec.add(
+    return t_s, l_s
+
+
+def normalised_frequency(rec: Recorder, omega: pint.Quantity, t_s: pint.Quantity) -> pint.Quantity:
+    """The normalised actuation frequency ϖ = ω·sqrt(m/k_v) = ω·t_s (= f_act/f_v).
+
+    Parameters
+    ----------
+    rec : Recorder
+        The record being built.
+    omega : pint.Quantity
+        Angular actuation frequency [rad/s].
+    t_s : pint.Quantity
+        Time scale sqrt(m/k_v) [s].
+
+    Returns
+    -------
+    pint.Quantity
+        ϖ [-].
+
+    References
+    ----------
+    MODEL.md, "Dimensionless model"; Shin et al., J. Appl. Phys. 96, 7603 (2004),
+    doi:10.1063/1.1809773.
+    """
+    return rec.add(
         "ϖ", "normalised actuation frequency", "ω·sqrt(m/k_v)", omega * t_s, ("ω", "t_s"), ""
     )
-    beta = rec.add("β", "relative mass m/M", "m/M", m / M, ("m", "M"), "")
-    kappa = rec.add(
+
+
+def mass_ratio(rec: Recorder, m: pint.Quantity, M: pint.Quantity) -> pint.Quantity:
+    """The relative mass β = m/M.
+
+    Parameters
+    ----------
+    rec : Recorder
+        The record being built.
+    m : pint.Quantity
+        Head mass [kg].
+    M : pint.Quantity
+        Half the slider mass [kg].
+
+    Returns
+    -------
+    pint.Quantity
+        β [-].
+
+    References
+    ----------
+    MODEL.md, "Dimensionless model"; Shin et al., J. Appl. Phys. 96, 7603 (2004),
+    doi:10.1063/1.1809773.
+    """
+    return rec.add("β", "relative mass m/M", "m/M", m / M, ("m", "M"), "")
+
+
+def normalised_friction(rec: Recorder, mu: pint.Quantity, theta: pint.Quantity) -> pint.Quantity:
+    """The normalised friction κ = μ·tanθ.
+
+    Parameters
+    ----------
+    rec : Recorder
+        The record being built.
+    mu : pint.Quantity
+        Coulomb friction coefficient [-].
+    theta : pint.Quantity
+        Impact angle [rad].
+
+    Returns
+    -------
+    pint.Quantity
+        κ [-].
+
+    References
+    ----------
+    MODEL.md, "Dimensionless model"; Shin et al., J. Appl. Phys. 96, 7603 (2004),
+    doi:10.1063/1.1809773.
+    """
+    return rec.add(
         "κ",
         "normalised friction μ·tanθ",
         "μ·tanθ",
-        mu * _tan(theta.to(_unit("rad")).magnitude),
+        mu * _tan(theta.to(cached_unit("rad")).magnitude),
         ("μ", "θ"),
         "",
     )
-    zeta_v, zeta_h, e = nondim_terms.damping_terms(rec, aset, nondim_terms.mag(varpi, ""))
 
-    if samples:
 
-        def arr(q: pint.Quantity, unit: str) -> np.ndarray:
-            return np.asarray(q.to(_unit(unit)).magnitude, dtype=float)
+def push_pull(rec: Recorder, params: ModelParams) -> float:
+    """The push/pull criterion λ = (κ/ϖ²)·(1/(ακ) − (1/β − β)/(22(κ+1))).
 
-        cols = [arr(q, "") for q in (varpi, alpha, beta, kappa)]
-        cols += [arr(l_s, "m"), arr(f_act, "Hz")]
-        cols += [np.asarray(x, dtype=float) for x in (zeta_v, zeta_h, e)]
-        return SampleDerivation(*(np.array(c) for c in np.broadcast_arrays(*cols)))
-    params = ModelParams(
-        varpi=float(varpi.to(_unit("")).magnitude),
-        alpha=float(alpha.to(_unit("")).magnitude),
-        beta=float(beta.to(_unit("")).magnitude),
-        kappa=float(kappa.to(_unit("")).magnitude),
-        zeta_v=zeta_v,
-        zeta_h=zeta_h,
-        restitution=e,
-    )
+    λ < 1 predicts push, λ > 1 pull (the paper's fit). Recorded, never checked for sign.
+
+    Parameters
+    ----------
+    rec : Recorder
+        The record being built.
+    params : ModelParams
+        ϖ, α, β, κ [-].
+
+    Returns
+    -------
+    float
+        λ [-].
+
+    References
+    ----------
+    MODEL.md, "Push/pull criterion"; Shin et al., J. Appl. Phys. 96, 7603 (2004),
+    doi:10.1063/1.1809773.
+    """
     lam = params.lam
     rec.add(
         "λ",
         "push/pull criterion (λ < 1 push, λ > 1 pull)",
         "(κ/ϖ²)·(1/(ακ) − (1/β − β)/(22(κ+1)))",
-        ureg.Quantity(lam, _unit("")),
+        ureg.Quantity(lam, cached_unit("")),
         ("ϖ", "α", "β", "κ"),
     )
-    published = _compare(params, spec.published_fit)
-    _record_published(rec, published, spec.published_fit)
-    scales = Scales(
-        length_m=float(l_s.to(_unit("m")).magnitude),
-        time_s=float(t_s.to(_unit("s")).magnitude),
-        f_act_hz=float(f_act.to(_unit("Hz")).magnitude),
-        omega_rad_s=float(omega.to(_unit("rad/s")).magnitude),
-        u_m=float(u.to(_unit("m")).magnitude),
-        theta_rad=float(theta.to(_unit("rad")).magnitude),
-        **roll,
-    )
-    return SetDerivation(
-        name=aset.name,
-        intended_mode=aset.intended_mode,
-        params=params,
-        lam=lam,
-        scales=scales,
-        record=rec.steps,
-        actuator_set=aset,
-        travel_range_m=float(sl.travel_range.to(_unit("m")).magnitude),
-        published=published,
-    )
+    return lam
 
 
-def _compare(params: ModelParams, fit: PublishedFit | None) -> list[FitComparison]:
-    if fit is None:
-        return []
-    out = []
-    for name in ("varpi", "alpha", "beta", "kappa"):
-        vals = fit.values(name)
-        if vals:
-            out.append(FitComparison(name, getattr(params, name), tuple(vals)))
-    return out
-
-
+#: Model parameter -> its symbol in the record.
 _SYMBOL = {"varpi": "ϖ", "alpha": "α", "beta": "β", "kappa": "κ"}
 
 
-def _record_published(
-    rec: _Record, published: list[FitComparison], fit: PublishedFit | None
-) -> None:
-    """Published fit values go into the record next to the computed ones, with the gap."""
-    source = f" ({fit.source})" if fit is not None and fit.source else ""
-    for c in published:
+def published_fit(
+    rec: Recorder, params: ModelParams, fit: PublishedFit | None
+) -> list[FitComparison]:
+    """The published fit's values beside the computed ones, with the gap.
+
+    Each published value goes into the record as ``<symbol>_pub`` (``[i]`` when several
+    are quoted), described with the computed value and the relative gap.
+
+    Parameters
+    ----------
+    rec : Recorder
+        The record being built.
+    params : ModelParams
+        The computed ϖ, α, β, κ [-].
+    fit : PublishedFit or None
+        What a publication fitted for the device.
+
+    Returns
+    -------
+    list of FitComparison
+        One per parameter the fit gives (empty without a fit).
+
+    References
+    ----------
+    MODEL.md, "The published device".
+    """
+    if fit is None:
+        return []
+    out = [
+        FitComparison(name, value, tuple(fit.values(name)))
+        for name, value in (
+            ("varpi", params.varpi),
+            ("alpha", params.alpha),
+            ("beta", params.beta),
+            ("kappa", params.kappa),
+        )
+        if fit.values(name)
+    ]
+    source = f" ({fit.source})" if fit.source else ""
+    for c in out:
         sym = _SYMBOL[c.name]
         for i, v in enumerate(c.published):
             suffix = f"[{i}]" if len(c.published) > 1 else ""
@@ -407,8 +834,17 @@ def _record_published(
                     f"{sym}_pub{suffix}",
                     f"published fit{source}; computed {sym} = {c.computed:.4g} is {gap:.0%} away",
                     f"spec: published_fit.{c.name}" + suffix,
-                    ureg.Quantity(v, _unit("")),
+                    ureg.Quantity(v, cached_unit("")),
                     (),
                     f"{c.name}_pub{suffix}",
                 )
             )
+    return out
+
+
+def _cos(x: Any) -> Any:
+    return math.cos(x) if np.ndim(x) == 0 else np.cos(x)
+
+
+def _tan(x: Any) -> Any:
+    return math.tan(x) if np.ndim(x) == 0 else np.tan(x)

@@ -64,9 +64,20 @@ DERIVED_KEYS = (
 class DerivationStep:
     """One number of the derivation: an input from the spec or a computed value.
 
-    symbol: e.g. "k_v"; description: words; formula: "m·(2π f_v)²" or
-    "spec: actuator.vertical_resonance" for inputs; value: pint Quantity in the
-    engineering unit it is best read in; inputs: symbols the formula uses.
+    Attributes
+    ----------
+    symbol : str
+        E.g. ``"k_v"``.
+    description : str
+        What it is, in words.
+    formula : str
+        ``"m·(2π·f_v)²"``, or ``"spec: actuator.vertical_resonance"`` for inputs.
+    value : pint.Quantity
+        In the engineering unit it is best read in.
+    inputs : tuple of str
+        Symbols the formula uses.
+    key : str
+        ASCII key for JSON output (the symbol, spelled out where it is not ASCII).
     """
 
     symbol: str
@@ -82,11 +93,12 @@ class DerivationStep:
 
     @property
     def value_str(self) -> str:
-        """The value as a short string with units, e.g. ``"0.0184 ug"``."""
+        """The value as a short string with units, e.g. ``"0.0184 ug"`` (4 digits)."""
         return format_quantity(self.value, ".4g")
 
     @property
     def magnitude(self) -> float:
+        """The value's magnitude in its recorded unit."""
         return float(self.value.magnitude)
 
 
@@ -94,11 +106,25 @@ class DerivationStep:
 class Scales:
     """Scales of the dimensionless model, float SI (MODEL.md, "Dimensionless model").
 
-    length_m: u·cosθ [m] (ζ and s scale); time_s: sqrt(m/k_v) [s] (τ = t/time_s);
-    f_act_hz: actuation frequency [Hz]; omega_rad_s: 2π f_act [rad/s];
-    u_m: amplitude at f_act [m] (after the thermal roll-off); theta_rad: impact angle [rad];
-    cutoff_hz: thermal cut-off f_c [Hz] (inf: no roll-off); calibration_hz: actuation
-    frequency f_cal of the amplitude calibration [Hz] (None without a cut-off).
+    Attributes
+    ----------
+    length_m : float
+        ℓ = u·cosθ [m], the scale of ζ and s.
+    time_s : float
+        sqrt(m/k_v) [s] (τ = t/time_s).
+    f_act_hz : float
+        Actuation frequency [Hz].
+    omega_rad_s : float
+        2π·f_act [rad/s].
+    u_m : float
+        Amplitude at f_act [m] (after the thermal roll-off).
+    theta_rad : float
+        Impact angle [rad].
+    cutoff_hz : float
+        Thermal cut-off f_c [Hz] (inf: no roll-off).
+    calibration_hz : float or None
+        Actuation frequency f_cal of the amplitude calibration [Hz] (None without a
+        cut-off).
     """
 
     length_m: float
@@ -116,8 +142,19 @@ class Scales:
         return math.isfinite(self.cutoff_hz)
 
     def amplitude_m(self, f_act_hz: Any) -> Any:
-        """Stroke u [m] at another actuation frequency [Hz] (float or array):
-        u·H(f)/H(f_act) (MODEL.md, "Thermal roll-off"); u itself without a cut-off."""
+        """The stroke at another actuation frequency: u·H(f)/H(f_act).
+
+        Parameters
+        ----------
+        f_act_hz : float or numpy.ndarray
+            Actuation frequency f [Hz].
+
+        Returns
+        -------
+        float or numpy.ndarray
+            Stroke [m]; u itself without a cut-off (MODEL.md, "Thermal roll-off of the
+            actuator").
+        """
         return self.u_m * rolloff.ratio(f_act_hz, self.f_act_hz, self.cutoff_hz)
 
     @property
@@ -129,8 +166,23 @@ class Scales:
         return float(rolloff.ratio(self.f_act_hz, self.calibration_hz, self.cutoff_hz))
 
     def speed_m_s(self, delta_s: float) -> float:
-        """Mean slider speed for a dimensionless per-cycle increment Δs [m/s]:
-        Δs·u·cosθ·f_act (MODEL.md, "Displacement per cycle")."""
+        """Mean slider speed of a dimensionless per-cycle increment: Δs·u·cosθ·f_act.
+
+        Parameters
+        ----------
+        delta_s : float
+            Δs per cycle [-].
+
+        Returns
+        -------
+        float
+            Speed [m/s].
+
+        References
+        ----------
+        MODEL.md, "Dimensionless model" (displacement per cycle); Shin et al., J. Appl.
+        Phys. 96, 7603 (2004), doi:10.1063/1.1809773.
+        """
         return delta_s * self.length_m * self.f_act_hz
 
 
@@ -148,6 +200,18 @@ class FitComparison:
         return min(abs(self.computed - p) / abs(p) for p in self.published)
 
     def matches(self, rtol: float = 0.1) -> bool:
+        """Whether the computed value lies within ``rtol`` [-] (relative) of a published one.
+
+        Parameters
+        ----------
+        rtol : float
+            Relative tolerance [-].
+
+        Returns
+        -------
+        bool
+            True when :attr:`rel_diff` <= ``rtol``.
+        """
         return self.rel_diff <= rtol
 
 
@@ -166,23 +230,47 @@ class SetDerivation:
     published: list[FitComparison] = field(default_factory=list)
 
     def step(self, symbol: str) -> DerivationStep:
-        """The record entry for ``symbol`` (KeyError if absent)."""
+        """The record entry of a symbol.
+
+        Parameters
+        ----------
+        symbol : str
+            E.g. ``"k_v"``.
+
+        Returns
+        -------
+        DerivationStep
+            The first entry with that symbol.
+
+        Raises
+        ------
+        KeyError
+            The record has no such symbol.
+        """
         for s in self.record:
             if s.symbol == symbol:
                 return s
         raise KeyError(symbol)
 
     @property
-    def mode_predicted(self) -> Mode:
-        return self.params.mode_predicted
+    def lambda_mode(self) -> Mode:
+        """The mode the λ criterion predicts (λ < 1 push)."""
+        return self.params.lambda_mode
 
     @property
     def impact_sign(self) -> int:
+        """+1 when the heads strike toward +x, −1 toward −x."""
         return 1 if self.actuator_set.impact_direction == "+x" else -1
 
     def derived(self) -> dict[str, str]:
-        """Key dimensional values as strings with units (``{"M": "0.003961 ug", ...}``),
-        keyed by :data:`DERIVED_KEYS`."""
+        """Key dimensional values as strings with units.
+
+        Returns
+        -------
+        dict of str to str
+            ``{"M": "0.003961 ug", ...}``, keyed by :data:`DERIVED_KEYS` (those the
+            record holds).
+        """
         by_key = {s.key: s for s in self.record}
         return {k: by_key[k].value_str for k in DERIVED_KEYS if k in by_key}
 
@@ -215,8 +303,38 @@ class SampleDerivation:
 
 @functools.lru_cache(maxsize=64)
 def cached_unit(text: str) -> pint.Unit:
-    """A parsed unit of :data:`ureg` (parsing unit text dominates ``derive`` otherwise)."""
+    """A parsed unit of :data:`ureg` (parsing unit text dominates ``derive`` otherwise).
+
+    Parameters
+    ----------
+    text : str
+        A unit expression (``"um"``, ``"N/m"``, ``""`` for dimensionless).
+
+    Returns
+    -------
+    pint.Unit
+        The unit, parsed once per text.
+    """
     return ureg.Unit(text)
+
+
+def mag(q: pint.Quantity, unit: str) -> Any:
+    """Magnitude of ``q`` in ``unit``: where a derivation step strips a unit.
+
+    Parameters
+    ----------
+    q : pint.Quantity
+        A recorded value (a float or an array of samples).
+    unit : str
+        The unit to express it in.
+
+    Returns
+    -------
+    float or numpy.ndarray
+        A float, or an array of samples.
+    """
+    m = q.to(cached_unit(unit)).magnitude
+    return float(m) if np.ndim(m) == 0 else np.asarray(m, dtype=float)
 
 
 class Recorder:
@@ -231,18 +349,45 @@ class Recorder:
         symbol: str,
         description: str,
         formula: str,
-        value: pint.Quantity,
+        value: Any,
         inputs: tuple[str, ...] = (),
         unit: str | None = None,
     ) -> pint.Quantity:
+        """Record a computed value (or, with a ``spec:`` formula, an input).
+
+        Parameters
+        ----------
+        symbol : str
+            Its symbol (``"k_v"``).
+        description : str
+            What it is, in words.
+        formula : str
+            How it is computed (``"m·(2π·f_v)²"``), or ``"spec: <field path>"``.
+        value : pint.Quantity or float or numpy.ndarray
+            The value; a plain number is dimensionless.
+        inputs : tuple of str
+            Symbols the formula uses.
+        unit : str or None
+            The unit it is best read in (None: as given).
+
+        Returns
+        -------
+        pint.Quantity
+            The value in ``unit``.
+
+        Raises
+        ------
+        ParameterError
+            A computed value (other than λ) that is not finite and > 0.
+        """
         if not isinstance(value, pint.Quantity):
             value = ureg.Quantity(value, cached_unit(""))
         if unit is not None:
             value = value.to(cached_unit(unit))
         if not formula.startswith("spec:") and symbol != "λ":
-            mag = np.asarray(value.magnitude, dtype=float)
-            if not np.all(np.isfinite(mag) & (mag > 0.0)):
-                shown = float(mag) if mag.ndim == 0 else "an invalid sample"
+            got = np.asarray(value.magnitude, dtype=float)
+            if not np.all(np.isfinite(got) & (got > 0.0)):
+                shown = float(got) if got.ndim == 0 else "an invalid sample"
                 raise ParameterError(
                     f"{symbol} = {formula} = {shown!r}: must be finite and > 0 "
                     "(check the inputs for extreme or zero values)"
@@ -250,5 +395,23 @@ class Recorder:
         self.steps.append(DerivationStep(symbol, description, formula, value, inputs))
         return value
 
-    def spec(self, symbol: str, description: str, path: str, value) -> pint.Quantity:
+    def spec(self, symbol: str, description: str, path: str, value: Any) -> pint.Quantity:
+        """Record an input taken from the device spec.
+
+        Parameters
+        ----------
+        symbol : str
+            Its symbol (``"f_v"``).
+        description : str
+            What it is, in words.
+        path : str
+            The spec field it comes from (``"actuator.vertical_resonance"``).
+        value : pint.Quantity or float or numpy.ndarray
+            The value (a plain number is dimensionless).
+
+        Returns
+        -------
+        pint.Quantity
+            The value, as given.
+        """
         return self.add(symbol, description, f"spec: {path}", value)

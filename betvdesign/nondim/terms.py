@@ -1,10 +1,12 @@
-"""Derivation steps of the optional terms beyond the paper's idealisation (MODEL.md):
-the thermal roll-off of the stroke, head damping and the restitution of normal impacts.
+"""Derivation steps of the optional terms beyond the paper's idealisation (MODEL.md,
+"Beyond the paper's idealisation"): the thermal roll-off of the stroke, head damping and
+the restitution of normal impacts.
 
-Part of the nondim layer (:mod:`betvdesign.nondim.device` calls it; like it, it strips units):
-every input and computed value goes into the derivation record with the spec field it
-comes from. Absent fields record nothing, so a device without them derives exactly as
-before they existed. Works on floats and on arrays of samples alike
+A concept of its own beside the paper's relations (:mod:`betvdesign.nondim.device`,
+which calls these steps; like it, it strips units): the terms are optional, and absent
+fields record nothing, so a device without them derives exactly as the paper's model.
+Every input and computed value goes into the derivation record with the spec field it
+comes from. Works on floats and on arrays of samples alike
 (:func:`betvdesign.nondim.device.derive_samples`).
 """
 
@@ -17,9 +19,9 @@ import numpy as np
 import pint
 
 from betvdesign.model import damping
-from betvdesign.model import rolloff as _rolloff
+from betvdesign.model import rolloff as first_order
 from betvdesign.model.params import normal_force_phase
-from betvdesign.nondim.record import Recorder, cached_unit
+from betvdesign.nondim.record import Recorder, cached_unit, mag
 from betvdesign.spec.models import Actuator, ActuatorSet
 from betvdesign.spec.units import ureg
 
@@ -27,8 +29,36 @@ from betvdesign.spec.units import ureg
 def rolloff(
     rec: Recorder, act: Actuator, f_act: pint.Quantity, u_cal: pint.Quantity, samples: bool
 ) -> tuple[pint.Quantity, dict[str, float]]:
-    """u = u_cal·H(f_act)/H(f_cal) (MODEL.md, "Thermal roll-off of the actuator"), every
-    quantity recorded; also the cut-off and calibration frequency [Hz] for the scales."""
+    """The stroke at the actuation frequency: u = u_cal·H(f_act)/H(f_cal).
+
+    H(f) = 1/sqrt(1 + (f/f_c)²) is the first-order thermal roll-off with cut-off f_c
+    (given, or f_c = 1/(2π·τ_th)); f_cal is the actuation frequency the amplitude or
+    calibration was measured at. Records f_c (τ_th), f_cal, H(f_act), H(f_cal) and u.
+
+    Parameters
+    ----------
+    rec : Recorder
+        The record being built.
+    act : Actuator
+        The actuator (thermal cut-off [Hz] or time constant [s], calibration
+        frequency [Hz]).
+    f_act : pint.Quantity
+        Actuation frequency [Hz].
+    u_cal : pint.Quantity
+        Amplitude at the calibration frequency [m].
+    samples : bool
+        True for arrays of samples (then no frequencies are returned for the scales).
+
+    Returns
+    -------
+    tuple
+        u [um], and ``{"cutoff_hz": f_c, "calibration_hz": f_cal}`` [Hz] for the
+        scales (empty for samples).
+
+    References
+    ----------
+    MODEL.md, "Beyond the paper's idealisation" (thermal roll-off of the actuator).
+    """
     if act.thermal_cutoff is not None:
         f_c = rec.spec(
             "f_c", "thermal cut-off of the stroke", "actuator.thermal_cutoff", act.thermal_cutoff
@@ -44,7 +74,7 @@ def rolloff(
             "f_c",
             "thermal cut-off of the stroke",
             "1/(2π·τ_th)",
-            ureg.Quantity(_rolloff.cutoff_from_time_constant(mag(tau, "s")), cached_unit("Hz")),
+            ureg.Quantity(first_order.cutoff_from_time_constant(mag(tau, "s")), cached_unit("Hz")),
             ("τ_th",),
             "Hz",
         )
@@ -60,7 +90,7 @@ def rolloff(
             f"H({name})",
             f"first-order thermal roll-off at {name}",
             f"1/sqrt(1 + ({name}/f_c)²)",
-            _rolloff.gain(mag(f, "Hz"), fc_hz),
+            first_order.gain(mag(f, "Hz"), fc_hz),
             (name, "f_c"),
             "",
         )
@@ -79,59 +109,101 @@ def rolloff(
     return u, {"cutoff_hz": float(fc_hz), "calibration_hz": mag(f_cal, "Hz")}
 
 
-def mag(q: pint.Quantity, unit: str) -> Any:
-    """Magnitude of ``q`` in ``unit``: a float, or an array of samples."""
-    m = q.to(cached_unit(unit)).magnitude
-    return float(m) if np.ndim(m) == 0 else np.asarray(m, dtype=float)
-
-
 def _number(x: Any) -> pint.Quantity:
     return ureg.Quantity(x, cached_unit(""))
 
 
-def damping_terms(rec: Recorder, aset: ActuatorSet, varpi: Any) -> tuple[Any, Any, Any]:
-    """ζ_v, ζ_h [-] of the head's normal and tangential oscillators and the restitution
-    e [-] of normal impacts (0 where the spec gives none), each recorded with its spec
-    field: a quality factor Q with ζ = 1/(2Q), a damping ratio ζ > 0 with Q = 1/(2ζ); with
-    ζ_v > 0 also the contact normal force's phase δ = atan(2ζ_v ϖ) and amplitude factor
-    A = sqrt(1 + (2ζ_v ϖ)²) (N ∝ A·sin(ϖτ_o + δ); MODEL.md, "Beyond the paper's
-    idealisation"). ``varpi``: ϖ [-], a float or an array of samples."""
-    act = aset.actuator
-    zetas = []
-    for sub, word in (("v", "normal"), ("h", "tangential")):
-        what = f"of the head's {word} oscillator"
-        z_sym, q_sym = f"ζ_{sub}", f"Q_{sub}"
-        q_given = getattr(act, f"quality_factor_{word}")
-        z_given = getattr(act, f"damping_ratio_{word}")
-        if q_given is not None:
-            q = rec.spec(
-                q_sym, f"quality factor {what}", f"actuator.quality_factor_{word}", _number(q_given)
-            )
-            z = rec.add(
-                z_sym,
-                f"damping ratio {what}",
-                f"1/(2·{q_sym})",
-                damping.zeta_from_quality(mag(q, "")),
-                (q_sym,),
+def damping_ratio(
+    rec: Recorder, sub: str, word: str, quality: float | None, ratio: float | None
+) -> Any:
+    """The damping ratio of one of the head's oscillators: ζ = 1/(2Q), or given.
+
+    A quality factor Q is recorded with ζ = 1/(2Q); a given ζ > 0 with Q = 1/(2ζ).
+
+    Parameters
+    ----------
+    rec : Recorder
+        The record being built.
+    sub : str
+        ``"v"`` (normal) or ``"h"`` (tangential): the symbols' subscript.
+    word : str
+        ``"normal"`` or ``"tangential"``: the spec fields' suffix.
+    quality : float or None
+        The spec's ``quality_factor_<word>`` Q [-].
+    ratio : float or None
+        The spec's ``damping_ratio_<word>`` ζ [-].
+
+    Returns
+    -------
+    float or numpy.ndarray
+        ζ [-]; 0 when the spec gives neither.
+
+    References
+    ----------
+    MODEL.md, "Beyond the paper's idealisation" (damping).
+    """
+    what = f"of the head's {word} oscillator"
+    z_sym, q_sym = f"ζ_{sub}", f"Q_{sub}"
+    if quality is not None:
+        q = rec.spec(
+            q_sym, f"quality factor {what}", f"actuator.quality_factor_{word}", _number(quality)
+        )
+        z = rec.add(
+            z_sym,
+            f"damping ratio {what}",
+            f"1/(2·{q_sym})",
+            damping.zeta_from_quality(mag(q, "")),
+            (q_sym,),
+            "",
+        )
+    elif ratio is not None:
+        z = rec.spec(
+            z_sym, f"damping ratio {what}", f"actuator.damping_ratio_{word}", _number(ratio)
+        )
+        if np.all(mag(z, "") > 0.0):
+            rec.add(
+                q_sym,
+                f"quality factor {what}",
+                f"1/(2·{z_sym})",
+                damping.quality_from_zeta(mag(z, "")),
+                (z_sym,),
                 "",
             )
-        elif z_given is not None:
-            z = rec.spec(
-                z_sym, f"damping ratio {what}", f"actuator.damping_ratio_{word}", _number(z_given)
-            )
-            if np.all(mag(z, "") > 0.0):
-                rec.add(
-                    q_sym,
-                    f"quality factor {what}",
-                    f"1/(2·{z_sym})",
-                    damping.quality_from_zeta(mag(z, "")),
-                    (z_sym,),
-                    "",
-                )
-        else:
-            z = _number(0.0)
-        zetas.append(mag(z, ""))
-    zeta_v, zeta_h = zetas
+    else:
+        z = _number(0.0)
+    return mag(z, "")
+
+
+def damping_terms(rec: Recorder, aset: ActuatorSet, varpi: Any) -> tuple[Any, Any, Any]:
+    """The head's damping ratios ζ_v, ζ_h and the restitution e of normal impacts.
+
+    Each is recorded with its spec field (:func:`damping_ratio`; e as given). With
+    ζ_v > 0 also the contact normal force's phase δ = atan(2ζ_v·ϖ) and amplitude factor
+    A = sqrt(1 + (2ζ_v·ϖ)²): N ∝ A·sin(ϖτ_o + δ) (not needed for samples).
+
+    Parameters
+    ----------
+    rec : Recorder
+        The record being built.
+    aset : ActuatorSet
+        The actuator set (its actuator's damping, its contact's restitution).
+    varpi : float or numpy.ndarray
+        ϖ [-].
+
+    Returns
+    -------
+    tuple
+        ζ_v, ζ_h, e [-] (floats or arrays of samples; 0 where the spec gives none).
+
+    References
+    ----------
+    MODEL.md, "Beyond the paper's idealisation" (damping, restitution).
+    """
+    act = aset.actuator
+    zeta_v = damping_ratio(rec, "v", "normal", act.quality_factor_normal, act.damping_ratio_normal)
+    zeta_h = damping_ratio(
+        rec, "h", "tangential", act.quality_factor_tangential, act.damping_ratio_tangential
+    )
     e = 0.0
     if aset.contact.restitution is not None:
         e = mag(

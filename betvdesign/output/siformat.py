@@ -136,6 +136,6 @@ def _mantissa(x: float, digits: int) -> str:
     if not math.isfinite(x):
         return str(x)
     text = f"{x:.{digits}g}"
-    if "e" in text and abs(x) < 1e6:  # e.g. 36000 s with no larger prefix allowed
+    if "e" in text and 1.0 <= abs(x) < 1e6:  # e.g. 36000 s with no larger prefix allowed
         text = f"{_round_sig(x, digits):.0f}"
     return text

@@ -18,7 +18,8 @@ from betvdesign.dynamics.rigid import rigid_periodic, rigid_simulate
 from betvdesign.model.params import ModelParams, lambda_criterion
 from betvdesign.paper.common import AS_PUBLISHED, Comparison, refine_edge
 from betvdesign.studies.lambda_scan import params_for_lambda, run_lambda_scan
-from betvdesign.studies.pushpull import periodic_point, run_pushpull
+from betvdesign.studies.points import periodic_point
+from betvdesign.studies.pushpull import run_pushpull
 
 #: Fig. 7: the four (κ, β) panels.
 FIG7_PANELS = ((0.1, 0.1), (0.1, 1.5), (0.4, 0.1), (0.4, 1.5))

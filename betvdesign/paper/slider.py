@@ -17,7 +17,8 @@ import numpy as np
 
 from betvdesign.dynamics import periodic_orbit, reference, simulate
 from betvdesign.model.params import ModelParams
-from betvdesign.nondim.device import Scales, SetDerivation, derive
+from betvdesign.nondim.device import derive
+from betvdesign.nondim.record import Scales, SetDerivation
 from betvdesign.paper.common import (
     AS_PUBLISHED,
     STOP_RTOL,

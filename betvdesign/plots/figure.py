@@ -22,8 +22,6 @@ import matplotlib
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
-from betvdesign.model import domain
-
 #: rcParams pinned for every figure of the package, independent of the user's
 #: matplotlibrc, so the same inputs give the same bytes on every machine.
 STYLE: dict[str, Any] = {
@@ -57,9 +55,6 @@ PHASE_COLORS: dict[str, str] = {
 
 #: Colours of the two slider modes.
 MODE_COLORS: dict[str, str] = {"push": "#2ca02c", "pull": "#9467bd"}
-
-#: The design window (one home: betvdesign.model.domain), drawn on the figures.
-VARPI_WINDOW = domain.VARPI_WINDOW
 
 DEVICE_COLOR = "#d62728"
 

@@ -14,11 +14,11 @@ from typing import Any
 import numpy as np
 from matplotlib.axes import Axes
 
+from betvdesign.model.domain import VARPI_WINDOW
 from betvdesign.model.params import fit_offset
 from betvdesign.plots.figure import (
     DEVICE_COLOR,
     MODE_COLORS,
-    VARPI_WINDOW,
     axes_or_new,
     dimensionless_twin,
 )

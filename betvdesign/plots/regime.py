@@ -12,9 +12,9 @@ from collections.abc import Sequence
 import numpy as np
 from matplotlib.axes import Axes
 
+from betvdesign.model.domain import VARPI_WINDOW
 from betvdesign.plots.figure import (
     DEVICE_COLOR,
-    VARPI_WINDOW,
     Scale,
     axes_or_new,
     dimensionless_twin,

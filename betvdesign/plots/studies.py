@@ -43,7 +43,7 @@ def pushpull_panel(
             m = np.array([r["converged"] and r["mode"] == mode for r in sel], dtype=bool)
             ax.scatter(x[m], y[m], s=14, color=color, label=f"{mode} (simulated)", zorder=3)
         else:
-            m = np.array([r["mode_predicted"] == mode for r in sel], dtype=bool)
+            m = np.array([r["lambda_mode"] == mode for r in sel], dtype=bool)
             ax.scatter(
                 x[m], y[m], s=14, facecolors="none", edgecolors=color, label=f"{mode} (λ fit)"
             )
@@ -51,9 +51,7 @@ def pushpull_panel(
         bad = np.array([not r["converged"] for r in sel], dtype=bool)
         if bad.any():
             ax.scatter(x[bad], y[bad], s=18, marker="x", color="black", label="not converged")
-        dis = np.array(
-            [r["converged"] and r["mode"] != r["mode_predicted"] for r in sel], dtype=bool
-        )
+        dis = np.array([r["converged"] and r["mode"] != r["lambda_mode"] for r in sel], dtype=bool)
         if dis.any():
             ax.scatter(
                 x[dis],

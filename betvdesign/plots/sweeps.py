@@ -8,11 +8,11 @@ from collections.abc import Sequence
 import numpy as np
 from matplotlib.axes import Axes
 
+from betvdesign.model.domain import VARPI_WINDOW
 from betvdesign.output.siformat import format_si, scale_for
 from betvdesign.plots.figure import (
     DEVICE_COLOR,
     MODE_COLORS,
-    VARPI_WINDOW,
     axes_or_new,
     dimensionless_twin,
 )

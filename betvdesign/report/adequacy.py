@@ -16,8 +16,7 @@ import math
 from typing import Any
 
 from betvdesign import plots
-from betvdesign.checks.adequacy import assess
-from betvdesign.checks.adequacy_data import (
+from betvdesign.checks.adequacy import (
     DEFAULT_QUALITY,
     DEFAULT_RESTITUTION,
     LIKELY_QUALITY,
@@ -27,13 +26,14 @@ from betvdesign.checks.adequacy_data import (
     SPEED_RTOL,
     DeviceAdequacy,
     SetAdequacy,
+    assess,
 )
 from betvdesign.nondim.record import DeviceDerivation, SetDerivation
 from betvdesign.output.siformat import format_dimensionless as fmt_x
 from betvdesign.output.siformat import scale_for
 from betvdesign.report import analysis
 from betvdesign.report.analysis import Piece, attempt
-from betvdesign.report.figures import _block, ladder
+from betvdesign.report.figures import figure_block, ladder
 from betvdesign.report.model import AdequacyBlock, FigureBlock, KeyValue
 
 _VERDICT = {
@@ -189,7 +189,7 @@ def figure(key: str, sd: SetDerivation, piece: Piece[SetAdequacy], tol: float) -
         "exact periodic orbits of the damped impact model with restitution (MODEL.md, "
         "Beyond the paper's idealisation), one per point"
     )
-    return _block(
+    return figure_block(
         key,
         "Model adequacy: mode and speed against damping and restitution",
         caption,

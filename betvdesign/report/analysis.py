@@ -28,15 +28,20 @@ import math
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Any, Generic, TypeVar
+from typing import TYPE_CHECKING, Any, Generic, TypeVar
 
 import numpy as np
 
 from betvdesign.errors import BetvError
+from betvdesign.model.domain import VARPI_WINDOW
 from betvdesign.model.params import ModelParams
-from betvdesign.plots.figure import VARPI_WINDOW
+
+if TYPE_CHECKING:
+    from betvdesign.dynamics import PeriodicResult, Trajectory, VerticalResult
 
 T = TypeVar("T")
+#: A solver result that says whether it succeeded (periodic orbit or transient run).
+R = TypeVar("R", "PeriodicResult", "Trajectory")
 
 #: Names of the contact phases used by the figures (plots.PHASE_COLORS keys).
 PHASES = ("free", "slip", "reverse", "stick")
@@ -120,12 +125,11 @@ def dynamics_api(name: str) -> Callable[..., Any]:
     return fn
 
 
-def require_success(result: Any, what: str) -> Any:
+def require_success(result: R, what: str) -> R:
     """``result`` if its ``success`` is true, else :class:`Missing` with its status/message."""
-    if not getattr(result, "success", False):
-        status = getattr(result, "status", "?")
-        message = getattr(result, "message", "") or "no message"
-        raise Missing(f"{what} did not succeed (status {status}): {message}")
+    if not result.success:
+        message = result.message or "no message"
+        raise Missing(f"{what} did not succeed (status {result.status}): {message}")
     return result
 
 
@@ -172,7 +176,7 @@ class OrbitData:
 # --------------------------------------------------------------------------- pieces
 
 
-def periodic(p: ModelParams, opts: ReportOptions) -> Any:
+def periodic(p: ModelParams, opts: ReportOptions) -> PeriodicResult:
     """The periodic orbit of the exact model at ``p`` (succeeded), else :class:`Missing`."""
     res = dynamics_api("periodic_orbit")(
         p, tol=opts.periodic_tol, max_cycles=opts.periodic_max_cycles
@@ -217,7 +221,7 @@ def _vertical(
     )
 
 
-def vertical(p: ModelParams) -> Any:
+def vertical(p: ModelParams) -> VerticalResult:
     """The exact vertical motion at the device's ϖ, ζ_v, e (full default horizon)."""
     return dynamics_api("vertical_motion")(p.varpi, zeta_v=p.zeta_v, restitution=p.restitution)
 
@@ -259,14 +263,16 @@ def transient(p: ModelParams, n_cycles: int, opts: ReportOptions) -> TransientDa
     if not (np.all(np.isfinite(states)) and np.all(np.isfinite(section))):
         raise Missing("simulate returned non-finite states")
     counters = {
-        k: getattr(full, k) for k in ("n_events", "n_cycles", "n_root_evals") if hasattr(full, k)
+        "n_events": full.n_events,
+        "n_cycles": full.n_cycles,
+        "n_root_evals": full.n_root_evals,
     }
     return TransientData(t_cycles, states, section[:, 4], delta_s, n_cycles, counters)
 
 
-def _phase_name(raw: Any) -> str:
+def _phase_name(raw: str) -> str:
     """Map a solver phase label to one of :data:`PHASES`."""
-    text = str(getattr(raw, "name", raw)).lower()
+    text = raw.lower()
     if "rev" in text:
         return "reverse"
     if "stick" in text:
@@ -276,22 +282,22 @@ def _phase_name(raw: Any) -> str:
     return "free"
 
 
-def orbit(p: ModelParams, per: Any, opts: ReportOptions) -> OrbitData:
+def orbit(p: ModelParams, per: PeriodicResult, opts: ReportOptions) -> OrbitData:
     """Sample one period of the periodic orbit with its contact phases."""
     simulate = dynamics_api("simulate")
-    n = int(getattr(per, "period_cycles", 1) or 1)
+    n = per.period_cycles if per.period_cycles is not None else 1
     state0 = np.asarray(per.state, dtype=float)
     traj = require_success(simulate(p, n, dense=True, state0=state0), "simulate (orbit)")
     period = 2.0 * math.pi / p.varpi
     tau = np.linspace(0.0, n * period, n * samples_per_cycle(p, opts) * 2 + 1)
     states = np.asarray(traj.sample(tau), dtype=float)
-    events = sorted(traj.events, key=lambda e: e[0])
+    events = sorted(traj.events, key=lambda e: e.tau)
     phases: list[str] = []
     j = 0
-    current = _phase_name(events[0][2]) if events else "free"
+    current = _phase_name(events[0].phase_before) if events else "free"
     for t in tau:
-        while j < len(events) and events[j][0] <= t:
-            current = _phase_name(events[j][3])
+        while j < len(events) and events[j].tau <= t:
+            current = _phase_name(events[j].phase_after)
             j += 1
         phases.append(current)
     return OrbitData(states[:, 3], states[:, 5], phases, n)
@@ -351,7 +357,7 @@ def robustness(variants: list[FieldVariant], opts: ReportOptions) -> FieldSweep:
     if not variants:
         raise Missing("the device has none of the designer fields the sweep varies")
     periodic_orbit = dynamics_api("periodic_orbit")
-    solved: dict[ModelParams, Any] = {}
+    solved: dict[ModelParams, PeriodicResult] = {}
     points: list[FieldPoint] = []
     for v in variants:
         if v.params is None:
@@ -362,11 +368,11 @@ def robustness(variants: list[FieldVariant], opts: ReportOptions) -> FieldSweep:
                 v.params, tol=opts.periodic_tol, max_cycles=opts.sweep_max_cycles
             )
         res = solved[v.params]
-        if getattr(res, "success", False):
+        if res.success and res.delta_s is not None:
             speed = float(res.delta_s) * v.speed_per_ds
             points.append(FieldPoint(v.field, v.nominal, v.change, speed, v.params.lam))
         else:
-            why = f"{getattr(res, 'status', '?')}: {getattr(res, 'message', '')}"
+            why = f"{res.status}: {res.message}"
             points.append(FieldPoint(v.field, v.nominal, v.change, None, v.params.lam, why))
     return FieldSweep(points, len(solved))
 
@@ -379,8 +385,8 @@ class SetAnalysis:
     """Every computed piece for one actuator set (see the module docstring)."""
 
     params: ModelParams
-    periodic: Piece[Any]
-    vertical: Piece[Any]
+    periodic: Piece[PeriodicResult]
+    vertical: Piece[VerticalResult]
     regime: Piece[RegimeData]
     transient: Piece[TransientData]
     orbit: Piece[OrbitData]
@@ -390,12 +396,15 @@ class SetAnalysis:
     )
 
 
-def transient_cycles(per: Piece[Any], travel_m: float, length_m: float, opts: ReportOptions) -> int:
+def transient_cycles(
+    per: Piece[PeriodicResult], travel_m: float, length_m: float, opts: ReportOptions
+) -> int:
     """Cycles of the exact run: enough to cross the travel range at the periodic
     speed (+10 %), at least the dense cycles, at most the options' cap."""
-    if not per.ok or float(per.value.delta_s) == 0.0:
+    ds = per.value.delta_s if per.value is not None else None
+    if ds is None or ds == 0.0:
         return opts.max_transient_cycles
-    per_cycle_m = abs(float(per.value.delta_s)) * length_m
+    per_cycle_m = abs(float(ds)) * length_m
     n_cross = math.ceil(1.1 * travel_m / per_cycle_m)
     return int(min(max(n_cross, opts.dense_cycles), opts.max_transient_cycles))
 

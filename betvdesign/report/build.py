@@ -21,16 +21,17 @@ from betvdesign import __version__
 from betvdesign.checks.checker import (
     CheckResult,
     SetCheck,
-    SolverFailure,
     check_derivation,
     load_solver,
 )
-from betvdesign.checks.rules import RuleResult, verdict
+from betvdesign.checks.rule import RuleResult, verdict
 from betvdesign.checks.view import rule_unit
-from betvdesign.nondim.device import DeviceDerivation, SetDerivation, derive_file
+from betvdesign.dynamics.result import PeriodicResult
+from betvdesign.nondim.device import derive_file
+from betvdesign.nondim.record import DeviceDerivation, SetDerivation
 from betvdesign.output.siformat import format_q, format_si
 from betvdesign.report import adequacy, figures, frequency
-from betvdesign.report.analysis import ReportOptions, SetAnalysis, analyse_set, attempt
+from betvdesign.report.analysis import Piece, ReportOptions, SetAnalysis, analyse_set, attempt
 from betvdesign.report.inputs import device_inputs
 from betvdesign.report.model import (
     DerivationRow,
@@ -132,7 +133,7 @@ def verdict_box(
         else f"{len(errors)} error-severity rule(s) fail: " + ", ".join(r.id for r in errors)
     )
     per = an.periodic.value
-    predicted = sc.mode_predicted if sc is not None else "unknown"
+    predicted = sc.verdict_mode if sc is not None else "unknown"
     rung, rung_reason = "periodic", "the verdict always rests on the exact periodic orbit"
     speed_rule = next((r for r in results if r.id == "speed"), None)
     v_m_s = speed_rule.value if speed_rule is not None else None
@@ -168,7 +169,7 @@ def verdict_box(
         predicted_mode=predicted,
         predicted_by=by,
         lam=fmt_num(sd.lam),
-        fit_mode=sd.params.mode_predicted,
+        fit_mode=sd.params.lambda_mode,
         speed=speed,
         crossing_time=crossing,
         warnings=top_warnings(results),
@@ -201,24 +202,20 @@ def provenance(an: SetAnalysis, opts: ReportOptions, timings: bool) -> tuple[Key
     if per.ok:
         r = per.value
         rows.append(KeyValue("Periodic orbit", f"{r.status}: {r.message}"))
-        for attr, label in (
-            ("period_cycles", "Period [cycles]"),
-            ("residual", "Periodic residual"),
-            ("impacts_per_cycle", "Impacts per cycle"),
-            ("contact_fraction", "Contact fraction"),
-            ("n_cycles", "Cycles simulated (orbit search)"),
-            ("transient_cycles", "Cycles before shooting"),
-            ("n_newton", "Newton iterations"),
-            ("stable", "Stable (all |μ| < 1)"),
-            ("n_events", "Events"),
-            ("n_root_evals", "Root evaluations"),
+        for label, val in (
+            ("Period [cycles]", r.period_cycles),
+            ("Periodic residual", r.residual),
+            ("Impacts per cycle", r.impacts_per_cycle),
+            ("Contact fraction", r.contact_fraction),
+            ("Cycles simulated (orbit search)", r.n_cycles),
+            ("Cycles before shooting", r.transient_cycles),
+            ("Newton iterations", r.n_newton),
+            ("Stable (all |μ| < 1)", r.stable),
+            ("Events", r.n_events),
+            ("Root evaluations", r.n_root_evals),
         ):
-            if hasattr(r, attr):
-                val = getattr(r, attr)
-                rows.append(
-                    KeyValue(label, fmt_num(val, 3) if isinstance(val, float) else str(val))
-                )
-        if getattr(r, "floquet", None) is not None:
+            rows.append(KeyValue(label, fmt_num(val, 3) if isinstance(val, float) else str(val)))
+        if r.floquet is not None:
             mults = ", ".join(f"{abs(complex(m)):.3g}" for m in r.floquet)
             rows.append(KeyValue("Floquet multipliers |μ|", mults))
     else:
@@ -248,9 +245,18 @@ def provenance(an: SetAnalysis, opts: ReportOptions, timings: bool) -> tuple[Key
             )
         )
     if timings:
-        names = ("periodic", "vertical", "regime", "transient", "orbit", "robustness")
-        for name in names + (("frequency",) if an.frequency.ok else ()):
-            rows.append(KeyValue(f"Run time: {name}", f"{getattr(an, name).elapsed_s:.3g} s"))
+        pieces: dict[str, Piece[Any]] = {
+            "periodic": an.periodic,
+            "vertical": an.vertical,
+            "regime": an.regime,
+            "transient": an.transient,
+            "orbit": an.orbit,
+            "robustness": an.robustness,
+        }
+        if an.frequency.ok:
+            pieces["frequency"] = an.frequency
+        for name, piece in pieces.items():
+            rows.append(KeyValue(f"Run time: {name}", f"{piece.elapsed_s:.3g} s"))
     else:
         rows.append(
             KeyValue(
@@ -297,13 +303,15 @@ def design_check(
         piece = orbits.get(p)
         if piece is None:
             return exact(p)
-        return piece.value if piece.ok else SolverFailure(str(piece.reason))
+        return piece.value if piece.ok else PeriodicResult.failure(p, "failed", str(piece.reason))
 
     def vertical(varpi: float, *, zeta_v: float = 0.0, restitution: float = 0.0) -> Any:
         piece = verticals[(varpi, zeta_v, restitution)]
         return piece.value if piece.ok else None
 
-    return check_derivation(der, solver=solver, vertical=vertical, adequacy=adequacy_result)
+    return check_derivation(
+        der, solver=solver, vertical=vertical, adequacy=adequacy_result, determine=True
+    )
 
 
 def build_report(

@@ -17,9 +17,9 @@ import numpy as np
 
 from betvdesign import plots
 from betvdesign.checks import fidelity
-from betvdesign.nondim.device import SetDerivation
+from betvdesign.model.domain import VARPI_WINDOW
+from betvdesign.nondim.record import SetDerivation
 from betvdesign.output.siformat import format_si, scale_for
-from betvdesign.plots.figure import VARPI_WINDOW
 from betvdesign.report.analysis import REGIME_LONG_HORIZON, Piece, SetAnalysis
 from betvdesign.report.model import FigureBlock
 from betvdesign.spec.models import amplitude_at
@@ -58,7 +58,7 @@ def ladder(
     )
 
 
-def _block(
+def figure_block(
     key: str,
     title: str,
     caption: str,
@@ -68,6 +68,28 @@ def _block(
     draw: Callable[[Any], None],
     **layout: Any,
 ) -> FigureBlock:
+    """A report figure, or the reason it is not drawn.
+
+    Parameters
+    ----------
+    key
+        Figure key (prefix of the SVG's ids).
+    title, caption, model
+        Title, caption and the model statement shown with the figure.
+    rung
+        (fidelity rung, why that rung) of the figure.
+    piece
+        The computation the figure draws; when it failed its reason replaces the figure.
+    draw
+        Draws the figure on the axes it is given.
+    **layout
+        Figure size and subplot grid (``size=(w, h)`` [inches], ``nrows``, ``ncols``).
+
+    Returns
+    -------
+    FigureBlock
+        The drawn figure (inline SVG) or the unavailable block.
+    """
     if not piece.ok:
         return FigureBlock(
             key, title, caption, model, unavailable=piece.reason, rung=rung[0], rung_reason=rung[1]
@@ -93,7 +115,7 @@ def pushpull(key: str, sd: SetDerivation) -> FigureBlock:
         f"against the λ = 1 boundary of the fit for its f_v = {format_si(f_v, 'Hz')}, "
         f"κ = {p.kappa:.3g}, β = {p.beta:.3g}: f_h² = f_act² + κ·c·f_v² with "
         "c = (1/β − β)/(22(κ+1)) (MODEL.md, eq. 9 rewritten in frequencies). "
-        f"λ = {p.lam:.4g} predicts {p.mode_predicted} mode. Below the curve λ < 1 (push), "
+        f"λ = {p.lam:.4g} predicts {p.lambda_mode} mode. Below the curve λ < 1 (push), "
         "above λ > 1 (pull); the dash-dotted lines bound the vertical design window "
         "0.5 ≤ ϖ < 2 (top axis: ϖ = f_act/f_v)."
     )
@@ -103,7 +125,7 @@ def pushpull(key: str, sd: SetDerivation) -> FigureBlock:
             f_v_hz=f_v, kappa=p.kappa, beta=p.beta, points=[(sd.name, f_act, f_h)], ax=ax
         )
 
-    return _block(
+    return figure_block(
         key,
         "Push/pull map",
         caption,
@@ -146,7 +168,7 @@ def regime(key: str, sd: SetDerivation, an: SetAnalysis) -> FigureBlock:
         )
 
     model = "vertical-only exact model (the head's vertical motion does not depend on the slider)"
-    return _block(
+    return figure_block(
         key,
         "Vertical regime strip",
         caption,
@@ -188,7 +210,7 @@ def vertical_portrait(key: str, sd: SetDerivation, an: SetAnalysis) -> FigureBlo
             ax=ax,
         )
 
-    return _block(
+    return figure_block(
         key,
         "Vertical phase portrait of the head",
         caption,
@@ -259,7 +281,7 @@ def settling(key: str, sd: SetDerivation, an: SetAnalysis) -> FigureBlock:
             ax=axes[1],
         )
 
-    return _block(
+    return figure_block(
         key,
         "Slider velocity settling and periodic orbit",
         caption,
@@ -305,7 +327,7 @@ def displacement(key: str, sd: SetDerivation, an: SetAnalysis) -> FigureBlock:
                 ext = (mm / sc.f_act_hz * 1e3, x_um[-1] + (mm - m[-1]) * step_um)
         plots.slider_displacement(t_ms, x_um, travel_um=sign * travel_um, extrapolated=ext, ax=ax)
 
-    block = _block(
+    block = figure_block(
         key,
         "Slider displacement over the travel range",
         caption + ext_note,
@@ -331,7 +353,7 @@ def speed_voltage(
             "a speed-voltage curve needs one (linear, quadratic or measured)"
         )
     v0 = aset.drive.voltage.to("V").magnitude if aset.drive.voltage is not None else None
-    law = getattr(cal, "law", "none")
+    law = cal.law if cal is not None else "none"
     caption = (
         f"Mean slider speed Δs·u(V)·cosθ·f_act along the impact direction (negative: against "
         f"it) with u(V) from the {law} amplitude calibration; operating point marked."
@@ -360,7 +382,7 @@ def speed_voltage(
         "one periodic orbit of the exact model; Δs does not depend on u, so speed scales with u(V)"
     )
     rung = ladder(sd.params, "delta_s", "periodic", tol=tol)
-    return _block(key, "Mean speed against drive voltage", caption, model, rung, piece, draw)
+    return figure_block(key, "Mean speed against drive voltage", caption, model, rung, piece, draw)
 
 
 def robustness(key: str, sd: SetDerivation, an: SetAnalysis) -> FigureBlock:
@@ -400,7 +422,7 @@ def robustness(key: str, sd: SetDerivation, an: SetAnalysis) -> FigureBlock:
         "the sweep shows where the mode flips, so every point needs the exact periodic orbit "
         "(λ cannot check itself)",
     )
-    return _block(
+    return figure_block(
         key,
         "Robustness: speed when one designer field changes",
         caption,

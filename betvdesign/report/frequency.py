@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -24,8 +24,11 @@ from betvdesign.model.params import ModelParams
 from betvdesign.nondim.record import SetDerivation
 from betvdesign.output.siformat import format_si
 from betvdesign.report.analysis import Missing, Piece, ReportOptions, dynamics_api
-from betvdesign.report.figures import _block, ladder
+from betvdesign.report.figures import figure_block, ladder
 from betvdesign.report.model import FigureBlock
+
+if TYPE_CHECKING:
+    from betvdesign.dynamics import PeriodicResult
 
 #: Largest ϖ of the sweep relative to the window's upper edge (ϖ < 2: finite contact).
 _TOP = 0.98
@@ -52,7 +55,7 @@ def frequency_grid(varpi: float, points: int) -> np.ndarray:
 
 
 def frequency_sweep(
-    p: ModelParams, f_act_hz: float, per: Piece[Any], opts: ReportOptions
+    p: ModelParams, f_act_hz: float, per: Piece[PeriodicResult], opts: ReportOptions
 ) -> FrequencySweep:
     """Periodic Δs over :func:`frequency_grid` (α, β, κ fixed); the device's own orbit
     ``per`` is reused."""
@@ -74,9 +77,9 @@ def frequency_sweep(
                 max_cycles=opts.sweep_max_cycles,
             )
             n += 1
-        ok = bool(getattr(res, "success", False))
+        ok = res.success and res.delta_s is not None
         delta_s.append(float(res.delta_s) if ok else None)
-        reasons.append("" if ok else f"{getattr(res, 'status', '?')}: {res.message}")
+        reasons.append("" if ok else f"{res.status}: {res.message}")
     return FrequencySweep(grid * f_v, delta_s, reasons, n)
 
 
@@ -162,7 +165,7 @@ def speed_frequency(
         "so the roll-off enters through the stroke (length scale) only"
     )
     rung = ladder(p, "delta_s", "periodic", tol=tol)
-    return _block(
+    return figure_block(
         key,
         "Mean speed against actuation frequency, with thermal roll-off",
         caption,

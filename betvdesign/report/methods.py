@@ -26,7 +26,7 @@ from betvdesign.bench.failuremap import default_varpis, failure_map_figure, scan
 from betvdesign.bench.failures import FAILURES, Failure
 from betvdesign.bench.workprecision import DESIGNS, Row, summarise
 from betvdesign.output.files import check_output_dir, write_group
-from betvdesign.report.render import _css, _environment, render_pdf
+from betvdesign.report.render import render_pdf, render_template
 
 TEMPLATE = "methods.html.j2"
 REGENERATE = "python benchmarks/work_precision.py && python benchmarks/work_precision.py --ladder"
@@ -188,8 +188,7 @@ def build(
 
 def render_html(report: MethodsReport) -> str:
     """One self-contained HTML document (inline CSS and SVG)."""
-    tpl = _environment().get_template(TEMPLATE)
-    return tpl.render(r=report, css=Markup(_css()), svg=Markup)
+    return render_template(TEMPLATE, r=report, svg=Markup)
 
 
 def load_rows(path: str | Path) -> tuple[list[Row], list[dict[str, Any]] | None]:

@@ -18,7 +18,7 @@ from markupsafe import Markup
 from betvdesign.output.files import write_atomic
 from betvdesign.report.model import Report
 
-__all__ = ["render_html", "render_pdf", "write_atomic"]
+__all__ = ["render_html", "render_pdf", "render_template", "write_atomic"]
 
 _TEMPLATE = "report.html.j2"
 _CSS = "report.css"
@@ -39,10 +39,27 @@ def _css() -> str:
     return resources.files("betvdesign.report").joinpath("templates", _CSS).read_text("utf-8")
 
 
+def render_template(name: str, **context: object) -> str:
+    """One of the package's HTML templates rendered with the shared stylesheet.
+
+    Parameters
+    ----------
+    name
+        File name of the template in ``betvdesign/report/templates``.
+    **context
+        Template variables; ``css`` (the stylesheet, inlined) is added.
+
+    Returns
+    -------
+    str
+        The self-contained HTML document.
+    """
+    return _environment().get_template(name).render(css=Markup(_css()), **context)
+
+
 def render_html(report: Report) -> str:
     """The report as one self-contained HTML document [str]."""
-    template = _environment().get_template(_TEMPLATE)
-    return template.render(r=report, css=Markup(_css()))
+    return render_template(_TEMPLATE, r=report)
 
 
 def render_pdf(html: str) -> bytes:

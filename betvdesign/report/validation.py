@@ -27,7 +27,7 @@ from betvdesign.paper.maps import FIG12_ALPHA
 from betvdesign.paper.study import ValidationStudy, run_validation
 from betvdesign.paper.vertical import FIG3_VARPI, MAX_CYCLES
 from betvdesign.plots import validation as vplots
-from betvdesign.report.render import _css, _environment, render_pdf
+from betvdesign.report.render import render_pdf, render_template
 from betvdesign.studies.regime import LONG_PERIOD
 
 TEMPLATE = "validation.html.j2"
@@ -377,8 +377,7 @@ def build(st: ValidationStudy) -> tuple[ValidationReport, dict[str, str]]:
 
 def render_html(report: ValidationReport) -> str:
     """One self-contained HTML document (inline CSS and SVG)."""
-    tpl = _environment().get_template(TEMPLATE)
-    return tpl.render(r=report, css=Markup(_css()), svg=Markup)
+    return render_template(TEMPLATE, r=report, svg=Markup)
 
 
 def _md_cell(text: str) -> str:

@@ -3,11 +3,11 @@
 A design tool runs in CI pipelines and on files from colleagues and foundries, so
 it bounds its work before the work grows: a device file is refused before it is
 parsed when it is too large, before it is composed when its YAML nests too deep,
-expands too far through aliases or holds an over-long string, and before it is
-validated when it has too many actuator sets; a study is refused before it starts
-when it would not finish in reasonable time. Every refusal names the field (or
-option) and the limit. README ("Limits") and ``betv schema`` (``x-betv-limits``)
-list these values; :func:`describe` is what both show.
+expands too far through aliases, holds an over-long string or a number of too many
+digits, and before it is validated when it has too many actuator sets; a study is
+refused before it starts when it would not finish in reasonable time. Every refusal
+names the field (or option) and the limit. README ("Limits") and ``betv schema``
+(``x-betv-limits``) list these values; :func:`describe` is what both show.
 
 Nothing here imports from the rest of the package except :mod:`betvdesign.errors`.
 """
@@ -37,6 +37,9 @@ MAX_ACTUATOR_SETS = 64
 MAX_CALIBRATION_POINTS = 1_000
 #: Longest quantity string such as "2330 kg/m^3" [characters].
 MAX_QUANTITY_CHARS = 100
+#: Most digits of a number written in a file or an option (a YAML integer or float, the
+#: number of a quantity string): far below Python's 4300-digit limit of ``int()``.
+MAX_NUMBER_DIGITS = 100
 #: Largest |exponent| of a unit in a quantity string (m^3, V^-2, ...).
 MAX_UNIT_EXPONENT = 12
 #: Most unit factors in one quantity string ("kg/m^3" has 2).
@@ -67,7 +70,21 @@ REGIME_CYCLES = 400
 
 
 def point_cost_s(study: str, parameters: dict[str, Any]) -> float:
-    """Conservative cost of one point of ``study`` [s on one core] (for estimates)."""
+    """Conservative cost of one point of a study, for estimates.
+
+    Parameters
+    ----------
+    study : str
+        ``"regime"``, ``"tolerance"``, or a periodic-orbit study.
+    parameters : dict
+        The study's parameters (``fidelity``, ``max_cycles``).
+
+    Returns
+    -------
+    float
+        Cost of one point [s on one core] (:data:`POINT_COST_S`; a regime point scaled
+        by its cycles over :data:`REGIME_CYCLES`).
+    """
     fidelity = parameters.get("fidelity")
     if study == "regime":
         cycles = parameters.get("max_cycles") or REGIME_CYCLES
@@ -78,12 +95,34 @@ def point_cost_s(study: str, parameters: dict[str, Any]) -> float:
 
 
 def max_file_bytes() -> int:
-    """:data:`MAX_FILE_BYTES`, or the value of ``$BETV_MAX_FILE_BYTES`` when set."""
+    """The largest input file read.
+
+    Returns
+    -------
+    int
+        :data:`MAX_FILE_BYTES` [bytes], or the value of ``$BETV_MAX_FILE_BYTES`` when set.
+
+    Raises
+    ------
+    UsageError
+        The variable is not a finite number > 0.
+    """
     return _env_number(FILE_BYTES_ENV, MAX_FILE_BYTES, int)
 
 
 def max_study_hours() -> float:
-    """:data:`MAX_STUDY_HOURS`, or the value of ``$BETV_MAX_STUDY_HOURS`` when set."""
+    """The longest estimated study run.
+
+    Returns
+    -------
+    float
+        :data:`MAX_STUDY_HOURS` [h], or the value of ``$BETV_MAX_STUDY_HOURS`` when set.
+
+    Raises
+    ------
+    UsageError
+        The variable is not a finite number > 0.
+    """
     return _env_number(STUDY_HOURS_ENV, MAX_STUDY_HOURS, float)
 
 
@@ -91,6 +130,8 @@ def _env_number(name: str, default: Any, kind: type) -> Any:
     raw = os.environ.get(name)
     if raw is None or not raw.strip():
         return default
+    if sum(ch.isdigit() for ch in raw) > MAX_NUMBER_DIGITS:
+        raise UsageError(f"${name}: more than {MAX_NUMBER_DIGITS} digits")
     try:
         value = kind(raw)
     except ValueError:
@@ -101,7 +142,18 @@ def _env_number(name: str, default: Any, kind: type) -> Any:
 
 
 def format_duration(seconds: float) -> str:
-    """``"3.2 h"``, ``"12 min"``, ``"40 s"``, ``"21 days"``: for estimates in messages."""
+    """A duration for estimates in messages: ``"3.2 h"``, ``"12 min"``, ``"40 s"``.
+
+    Parameters
+    ----------
+    seconds : float
+        The duration [s].
+
+    Returns
+    -------
+    str
+        In days, hours, minutes or seconds (3 significant digits).
+    """
     if seconds >= 2 * 86400:
         return f"{seconds / 86400:.3g} days"
     if seconds >= 3600:
@@ -112,9 +164,26 @@ def format_duration(seconds: float) -> str:
 
 
 def refuse_long_study(what: str, points: int, cost_s: float, workers: int) -> None:
-    """Raise :class:`UsageError` when ``points`` × ``cost_s`` / ``workers`` exceeds the
-    study budget (:func:`max_study_hours`) or the points exceed :data:`MAX_STUDY_POINTS`;
-    the message gives the estimate and how to split the work."""
+    """Refuse a study that would run too long or has too many points.
+
+    Parameters
+    ----------
+    what : str
+        The study, as messages name it.
+    points : int
+        Points of the study.
+    cost_s : float
+        Cost of one point [s on one core] (:func:`point_cost_s`).
+    workers : int
+        Worker processes.
+
+    Raises
+    ------
+    UsageError
+        ``points`` exceeds :data:`MAX_STUDY_POINTS`, or ``points`` × ``cost_s`` /
+        ``workers`` exceeds the study budget (:func:`max_study_hours`); the message gives
+        the estimate and how to split the work.
+    """
     if points > MAX_STUDY_POINTS:
         took = points * cost_s / max(1, workers)
         est = f" (≈ {format_duration(took)} on {workers} worker(s))" if took else ""
@@ -134,7 +203,23 @@ def refuse_long_study(what: str, points: int, cost_s: float, workers: int) -> No
 
 
 def check_seed(seed: Any) -> int:
-    """A seed numpy's ``SeedSequence`` takes: an integer 0 <= seed < 2**128."""
+    """A seed numpy's ``SeedSequence`` takes.
+
+    Parameters
+    ----------
+    seed : Any
+        The seed given.
+
+    Returns
+    -------
+    int
+        The seed, an integer 0 <= seed < 2**128.
+
+    Raises
+    ------
+    UsageError
+        Not an integer, or out of range.
+    """
     if isinstance(seed, bool) or not hasattr(seed, "__index__"):
         raise UsageError(f"--seed must be an integer, got {seed!r}")
     if not 0 <= int(seed) < SEED_BOUND:
@@ -143,7 +228,13 @@ def check_seed(seed: Any) -> int:
 
 
 def describe() -> dict[str, Any]:
-    """Every limit with its value and what it bounds (``betv schema``, README "Limits")."""
+    """Every limit with its value and what it bounds (``betv schema``, README "Limits").
+
+    Returns
+    -------
+    dict
+        Limit name -> ``{"value": ..., "what": "..."}``.
+    """
     return {
         "file_bytes": {
             "value": MAX_FILE_BYTES,
@@ -160,6 +251,10 @@ def describe() -> dict[str, Any]:
         "calibration_points": {
             "value": MAX_CALIBRATION_POINTS,
             "what": "measured calibration points of one actuator",
+        },
+        "number_digits": {
+            "value": MAX_NUMBER_DIGITS,
+            "what": "digits of a number (a YAML integer or float, the number of a quantity)",
         },
         "quantity_chars": {
             "value": MAX_QUANTITY_CHARS,

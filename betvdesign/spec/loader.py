@@ -17,6 +17,7 @@ from ruamel.yaml import YAML
 from ruamel.yaml.comments import CommentedMap, CommentedSeq
 from ruamel.yaml.error import MarkedYAMLError, YAMLError, YAMLWarning
 from ruamel.yaml.nodes import MappingNode, Node, SequenceNode
+from ruamel.yaml.reader import ReaderError
 
 from betvdesign.errors import Location, SpecError, SpecIssue
 from betvdesign.spec import limits, safeyaml
@@ -25,17 +26,51 @@ from betvdesign.spec.models import DeviceSpec
 
 
 def load_device(path: str | Path) -> DeviceSpec:
-    """Read and validate one device file. Raises :class:`SpecError` listing every issue.
+    """Read and validate one device file.
 
-    The file is read within the size limit of :mod:`betvdesign.spec.limits` (UTF-8, with or
-    without BOM, or UTF-16 with a BOM) and checked by :func:`load_device_text`.
+    The file is read within the size limit of :mod:`betvdesign.spec.limits` (UTF-8, with
+    or without BOM, or UTF-16 with a BOM) and checked by :func:`load_device_text`.
+
+    Parameters
+    ----------
+    path : str or Path
+        The device YAML file.
+
+    Returns
+    -------
+    DeviceSpec
+        The validated device.
+
+    Raises
+    ------
+    SpecError
+        Listing every issue, each at ``file:line:col`` with its field path.
     """
     path = Path(path)
     return load_device_text(safeyaml.read_text(path), str(path))
 
 
 def load_device_text(text: str, filename: str = "<string>") -> DeviceSpec:
-    """Validate device YAML given as text; ``filename`` is used in messages."""
+    """Validate device YAML given as text.
+
+    Parameters
+    ----------
+    text : str
+        The YAML text.
+    filename : str
+        Used in messages.
+
+    Returns
+    -------
+    DeviceSpec
+        The validated device.
+
+    Raises
+    ------
+    SpecError
+        Listing every issue (limits of :mod:`betvdesign.spec.limits`, malformed YAML,
+        duplicate keys, validation), each at ``file:line:col`` with its field path.
+    """
     cap = limits.max_file_bytes()
     if len(text) > cap:
         raise _one(
@@ -62,7 +97,7 @@ def load_device_text(text: str, filename: str = "<string>") -> DeviceSpec:
             problem += f" ({exc.context} at line {cm.line + 1}, column {cm.column + 1})"
         raise SpecError([*issues, SpecIssue(loc, "", f"invalid YAML: {problem}")]) from None
     except YAMLError as exc:  # a ReaderError (control character) knows only its offset
-        pos = getattr(exc, "position", None)
+        pos = exc.position if isinstance(exc, ReaderError) else None
         loc = Location(filename)
         msg = str(exc).split("\n")[0]
         if isinstance(pos, int) and 0 <= pos <= len(text):
@@ -112,7 +147,7 @@ def _duplicate_keys(node: Node | None, filename: str) -> list[SpecIssue]:
         if isinstance(n, MappingNode):
             seen: dict[Any, int] = {}
             for knode, vnode in n.value:
-                key = getattr(knode, "value", None)
+                key = knode.value
                 if isinstance(key, str) and key in seen:
                     m = knode.start_mark
                     out.append(
@@ -161,7 +196,7 @@ def _key_pos(node: CommentedMap, key: Any, *, value: bool) -> tuple[int, int]:
     if key in data:
         entry = data[key]
         return (entry[2], entry[3]) if value else (entry[0], entry[1])
-    for item in getattr(node, "merge", None) or []:
+    for item in node.merge:
         # ruamel versions differ: (index, map) tuples or the maps themselves
         merged = item[1] if isinstance(item, tuple) else item
         if isinstance(merged, CommentedMap) and key in merged:

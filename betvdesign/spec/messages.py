@@ -24,7 +24,18 @@ _EXPECTED = {
 
 
 def split_path(rel: str) -> tuple[Any, ...]:
-    """``"points[1].voltage"`` -> ``("points", 1, "voltage")``."""
+    """A relative field path as a pydantic location.
+
+    Parameters
+    ----------
+    rel : str
+        E.g. ``"points[1].voltage"``.
+
+    Returns
+    -------
+    tuple
+        E.g. ``("points", 1, "voltage")``.
+    """
     out: list[Any] = []
     for part in rel.split("."):
         name, _, rest = part.partition("[")
@@ -39,7 +50,18 @@ def split_path(rel: str) -> tuple[Any, ...]:
 
 @functools.cache
 def known_fields(model: Any) -> tuple[str, ...]:
-    """Every field name anywhere in ``model``'s JSON schema (for did-you-mean hints)."""
+    """Every field name anywhere in a model's JSON schema (for did-you-mean hints).
+
+    Parameters
+    ----------
+    model : type
+        A pydantic model class.
+
+    Returns
+    -------
+    tuple of str
+        The names, sorted.
+    """
     names: set[str] = set()
 
     def walk(obj: Any) -> None:
@@ -72,7 +94,21 @@ def _kind_of(value: Any) -> str:
 
 
 def message(err: dict[str, Any], fields: tuple[str, ...] = ()) -> str:
-    """The user-facing message of one pydantic error (``fields``: names for hints)."""
+    """The user-facing message of one pydantic error.
+
+    Parameters
+    ----------
+    err : dict
+        One item of ``ValidationError.errors()``.
+    fields : tuple of str
+        Field names for did-you-mean hints.
+
+    Returns
+    -------
+    str
+        The message (``"missing unit in '5': ..."``, ``"unknown field; did you mean
+        'beam_length'?"``).
+    """
     kind = err["type"]
     msg = str(err["msg"])
     if kind == "extra_forbidden":
@@ -99,8 +135,23 @@ def message(err: dict[str, Any], fields: tuple[str, ...] = ()) -> str:
 
 
 def located(err: dict[str, Any], fields: tuple[str, ...] = ()) -> tuple[tuple[Any, ...], str]:
-    """(location, message) of one error; a message ``"@sub.path: text"`` (from
-    :func:`betvdesign.spec.models.at`) moves the location to that sub-field."""
+    """The location and message of one pydantic error.
+
+    A message ``"@sub.path: text"`` (from :func:`betvdesign.spec.models.at`) moves the
+    location to that sub-field.
+
+    Parameters
+    ----------
+    err : dict
+        One item of ``ValidationError.errors()``.
+    fields : tuple of str
+        Field names for did-you-mean hints.
+
+    Returns
+    -------
+    tuple
+        (location, message).
+    """
     loc, msg = tuple(err["loc"]), message(err, fields)
     if msg.startswith("@") and ": " in msg:
         rel, msg = msg[1:].split(": ", 1)
@@ -109,7 +160,18 @@ def located(err: dict[str, Any], fields: tuple[str, ...] = ()) -> tuple[tuple[An
 
 
 def dotted(loc: tuple[Any, ...]) -> str:
-    """``("actuator_sets", 0, "drive", "voltage")`` -> ``"actuator_sets[0].drive.voltage"``."""
+    """A pydantic location written as a field path.
+
+    Parameters
+    ----------
+    loc : tuple
+        E.g. ``("actuator_sets", 0, "drive", "voltage")``.
+
+    Returns
+    -------
+    str
+        E.g. ``"actuator_sets[0].drive.voltage"``.
+    """
     out = ""
     for el in loc:
         if isinstance(el, int):

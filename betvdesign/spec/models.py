@@ -49,10 +49,22 @@ MU_MAX = 1.5
 
 
 def at(path: str, message: str) -> ValueError:
-    """A cross-field error that belongs to ``path`` (relative to the model raising it).
+    """A cross-field error that belongs to a sub-field of the model raising it.
 
     The loader moves the error's file position to that field; read directly, the
     message says ``@path: message``.
+
+    Parameters
+    ----------
+    path : str
+        The sub-field, relative to the model (``"points[1].voltage"``).
+    message : str
+        What is wrong.
+
+    Returns
+    -------
+    ValueError
+        To raise from a model validator.
     """
     return ValueError(f"@{path}: {message}")
 
@@ -238,6 +250,7 @@ class MeasuredCalibration(_Model):
 
     @property
     def voltage_range(self) -> tuple[pint.Quantity, pint.Quantity]:
+        """The lowest and highest measured voltage [V] (no extrapolation beyond)."""
         return self.points[0].voltage, self.points[-1].voltage
 
 
@@ -291,8 +304,12 @@ class Actuator(_Model):
 
     @model_validator(mode="after")
     def _exactly_one(self) -> Actuator:
-        names = ("alpha", "horizontal_stiffness", "horizontal_resonance")
-        given = [n for n in names if getattr(self, n) is not None]
+        sources = (
+            ("alpha", self.alpha),
+            ("horizontal_stiffness", self.horizontal_stiffness),
+            ("horizontal_resonance", self.horizontal_resonance),
+        )
+        given = [n for n, v in sources if v is not None]
         if len(given) != 1:
             raise ValueError(
                 "give exactly one of 'alpha', 'horizontal_stiffness' or 'horizontal_resonance'"
@@ -322,9 +339,11 @@ class Actuator(_Model):
                 "calibration_frequency",
                 "only applies with 'thermal_cutoff' or 'thermal_time_constant'",
             )
-        for d in ("normal", "tangential"):
-            both = (getattr(self, f"{k}_{d}") for k in ("damping_ratio", "quality_factor"))
-            if None not in both:
+        for d, ratio, quality in (
+            ("normal", self.damping_ratio_normal, self.quality_factor_normal),
+            ("tangential", self.damping_ratio_tangential, self.quality_factor_tangential),
+        ):
+            if ratio is not None and quality is not None:
                 raise at(f"quality_factor_{d}", f"give 'damping_ratio_{d}' or this, not both")
         return self
 
@@ -414,6 +433,18 @@ class PublishedFit(_Model):
     """Citation of the publication."""
 
     def values(self, name: str) -> list[float]:
+        """The published values of one parameter.
+
+        Parameters
+        ----------
+        name : str
+            ``"varpi"``, ``"alpha"``, ``"beta"`` or ``"kappa"``.
+
+        Returns
+        -------
+        list of float
+            The values quoted (empty when the fit gives none).
+        """
         v = getattr(self, name)
         if v is None:
             return []
@@ -450,21 +481,67 @@ class DeviceSpec(_Model):
         return self
 
     def replace(self, path: str, value: Any, *more: tuple[str, Any]) -> DeviceSpec:
-        """What-if: a copy with ``path`` (dotted, as in the device file) set to ``value``,
-        validated like a device file (raises the loader's SpecError); see
-        :func:`betvdesign.spec.whatif.replace`. Example: ``spec.replace("slider.beam_width",
-        "6 um")``."""
+        """What-if: a copy with a field changed, validated like a device file.
+
+        Example: ``spec.replace("slider.beam_width", "6 um")``; see
+        :func:`betvdesign.spec.whatif.replace`.
+
+        Parameters
+        ----------
+        path : str
+            Dotted field path, as in the device file (:mod:`betvdesign.spec.paths`).
+        value : str, float, int, dict, pint.Quantity or None
+            The new value as a device file gives it (None removes the field).
+        *more : tuple of (str, value)
+            Further edits, applied before the one validation.
+
+        Returns
+        -------
+        DeviceSpec
+            The edited, validated device (``self`` is unchanged).
+
+        Raises
+        ------
+        SpecError
+            An unknown path or a value the device file would reject (the loader's messages).
+        """
         from betvdesign.spec.whatif import replace
 
         return replace(self, path, value, *more)
 
 
-def amplitude_at(actuator_set: ActuatorSet, voltage: pint.Quantity | str | None = None):
-    """Actuator amplitude u at a drive voltage [length, µm] (MODEL.md: u grows with V).
+def amplitude_at(
+    actuator_set: ActuatorSet, voltage: pint.Quantity | str | None = None
+) -> pint.Quantity:
+    """Actuator amplitude u at a drive voltage (MODEL.md: u grows with V).
 
-    ``voltage`` None means the set's drive voltage. Array-valued voltages give
-    array amplitudes (for sweeps). Raises :class:`ParameterError` when the amplitude
-    cannot be given at that voltage (given directly, or outside a measured range).
+    u = gain·V (linear), gain·V² (quadratic: Joule heating) or the measured points
+    interpolated linearly, never extrapolated; the amplitude given directly at the set's
+    own voltage.
+
+    Parameters
+    ----------
+    actuator_set : ActuatorSet
+        The set (its actuator's amplitude or calibration, its drive voltage).
+    voltage : pint.Quantity, str or None
+        Drive voltage [V] (an array gives an array of amplitudes, for sweeps); None: the
+        set's drive voltage.
+
+    Returns
+    -------
+    pint.Quantity
+        u [um].
+
+    Raises
+    ------
+    ParameterError
+        The amplitude cannot be given at that voltage (given directly, or outside a
+        measured range), or the voltage is not a finite quantity >= 0 V.
+
+    References
+    ----------
+    MODEL.md, "Device-to-parameter relations"; Shin et al., J. Appl. Phys. 96, 7603 (2004),
+    doi:10.1063/1.1809773 (u ≈ 0.11 µm at 8 V, roughly proportional to V).
     """
     act = actuator_set.actuator
     if voltage is None:

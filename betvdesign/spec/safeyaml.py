@@ -6,7 +6,9 @@ UTF-16. :func:`check_events` walks the YAML *event* stream (ruamel's parser is
 iterative, unlike its composer, and stops at the first limit crossed, so a deeply
 nested or alias-bomb file is refused after a bounded amount of work) and raises a
 :class:`~betvdesign.errors.SpecError` at ``file:line:col`` naming the field and the
-limit. The limits live in :mod:`betvdesign.spec.limits`.
+limit; a number of more digits than the limit is refused there too, before Python's
+``int()`` would raise on it (:func:`number_digits`). The limits live in
+:mod:`betvdesign.spec.limits`.
 """
 
 from __future__ import annotations
@@ -25,9 +27,45 @@ from ruamel.yaml.events import (
     MappingStartEvent,
     ScalarEvent,
 )
+from ruamel.yaml.nodes import ScalarNode
+from ruamel.yaml.resolver import VersionedResolver
 
 from betvdesign.errors import Location, SpecError, SpecIssue
 from betvdesign.spec import limits
+
+#: Resolvers of plain scalars under YAML 1.2 (the default) and 1.1 (a ``%YAML 1.1``
+#: directive): a scalar either reads as a number is counted as one.
+_RESOLVERS = (VersionedResolver(version=(1, 2)), VersionedResolver(version=(1, 1)))
+_NUMBER_TAGS = ("tag:yaml.org,2002:int", "tag:yaml.org,2002:float")
+
+
+def number_digits(value: str, tag: str | None = None, plain: bool = True) -> int:
+    """How many digits a YAML scalar has when it reads as a number (0 otherwise).
+
+    Parameters
+    ----------
+    value : str
+        The scalar's text.
+    tag : str or None
+        Its explicit tag (``!!int``), if any.
+    plain : bool
+        True for an unquoted scalar (its type then follows from its text).
+
+    Returns
+    -------
+    int
+        The count of its digits (letters of a hexadecimal, ``nan`` or ``inf`` included)
+        when the YAML 1.2 or 1.1 rules make it an integer or a float, else 0.
+    """
+    if tag in _NUMBER_TAGS:
+        numeric = True
+    elif tag is None and plain:
+        numeric = any(
+            r.resolve(ScalarNode, value, (True, False)) in _NUMBER_TAGS for r in _RESOLVERS
+        )
+    else:
+        numeric = False
+    return sum(ch.isalnum() for ch in value) if numeric else 0
 
 
 def _one(filename: str, message: str, line: int | None = None, col: int | None = None):
@@ -35,7 +73,24 @@ def _one(filename: str, message: str, line: int | None = None, col: int | None =
 
 
 def read_text(path: str | os.PathLike[str]) -> str:
-    """Text of a YAML input file, read with the size limit; :class:`SpecError` otherwise."""
+    """Text of a YAML input file, read within the size limit.
+
+    Parameters
+    ----------
+    path : str or PathLike
+        The file.
+
+    Returns
+    -------
+    str
+        The decoded text (:func:`decode`).
+
+    Raises
+    ------
+    SpecError
+        Not found, a directory, unreadable, larger than
+        :func:`~betvdesign.spec.limits.max_file_bytes` or not decodable.
+    """
     p = Path(path)
     fname = str(p)
     cap = limits.max_file_bytes()
@@ -66,8 +121,26 @@ def _size(p: Path) -> int | None:
 
 
 def decode(raw: bytes, fname: str) -> str:
-    """UTF-8 (BOM optional) or UTF-16 with a BOM, as YAML 1.2 allows; else a SpecError
-    naming the line and column of the first undecodable byte."""
+    """Decode the bytes of a YAML file: UTF-8 (BOM optional) or UTF-16 with a BOM, as YAML
+    1.2 allows.
+
+    Parameters
+    ----------
+    raw : bytes
+        The file's bytes.
+    fname : str
+        The file, for messages.
+
+    Returns
+    -------
+    str
+        The text, without a BOM.
+
+    Raises
+    ------
+    SpecError
+        Naming the line and column of the first undecodable byte.
+    """
     if raw.startswith((codecs.BOM_UTF16_LE, codecs.BOM_UTF16_BE)):
         try:
             return raw.decode("utf-16")
@@ -102,11 +175,27 @@ class _Frame:
 
 
 def check_events(text: str, filename: str) -> None:
-    """Walk the YAML events of ``text``; raise :class:`SpecError` at the first limit crossed.
+    """Walk the YAML events of a text; raise at the first limit crossed.
 
     Alias expansion is counted as the composer and the validation will see it: an
     alias (or a ``<<`` merge) costs the nodes and depth of what it names. Malformed
     YAML raises ruamel's own ``MarkedYAMLError`` (the loader reports it).
+
+    Parameters
+    ----------
+    text : str
+        The YAML text.
+    filename : str
+        The file, for messages.
+
+    Raises
+    ------
+    SpecError
+        At ``file:line:col`` with the field path: more nodes than
+        :data:`~betvdesign.spec.limits.MAX_YAML_NODES`, nesting deeper than
+        :data:`~betvdesign.spec.limits.MAX_YAML_DEPTH`, a recursive alias, a string
+        longer than :data:`~betvdesign.spec.limits.MAX_STRING_CHARS` or a number of
+        more than :data:`~betvdesign.spec.limits.MAX_NUMBER_DIGITS` digits.
     """
     sizes: dict[str, tuple[int, int]] = {}  # anchor -> (nodes, depth)
     stack: list[_Frame] = []
@@ -160,6 +249,18 @@ def check_events(text: str, filename: str) -> None:
                     path,
                     f"string of {len(value):,} characters; the limit is "
                     f"{limits.MAX_STRING_CHARS:,}",
+                )
+            plain = bool(event.implicit and event.implicit[0])
+            digits = (
+                number_digits(value, event.tag, plain)
+                if len(value) > limits.MAX_NUMBER_DIGITS
+                else 0
+            )
+            if digits > limits.MAX_NUMBER_DIGITS:
+                fail(
+                    event,
+                    path,
+                    f"number of {digits:,} digits; the limit is {limits.MAX_NUMBER_DIGITS} digits",
                 )
             if stack and stack[-1].is_map and stack[-1].index % 2 == 0:
                 stack[-1].key = value

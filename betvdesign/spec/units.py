@@ -63,6 +63,12 @@ def _check_shape(text: str) -> None:
             f"cannot read {text!r} as a quantity: write a number and units such as "
             "'5 um' or '2330 kg/m^3' (one power per unit, no parentheses or arithmetic)"
         )
+    digits = sum(ch.isdigit() for ch in m.group("num") or "")
+    if digits > limits.MAX_NUMBER_DIGITS:
+        raise ValueError(
+            f"number of {digits:,} digits in a quantity; the limit is "
+            f"{limits.MAX_NUMBER_DIGITS} digits"
+        )
     units = m.group("units") or ""
     n_factors = len(_NAME.findall(_POWER.sub("", units)))
     if n_factors > limits.MAX_UNIT_FACTORS:
@@ -79,10 +85,25 @@ def _check_shape(text: str) -> None:
 def parse_quantity(text: str) -> pint.Quantity:
     """Parse ``"5 um"`` into a quantity of :data:`ureg`.
 
-    The text is first checked against a bounded shape (:func:`_check_shape`: length,
-    number of unit factors, one modest power each), so a hostile string cannot make
-    pint evaluate towers of powers. Raises ``ValueError`` with a user-facing message
-    for text that fails the check or that pint cannot read.
+    The text is first checked against a bounded shape (length, digits of the number,
+    number of unit factors, one modest power each), so a hostile string cannot make pint
+    evaluate towers of powers.
+
+    Parameters
+    ----------
+    text : str
+        A number and units (``"2330 kg/m^3"``), or units alone (a magnitude of 1).
+
+    Returns
+    -------
+    pint.Quantity
+        The quantity.
+
+    Raises
+    ------
+    ValueError
+        With a user-facing message, for text that fails the check or that pint cannot
+        read.
     """
     _check_shape(text)
     try:
@@ -102,9 +123,27 @@ def parse_quantity(text: str) -> pint.Quantity:
 
 
 def parse_positive(text: str, unit: str, what: str) -> float:
-    """Magnitude in ``unit`` of a user-given quantity such as ``"1 mm/s"`` (a CLI option
-    named ``what``); :class:`~betvdesign.errors.UsageError` unless it parses, has the
-    dimension of ``unit`` and is finite and > 0."""
+    """Magnitude of a user-given quantity such as ``"1 mm/s"`` (a CLI option).
+
+    Parameters
+    ----------
+    text : str
+        The quantity.
+    unit : str
+        The unit to express it in; fixes the dimension.
+    what : str
+        The option, for messages.
+
+    Returns
+    -------
+    float
+        The magnitude in ``unit``.
+
+    Raises
+    ------
+    UsageError
+        Unless it parses, has the dimension of ``unit`` and is finite and > 0.
+    """
     from betvdesign.errors import UsageError
 
     try:
@@ -118,13 +157,41 @@ def parse_positive(text: str, unit: str, what: str) -> float:
 
 
 def parse_speed(text: str, what: str = "speed") -> float:
-    """A speed such as ``"1 mm/s"`` in m/s (see :func:`parse_positive`)."""
+    """A speed such as ``"1 mm/s"`` (see :func:`parse_positive`).
+
+    Parameters
+    ----------
+    text : str
+        The quantity.
+    what : str
+        The option, for messages.
+
+    Returns
+    -------
+    float
+        The speed [m/s].
+    """
     return parse_positive(text, "m/s", what)
 
 
 def parse_units(text: str) -> pint.Unit:
-    """Parse a unit expression such as ``"um/s"`` with the same bounds as
-    :func:`parse_quantity`; ``ValueError`` with a user-facing message otherwise."""
+    """Parse a unit expression such as ``"um/s"`` with the bounds of :func:`parse_quantity`.
+
+    Parameters
+    ----------
+    text : str
+        The units.
+
+    Returns
+    -------
+    pint.Unit
+        The unit.
+
+    Raises
+    ------
+    ValueError
+        With a user-facing message (unreadable, or a number other than 1 in front).
+    """
     q = parse_quantity(text)
     if q.magnitude != 1:
         raise ValueError(f"{text!r} is not a unit (it has the factor {q.magnitude:g})")
@@ -134,8 +201,19 @@ def parse_units(text: str) -> pint.Unit:
 def format_quantity(q: pint.Quantity, fmt: str = "") -> str:
     """Write a quantity as a string that :func:`parse_quantity` reads back.
 
-    ``fmt`` is a float format spec (e.g. ``".4g"``); empty keeps full precision.
     The micro sign is written as ``u`` so files stay ASCII.
+
+    Parameters
+    ----------
+    q : pint.Quantity
+        The quantity.
+    fmt : str
+        A float format spec (e.g. ``".4g"``); empty keeps full precision.
+
+    Returns
+    -------
+    str
+        E.g. ``"5 um"``.
     """
     mag = q.magnitude
     if isinstance(mag, float):
@@ -147,7 +225,18 @@ def format_quantity(q: pint.Quantity, fmt: str = "") -> str:
 
 
 def is_angle(q: pint.Quantity) -> bool:
-    """True when ``q`` is expressed in an angle unit (deg, rad, ...)."""
+    """Whether a quantity is expressed in an angle unit (deg, rad, ...).
+
+    Parameters
+    ----------
+    q : pint.Quantity
+        The quantity.
+
+    Returns
+    -------
+    bool
+        True when its root unit is the radian (pint treats angles as dimensionless).
+    """
     return ureg.get_root_units(q.units)[1] == ureg.radian
 
 
@@ -170,6 +259,24 @@ class QuantitySpec:
 
     # --- validation -----------------------------------------------------------------
     def validate(self, value: Any) -> pint.Quantity:
+        """The pydantic validator: a quantity of this field's dimension and bounds.
+
+        Parameters
+        ----------
+        value : Any
+            A quantity string, or a quantity of :data:`ureg`.
+
+        Returns
+        -------
+        pint.Quantity
+            The quantity, in the units given.
+
+        Raises
+        ------
+        PydanticCustomError
+            A bare number, no number, an unknown unit, a quantity of another registry, the
+            wrong dimension, not finite, or out of bounds.
+        """
         if isinstance(value, bool) or isinstance(value, int | float):
             raise PydanticCustomError(
                 "missing_unit",
@@ -308,5 +415,18 @@ QuadraticGain = _q("[length]/[voltage]**2", "m/V**2", "0.0017 um/V^2", gt=0.0)
 
 
 def to_float(q: pint.Quantity, unit: str) -> float:
-    """Magnitude of ``q`` in ``unit`` as a float (used by :mod:`betvdesign.nondim.device`)."""
+    """Magnitude of a quantity in a unit, as a float.
+
+    Parameters
+    ----------
+    q : pint.Quantity
+        The quantity.
+    unit : str
+        The unit.
+
+    Returns
+    -------
+    float
+        The magnitude.
+    """
     return float(q.to(unit).magnitude)

@@ -2,33 +2,35 @@
 
 ``spec.replace("slider.beam_width", "6 um")`` (:meth:`betvdesign.spec.models.DeviceSpec.replace`)
 returns a new, validated :class:`~betvdesign.spec.models.DeviceSpec`; the original is frozen
-and unchanged. The edited spec is written back to YAML and read by
-:func:`betvdesign.spec.loader.load_device_text`, so a bad value raises the same
-:class:`~betvdesign.errors.SpecError` (field path, message, did-you-mean) a device
-file would, never an error deep inside the derivation.
+and unchanged. The edit is made on the spec's plain data, which is then validated like a
+device file, so a bad value raises the same :class:`~betvdesign.errors.SpecError` (field
+path, message, did-you-mean) a device file would, never an error deep inside the
+derivation.
 
-Paths are dotted, as in the device file: ``slider.beam_width``, ``material``,
-``actuator_sets.0.drive.voltage`` or ``actuator_sets.forward.drive.voltage`` (a set by
-index or name). Paths below an actuator set without the set (``drive.voltage``,
-``head.mass``, ``contact.friction``, ``actuator.vertical_resonance``) apply to every set,
-as in tolerance studies.
+Paths are those of :mod:`betvdesign.spec.paths` (the one home of the idea): dotted, as in
+the device file; a set by index or name (``actuator_sets.forward.drive.voltage``); a
+path below an actuator set without the set (``drive.voltage``) applies to every set.
+This module is the thin validated layer on top: an unvalidated copy
+(:func:`betvdesign.spec.paths.replace`) may hold arrays of samples, this one may not.
 """
 
 from __future__ import annotations
 
-import difflib
-from typing import Any
+from typing import Any, TypeVar
 
-from pydantic import ValidationError
+import pint
+from pydantic import BaseModel, ValidationError
 
 from betvdesign.errors import Location, SpecError, SpecIssue
 from betvdesign.spec.messages import dotted, known_fields, located
+from betvdesign.spec.paths import PathError, holder, targets
+from betvdesign.spec.units import format_quantity, ureg
 
-#: Paths relative to an actuator set (applied to every set when no set is named).
-SET_PREFIXES = ("head", "contact", "actuator", "drive", "intended_mode", "impact_direction")
+#: A spec model (a :class:`~betvdesign.spec.models.DeviceSpec`); the edit returns the same type.
+Spec = TypeVar("Spec", bound=BaseModel)
 
 
-def replace(spec: Any, path: str, value: Any, *more: tuple[str, Any]) -> Any:
+def replace(spec: Spec, path: str, value: Any, *more: tuple[str, Any]) -> Spec:
     """A copy of ``spec`` with ``path`` set to ``value`` (and each ``(path, value)`` of
     ``more``), validated like a device file.
 
@@ -42,6 +44,13 @@ def replace(spec: Any, path: str, value: Any, *more: tuple[str, Any]) -> Any:
         The new value as a device file would give it: ``"6 um"``, ``0.3``, ``"ac"``; a
         pint quantity of :data:`betvdesign.ureg` is written with its unit; None removes
         the field (e.g. ``head.geometry`` before giving ``head.mass``).
+    *more : tuple of (str, value)
+        Further edits, applied in order before the one validation.
+
+    Returns
+    -------
+    DeviceSpec
+        The edited, validated device.
 
     Raises
     ------
@@ -84,9 +93,7 @@ def _issues(exc: ValidationError, data: Any, model: Any, where: str) -> list[Spe
 
 
 def _plain(value: Any) -> Any:
-    if hasattr(value, "units") and hasattr(value, "magnitude"):
-        from betvdesign.spec.units import format_quantity, ureg
-
+    if isinstance(value, pint.Quantity):
         if value._REGISTRY is not ureg:
             raise SpecError(
                 [
@@ -106,42 +113,21 @@ def _fail(where: str, path: str, message: str) -> SpecError:
 
 
 def _assign(data: dict[str, Any], path: str, value: Any, where: str) -> None:
-    parts = path.split(".")
-    if not path or any(not p for p in parts):
-        raise _fail(where, path, "empty field path; write e.g. slider.beam_width")
-    sets = data.get("actuator_sets", [])
-    if parts[0] in SET_PREFIXES:  # every set
-        for i in range(len(sets)):
-            _set_in(sets[i], parts, value, where, f"actuator_sets.{i}.")
-        return
-    if parts[0] == "actuator_sets" and len(parts) > 2:
-        key = parts[1]
-        names = [s.get("name") for s in sets]
-        if key.isdigit() and int(key) < len(sets):
-            i = int(key)
-        elif key in names:
-            i = names.index(key)
+    """Set (None: remove) ``path`` in the plain ``data``; the last key may be new (the
+    validation judges it)."""
+    found = targets(data, path)
+    if not found:
+        parts = path.split(".")
+        if any(not p for p in parts):
+            raise _fail(where, path, "empty field path; write e.g. slider.beam_width")
+        names = ", ".join(str(s.get("name")) for s in data.get("actuator_sets", []))
+        raise _fail(where, path, f"no actuator set {parts[1]!r} (sets: {names})")
+    for target in found:
+        try:
+            node, key = holder(data, target)
+        except PathError as exc:
+            raise _fail(where, exc.path, str(exc)) from None
+        if value is None:
+            node.pop(key, None)
         else:
-            raise _fail(
-                where, path, f"no actuator set {key!r} (sets: {', '.join(map(str, names))})"
-            )
-        _set_in(sets[i], parts[2:], value, where, f"actuator_sets.{i}.")
-        return
-    _set_in(data, parts, value, where, "")
-
-
-def _set_in(node: dict[str, Any], parts: list[str], value: Any, where: str, prefix: str) -> None:
-    """Walk existing sections; the last key may be new (the validation judges it) and
-    ``None`` removes it."""
-    for depth, key in enumerate(parts[:-1]):
-        child = node.get(key)
-        if not isinstance(child, dict):
-            full = prefix + ".".join(parts[: depth + 1])
-            close = difflib.get_close_matches(key, [k for k in node if isinstance(node[k], dict)])
-            hint = f"; did you mean {close[0]!r}?" if close else ""
-            raise _fail(where, full, f"no section {key!r} in this device{hint}")
-        node = child
-    if value is None:
-        node.pop(parts[-1], None)
-    else:
-        node[parts[-1]] = value
+            node[key] = value

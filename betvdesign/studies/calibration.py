@@ -92,6 +92,14 @@ class CalibrationResult:
     warnings: list[str] = dataclasses.field(default_factory=list)
 
     def as_dict(self) -> dict[str, Any]:
+        """The result as plain data.
+
+        Returns
+        -------
+        dict
+            Every field, and ``parameters``: name, value, 1σ and SI unit of each fitted
+            parameter.
+        """
         d = dataclasses.asdict(self)
         d["parameters"] = [
             {"name": n, "value": v, "stderr": None if self.stderr is None else s, "unit": u}
@@ -223,6 +231,15 @@ def calibrate(
         sign).
     UsageError
         Bad arguments or data (negative magnitudes, unknown set or law, too few points).
+
+    Notes
+    -----
+    Mean speed v(V) = Δs·u(V)·cosθ·f_act and displacement x(t) = s(t/t_s)·u·cosθ, with
+    Δs and s(τ) from the exact model of Shin et al. [1]_.
+
+    References
+    ----------
+    .. [1] K. Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773
     """
     from scipy.optimize import least_squares
 
@@ -400,7 +417,21 @@ def _start(model: _Model, law: Law, fit_alpha: bool) -> tuple[np.ndarray, list[s
 
 
 def snippet(result: CalibrationResult, data: Measurements) -> str:
-    """A device-file fragment (YAML) carrying the fitted calibration."""
+    """A device-file fragment (YAML) carrying the fitted calibration.
+
+    Parameters
+    ----------
+    result : CalibrationResult
+        The fit.
+    data : Measurements
+        The data it was fitted to (named in the fragment's comment).
+
+    Returns
+    -------
+    str
+        YAML for the ``actuator:`` section: ``alpha`` [-], ``amplitude`` [um] or a
+        ``calibration`` (gain [um/V or um/V²], or measured points), 1σ in comments.
+    """
     from betvdesign.output.siformat import format_si
     from betvdesign.spec.units import ureg
 
@@ -456,6 +487,19 @@ def snippet(result: CalibrationResult, data: Measurements) -> str:
 
 
 def fitted(result: CalibrationResult, name: str) -> tuple[float, float | None]:
-    """(value, 1σ) of a fitted parameter by name."""
+    """A fitted parameter by name.
+
+    Parameters
+    ----------
+    result : CalibrationResult
+        The fit.
+    name : str
+        The parameter: ``gain``, ``u(8 V)``, ``alpha``...
+
+    Returns
+    -------
+    tuple of (float, float or None)
+        Its value and 1σ, in its SI unit (``result.units``); 1σ None when unknown.
+    """
     i = result.names.index(name)
     return result.values[i], None if result.stderr is None else result.stderr[i]

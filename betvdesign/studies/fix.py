@@ -267,7 +267,7 @@ def _inward(x0: float, lo: float, hi: float, x: float) -> list[float]:
 
 def _why(before: list[str], check: Any) -> str:
     """What a passing candidate does: the rules it fixes, its exact mode and speed."""
-    from betvdesign.checks.rules import format_speed
+    from betvdesign.checks.rule import format_speed
 
     speed = _speed(check)
     parts = [f"fixes {', '.join(before)}" if before else "keeps every rule passing"]

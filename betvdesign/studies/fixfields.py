@@ -1,7 +1,10 @@
-"""Fields ``betv fix`` may change, their realistic default bounds, and ``--vary``.
+"""Fields ``betv fix`` may change, their default bounds, and ``--vary``.
 
-A field is a dotted path as in the device file (:mod:`betvdesign.spec.paths`);
-its bounds are factors of the current value, or absolute values in a unit.
+The fields and their bounds are those of :mod:`betvdesign.spec.fields` (the one list of
+the fields a designer changes); by default ``betv fix`` varies the ones the designer
+chooses (:attr:`~betvdesign.spec.fields.DesignField.chosen`). A field is a dotted path
+as in the device file (:mod:`betvdesign.spec.paths`); its bounds are factors of the
+current value, or absolute values in a unit.
 """
 
 from __future__ import annotations
@@ -15,26 +18,12 @@ import pint
 
 from betvdesign.errors import UsageError
 from betvdesign.model.damping import term_range
-from betvdesign.spec.paths import targets, value_at
+from betvdesign.spec.fields import FIELDS, Bounds, bounds
+from betvdesign.spec.paths import given
 
-#: Default search bounds of the fields a designer can change: (factor low, factor high)
-#: on the current value, or absolute bounds in the given unit.
-DEFAULT_BOUNDS: dict[str, tuple[float, float] | tuple[float, float, str]] = {
-    "drive.frequency": (0.25, 4.0),
-    "drive.voltage": (0.5, 2.0),
-    "actuator.amplitude": (0.5, 2.0),
-    "slider.beam_width": (0.5, 4.0),
-    "slider.beam_length": (0.5, 2.0),
-    "head.mass": (0.25, 4.0),
-    "head.geometry.diameter": (0.5, 2.0),
-    "head.geometry.length": (0.5, 2.0),
-    "head.geometry.width": (0.5, 2.0),
-    "actuator.vertical_resonance": (0.5, 2.0),
-    "actuator.horizontal_resonance": (0.5, 2.0),
-    "actuator.horizontal_stiffness": (0.25, 4.0),
-    "actuator.alpha": (0.25, 4.0),
-    "contact.impact_angle": (15.0, 75.0, "deg"),
-}
+#: Default fields of ``betv fix`` and their search bounds, in ranking order: the fields
+#: of :data:`betvdesign.spec.fields.FIELDS` the designer chooses.
+DEFAULT_BOUNDS: dict[str, Bounds] = {f.path: f.bounds for f in FIELDS if f.chosen}
 
 
 @dataclass(frozen=True)
@@ -57,8 +46,7 @@ class Vary:
 
 
 def _current(spec: Any, name: str) -> tuple[float, str] | None:
-    values = [value_at(spec, t) for t in targets(spec, name)]
-    present = [v for v in values if v is not None]
+    present = given(spec, name)
     if not present:
         return None
     first = present[0]
@@ -100,7 +88,7 @@ def parse_vary(spec: Any, items: Sequence[str]) -> list[Vary]:
             except (ValueError, pint.PintError) as exc:
                 raise UsageError(f"--vary {item}: {exc}") from None
         else:
-            b = DEFAULT_BOUNDS.get(name, (0.5, 2.0))
+            b = bounds(name)
             if len(b) == 3:
                 from betvdesign.spec.units import ureg
 

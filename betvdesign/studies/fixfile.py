@@ -9,22 +9,7 @@ from pathlib import Path
 from typing import Any
 
 from betvdesign.errors import BetvError
-from betvdesign.spec.paths import SET_PREFIXES
-
-
-def _nodes(data: Any, field: str) -> list[tuple[Any, str]]:
-    """(mapping, key) pairs holding ``field`` in the YAML tree (every actuator set)."""
-    parts = field.split(".")
-    roots = list(data["actuator_sets"]) if field.startswith(SET_PREFIXES) else [data]
-    out = []
-    for node in roots:
-        for p in parts[:-1]:
-            node = node.get(p) if hasattr(node, "get") else None
-            if node is None:
-                break
-        if node is not None and hasattr(node, "get") and parts[-1] in node:
-            out.append((node, parts[-1]))
-    return out
+from betvdesign.spec.paths import holder, targets, value_at
 
 
 def fixed_text(path: str | Path, res: Any, cand: Any) -> str:
@@ -46,7 +31,10 @@ def fixed_text(path: str | Path, res: Any, cand: Any) -> str:
         q = v.quantity(x)
         new = format_quantity(q, ".4g") if v.unit else float(f"{x:.4g}")
         old = v.text(v.x0)
-        for node, key in _nodes(data, f):
+        for target in targets(data, f):  # every actuator set that gives the field
+            if value_at(data, target) is None:
+                continue
+            node, key = holder(data, target)
             node[key] = new
             node.yaml_add_eol_comment(f"betv fix: was {old}; {cand.why}", key)
     buf = io.StringIO()

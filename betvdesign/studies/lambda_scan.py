@@ -33,7 +33,7 @@ from betvdesign.errors import UsageError
 from betvdesign.model.params import fit_offset
 from betvdesign.studies.engine.grid import require_positive
 from betvdesign.studies.engine.runner import Study, StudyRun, run_study, split_run_args
-from betvdesign.studies.pushpull import (
+from betvdesign.studies.points import (
     COLUMNS,
     MODEL_STATEMENT,
     periodic_point,
@@ -47,7 +47,40 @@ Vary = Literal["varpi", "alpha"]
 def params_for_lambda(
     lam: float, *, kappa: float, beta: float, vary: Vary, alpha: float | None, varpi: float | None
 ) -> dict[str, float]:
-    """The (ϖ, α, β, κ) point whose λ equals ``lam`` (see module doc)."""
+    """The (ϖ, α, β, κ) point whose λ equals ``lam`` (see module doc).
+
+    Inverts the push/pull fit of Shin et al. [1]_,
+    λ = (κ/ϖ²)(1/(ακ) − D), D = (1/β − β)/(22(κ+1)), for ϖ or α.
+
+    Parameters
+    ----------
+    lam : float
+        Target λ [-] (> 0).
+    kappa : float
+        Normalised friction κ = μ·tanθ [-].
+    beta : float
+        Relative mass β = m/M [-].
+    vary : {"varpi", "alpha"}
+        The parameter solved for.
+    alpha : float, optional
+        Fixed α = k_v/k_h [-] (needed when ``vary="varpi"``).
+    varpi : float, optional
+        Fixed ϖ = ω·sqrt(m/k_v) [-] (needed when ``vary="alpha"``).
+
+    Returns
+    -------
+    dict
+        ``{"varpi": ϖ, "alpha": α, "beta": β, "kappa": κ}`` [-].
+
+    Raises
+    ------
+    UsageError
+        The fixed parameter is missing, or no positive ϖ or α reaches ``lam``.
+
+    References
+    ----------
+    .. [1] K. Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773
+    """
     d = fit_offset(kappa, beta)
     if vary == "varpi":
         if alpha is None:
@@ -83,8 +116,34 @@ def lambda_study(
     zeta_h: float = 0.0,
     restitution: float = 0.0,
 ) -> Study:
-    """One periodic solve per λ target (ascending order kept as given); ``zeta_v``,
-    ``zeta_h``, ``restitution``: the optional terms, fixed (0: the paper's model)."""
+    """One periodic solve per λ target (the order kept as given).
+
+    Parameters
+    ----------
+    lam : sequence of float
+        λ targets [-] (> 0).
+    kappa, beta, vary, alpha, varpi
+        As :func:`params_for_lambda`.
+    tol : float
+        Fixed-point residual accepted for a periodic orbit [-].
+    max_cycles : int, optional
+        Cycle budget of each periodic solve (None: the solver's own).
+    zeta_v, zeta_h : float
+        Normal and tangential damping ratios [-], fixed (0: undamped).
+    restitution : float
+        Coefficient of restitution e [-], fixed (0: plastic impacts; all three 0: the
+        paper's model).
+
+    Returns
+    -------
+    Study
+        One task per λ target, worker :func:`betvdesign.studies.points.periodic_point`.
+
+    Raises
+    ------
+    UsageError
+        A non-positive λ, ``max_cycles`` < 1, or a λ no point reaches.
+    """
     terms = Terms(zeta_v, zeta_h, restitution)
     lam_arr = require_positive(np.asarray(lam, float), "lambda")
     if max_cycles is not None and max_cycles < 1:
@@ -123,7 +182,14 @@ class LambdaSummary:
     terms: Terms = field(default_factory=Terms)
 
     def as_dict(self) -> dict[str, Any]:
-        """The summary as plain data; ``terms`` only when set."""
+        """The summary as plain data.
+
+        Returns
+        -------
+        dict
+            Rung, model statement and why, counts, sign changes and points without an
+            orbit; ``terms`` only when set.
+        """
         extra = {} if self.terms.ideal else {"terms": self.terms.as_dict()}
         return {
             "fidelity": "periodic",
@@ -139,7 +205,21 @@ class LambdaSummary:
 
 
 def summarise(rows: Sequence[Mapping[str, Any]], terms: Terms | None = None) -> LambdaSummary:
-    """Brackets [λ_a, λ_b] where Δs changes sign (converged points only, in λ order)."""
+    """Brackets [λ_a, λ_b] where Δs changes sign (converged points only, in λ order).
+
+    Parameters
+    ----------
+    rows : sequence of mapping
+        The scan's rows (:data:`betvdesign.studies.points.COLUMNS`).
+    terms : Terms, optional
+        The optional terms the scan was made with (None: the paper's model).
+
+    Returns
+    -------
+    LambdaSummary
+        Every neighbouring pair of converged λ [-] between which Δs [-] changes sign, to
+        compare with the fit's λ = 1, and every point without an orbit.
+    """
     conv = sorted((r for r in rows if r["converged"]), key=lambda r: r["lam"])
     crossings = [
         {
@@ -160,8 +240,20 @@ def summarise(rows: Sequence[Mapping[str, Any]], terms: Terms | None = None) -> 
 
 
 def run_lambda_scan(*args: Any, **kwargs: Any) -> tuple[StudyRun, LambdaSummary]:
-    """Build (arguments of :func:`lambda_study`), run (:class:`RunArgs`: executor, out,
-    overwrite, progress) and summarise a Δs-against-λ scan."""
+    """Build, run and summarise a Δs-against-λ scan.
+
+    Parameters
+    ----------
+    *args, **kwargs
+        Arguments of :func:`lambda_study` and the keywords of
+        :class:`~betvdesign.studies.engine.runner.RunArgs` (executor, out, overwrite,
+        progress).
+
+    Returns
+    -------
+    tuple of (StudyRun, LambdaSummary)
+        The run (its rows) and :func:`summarise`'s summary.
+    """
     study_kw, run = split_run_args(kwargs)
     study = lambda_study(*args, **study_kw)
     result = run_study(study, **run)

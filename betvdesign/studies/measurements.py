@@ -47,7 +47,26 @@ class Measurements:
 
 
 def read_measurements(path: str | os.PathLike[str], kind: Kind) -> Measurements:
-    """Read a calibration CSV (see module doc); errors name file, line and column."""
+    """Read a calibration CSV (see module doc).
+
+    Parameters
+    ----------
+    path : path
+        The CSV file (header cells ``name [unit]``).
+    kind : {"speed", "displacement"}
+        Speed [any speed unit] against drive voltage [any voltage unit], or displacement
+        [any length unit] against time [any time unit].
+
+    Returns
+    -------
+    Measurements
+        The data in SI floats: x [V or s], y [m/s or m], sigma [as y] or None.
+
+    Raises
+    ------
+    UsageError
+        A bad header, unit, number or row; the message names file, line and column.
+    """
     from betvdesign.spec.safeyaml import read_text
     from betvdesign.spec.units import parse_units, ureg
 

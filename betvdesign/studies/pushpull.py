@@ -18,198 +18,58 @@ Damping ζ_v, ζ_h and restitution e (docs/MODEL.md, "Beyond the paper's idealis
 :mod:`betvdesign.studies.terms`) are fixed over a map: every point is then the exact
 periodic orbit with them (near α·ϖ² = 1 a finite Δs instead of "unbounded"), λ stays the
 idealised fit it is compared with, and the ``lambda`` rung is refused.
+
+A point's row, its periodic solve and the rung statements are shared with the other
+studies: :mod:`betvdesign.studies.points`.
 """
 
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import Any, Literal
+from typing import Any
 
 import numpy as np
 
-from betvdesign.checks.fidelity import RUNGS
 from betvdesign.errors import UsageError
-from betvdesign.model.params import ModelParams
 from betvdesign.studies.engine.grid import Grid, require_positive
 from betvdesign.studies.engine.runner import Study, StudyRun, run_study, split_run_args
+from betvdesign.studies.points import (
+    COLUMNS,
+    MODEL_STATEMENT,
+    Fidelity,
+    periodic_point,
+    point_row,
+    require_fidelity,
+    rung_reason,
+    vertical_precheck,
+)
 from betvdesign.studies.terms import Terms, columns_with, model_statement, require_ideal_rung
-
-Fidelity = Literal["periodic", "lambda"]
-
-#: What each rung is and why a study would use it (stated in every summary).
-MODEL_STATEMENT: dict[str, str] = {
-    "periodic": "exact periodic orbit per point (dynamics.periodic_orbit, Newton shooting on "
-    "the Poincaré map): the reference; the mode is the sign of the simulated Δs",
-    "lambda": "closed-form λ fit only (no simulation): microseconds per point, but a fit that "
-    "can name the wrong mode near λ = 1",
-}
-
-
-def rung_reason(fidelity: str) -> str:
-    """Why a study runs on ``fidelity`` (``fidelity_reason`` next to ``fidelity`` and
-    ``model`` in every summary); for λ it states the fit's held-out error rate."""
-    if fidelity == "lambda":
-        from betvdesign.checks.fidelity import lambda_error_statement
-
-        return (
-            "chosen with --fidelity lambda: λ alone, a fit whose mode can be wrong: "
-            + lambda_error_statement()
-        )
-    return (
-        "the default: every point's mode and Δs from the exact periodic orbit, the "
-        "reference the λ rule is measured against"
-    )
-
-
-def require_fidelity(fidelity: str, offered: Sequence[str] = ("periodic", "lambda")) -> None:
-    """:class:`UsageError` unless ``fidelity`` is a ladder rung this study offers."""
-    if fidelity in offered:
-        return
-    what = "fidelity" if fidelity in RUNGS else "unknown fidelity"
-    raise UsageError(
-        f"{what} {fidelity!r}: this study offers {' or '.join(offered)} "
-        f"(rungs of the fidelity ladder: {', '.join(RUNGS)})"
-    )
-
 
 AXES = ("kappa", "beta", "alpha", "varpi")
 
-#: Result columns of the map (types for the CSV store).
-COLUMNS: dict[str, type] = {
-    "key": int,
-    "varpi": float,
-    "alpha": float,
-    "beta": float,
-    "kappa": float,
-    "lam": float,
-    "mode_predicted": str,
-    "status": str,
-    "converged": bool,
-    "mode": str,
-    "delta_s": float,
-    "period_cycles": int,
-    "residual": float,
-    "floquet_radius": float,
-    "impacts_per_cycle": float,
-    "contact_fraction": float,
-    "cycles": int,
-    "message": str,
-}
-
-
-def task_params(task: Mapping[str, Any]) -> ModelParams:
-    """The model parameters of a task: its (ϖ, α, β, κ) and the optional terms it carries
-    (ζ_v, ζ_h, e; absent: 0, the paper's model)."""
-    return Terms.of(task).params(task["varpi"], task["alpha"], task["beta"], task["kappa"])
-
-
-def _base_row(task: Mapping[str, Any]) -> dict[str, Any]:
-    p = task_params(task)
-    row: dict[str, Any] = dict.fromkeys(columns_with(COLUMNS, Terms.of(task), "kappa"))
-    row.update(key=task["key"], **p.as_dict(), lam=p.lam, mode_predicted=p.mode_predicted)
-    return row
-
 
 def lambda_point(task: Mapping[str, Any]) -> dict[str, Any]:
-    """Worker of the ``lambda`` rung: λ and the mode it predicts, nothing simulated."""
-    row = _base_row(task)
+    """Worker of the ``lambda`` rung: λ and the mode it predicts, nothing simulated.
+
+    Parameters
+    ----------
+    task : mapping
+        A map task: ``key``, ϖ, α, β, κ [-] (see :func:`betvdesign.studies.points.point_row`).
+
+    Returns
+    -------
+    dict
+        One row of :data:`betvdesign.studies.points.COLUMNS`: λ of the closed-form fit of
+        Shin et al. [1]_ and the mode it predicts; status "lambda-only".
+
+    References
+    ----------
+    .. [1] K. Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773
+    """
+    row = point_row(task)
     row.update(status="lambda-only", converged=False, message="closed-form λ fit only")
     return row
-
-
-def periodic_point(task: Mapping[str, Any]) -> dict[str, Any]:
-    """Worker of the ``periodic`` rung: one periodic-orbit solve (plain data in and out).
-
-    A task carrying ``not_driven`` (from :func:`vertical_precheck`) is answered
-    without the slider: no contact recurs, so nothing drives it.
-    """
-    from betvdesign.dynamics import periodic_orbit
-
-    row = _base_row(task)
-    if task.get("not_driven"):
-        nd = task["not_driven"]
-        row.update(
-            status="not_driven",
-            converged=False,
-            impacts_per_cycle=nd["hits_per_cycle"],
-            contact_fraction=0.0,
-            cycles=0,
-            message=nd["message"],
-        )
-        return row
-    p = task_params(task)
-    kwargs: dict[str, Any] = {"tol": task["tol"]}
-    if task.get("max_cycles") is not None:
-        kwargs["max_cycles"] = task["max_cycles"]
-    try:
-        res = periodic_orbit(p, **kwargs)
-    except Exception as exc:  # a solver crash is recorded and listed, never fatal to a sweep
-        row.update(status="error", converged=False, message=solver_error(exc))
-        return row
-    floquet = getattr(res, "floquet", None)
-    radius = None
-    if floquet is not None and len(floquet):
-        radius = float(np.max(np.abs(np.asarray(floquet))))
-    delta_s = _finite_or_none(getattr(res, "delta_s", None))
-    row.update(
-        status=str(res.status),
-        converged=bool(res.success),
-        mode=getattr(res, "mode", None) if res.success else None,
-        delta_s=delta_s,
-        period_cycles=_int_or_none(getattr(res, "period_cycles", None)),
-        residual=_finite_or_none(getattr(res, "residual", None)),
-        floquet_radius=radius,
-        impacts_per_cycle=_finite_or_none(getattr(res, "impacts_per_cycle", None)),
-        contact_fraction=_finite_or_none(getattr(res, "contact_fraction", None)),
-        cycles=_int_or_none(getattr(res, "transient_cycles", None)),
-        message=str(getattr(res, "message", "")),
-    )
-    return row
-
-
-def solver_error(exc: BaseException) -> str:
-    """Message of a row whose solve raised (a solver defect: report it with the point)."""
-    return f"solver raised {type(exc).__name__}: {exc} (a defect; report these parameters)"
-
-
-def _finite_or_none(x: Any) -> float | None:
-    if x is None:
-        return None
-    x = float(x)
-    return x if np.isfinite(x) else None
-
-
-def _int_or_none(x: Any) -> int | None:
-    return None if x is None else int(x)
-
-
-#: Vertical horizon [cycles] within which a contact must recur (as in ``periodic_orbit``).
-VERTICAL_HORIZON = 1000
-
-
-def vertical_precheck(
-    varpi: Sequence[float], terms: Terms | None = None
-) -> dict[float, dict[str, Any]]:
-    """ϖ values at which no contact recurs (the slider is not driven), by the vertical
-    model alone (with the terms' ζ_v and e), once per ϖ instead of once per grid point
-    ("model no more than a scene needs"; docs/MODEL.md, "Vertical motion"). A ϖ whose
-    vertical motion cannot be computed is left to the periodic solve, which reports it."""
-    from betvdesign.dynamics import vertical_motion
-    from betvdesign.dynamics.vertical import VerticalSearchError
-
-    t = terms or Terms()
-    out = {}
-    for v in sorted(set(float(x) for x in varpi)):
-        try:
-            r = vertical_motion(
-                v, zeta_v=t.zeta_v, restitution=t.restitution, max_cycles=VERTICAL_HORIZON
-            )
-        except VerticalSearchError:
-            continue
-        if r.period_cycles is None:
-            out[v] = {"hits_per_cycle": float(r.hits_per_cycle), "message": r.message}
-    return out
 
 
 def pushpull_study(
@@ -227,9 +87,41 @@ def pushpull_study(
 ) -> tuple[Study, Grid]:
     """Build the map study; grid order κ, β, α, ϖ (ϖ fastest).
 
-    zeta_v, zeta_h, restitution: the optional terms (:mod:`betvdesign.studies.terms`),
-    fixed over the map; all 0 is the paper's model and the study of before they existed.
-    The ``lambda`` rung refuses them (a fit of the idealised model).
+    Parameters
+    ----------
+    varpi : sequence of float
+        Normalised actuation frequencies ϖ = ω·sqrt(m/k_v) [-] (> 0).
+    alpha : sequence of float
+        Relative impact compliances α = k_v/k_h [-] (> 0).
+    beta : sequence of float
+        Relative masses β = m/M [-] (> 0).
+    kappa : sequence of float
+        Normalised friction κ = μ·tanθ [-] (> 0).
+    fidelity : {"periodic", "lambda"}
+        The rung: the exact periodic orbit per point (the reference) or the λ fit only.
+    tol : float
+        Fixed-point residual accepted for a periodic orbit [-].
+    max_cycles : int, optional
+        Cycle budget of each periodic solve (None: the solver's own).
+    zeta_v, zeta_h : float
+        Normal and tangential damping ratios [-], fixed over the map
+        (:mod:`betvdesign.studies.terms`; 0: undamped).
+    restitution : float
+        Coefficient of restitution e [-] (0: plastic impacts). All three 0 is the paper's
+        model and the study of before they existed; the ``lambda`` rung refuses them (a fit
+        of the idealised model).
+
+    Returns
+    -------
+    tuple of (Study, Grid)
+        The study (one task per grid point, worker :func:`points.periodic_point` or
+        :func:`lambda_point`) and its grid.
+
+    Raises
+    ------
+    UsageError
+        A non-positive axis value, a rung the map does not offer, the λ rung with the
+        optional terms, or ``max_cycles`` < 1.
     """
     terms = Terms(zeta_v, zeta_h, restitution)
     axes = {
@@ -287,7 +179,14 @@ class PushPullSummary:
         return self.n_agree / self.n_converged if self.n_converged else None
 
     def as_dict(self) -> dict[str, Any]:
-        """The summary as plain data; ``terms`` (and the note on λ) only when set."""
+        """The summary as plain data.
+
+        Returns
+        -------
+        dict
+            Rung, model statement and why, counts, agreement of λ [-], disagreements and
+            points without an orbit; ``terms`` (and the note on λ) only when set.
+        """
         extra: dict[str, Any] = {}
         if not self.terms.ideal:
             extra = {"terms": self.terms.as_dict(), "lambda_note": LAMBDA_NOTE}
@@ -311,7 +210,7 @@ class PushPullSummary:
 
 #: What λ's agreement means on a map with damping or restitution.
 LAMBDA_NOTE = (
-    "λ and mode_predicted are the fit of the idealised model (undamped, plastic impacts); "
+    "λ and lambda_mode are the fit of the idealised model (undamped, plastic impacts); "
     "with damping or restitution their agreement with the simulated modes measures how far "
     "these terms move the push/pull boundary, not the fit's accuracy"
 )
@@ -321,9 +220,26 @@ RESONANCE_RTOL = 1e-9
 
 
 def tangential_resonance(row: Mapping[str, Any]) -> str | None:
-    """Which tangential resonance a·ϖ² = 1 the point sits on, if any (docs/MODEL.md: the
-    head's tangential motion is undamped in free flight and can grow without bound there):
-    ``"alpha"`` (a = α, free flight), ``"stick"`` (a = α(1 + 1/β)) or None."""
+    """Which tangential resonance a·ϖ² = 1 the point sits on, if any.
+
+    The head's tangential motion is undamped in free flight and can grow without bound
+    there (docs/MODEL.md; the model of Shin et al. [1]_).
+
+    Parameters
+    ----------
+    row : mapping
+        A row with ``varpi`` ϖ, ``alpha`` α and ``beta`` β [-].
+
+    Returns
+    -------
+    {"alpha", "stick"} or None
+        ``"alpha"`` (a = α, free flight), ``"stick"`` (a = α(1 + 1/β)) when
+        |a·ϖ² − 1| ≤ :data:`RESONANCE_RTOL`, else None.
+
+    References
+    ----------
+    .. [1] K. Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773
+    """
     w2 = row["varpi"] ** 2
     for name, a in (("alpha", row["alpha"]), ("stick", row["alpha"] * (1 + 1 / row["beta"]))):
         if abs(a * w2 - 1.0) <= RESONANCE_RTOL:
@@ -338,14 +254,36 @@ def _brief(row: Mapping[str, Any], keys: Sequence[str]) -> dict[str, Any]:
 def summarise(
     rows: Sequence[Mapping[str, Any]], fidelity: str = "periodic", terms: Terms | None = None
 ) -> PushPullSummary:
-    """Compare λ with the simulations; list disagreements and non-converged points
-    (``terms``: those the map was made with, stated in the summary)."""
+    """Compare λ with the simulations; list disagreements and non-converged points.
+
+    Parameters
+    ----------
+    rows : sequence of mapping
+        The map's rows (:data:`betvdesign.studies.points.COLUMNS`).
+    fidelity : {"periodic", "lambda"}
+        The rung the rows were made on (points without an orbit are listed for
+        "periodic" only).
+    terms : Terms, optional
+        The optional terms the map was made with, stated in the summary (None: the
+        paper's model).
+
+    Returns
+    -------
+    PushPullSummary
+        Counts, agreement of the λ < 1 rule of Shin et al. [1]_ with the simulated modes,
+        every disagreement and every point without an orbit (with the tangential
+        resonance it sits on, :func:`tangential_resonance`).
+
+    References
+    ----------
+    .. [1] K. Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773
+    """
     point = ("key", "varpi", "alpha", "beta", "kappa", "lam")
     conv = [r for r in rows if r["converged"]]
     disagree = [
-        _brief(r, (*point, "mode_predicted", "mode", "delta_s"))
+        _brief(r, (*point, "lambda_mode", "mode", "delta_s"))
         for r in conv
-        if r["mode"] != r["mode_predicted"]
+        if r["mode"] != r["lambda_mode"]
     ]
     failed = (
         [
@@ -363,7 +301,7 @@ def summarise(
         n_push=sum(r["mode"] == "push" for r in conv),
         n_pull=sum(r["mode"] == "pull" for r in conv),
         n_agree=len(conv) - len(disagree),
-        n_predicted_push=sum(r["mode_predicted"] == "push" for r in rows),
+        n_predicted_push=sum(r["lambda_mode"] == "push" for r in rows),
         disagreements=disagree,
         not_converged=failed,
         unbounded=[d for d in failed if d["status"] == "unbounded"],
@@ -372,8 +310,20 @@ def summarise(
 
 
 def run_pushpull(*args: Any, **kwargs: Any) -> tuple[StudyRun, PushPullSummary]:
-    """Build (arguments of :func:`pushpull_study`), run (:class:`RunArgs`: executor, out,
-    overwrite, progress; streamed and resumable with ``out``) and summarise a map."""
+    """Build, run and summarise a map.
+
+    Parameters
+    ----------
+    *args, **kwargs
+        Arguments of :func:`pushpull_study` and the keywords of
+        :class:`~betvdesign.studies.engine.runner.RunArgs` (executor, out, overwrite,
+        progress; streamed and resumable with ``out``).
+
+    Returns
+    -------
+    tuple of (StudyRun, PushPullSummary)
+        The run (its rows) and :func:`summarise`'s summary.
+    """
     study_kw, run = split_run_args(kwargs)
     study, _ = pushpull_study(*args, **study_kw)
     result = run_study(study, **run)

@@ -43,7 +43,7 @@ import numpy as np
 from betvdesign.errors import UsageError
 from betvdesign.studies.engine.grid import Grid
 from betvdesign.studies.engine.runner import RunArgs, Study, StudyRun, run_study
-from betvdesign.studies.pushpull import solver_error
+from betvdesign.studies.points import solver_error
 from betvdesign.studies.terms import Terms, model_statement
 
 if TYPE_CHECKING:
@@ -75,9 +75,26 @@ COLUMNS: dict[str, type] = {
 
 
 def impulsive_period(vs: VerticalSchedule) -> tuple[int | None, float]:
-    """(period in cycles or None, impulsive hits per cycle) of impulsive-only motion.
+    """Period and hit rate of impulsive-only motion.
 
-    Uses the hit phases of the second half of the schedule's cycles (see module doc).
+    Uses the hit phases of the second half of the schedule's cycles (see module doc):
+    an impulsive hit leaves ξ = ξ' = 0 in the model of Shin et al. [1]_, so the motion
+    after it depends on the hit's phase in the cycle T = 2π/ϖ only.
+
+    Parameters
+    ----------
+    vs : VerticalSchedule
+        The vertical motion's cycles
+        (:func:`betvdesign.dynamics.vertical.vertical_motion_schedule`).
+
+    Returns
+    -------
+    tuple of (int or None, float)
+        The period [cycles] (None: none found) and the impulsive hits per cycle [-].
+
+    References
+    ----------
+    .. [1] K. Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773
     """
     T = 2.0 * math.pi / vs.varpi
     hits = [
@@ -111,7 +128,21 @@ def _state_recurs(vs: VerticalSchedule, k: int) -> bool:
 
 
 def regime_point(task: Mapping[str, Any]) -> dict[str, Any]:
-    """Worker: vertical-only motion at one ϖ (plain data in and out)."""
+    """Worker: vertical-only motion at one ϖ (plain data in and out).
+
+    Parameters
+    ----------
+    task : mapping
+        ``key``, ``varpi`` ϖ [-], ``max_cycles`` (the horizon [cycles]) and optionally
+        ``zeta_v`` ζ_v and ``restitution`` e [-].
+
+    Returns
+    -------
+    dict
+        One row of :func:`regime_columns`: status, label (see module doc), the vertical
+        solver's regime, period [cycles], hits and impulsive hits per cycle [-], contact
+        fraction [-] and message; a solve that raises gives status "error".
+    """
     from betvdesign.dynamics.vertical import vertical_motion_schedule
 
     terms = {n: float(task[n]) for n in VERTICAL_TERMS if task.get(n)}
@@ -154,7 +185,18 @@ def regime_point(task: Mapping[str, Any]) -> dict[str, Any]:
 
 
 def regime_columns(with_terms: bool) -> dict[str, type]:
-    """:data:`COLUMNS`, with ``zeta_v`` and ``restitution`` after ϖ when a term is set."""
+    """The result columns of the regime study.
+
+    Parameters
+    ----------
+    with_terms : bool
+        Whether ζ_v or e is set.
+
+    Returns
+    -------
+    dict of str to type
+        :data:`COLUMNS`, with ``zeta_v`` and ``restitution`` after ϖ when a term is set.
+    """
     if not with_terms:
         return dict(COLUMNS)
     head = {"key": int, "varpi": float} | dict.fromkeys(VERTICAL_TERMS, float)
@@ -168,8 +210,30 @@ def regime_study(
     zeta_v: float = 0.0,
     restitution: float = 0.0,
 ) -> Study:
-    """One vertical-only solve per ϖ (ascending); ``zeta_v``, ``restitution``: normal
-    damping ratio and coefficient of restitution, fixed (0: the paper's model)."""
+    """One vertical-only solve per ϖ (ascending).
+
+    Parameters
+    ----------
+    varpi : sequence of float
+        Normalised actuation frequencies ϖ = ω·sqrt(m/k_v) [-] (> 0).
+    max_cycles : int
+        Horizon of each solve [cycles] (>= 4).
+    zeta_v : float
+        Normal damping ratio ζ_v [-], fixed (0: undamped).
+    restitution : float
+        Coefficient of restitution e [-], fixed (0: plastic impacts; both 0: the paper's
+        model).
+
+    Returns
+    -------
+    Study
+        One task per ϖ, worker :func:`regime_point`.
+
+    Raises
+    ------
+    UsageError
+        A non-positive ϖ or ``max_cycles`` < 4.
+    """
     terms = Terms(zeta_v=zeta_v, restitution=restitution)
     fixed = {n: getattr(terms, n) for n in VERTICAL_TERMS} if not terms.ideal else {}
     v = np.asarray(varpi, dtype=float)
@@ -193,18 +257,49 @@ class Interval:
     points: int
 
     def as_dict(self) -> dict[str, Any]:
+        """The interval as plain data.
+
+        Returns
+        -------
+        dict
+            ``label``, ``from`` and ``to`` (ϖ [-]) and ``points``.
+        """
         return {"label": self.label, "from": self.lo, "to": self.hi, "points": self.points}
 
 
 def coarse_label(label: str) -> str:
-    """Label for the overview: long periods (k > :data:`LONG_PERIOD`) join ``aperiodic``."""
+    """Label for the overview.
+
+    Parameters
+    ----------
+    label : str
+        A point's label.
+
+    Returns
+    -------
+    str
+        ``label``, except long periods (k > :data:`LONG_PERIOD`) that join ``aperiodic``.
+    """
     if label.startswith("period-") and int(label.split("-")[1]) > LONG_PERIOD:
         return "aperiodic"
     return label
 
 
 def intervals(rows: Sequence[Mapping[str, Any]], *, coarse: bool = False) -> list[Interval]:
-    """Contiguous runs of equal labels along ϖ (``coarse``: see :func:`coarse_label`)."""
+    """Contiguous runs of equal labels along ϖ.
+
+    Parameters
+    ----------
+    rows : sequence of mapping
+        The study's rows (``varpi``, ``label``).
+    coarse : bool
+        Label the overview's way (:func:`coarse_label`).
+
+    Returns
+    -------
+    list of Interval
+        The runs in ascending ϖ.
+    """
     out: list[Interval] = []
     for r in sorted(rows, key=lambda r: r["varpi"]):
         label = coarse_label(r["label"]) if coarse else r["label"]
@@ -217,8 +312,21 @@ def intervals(rows: Sequence[Mapping[str, Any]], *, coarse: bool = False) -> lis
 
 
 def summarise(rows: Sequence[Mapping[str, Any]], terms: Terms | None = None) -> dict[str, Any]:
-    """Intervals, counts per label, and every failed point (``terms``: the ζ_v and e the
-    diagram was made with, stated when set)."""
+    """Intervals, counts per label, and every failed point.
+
+    Parameters
+    ----------
+    rows : sequence of mapping
+        The study's rows.
+    terms : Terms, optional
+        The ζ_v and e the diagram was made with, stated when set (None: the paper's model).
+
+    Returns
+    -------
+    dict
+        Rung ("vertical"), model statement and why, points, counts per label, the
+        overview's and the full intervals, and every point whose solve raised.
+    """
     terms = terms or Terms()
     extra = {} if terms.ideal else {"terms": {n: getattr(terms, n) for n in VERTICAL_TERMS}}
     ivs = intervals(rows)
@@ -255,8 +363,21 @@ def run_regime(
     restitution: float = 0.0,
     **run: Unpack[RunArgs],
 ) -> tuple[StudyRun, dict[str, Any]]:
-    """Build, run and summarise the vertical regime diagram (``zeta_v``,
-    ``restitution``: as :func:`regime_study`)."""
+    """Build, run and summarise the vertical regime diagram.
+
+    Parameters
+    ----------
+    varpi, max_cycles, zeta_v, restitution
+        As :func:`regime_study`.
+    **run
+        :class:`~betvdesign.studies.engine.runner.RunArgs` (executor, out, overwrite,
+        progress).
+
+    Returns
+    -------
+    tuple of (StudyRun, dict)
+        The run (its rows) and :func:`summarise`'s summary.
+    """
     study = regime_study(varpi, max_cycles=max_cycles, zeta_v=zeta_v, restitution=restitution)
     result = run_study(study, **run)
     return result, summarise(result.rows, Terms.of(study.parameters))

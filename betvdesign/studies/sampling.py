@@ -20,17 +20,35 @@ import pint
 from betvdesign.errors import BetvError, UsageError
 from betvdesign.model.params import ModelParams
 from betvdesign.spec import limits
-from betvdesign.spec.paths import numeric, replace, targets, value_at
+from betvdesign.spec.paths import given, numeric, with_values
 
 
 def nominal_values(spec: Any, tolerances: Sequence[Any]) -> dict[str, tuple[float, str]]:
-    """Nominal magnitude and unit of each toleranced field (checked against the spec)."""
+    """Nominal magnitude and unit of each toleranced field (checked against the spec).
+
+    Parameters
+    ----------
+    spec : DeviceSpec
+        The nominal device.
+    tolerances : sequence of Tolerance
+        The toleranced fields (:class:`betvdesign.studies.tolerance.Tolerance`).
+
+    Returns
+    -------
+    dict of str to (float, str)
+        Per field path: its magnitude and unit as the device file gives it ("" for a
+        unit-less field).
+
+    Raises
+    ------
+    UsageError
+        A field given twice, not numeric, or with different values in different sets.
+    """
     out: dict[str, tuple[float, str]] = {}
     for tol in tolerances:
         if tol.field in out:
             raise UsageError(f"{tol.source}: {tol.field}: given twice")
-        values = [value_at(spec, t) for t in targets(spec, tol.field)]
-        present = [v for v in values if v is not None]
+        present = given(spec, tol.field)
         if not present or not all(numeric(v) for v in present):
             raise UsageError(
                 f"{tol.source}: {tol.field}: not a numeric field of device {spec.name!r} "
@@ -56,10 +74,31 @@ def draw(
     n: int,
     seed: int,
 ) -> np.ndarray:
-    """Sampled magnitudes, shape (n, fields), in each field's nominal unit.
+    """Sampled magnitudes in each field's nominal unit.
 
     One seeded ``Generator``; fields drawn in the order given: normal
     ``x0(1 + r·z)`` or ``x0 + a·z``; uniform with half-width r or a.
+
+    Parameters
+    ----------
+    tolerances : sequence of Tolerance
+        The fields' distributions: relative r [-] or absolute a [the field's unit].
+    nominal : mapping of str to (float, str)
+        :func:`nominal_values`.
+    n : int
+        Number of samples.
+    seed : int
+        Seed of the generator.
+
+    Returns
+    -------
+    numpy.ndarray
+        Shape (n, len(tolerances)) [each field's nominal unit].
+
+    Raises
+    ------
+    UsageError
+        An absolute tolerance not in the field's units, or not > 0.
     """
     from betvdesign.spec.units import parse_quantity
 
@@ -86,7 +125,18 @@ def draw(
 
 
 def check_sample(values: Mapping[str, tuple[float, str]]) -> None:
-    """:class:`BetvError` for a sample the spec cannot take (non-positive, angle ≥ 90°)."""
+    """Refuse a sample the spec cannot take.
+
+    Parameters
+    ----------
+    values : mapping of str to (float, str)
+        Sampled magnitude and unit per field path.
+
+    Raises
+    ------
+    BetvError
+        A non-positive value, or an impact angle ≥ 90° [deg].
+    """
     for field, (mag, unit) in values.items():
         if mag <= 0.0:
             raise BetvError(f"{field} sampled non-positive ({mag:g} {unit})")
@@ -104,8 +154,28 @@ def derive_all(
     x: np.ndarray,
     set_index: int,
 ) -> dict[str, np.ndarray] | None:
-    """Every sample of one set derived at once (nondim.derive_samples); None when some
-    sample cannot be derived that way (then each is derived on its own)."""
+    """Every sample of one set derived at once (nondim.derive_samples).
+
+    Parameters
+    ----------
+    spec : DeviceSpec
+        The nominal device.
+    tolerances : sequence of Tolerance
+        The sampled fields, in the columns' order of ``x``.
+    nominal : mapping of str to (float, str)
+        :func:`nominal_values`.
+    x : numpy.ndarray
+        :func:`draw`'s samples, shape (n, fields) [nominal units].
+    set_index : int
+        Index of the actuator set in ``spec.actuator_sets``.
+
+    Returns
+    -------
+    dict of str to numpy.ndarray, or None
+        Per sample: ϖ, α, β, κ, ζ_v, ζ_h, e [-], ``length_m`` ℓ = u·cosθ [m] and
+        ``f_act_hz`` [Hz]; None when some sample cannot be derived that way (then each is
+        derived on its own).
+    """
     from betvdesign.nondim.device import derive_samples
     from betvdesign.spec.units import ureg
 
@@ -114,11 +184,7 @@ def derive_all(
         mag, unit = nominal[t.field][0], nominal[t.field][1]
         col = np.where(x[:, j] > 0, x[:, j], mag)  # invalid draws: rejected per task
         values[t.field] = ureg.Quantity(col, unit) if unit else col
-    arrays = spec
-    for field, value in values.items():
-        for target in targets(spec, field):
-            if value_at(spec, target) is not None:
-                arrays = replace(arrays, target, value)
+    arrays = with_values(spec, values)
     try:
         with np.errstate(all="ignore"):
             d = derive_samples(arrays, arrays.actuator_sets[set_index])
@@ -132,8 +198,24 @@ PARAM_FIELDS = tuple(f.name for f in dataclasses.fields(ModelParams))
 
 
 def params_of(derived: Mapping[str, Any], j: int | None = None) -> ModelParams:
-    """The model parameters of one sample of :func:`derive_all`'s columns (``j``: its
-    index; None: ``derived`` holds that sample's floats). :class:`ParameterError` for
-    values the model cannot take (e.g. a sampled restitution ≥ 1)."""
+    """The model parameters of one sample of :func:`derive_all`'s columns.
+
+    Parameters
+    ----------
+    derived : mapping
+        :func:`derive_all`'s columns, or one sample's floats.
+    j : int, optional
+        The sample's index (None: ``derived`` holds that sample's floats).
+
+    Returns
+    -------
+    ModelParams
+        The sample's parameters.
+
+    Raises
+    ------
+    ParameterError
+        Values the model cannot take (e.g. a sampled restitution ≥ 1).
+    """
     pick = (lambda v: v) if j is None else (lambda v: v[j])
     return ModelParams(**{k: float(pick(derived[k])) for k in PARAM_FIELDS})

@@ -55,7 +55,19 @@ class Terms:
 
     @classmethod
     def of(cls, source: Mapping[str, Any]) -> Terms:
-        """The terms a task, a row or a parameter mapping carries (absent: 0)."""
+        """The terms a task, a row or a parameter mapping carries.
+
+        Parameters
+        ----------
+        source : mapping
+            A task, row or study parameters with ``zeta_v``, ``zeta_h``, ``restitution``
+            [-] (absent or None: 0).
+
+        Returns
+        -------
+        Terms
+            The validated terms.
+        """
         return cls(*(float(source.get(n) or 0.0) for n in NAMES))
 
     @property
@@ -64,16 +76,45 @@ class Terms:
         return self.zeta_v == 0.0 and self.zeta_h == 0.0 and self.restitution == 0.0
 
     def as_dict(self) -> dict[str, float]:
-        """All three terms when one is set, else {} (as ``ModelParams.as_dict``)."""
+        """The terms as plain data.
+
+        Returns
+        -------
+        dict
+            ``zeta_v``, ``zeta_h``, ``restitution`` [-] when one is set, else {} (as
+            ``ModelParams.as_dict``).
+        """
         return {} if self.ideal else {n: getattr(self, n) for n in NAMES}
 
     def params(self, varpi: float, alpha: float, beta: float, kappa: float) -> ModelParams:
-        """The model parameters of one grid point with these terms."""
+        """The model parameters of one grid point with these terms.
+
+        Parameters
+        ----------
+        varpi, alpha, beta, kappa : float
+            ϖ, α, β, κ of the point [-].
+
+        Returns
+        -------
+        ModelParams
+            The point's parameters with ζ_v, ζ_h and e.
+        """
         return ModelParams(varpi, alpha, beta, kappa, self.zeta_v, self.zeta_h, self.restitution)
 
     def statement(self, names: tuple[str, ...] = NAMES) -> str:
-        """``ζ_v = 0.01 (Q = 50), ζ_h = 0.02 (Q = 25), e = 0.1`` (the terms ``names``),
-        or the paper's model."""
+        """The terms in words, for a model statement.
+
+        Parameters
+        ----------
+        names : tuple of str
+            The terms to state (the regime study states ζ_v and e only).
+
+        Returns
+        -------
+        str
+            ``ζ_v = 0.01 (Q = 50), ζ_h = 0.02 (Q = 25), e = 0.1`` with the quality factor
+            Q = 1/(2ζ) [-], or the paper's model.
+        """
         if self.ideal:
             return "the paper's idealised model (undamped, plastic impacts)"
         parts = []
@@ -87,8 +128,23 @@ class Terms:
 
 
 def columns_with(columns: Mapping[str, type], terms: Terms, after: str) -> dict[str, type]:
-    """``columns`` with the terms' float columns inserted after ``after`` when a term is
-    set (``columns`` unchanged for the paper's model)."""
+    """A study's result columns with the terms' columns.
+
+    Parameters
+    ----------
+    columns : mapping of str to type
+        The columns of the idealised study.
+    terms : Terms
+        The study's terms.
+    after : str
+        The column the terms' float columns follow.
+
+    Returns
+    -------
+    dict of str to type
+        ``columns`` with ``zeta_v``, ``zeta_h``, ``restitution`` after ``after`` when a term
+        is set (``columns`` unchanged for the paper's model).
+    """
     if terms.ideal:
         return dict(columns)
     out: dict[str, type] = {}
@@ -100,13 +156,41 @@ def columns_with(columns: Mapping[str, type], terms: Terms, after: str) -> dict[
 
 
 def model_statement(base: str, terms: Terms, names: tuple[str, ...] = NAMES) -> str:
-    """A study's model statement, with the terms ``names`` when one is set."""
+    """A study's model statement, with the terms when one is set.
+
+    Parameters
+    ----------
+    base : str
+        The rung's statement.
+    terms : Terms
+        The study's terms.
+    names : tuple of str
+        The terms the study's model takes.
+
+    Returns
+    -------
+    str
+        ``base``, followed by :meth:`Terms.statement` when a term is set.
+    """
     return base if terms.ideal else f"{base}; with {terms.statement(names)}"
 
 
 def require_ideal_rung(fidelity: str, terms: Terms) -> None:
-    """:class:`UsageError` when ``fidelity`` is a rung of the idealised model only
-    (:data:`betvdesign.checks.fidelity.IDEAL_ONLY`) and a term is set."""
+    """Refuse a rung of the idealised model only when a term is set.
+
+    Parameters
+    ----------
+    fidelity : str
+        The rung asked for.
+    terms : Terms
+        The study's terms.
+
+    Raises
+    ------
+    UsageError
+        ``fidelity`` is in :data:`betvdesign.checks.fidelity.IDEAL_ONLY` (the λ fit) and a
+        term is set.
+    """
     from betvdesign.checks.fidelity import IDEAL_ONLY
 
     if terms.ideal or fidelity not in IDEAL_ONLY:

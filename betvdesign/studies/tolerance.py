@@ -46,10 +46,11 @@ from betvdesign.errors import BetvError, UsageError
 from betvdesign.model.damping import term_range
 from betvdesign.model.domain import in_window
 from betvdesign.spec import limits
-from betvdesign.spec.paths import replace, targets, value_at
+from betvdesign.spec.paths import with_values
 from betvdesign.studies.engine.runner import Study, StudyRun, run_study, split_run_args
-from betvdesign.studies.pushpull import (
+from betvdesign.studies.points import (
     MODEL_STATEMENT,
+    Fidelity,
     require_fidelity,
     rung_reason,
     solver_error,
@@ -59,7 +60,6 @@ from betvdesign.studies.sampling import check_sample, derive_all, draw, nominal_
 Dist = Literal["normal", "uniform"]
 #: Distributions a tolerance may name (lower case; names are case-insensitive).
 DISTRIBUTIONS: tuple[str, ...] = ("normal", "uniform")
-Fidelity = Literal["periodic", "lambda"]
 PERCENTILES = (5.0, 25.0, 50.0, 75.0, 95.0)
 
 
@@ -74,6 +74,13 @@ class Tolerance:
     source: str = "command line"
 
     def as_dict(self) -> dict[str, Any]:
+        """The tolerance as plain data.
+
+        Returns
+        -------
+        dict
+            ``field``, ``dist``, ``relative`` [-] and ``absolute`` (text with its unit).
+        """
         return {
             "field": self.field,
             "dist": self.dist,
@@ -98,7 +105,26 @@ def _amount(text: str, field: str, source: str) -> tuple[float | None, str | Non
 
 
 def parse_tolerance(text: str, source: str = "command line") -> Tolerance:
-    """``FIELD=[normal|uniform:]AMOUNT``, AMOUNT ``2%``, ``0.2 um`` or ``0.05``."""
+    """Parse one tolerance of the command line.
+
+    Parameters
+    ----------
+    text : str
+        ``FIELD=[normal|uniform:]AMOUNT``, AMOUNT ``2%`` (relative), ``0.2 um`` (absolute,
+        any unit of the field) or ``0.05`` (a unit-less field); normal by default.
+    source : str
+        Where the text comes from (named in errors).
+
+    Returns
+    -------
+    Tolerance
+        The field's variation.
+
+    Raises
+    ------
+    UsageError
+        Text of another form, an unknown distribution or an amount not > 0.
+    """
     m = re.fullmatch(r"\s*([A-Za-z_][\w.]*)\s*=\s*(?:([A-Za-z_]\w*)\s*:)?\s*(.+?)\s*", text)
     if m and m.group(2) and m.group(2).lower() not in DISTRIBUTIONS:
         raise UsageError(
@@ -116,7 +142,25 @@ def parse_tolerance(text: str, source: str = "command line") -> Tolerance:
 
 
 def load_tolerances(path: str | os.PathLike[str]) -> list[Tolerance]:
-    """Read a ``tolerances:`` mapping from YAML (see module doc)."""
+    """Read a ``tolerances:`` mapping from YAML (see module doc).
+
+    Parameters
+    ----------
+    path : path
+        The YAML file: ``tolerances: {FIELD: {dist: normal, sigma: AMOUNT}, ...}``
+        (uniform: ``half_width``).
+
+    Returns
+    -------
+    list of Tolerance
+        The fields' variations in the file's order (each naming its file and line).
+
+    Raises
+    ------
+    UsageError
+        Not valid or not safe YAML, another top-level key, an unknown distribution or a
+        bad amount (the message names file and line).
+    """
     from ruamel.yaml import YAML, YAMLError
 
     from betvdesign.errors import SpecError
@@ -169,15 +213,10 @@ def _perturbed(task: Mapping[str, Any]) -> Any:
     from betvdesign.spec.units import ureg
 
     spec = _device(task["device"], task["mtime_ns"])
+    check_sample(task["values"])
     for field, (mag, unit) in task["values"].items():
         value = ureg.Quantity(mag, unit) if unit else float(mag)
-        if mag <= 0.0:
-            raise BetvError(f"{field} sampled non-positive ({mag:g} {unit})")
-        if field == "contact.impact_angle" and value.to("deg").magnitude >= 90.0:
-            raise BetvError(f"{field} sampled at or above 90° ({mag:g} {unit})")
-        for target in targets(spec, field):
-            if value_at(spec, target) is not None:
-                spec = replace(spec, target, value)
+        spec = with_values(spec, {field: value})
     return spec
 
 
@@ -188,6 +227,24 @@ def tolerance_point(task: Mapping[str, Any]) -> dict[str, Any]:
     parameters already (``derived``: the whole sample derived at once by
     :func:`betvdesign.nondim.device.derive_samples`, the same formulas vectorised); otherwise
     the sample is derived here with :func:`betvdesign.nondim.device.derive_set`.
+
+    Parameters
+    ----------
+    task : mapping
+        A task of :func:`tolerance_study`: key, sample, set, sampled ``values``
+        (magnitude, unit per field), rung, ``tol`` [-], columns and ``derived`` (or None).
+
+    Returns
+    -------
+    dict
+        One row: the sample's inputs, ϖ, α, β, κ, λ [-] (fit of Shin et al. [1]_) and the
+        mode it predicts, intended mode, whether ϖ is in the design window, and on the
+        periodic rung the simulated mode, Δs [-] and the speed Δs·u·cosθ·f_act [um/s];
+        status "invalid-sample" for a sample the spec or the model cannot take.
+
+    References
+    ----------
+    .. [1] K. Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773
     """
     row: dict[str, Any] = {c: None for c in task["columns"]}
     row.update(key=task["key"], sample=task["sample"], set=task["set_name"])
@@ -212,7 +269,7 @@ def tolerance_point(task: Mapping[str, Any]) -> dict[str, Any]:
     row.update(
         **p.as_dict(),
         lam=p.lam,
-        mode_predicted=p.mode_predicted,
+        lambda_mode=p.lambda_mode,
         intended=intended,
         in_window=in_window(p.varpi),
     )
@@ -244,7 +301,7 @@ BASE_COLUMNS: dict[str, type] = {
     "beta": float,
     "kappa": float,
     "lam": float,
-    "mode_predicted": str,
+    "lambda_mode": str,
     "intended": str,
     "in_window": bool,
     "mode": str,
@@ -301,7 +358,36 @@ def tolerance_study(
     tol: float = 1e-10,
     sets: Sequence[str] | None = None,
 ) -> Study:
-    """Draw the samples and build the study (tasks carry plain floats only)."""
+    """Draw the samples and build the study (tasks carry plain floats only).
+
+    Parameters
+    ----------
+    device : path
+        Device YAML file (the nominal design).
+    tolerances : sequence of Tolerance
+        The fields' variations (:func:`parse_tolerance`, :func:`load_tolerances`).
+    samples : int
+        Number of Monte Carlo samples (1 to :data:`betvdesign.spec.limits.MAX_SAMPLES`).
+    seed : int
+        Seed of the draw.
+    fidelity : {"periodic", "lambda"}
+        The rung: the exact periodic orbit per sample (the reference) or the λ fit only.
+    tol : float
+        Fixed-point residual accepted for a periodic orbit [-].
+    sets : sequence of str, optional
+        Actuator sets analysed (None: every set).
+
+    Returns
+    -------
+    Study
+        One task per (sample, set), worker :func:`tolerance_point`.
+
+    Raises
+    ------
+    UsageError
+        Bad counts, seed, rung or set, no tolerance, the λ rung for a device or spread
+        with damping or restitution, or a study over the time budget.
+    """
     from betvdesign.spec.loader import load_device
 
     if not 1 <= samples <= limits.MAX_SAMPLES:
@@ -375,7 +461,25 @@ def _spearman(x: np.ndarray, y: np.ndarray) -> float | None:
 def summarise(
     rows: Sequence[Mapping[str, Any]], tolerances: Sequence[Tolerance], fidelity: str
 ) -> dict[str, Any]:
-    """Per actuator set: probabilities, speed percentiles, sensitivities."""
+    """Per actuator set: probabilities, speed percentiles, sensitivities.
+
+    Parameters
+    ----------
+    rows : sequence of mapping
+        The study's rows (:func:`tolerance_point`).
+    tolerances : sequence of Tolerance
+        The sampled fields.
+    fidelity : {"periodic", "lambda"}
+        The rung the rows were made on.
+
+    Returns
+    -------
+    dict
+        Rung, model statement and why, and per set: P(push), P(pull), P(not converged),
+        P(not driven), P(outside the window), P(wrong mode) [-], speed percentiles
+        [um/s], Spearman rank correlations [-] of each input with λ and speed, and the
+        first 50 failures.
+    """
     out: dict[str, Any] = {
         "fidelity": fidelity,
         "model": MODEL_STATEMENT[fidelity]
@@ -387,7 +491,7 @@ def summarise(
         rs = [r for r in rows if r["set"] == name]
         n = len(rs)
         valid = [r for r in rs if r["status"] != "invalid-sample"]
-        mode_key = "mode" if fidelity == "periodic" else "mode_predicted"
+        mode_key = "mode" if fidelity == "periodic" else "lambda_mode"
         decided = [r for r in valid if r[mode_key] is not None]
         speeds = np.array([r["speed_um_s"] for r in valid if r["speed_um_s"] is not None])
         intended = rs[0]["intended"] if valid else None
@@ -449,7 +553,24 @@ def summarise(
 def run_tolerance(
     device: str | os.PathLike[str], tolerances: Sequence[Tolerance], **kwargs: Any
 ) -> tuple[StudyRun, dict[str, Any]]:
-    """Draw (keywords of :func:`tolerance_study`), run (:class:`RunArgs`) and summarise."""
+    """Draw, run and summarise a tolerance analysis.
+
+    Parameters
+    ----------
+    device : path
+        Device YAML file.
+    tolerances : sequence of Tolerance
+        The fields' variations.
+    **kwargs
+        Keywords of :func:`tolerance_study` and of
+        :class:`~betvdesign.studies.engine.runner.RunArgs` (executor, out, overwrite,
+        progress).
+
+    Returns
+    -------
+    tuple of (StudyRun, dict)
+        The run (its rows) and :func:`summarise`'s summary.
+    """
     study_kw, run = split_run_args(kwargs)
     study = tolerance_study(device, tolerances, **study_kw)
     result = run_study(study, **run)

@@ -106,12 +106,43 @@ def _init_worker(main_pid: int) -> None:
 
 
 def apply_chunk(fn: Worker, chunk: Sequence[Task]) -> list[Row]:
-    """Run ``fn`` over one chunk of tasks (module level so it pickles by reference)."""
+    """Run ``fn`` over one chunk of tasks (module level so it pickles by reference).
+
+    Parameters
+    ----------
+    fn : callable
+        The study's worker ``fn(task) -> row``.
+    chunk : sequence
+        The tasks.
+
+    Returns
+    -------
+    list of dict
+        One row per task, in the chunk's order.
+    """
     return [fn(task) for task in chunk]
 
 
 def chunked(tasks: Sequence[Task], size: int) -> list[list[Task]]:
-    """Split ``tasks`` into consecutive chunks of at most ``size`` items."""
+    """Split ``tasks`` into consecutive chunks.
+
+    Parameters
+    ----------
+    tasks : sequence
+        The tasks.
+    size : int
+        Most tasks per chunk (>= 1).
+
+    Returns
+    -------
+    list of list
+        The chunks, in the tasks' order.
+
+    Raises
+    ------
+    UsageError
+        ``size`` < 1.
+    """
     if size < 1:
         raise UsageError(f"chunk size must be >= 1, got {size}")
     return [list(tasks[i : i + size]) for i in range(0, len(tasks), size)]
@@ -123,6 +154,18 @@ def default_chunksize(n_tasks: int, workers: int) -> int:
     Point costs are heavy-tailed (a point that never settles burns the whole
     cycle budget), so many small chunks balance the load; a chunk of even one
     periodic solve (milliseconds) still dwarfs the inter-process overhead.
+
+    Parameters
+    ----------
+    n_tasks : int
+        Number of tasks.
+    workers : int
+        Number of workers.
+
+    Returns
+    -------
+    int
+        Tasks per chunk.
     """
     if n_tasks <= 0:
         return 1
@@ -143,9 +186,32 @@ class ExecutorInfo:
 class Executor(Protocol):
     """Runs a worker over tasks and yields finished chunks of rows."""
 
-    def info(self) -> ExecutorInfo: ...
+    def info(self) -> ExecutorInfo:
+        """What runs the study (recorded in the results sidecar).
 
-    def run(self, fn: Worker, tasks: Sequence[Task]) -> Iterator[list[Row]]: ...
+        Returns
+        -------
+        ExecutorInfo
+            Backend, workers, chunk size.
+        """
+        ...
+
+    def run(self, fn: Worker, tasks: Sequence[Task]) -> Iterator[list[Row]]:
+        """Run ``fn`` over ``tasks``.
+
+        Parameters
+        ----------
+        fn : callable
+            Module-level worker ``fn(task) -> row`` (plain, picklable data in and out).
+        tasks : sequence
+            The tasks, each a dict with an integer ``key``.
+
+        Yields
+        ------
+        list of dict
+            The rows of each finished chunk, in completion order.
+        """
+        ...
 
 
 class SerialExecutor:
@@ -155,9 +221,11 @@ class SerialExecutor:
         self.chunksize = chunksize
 
     def info(self) -> ExecutorInfo:
+        """What runs the study (:meth:`Executor.info`)."""
         return ExecutorInfo("serial", 1, self.chunksize)
 
     def run(self, fn: Worker, tasks: Sequence[Task]) -> Iterator[list[Row]]:
+        """Run ``fn`` over ``tasks`` in this process, in order (:meth:`Executor.run`)."""
         size = self.chunksize or default_chunksize(len(tasks), 1)
         for chunk in chunked(tasks, size):
             yield apply_chunk(fn, chunk)
@@ -200,9 +268,12 @@ class ProcessExecutor:
         self.chunksize = chunksize
 
     def info(self) -> ExecutorInfo:
+        """What runs the study (:meth:`Executor.info`)."""
         return ExecutorInfo("process", self.workers, self.chunksize)
 
     def run(self, fn: Worker, tasks: Sequence[Task]) -> Iterator[list[Row]]:
+        """Run ``fn`` over ``tasks`` on local worker processes (:meth:`Executor.run`); an
+        interrupted run terminates them."""
         if not tasks:
             return
         size = self.chunksize or default_chunksize(len(tasks), self.workers)
@@ -303,12 +374,14 @@ class DaskExecutor:
             raise UsageError(f"cannot reach dask scheduler {self.address}: {exc}") from None
 
     def info(self) -> ExecutorInfo:
+        """What runs the study (:meth:`Executor.info`)."""
         address = self.address
         if address is None and self._client is not None:
             address = self._client.scheduler.address
         return ExecutorInfo("dask", self.workers, self.chunksize, scheduler=address)
 
     def run(self, fn: Worker, tasks: Sequence[Task]) -> Iterator[list[Row]]:
+        """Run ``fn`` over ``tasks`` on the dask cluster (:meth:`Executor.run`)."""
         if not tasks:
             return
         from distributed import wait as dwait
@@ -345,7 +418,27 @@ def make_executor(
 ) -> Executor:
     """Executor by name: ``serial``, ``process`` (default) or ``dask``.
 
-    A ``scheduler`` address implies ``dask``.
+    Parameters
+    ----------
+    backend : {"serial", "process", "dask"}
+        The executor (case-insensitive).
+    workers : int, optional
+        Worker processes of ``process`` (None: every core).
+    chunksize : int, optional
+        Tasks per chunk (None: :func:`default_chunksize`).
+    scheduler : str, optional
+        A dask scheduler address ``tcp://host:port``; implies ``dask``.
+
+    Returns
+    -------
+    Executor
+        The executor.
+
+    Raises
+    ------
+    UsageError
+        An unknown backend, bounds of :mod:`betvdesign.spec.limits` exceeded, or dask
+        without a scheduler.
     """
     backend = backend.strip().lower()
     if chunksize is not None and not 1 <= chunksize <= limits.MAX_CHUNKSIZE:

@@ -46,6 +46,24 @@ def parse_range(text: str, name: str = "value") -> np.ndarray:
     ``start:stop:step`` gives start, start+step, ... up to stop inclusive
     (points are computed as start + i·step, not by accumulation, so they are
     reproducible). Lists keep the order given; duplicates are rejected.
+
+    Parameters
+    ----------
+    text : str
+        The range or list (values in the axis's own unit, [-] for ϖ, α, β, κ, λ).
+    name : str
+        The axis (named in errors).
+
+    Returns
+    -------
+    numpy.ndarray
+        The values, float64.
+
+    Raises
+    ------
+    UsageError
+        Not a number, not finite, a step <= 0, an inverted range, more than
+        :data:`MAX_POINTS_PER_AXIS` points, or duplicates.
     """
     raw = text.strip()
     if not raw:
@@ -85,7 +103,25 @@ def parse_range(text: str, name: str = "value") -> np.ndarray:
 
 
 def require_positive(values: np.ndarray, name: str) -> np.ndarray:
-    """Reject non-positive entries (the model parameters ϖ, α, β, κ are all > 0)."""
+    """Reject non-positive entries (the model parameters ϖ, α, β, κ are all > 0).
+
+    Parameters
+    ----------
+    values : numpy.ndarray
+        An axis [-].
+    name : str
+        The axis (named in errors).
+
+    Returns
+    -------
+    numpy.ndarray
+        ``values`` itself.
+
+    Raises
+    ------
+    UsageError
+        An entry <= 0 or NaN.
+    """
     bad = values[~(values > 0.0)]
     if bad.size:
         raise UsageError(f"{name}: values must be > 0, got {bad[0]:g}")
@@ -122,21 +158,40 @@ class Grid:
 
     @property
     def names(self) -> tuple[str, ...]:
+        """The axes' names, in grid order."""
         return tuple(self.axes)
 
     @property
     def shape(self) -> tuple[int, ...]:
+        """Points per axis."""
         return tuple(a.size for a in self.axes.values())
 
     @property
     def size(self) -> int:
+        """Number of points."""
         return math.prod(self.shape)
 
     def __len__(self) -> int:
         return self.size
 
     def point(self, key: int) -> GridPoint:
-        """The point with flat index ``key``."""
+        """The point with flat index ``key``.
+
+        Parameters
+        ----------
+        key : int
+            Flat C-order index, 0 to ``size`` − 1.
+
+        Returns
+        -------
+        GridPoint
+            Its key and coordinates.
+
+        Raises
+        ------
+        IndexError
+            ``key`` outside the grid.
+        """
         if not 0 <= key < self.size:
             raise IndexError(f"grid key {key} outside 0..{self.size - 1}")
         idx = np.unravel_index(key, self.shape)
@@ -150,5 +205,11 @@ class Grid:
             yield GridPoint(key, {n: float(v) for n, v in zip(names, combo, strict=True)})
 
     def as_dict(self) -> dict[str, list[float]]:
-        """JSON-friendly description (exact floats survive a JSON round trip)."""
+        """JSON-friendly description (exact floats survive a JSON round trip).
+
+        Returns
+        -------
+        dict of str to list of float
+            Every axis's values, in grid order.
+        """
         return {n: [float(v) for v in a] for n, a in self.axes.items()}

@@ -37,7 +37,18 @@ class RunArgs(TypedDict, total=False):
 
 
 def split_run_args(kwargs: Mapping[str, Any]) -> tuple[dict[str, Any], RunArgs]:
-    """Split keyword arguments into (study builder's, :class:`RunArgs`)."""
+    """Split keyword arguments into the study builder's and :class:`RunArgs`.
+
+    Parameters
+    ----------
+    kwargs : mapping
+        Keywords of a ``run_*`` helper.
+
+    Returns
+    -------
+    tuple of (dict, RunArgs)
+        The study builder's keywords and those of :func:`run_study`.
+    """
     run = {k: v for k, v in kwargs.items() if k in RunArgs.__annotations__}
     rest = {k: v for k, v in kwargs.items() if k not in run}
     return rest, RunArgs(**run)  # type: ignore[typeddict-item]
@@ -78,7 +89,34 @@ def run_study(
     overwrite: bool = False,
     progress: Progress | None = None,
 ) -> StudyRun:
-    """Run ``study`` (serially unless an executor is given), streaming to ``out``."""
+    """Run ``study`` (serially unless an executor is given), streaming to ``out``.
+
+    Parameters
+    ----------
+    study : Study
+        The study.
+    executor : Executor, optional
+        Where the tasks run (None: :class:`SerialExecutor`).
+    out : path, optional
+        CSV file the rows are appended to as chunks finish (with a JSON sidecar); a
+        finished or interrupted output of the same study is resumed.
+    overwrite : bool
+        Replace an output of another study instead of refusing it.
+    progress : callable, optional
+        ``progress(done, total)`` after every chunk.
+
+    Returns
+    -------
+    StudyRun
+        Rows sorted by key, counts (total, computed, resumed), elapsed time [s], the
+        executor and the output's path.
+
+    Raises
+    ------
+    UsageError
+        A study over the time budget of :mod:`betvdesign.spec.limits`, or an output that
+        cannot be resumed.
+    """
     executor = executor or SerialExecutor()
     total = len(study.tasks)
     workers = executor.info().workers

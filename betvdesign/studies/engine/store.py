@@ -43,12 +43,29 @@ ColumnType = type[float] | type[int] | type[bool] | type[str]
 
 
 def sidecar_path(path: Path) -> Path:
-    """``results.csv`` -> ``results.json``."""
+    """The sidecar of an output: ``results.csv`` -> ``results.json``.
+
+    Parameters
+    ----------
+    path : Path
+        The output CSV.
+
+    Returns
+    -------
+    Path
+        Its JSON sidecar.
+    """
     return path.with_suffix(".json")
 
 
 def versions() -> dict[str, str]:
-    """Versions that can change results (recorded in every sidecar)."""
+    """Versions that can change results (recorded in every sidecar).
+
+    Returns
+    -------
+    dict of str to str
+        betvdesign, numpy, scipy, python and the platform.
+    """
     import numpy
     import scipy
 
@@ -64,7 +81,18 @@ def versions() -> dict[str, str]:
 
 
 def encode(value: Any) -> str:
-    """One CSV cell: floats by ``repr`` (exact round trip), None as empty."""
+    """One CSV cell: floats by ``repr`` (exact round trip), None as empty.
+
+    Parameters
+    ----------
+    value : float, int, bool, str or None
+        A row's value.
+
+    Returns
+    -------
+    str
+        The cell (booleans as ``true``/``false``).
+    """
     if value is None:
         return ""
     if isinstance(value, bool):
@@ -75,7 +103,25 @@ def encode(value: Any) -> str:
 
 
 def decode(text: str, kind: ColumnType) -> Any:
-    """Inverse of :func:`encode` for a column of type ``kind``."""
+    """Inverse of :func:`encode` for a column of type ``kind``.
+
+    Parameters
+    ----------
+    text : str
+        The cell.
+    kind : type
+        The column's type: float, int, bool or str.
+
+    Returns
+    -------
+    float, int, bool, str or None
+        The value (None for an empty cell).
+
+    Raises
+    ------
+    ValueError
+        A cell that is not of ``kind``.
+    """
     if text == "":
         return None
     if kind is bool:
@@ -217,11 +263,24 @@ class ResultStore:
 
     # -- writing --------------------------------------------------------------
     def write_sidecar(self, **updates: Any) -> None:
+        """Update the sidecar's fields and write it atomically.
+
+        Parameters
+        ----------
+        **updates
+            Sidecar fields (status, executor, counts...).
+        """
         self.meta.update(updates)
         write_atomic(self.sidecar, json.dumps(self.meta, indent=2, sort_keys=False) + "\n")
 
     def append(self, rows: Iterable[Mapping[str, Any]]) -> None:
-        """Write finished rows and flush them to disk."""
+        """Write finished rows and flush them to disk.
+
+        Parameters
+        ----------
+        rows : iterable of mapping
+            Finished rows (a key already stored is skipped).
+        """
         assert self._fh is not None, "store is closed"
         lines = []
         for row in rows:
@@ -239,7 +298,15 @@ class ResultStore:
                 self._synced = now
 
     def close(self, status: str, **updates: Any) -> None:
-        """Close the stream; on ``complete`` rewrite the CSV sorted by key."""
+        """Close the stream; on ``complete`` rewrite the CSV sorted by key.
+
+        Parameters
+        ----------
+        status : {"complete", "interrupted"}
+            The run's outcome, written to the sidecar.
+        **updates
+            Further sidecar fields.
+        """
         if self._fh is not None:
             self._fh.close()
             self._fh = None
@@ -252,12 +319,34 @@ class ResultStore:
         self.write_sidecar(status=status, done=len(self.done), **updates)
 
     def rows(self) -> list[dict[str, Any]]:
-        """Every finished row, sorted by key."""
+        """Every finished row, sorted by key.
+
+        Returns
+        -------
+        list of dict
+            The rows.
+        """
         return [self.done[k] for k in sorted(self.done)]
 
 
 def read_results(path: str | os.PathLike[str]) -> tuple[dict[str, Any], list[dict[str, Any]]]:
-    """Load a finished (or partial) output: ``(sidecar, rows sorted by key)``."""
+    """Load a finished (or partial) output.
+
+    Parameters
+    ----------
+    path : path
+        The output CSV (its JSON sidecar next to it).
+
+    Returns
+    -------
+    tuple of (dict, list of dict)
+        The sidecar and the rows sorted by key.
+
+    Raises
+    ------
+    UsageError
+        Either file unreadable.
+    """
     p = Path(path)
     try:
         meta = json.loads(sidecar_path(p).read_text(encoding="utf-8"))

@@ -30,7 +30,7 @@ F = TypeVar("F", bound=Callable)
 
 #: modules whose functions are kernels (the cache key covers all of them)
 KERNEL_MODULES = (
-    "_jit",
+    "jit",
     "flows",
     "bounds",
     "evaluators",
