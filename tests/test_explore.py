@@ -219,7 +219,7 @@ def test_map_point_at_the_device_has_the_checks_mode() -> None:
         "slider.beam_width", "10 um"
     )
     exact = check_derivation(derive(spec_i), margin=False, settle=False, adequacy=False)
-    assert fmap.mode[1, i] == exact.sets[0].mode_predicted
+    assert fmap.mode[1, i] == exact.sets[0].verdict_mode
     assert fmap.varpi[1, i] == pytest.approx(exact.sets[0].derivation.params.varpi, rel=1e-12)
     v = exact.sets[0].speed_m_s
     assert fmap.speed_m_s[1, i] == pytest.approx(v, rel=1e-12)

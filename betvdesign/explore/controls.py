@@ -10,6 +10,7 @@ to ``on_change(changes, fields)`` with ``changes`` = {edit path: file value}.
 from __future__ import annotations
 
 import contextlib
+import html
 import math
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
@@ -113,8 +114,11 @@ class ControlPanel:
             self.controls[c.field] = Control(c, widget, None, message)
             return column(widget, message)
         lo, hi = (math.log10(c.lo), math.log10(c.hi)) if c.log else (c.lo, c.hi)
+        # the label on a line of its own, over slider and text box (the designer fields'
+        # descriptions are longer than a slider is wide)
+        label = Div(text=html.escape(c.label), width=350, margin=(4, 5, 0, 5))
         widget = Slider(
-            title=c.label,
+            title=None,
             start=lo,
             end=hi,
             value=_slider_value(c, c.value if c.value is not None else c.lo),
@@ -127,7 +131,7 @@ class ControlPanel:
         widget.on_change("value", self.guard(partial(self._on_slider, c)))
         text.on_change("value", self.guard(partial(self._on_text, c)))
         self.controls[c.field] = Control(c, widget, text, message)
-        return column(row(widget, text), message)
+        return column(label, row(widget, text), message)
 
     # --- user changes (the server's loop) ----------------------------------------------
 

@@ -23,7 +23,7 @@ from typing import Any
 
 from betvdesign.errors import BetvError, SpecError
 from betvdesign.spec.loader import load_device_text
-from betvdesign.spec.paths import SET_PREFIXES
+from betvdesign.spec.paths import is_set_field, targets
 
 __all__ = ["Design", "SaveResult", "free_name", "set_path"]
 
@@ -31,7 +31,7 @@ __all__ = ["Design", "SaveResult", "free_name", "set_path"]
 def set_path(field: str, set_name: str | None) -> str:
     """The edit path of ``field`` (relative to an actuator set, or ``slider.``) for one set
     (``set_name``) or, with None, every set."""
-    if set_name is None or not field.startswith(SET_PREFIXES):
+    if set_name is None or not is_set_field(field):
         return field
     return f"actuator_sets.{set_name}.{field}"
 
@@ -89,7 +89,7 @@ class Design:
         edits = dict(self.edits)
         for path, value in changes.items():
             edits.pop(path, None)
-            if "." in path and not path.startswith("actuator_sets."):
+            if is_set_field(path):
                 # a change to every set supersedes the per-set edits of that field
                 for k in [k for k in edits if k.startswith("actuator_sets.")]:
                     if k.split(".", 2)[2] == path:
@@ -139,19 +139,12 @@ class Design:
         return text
 
     def _leaves(self) -> list[tuple[tuple[Any, ...], Any]]:
-        """(YAML key path, value) of every value to write, sets resolved."""
-        names = [s.name for s in self.original.actuator_sets]
+        """(YAML key path, value) of every value to write, sets resolved
+        (:func:`betvdesign.spec.paths.targets`: a set field without a set goes to every
+        set, a set by name to its index)."""
         out: dict[tuple[Any, ...], Any] = {}
         for path, value in self.edits.items():
-            parts = path.split(".")
-            if parts[0] == "actuator_sets":
-                i = int(parts[1]) if parts[1].isdigit() else names.index(parts[1])
-                keys = [("actuator_sets", i, *parts[2:])]
-            elif path.startswith(SET_PREFIXES):
-                keys = [("actuator_sets", i, *parts) for i in range(len(names))]
-            else:
-                keys = [tuple(parts)]
-            for k in keys:
+            for k in targets(self.original, path):
                 out[k] = value
         return list(out.items())
 

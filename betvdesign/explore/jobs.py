@@ -100,7 +100,8 @@ def fix_job(
         return None
     from betvdesign.errors import BetvError
     from betvdesign.spec.units import format_quantity
-    from betvdesign.studies.fix import find_fixes, parse_vary
+    from betvdesign.studies.fix import find_fixes
+    from betvdesign.studies.fixfields import parse_vary
 
     spec = _spec(text, filename)
     try:

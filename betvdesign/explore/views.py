@@ -13,6 +13,7 @@ import html
 import math
 from typing import Any
 
+from betvdesign.checks.rule import no_crossing
 from betvdesign.model.domain import VARPI_WINDOW, in_window
 from betvdesign.output.siformat import format_si
 from betvdesign.studies.fieldmap import MAP_MODES, FieldMap
@@ -75,6 +76,19 @@ def _motion(s: dict[str, Any], settling: dict[str, Any] | None) -> str:
         )
     elif v == 0.0:
         parts.append("the slider does not move")
+    basis = s.get("basis")  # which answer the verdict quotes (checks.travel)
+    if basis == "crossing":
+        parts.append("over the travel from rest (not settled by then)")
+    elif basis == "no-crossing":
+        cycles = (settling or {}).get("simulated_cycles")
+        f_act = (settling or {}).get("f_act_hz")
+        parts.append(
+            f"the slider {no_crossing(s['travel_range_m'], int(cycles), f_act)}"
+            if cycles and f_act
+            else "the slider does not cross its travel range"
+        )
+    elif basis == "undetermined":
+        parts.append("Δs not determined in float64 (see the mode rule)")
     if settling:
         f_act = settling.get("f_act_hz") or math.nan
         n = settling.get("cycles_to_settle")

@@ -7,9 +7,13 @@ semantics: a field below an actuator set changes in every set that has it), deri
 the derivation's own formulas on arrays (:func:`betvdesign.studies.sampling.derive_all`,
 each point on its own where a point cannot be derived that way) and solved by the exact
 periodic orbit (:func:`betvdesign.dynamics.periodic_orbit`). The mode of a point is
-what ``betv check`` reports for a set (:func:`point_mode`): "push", "pull", "stalled",
-"not driven" (no contact recurs), "unbounded" (exact tangential resonance), "no orbit"
-(not converged within the budget) or "invalid" (the device cannot take the values).
+the settled orbit's, as ``betv check`` finds it for a set (:func:`point_mode`): "push",
+"pull", "stalled", "not driven" (no contact recurs), "unbounded" (exact tangential
+resonance), "no orbit" (not converged within the budget) or "invalid" (the device cannot
+take the values). Where the slider does not settle early in its travel, ``betv check``'s
+verdict quotes the crossing of the travel from rest instead
+(:func:`betvdesign.checks.travel.travel_answer`); the map does not run that transient
+(nor the determination of Δs) per point, so there it shows the periodic mode.
 
 Rows can be computed one chunk at a time (:func:`map_rows`) so a caller can show
 progress and drop a stale map; :func:`mode_map` computes them all.
