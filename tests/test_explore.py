@@ -143,14 +143,23 @@ def test_saved_file_rechecks_to_the_page_verdict(tmp_path: Path) -> None:
 
 @pytest.mark.parametrize("name", ["push_demo", "shin2004"])
 def test_stages_are_betv_checks_own(name: str) -> None:
-    """Stage "full" is exactly ``betv check``'s device JSON; "orbit" has the same modes
-    and periodic speeds; traces are in physical units."""
+    """Stage "full" is exactly ``betv check``'s device JSON; "orbit" has the same modes;
+    "settling" the same answer (mode, basis, Δs error, speed); traces are in physical
+    units."""
     spec = load_device(DEVICES / f"{name}.yaml")
     full = evaluate(spec, "full")
     ref = DeviceView(check_derivation(derive(spec))).out.model_dump(mode="json", by_alias=True)
     assert full.out == ref
     fast = evaluate(spec, "orbit", with_traces=True)
     assert [s["mode"] for s in fast.out["sets"]] == [s["mode"] for s in ref["sets"]]
+    # how well Δs is determined and the travel from rest arrive with the settling stage:
+    # from there on the answer quoted (its basis) is betv check's
+    settled = evaluate(spec, "settling")
+    keys = ("mode", "basis", "delta_s_error", "speed_m_s")
+    assert [[s[k] for k in keys] for s in settled.out["sets"]] == [
+        [s[k] for k in keys] for s in ref["sets"]
+    ]
+    assert all(s["delta_s_error"] is None for s in fast.out["sets"])
     assert not any(r["id"] in ("settling", "model-adequacy") for r in fast.out["rules"])
     tr = fast.traces[spec.actuator_sets[0].name]
     assert tr.reason == "" and len(tr.gap_um) > 50 and len(tr.t_ms) == len(tr.x_um)
@@ -254,6 +263,39 @@ def test_point_mode_names() -> None:
     assert point_mode(R("not_driven")) == "not driven"
     assert point_mode(R("unbounded")) == "unbounded"
     assert point_mode(R("not_converged")) == "no orbit"
+
+
+def test_map_draws_the_design_and_on_axis_fixes_inside_its_axes() -> None:
+    """The star and the fixes are on the map's overlay layer (not clipped to the frame):
+    only points inside the axes are drawn; a fix that changes a field off the axes is
+    listed, not drawn."""
+    pytest.importorskip("bokeh")
+    from betvdesign.explore.mapview import MapView
+
+    spec = load_device(DEVICES / "push_demo.yaml")
+    controls = {c.field: c for c in designer_fields(spec, 0)}
+    view = MapView(lambda: controls, lambda: None, lambda *a: None, lambda: None)
+    assert (view.x_select.value, view.y_select.value) == ("drive.frequency", "slider.beam_width")
+    view.show_design(spec, 0)
+    assert view.device.data == {"x": [3.0], "y": [10.0]}  # kHz, um
+    fixes = [
+        {"values": {"drive.frequency": [4000.0, "Hz"]}},  # on the x axis: drawn
+        {"values": {"contact.friction": [0.3, ""]}},  # off the axes: not drawn
+        {"values": {"drive.frequency": [50.0, "kHz"]}},  # beyond the axis: not drawn
+        {"values": {"drive.frequency": [2.5, "kHz"], "slider.beam_width": [12.0, "um"]}},
+    ]
+    view.show_fixes(fixes, spec, 0)
+    assert view.fixes.data["label"] == ["1", "4"]
+    assert view.fixes.data["x"] == [pytest.approx(4.0), pytest.approx(2.5)]
+    assert view.fixes.data["y"] == [10.0, pytest.approx(12.0)]
+    assert view.fixes.data["x0"] == [3.0, 3.0]
+    outside = spec.replace("drive.frequency", "20 kHz")  # beyond the slider's 12 kHz
+    view.show_design(outside, 0)
+    assert view.device.data == {"x": [], "y": []}
+    view.show_fixes(fixes, outside, 0)
+    assert view.fixes.data["label"] == []
+    levels = {r.level for r in view.fig.renderers[1:]}
+    assert levels == {"overlay"}
 
 
 # --- worker jobs (run here, in-process) ---------------------------------------------------

@@ -7,7 +7,12 @@ judges a design:
 
 - ``"orbit"``: exact periodic orbits, vertical motion and the mode-margin corners (the
   part that fits in a frame of a slider drag);
-- ``"settling"``: plus the transient from rest (settling and crossing);
+- ``"settling"``: plus how well each Δs is determined in float64
+  (:mod:`betvdesign.dynamics.determination`: 8 to 14 re-solves per set, as long as the
+  rest of the orbit stage together, so not on the interactive path) and the transient
+  from rest (settling and crossing): with them the answer the verdict quotes
+  (:func:`betvdesign.checks.travel.travel_answer`: the orbit, the crossing of the
+  travel from rest, or "undetermined");
 - ``"full"``: plus the model-adequacy scan over Q and e: exactly ``betv check``.
 
 :func:`traces` samples the periodic orbit for the page's two time plots in physical
@@ -28,7 +33,7 @@ Stage = Literal["orbit", "settling", "full"]
 #: Stages in the order they arrive, with what the page says while each is computed.
 STAGES: dict[str, str] = {
     "orbit": "exact orbit, verdict and mode-margin corners",
-    "settling": "settling from rest",
+    "settling": "how well Δs is determined, settling from rest",
     "full": "model-adequacy scan over Q and e",
 }
 #: Samples of the plotted orbit: per cycle of the phase portrait's period, per cycle of
@@ -95,6 +100,7 @@ def evaluate(
     res = check_derivation(
         der,
         settle=stage != "orbit",
+        determine=stage != "orbit",
         target_speed_m_s=target_speed_m_s,
         adequacy=None if stage == "full" else False,
     )

@@ -52,6 +52,11 @@ def axis_value(spec: Any, set_index: int, c: FieldControl) -> float | None:
     return float(v.to(c.unit).magnitude) if hasattr(v, "units") else float(v)
 
 
+def _inside(c: FieldControl, v: float | None) -> bool:
+    """Whether ``v`` lies on the map's axis of control ``c`` (its slider range)."""
+    return v is not None and c.lo <= v <= c.hi
+
+
 def _fix_value(axis: FieldControl, values: dict[str, Any], current: float) -> float:
     """A fix's value of the field on ``axis`` (in the axis unit), else ``current``."""
     from betvdesign.spec.units import ureg
@@ -163,6 +168,10 @@ class MapView:
             ("y", "@yv"),
         ]
         fig.add_tools(HoverTool(renderers=[quads], tooltips=tips))
+        # the design and the fixes are on the plot's overlay canvas: moving them repaints
+        # that layer only, not the map's cells and axes (Bokeh repaints its primary canvas
+        # only for a change below level "overlay"); that layer is not clipped to the
+        # frame, so only points inside the axes are drawn (:func:`_inside`)
         fig.segment(
             "x0",
             "y0",
@@ -172,6 +181,7 @@ class MapView:
             line_color="#0969da",
             line_dash="dashed",
             line_width=2,
+            level="overlay",
         )
         fig.scatter(
             "x",
@@ -181,6 +191,7 @@ class MapView:
             size=14,
             fill_color="#0969da",
             line_color="white",
+            level="overlay",
         )
         fig.scatter(
             "x",
@@ -190,6 +201,7 @@ class MapView:
             size=18,
             fill_color="#cf222e",
             line_color="black",
+            level="overlay",
         )
         for r in fig.renderers[1:]:
             r.nonselection_glyph = r.glyph
@@ -216,7 +228,8 @@ class MapView:
     def show_design(self, spec: Any, set_index: int) -> None:
         cx, cy = self.axes()
         x, y = axis_value(spec, set_index, cx), axis_value(spec, set_index, cy)
-        self.device.data = {"x": [] if x is None else [x], "y": [] if y is None else [y]}
+        shown = _inside(cx, x) and _inside(cy, y)
+        self.device.data = {"x": [x] if shown else [], "y": [y] if shown else []}
 
     def show_fixes(self, fixes: list[dict[str, Any]], spec: Any, set_index: int) -> None:
         """Draw the fixes whose changed fields are on the map's axes."""
@@ -225,9 +238,12 @@ class MapView:
         pts: dict[str, list[Any]] = {k: [] for k in _FIX_COLUMNS}
         for k, c in enumerate(fixes):
             values = c["values"]
-            if set(values) <= {cx.field, cy.field} and x0 is not None and y0 is not None:
-                pts["x"].append(_fix_value(cx, values, x0))
-                pts["y"].append(_fix_value(cy, values, y0))
+            if set(values) <= {cx.field, cy.field} and _inside(cx, x0) and _inside(cy, y0):
+                x, y = _fix_value(cx, values, x0), _fix_value(cy, values, y0)  # type: ignore[arg-type]
+                if not (_inside(cx, x) and _inside(cy, y)):
+                    continue
+                pts["x"].append(x)
+                pts["y"].append(y)
                 pts["x0"].append(x0)
                 pts["y0"].append(y0)
                 pts["label"].append(str(k + 1))

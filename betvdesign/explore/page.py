@@ -9,11 +9,11 @@ Flow of a change (the latest value wins, stale work is dropped):
    control the loader's message and leaves the design as it was), then the "orbit"
    stage is computed (:func:`betvdesign.explore.compute.evaluate`) and handed back to the
    loop, which redraws the verdict and the orbit;
-3. once the design has been still for :data:`SETTLE_MS`, the slow stages (settling,
-   model adequacy, then the fix search when the verdict fails) and, when a field off the
-   map's axes changed, the map go to the worker processes
-   (:class:`betvdesign.explore.jobs.Workers`) and arrive progressively; the page lists
-   what is still computing.
+3. once the design has been still for :data:`SETTLE_MS`, the slow stages (how well Δs
+   is determined and the settling from rest, model adequacy, then the fix search when
+   the verdict fails) and, when a field off the map's axes changed, the map go to the
+   worker processes (:class:`betvdesign.explore.jobs.Workers`) and arrive
+   progressively; the page lists what is still computing.
 
 The controls are :mod:`~betvdesign.explore.controls`, the map
 :mod:`~betvdesign.explore.mapview`, the HTML :mod:`~betvdesign.explore.views`.
