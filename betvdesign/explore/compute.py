@@ -123,16 +123,17 @@ def evaluate(
 
 
 def traces(sd: Any, periodic: Any) -> SetTraces:
-    """The periodic orbit of one set (a SetDerivation and its ``periodic_orbit``
-    result) sampled for the page (see :class:`SetTraces`)."""
+    """The periodic orbit of one set (a SetDerivation and its
+    :class:`~betvdesign.dynamics.result.PeriodicResult`, None when none was computed)
+    sampled for the page (see :class:`SetTraces`)."""
     from betvdesign.dynamics import simulate
 
-    if periodic is None or not getattr(periodic, "success", False):
-        why = getattr(periodic, "message", "") or "no periodic orbit"
-        return SetTraces(reason=str(why).splitlines()[0])
+    if periodic is None or not periodic.success or periodic.state is None:
+        why = "" if periodic is None else periodic.message
+        return SetTraces(reason=(why or "no periodic orbit").splitlines()[0])
     p = sd.params
     sc = sd.scales
-    k = int(getattr(periodic, "period_cycles", 1) or 1)
+    k = periodic.period_cycles or 1
     n = k * PLOT_CYCLES
     try:
         run = simulate(p, n, dense=True, state0=np.asarray(periodic.state, dtype=float))
