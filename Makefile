@@ -1,5 +1,5 @@
 # betvdesign: two commands do all set-up (see README).
-#   make demo  -> .venv, install, compiled solver kernels (cached), design reports (HTML + PDF) of shin2004 and push_demo, and shin2004's mask layout (GDS + SVG) under reports/
+#   make demo  -> .venv, install (with the layout and explore extras), compiled solver kernels (cached), design reports (HTML + PDF) of shin2004 and push_demo, and shin2004's mask layout (GDS + SVG) under reports/; then `betv explore devices/push_demo.yaml`
 #   make test  -> .venv with test extras, system packages (when root), whole suite
 PYTHON ?= python3
 VENV   := .venv
@@ -10,7 +10,7 @@ BIN    := $(VENV)/bin
 $(VENV)/.stamp-run: pyproject.toml
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install -q --upgrade pip
-	$(BIN)/python -m pip install -q -e '.[layout]'
+	$(BIN)/python -m pip install -q -e '.[layout,explore]'
 	touch $@
 
 $(VENV)/.stamp-test: pyproject.toml $(VENV)/.stamp-run

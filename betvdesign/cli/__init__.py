@@ -55,6 +55,7 @@ _COMMANDS: tuple[str, ...] = (
     "simulate",
     "layout",
     "extract",
+    "explore",
 )
 
 for _name in _COMMANDS:

@@ -1,0 +1,158 @@
+"""What the page computes for a design point, in stages, through ``betv check``'s own path.
+
+Every stage is :func:`betvdesign.checks.checker.check_derivation` on
+:func:`betvdesign.nondim.device.derive` of the design's spec, shown through
+:class:`betvdesign.checks.view.DeviceView` (the ``betv check --json`` shape); nothing here
+judges a design:
+
+- ``"orbit"``: exact periodic orbits, vertical motion and the mode-margin corners (the
+  part that fits in a frame of a slider drag);
+- ``"settling"``: plus how well each Δs is determined in float64
+  (:mod:`betvdesign.dynamics.determination`: 8 to 14 re-solves per set, as long as the
+  rest of the orbit stage together, so not on the interactive path) and the transient
+  from rest (settling and crossing): with them the answer the verdict quotes
+  (:func:`betvdesign.checks.travel.travel_answer`: the orbit, the crossing of the
+  travel from rest, or "undetermined");
+- ``"full"``: plus the model-adequacy scan over Q and e: exactly ``betv check``.
+
+:func:`traces` samples the periodic orbit for the page's two time plots in physical
+units (head gap and its rate; slider position against time).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+from typing import Any, Literal
+
+import numpy as np
+
+Stage = Literal["orbit", "settling", "full"]
+
+#: Stages in the order they arrive, with what the page says while each is computed.
+STAGES: dict[str, str] = {
+    "orbit": "exact orbit, verdict and mode-margin corners",
+    "settling": "how well Δs is determined, settling from rest",
+    "full": "model-adequacy scan over Q and e",
+}
+#: Samples of the plotted orbit: per cycle of the phase portrait's period, per cycle of
+#: the slider motion after it; cycles of slider motion plotted.
+PORTRAIT_SAMPLES = 120
+MOTION_SAMPLES = 20
+PLOT_CYCLES = 4
+
+__all__ = ["PLOT_CYCLES", "STAGES", "Evaluation", "SetTraces", "evaluate", "traces"]
+
+
+@dataclass(frozen=True)
+class SetTraces:
+    """One actuator set's periodic motion in physical units (empty with ``reason``).
+
+    gap_um, gap_rate_mm_s: the head's normal gap [µm] and its rate [mm/s] over one
+    period of the orbit; t_ms, x_um: the slider position along the device's x [µm]
+    against time [ms] over :data:`PLOT_CYCLES` periods, from the orbit's section.
+    """
+
+    gap_um: list[float] = field(default_factory=list)
+    gap_rate_mm_s: list[float] = field(default_factory=list)
+    t_ms: list[float] = field(default_factory=list)
+    x_um: list[float] = field(default_factory=list)
+    reason: str = ""
+
+
+@dataclass
+class Evaluation:
+    """One stage's answer for the design: ``out`` is the ``betv check --json`` device
+    object; ``settling`` per set (:meth:`Settling.as_dict` plus ``f_act_hz``) when that
+    stage ran; ``traces`` per set name (stage "orbit"); ``elapsed_s`` [s]."""
+
+    stage: str
+    out: dict[str, Any]
+    settling: dict[str, dict[str, Any] | None] = field(default_factory=dict)
+    traces: dict[str, SetTraces] = field(default_factory=dict)
+    elapsed_s: float = 0.0
+
+    @property
+    def verdict(self) -> str:
+        return str(self.out["verdict"])
+
+
+def evaluate(
+    spec: Any,
+    stage: Stage,
+    *,
+    target_speed_m_s: float | None = None,
+    select: tuple[str, ...] = (),
+    ignore: tuple[str, ...] = (),
+    source_file: str = "",
+    with_traces: bool | str = False,
+) -> Evaluation:
+    """Check ``spec`` (a DeviceSpec) up to ``stage`` (see the module docstring);
+    ``select``/``ignore`` as ``betv check --select/--ignore``; ``with_traces``: sample
+    the orbit of every set (True) or of the set of that name."""
+    from betvdesign.checks.checker import check_derivation
+    from betvdesign.checks.view import DeviceView, RuleFilter
+    from betvdesign.nondim.device import derive
+
+    t0 = time.perf_counter()
+    der = derive(spec)
+    res = check_derivation(
+        der,
+        settle=stage != "orbit",
+        determine=stage != "orbit",
+        target_speed_m_s=target_speed_m_s,
+        adequacy=None if stage == "full" else False,
+    )
+    res.source_file = source_file
+    out = DeviceView(res, RuleFilter(select, ignore)).out.model_dump(mode="json", by_alias=True)
+    settling: dict[str, dict[str, Any] | None] = {}
+    tr: dict[str, SetTraces] = {}
+    for sc in res.sets:
+        name = sc.derivation.name
+        st = sc.settling
+        if stage != "orbit":
+            settling[name] = (
+                {**st.as_dict(), "f_act_hz": sc.derivation.scales.f_act_hz}
+                if st is not None and hasattr(st, "as_dict")
+                else None
+            )
+        if with_traces is True or with_traces == name:
+            tr[name] = traces(sc.derivation, sc.periodic)
+    return Evaluation(stage, out, settling, tr, time.perf_counter() - t0)
+
+
+def traces(sd: Any, periodic: Any) -> SetTraces:
+    """The periodic orbit of one set (a SetDerivation and its
+    :class:`~betvdesign.dynamics.result.PeriodicResult`, None when none was computed)
+    sampled for the page (see :class:`SetTraces`)."""
+    from betvdesign.dynamics import simulate
+
+    if periodic is None or not periodic.success or periodic.state is None:
+        why = "" if periodic is None else periodic.message
+        return SetTraces(reason=(why or "no periodic orbit").splitlines()[0])
+    p = sd.params
+    sc = sd.scales
+    k = periodic.period_cycles or 1
+    n = k * PLOT_CYCLES
+    try:
+        run = simulate(p, n, dense=True, state0=np.asarray(periodic.state, dtype=float))
+    except Exception as exc:  # shown in the page, never a crash
+        return SetTraces(reason=f"{type(exc).__name__}: {exc}")
+    if not run.success:
+        return SetTraces(reason=str(run.message).splitlines()[0])
+    period = 2.0 * math.pi / p.varpi
+    first = np.linspace(0.0, k * period, k * PORTRAIT_SAMPLES + 1)
+    rest = np.linspace(k * period, n * period, (n - k) * MOTION_SAMPLES + 1)[1:]
+    tau = np.concatenate([first, rest])
+    states = np.asarray(run.sample(tau), dtype=float)
+    one = slice(0, len(first))
+    gap_m = sc.u_m * math.sin(sc.theta_rad)  # ξ = gap/(u sinθ), MODEL.md
+    rate = gap_m / sc.time_s  # [m/s] per unit ξ'
+    x = sd.impact_sign * (states[:, 4] - states[0, 4]) * sc.length_m
+    return SetTraces(
+        gap_um=(states[one, 0] * gap_m * 1e6).tolist(),
+        gap_rate_mm_s=(states[one, 1] * rate * 1e3).tolist(),
+        t_ms=(tau * sc.time_s * 1e3).tolist(),
+        x_um=(x * 1e6).tolist(),
+    )

@@ -1,0 +1,152 @@
+"""The ``betv explore`` server: a Bokeh server on 127.0.0.1 in this process.
+
+The numba solver stays in this process (the orbit stage of every change) and in the
+worker processes of :class:`betvdesign.explore.jobs.Workers`; the page gets its
+updates over Bokeh's websocket. Only 127.0.0.1 is bound and only pages served from it
+may open the websocket. Besides the page, one route serves finished reports
+(``/report/TOKEN``, as a download). Ctrl-C or SIGTERM stops the server, the workers and
+the browser connection cleanly.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import logging
+import socket
+import sys
+import time
+from collections.abc import Callable
+from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
+from typing import Any
+
+from betvdesign.errors import UsageError
+
+__all__ = ["ADDRESS", "DEFAULT_PORT", "serve"]
+
+#: Where the server listens (never another interface).
+ADDRESS = "127.0.0.1"
+#: The port tried first; a busy default falls back to a free one.
+DEFAULT_PORT = 5006
+
+
+def _free_port(port: int, explicit: bool) -> int:
+    """``port`` when it can be bound on 127.0.0.1; else (not given explicitly) a free
+    one; :class:`UsageError` when an explicit port is taken."""
+    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as s:
+        try:
+            s.bind((ADDRESS, port))
+            return s.getsockname()[1]
+        except OSError as exc:
+            if explicit:
+                raise UsageError(
+                    f"--port {port}: cannot listen on {ADDRESS}:{port} ({exc.strerror})"
+                ) from None
+    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as s:
+        s.bind((ADDRESS, 0))
+        return s.getsockname()[1]
+
+
+def _report_handler(reports: dict[str, tuple[str, str]]) -> Any:
+    from tornado.web import HTTPError, RequestHandler
+
+    class ReportHandler(RequestHandler):
+        def get(self, token: str) -> None:
+            if token not in reports:
+                raise HTTPError(404)
+            name, html = reports[token]
+            self.set_header("Content-Type", "text/html; charset=utf-8")
+            self.set_header("Content-Disposition", f'attachment; filename="{name}"')
+            self.write(html)
+
+    return ReportHandler
+
+
+def serve(
+    path: str | Path,
+    *,
+    port: int | None = None,
+    open_browser: bool = True,
+    target_speed_m_s: float | None = None,
+    select: tuple[str, ...] = (),
+    ignore: tuple[str, ...] = (),
+    say: Callable[[str], None] = print,
+) -> None:
+    """Serve the explore page of the device file ``path`` until Ctrl-C or SIGTERM.
+
+    Parameters
+    ----------
+    path : str or Path
+        The device file (read and validated before anything starts: a bad file raises
+        its :class:`~betvdesign.errors.SpecError`).
+    port : int, optional
+        Port on 127.0.0.1 (default :data:`DEFAULT_PORT`, or a free one when busy).
+    open_browser : bool
+        Open the page in the default browser.
+    target_speed_m_s : float, optional
+        Required speed [m/s] (the ``target-speed`` rule, as ``betv check``).
+    select, ignore : tuple of str
+        Rules that count / do not count (as ``betv check --select/--ignore``).
+    say : callable
+        Where the URL and the stop message go.
+    """
+    t0 = time.perf_counter()
+    from betvdesign.explore.design import Design
+
+    design = Design.from_file(path)  # bad input stops here, before any server
+    options = {
+        "target_speed_m_s": target_speed_m_s,
+        "select": tuple(select),
+        "ignore": tuple(ignore),
+    }
+    # the compiled kernels load on the compute thread while Bokeh is imported and the
+    # browser loads the page (the page's first update queues behind); the worker
+    # processes start with the first slow stage, so they do not compete with it
+    from betvdesign.explore.compute import evaluate
+
+    compute = ThreadPoolExecutor(1, thread_name_prefix="betv-explore")
+    compute.submit(evaluate, design.spec, "orbit", with_traces=True, **options)
+    from bokeh.server.server import Server
+
+    from betvdesign.explore import jobs
+    from betvdesign.explore.page import ExploreApp
+
+    for name in ("tornado.access", "bokeh", "tornado.application"):
+        logging.getLogger(name).setLevel(logging.CRITICAL)
+    chosen = _free_port(DEFAULT_PORT if port is None else port, explicit=port is not None)
+    workers = jobs.Workers()
+    app = ExploreApp(design.text, str(path), options, workers, compute=compute)
+    server = None
+    try:
+        server = Server(
+            {"/": app},
+            address=ADDRESS,
+            port=chosen,
+            allow_websocket_origin=[f"{ADDRESS}:{chosen}", f"localhost:{chosen}"],
+            extra_patterns=[(r"/report/([0-9a-f]+)", _report_handler(app.reports))],
+            num_procs=1,
+        )
+        server.start()
+        url = f"http://{ADDRESS}:{chosen}/"
+        ready = time.perf_counter() - t0
+        say(f"betv explore: {design.original.name} at {url} (ready in {ready:.1f} s; Ctrl-C stops)")
+        sys.stdout.flush()
+        if open_browser:
+            server.io_loop.add_callback(lambda: _open(url))
+        server.io_loop.start()
+    except KeyboardInterrupt:
+        pass
+    finally:
+        with contextlib.suppress(Exception):
+            if server is not None:
+                server.stop()
+        workers.close()
+        app.compute.shutdown(wait=False, cancel_futures=True)
+        say("betv explore: stopped")
+
+
+def _open(url: str) -> None:
+    import webbrowser
+
+    with contextlib.suppress(Exception):
+        webbrowser.open(url)

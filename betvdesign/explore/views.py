@@ -1,0 +1,258 @@
+"""HTML and plot data of the explore page, from plain data (no Bokeh here).
+
+The verdict block is built from the ``betv check --json`` device object
+(:class:`betvdesign.checks.view.DeviceOut`, as :class:`~betvdesign.explore.compute.Evaluation`
+carries it): the same verdict, modes, speeds, rules and fix texts as ``betv check``.
+Machine-readable ``data-`` attributes (verdict, stage, mode, speed) let tests compare
+the page with ``betv check --json``.
+"""
+
+from __future__ import annotations
+
+import html
+import math
+from typing import Any
+
+from betvdesign.checks.rule import no_crossing
+from betvdesign.model.domain import VARPI_WINDOW, in_window
+from betvdesign.output.siformat import format_si
+from betvdesign.studies.fieldmap import MAP_MODES, FieldMap
+
+#: Colours of the map's modes (colour-blind safe pairs for push/pull).
+MODE_COLORS: dict[str, str] = {
+    "push": "#1b9e77",
+    "pull": "#7570b3",
+    "stalled": "#bdbdbd",
+    "not driven": "#f0f0f0",
+    "unbounded": "#d95f02",
+    "no orbit": "#636363",
+    "invalid": "#ffffff",
+    "": "#fafafa",  # not computed yet
+}
+_STATUS = {
+    (True, "error"): ("ok", "#1a7f37"),
+    (True, "warning"): ("ok", "#1a7f37"),
+    (True, "info"): ("info", "#0969da"),
+    (False, "error"): ("FAIL", "#cf222e"),
+    (False, "warning"): ("warn", "#9a6700"),
+    (False, "info"): ("note", "#57606a"),
+}
+
+_CELL = "font-weight:bold;padding-right:6px;vertical-align:top"
+
+__all__ = [
+    "MODE_COLORS",
+    "error_html",
+    "fixes_html",
+    "legend_html",
+    "map_cells",
+    "status_html",
+    "verdict_html",
+]
+
+
+def _e(x: Any) -> str:
+    return html.escape(str(x), quote=True)
+
+
+def _motion(s: dict[str, Any], settling: dict[str, Any] | None) -> str:
+    mode = s["mode"]
+    if mode in ("push", "pull"):
+        head = (
+            f"{mode} as intended"
+            if mode == s["intended_mode"]
+            else f"{mode}, intended {s['intended_mode']}"
+        )
+    else:
+        head = f"{mode} (intended {s['intended_mode']})"
+    v = s.get("speed_m_s")
+    parts = [f"<b>{_e(head)}</b>"]
+    if v:
+        travel = format_si(s["travel_range_m"], "m")
+        cross = format_si(s["time_to_cross_s"], "s")
+        speed = format_si(v, "m/s")
+        parts.append(
+            f"{_e(speed)} toward {_e(s['travel_direction'])}; {_e(travel)} travel in {_e(cross)}"
+        )
+    elif v == 0.0:
+        parts.append("the slider does not move")
+    basis = s.get("basis")  # which answer the verdict quotes (checks.travel)
+    if basis == "crossing":
+        parts.append("over the travel from rest (not settled by then)")
+    elif basis == "no-crossing":
+        cycles = (settling or {}).get("simulated_cycles")
+        f_act = (settling or {}).get("f_act_hz")
+        parts.append(
+            f"the slider {no_crossing(s['travel_range_m'], int(cycles), f_act)}"
+            if cycles and f_act
+            else "the slider does not cross its travel range"
+        )
+    elif basis == "undetermined":
+        parts.append("Δs not determined in float64 (see the mode rule)")
+    if settling:
+        f_act = settling.get("f_act_hz") or math.nan
+        n = settling.get("cycles_to_settle")
+        if n is not None:
+            parts.append(f"settles in {n} cycles ({_e(format_si(n / f_act, 's'))})")
+        else:
+            parts.append(f"not settled after {settling.get('simulated_cycles')} cycles")
+        c = settling.get("cycles_to_cross")
+        if c is not None:
+            parts.append(
+                f"crosses the travel range after {c} cycles ({_e(format_si(c / f_act, 's'))})"
+            )
+    margin = s.get("margin") or {}
+    if margin.get("holds") is True:
+        parts.append("mode holds at ϖ ±5 %, α ±10 %")
+    elif margin.get("holds") is False:
+        flips = [k for k, m in (margin.get("corners") or {}).items() if m != mode]
+        parts.append(f"<b>mode flips at {_e(', '.join(flips))}</b>")
+    return "; ".join(parts)
+
+
+def verdict_html(
+    out: dict[str, Any],
+    *,
+    seq: int,
+    stage: str,
+    settling: dict[str, dict[str, Any] | None] | None = None,
+    pending: list[str] | None = None,
+    timing: dict[str, float] | None = None,
+) -> str:
+    """The verdict block: overall verdict, one line per set, every rule with its fix;
+    ``timing`` (name -> value) goes into ``data-`` attributes (benchmarks read them)."""
+    verdict = out["verdict"]
+    colour = "#1a7f37" if verdict == "pass" else "#cf222e"
+    rows = []
+    for s in out["sets"]:
+        speed = "" if s.get("speed_m_s") is None else repr(float(s["speed_m_s"]))
+        rows.append(
+            f'<tr class="betv-set" data-set="{_e(s["name"])}" data-mode="{_e(s["mode"])}" '
+            f'data-speed-m-s="{speed}" data-direction="{_e(s.get("travel_direction") or "")}">'
+            f'<th style="text-align:left;padding-right:8px">{_e(s["name"])}</th>'
+            f"<td>{_motion(s, (settling or {}).get(s['name']))}</td></tr>"
+        )
+    rules = []
+    for s in out["sets"]:
+        rules += [(s["name"], r) for r in s["rules"]]
+    rules += [("", r) for r in out.get("rules", [])]
+    several = len(out["sets"]) > 1
+    lines = []
+    for set_name, r in rules:
+        tag, col = _STATUS[(r["passed"], r["severity"])]
+        where = f" [{_e(set_name)}]" if several and set_name else ""
+        fix = (
+            f'<div class="betv-fix" style="color:#0969da">fix: {_e(r["fix"])}</div>'
+            if r["fix"] and not r["passed"]
+            else ""
+        )
+        passed = str(r["passed"]).lower()
+        lines.append(
+            f'<tr class="betv-rule" data-rule="{_e(r["id"])}" data-passed="{passed}">'
+            f'<td style="color:{col};{_CELL}">{tag}</td>'
+            f'<td style="vertical-align:top"><code>{_e(r["id"])}</code>{where}: '
+            f"{_e(r['message'])}{fix}</td></tr>"
+        )
+    if pending:
+        waiting = f"still computing: {_e(', '.join(pending))}…"
+        waiting = f'<div class="betv-pending" style="color:#9a6700">{waiting}</div>'
+    else:
+        waiting = (
+            '<div class="betv-pending" style="color:#57606a">every stage of betv check done</div>'
+        )
+
+    extra = "".join(f' data-{_e(k)}="{v:.3f}"' for k, v in (timing or {}).items())
+    return (
+        f'<div class="betv-verdict" data-verdict="{_e(verdict)}" data-seq="{seq}" '
+        f'data-stage="{_e(stage)}"{extra}>'
+        f'<div style="font-size:22px;font-weight:bold;color:{colour}">{verdict.upper()}'
+        f'<span style="font-size:13px;color:#57606a;font-weight:normal"> design #{seq}</span></div>'
+        f"{waiting}"
+        f'<table style="border-collapse:collapse;margin:4px 0">{"".join(rows)}</table>'
+        f'<table style="border-collapse:collapse;font-size:12px">{"".join(lines)}</table></div>'
+    )
+
+
+def status_html(text: str, *, busy: bool) -> str:
+    """A one-line status (the map's progress, a save or report message)."""
+    colour = "#9a6700" if busy else "#57606a"
+    return f'<span style="color:{colour}">{_e(text)}</span>'
+
+
+def fixes_html(fixes: list[dict[str, Any]], message: str) -> str:
+    """The changes ``betv fix`` found (its JSON candidates), numbered as the apply
+    buttons; ``message``: what ``betv fix`` said when it found none."""
+    if not fixes:
+        return status_html(f"betv fix: {message}", busy=False) if message else ""
+    items = []
+    for c in fixes:
+        change = "; ".join(f"{ch['field']} {ch['from']} → {ch['to']}" for ch in c["changes"])
+        items.append(f'<li class="betv-fix-item">{_e(change)}: {_e(c["why"])}</li>')
+    return (
+        "<b>betv fix finds (drawn on the map when on its axes):</b>"
+        f'<ol style="margin:2px 0;padding-left:18px">{"".join(items)}</ol>'
+    )
+
+
+def error_html(text: str) -> str:
+    """A refused value's message, beside its control."""
+    return f'<span class="betv-error" style="color:#cf222e">{_e(text)}</span>'
+
+
+#: Columns of the map's data source (see :func:`map_cells`).
+MAP_COLUMNS = (
+    "left",
+    "right",
+    "bottom",
+    "top",
+    "color",
+    "mode",
+    "speed",
+    "xv",
+    "yv",
+    "window",
+    "varpi",
+)
+
+
+def _pale(colour: str) -> str:
+    """``colour`` (#rrggbb) mixed half and half with white."""
+    rgb = [int(colour[k : k + 2], 16) for k in (1, 3, 5)]
+    return "#" + "".join(f"{(c + 255) // 2:02x}" for c in rgb)
+
+
+def map_cells(fmap: FieldMap) -> dict[str, list[Any]]:
+    """Quads of the map (edges in the fields' units), colour and hover text per cell."""
+    xe, ye = fmap.x.edges(), fmap.y.edges()
+    data: dict[str, list[Any]] = {k: [] for k in MAP_COLUMNS}
+    for j in range(len(fmap.y.values)):
+        for i in range(len(fmap.x.values)):
+            data["left"].append(float(xe[i]))
+            data["right"].append(float(xe[i + 1]))
+            data["bottom"].append(float(ye[j]))
+            data["top"].append(float(ye[j + 1]))
+            m = str(fmap.mode[j, i])
+            w = fmap.varpi[j, i]
+            outside = math.isfinite(w) and not in_window(float(w))
+            colour = MODE_COLORS.get(m, "#fafafa")
+            data["color"].append(_pale(colour) if outside else colour)
+            data["mode"].append(m or "computing")
+            v = fmap.speed_m_s[j, i]
+            data["speed"].append("" if not math.isfinite(v) else format_si(abs(v), "m/s"))
+            data["window"].append("(outside the design window)" if outside else "")
+            data["varpi"].append("" if not math.isfinite(w) else f"{w:.3g}")
+            data["xv"].append(f"{fmap.x.values[i]:.4g} {fmap.x.unit}".strip())
+            data["yv"].append(f"{fmap.y.values[j]:.4g} {fmap.y.unit}".strip())
+    return data
+
+
+def legend_html() -> str:
+    """The map's colour legend."""
+    items = [
+        f'<span style="display:inline-block;width:10px;height:10px;background:{MODE_COLORS[m]};'
+        f'border:1px solid #888;margin:0 3px 0 8px"></span>{_e(m)}'
+        for m in MAP_MODES
+    ]
+    lo, hi = VARPI_WINDOW
+    items.append(f" · pale: outside the design window {lo:g} ≤ ϖ < {hi:g}")
+    return f'<div style="font-size:12px">{"".join(items)}</div>'

@@ -1,0 +1,386 @@
+"""``betv explore`` without a browser: the design being edited, its saved YAML, the
+controls' fields, the staged check (against ``betv check``'s own JSON), the field map
+and the worker jobs.
+
+Source: the device file's validation and ``betv check`` itself (every expected value
+is computed by the check path the page must reproduce; nothing is hand-copied).
+"""
+
+from __future__ import annotations
+
+import difflib
+import itertools
+import json
+import math
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+from conftest import DEVICES
+
+from betvdesign.checks.checker import check_derivation
+from betvdesign.checks.view import DeviceView
+from betvdesign.errors import SpecError
+from betvdesign.explore.compute import evaluate
+from betvdesign.explore.design import Design, free_name, set_path
+from betvdesign.explore.fields import current_value, designer_fields
+from betvdesign.nondim.device import derive
+from betvdesign.spec.loader import load_device, load_device_text
+from betvdesign.studies.fieldmap import FieldAxis, map_rows, mode_map, point_mode
+
+#: The command line, as the user runs it (the console script's entry point).
+BETV = [sys.executable, "-c", "from betvdesign.cli import main; main()"]
+
+
+def _changed_lines(a: str, b: str) -> list[str]:
+    return [
+        line
+        for line in difflib.unified_diff(a.splitlines(), b.splitlines(), lineterm="", n=0)
+        if line[:1] in "+-" and not line.startswith(("+++", "---"))
+    ]
+
+
+# --- the design and its file -------------------------------------------------------------
+
+
+@pytest.mark.parametrize("name", [p.stem for p in sorted(DEVICES.glob("*.yaml"))])
+def test_edited_file_changes_only_the_changed_lines(name: str) -> None:
+    """Every shipped device: a drive-frequency change rewrites exactly the frequency
+    line(s) (one per set giving it), and the text reads back as the edited spec."""
+    d = Design.from_file(DEVICES / f"{name}.yaml")
+    freq = current_value(d.original, 0, "drive.frequency")
+    d.apply({"drive.frequency": f"{float(freq.magnitude) * 1.05:.4g} {freq.units:~}"})
+    text = d.yaml_text()
+    assert load_device_text(text) == d.spec
+    changed = _changed_lines(d.text, text)
+    assert len(changed) == 2 * len(d.original.actuator_sets), changed
+    assert all("frequency" in line for line in changed), changed
+
+
+def test_flow_mappings_per_set_edits_and_added_fields() -> None:
+    """bidir_demo writes its sets as flow mappings: a per-set change touches one line,
+    an added optional value (Q, e) goes beside its siblings, comments stay."""
+    d = Design.from_file(DEVICES / "bidir_demo.yaml")
+    d.apply(
+        {
+            set_path("contact.friction", "west"): 0.3,
+            "actuator.quality_factor_normal": 30.0,
+            "contact.restitution": 0.1,
+        }
+    )
+    text = d.yaml_text()
+    back = load_device_text(text)
+    assert back == d.spec
+    east, west = back.actuator_sets
+    assert (east.contact.friction, west.contact.friction) == (0.35, 0.3)
+    assert east.actuator.quality_factor_normal == 30.0 and west.contact.restitution == 0.1
+    assert [c for c in d.text.splitlines() if "#" in c] == [
+        c for c in text.splitlines() if "#" in c and "quality_factor" not in c
+    ]
+    assert len(_changed_lines(d.text, text)) == 2 + 2 + 2  # contact lines, new Q lines
+
+
+def test_refused_value_keeps_the_design_and_gives_the_loaders_message() -> None:
+    d = Design.from_file(DEVICES / "push_demo.yaml")
+    d.apply({"drive.frequency": "3.2 kHz"})
+    before = d.spec
+    with pytest.raises(SpecError) as exc:
+        d.apply({"contact.friction": 7.0})
+    with pytest.raises(SpecError) as direct:
+        load_device(DEVICES / "push_demo.yaml").replace("contact.friction", 7.0)
+    assert exc.value.issues[0].message == direct.value.issues[0].message
+    assert "outside the physical range" in exc.value.issues[0].message
+    assert d.spec == before and "contact.friction" not in d.edits
+    with pytest.raises(SpecError, match="missing unit"):
+        d.apply({"drive.frequency": "3.2"})
+
+
+def test_save_never_overwrites_unasked(tmp_path: Path) -> None:
+    src = tmp_path / "push_demo.yaml"
+    shutil.copy(DEVICES / "push_demo.yaml", src)
+    d = Design.from_file(src)
+    d.apply({"slider.beam_width": "12 um"})
+    first = d.save("mine.yaml")
+    assert first.written and (tmp_path / "mine.yaml").is_file()
+    again = d.save("mine.yaml")
+    assert not again.written and "exists" in again.message
+    assert not d.save(src.name).written  # the user's own file too
+    assert src.read_text() == (DEVICES / "push_demo.yaml").read_text()
+    d.apply({"slider.beam_width": "14 um"})
+    assert d.save("mine.yaml", overwrite=True).written
+    assert "14 um" in (tmp_path / "mine.yaml").read_text()
+    assert not d.save("mine.txt").written
+    assert free_name(tmp_path / "mine.yaml") == tmp_path / "mine-2.yaml"
+
+
+def test_saved_file_rechecks_to_the_page_verdict(tmp_path: Path) -> None:
+    """`betv check --json` of the saved YAML gives the verdict, modes and speeds of
+    the page's full stage."""
+    src = tmp_path / "bidir_demo.yaml"
+    shutil.copy(DEVICES / "bidir_demo.yaml", src)
+    d = Design.from_file(src)
+    d.apply({"drive.frequency": "3.3 kHz", "slider.beam_width": "10 um"})
+    ev = evaluate(d.spec, "full", source_file=str(src))
+    res = d.save("saved.yaml")
+    assert res.written
+    proc = subprocess.run(
+        [*BETV, "check", "--json", str(res.path)], capture_output=True, text=True, check=False
+    )
+    assert proc.returncode in (0, 1), proc.stderr
+    dev = json.loads(proc.stdout)["devices"][0]
+    assert dev["verdict"] == ev.out["verdict"]
+    for a, b in zip(dev["sets"], ev.out["sets"], strict=True):
+        assert (a["name"], a["mode"]) == (b["name"], b["mode"])
+        assert a["speed_m_s"] == pytest.approx(b["speed_m_s"], rel=1e-12)
+        assert [r["id"] for r in a["rules"]] == [r["id"] for r in b["rules"]]
+        assert [r["fix"] for r in a["rules"]] == [r["fix"] for r in b["rules"]]
+
+
+# --- stages --------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("name", ["push_demo", "shin2004"])
+def test_stages_are_betv_checks_own(name: str) -> None:
+    """Stage "full" is exactly ``betv check``'s device JSON; "orbit" has the same modes;
+    "settling" the same answer (mode, basis, Δs error, speed); traces are in physical
+    units."""
+    spec = load_device(DEVICES / f"{name}.yaml")
+    full = evaluate(spec, "full")
+    ref = DeviceView(check_derivation(derive(spec))).out.model_dump(mode="json", by_alias=True)
+    assert full.out == ref
+    fast = evaluate(spec, "orbit", with_traces=True)
+    assert [s["mode"] for s in fast.out["sets"]] == [s["mode"] for s in ref["sets"]]
+    # how well Δs is determined and the travel from rest arrive with the settling stage:
+    # from there on the answer quoted (its basis) is betv check's
+    settled = evaluate(spec, "settling")
+    keys = ("mode", "basis", "delta_s_error", "speed_m_s")
+    assert [[s[k] for k in keys] for s in settled.out["sets"]] == [
+        [s[k] for k in keys] for s in ref["sets"]
+    ]
+    assert all(s["delta_s_error"] is None for s in fast.out["sets"])
+    assert not any(r["id"] in ("settling", "model-adequacy") for r in fast.out["rules"])
+    tr = fast.traces[spec.actuator_sets[0].name]
+    assert tr.reason == "" and len(tr.gap_um) > 50 and len(tr.t_ms) == len(tr.x_um)
+    assert min(tr.gap_um) >= -1e-9 and max(tr.gap_um) < 1.0  # µm: a fraction of u sinθ
+
+
+# --- controls -------------------------------------------------------------------------------
+
+
+def test_controls_cover_the_designers_fields_with_ranges_the_spec_accepts() -> None:
+    spec = load_device(DEVICES / "push_demo.yaml")
+    fields = {c.field: c for c in designer_fields(spec, 0)}
+    for f in (
+        "drive.frequency",
+        "drive.voltage",
+        "drive.waveform",
+        "slider.beam_width",
+        "slider.beam_length",
+        "slider.beam_thickness",
+        "slider.beam_count",
+        "head.geometry.diameter",
+        "contact.impact_angle",
+        "contact.friction",
+        "actuator.vertical_resonance",
+        "actuator.horizontal_resonance",
+        "actuator.quality_factor_normal",
+        "actuator.quality_factor_tangential",
+        "contact.restitution",
+    ):
+        assert f in fields, f
+    for c in fields.values():
+        if c.kind == "choice":
+            for choice in c.choices:
+                spec.replace(c.field, choice)
+            continue
+        assert c.lo <= (c.value if c.value is not None else c.lo) <= c.hi, c
+        for x in (c.lo, c.hi):
+            value = c.file_value(c.text(x))
+            spec.replace(c.field, value)  # raises when the spec refuses the slider's end
+    assert fields["drive.voltage"].hi <= 10.0  # the measured calibration ends at 10 V
+    assert fields["drive.frequency"].log and not fields["contact.impact_angle"].log
+
+
+def test_damping_given_as_ratio_shows_the_ratio() -> None:
+    spec = load_device(DEVICES / "damped_demo.yaml")
+    spec = spec.replace("actuator.quality_factor_normal", None).replace(
+        "actuator.damping_ratio_normal", 0.02
+    )
+    fields = {c.field for c in designer_fields(spec, 0)}
+    assert "actuator.damping_ratio_normal" in fields
+    assert "actuator.quality_factor_normal" not in fields
+    assert "actuator.quality_factor_tangential" in fields
+
+
+# --- the field map ---------------------------------------------------------------------------
+
+
+def test_map_point_at_the_device_has_the_checks_mode() -> None:
+    spec = load_device(DEVICES / "push_demo.yaml")
+    x = FieldAxis.spanning("drive.frequency", "kHz", 2.0, 4.5, 5)
+    y = FieldAxis("slider.beam_width", "um", (6.0, 10.0, 14.0), log=True)
+    fmap = mode_map(spec, 0, x, y, chunk=2)
+    assert fmap.complete
+    i = 2
+    spec_i = spec.replace("drive.frequency", f"{x.values[i]!r} kHz").replace(
+        "slider.beam_width", "10 um"
+    )
+    exact = check_derivation(derive(spec_i), margin=False, settle=False, adequacy=False)
+    assert fmap.mode[1, i] == exact.sets[0].verdict_mode
+    assert fmap.varpi[1, i] == pytest.approx(exact.sets[0].derivation.params.varpi, rel=1e-12)
+    v = exact.sets[0].speed_m_s
+    assert fmap.speed_m_s[1, i] == pytest.approx(v, rel=1e-12)
+    rows = map_rows(spec, 0, x, y, [2])
+    assert rows.mode[0] == list(fmap.mode[2])
+    edges = x.edges()
+    assert all(a < b for a, b in itertools.pairwise(edges))
+    assert edges[0] < x.values[0] and edges[-1] > x.values[-1]
+
+
+def test_map_marks_values_the_device_cannot_take() -> None:
+    """push_demo's calibration is measured up to 10 V: the map says "invalid" above
+    it (no extrapolation), and why."""
+    spec = load_device(DEVICES / "push_demo.yaml")
+    x = FieldAxis("drive.voltage", "V", (8.0, 12.0), log=False)
+    y = FieldAxis("slider.beam_width", "um", (10.0, 12.0), log=False)
+    part = map_rows(spec, 0, x, y, [0, 1])
+    assert [m[1] for m in part.mode] == ["invalid", "invalid"]
+    assert part.mode[0][0] in ("push", "pull")
+    assert "calibration" in part.reasons[(0, 1)]
+    assert math.isnan(part.varpi[0][1])
+
+
+def test_point_mode_names() -> None:
+    class R:
+        def __init__(self, status: str, success: bool = False, delta_s: float = 0.0):
+            self.status, self.success, self.delta_s = status, success, delta_s
+
+    assert point_mode(R("success", True, 1.0)) == "push"
+    assert point_mode(R("success", True, -1.0)) == "pull"
+    assert point_mode(R("success", True, 0.0)) == "stalled"
+    assert point_mode(R("not_driven")) == "not driven"
+    assert point_mode(R("unbounded")) == "unbounded"
+    assert point_mode(R("not_converged")) == "no orbit"
+
+
+def test_map_draws_the_design_and_on_axis_fixes_inside_its_axes() -> None:
+    """The star and the fixes are on the map's overlay layer (not clipped to the frame):
+    only points inside the axes are drawn; a fix that changes a field off the axes is
+    listed, not drawn."""
+    pytest.importorskip("bokeh")
+    from betvdesign.explore.mapview import MapView
+
+    spec = load_device(DEVICES / "push_demo.yaml")
+    controls = {c.field: c for c in designer_fields(spec, 0)}
+    view = MapView(lambda: controls, lambda: None, lambda *a: None, lambda: None)
+    assert (view.x_select.value, view.y_select.value) == ("drive.frequency", "slider.beam_width")
+    view.show_design(spec, 0)
+    assert view.device.data == {"x": [3.0], "y": [10.0]}  # kHz, um
+    fixes = [
+        {"values": {"drive.frequency": [4000.0, "Hz"]}},  # on the x axis: drawn
+        {"values": {"contact.friction": [0.3, ""]}},  # off the axes: not drawn
+        {"values": {"drive.frequency": [50.0, "kHz"]}},  # beyond the axis: not drawn
+        {"values": {"drive.frequency": [2.5, "kHz"], "slider.beam_width": [12.0, "um"]}},
+    ]
+    view.show_fixes(fixes, spec, 0)
+    assert view.fixes.data["label"] == ["1", "4"]
+    assert view.fixes.data["x"] == [pytest.approx(4.0), pytest.approx(2.5)]
+    assert view.fixes.data["y"] == [10.0, pytest.approx(12.0)]
+    assert view.fixes.data["x0"] == [3.0, 3.0]
+    outside = spec.replace("drive.frequency", "20 kHz")  # beyond the slider's 12 kHz
+    view.show_design(outside, 0)
+    assert view.device.data == {"x": [], "y": []}
+    view.show_fixes(fixes, outside, 0)
+    assert view.fixes.data["label"] == []
+    levels = {r.level for r in view.fig.renderers[1:]}
+    assert levels == {"overlay"}
+
+
+# --- worker jobs (run here, in-process) ---------------------------------------------------
+
+
+def test_jobs_in_process_and_stale_jobs_dropped(monkeypatch: pytest.MonkeyPatch) -> None:
+    from betvdesign.explore import jobs
+
+    text = (DEVICES / "shin2004.yaml").read_text()
+    out = jobs.check_job(0, 0, text, "shin2004.yaml", "settling", {})
+    assert out is not None and out["stage"] == "settling"
+    assert out["settling"]["right"]["cycles_to_settle"] is not None
+    x = FieldAxis.spanning("drive.frequency", "Hz", 400.0, 900.0, 3)
+    y = FieldAxis.spanning("slider.beam_width", "um", 4.0, 6.0, 2)
+    part = jobs.map_job(0, 0, text, "shin2004.yaml", 0, x, y, [0, 1])
+    assert part is not None and len(part["mode"]) == 2
+    fixes = jobs.fix_job(0, 0, text, "shin2004.yaml", None)
+    assert fixes is not None and fixes["status"] == "fixed"
+    best = next(c for c in fixes["candidates"] if c["passed"])
+    d = Design(text, "shin2004.yaml")
+    d.apply(best["file_values"])
+    assert evaluate(d.spec, "full").verdict == "pass"
+    monkeypatch.setattr(jobs, "_GEN", [5])
+    assert jobs.check_job(0, 4, text, "x.yaml", "full", {}) is None
+    assert jobs.map_job(0, 4, text, "x.yaml", 0, x, y, [0]) is None
+
+
+# --- the command -----------------------------------------------------------------------------
+
+
+def test_cli_bad_file_and_missing_extra(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    from typer.testing import CliRunner
+
+    from betvdesign.cli import app
+
+    runner = CliRunner()
+    bad = tmp_path / "bad.yaml"
+    bad.write_text((DEVICES / "push_demo.yaml").read_text().replace("0.4", "7"))
+    r = runner.invoke(app, ["explore", str(bad), "--no-browser"])
+    assert r.exit_code == 2 and "outside the physical range" in r.output
+    r = runner.invoke(app, ["explore", str(tmp_path / "none.yaml"), "--no-browser"])
+    assert r.exit_code == 2 and "no such file" in r.output
+    monkeypatch.setitem(sys.modules, "bokeh", None)
+    r = runner.invoke(app, ["explore", str(DEVICES / "push_demo.yaml"), "--no-browser"])
+    assert r.exit_code == 2 and "pip install 'betvdesign[explore]'" in r.output
+    assert "Traceback" not in r.output
+
+
+def test_worker_lanes_drop_stale_jobs_survive_a_dead_worker_and_close() -> None:
+    """Jobs run on a worker process; a job queued for an older generation returns None
+    at once; a killed worker fails its job (never hangs the page) and the next job
+    starts a new one; close() stops it."""
+    import threading
+
+    from betvdesign.explore import jobs
+
+    w = jobs.Workers()
+    results: list[object] = []
+    got = threading.Event()
+
+    def done(value: object) -> None:
+        results.append(value)
+        got.set()
+
+    def failed(exc: BaseException) -> None:
+        results.append(exc)
+        got.set()
+
+    text = (DEVICES / "push_demo.yaml").read_text()
+    try:
+        gen = w.bump("check", 3)
+        w.submit("check", 3, gen - 1, jobs.check_job, (text, "p.yaml", "orbit", {}), done, failed)
+        assert got.wait(300) and results == [None]
+        got.clear()
+        w.submit("check", 3, gen, jobs.check_job, (text, "p.yaml", "orbit", {}), done, failed)
+        assert got.wait(300) and results[-1]["out"]["verdict"] == "pass"
+        lane = w.lanes["check"]
+        got.clear()
+        lane.proc.kill()
+        w.submit("check", 3, gen, jobs.check_job, (text, "p.yaml", "full", {}), done, failed)
+        assert got.wait(300)
+        got.clear()
+        w.submit("check", 3, gen, jobs.check_job, (text, "p.yaml", "orbit", {}), done, failed)
+        assert got.wait(300) and results[-1]["stage"] == "orbit"
+        proc = lane.proc
+    finally:
+        w.close()
+    assert not proc.is_alive()

@@ -1,0 +1,344 @@
+"""``betv explore`` in a real browser: Debian's chromium, headless, via playwright.
+
+Source: ``betv check --json`` of the design the page saved (run as the user runs it)
+and the device file's own validation. The server is the real command
+(``betv explore FILE --no-browser --port P``) on a copy of a shipped device; the page is
+driven by keyboard and mouse. Any console error, page error or request to anything but
+the local server fails a test. Skips only outside CI when chromium, playwright or the
+``explore`` extra (Bokeh) is missing; under CI=1 each of those fails, as in
+``tests/test_browser.py``.
+"""
+
+from __future__ import annotations
+
+import difflib
+import json
+import os
+import shutil
+import signal
+import socket
+import subprocess
+import sys
+import threading
+import time
+from collections.abc import Iterator
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import pytest
+from conftest import DEVICES, require_module, require_program
+from test_browser import CHROMIUM_ARGS
+
+pytestmark = pytest.mark.browser
+
+BETV = [sys.executable, "-c", "from betvdesign.cli import main; main()"]
+#: Generous waits [ms]: the first page of a server loads the compiled kernels in its
+#: workers; a loaded CI machine is slow. Speed is measured in benchmarks/, not here.
+START_S = 240
+WAIT_MS = 240_000
+
+
+@dataclass
+class Server:
+    """A running ``betv explore`` and what it printed."""
+
+    proc: subprocess.Popen
+    url: str
+    workdir: Path
+    out: list[str] = field(default_factory=list)
+    err: list[str] = field(default_factory=list)
+
+    def stop(self) -> int:
+        """Ctrl-C (SIGINT to the server's process), as a user stops it."""
+        if self.proc.poll() is None:
+            self.proc.send_signal(signal.SIGINT)
+            try:
+                self.proc.wait(timeout=60)
+            except subprocess.TimeoutExpired:
+                self.proc.kill()
+                self.proc.wait()
+        time.sleep(0.2)  # the reader threads finish
+        return int(self.proc.returncode)
+
+
+def _free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return int(s.getsockname()[1])
+
+
+def _start(device: str, tmp: Path) -> Server:
+    require_module("bokeh", extra="explore")
+    shutil.copy(DEVICES / f"{device}.yaml", tmp / f"{device}.yaml")
+    port = _free_port()
+    proc = subprocess.Popen(
+        [*BETV, "explore", f"{device}.yaml", "--no-browser", "--port", str(port)],
+        cwd=tmp,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    server = Server(proc, f"http://127.0.0.1:{port}/", tmp)
+    ready = threading.Event()
+
+    def read(stream, sink: list[str]) -> None:
+        for line in stream:
+            sink.append(line)
+            if "http://127.0.0.1:" in line:
+                ready.set()
+
+    for stream, sink in ((proc.stdout, server.out), (proc.stderr, server.err)):
+        threading.Thread(target=read, args=(stream, sink), daemon=True).start()
+    if not ready.wait(START_S):
+        server.stop()
+        pytest.fail(f"betv explore did not start: {''.join(server.out + server.err)}")
+    assert f"127.0.0.1:{port}" in "".join(server.out)
+    return server
+
+
+@pytest.fixture(scope="module")
+def browser():
+    exe = require_program("chromium", candidates=("/usr/bin/chromium",))
+    try:
+        from playwright import sync_api
+    except ImportError as exc:
+        if os.environ.get("CI"):
+            pytest.fail(f"CI: playwright not importable: {exc}")
+        pytest.skip(f"playwright not importable: {exc}")
+    with sync_api.sync_playwright() as pw:
+        b = pw.chromium.launch(executable_path=exe, args=CHROMIUM_ARGS, headless=True)
+        try:
+            yield b
+        finally:
+            b.close()
+
+
+@pytest.fixture(scope="module")
+def push_server(tmp_path_factory: pytest.TempPathFactory, browser) -> Iterator[Server]:
+    server = _start("push_demo", tmp_path_factory.mktemp("explore-push"))
+    try:
+        yield server
+    finally:
+        server.stop()
+
+
+@pytest.fixture(scope="module")
+def shin_server(tmp_path_factory: pytest.TempPathFactory, browser) -> Iterator[Server]:
+    server = _start("shin2004", tmp_path_factory.mktemp("explore-shin"))
+    try:
+        yield server
+    finally:
+        server.stop()
+
+
+class Page:
+    """A page of the explore server, with its console errors and foreign requests."""
+
+    def __init__(self, browser, server: Server):
+        self.p = browser.new_page(viewport={"width": 1650, "height": 1100}, accept_downloads=True)
+        self.errors: list[str] = []
+        self.foreign: list[str] = []
+        local = server.url.rstrip("/")
+        self.p.on("console", lambda m: self.errors.append(m.text) if m.type == "error" else None)
+        self.p.on("pageerror", lambda e: self.errors.append(str(e)))
+        self.p.on(
+            "request",
+            lambda r: None if r.url.startswith(local) else self.foreign.append(r.url),
+        )
+        self.p.goto(server.url)
+        self.full(self.seq_now())
+
+    def seq_now(self) -> int:
+        v = self.p.locator(".betv-verdict").first
+        v.wait_for(timeout=WAIT_MS)
+        return int(v.get_attribute("data-seq"))
+
+    def wait_seq(self, seq: int, stage: str | None = None) -> None:
+        sel = f"[data-seq='{seq}']" + (f"[data-stage='{stage}']" if stage else "")
+        self.p.locator(sel).first.wait_for(timeout=WAIT_MS)
+
+    def full(self, seq: int) -> None:
+        self.wait_seq(seq, "full")
+
+    def shown(self) -> dict:
+        """Verdict, and per set its mode and speed, as the page shows them."""
+        v = self.p.locator(".betv-verdict").first
+        sets = {}
+        rows = self.p.locator("tr.betv-set")
+        for i in range(rows.count()):
+            r = rows.nth(i)
+            speed = r.get_attribute("data-speed-m-s")
+            sets[r.get_attribute("data-set")] = (
+                r.get_attribute("data-mode"),
+                None if not speed else float(speed),
+            )
+        return {"verdict": v.get_attribute("data-verdict"), "sets": sets}
+
+    def text(self, field: str) -> str:
+        return self.p.locator(f".betv-field-{field}.betv-text input").input_value()
+
+    def close(self) -> None:
+        self.p.close()
+        assert self.errors == [], self.errors
+        assert self.foreign == [], self.foreign
+
+
+def _check_json(path: Path) -> dict:
+    proc = subprocess.run(
+        [*BETV, "check", "--json", str(path)], capture_output=True, text=True, check=False
+    )
+    assert proc.returncode in (0, 1), proc.stderr
+    return json.loads(proc.stdout)["devices"][0]
+
+
+def test_keyboard_moves_save_and_betv_check_agree(browser, push_server: Server) -> None:
+    """Move the drive frequency by keyboard; the verdict, modes and speeds shown equal
+    `betv check --json` of the design saved to YAML; only the changed lines differ."""
+    page = Page(browser, push_server)
+    seq = page.seq_now()
+    before = page.text("drive-frequency")
+    handle = page.p.locator(".betv-field-drive-frequency.betv-slider .noUi-handle").first
+    handle.focus()
+    for _ in range(3):
+        page.p.keyboard.press("ArrowRight")
+    deadline = time.monotonic() + WAIT_MS / 1e3
+    while page.text("drive-frequency") == before and time.monotonic() < deadline:
+        time.sleep(0.1)
+    assert page.text("drive-frequency").endswith("kHz")
+    # the latest value wins: wait for the design showing it, then its full check
+    deadline = time.monotonic() + WAIT_MS / 1e3
+    while time.monotonic() < deadline:
+        s = page.seq_now()
+        if s > seq and page.p.locator(f"[data-seq='{s}'][data-stage='full']").count():
+            time.sleep(1.0)  # a later change may still arrive
+            if page.seq_now() == s:
+                break
+        time.sleep(0.2)
+    shown = page.shown()
+    freq = page.text("drive-frequency")
+    page.p.locator(".betv-save-name input").fill("moved.yaml")
+    page.p.locator(".betv-save-name input").press("Enter")
+    page.p.locator(".betv-save button").click()
+    page.p.locator(".betv-saved").first.wait_for(state="attached", timeout=WAIT_MS)
+    saved = push_server.workdir / "moved.yaml"
+    dev = _check_json(saved)
+    assert dev["verdict"] == shown["verdict"]
+    assert {s["name"]: s["mode"] for s in dev["sets"]} == {
+        k: v[0] for k, v in shown["sets"].items()
+    }
+    for s in dev["sets"]:
+        assert shown["sets"][s["name"]][1] == pytest.approx(s["speed_m_s"], rel=1e-12)
+    original = (push_server.workdir / "push_demo.yaml").read_text()
+    diff = [
+        line
+        for line in difflib.unified_diff(original.splitlines(), saved.read_text().splitlines(), n=0)
+        if line[:1] in "+-" and not line.startswith(("+++", "---"))
+    ]
+    assert diff == [
+        "-      frequency: 3 kHz",
+        f"+      frequency: {freq}",
+    ]
+    page.close()
+
+
+def test_map_click_refused_value_and_the_server_still_answers(browser, push_server) -> None:
+    page = Page(browser, push_server)
+    seq = page.seq_now()
+    freq, width = page.text("drive-frequency"), page.text("slider-beam-width")
+    canvas = page.p.locator(".betv-map canvas").first
+    canvas.scroll_into_view_if_needed()
+    box = canvas.bounding_box()
+    assert box is not None
+    page.p.mouse.click(box["x"] + 0.7 * box["width"], box["y"] + 0.3 * box["height"])
+    page.wait_seq(seq + 1)
+    assert page.text("drive-frequency") != freq and page.text("slider-beam-width") != width
+    friction = page.p.locator(".betv-field-contact-friction.betv-text input")
+    friction.fill("7")
+    friction.press("Enter")
+    error = page.p.locator(".betv-error").first
+    error.wait_for(timeout=WAIT_MS)
+    assert "outside the physical range" in error.inner_text()
+    seq = page.seq_now()
+    page.p.locator(".betv-field-slider-beam-length.betv-slider .noUi-handle").first.focus()
+    page.p.keyboard.press("ArrowLeft")
+    page.wait_seq(seq + 1)  # still answering, the refused value left out
+    assert page.p.locator(".betv-error").count() == 1
+    friction.fill("0.35")
+    friction.press("Enter")
+    page.wait_seq(seq + 2)
+    assert page.p.locator(".betv-error").count() == 0
+    page.close()
+
+
+def test_report_download_is_betv_reports_html(browser, push_server) -> None:
+    """ "Build report" gives, byte for byte, the HTML `betv report` writes for the
+    design saved under the name in the save box."""
+    page = Page(browser, push_server)
+    name = page.p.locator(".betv-save-name input").input_value()
+    page.p.locator(".betv-report button").click()
+    link = page.p.locator(".betv-report-download").first
+    link.wait_for(timeout=WAIT_MS)
+    with page.p.expect_download(timeout=WAIT_MS) as dl:
+        link.click()
+    assert dl.value.suggested_filename == Path(name).with_suffix(".html").name
+    html = Path(dl.value.path()).read_text(encoding="utf-8")
+    page.p.locator(".betv-save button").click()
+    page.p.locator(".betv-saved").first.wait_for(state="attached", timeout=WAIT_MS)
+    out = push_server.workdir / "reports"
+    proc = subprocess.run(
+        [*BETV, "report", name, "-o", str(out), "--no-pdf", "-q"],
+        cwd=push_server.workdir,
+        capture_output=True,
+        text=True,
+        check=False,
+    )
+    assert proc.returncode in (0, 1), proc.stderr
+    assert html == (out / Path(name).with_suffix(".html").name).read_text(encoding="utf-8")
+    page.close()
+
+
+def test_failing_device_fix_is_listed_drawn_and_applied(browser, shin_server) -> None:
+    """shin2004 fails the frequency window: betv fix's changes are listed (the drive
+    frequency one drawn on the frequency map) and one click applies the first."""
+    page = Page(browser, shin_server)
+    assert page.shown()["verdict"] == "fail"
+    seq = page.seq_now()
+    page.p.locator(".betv-fix-item").first.wait_for(timeout=WAIT_MS)
+    items = page.p.locator(".betv-fix-item").all_inner_texts()
+    assert items and all("fixes" in t for t in items)
+    page.p.locator(".betv-apply-fix-1 button").click()
+    page.full(seq + 1)
+    assert page.shown()["verdict"] == "pass"
+    page.close()
+
+
+def test_one_set_of_a_bidirectional_device(browser, shin_server) -> None:
+    """With one set selected, a change goes to that set only (the saved file differs
+    in that set's line)."""
+    page = Page(browser, shin_server)
+    seq = page.seq_now()
+    page.p.locator(".betv-set-select select").select_option("left")
+    page.wait_seq(seq + 1)  # the orbit of the set shown
+    friction = page.p.locator(".betv-field-contact-friction.betv-text input")
+    friction.fill("0.3")
+    friction.press("Enter")
+    page.wait_seq(seq + 2)
+    page.p.locator(".betv-save-name input").fill("left-only.yaml")
+    page.p.locator(".betv-save-name input").press("Enter")
+    page.p.locator(".betv-save button").click()
+    page.p.locator(".betv-saved").first.wait_for(state="attached", timeout=WAIT_MS)
+    original = (shin_server.workdir / "shin2004.yaml").read_text().splitlines()
+    saved = (shin_server.workdir / "left-only.yaml").read_text().splitlines()
+    changed = [i for i, (a, b) in enumerate(zip(original, saved, strict=True)) if a != b]
+    assert len(changed) == 1
+    line = changed[0]
+    assert saved[line].strip() == "friction: 0.3"
+    assert original.index("  - name: left") < line
+    page.close()
+
+
+def test_ctrl_c_stops_cleanly(push_server: Server) -> None:
+    assert push_server.stop() == 0
+    err = "".join(push_server.err)
+    assert "Traceback" not in err, err
+    assert "stopped" in "".join(push_server.out)
