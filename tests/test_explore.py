@@ -26,9 +26,10 @@ from betvdesign.errors import SpecError
 from betvdesign.explore.compute import evaluate
 from betvdesign.explore.design import Design, free_name, set_path
 from betvdesign.explore.fields import current_value, designer_fields
+from betvdesign.explore.views import MODE_COLORS
 from betvdesign.nondim.device import derive
 from betvdesign.spec.loader import load_device, load_device_text
-from betvdesign.studies.fieldmap import FieldAxis, map_rows, mode_map, point_mode
+from betvdesign.studies.fieldmap import MAP_MODES, FieldAxis, map_rows, mode_map
 
 #: The command line, as the user runs it (the console script's entry point).
 BETV = [sys.executable, "-c", "from betvdesign.cli import main; main()"]
@@ -252,17 +253,17 @@ def test_map_marks_values_the_device_cannot_take() -> None:
     assert math.isnan(part.varpi[0][1])
 
 
-def test_point_mode_names() -> None:
-    class R:
-        def __init__(self, status: str, success: bool = False, delta_s: float = 0.0):
-            self.status, self.success, self.delta_s = status, success, delta_s
+def test_map_mode_names_are_the_field_sweeps() -> None:
+    """One vocabulary of a point's exact mode (studies.fieldsweep.exact_mode)."""
+    from betvdesign.studies.fieldsweep import exact_mode
 
-    assert point_mode(R("success", True, 1.0)) == "push"
-    assert point_mode(R("success", True, -1.0)) == "pull"
-    assert point_mode(R("success", True, 0.0)) == "stalled"
-    assert point_mode(R("not_driven")) == "not driven"
-    assert point_mode(R("unbounded")) == "unbounded"
-    assert point_mode(R("not_converged")) == "no orbit"
+    assert exact_mode({"converged": True, "delta_s": 1.0}) == "push"
+    assert exact_mode({"converged": True, "delta_s": -1.0}) == "pull"
+    assert exact_mode({"converged": True, "delta_s": 0.0}) == "stalled"
+    assert exact_mode({"status": "not_driven"}) == "not driven"
+    assert exact_mode({"status": "unbounded"}) == "unbounded"
+    assert exact_mode({"status": "not_converged"}) == "not converged"
+    assert set(MAP_MODES) <= set(MODE_COLORS)
 
 
 def test_map_draws_the_design_and_on_axis_fixes_inside_its_axes() -> None:

@@ -25,7 +25,7 @@ MODE_COLORS: dict[str, str] = {
     "stalled": "#bdbdbd",
     "not driven": "#f0f0f0",
     "unbounded": "#d95f02",
-    "no orbit": "#636363",
+    "not converged": "#636363",
     "invalid": "#ffffff",
     "": "#fafafa",  # not computed yet
 }

@@ -103,7 +103,7 @@ def axis(field: str, value: Any, lo: float, hi: float, points: int) -> FieldAxis
     else:
         x0, unit = float(value), ""
     grid = x0 * np.linspace(lo, hi, max(points, 3))
-    return FieldAxis(field, unit, x0, tuple(float(v) for v in grid))
+    return FieldAxis(field, unit, tuple(float(v) for v in grid), x0=x0)
 
 
 def factors(field: str, varpi: float, span: float) -> tuple[float, float]:

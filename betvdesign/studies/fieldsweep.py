@@ -37,7 +37,7 @@ from typing import Any
 
 import numpy as np
 
-from betvdesign.errors import BetvError, UsageError
+from betvdesign.errors import BetvError, ParameterError, UsageError
 from betvdesign.model.domain import mode_of
 from betvdesign.spec.paths import with_values
 from betvdesign.studies.engine.runner import Study, StudyRun, run_study, split_run_args
@@ -80,25 +80,57 @@ class FieldAxis:
         Dotted field path (as in the device file).
     unit : str
         The field's unit as the device file gives it ("" for a number).
-    x0 : float
-        The device's value [``unit``].
     values : tuple of float
         The grid [``unit``], ascending.
+    log : bool
+        The values are (and the axis is drawn) log-spaced.
+    x0 : float or None
+        The device's value [``unit``] (None: not recorded).
     """
 
     field: str
     unit: str
-    x0: float
     values: tuple[float, ...]
+    log: bool = False
+    x0: float | None = None
+
+    @classmethod
+    def spanning(
+        cls,
+        field: str,
+        unit: str,
+        lo: float,
+        hi: float,
+        points: int,
+        *,
+        log: bool = True,
+        x0: float | None = None,
+    ) -> FieldAxis:
+        """``points`` values from ``lo`` to ``hi`` [unit], log-spaced when ``log``."""
+        if not (math.isfinite(lo) and math.isfinite(hi) and lo < hi and points >= 2):
+            raise ParameterError(f"{field}: need LO < HI and at least 2 points")
+        if log and lo <= 0:
+            raise ParameterError(f"{field}: a log-spaced axis needs LO > 0 (got {lo:g})")
+        xs = np.geomspace(lo, hi, points) if log else np.linspace(lo, hi, points)
+        return cls(field, unit, tuple(float(x) for x in xs), log, x0)
 
     @property
     def label(self) -> str:
         return f"{self.field} [{self.unit}]" if self.unit else self.field
 
     def quantity(self, x: Any) -> Any:
+        """``x`` [unit] as the device file's value (a pint quantity, or a float)."""
         from betvdesign.spec.units import ureg
 
         return ureg.Quantity(x, self.unit) if self.unit else x
+
+    def edges(self) -> np.ndarray:
+        """Cell edges around the values (geometric midpoints on a log axis) [unit]."""
+        v = np.asarray(self.values, dtype=float)
+        t = np.log(v) if self.log else v
+        mid = 0.5 * (t[1:] + t[:-1])
+        e = np.concatenate([[2 * t[0] - mid[0]], mid, [2 * t[-1] - mid[-1]]])
+        return np.exp(e) if self.log else e
 
 
 def _bound(text: str, field: str, unit: str) -> float:
@@ -198,8 +230,7 @@ def parse_axis(
         raise UsageError(f"--vary {text}: need LO < HI (got {lo:g} to {hi:g} {unit})".rstrip())
     if log and lo <= 0:
         raise UsageError(f"--vary {text}: a log-spaced axis needs LO > 0")
-    grid = np.geomspace(lo, hi, points) if log else np.linspace(lo, hi, points)
-    return FieldAxis(name, unit, x0, tuple(float(v) for v in grid))
+    return FieldAxis.spanning(name, unit, lo, hi, points, log=log, x0=x0)
 
 
 def exact_mode(row: Mapping[str, Any]) -> str:
@@ -225,7 +256,7 @@ def _derive_grid(
     """Every grid point derived at once: the points (n, fields) [units] and per point
     its parameters, length scale [m], f_act [Hz], or the reason it cannot be derived."""
     from betvdesign.nondim.device import derive_set
-    from betvdesign.studies.sampling import PARAM_FIELDS, derive_all
+    from betvdesign.studies.sampling import PARAM_FIELDS, check_sample, derive_all
 
     mesh = np.meshgrid(*[np.asarray(a.values) for a in axes], indexing="ij")
     x = np.column_stack([m.ravel() for m in mesh])
@@ -234,12 +265,17 @@ def _derive_grid(
         def __init__(self, f: str):
             self.field = f
 
-    nominal = {a.field: (a.x0, a.unit) for a in axes}
+    nominal = {a.field: (a.values[0] if a.x0 is None else a.x0, a.unit) for a in axes}
     arrays = None
     if np.all(x > 0):
         arrays = derive_all(spec, [_F(a.field) for a in axes], nominal, x, set_index)
     out: list[dict[str, Any] | str] = []
     for j, row in enumerate(x):
+        try:
+            check_sample({a.field: (float(v), a.unit) for a, v in zip(axes, row, strict=True)})
+        except BetvError as exc:
+            out.append(str(exc))
+            continue
         if arrays is not None:
             rec = {k: float(arrays[k][j]) for k in (*PARAM_FIELDS, "length_m", "f_act_hz")}
         else:
