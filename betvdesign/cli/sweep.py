@@ -22,7 +22,6 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Annotated, Any, TypeVar
 
-import click
 import typer
 from typer.core import TyperGroup
 
@@ -62,7 +61,7 @@ class _SweepGroup(TyperGroup):
     """``betv sweep FILE --vary ...`` is ``betv sweep device FILE --vary ...``: a first
     argument that is not a sub-command (a device file) goes to ``device``."""
 
-    def parse_args(self, ctx: click.Context, args: list[str]) -> list[str]:
+    def parse_args(self, ctx: typer.Context, args: list[str]) -> list[str]:
         if args and not args[0].startswith("-") and args[0] not in self.commands:
             args = ["device", *args]
         return super().parse_args(ctx, args)
