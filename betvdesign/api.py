@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING
 from betvdesign.checks.view import DeviceView, RuleFilter
 
 if TYPE_CHECKING:
-    from betvdesign.checks.adequacy_data import DeviceAdequacy
+    from betvdesign.checks.adequacy import DeviceAdequacy
     from betvdesign.spec.models import DeviceSpec
 
 
