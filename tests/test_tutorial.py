@@ -82,4 +82,4 @@ def test_tutorial_runs(tmp_path):
     assert "my_motor: PASS  (my_motor_poly.yaml)" in text and "(my_motor.gds)" in text
     assert "wrote my_motor_back.yaml" in text and "my_motor_edited.gds): PASS" in text
     assert re.search(r"w_flex .* 4 µm", text)
-    assert "already passes every error rule" in text
+    assert "my_motor_edited.gds: already passes `betv check` with its mode margin" in text
