@@ -70,7 +70,8 @@ def in_checkout(code: Path, device: str, runs: int) -> dict[str, float]:
     """:func:`measure` run by the package in ``code`` (a fresh process)."""
     env = {**os.environ, "PYTHONPATH": str(code)}
     cmd = [sys.executable, str(Path(__file__).resolve()), "--child", device, "-n", str(runs)]
-    out = subprocess.run(cmd, env=env, cwd=ROOT, capture_output=True, text=True, check=True)
+    # its own device files (a device file of a newer version may not load in older code)
+    out = subprocess.run(cmd, env=env, cwd=code, capture_output=True, text=True, check=True)
     return json.loads(out.stdout.strip().splitlines()[-1])
 
 

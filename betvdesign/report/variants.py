@@ -3,11 +3,13 @@
 A designer sets drive frequencies, resonances, friction surfaces and beam widths, not
 α or β. The fields are those of :data:`betvdesign.spec.fields.FIELDS` (the one list,
 also ``betv fix``'s): per physical quantity the first field the actuator set gives, of
-those that move ϖ, α, β or κ (:func:`shown_fields`). Each variant goes through the same
-path as the device itself: the spec with the field changed
-(:meth:`betvdesign.spec.models.DeviceSpec.replace`, validated like a device file) ->
-:func:`betvdesign.nondim.device.derive_set` (the only place units are stripped). A value the
-spec rejects (e.g. an impact angle past 90°) is kept with its reason, never dropped.
+those that move ϖ, α, β or κ (:func:`shown_fields`). The variants of a field are the
+points of a one-field sweep (:func:`betvdesign.studies.fieldsweep.field_tasks`: the spec
+with the field changed, derived by :mod:`betvdesign.nondim.device`'s formulas on arrays,
+the only place units are stripped); a value the model cannot take (e.g. an impact angle
+past 90°, a voltage beyond a measured calibration) is kept with its reason, never dropped.
+The flips between variants are bisected through the validated what-if path
+(:meth:`betvdesign.spec.models.DeviceSpec.replace`).
 """
 
 from __future__ import annotations
@@ -20,6 +22,7 @@ import pint
 
 from betvdesign.errors import BetvError
 from betvdesign.model.domain import mode_of
+from betvdesign.model.params import ModelParams
 from betvdesign.nondim.device import derive_set
 from betvdesign.report import analysis
 from betvdesign.report.analysis import FieldFlip, FieldSweep, FieldVariant, ReportOptions
@@ -27,7 +30,8 @@ from betvdesign.spec.fields import FIELDS
 from betvdesign.spec.models import DeviceSpec
 from betvdesign.spec.paths import given, in_set, numeric
 from betvdesign.spec.units import format_quantity
-from betvdesign.studies.fieldsweep import bisect_flip
+from betvdesign.studies.fieldsweep import FieldAxis, bisect_flip, field_tasks
+from betvdesign.studies.sampling import PARAM_FIELDS
 
 #: Width [-] of the relative-change bracket to which a robustness flip is bisected.
 FLIP_WIDTH = 1e-3
@@ -70,29 +74,34 @@ def relative_changes(points: int, span: float) -> np.ndarray:
 
 def field_variants(spec: DeviceSpec, set_index: int, changes: np.ndarray) -> list[FieldVariant]:
     """Variants of actuator set ``set_index`` of ``spec``: each field of
-    :func:`shown_fields` scaled by (1 + change)."""
+    :func:`shown_fields` scaled by (1 + change).
+
+    Each field's variants are derived at once, as the field sweeps derive their points
+    (:func:`betvdesign.studies.fieldsweep.field_tasks`: the derivation's own formulas on
+    arrays, a value the spec cannot take kept with its reason); the 0 % variant is the
+    device's own derivation.
+    """
+    own = derive_set(spec, spec.actuator_sets[set_index])
     out: list[FieldVariant] = []
     for field, nominal in shown_fields(spec, set_index):
-        path = in_set(field, set_index)
-        shown = (
-            format_quantity(nominal, ".4g")
-            if isinstance(nominal, pint.Quantity)
-            else f"{nominal:g}"
-        )
-        for r in changes:
-            value = nominal * (1.0 + float(r))
-            try:
-                changed = spec.replace(path, value) if r != 0 else spec
-                sd = derive_set(changed, changed.actuator_sets[set_index])
-            except BetvError as exc:
-                reason = str(exc).splitlines()[0]
+        if isinstance(nominal, pint.Quantity):
+            shown = format_quantity(nominal, ".4g")
+            x0, unit = float(nominal.magnitude), f"{nominal.units:~}"
+        else:
+            shown, x0, unit = f"{nominal:g}", float(nominal), ""
+        values = tuple(x0 * (1.0 + float(r)) for r in changes)
+        axis = FieldAxis(in_set(field, set_index), unit, values, x0=x0)
+        for r, task in zip(changes, field_tasks(spec, [axis], set_index), strict=True):
+            if r == 0:
+                speed_per_ds = own.scales.length_m * own.scales.f_act_hz
+                out.append(FieldVariant(field, shown, 0.0, own.params, speed_per_ds))
+            elif "invalid" in task:
+                reason = str(task["invalid"]).splitlines()[0]
                 out.append(FieldVariant(field, shown, float(r), None, reason=reason))
-                continue
-            out.append(
-                FieldVariant(
-                    field, shown, float(r), sd.params, sd.scales.length_m * sd.scales.f_act_hz
-                )
-            )
+            else:
+                params = ModelParams(**{k: task[k] for k in PARAM_FIELDS})
+                speed_per_ds = task["length_m"] * task["f_act_hz"]
+                out.append(FieldVariant(field, shown, float(r), params, speed_per_ds))
     return out
 
 
