@@ -191,6 +191,9 @@ def test_controls_cover_the_designers_fields_with_ranges_the_spec_accepts() -> N
         "contact.restitution",
     ):
         assert f in fields, f
+    # push_demo draws its actuator but its file gives f_v and f_h (used): the drawn
+    # dimensions change no verdict, so the page leaves them out as betv fix does
+    assert not any(f.startswith("actuator.geometry.") for f in fields)
     for c in fields.values():
         if c.kind == "choice":
             for choice in c.choices:
@@ -385,3 +388,18 @@ def test_worker_lanes_drop_stale_jobs_survive_a_dead_worker_and_close() -> None:
     finally:
         w.close()
     assert not proc.is_alive()
+
+
+def test_drawn_dimensions_are_controls_where_the_drawing_gives_the_springs() -> None:
+    """Without f_v and f_h in the file the drawing gives the head's springs: its
+    dimensions move the verdict and are controls (as they are betv fix's fields)."""
+    import re
+
+    from betvdesign.spec.loader import load_device_text
+
+    text = (DEVICES / "push_demo.yaml").read_text()
+    text = re.sub(r"\n *vertical_resonance: [^\n]*", "", text)
+    text = re.sub(r"\n *horizontal_resonance: [^\n]*", "", text)
+    spec = load_device_text(text, str(DEVICES / "x.yaml"))
+    fields = {c.field for c in designer_fields(spec, 0)}
+    assert {"actuator.geometry.length", "actuator.geometry.flexure_width"} <= fields

@@ -27,7 +27,7 @@ from betvdesign.spec.fields import FIELDS, DesignField
 from betvdesign.spec.fields import Kind as FieldKind
 from betvdesign.spec.models import MU_MAX, Drive, MeasuredCalibration
 from betvdesign.spec.paths import in_set, is_set_field, targets, value_at
-from betvdesign.studies.fixfields import parse_vary
+from betvdesign.studies.fixfields import drawn_springs_inert, parse_vary
 
 Kind = Literal["quantity", "number", "integer", "choice"]
 
@@ -147,7 +147,10 @@ def current_value(spec: Any, set_index: int, field: str) -> Any:
 
 def _designer_control(spec: Any, set_index: int, f: DesignField) -> FieldControl | None:
     """The slider of one designer field over its bounds (None: the set does not give
-    it as a positive number)."""
+    it as a positive number, or it is a drawn-actuator dimension that changes nothing
+    because every set's file gives the head's resonance and α, as ``betv fix`` decides)."""
+    if drawn_springs_inert(spec, f.path):
+        return None
     try:
         v = parse_vary(_one_set(spec, set_index), [f.path])[0]
     except BetvError:

@@ -29,7 +29,7 @@ from betvdesign.spec.paths import given
 DEFAULT_BOUNDS: dict[str, Bounds] = {f.path: f.bounds for f in FIELDS if f.chosen}
 
 
-def _drawn_springs_inert(spec: DeviceSpec, name: str) -> bool:
+def drawn_springs_inert(spec: DeviceSpec, name: str) -> bool:
     """A drawn-actuator field changes nothing when every set's file gives the head's
     resonance and α (the file's values are used): not a default field then."""
     if not name.startswith("actuator.geometry."):
@@ -90,7 +90,7 @@ def parse_vary(spec: Any, items: Sequence[str]) -> list[Vary]:
     names = list(items) or [
         f
         for f in DEFAULT_BOUNDS
-        if current_value(spec, f) is not None and not _drawn_springs_inert(spec, f)
+        if current_value(spec, f) is not None and not drawn_springs_inert(spec, f)
     ]
     for item in names:
         name, _, rng = item.partition("=")
