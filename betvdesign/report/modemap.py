@@ -18,7 +18,6 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-import pint
 
 from betvdesign.model.domain import VARPI_WINDOW
 from betvdesign.nondim.record import SetDerivation
@@ -98,12 +97,7 @@ def choose_fields(
 def axis(field: str, value: Any, lo: float, hi: float, points: int) -> FieldAxis:
     """The field's axis: ``points`` values from ``lo`` to ``hi`` times its value, in the
     unit the device file gives it."""
-    if isinstance(value, pint.Quantity):
-        x0, unit = float(value.magnitude), f"{value.units:~}"
-    else:
-        x0, unit = float(value), ""
-    grid = x0 * np.linspace(lo, hi, max(points, 3))
-    return FieldAxis(field, unit, tuple(float(v) for v in grid), x0=x0)
+    return FieldAxis.scaled(field, value, np.linspace(lo, hi, max(points, 3)))
 
 
 def factors(field: str, varpi: float, span: float) -> tuple[float, float]:

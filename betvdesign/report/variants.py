@@ -84,13 +84,13 @@ def field_variants(spec: DeviceSpec, set_index: int, changes: np.ndarray) -> lis
     own = derive_set(spec, spec.actuator_sets[set_index])
     out: list[FieldVariant] = []
     for field, nominal in shown_fields(spec, set_index):
-        if isinstance(nominal, pint.Quantity):
-            shown = format_quantity(nominal, ".4g")
-            x0, unit = float(nominal.magnitude), f"{nominal.units:~}"
-        else:
-            shown, x0, unit = f"{nominal:g}", float(nominal), ""
-        values = tuple(x0 * (1.0 + float(r)) for r in changes)
-        axis = FieldAxis(in_set(field, set_index), unit, values, x0=x0)
+        shown = (
+            format_quantity(nominal, ".4g")
+            if isinstance(nominal, pint.Quantity)
+            else f"{nominal:g}"
+        )
+        factors = [1.0 + float(r) for r in changes]
+        axis = FieldAxis.scaled(in_set(field, set_index), nominal, factors)
         for r, task in zip(changes, field_tasks(spec, [axis], set_index), strict=True):
             if r == 0:
                 speed_per_ds = own.scales.length_m * own.scales.f_act_hz

@@ -36,6 +36,7 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+import pint
 
 from betvdesign.errors import BetvError, ParameterError, UsageError
 from betvdesign.model.domain import mode_of
@@ -113,6 +114,16 @@ class FieldAxis:
             raise ParameterError(f"{field}: a log-spaced axis needs LO > 0 (got {lo:g})")
         xs = np.geomspace(lo, hi, points) if log else np.linspace(lo, hi, points)
         return cls(field, unit, tuple(float(x) for x in xs), log, x0)
+
+    @classmethod
+    def scaled(cls, field: str, value: Any, factors: Sequence[float]) -> FieldAxis:
+        """The axis of a field's value as the device file gives it (a quantity or a
+        number) times each of ``factors`` [-], in the value's own unit."""
+        if isinstance(value, pint.Quantity):
+            x0, unit = float(value.magnitude), f"{value.units:~}"
+        else:
+            x0, unit = float(value), ""
+        return cls(field, unit, tuple(x0 * float(f) for f in factors), x0=x0)
 
     @property
     def label(self) -> str:
