@@ -32,8 +32,8 @@ from betvdesign.checks.actuator_rules import actuator_rules
 from betvdesign.checks.adequacy import DeviceAdequacy, SetAdequacy, assess
 from betvdesign.checks.process_rules import process_rules
 from betvdesign.checks.rule import RuleResult, format_speed, format_time, orbit_mode, verdict
-from betvdesign.checks.rules import MARGIN_CORNERS, evaluate_device
-from betvdesign.checks.travel import TravelAnswer, travel_answer
+from betvdesign.checks.rules import MARGIN_CORNERS, evaluate_device, time_to_cross_s
+from betvdesign.checks.travel import TravelAnswer, travel_answer, travel_decides
 from betvdesign.dynamics.determination import Determination
 from betvdesign.dynamics.determination import determine as determine_delta_s
 from betvdesign.dynamics.result import PeriodicResult
@@ -111,6 +111,18 @@ class SetCheck:
         """Speed the speed rule reports [m/s] (signed along the impact direction)."""
         r = next((r for r in self.rules if r.id == "speed"), None)
         return None if r is None else r.value
+
+    @property
+    def time_to_cross_s(self) -> float | None:
+        """Time to cross the travel range [s] (:func:`~betvdesign.checks.rules.
+        time_to_cross_s`: the transient's own crossing whenever it ran; None when the
+        slider does not move)."""
+        v = self.speed_m_s
+        if not v:
+            return None
+        if self.travel is not None:
+            return time_to_cross_s(self.derivation, self.travel)
+        return self.derivation.travel_range_m / abs(v)
 
 
 @dataclass
@@ -243,6 +255,52 @@ def corner_params(p: ModelParams) -> dict[str, ModelParams]:
     return out
 
 
+def corner_modes(
+    p: ModelParams,
+    answer: TravelAnswer,
+    travel_s: float,
+    *,
+    solver: Callable[[ModelParams], Any],
+    settle: bool = True,
+    horizon: int = TRAVEL_HORIZON,
+) -> dict[str, str | None]:
+    """The mode at each margin corner, read on the basis of the design's own answer.
+
+    Parameters
+    ----------
+    p : ModelParams
+        The design [-].
+    answer : TravelAnswer
+        Its quoted answer (:func:`~betvdesign.checks.travel.travel_answer`).
+    travel_s : float
+        Travel range in units of u·cosθ [-].
+    solver : callable
+        ``solver(params) -> PeriodicResult`` (the check's cached exact solver).
+    settle : bool
+        Whether transients from rest may be run (the check's ``settle``).
+    horizon : int
+        Cycles a corner's transient may take to cross the travel [-].
+
+    Returns
+    -------
+    dict
+        Corner label (:func:`corner_params`) -> mode: the corner's periodic mode when the
+        design's answer is periodic; its own travel answer's mode (the crossing from rest
+        whenever that is what it quotes, issue 29) when the design's answer is a crossing,
+        so the margin never compares a crossing with an orbit.
+    """
+    corners = corner_params(p)
+    if answer.basis == "periodic" or not settle:
+        return {k: orbit_mode(solver(q)) for k, q in corners.items()}
+    out: dict[str, str | None] = {}
+    for k, q in corners.items():
+        _, _, ans = answer_over_travel(
+            q, solver(q), travel_s, solver=solver, determine=False, horizon=horizon
+        )
+        out[k] = ans.mode
+    return out
+
+
 def check_derivation(
     derivation: DeviceDerivation,
     *,
@@ -341,9 +399,10 @@ def check_derivation(
             determinations[s.name] = det
         if st is not None:
             settlings[s.name] = st
-        unsure = det is not None and det.status in ("undetermined", "degenerate")
-        if margin and orbit_mode(po) in ("push", "pull") and not unsure:
-            margins[s.name] = {k: orbit_mode(orbit(q)) for k, q in corner_params(p).items()}
+        if margin and answers[s.name].moves:
+            margins[s.name] = corner_modes(
+                p, answers[s.name], key[1], solver=orbit, settle=settle, horizon=horizon
+            )
     adq = _adequacy(derivation, adequacy, (lambda p, **_: orbit(p)) if custom else None)
     rules = evaluate_device(
         derivation,
@@ -401,7 +460,9 @@ def answer_over_travel(
 
     The one sequence behind every verdict's mode and speed (the check, the verdict map of
     :mod:`betvdesign.bench.verdictmap`): how well Δs is determined, the transient from
-    rest when the orbit moves or is not determined, and the answer quoted.
+    rest when the orbit moves, is not determined or does not exist for a reason the
+    travel can answer (:func:`~betvdesign.checks.travel.travel_decides`), and the
+    answer quoted.
 
     Parameters
     ----------
@@ -428,7 +489,7 @@ def answer_over_travel(
     det = determine_delta_s(p, po, solver=solver) if determine else None
     unsure = det is not None and det.status in ("undetermined", "degenerate")
     st = None
-    if settle and (orbit_mode(po) in ("push", "pull") or unsure):
+    if settle and (orbit_mode(po) in ("push", "pull") or unsure or travel_decides(po)):
         st = _settling(p, po, travel_s, horizon)
     return det, st, travel_answer(po, det, st)
 
@@ -437,7 +498,7 @@ def _settling(p: ModelParams, po: PeriodicResult, travel_s: float, horizon: int)
     """The transient from rest against the orbit ``po`` over at most ``horizon`` cycles
     (a failure stand-in if it raised)."""
     moduli = po.floquet_moduli if po.success else None
-    ds = float(po.delta_s) if po.success and po.delta_s is not None else 0.0
+    ds = float(po.delta_s) if po.success and po.delta_s is not None else None
     try:
         return settling(
             p,
@@ -466,7 +527,7 @@ def _set_dict(sc: SetCheck) -> dict[str, Any]:
     v = sc.speed_m_s
     if v is not None and v != 0:
         derived["speed"] = format_speed(abs(v))
-        derived["time_to_cross"] = format_time(s.travel_range_m / abs(v))
+        derived["time_to_cross"] = format_time(sc.time_to_cross_s)
     p = sc.periodic
     st = sc.settling
     return {

@@ -9,11 +9,18 @@ what to change, in the designer's quantities.
 
 Thresholds (one home: :mod:`betvdesign.model.domain`, except the ones defined here):
 
-- frequency window 0.5 ≤ ϖ < 2 (one hit per cycle, finite contact);
-- mode: the intended one, |Δs| above round-off (else "stalled");
-- mode margin: the exact orbit keeps its mode at ϖ·(1 ± 5 %) and α·(1 ± 10 %)
+- frequency window 0.5 ≤ ϖ < 2 (one hit per cycle, finite contact), its edges to
+  round-off (the lower inside, the upper outside:
+  :func:`~betvdesign.model.domain.window_position`);
+- window margin (warning): the window holds at ϖ·(1 ± 5 %) (:data:`WINDOW_MARGIN`, the
+  spread of the mode's corners), else the distance to the edge is named;
+- mode: the intended one, |Δs| above round-off (else "stalled"); from the answer the
+  travel quotes (:mod:`betvdesign.checks.travel`: the orbit, or the crossing from rest
+  whenever there is no periodic answer or it is not reached over the travel);
+- mode margin: the quoted mode holds at ϖ·(1 ± 5 %) and α·(1 ± 10 %)
   (:data:`MARGIN_CORNERS`: ±5 % on the resonance frequency or ±10 % on the tangential
-  compliance is a typical fabrication spread);
+  compliance is a typical fabrication spread), each corner read on the same basis as
+  the headline (its orbit, or its crossing from rest);
 - tangential resonance |a·ϖ² − 1| ≥ 0.1 for a = α and a = α(1 + 1/β);
 - speed Δs·u·cosθ·f_act from the exact orbit (MODEL.md, "Displacement per cycle"), or
   the mean over the crossing of the travel range from rest when the slider has not
@@ -56,11 +63,13 @@ from betvdesign.checks.travel import SETTLE_SHARE, TravelAnswer, travel_answer
 from betvdesign.model.domain import (
     FIT_RANGE,
     TANGENTIAL_DETUNING,
-    VARPI_IMPULSIVE_END,
     VARPI_WINDOW,
+    WINDOW_EDGE_RTOL,
+    in_window,
     mode_of,
     outside_fit_range,
     resonance_detuning,
+    window_position,
 )
 from betvdesign.nondim.record import DeviceDerivation, SetDerivation
 from betvdesign.output.siformat import format_si
@@ -84,10 +93,12 @@ __all__ = [
     "SRC_SPEED",
     "SRC_TANG",
     "SRC_WINDOW",
+    "WINDOW_MARGIN",
     "adequacy_rule",
     "evaluate",
     "evaluate_device",
     "speed_rules",
+    "time_to_cross_s",
 ]
 
 #: Relative distance [-] within which a computed parameter matches a published one.
@@ -118,6 +129,10 @@ NO_CROSSING_FIX = (
     "N`) if the travel really takes that long"
 )
 SRC_MARGIN = "exact periodic orbits at ϖ·(1 ± 5 %) and α·(1 ± 10 %) (fabrication spread)"
+SRC_MARGIN_WINDOW = (
+    "MODEL.md design window 0.5 ≤ ϖ < 2 at ϖ·(1 ± 5 %) (fabrication spread of f_v, the "
+    "same spread as the mode's margin corners)"
+)
 SRC_ADEQUACY = (
     "betvdesign.checks.adequacy: exact periodic orbits without and with head damping and "
     "restitution, Q and e scanned (MODEL.md, Beyond the paper's idealisation)"
@@ -168,7 +183,8 @@ def evaluate(
     Returns
     -------
     list of RuleResult
-        In a fixed order: window, mode, λ, margin, tangential resonance, published fit,
+        In a fixed order: window, window margin (inside the window only), mode, λ,
+        margin, tangential resonance, published fit,
         speed, settling, target speed, model adequacy; ``set_name`` is ``s.name``.
 
     References
@@ -176,11 +192,13 @@ def evaluate(
     .. [1] Shin, Pai, Lin, Hui and Tien, J. Appl. Phys. 96, 7603 (2004),
        doi:10.1063/1.1809773.
     """
+    window_margin = _window_margin(s)
     out = [
         _frequency_window(s, vertical),
+        *([window_margin] if window_margin is not None else []),
         _mode(s, orbit, travel),
         _lambda(s, orbit),
-        *([_margin(s, orbit, margin)] if margin is not None else []),
+        *([_margin(s, orbit, margin, travel)] if margin is not None else []),
         _tangential_resonance(s),
         *_published(s),
         *speed_rules(s, orbit, settling, target_speed_m_s, travel),
@@ -208,19 +226,26 @@ def _drive_range(s: SetDerivation, lo_varpi: float, hi_varpi: float) -> str:
 
 
 def _frequency_window(s: SetDerivation, vertical: VerticalResult | None) -> RuleResult:
+    """The rule ``frequency-window``: 0.5 ≤ ϖ < 2, read by the one comparison
+    (:func:`~betvdesign.model.domain.window_position`: the lower edge inside, the upper
+    edge outside, each to :data:`~betvdesign.model.domain.WINDOW_EDGE_RTOL`)."""
     v = s.params.varpi
     lo, hi = VARPI_WINDOW
     f_v = s.scales.f_act_hz / v
+    pos = window_position(v)
     fix = ""
-    if v < lo:
-        msg = f"ϖ = {v:.3g} below the window: the head hits several times per cycle"
-    elif v < hi:
-        msg = f"ϖ = {v:.3g} inside the window: one hit per cycle, finite contact"
-    elif v < VARPI_IMPULSIVE_END:
-        msg = f"ϖ = {v:.3g} above the window: impulsive hits, the slider is not driven"
-    else:
-        msg = f"ϖ = {v:.3g} far above the window: period doubling or aperiodic hits"
-    if not lo <= v < hi:
+    msg = {
+        "below": f"ϖ = {v:.3g} below the window: the head hits several times per cycle",
+        "lower-edge": f"ϖ = {v:.3g} at the window's lower edge (inside): one hit per cycle, "
+        "finite contact",
+        "inside": f"ϖ = {v:.3g} inside the window: one hit per cycle, finite contact",
+        "upper-edge": f"ϖ = {v:.3g} at the window's upper edge (outside): contact vanishes "
+        "there, the slider is not driven",
+        "above": f"ϖ = {v:.3g} above the window: impulsive hits, the slider is not driven",
+        "far-above": f"ϖ = {v:.3g} far above the window: period doubling or aperiodic hits",
+    }[pos]
+    ok = in_window(v)
+    if not ok:
         fix = (
             f"set drive.frequency within {_drive_range(s, lo, hi)}, or move the head's "
             f"vertical resonance (now {_hz(f_v)}) to {_hz(s.scales.f_act_hz / hi)}–"
@@ -230,12 +255,54 @@ def _frequency_window(s: SetDerivation, vertical: VerticalResult | None) -> Rule
         msg += (
             f" [exact vertical motion: {vertical.regime}, {vertical.hits_per_cycle:g} hit(s) "
             f"per cycle ({vertical.impulsive_per_cycle:g} impulsive), in contact "
-            f"{vertical.contact_fraction:.0%} of the time]"
+            f"{_share(vertical.contact_fraction)} of the time]"
         )
     elif vertical is not None:
         msg += f" [exact vertical motion: {vertical.message}]"
-    thr = f"{lo:g} <= varpi < {hi:g}"
-    return RuleResult("frequency-window", "error", lo <= v < hi, v, thr, msg, SRC_WINDOW, fix=fix)
+    thr = f"{lo:g} <= varpi < {hi:g} (edges to {WINDOW_EDGE_RTOL:g} relative)"
+    return RuleResult("frequency-window", "error", ok, v, thr, msg, SRC_WINDOW, fix=fix)
+
+
+def _share(x: float) -> str:
+    """A share of time as a percentage, with a tiny non-zero one shown as such."""
+    return f"{x:.0%}" if x == 0.0 or x >= 0.005 else f"{x:.2g} (< 1 %)"
+
+
+#: The relative spread of ϖ = f_act/f_v the window must survive [-]: the same ±5 % as
+#: the mode's margin corners (:data:`MARGIN_CORNERS`).
+WINDOW_MARGIN = max(abs(fw - 1.0) for fw, _ in MARGIN_CORNERS)
+
+
+def _window_margin(s: SetDerivation) -> RuleResult | None:
+    """The rule ``window-margin`` (warning): the window holds at ϖ·(1 ± 5 %), or the
+    distance to the nearest edge is named; None when ϖ is outside the window (the
+    window rule fails then)."""
+    v = s.params.varpi
+    if not in_window(v):
+        return None
+    lo, hi = VARPI_WINDOW
+    f = WINDOW_MARGIN
+    corners = {f"ϖ×{1 - f:g}": v * (1 - f), f"ϖ×{1 + f:g}": v * (1 + f)}
+    out = [k for k, w in corners.items() if not in_window(w)]
+    to_lo, to_hi = v / lo - 1.0, 1.0 - v / hi
+    near, dist = ("lower edge 0.5", to_lo) if to_lo <= to_hi else ("upper edge 2", to_hi)
+    thr = f"{lo:g} <= varpi·(1 ± {f:.0%}) < {hi:g}"
+    if not out:
+        msg = f"ϖ = {v:.4g} stays in the window at ϖ·(1 ± {f:.0%}) ({dist:.1%} from its {near})"
+        return RuleResult("window-margin", "warning", True, dist, thr, msg, SRC_MARGIN_WINDOW)
+    f_act = s.scales.f_act_hz
+    need = (
+        f"ϖ ≥ {lo / (1 - f):.4g} (f_v ≤ {_hz(f_act * (1 - f) / lo)} at f_act {_hz(f_act)})"
+        if to_lo <= to_hi
+        else f"ϖ < {hi / (1 + f):.4g} (f_v > {_hz(f_act * (1 + f) / hi)} at f_act {_hz(f_act)})"
+    )
+    msg = (
+        f"ϖ = {v:.4g} is {dist:.2%} from the window's {near}: a {f:.0%} spread of "
+        f"f_act/f_v leaves the window ({', '.join(out)}); the margin needs {need}"
+    )
+    return RuleResult(
+        "window-margin", "warning", False, dist, thr, msg, SRC_MARGIN_WINDOW, fix=SEARCH_HINT
+    )
 
 
 #: The fix text of a mode rule before the search has run: no direction is claimed
@@ -334,12 +401,16 @@ def _travel_mode(s: SetDerivation, ans: TravelAnswer, want: str) -> RuleResult:
         )
     if ans.basis == "no-crossing":
         n = ans.horizon_cycles or 0
-        shown = (
-            f"periodic orbit: Δs = {periodic:.4g} per cycle ({mode_of(periodic)}), not "
-            "reached over the travel"
-            if periodic is not None
-            else "no periodic answer"
-        )
+        if ans.mode == "undetermined":
+            shown = "the periodic Δs is not determined"
+        elif periodic is not None:
+            shown = (
+                f"periodic orbit: Δs = {periodic:.4g} per cycle ({mode_of(periodic)}), not "
+                "reached over the travel"
+            )
+        else:
+            shown = ans.reason.split(" and the transient")[0]  # "no periodic orbit (…)"
+
         return RuleResult(
             "mode",
             "error",
@@ -353,11 +424,12 @@ def _travel_mode(s: SetDerivation, ans: TravelAnswer, want: str) -> RuleResult:
     ds = float(ans.delta_s)
     mode = ans.mode
     ok = mode == s.intended_mode
-    shown = (
-        f"periodic orbit Δs = {periodic:.4g}, not settled by then"
-        if periodic is not None and mode_of(periodic) in ("push", "pull")
-        else "periodic Δs not determined"
-    )
+    if periodic is not None and mode_of(periodic) in ("push", "pull"):
+        shown = f"periodic orbit Δs = {periodic:.4g}, not settled by then"
+    elif periodic is None and ans.reason.startswith("no periodic orbit"):
+        shown = ans.reason.split(";")[0]
+    else:
+        shown = "periodic Δs not determined"
     msg = (
         f"transient from rest crosses the {travel} travel in {ans.cycles_to_cross} cycles, "
         f"mean Δs = {ds:.4g} per cycle -> {mode} mode (intended {s.intended_mode}; {shown})"
@@ -389,9 +461,15 @@ def _lambda(s: SetDerivation, orbit: OrbitLike | None) -> RuleResult:
 
 
 def _margin(
-    s: SetDerivation, orbit: OrbitLike | None, corners: dict[str, str | None]
+    s: SetDerivation,
+    orbit: OrbitLike | None,
+    corners: dict[str, str | None],
+    travel: TravelAnswer | None = None,
 ) -> RuleResult:
-    mode = orbit_mode(orbit)
+    """The rule ``mode-margin``: the quoted mode (the travel answer's, else the orbit's)
+    at every corner, each corner read on the same basis (the checker's
+    ``corner_modes``)."""
+    mode = travel.mode if travel is not None else orbit_mode(orbit)
     thr = "same mode at ϖ·(1 ± 5 %) and α·(1 ± 10 %)"
     if mode not in ("push", "pull"):
         return RuleResult(
@@ -400,10 +478,15 @@ def _margin(
     flips = {k: v for k, v in corners.items() if v != mode}
     ok = not flips
     listing = ", ".join(f"{k}: {v or 'no orbit'}" for k, v in flips.items())
+    basis = (
+        " [each corner's crossing from rest]"
+        if travel is not None and travel.basis == "crossing"
+        else " [each corner's periodic orbit]"
+    )
     msg = (
-        f"the {mode} mode holds at every corner ({', '.join(corners)})"
+        f"the {mode} mode holds at every corner ({', '.join(corners)}){basis}"
         if ok
-        else f"the mode changes within fabrication spread ({listing})"
+        else f"the mode changes within fabrication spread ({listing}){basis}"
     )
     fix = "" if ok else f"move away from the flip ({_margin_cause(flips)}); {SEARCH_HINT}"
     return RuleResult(
@@ -522,7 +605,7 @@ def speed_rules(
         else:
             why = "no exact periodic orbit"
         out = [RuleResult("speed", "info", False, None, "needs a moving orbit", why, SRC_SPEED)]
-        if ans.basis == "no-crossing" and settling is not None:
+        if ans.basis == "no-crossing" and settling is not None and ans.delta_s_periodic is not None:
             out.append(_settling_rule(s, settling, ok=False))
         if target is not None:
             out.append(_target(None, target, why))
@@ -544,12 +627,13 @@ def speed_rules(
     else:
         basis = "periodic orbit"
     if abs(v) > 0:
-        t_cross = travel_m / abs(v)
+        t_cross = time_to_cross_s(s, ans)
+        how = "from rest " if ans.cycles_to_cross is not None else ""
         msg = (
             f"mean speed {format_speed(abs(v))} toward {travel_axis(s, ds)} "
             f"({'with' if ds > 0 else 'against'} the impact direction "
             f"{s.actuator_set.impact_direction}), crosses the {format_si(travel_m, 'm')} "
-            f"travel range in {format_time(t_cross)} [{basis}]"
+            f"travel range {how}in {format_time(t_cross)} [{basis}]"
         )
     else:
         msg = "the slider does not advance over the travel range"
@@ -558,6 +642,31 @@ def speed_rules(
     if target is not None:
         out.append(_target(abs(v), target, ""))
     return out
+
+
+def time_to_cross_s(s: SetDerivation, ans: TravelAnswer) -> float | None:
+    """Time for the slider to cross its travel range [s]: one definition for every line.
+
+    Parameters
+    ----------
+    s : SetDerivation
+        The derived set (travel range, actuation frequency, scales).
+    ans : TravelAnswer
+        The answer the verdict quotes.
+
+    Returns
+    -------
+    float or None
+        The transient from rest's own crossing, ``cycles_to_cross / f_act`` (to within
+        one cycle), whenever it was run and crossed, whatever the basis of the speed:
+        the periodic speed is the settled one, and the slider starts from rest;
+        else travel / |speed| of the quoted Δs; None when nothing moves.
+    """
+    if ans.cycles_to_cross is not None:
+        return ans.cycles_to_cross / s.scales.f_act_hz
+    if ans.delta_s is None or ans.delta_s == 0.0:
+        return None
+    return s.travel_range_m / abs(s.scales.speed_m_s(float(ans.delta_s)))
 
 
 def _settling_rule(s: SetDerivation, settling: Settling, *, ok: bool) -> RuleResult:

@@ -12,16 +12,27 @@ cycles), the periodic answer is exact and irrelevant, and the travel is the answ
 "periodic"            the orbit is determined and the transient settles within
                       :data:`SETTLE_SHARE` of the cycles it takes to cross the
                       travel: the periodic mode and Δs
-"crossing"            it crosses the travel before that (or the periodic Δs is not
-                      determined, or there is no orbit, but it crosses): the mode
-                      and mean Δs of the crossing from rest
-"no-crossing"         it does not cross the travel within the simulated horizon:
-                      no mode is shown to hold over the travel; the design fails
-"undetermined"        neither a determined orbit nor a crossing (e.g. a force below
-                      round-off): the mode is "undetermined"
-"no-orbit"            no periodic orbit (not driven, unbounded, failed) and no
-                      transient was run: the orbit's status decides
+"crossing"            it crosses the travel before that, or there is no periodic
+                      answer (Δs not determined, no orbit found: not converged or
+                      failed) and the transient from rest crosses: the mode and
+                      mean Δs of the crossing from rest
+"no-crossing"         the transient from rest does not cross the travel within the
+                      simulated horizon (whatever the orbit says): no mode is shown
+                      to hold over the travel; the design fails
+"undetermined"        Δs not determined and no transient was run: the mode is
+                      "undetermined"
+"no-orbit"            no periodic orbit for a reason the travel cannot answer: the
+                      slider is not driven (no contact, or contact below round-off:
+                      it only coasts on its first kick), or the head's tangential
+                      motion is unbounded (no bounded motion exists); or no
+                      transient was run
 ====================  ===========================================================
+
+The travel decides whenever there is no periodic answer (issue 29): a design with no
+orbit (not converged, failed) or an undetermined Δs is judged by its transient from
+rest, never failed for the orbit's sake when it crosses. Not driven and unbounded are
+answers of the model itself, not of a solver, and a crossing from rest there would be
+a coast or a growing vibration (:func:`travel_decides`).
 
 :func:`travel_answer` is the one place that makes this choice, for the check, the fix
 search, the explorer and the verdict map (:mod:`betvdesign.bench.verdictmap`).
@@ -97,6 +108,26 @@ class TravelAnswer:
         }
 
 
+def travel_decides(orbit: Any) -> bool:
+    """True when the orbit gives no periodic answer but the transient from rest can.
+
+    Parameters
+    ----------
+    orbit : PeriodicResult or None
+        The exact periodic orbit.
+
+    Returns
+    -------
+    bool
+        True for a failed orbit whose status is "not_converged" or "failed" (no orbit
+        found by the solver: the slider's motion from rest is still well defined);
+        False for a successful orbit, for "not_driven" (no contact, or contact below
+        round-off: the slider is not driven, a crossing would be a coast on the first
+        kick) and for "unbounded" (no bounded motion exists).
+    """
+    return orbit is not None and not orbit.success and orbit.status in ("not_converged", "failed")
+
+
 def travel_answer(orbit: Any, determination: Any, settling: Any) -> TravelAnswer:
     """Choose the answer a verdict quotes (module docstring).
 
@@ -131,33 +162,40 @@ def travel_answer(orbit: Any, determination: Any, settling: Any) -> TravelAnswer
         c = float(settling.crossing_delta_s)
         return TravelAnswer("crossing", mode_of(c), c, ds, cross, horizon, why)
 
+    def not_crossing(why: str) -> TravelAnswer:
+        return TravelAnswer("no-crossing", mode, None, ds, None, horizon, why)
+
     if mode == "undetermined":  # a degenerate design's determination says so too
+        why = determination.reason if determination is not None else "Δs not determined"
         if crossed:
             return crossing(
                 "the periodic Δs is not determined; the transient from rest crosses the "
                 f"travel in {cross} cycles"
             )
-        why = determination.reason if determination is not None else "Δs not determined"
+        if ran:
+            return not_crossing(
+                f"the periodic Δs is not determined ({why}) and the transient from rest "
+                f"does not cross the travel within {horizon} cycles"
+            )
         fix = determination.fix if determination is not None else ""
         return TravelAnswer("undetermined", "undetermined", None, ds, cross, horizon, why, fix)
     if not solved:
-        if crossed:
-            return crossing(f"no periodic orbit ({orbit.status}); the transient crosses")
         status = orbit.status if orbit is not None else "not solved"
+        if travel_decides(orbit) and crossed:
+            return crossing(f"no periodic orbit ({status}); the transient from rest crosses")
+        if travel_decides(orbit) and ran:
+            return not_crossing(
+                f"no periodic orbit ({status}) and the transient from rest does not cross "
+                f"the travel within {horizon} cycles"
+            )
         return TravelAnswer("no-orbit", None, None, None, cross, horizon, f"no orbit: {status}")
     if not ran:
         return TravelAnswer("periodic", mode, ds, ds, None, None, "periodic orbit")
     if mode not in ("push", "pull"):
         return TravelAnswer("periodic", mode, ds, ds, cross, horizon, f"periodic orbit: {mode}")
     if not crossed:
-        return TravelAnswer(
-            "no-crossing",
-            mode,
-            None,
-            ds,
-            None,
-            horizon,
-            f"the transient from rest does not cross the travel within {horizon} cycles",
+        return not_crossing(
+            f"the transient from rest does not cross the travel within {horizon} cycles"
         )
     share = settling.settle_cycles / cross if cross else math.inf
     if share <= SETTLE_SHARE:

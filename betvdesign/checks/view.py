@@ -444,7 +444,7 @@ def _set_out(sc: Any, flt: RuleFilter) -> SetOut:
         basis=None if sc.travel is None else sc.travel.basis,
         speed_m_s=v,
         travel_direction=direction,  # type: ignore[arg-type]
-        time_to_cross_s=s.travel_range_m / v if v else None,
+        time_to_cross_s=sc.time_to_cross_s if v else None,
         travel_range_m=s.travel_range_m,
         params=p.as_dict(),
         **{
@@ -512,7 +512,7 @@ def set_headline(sc: Any) -> tuple[str, str]:
         label = "" if basis == "periodic" else f" ({SPEED_BASIS.get(basis, basis)})"
         motion = (
             f"{format_si(v, 'm/s')} toward {direction}{label}, "
-            f"{format_si(s.travel_range_m, 'm')} in {format_si(s.travel_range_m / v, 's')}"
+            f"{format_si(s.travel_range_m, 'm')} in {format_si(sc.time_to_cross_s, 's')}"
         )
     else:
         motion = _no_motion(sc, mode, v)

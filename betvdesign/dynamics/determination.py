@@ -43,7 +43,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any, Literal
 
-from betvdesign.model.domain import DETERMINED_RTOL, mode_of
+from betvdesign.model.domain import DETERMINED_RTOL, ROUND_OFF_SCALE, mode_of
 from betvdesign.model.params import ModelParams
 from betvdesign.output.numbers import json_float
 
@@ -54,15 +54,12 @@ from betvdesign.output.numbers import json_float
 #: held-out designs that a ±1e-10 brute force calls undetermined
 #: (``benchmarks/bench_determination.py validate``).
 PERTURBATIONS = (1e-12, -1e-10)
-#: A force scale of the model (relative to the unit normal force) below which it is
-#: not resolved in float64 [-]: event times are resolved to ~1e-16·τ with τ up to ~1e4
-#: over a transient, so a force of relative size < 1e-12 changes nothing resolvable.
-ROUND_OFF_SCALE = 1e-12
+__all__ = ["PERTURBATIONS", "ROUND_OFF_SCALE", "Determination", "degeneracy", "determine"]
 
 Status = Literal["determined", "undetermined", "degenerate", "not_solved"]
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class Determination:
     """How well the periodic increment Δs of one design is determined.
 
@@ -122,7 +119,10 @@ class Determination:
             "reason": self.reason,
             "fix": self.fix,
             "perturbations": list(PERTURBATIONS),
+            "fields": list(self.fields),
+            "perturbed": [json_float(v) for v in self.perturbed],
             "n_solves": self.n_solves,
+            "elapsed_s": json_float(self.elapsed_s),
         }
 
 
@@ -222,16 +222,29 @@ def determine(
     degenerate = degeneracy(p)
     if degenerate is not None:
         why, fix = degenerate
-        return Determination("degenerate", None, None, "undetermined", why, fix)
+        return Determination(
+            status="degenerate",
+            delta_s=None,
+            delta_s_error=None,
+            mode="undetermined",
+            reason=why,
+            fix=fix,
+        )
     if orbit is None or not orbit.success or orbit.delta_s is None:
-        return Determination("not_solved", None, None, None, "no periodic orbit to assess")
+        return Determination(
+            status="not_solved",
+            delta_s=None,
+            delta_s_error=None,
+            mode=None,
+            reason="no periodic orbit to assess",
+        )
     if solver is None:
         from betvdesign.dynamics.periodic import periodic_orbit
 
         solver = periodic_orbit
     ds = float(orbit.delta_s)
     fields, values = [], []
-    failed = ""
+    failures: list[tuple[str, Any]] = []
     for name, q in _perturbed(p):
         r = solver(q)
         fields.append(name)
@@ -239,49 +252,70 @@ def determine(
             values.append(float(r.delta_s))
         else:
             values.append(math.nan)
-            failed = failed or f"{name}: {r.status}"
+            failures.append((name, r))
     errs = [abs(v - ds) for v in values if math.isfinite(v)]
-    err = math.inf if failed else max(errs, default=0.0)
+    err = math.inf if failures else max(errs, default=0.0)
     mode = mode_of(ds, error=err)
     elapsed = time.perf_counter() - t0
     n = len(values)
+    record = dict(
+        delta_s=ds,
+        delta_s_error=err,
+        perturbed=tuple(values),
+        fields=tuple(fields),
+        n_solves=n,
+        elapsed_s=elapsed,
+    )
     if mode != "undetermined":
         reason = (
             f"Δs = {ds:.6g} changes by at most {err:.2g} under {n} re-solves with a "
             "parameter moved by 1e-12 or 1e-10"
         )
-        return Determination(
-            "determined", ds, err, mode, reason, tuple(values), tuple(fields), n, elapsed
-        )
-    if failed:
+        return Determination(status="determined", mode=mode, reason=reason, **record)
+    if failures:
+        reason, fix = _lost_orbit(p, ds, failures, n)
+    else:
+        worst = max(range(n), key=lambda i: abs(values[i] - ds))
         reason = (
-            f"the periodic orbit is lost when a parameter moves at round-off ({failed}): "
-            f"Δs = {ds:.4g} is not determined"
+            f"Δs = {ds:.4g} is not determined: the re-solve with {fields[worst]} gives "
+            f"Δs = {values[worst]:.4g}, a change of {err:.3g} (> {DETERMINED_RTOL:.0%} of "
+            "|Δs|, or across zero); the periodic answer here is round-off (slowest Floquet "
+            f"multiplier |μ| = {max(orbit.floquet_moduli or [math.nan]):.12f})"
+        )
+        fix = (
+            "move the design away from the edge of the parameter space where the slider's "
+            "motion is set by forces near round-off (friction κ or the mass ratio β near 0, "
+            "α·ϖ² near 1 without damping); `betv fix FILE` finds a change"
+        )
+    return Determination(
+        status="undetermined", mode="undetermined", reason=reason, fix=fix, **record
+    )
+
+
+def _lost_orbit(
+    p: ModelParams, ds: float, failures: list[tuple[str, Any]], n: int
+) -> tuple[str, str]:
+    """(reason, fix) when re-solves lose the orbit: which re-solves, their status and
+    message, and a fix that names the parameter whose move lost it (never a generic
+    cause)."""
+    listed = "; ".join(
+        f"{name} → {r.status} ({str(r.message).split(';')[0][:160]})" for name, r in failures
+    )
+    reason = (
+        f"the periodic orbit (Δs = {ds:.4g}) is lost in {len(failures)} of {n} re-solves "
+        f"with a parameter moved by at most 1e-10: {listed}"
+    )
+    moved = sorted({name.split("×")[0] for name, _ in failures})
+    statuses = {str(r.status) for _, r in failures}
+    if moved == ["varpi"] and "not_driven" in statuses:
+        fix = (
+            f"ϖ = {p.varpi:.12g} sits where contact vanishes (the window's upper edge ϖ = 2): "
+            "lower ϖ into 0.5 ≤ ϖ < 2 with margin (drive frequency down or vertical "
+            "resonance up); `betv fix FILE` finds the change"
         )
     else:
-        worst = fields[
-            max(range(n), key=lambda i: abs(values[i] - ds) if math.isfinite(values[i]) else -1)
-        ]
-        reason = (
-            f"Δs = {ds:.4g} is not determined: {worst} changes it by {err:.3g} "
-            f"(> {DETERMINED_RTOL:.0%} of |Δs|, or across zero); the "
-            "periodic answer here is round-off (slowest Floquet multiplier |μ| = "
-            f"{max(orbit.floquet_moduli or [math.nan]):.12f})"
+        fix = (
+            f"move {', '.join(moved)} away from where the orbit changes kind "
+            f"({', '.join(sorted(statuses))} a hair away); `betv fix FILE` finds a change"
         )
-    fix = (
-        "move the design away from the edge of the parameter space where the slider's "
-        "motion is set by forces near round-off (friction κ or the mass ratio β near 0, "
-        "α·ϖ² near 1 without damping); `betv fix FILE` finds a change"
-    )
-    return Determination(
-        "undetermined",
-        ds,
-        err,
-        "undetermined",
-        reason,
-        fix,
-        tuple(values),
-        tuple(fields),
-        n,
-        elapsed,
-    )
+    return reason, fix

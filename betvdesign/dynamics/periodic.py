@@ -52,7 +52,7 @@ from betvdesign.dynamics.shooting import TRUST
 from betvdesign.dynamics.solver import CycleFailure, CycleRunner
 from betvdesign.dynamics.vertical import VerticalSchedule, VerticalSearchError
 from betvdesign.errors import ParameterError
-from betvdesign.model.domain import mode_of
+from betvdesign.model.domain import ROUND_OFF_SCALE, mode_of
 from betvdesign.model.params import ModelParams
 
 POLISH = 1e-14
@@ -319,7 +319,7 @@ def periodic_orbit(
     )
 
 
-def not_driven_message(p: ModelParams, cycles: int) -> str:
+def not_driven_message(p: ModelParams, cycles: int, contact_fraction: float | None = None) -> str:
     """Why the slider is not driven: no contact recurs (status "not_driven").
 
     The one wording of that verdict, shared by the periodic orbit and the fidelity
@@ -331,6 +331,11 @@ def not_driven_message(p: ModelParams, cycles: int) -> str:
         The design's dimensionless parameters.
     cycles : int
         Actuation cycles [-] within which no contact recurred.
+    contact_fraction : float, optional
+        The periodic vertical motion's share of a cycle in contact [-], when contact
+        recurs but lasts at most :data:`~betvdesign.model.domain.ROUND_OFF_SCALE` of
+        the cycle (then only the first contact from rest kicks the slider, which
+        coasts).
 
     Returns
     -------
@@ -338,6 +343,13 @@ def not_driven_message(p: ModelParams, cycles: int) -> str:
         The verdict and its cause (restitution that never settles, or ϖ beyond the
         design window).
     """
+    if contact_fraction is not None:
+        return (
+            f"contact lasts {contact_fraction:.2g} of each cycle at ϖ = {p.varpi:.17g}, "
+            f"below round-off ({ROUND_OFF_SCALE:g}): the slider only coasts on its first "
+            "contact from rest and is not driven (MODEL.md design window 0.5 ≤ ϖ < 2; "
+            "contact vanishes at its upper edge)"
+        )
     return (
         f"no contact recurs within {cycles} cycles at ϖ = {p.varpi:g}: hits are "
         "impulsive only and the slider is not driven ("
@@ -380,6 +392,10 @@ def _periodic_orbit(
     if vs.period is None:
         return PeriodicResult.failure(
             p, "not_driven", not_driven_message(p, vs.n_prefix), **spent()
+        )
+    if frac <= ROUND_OFF_SCALE:  # contact recurs, but below round-off of the cycle
+        return PeriodicResult.failure(
+            p, "not_driven", not_driven_message(p, vs.n_prefix, frac), **spent()
         )
     kv = vs.period
     assert vs.first_end is not None

@@ -53,8 +53,10 @@ TrajectoryStatus = Literal["success", "failed"]
 #:   linearly (proven and measured, :mod:`betvdesign.dynamics.periodic`);
 #: - ``"not_converged"``: no stable orbit of the periods tried within the cycle budget
 #:   (quasi-periodic or slowly growing motion; ``residual`` is the best one reached);
-#: - ``"not_driven"``: no contact recurs, the hits are impulsive only and the slider is
-#:   not driven (MODEL.md, "Vertical motion");
+#: - ``"not_driven"``: no contact recurs (the hits are impulsive only), or the recurring
+#:   contact lasts at most :data:`~betvdesign.model.domain.ROUND_OFF_SCALE` of a cycle
+#:   (the slider only coasts on its first contact from rest): the slider is not driven
+#:   (MODEL.md, "Vertical motion");
 #: - ``"failed"``: the vertical motion or a cycle could not be computed (``message``).
 PeriodicStatus = Literal["success", "unbounded", "not_converged", "not_driven", "failed"]
 

@@ -111,7 +111,7 @@ class Settling(SolverResult):
 
 def settling(
     p: ModelParams,
-    delta_s: float,
+    delta_s: float | None,
     *,
     period_cycles: int = 1,
     travel_s: float = math.inf,
@@ -125,9 +125,11 @@ def settling(
     ----------
     p : ModelParams
         The model.
-    delta_s : float
+    delta_s : float or None
         The periodic slider increment Δs* per actuation cycle [-, units of u·cosθ]
-        (:attr:`PeriodicResult.delta_s <betvdesign.dynamics.result.PeriodicResult>`).
+        (:attr:`PeriodicResult.delta_s <betvdesign.dynamics.result.PeriodicResult>`);
+        None when there is no periodic answer: only the crossing of the travel is
+        measured (status "not_settled", the run stops once it crosses).
     period_cycles : int
         The orbit's period k [cycles]; the running mean is taken over k cycles.
     travel_s : float
@@ -151,7 +153,8 @@ def settling(
     """
     t0 = time.perf_counter()
     k = max(1, int(period_cycles))
-    target = float(delta_s)
+    crossing_only = delta_s is None
+    target = 0.0 if delta_s is None else float(delta_s)
     tol = rtol * abs(target)
     s_all = [np.zeros(1)]
     state = None
@@ -196,9 +199,11 @@ def settling(
         if cross is None and math.isfinite(travel_s):
             hit = np.nonzero(np.abs(s) >= travel_s)[0]
             cross = int(hit[0]) if len(hit) else None
-        settle = _settle_index(s, k, target, tol)
+        settle = None if crossing_only else _settle_index(s, k, target, tol)
         crossed = cross is not None or not math.isfinite(travel_s)
-        if (settle is not None and crossed) or done >= max_cycles:
+        if (crossing_only and crossed) or (settle is not None and crossed):
+            break
+        if done >= max_cycles:
             break
         chunk = done  # double the horizon
     crossing = None if cross is None else float(s[cross] / cross)
@@ -209,6 +214,19 @@ def settling(
             f"({done} cycles simulated from rest)",
             done,
             cycles_to_settle=settle,
+            crossing_delta_s=crossing,
+        )
+    if crossing_only:
+        return result(
+            "not_settled",
+            "no periodic Δs to settle to: the transient from rest "
+            + (
+                f"crosses the travel after {cross} cycles"
+                if cross is not None
+                else f"does not cross the travel within {done} cycles"
+            ),
+            done,
+            cycles_to_settle=None,
             crossing_delta_s=crossing,
         )
     shown = f" (slowest Floquet multiplier |μ| = {mu_max:.6g})" if mu_max is not None else ""

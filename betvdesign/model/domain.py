@@ -2,8 +2,11 @@
 
 Unit-free, below every solver and rule (imports only :mod:`betvdesign.model.params`):
 
-- the design window 0.5 ≤ ϖ < 2 and where impulsive hits end (docs/MODEL.md,
+- the design window 0.5 ≤ ϖ < 2, its edges to round-off (:func:`window_position`, the
+  one comparison of ϖ with the window) and where impulsive hits end (docs/MODEL.md,
   "Vertical motion");
+- the round-off scale below which a force or a contact of the model is not resolved
+  (:data:`ROUND_OFF_SCALE`: a contact that short does not drive the slider);
 - the parameter range the λ fit was made on (docs/MODEL.md, "Push/pull criterion");
 - the tangential-resonance detuning the rules ask for;
 - :func:`mode_of`, the *only* place that turns a periodic increment Δs into a mode
@@ -22,6 +25,20 @@ from betvdesign.model.params import ModelParams
 VARPI_WINDOW: tuple[float, float] = (0.5, 2.0)
 #: Above the window, hits stay impulsive (zero contact) up to about this ϖ [-].
 VARPI_IMPULSIVE_END = 2.6
+#: Relative distance [-] within which ϖ counts as *at* an edge of the window: the lower
+#: edge is inside, the upper edge outside. ϖ = f_act/f_v reaches the solver through
+#: about 20 float64 operations and unit conversions (each within 1.1e-16), so a
+#: design drawn at an edge (f_act = f_v/2 or 2·f_v exactly) arrives within a few ulp
+#: of it (measured: 22 of 36 (f_v, m) pairs 1 ulp off, issue 29); 1e-12 bounds that
+#: with a factor of ~500 and is far below any fabrication spread. Derived designs are
+#: set to the edge exactly (:func:`snap_to_window_edge`), so the dynamics see the same ϖ.
+WINDOW_EDGE_RTOL = 1e-12
+#: A force, or a contact's share of a cycle, below this fraction of the model's unit
+#: scale is not resolved in float64 [-]: event times are resolved to ~1e-16·τ with τ up to
+#: ~1e4 over a transient, so a friction force or a contact duration of relative size
+#: < 1e-12 changes nothing resolvable (:mod:`betvdesign.dynamics.determination` names such
+#: forces; a periodic contact that short leaves the slider coasting, "not driven").
+ROUND_OFF_SCALE = 1e-12
 #: Parameter ranges of the simulations the λ fit was made on (Shin et al. 2004, Fig. 7).
 FIT_RANGE: dict[str, tuple[float, float]] = {
     "alpha": (0.1, 4.0),
@@ -85,9 +102,82 @@ def mode_of(delta_s: float | None, *, error: float = 0.0) -> Mode | None:
     return "push" if d > 0 else "pull"
 
 
+WindowPosition = Literal["below", "lower-edge", "inside", "upper-edge", "above", "far-above"]
+
+
+def window_position(varpi: float) -> WindowPosition:
+    """Where ϖ lies against the design window 0.5 ≤ ϖ < 2: the one comparison.
+
+    Parameters
+    ----------
+    varpi : float
+        Normalised actuation frequency ϖ = f_act/f_v [-].
+
+    Returns
+    -------
+    str
+        "lower-edge" (within :data:`WINDOW_EDGE_RTOL` of 0.5: inside), "inside",
+        "upper-edge" (within the same tolerance of 2: outside, contact vanishes there),
+        "below", "above" (up to :data:`VARPI_IMPULSIVE_END`: impulsive hits) or
+        "far-above". A non-finite ϖ is "far-above" when +inf, else "below".
+
+    References
+    ----------
+    MODEL.md, "What the model shows: Vertical motion" (Shin et al., J. Appl. Phys. 96,
+    7603 (2004)): one hit per cycle and finite contact for 0.5 ≤ ϖ < 2.
+    """
+    lo, hi = VARPI_WINDOW
+    w = float(varpi)
+    if not math.isfinite(w):
+        return "far-above" if w > 0 else "below"
+    if abs(w - lo) <= WINDOW_EDGE_RTOL * lo:
+        return "lower-edge"
+    if abs(w - hi) <= WINDOW_EDGE_RTOL * hi:
+        return "upper-edge"
+    if w < lo:
+        return "below"
+    if w < hi:
+        return "inside"
+    return "above" if w < VARPI_IMPULSIVE_END else "far-above"
+
+
 def in_window(varpi: float) -> bool:
-    """0.5 ≤ ϖ < 2 (the design window)."""
-    return VARPI_WINDOW[0] <= varpi < VARPI_WINDOW[1]
+    """0.5 ≤ ϖ < 2 (the design window), edges to round-off (:func:`window_position`).
+
+    Parameters
+    ----------
+    varpi : float
+        Normalised actuation frequency [-].
+
+    Returns
+    -------
+    bool
+        True for "lower-edge" and "inside"; False otherwise (the upper edge included).
+    """
+    return window_position(varpi) in ("lower-edge", "inside")
+
+
+def snap_to_window_edge(varpi: float) -> float:
+    """ϖ set exactly to the window edge it is at to round-off, else unchanged.
+
+    Parameters
+    ----------
+    varpi : float
+        Derived normalised actuation frequency [-].
+
+    Returns
+    -------
+    float
+        0.5 or 2.0 when within :data:`WINDOW_EDGE_RTOL` of that edge; ``varpi`` otherwise.
+        A device drawn at an edge (f_act = f_v/2 or 2·f_v exactly) is then solved and
+        judged at the edge itself, never one ulp to either side.
+    """
+    pos = window_position(varpi)
+    if pos == "lower-edge":
+        return VARPI_WINDOW[0]
+    if pos == "upper-edge":
+        return VARPI_WINDOW[1]
+    return float(varpi)
 
 
 def outside_fit_range(p: ModelParams) -> list[str]:

@@ -42,6 +42,7 @@ import numpy as np
 import pint
 
 from betvdesign.errors import Location, ParameterError, SpecError, SpecIssue
+from betvdesign.model.domain import WINDOW_EDGE_RTOL, snap_to_window_edge
 from betvdesign.model.params import ModelParams
 from betvdesign.nondim import actuator, terms
 from betvdesign.nondim.record import (
@@ -718,16 +719,30 @@ def normalised_frequency(rec: Recorder, omega: pint.Quantity, t_s: pint.Quantity
     Returns
     -------
     pint.Quantity
-        ϖ [-].
+        ϖ [-]; within :data:`~betvdesign.model.domain.WINDOW_EDGE_RTOL` of a window
+        edge it is that edge exactly (:func:`~betvdesign.model.domain.
+        snap_to_window_edge`: f_act = f_v/2 gives 0.5, f_act = 2·f_v gives 2), and the
+        record's formula says so.
 
     References
     ----------
     MODEL.md, "Dimensionless model"; Shin et al., J. Appl. Phys. 96, 7603 (2004),
     doi:10.1063/1.1809773.
     """
-    return rec.add(
-        "ϖ", "normalised actuation frequency", "ω·sqrt(m/k_v)", omega * t_s, ("ω", "t_s"), ""
-    )
+    raw = (omega * t_s).to("").magnitude
+    if np.ndim(raw) == 0:
+        snapped = snap_to_window_edge(float(raw))
+        formula = "ω·sqrt(m/k_v)"
+        if snapped != float(raw):  # the derivation's round-off, not the design
+            formula += (
+                f" = {float(raw)!r}, at the window edge {snapped:g} to round-off "
+                f"(|ϖ − {snapped:g}| ≤ {WINDOW_EDGE_RTOL:g}·{snapped:g}): set to {snapped:g}"
+            )
+        value: Any = snapped
+    else:
+        value = np.vectorize(snap_to_window_edge, otypes=[float])(np.asarray(raw, float))
+        formula = "ω·sqrt(m/k_v) (edges of the window to round-off set exactly)"
+    return rec.add("ϖ", "normalised actuation frequency", formula, value, ("ω", "t_s"), "")
 
 
 def mass_ratio(rec: Recorder, m: pint.Quantity, M: pint.Quantity) -> pint.Quantity:

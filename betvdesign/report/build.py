@@ -143,7 +143,7 @@ def verdict_box(
         speed = f"{format_si(abs(v_m_s), 'm/s')} toward {'+x' if direction > 0 else '−x'}"
         basis = speed_rule.message.rsplit("[", 1)[-1].rstrip("]") if speed_rule else ""
         crossing = (
-            format_si(sd.travel_range_m / abs(v_m_s), "s")
+            format_si(sc.time_to_cross_s if sc is not None else sd.travel_range_m / abs(v_m_s), "s")
             + f" for the {format_si(sd.travel_range_m, 'm')} travel range ({basis})"
         )
     elif per is not None:

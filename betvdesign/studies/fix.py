@@ -6,7 +6,9 @@ source of advice that could point another way.
 
 **Passing** is what ``betv check`` calls PASS (every error rule: frequency window,
 mode, target speed when given) with the mode also held at the margin corners
-ϖ·(1 ± 5 %) and α·(1 ± 10 %) (the rule ``mode-margin``). Warnings that do not fail the
+ϖ·(1 ± 5 %) and α·(1 ± 10 %) (the rule ``mode-margin``) and the design window at
+ϖ·(1 ± 5 %) (the rule ``window-margin``): "nothing to fix" only when both margins
+hold. Warnings that do not fail the
 check (slow settling, tangential resonance, model adequacy) do not block a fix; they are
 listed with the fix. Every candidate goes through
 :func:`betvdesign.checks.checker.check_derivation`, the same path as ``betv check``.
@@ -70,7 +72,7 @@ PAIR_POINTS = 9
 #: Pairs are searched among this many fields, those that came closest on their own.
 PAIR_FIELDS = 4
 #: The rules a fix must pass besides the error rules (the mode at the margin corners).
-REQUIRED_WARNINGS = ("mode-margin",)
+REQUIRED_WARNINGS = ("mode-margin", "window-margin")
 #: At most this many fields are searched for the advice of ``betv check``, and the
 #: search stops after this many fixes (:func:`advise`).
 ADVICE_FIELDS = 3
@@ -79,7 +81,7 @@ ADVICE_FIXES = 2
 MARGIN_TEXT = (
     f"margin: the value proposed lies {FIELD_MARGIN:.0%} inside the boundary where the "
     "check starts to pass (bisected to 0.2 %), and the mode also holds at ϖ·(1 ± 5 %) and "
-    "α·(1 ± 10 %)"
+    "α·(1 ± 10 %), and the design window at ϖ·(1 ± 5 %)"
 )
 
 
@@ -624,6 +626,7 @@ def _pairs(ev: Evaluator, varies: Sequence[Vary], base: Outcome) -> list[Candida
 #: choice of fields to search; the amount and direction come from the search).
 _RULE_MOVES = {
     "frequency-window": ("ϖ",),
+    "window-margin": ("ϖ",),
     "mode": ("ϖ", "α", "β", "κ"),
     "mode-margin": ("ϖ", "α", "β", "κ"),
     "target-speed": ("ℓ", "ϖ", "α", "β", "κ"),
