@@ -108,7 +108,16 @@ def test_failing_rules_grouped_across_mirrored_sets_with_fix():
     d = json.loads(run("check", "--json", SHIN).stdout)["devices"][0]
     for s in d["sets"]:
         win = next(x for x in s["rules"] if x["id"] == "frequency-window")
-        assert win["fix"].startswith("raise drive.frequency 500 Hz -> 772.1 Hz")
+        # the window with its ±5 % margin needs ϖ·0.95 ≥ 0.5: f_drive ≥ 2.94 kHz·0.5 /
+        # (0.95·2) = 773.7 Hz (AC doubling), bisected to 0.2 %, proposed 5 % inside
+        m = re.match(
+            r"raise drive\.frequency 500 Hz -> ([0-9.]+) Hz \(passes from ([0-9.]+) Hz",
+            win["fix"],
+        )
+        assert m, win["fix"]
+        boundary = 2940 * 0.5 / (0.95 * 2)
+        assert float(m.group(2)) == pytest.approx(boundary, rel=0.002)
+        assert float(m.group(1)) == pytest.approx(float(m.group(2)) * 1.05, rel=1e-3)
 
 
 def test_quiet_prints_only_failing_devices():

@@ -16,8 +16,12 @@ and is labelled by the basis of its answer:
 - "undetermined": neither (e.g. a force below round-off);
 - "no-orbit": not driven, unbounded or failed (the orbit's status is the answer).
 
-Every change of label along an axis is bisected (:data:`BISECT_STEPS` steps in the
-axis's own coordinate, log10 for the decades). Deterministic: the same rows every run.
+Every change of label along an axis is first probed (:data:`PROBES` points evenly
+inside the coarse interval): where the labels change more than once there (they
+interleave, e.g. undetermined and crossing at κ ≈ 3e-10 … 3e-9) the interval is a
+*band*, reported with its pattern, never bisected into a point that is not a boundary;
+a single change is bisected (:data:`BISECT_STEPS` steps in the axis's own coordinate,
+log10 for the decades). Deterministic: the same rows every run.
 """
 
 from __future__ import annotations
@@ -43,6 +47,9 @@ BASE = ModelParams(1.2, 2.04, 0.509, 0.15)
 TRAVEL_S = 380.0
 #: Bisection steps on each change of label.
 BISECT_STEPS = 10
+#: Points probed evenly inside a coarse interval whose ends differ, before bisecting:
+#: more than one change of label among them makes the interval a band.
+PROBES = 7
 #: Labels in the order of the figure's legend, with their colours.
 LABELS: dict[str, str] = {
     "periodic": "#2ca02c",
@@ -160,10 +167,20 @@ def scan_family(
 
     xs = list(np.linspace(fam.lo, fam.hi, points))
     base = [row(float(x)) for x in xs]
+    bands = 0
     for a, b in itertools.pairwise(base):
         lo, hi = a, b
         if lo["label"] == hi["label"]:
             continue
+        inner = [row(float(x)) for x in np.linspace(a["x"], b["x"], PROBES + 2)[1:-1]]
+        run = [a, *inner, b]
+        if sum(p["label"] != q["label"] for p, q in itertools.pairwise(run)) > 1:
+            bands += 1
+            for r in run:  # the labels interleave: a band, not a boundary
+                r["band"] = bands
+            continue
+        lo = max((r for r in run if r["label"] == a["label"]), key=lambda r: r["x"])
+        hi = min((r for r in run if r["label"] == b["label"]), key=lambda r: r["x"])
         for _ in range(bisect):
             mid = row(0.5 * (lo["x"] + hi["x"]))
             if mid["label"] == lo["label"]:
@@ -182,22 +199,57 @@ def scan(
 
 
 def boundaries(rows: Sequence[dict[str, Any]]) -> list[dict[str, Any]]:
-    """The bisected boundaries: family, labels on each side, and the bracketing values."""
+    """The boundaries and bands of each family.
+
+    Returns
+    -------
+    list of dict
+        Per change of label: ``kind`` "boundary" (a single change, bisected: family,
+        labels ``below`` and ``above``, the bracketing values ``low`` and ``high``) or
+        "band" (labels interleave over ``low`` … ``high``: ``below`` and ``above`` the
+        labels at its ends and ``pattern`` the labels' first letters in order, e.g.
+        "UUUDDUD").
+    """
     out = []
     for fam in dict.fromkeys(r["family"] for r in rows):
         rs = [r for r in rows if r["family"] == fam]
+        for band in dict.fromkeys(r["band"] for r in rs if r.get("band")):
+            members = [r for r in rs if r.get("band") == band]
+            out.append(
+                {
+                    "family": fam,
+                    "kind": "band",
+                    "below": members[0]["label"],
+                    "above": members[-1]["label"],
+                    "low": members[0]["value"],
+                    "high": members[-1]["value"],
+                    "pattern": "".join(_letter(r["label"]) for r in members),
+                }
+            )
         for a, b in itertools.pairwise(rs):
-            if a["label"] != b["label"]:
+            if a["label"] != b["label"] and not (a.get("band") and a.get("band") == b.get("band")):
                 out.append(
                     {
                         "family": fam,
+                        "kind": "boundary",
                         "below": a["label"],
                         "above": b["label"],
                         "low": a["value"],
                         "high": b["value"],
                     }
                 )
-    return out
+    return sorted(
+        out,
+        key=lambda b: (list(dict.fromkeys(r["family"] for r in rows)).index(b["family"]), b["low"]),
+    )
+
+
+def _letter(label: str) -> str:
+    """One letter per label for a band's pattern (U undetermined, N no-orbit, X
+    no-crossing, C crossing, P periodic)."""
+    return {"undetermined": "U", "no-orbit": "N", "no-crossing": "X", "crossing": "C"}.get(
+        label, "P"
+    )
 
 
 def verdict_map_figure(rows: Sequence[dict[str, Any]]) -> Figure:
@@ -221,7 +273,13 @@ def verdict_map_figure(rows: Sequence[dict[str, Any]]) -> Figure:
                 ax.axvspan(left, right, color=LABELS[r["label"]], linewidth=0)
             for b in boundaries(rs):
                 x = next(r["x"] for r in rs if r["value"] == b["high"])
-                ax.axvline(x, color="black", linewidth=0.6)
+                if b["kind"] == "band":
+                    x0 = next(r["x"] for r in rs if r["value"] == b["low"])
+                    ax.axvspan(
+                        x0, x, facecolor="none", edgecolor="black", hatch="///", linewidth=0.6
+                    )
+                else:
+                    ax.axvline(x, color="black", linewidth=0.6)
             log = any(r["value"] != r["x"] for r in rs)
             ax.set_xlim(min(xs), max(xs))
             ax.set_yticks([])

@@ -97,6 +97,7 @@ __all__ = [
     "adequacy_rule",
     "evaluate",
     "evaluate_device",
+    "format_varpi",
     "speed_rules",
     "time_to_cross_s",
 ]
@@ -234,16 +235,31 @@ def _frequency_window(s: SetDerivation, vertical: VerticalResult | None) -> Rule
     f_v = s.scales.f_act_hz / v
     pos = window_position(v)
     fix = ""
-    msg = {
-        "below": f"ϖ = {v:.3g} below the window: the head hits several times per cycle",
-        "lower-edge": f"ϖ = {v:.3g} at the window's lower edge (inside): one hit per cycle, "
-        "finite contact",
-        "inside": f"ϖ = {v:.3g} inside the window: one hit per cycle, finite contact",
-        "upper-edge": f"ϖ = {v:.3g} at the window's upper edge (outside): contact vanishes "
-        "there, the slider is not driven",
-        "above": f"ϖ = {v:.3g} above the window: impulsive hits, the slider is not driven",
-        "far-above": f"ϖ = {v:.3g} far above the window: period doubling or aperiodic hits",
+    w = format_varpi(v)
+    where = {
+        "below": "below the window",
+        "lower-edge": "at the window's lower edge (inside)",
+        "inside": "inside the window",
+        "upper-edge": "at the window's upper edge (outside)",
+        "above": "above the window",
+        "far-above": "far above the window",
     }[pos]
+    paper = {  # what the paper's model does there (MODEL.md, "Vertical motion")
+        "below": "the head hits several times per cycle",
+        "lower-edge": "one hit per cycle, finite contact",
+        "inside": "one hit per cycle, finite contact",
+        "upper-edge": "contact vanishes there (impulsive hits only from ϖ = 2 on), the "
+        "slider is not driven",
+        "above": "impulsive hits, the slider is not driven",
+        "far-above": "period doubling or aperiodic hits",
+    }[pos]
+    if vertical is not None and vertical.success and pos == "below":
+        if vertical.hits_per_cycle == 1:  # e.g. a damped head: the multi-hit range moves
+            paper = (
+                "the paper's model hits several times per cycle there; this head's exact "
+                "vertical motion still hits once"
+            )
+    msg = f"ϖ = {w} {where}: {paper}"
     ok = in_window(v)
     if not ok:
         fix = (
@@ -261,6 +277,28 @@ def _frequency_window(s: SetDerivation, vertical: VerticalResult | None) -> Rule
         msg += f" [exact vertical motion: {vertical.message}]"
     thr = f"{lo:g} <= varpi < {hi:g} (edges to {WINDOW_EDGE_RTOL:g} relative)"
     return RuleResult("frequency-window", "error", ok, v, thr, msg, SRC_WINDOW, fix=fix)
+
+
+def format_varpi(v: float) -> str:
+    """ϖ with the fewest digits (3 at least) that never read as a window edge it is not.
+
+    Parameters
+    ----------
+    v : float
+        Normalised actuation frequency [-].
+
+    Returns
+    -------
+    str
+        ``f"{v:.3g}"``, or more digits when that would print 0.5 or 2 for a ϖ that is
+        not at the edge (ϖ = 1.9999 prints "1.9999", never "2").
+    """
+    edge = window_position(v) in ("lower-edge", "upper-edge")
+    for digits in (3, 6, 9, 12, 17):
+        text = f"{v:.{digits}g}"
+        if edge or float(text) not in VARPI_WINDOW:
+            return text
+    return repr(v)
 
 
 def _share(x: float) -> str:
@@ -288,7 +326,10 @@ def _window_margin(s: SetDerivation) -> RuleResult | None:
     near, dist = ("lower edge 0.5", to_lo) if to_lo <= to_hi else ("upper edge 2", to_hi)
     thr = f"{lo:g} <= varpi·(1 ± {f:.0%}) < {hi:g}"
     if not out:
-        msg = f"ϖ = {v:.4g} stays in the window at ϖ·(1 ± {f:.0%}) ({dist:.1%} from its {near})"
+        msg = (
+            f"ϖ = {format_varpi(v)} stays in the window at ϖ·(1 ± {f:.0%}) ({dist:.1%} "
+            f"from its {near})"
+        )
         return RuleResult("window-margin", "warning", True, dist, thr, msg, SRC_MARGIN_WINDOW)
     f_act = s.scales.f_act_hz
     need = (
@@ -297,7 +338,7 @@ def _window_margin(s: SetDerivation) -> RuleResult | None:
         else f"ϖ < {hi / (1 + f):.4g} (f_v > {_hz(f_act * (1 + f) / hi)} at f_act {_hz(f_act)})"
     )
     msg = (
-        f"ϖ = {v:.4g} is {dist:.2%} from the window's {near}: a {f:.0%} spread of "
+        f"ϖ = {format_varpi(v)} is {dist:.2%} from the window's {near}: a {f:.0%} spread of "
         f"f_act/f_v leaves the window ({', '.join(out)}); the margin needs {need}"
     )
     return RuleResult(

@@ -29,6 +29,7 @@ from pydantic import BaseModel, ConfigDict, Field
 
 from betvdesign.checks.adequacy import AdequacyOut, adequacy_line
 from betvdesign.checks.rule import RuleResult, no_crossing, travel_axis
+from betvdesign.checks.rules import format_varpi
 from betvdesign.output.numbers import RULE as NUMBER_RULE
 from betvdesign.output.siformat import format_dimensionless as fmt_x
 from betvdesign.output.siformat import format_si, si_key
@@ -523,7 +524,7 @@ def set_headline(sc: Any) -> tuple[str, str]:
     rolled = f" (roll-off ×{sc_.rolloff_factor:.3g})" if sc_.has_rolloff else ""
     line2 = (
         f"f_act {format_si(sc_.f_act_hz, 'Hz')}, u {format_si(sc_.u_m, 'm')}{rolled} | "
-        f"ϖ {fmt_x(p.varpi)} α {fmt_x(p.alpha)} β {fmt_x(p.beta)} κ {fmt_x(p.kappa)}"
+        f"ϖ {format_varpi(p.varpi)} α {fmt_x(p.alpha)} β {fmt_x(p.beta)} κ {fmt_x(p.kappa)}"
         f"{_beyond(p)} | λ {fmt_x(s.lam)} → {lam_mode}{word}"
     )
     return line1, line2

@@ -407,7 +407,8 @@ class FixResult:
             "status": self.status,
             "message": self.message,
             "passing": "betv check PASS (every error rule) with the mode held at "
-            "ϖ·(1 ± 5 %) and α·(1 ± 10 %); warnings do not block",
+            "ϖ·(1 ± 5 %) and α·(1 ± 10 %) and the window at ϖ·(1 ± 5 %); other warnings "
+            "do not block",
             "margin": {"relative": FIELD_MARGIN, "meaning": MARGIN_TEXT},
             "evaluations": self.evaluations,
             "varied": {
