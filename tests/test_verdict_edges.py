@@ -54,7 +54,9 @@ def _check_json(path: Path, *extra: str) -> dict:
 
 
 def _rules(doc: dict) -> dict[str, dict]:
-    return {r["id"]: r for r in doc["devices"][0]["rules"]}
+    """The first set's rules and the device's rules by id."""
+    dev = doc["devices"][0]
+    return {r["id"]: r for r in [*dev["rules"], *dev["sets"][0]["rules"]]}
 
 
 # --- 1. the window's edges, exact in the user's units ------------------------------------
@@ -134,7 +136,7 @@ def test_window_message_agrees_with_its_vertical_motion(tmp_path: Path) -> None:
     doc = _check_json(hi)
     rule = _rules(doc)["frequency-window"]
     assert not rule["passed"] and "upper edge (outside)" in rule["message"]
-    assert doc["devices"][0]["mode"] == "not driven"
+    assert doc["devices"][0]["sets"][0]["mode"] == "not driven"
 
 
 # --- 2. a margin on the window -----------------------------------------------------------
@@ -320,10 +322,12 @@ def test_time_to_cross_is_the_transients(tmp_path: Path) -> None:
     dev = doc["devices"][0]
     t_json = dev["sets"][0]["time_to_cross_s"]
     assert t_json == pytest.approx(t_ref, abs=1.0 / s.scales.f_act_hz)
-    text = CliRunner().invoke(app, ["check", "-v", "--no-adequacy", str(path)]).output
+    text = CliRunner().invoke(app, ["check", "--no-adequacy", str(path)]).output
     shown = f"{t_ref * 1e3:.3g} ms"
-    assert f"50 µm in {shown}" in text
-    assert f"({shown})" in text  # the settling line's crossing
+    assert f"50 µm in {shown}" in text  # the headline
+    rules = _rules(doc)
+    assert f"travel range from rest in {shown}" in rules["speed"]["message"]
+    assert f"after {n_ref} cycles ({shown})" in rules["settling"]["message"]
 
 
 # --- 7. the determination record ----------------------------------------------------------
