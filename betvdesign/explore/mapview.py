@@ -163,6 +163,7 @@ class MapView:
         tips = [
             ("mode", "@mode"),
             ("speed", "@speed"),
+            ("basis", "@basis"),
             ("ϖ", "@varpi @window"),
             ("x", "@xv"),
             ("y", "@yv"),

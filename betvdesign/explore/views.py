@@ -26,6 +26,7 @@ MODE_COLORS: dict[str, str] = {
     "not driven": "#f0f0f0",
     "unbounded": "#d95f02",
     "not converged": "#636363",
+    "no crossing": "#e7298a",
     "invalid": "#ffffff",
     "": "#fafafa",  # not computed yet
 }
@@ -212,6 +213,7 @@ MAP_COLUMNS = (
     "yv",
     "window",
     "varpi",
+    "basis",
 )
 
 
@@ -241,9 +243,20 @@ def map_cells(fmap: FieldMap) -> dict[str, list[Any]]:
             data["speed"].append("" if not math.isfinite(v) else format_si(abs(v), "m/s"))
             data["window"].append("(outside the design window)" if outside else "")
             data["varpi"].append("" if not math.isfinite(w) else f"{w:.3g}")
+            data["basis"].append(BASIS_WORDS.get(str(fmap.basis[j, i]), ""))
             data["xv"].append(f"{fmap.x.values[i]:.4g} {fmap.x.unit}".strip())
             data["yv"].append(f"{fmap.y.values[j]:.4g} {fmap.y.unit}".strip())
     return data
+
+
+#: What a map cell's answer rests on (:mod:`betvdesign.checks.travel`'s basis), as the
+#: tooltip says it.
+BASIS_WORDS = {
+    "periodic": "periodic orbit (settles early in the travel)",
+    "crossing": "crossing of the travel from rest (not settled by then)",
+    "no-crossing": "does not cross the travel from rest within the horizon",
+    "no-orbit": "no periodic orbit",
+}
 
 
 def legend_html() -> str:
@@ -255,4 +268,8 @@ def legend_html() -> str:
     ]
     lo, hi = VARPI_WINDOW
     items.append(f" · pale: outside the design window {lo:g} ≤ ϖ < {hi:g}")
+    items.append(
+        " · each cell is betv check's answer over the travel: the periodic orbit, or the "
+        "crossing from rest where the slider has not settled (hover: basis)"
+    )
     return f'<div style="font-size:12px">{"".join(items)}</div>'

@@ -36,6 +36,7 @@ FIELD_MODE_COLORS: dict[str, str] = {
     "not driven": "#bdbdbd",
     "unbounded": "#8c564b",
     "not converged": "#17becf",
+    "no crossing": "#e7298a",
     "invalid": "#ffffff",
 }
 

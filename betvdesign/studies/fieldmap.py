@@ -8,10 +8,11 @@ changed, derived by the derivation's own formulas on arrays) and its solve of on
 (:func:`~betvdesign.studies.fieldsweep.fieldsweep_point`: the exact periodic orbit, the
 exact mode of :data:`~betvdesign.studies.fieldsweep.MODES` or "invalid", the speed
 Δs·u·cosθ·f_act [m/s] along the impacts)). This module only holds the grid: which rows
-are done, and the rows as the page draws them. Where the slider does not settle early in
-its travel, ``betv check``'s verdict quotes the crossing of the travel from rest instead
-(:func:`betvdesign.checks.travel.travel_answer`); the map does not run that transient
-(nor the determination of Δs) per point, so there it shows the periodic mode.
+are done, and the rows as the page draws them. Every point is ``betv check``'s answer
+over the travel (:func:`betvdesign.checks.travel.travel_answer`: the periodic orbit when
+the slider settles early in its travel, else the crossing of the travel from rest), and
+its ``basis`` says which; only the determination re-solves of Δs (round-off edges) are
+left to the check.
 """
 
 from __future__ import annotations
@@ -49,6 +50,7 @@ class MapRows:
     speed_m_s: list[list[float]]
     varpi: list[list[float]]
     reasons: dict[tuple[int, int], str] = field(default_factory=dict)
+    basis: list[list[str]] = field(default_factory=list)
 
 
 @dataclass
@@ -66,6 +68,12 @@ class FieldMap:
     varpi: np.ndarray
     reasons: dict[tuple[int, int], str] = field(default_factory=dict)
     done: np.ndarray = field(default=None)  # type: ignore[assignment]
+    #: The answer each point quotes (:mod:`betvdesign.checks.travel`'s basis; "" none).
+    basis: np.ndarray = field(default=None)  # type: ignore[assignment]
+
+    def __post_init__(self) -> None:
+        if self.basis is None:
+            self.basis = np.full(self.mode.shape, "", dtype=object)
 
     @classmethod
     def empty(cls, x: FieldAxis, y: FieldAxis, set_name: str) -> FieldMap:
@@ -89,6 +97,8 @@ class FieldMap:
             self.delta_s[j, :] = part.delta_s[k]
             self.speed_m_s[j, :] = part.speed_m_s[k]
             self.varpi[j, :] = part.varpi[k]
+            if part.basis:
+                self.basis[j, :] = part.basis[k]
             self.done[j] = True
         self.reasons.update(part.reasons)
 
@@ -131,18 +141,20 @@ def map_rows(
     ds = [[math.nan] * nx for _ in rows]
     speed = [[math.nan] * nx for _ in rows]
     varpi = [[math.nan] * nx for _ in rows]
+    basis = [[""] * nx for _ in rows]
     reasons: dict[tuple[int, int], str] = {}
     for k, task in enumerate(tasks):
         r, i = divmod(k, nx)
         row = fieldsweep_point({**task, "max_cycles": max_cycles})
         mode[r][i] = row["exact_mode"]
+        basis[r][i] = row.get("basis") or ""
         varpi[r][i] = _num(row.get("varpi"))
         ds[r][i] = _num(row.get("delta_s")) if row["converged"] else math.nan
         speed[r][i] = _num(row.get("speed_m_s"))
         if row["exact_mode"] not in ("push", "pull", "stalled"):
             why = row.get("message") or "the device cannot take these values"
             reasons[(rows[r], i)] = str(why).splitlines()[0]
-    return MapRows(rows, mode, ds, speed, varpi, reasons)
+    return MapRows(rows, mode, ds, speed, varpi, reasons, basis)
 
 
 def mode_map(

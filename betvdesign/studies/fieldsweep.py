@@ -13,16 +13,20 @@ API (fields in physical units in, rows out; shared with other front ends):
 * :func:`parse_axis` -> :class:`FieldAxis` (``"drive.frequency=1kHz:4kHz"``);
 * :func:`fieldsweep_study` -> a resumable, parallel :class:`~betvdesign.studies.engine.
   runner.Study`; :func:`run_fieldsweep` runs it;
-* rows: the fields' values [their units], ϖ, α, β, κ, λ [-], the exact ``mode``
-  (push, pull, stalled, not driven, unbounded, not converged), Δs [-], ``speed_m_s``
-  (Δs·u·cosθ·f_act [m/s], signed along the impacts) and its ``basis`` ("periodic": the
-  periodic orbit; ``betv check`` may quote the crossing mean from rest for a slider
-  that settles slowly);
+* rows: the fields' values [their units], ϖ, α, β, κ, λ [-], the ``exact_mode``
+  (push, pull, stalled, not driven, unbounded, not converged, no crossing), Δs [-],
+  ``speed_m_s`` (Δs·u·cosθ·f_act [m/s], signed along the impacts) and its ``basis``:
+  each point's answer is ``betv check``'s travel answer
+  (:func:`betvdesign.checks.checker.answer_over_travel`: the periodic orbit when it
+  settles early in the travel, the crossing mean from rest when it does not or when no
+  orbit is found, "no crossing" when it does not cross within the horizon), without the
+  check's determination re-solves (which matter only at round-off edges: the map names
+  its basis, so a cell and ``betv check`` of the same design say the same);
 * :func:`locate_flips` (1-D): every change of the exact mode between neighbouring
   points, bisected in the field to :data:`FLIP_RTOL`.
 
-The speed is the periodic orbit's; the mode is the exact orbit's, never λ's (λ = 1 is
-drawn beside it as the paper's fit).
+The mode and the speed are the travel answer's, never λ's (λ = 1 is drawn beside it
+as the paper's fit).
 """
 
 from __future__ import annotations
@@ -43,7 +47,7 @@ from betvdesign.model.domain import mode_of
 from betvdesign.spec.paths import with_values
 from betvdesign.studies.engine.runner import Study, StudyRun, run_study, split_run_args
 from betvdesign.studies.fixfields import current_value
-from betvdesign.studies.points import COLUMNS, periodic_point
+from betvdesign.studies.points import COLUMNS, periodic_solve, task_params
 
 __all__ = [
     "FLIP_RTOL",
@@ -62,7 +66,7 @@ __all__ = [
 ]
 
 #: The exact modes a point can have (the map's categories).
-MODES = ("push", "pull", "stalled", "not driven", "unbounded", "not converged")
+MODES = ("push", "pull", "stalled", "not driven", "unbounded", "not converged", "no crossing")
 #: Relative width [-] to which a mode flip is bisected along its field.
 FLIP_RTOL = 1e-3
 #: Points per axis by default.
@@ -245,7 +249,13 @@ def parse_axis(
 
 
 def exact_mode(row: Mapping[str, Any]) -> str:
-    """The exact mode of a point's row: one of :data:`MODES`."""
+    """The exact mode of a point's row: one of :data:`MODES` (the travel answer's when
+    the row has one: ``basis`` and ``travel_mode``)."""
+    basis = row.get("basis")
+    if basis == "no-crossing":
+        return "no crossing"
+    if basis in ("periodic", "crossing") and row.get("travel_mode") is not None:
+        return str(row["travel_mode"])
     status = row.get("status")
     if row.get("converged") and row.get("delta_s") is not None:
         return mode_of(float(row["delta_s"]))
@@ -289,6 +299,9 @@ def _derive_grid(
             continue
         if arrays is not None:
             rec = {k: float(arrays[k][j]) for k in (*PARAM_FIELDS, "length_m", "f_act_hz")}
+            travel = {a.field: a.quantity(float(v)) for a, v in zip(axes, row, strict=True)}
+            travel_q = travel.get("slider.travel_range", spec.slider.travel_range)
+            rec["travel_s"] = float(travel_q.to("m").magnitude) / rec["length_m"]
         else:
             try:
                 s = with_values(
@@ -302,6 +315,7 @@ def _derive_grid(
                 **d.params.as_dict(),
                 "length_m": d.scales.length_m,
                 "f_act_hz": d.scales.f_act_hz,
+                "travel_s": _travel_s(d),
             }
         if (
             not all(math.isfinite(v) for v in rec.values())
@@ -343,14 +357,56 @@ def fieldsweep_point(task: Mapping[str, Any]) -> dict[str, Any]:
             basis=None,
         )
         return row
-    row = periodic_point(task)
+    row = travel_point(task)
     row.update(values)
     row["exact_mode"] = exact_mode(row)
-    ds = row.get("delta_s")
+    ds = row.get("quoted_delta_s")
     ok = row["exact_mode"] in ("push", "pull", "stalled") and ds is not None
     row["speed_m_s"] = float(ds) * task["length_m"] * task["f_act_hz"] if ok else None
-    row["basis"] = "periodic" if ok else None
     return {c: row.get(c) for c in task["columns"]}
+
+
+def travel_point(task: Mapping[str, Any]) -> dict[str, Any]:
+    """One point's exact orbit and the travel answer ``betv check`` quotes for it.
+
+    Parameters
+    ----------
+    task : mapping
+        A point task (:func:`field_tasks`): its parameters [-], ``tol`` and
+        ``travel_s``, the travel range in units of u·cosθ [-] (absent: the periodic
+        orbit alone is the answer).
+
+    Returns
+    -------
+    dict
+        The periodic point's row (:func:`betvdesign.studies.points.periodic_point`) with
+        ``basis`` (:mod:`betvdesign.checks.travel`), ``travel_mode`` and
+        ``quoted_delta_s`` [-] (the Δs the answer quotes) and ``cycles_to_cross``.
+    """
+    from betvdesign.checks.checker import answer_over_travel
+
+    row, res = periodic_solve(task)
+    travel_s = task.get("travel_s")
+    if res is None:
+        row.update(basis=None, travel_mode=None, quoted_delta_s=None, cycles_to_cross=None)
+        return row
+    if travel_s is None:
+        ds = row.get("delta_s") if res.success else None
+        row.update(
+            basis="periodic" if res.success else None,
+            travel_mode=mode_of(ds) if ds is not None else None,
+            quoted_delta_s=ds,
+            cycles_to_cross=None,
+        )
+        return row
+    _, _, ans = answer_over_travel(task_params(task), res, float(travel_s), determine=False)
+    row.update(
+        basis=ans.basis,
+        travel_mode=ans.mode,
+        quoted_delta_s=ans.delta_s,
+        cycles_to_cross=ans.cycles_to_cross,
+    )
+    return row
 
 
 def columns(axes: Sequence[FieldAxis]) -> dict[str, type]:
@@ -359,8 +415,13 @@ def columns(axes: Sequence[FieldAxis]) -> dict[str, type]:
     out |= {a.field: float for a in axes}
     out |= {k: t for k, t in COLUMNS.items() if k != "key"}
     out |= {"zeta_v": float, "zeta_h": float, "restitution": float}
-    out |= {"exact_mode": str, "speed_m_s": float, "basis": str}
+    out |= {"exact_mode": str, "speed_m_s": float, "basis": str, "cycles_to_cross": int}
     return out
+
+
+def _travel_s(d: Any) -> float:
+    """A derived set's travel range in units of u·cosθ [-]."""
+    return d.travel_range_m / d.scales.length_m
 
 
 def _set_index(spec: Any, set_name: str | None) -> tuple[int, str]:
@@ -515,8 +576,8 @@ def _mode_at(spec: Any, axis: FieldAxis, x: float, index: int, tol: float) -> st
         d = derive_set(s, s.actuator_sets[index])
     except (BetvError, ValueError):
         return "invalid"
-    task = {"key": 0, **d.params.as_dict(), "tol": tol}
-    return exact_mode(periodic_point(task))
+    task = {"key": 0, **d.params.as_dict(), "tol": tol, "travel_s": _travel_s(d)}
+    return exact_mode(travel_point(task))
 
 
 def bisect_flip(

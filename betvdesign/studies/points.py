@@ -179,6 +179,24 @@ def periodic_point(task: Mapping[str, Any]) -> dict[str, Any]:
         ``not_driven`` is answered without the slider (no contact recurs, so nothing
         drives it); a solve that raises gives status "error" and :func:`solver_error`.
     """
+    return periodic_solve(task)[0]
+
+
+def periodic_solve(task: Mapping[str, Any]) -> tuple[dict[str, Any], Any]:
+    """:func:`periodic_point`'s row with the solver's result (for a worker that goes on
+    from the orbit, e.g. to the travel from rest).
+
+    Parameters
+    ----------
+    task : mapping
+        As :func:`periodic_point`.
+
+    Returns
+    -------
+    tuple
+        (the row, the :class:`~betvdesign.dynamics.result.PeriodicResult`, or None when
+        the task was answered without the slider or the solve raised).
+    """
     from betvdesign.dynamics import periodic_orbit
 
     row = point_row(task)
@@ -192,7 +210,7 @@ def periodic_point(task: Mapping[str, Any]) -> dict[str, Any]:
             cycles=0,
             message=nd["message"],
         )
-        return row
+        return row, None
     p = task_params(task)
     kwargs: dict[str, Any] = {"tol": task["tol"]}
     if task.get("max_cycles") is not None:
@@ -201,7 +219,7 @@ def periodic_point(task: Mapping[str, Any]) -> dict[str, Any]:
         res = periodic_orbit(p, **kwargs)
     except Exception as exc:  # a solver crash is recorded and listed, never fatal to a sweep
         row.update(status="error", converged=False, message=solver_error(exc))
-        return row
+        return row, None
     radius = None
     if res.floquet is not None and len(res.floquet):
         radius = float(np.max(np.abs(np.asarray(res.floquet))))
@@ -218,7 +236,7 @@ def periodic_point(task: Mapping[str, Any]) -> dict[str, Any]:
         cycles=int(res.transient_cycles),
         message=str(res.message),
     )
-    return row
+    return row, res
 
 
 def solver_error(exc: BaseException) -> str:
