@@ -405,3 +405,37 @@ def test_verdict_map_reports_interleaving_bands(monkeypatch: pytest.MonkeyPatch)
     assert len(edge) == 1 and edge[0]["low"] < 0.4 <= edge[0]["high"]
     assert edge[0]["high"] - edge[0]["low"] <= 0.1 / 2**11
     assert not any(0.41 < b["low"] < 0.59 for b in points)
+
+
+def test_one_basis_for_every_line(tmp_path: Path) -> None:
+    """push_demo driven at 1.842 kHz: its periodic orbit is not what the travel shows
+    (it has not settled when it crosses), so every line quotes the crossing from rest:
+    the headline, the JSON speed and time, the mode rule, the mode-margin corners, the
+    settling line and the map cell of the same design; the independent integrator gives
+    the crossing's sign and cycle."""
+    from betvdesign.spec.loader import load_device
+    from betvdesign.studies.fieldsweep import field_map, parse_axis
+
+    path = _device(tmp_path, "f1842", **{"frequency: 3 kHz": "frequency: 1.842 kHz"})
+    (s,) = derive_file(path).sets
+    travel = s.travel_range_m / s.scales.length_m
+    ref_mode, n_ref = _crossing_mode(s.params, travel, 200)
+    doc = _check_json(path)
+    st = doc["devices"][0]["sets"][0]
+    rules = _rules(doc)
+    assert st["basis"] == "crossing" and st["mode"] == ref_mode
+    f = s.scales.f_act_hz
+    assert abs(st["time_to_cross_s"] - n_ref / f) <= 1.0 / f
+    assert "transient from rest crosses" in rules["mode"]["message"]
+    assert "[each corner's crossing from rest]" in rules["mode-margin"]["message"]
+    assert "transient from rest over the travel range" in rules["speed"]["message"]
+    assert not rules["settling"]["passed"]  # it says the periodic speed is not shown
+    text = CliRunner().invoke(app, ["check", "--no-adequacy", str(path)]).output
+    assert f"{ref_mode} as intended" in text and "crossing mean from rest" in text
+    spec = load_device(path)
+    axis = parse_axis(spec, "drive.frequency=1.842kHz:1.9kHz", points=2)
+    rows, _ = field_map(spec, [axis])
+    cell = rows[0]
+    assert cell["drive.frequency"] == pytest.approx(1.842)
+    assert cell["basis"] == "crossing" and cell["exact_mode"] == st["mode"]
+    assert cell["speed_m_s"] == pytest.approx(st["speed_m_s"], rel=1e-9)
