@@ -146,12 +146,15 @@ def judge(d: dict) -> dict:
     if v is not None and v.success:
         if "one hit per cycle" in win.message and v.hits_per_cycle != 1:
             bad.append(f"'one hit per cycle' beside {v.hits_per_cycle} hits")
-        if "several times per cycle" in win.message and v.hits_per_cycle == 1:
-            bad.append("'several times per cycle' beside 1 hit")
+        if "hits several times per cycle" in win.message and v.hits_per_cycle == 1:
+            if "still hits once" not in win.message:
+                bad.append("'several times per cycle' beside 1 hit")
         if inside and v.contact_fraction <= ROUND_OFF_SCALE and d["q"] is None:
             bad.append(f"inside the window with contact {v.contact_fraction:.2g}")
     mode = sc.verdict_mode
     po = sc.periodic
+    if mode in ("push", "pull") and "slider is not driven" in win.message:
+        bad.append(f"window says not driven beside {mode}")
     if mode in ("push", "pull"):
         if po is not None and po.status == "not_driven":
             bad.append(f"{mode} quoted for a not-driven orbit")

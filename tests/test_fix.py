@@ -51,7 +51,8 @@ def test_shin2004_fix_writes_a_file_that_passes(tmp_path):
     assert "drive.frequency: 500 Hz -> " in r.stdout and "frequency-window" in r.stdout
     d = _check_passes(out)
     f_drive = load_device(out).actuator_sets[0].drive.frequency.to("Hz").magnitude
-    edge = 0.5 * 2940.0 / 2  # ϖ = 2·f_drive/f_v = 0.5
+    # the window with its ±5 % margin: ϖ·0.95 = 0.5 with ϖ = 2·f_drive/f_v
+    edge = 0.5 * 2940.0 / (2 * 0.95)
     assert edge * (1 + FIELD_MARGIN) * 0.999 <= f_drive <= edge * (1 + FIELD_MARGIN) * 1.01
     assert all(s["mode"] == "pull" for s in d["sets"])
     text = out.read_text()

@@ -62,6 +62,7 @@ from betvdesign.checks.rule import (
 from betvdesign.checks.travel import SETTLE_SHARE, TravelAnswer, travel_answer
 from betvdesign.model.domain import (
     FIT_RANGE,
+    ROUND_OFF_SCALE,
     TANGENTIAL_DETUNING,
     VARPI_WINDOW,
     WINDOW_EDGE_RTOL,
@@ -253,11 +254,17 @@ def _frequency_window(s: SetDerivation, vertical: VerticalResult | None) -> Rule
         "above": "impulsive hits, the slider is not driven",
         "far-above": "period doubling or aperiodic hits",
     }[pos]
-    if vertical is not None and vertical.success and pos == "below":
-        if vertical.hits_per_cycle == 1:  # e.g. a damped head: the multi-hit range moves
+    if vertical is not None and vertical.success:  # e.g. a damped head: the ranges move
+        if pos == "below" and vertical.hits_per_cycle == 1:
             paper = (
                 "the paper's model hits several times per cycle there; this head's exact "
                 "vertical motion still hits once"
+            )
+        elif pos in ("upper-edge", "above") and vertical.contact_fraction > ROUND_OFF_SCALE:
+            paper = (
+                "the paper's model has impulsive hits only there; this head's exact "
+                "vertical motion still has contact (outside the window the model's "
+                "design rules do not hold)"
             )
     msg = f"ϖ = {w} {where}: {paper}"
     ok = in_window(v)
