@@ -244,7 +244,7 @@ def test_check_rule_warns_where_the_mode_flips_with_the_studys_numbers():
     assert out.status == "mode-flips" and out.flip_restitution == study.flip_restitution.at
     assert out.richer.mode == "push" and out.ideal.quality_normal is None  # undamped: null
     text = view.text()
-    assert "warn model-adequacy: mode-flips" in text and "e ≈ 0.166 (→ not driven)" in text
+    assert "warning model-adequacy: mode-flips" in text and "e ≈ 0.166 (→ not driven)" in text
     from betvdesign.checks.view import output_json
 
     doc = json.loads(output_json([view]))

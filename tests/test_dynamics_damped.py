@@ -36,9 +36,10 @@ def _designs(n: int, seed: int) -> list[ModelParams]:
 
 
 def test_general_form_at_zero_damping_reproduces_the_undamped_fast_path(monkeypatch):
-    """The damped event functions, bounds and stick-band rule (dynamics.damped) with
-    g = G = 0 against the undamped evaluators (split, envelopes, clearance): a
-    different implementation of the same events, so 100 cycles agree to round-off."""
+    """The event functions, bounds and stick-band rule in their general (damped) form
+    (dynamics.evaluators, values, contact) with g = G = 0 against the undamped closed
+    form (split, envelopes, clearance): a different implementation of the same events,
+    so 100 cycles agree to round-off."""
     designs = _designs(8, 11)
     ideal = [simulate(p, 100, log_events=False).section for p in designs]
 

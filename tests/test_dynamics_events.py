@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from betvdesign.dynamics import damped, evaluators, simulate, vertical_motion
+from betvdesign.dynamics import evaluators, simulate, vertical_motion
 from betvdesign.dynamics.bounds import envelope_at, envelope_prep, safe_step
 from betvdesign.dynamics.evaluators import EVALUATOR_DTYPE, gap_evaluator
 from betvdesign.dynamics.flows import REVERSE, SLIP, oscillator, phase_table
@@ -26,7 +26,7 @@ def _xi(x0, v0, h):
 def _first_hit(x0: float, v0: float, H: float) -> float | None:
     """First h in [0, H] with ξ = 0 by the certified search, or None."""
     ws = workspace()
-    gap_evaluator(W, x0, v0, SP0, CP0, H, ws.ev[0])
+    gap_evaluator(W, 0.0, 1.0, x0, v0, SP0, CP0, H, False, ws.ev[0])
     code, h, _, _ = first_root(ws.ev[0], H, ws)
     return h if code == ROOT else None
 
@@ -149,7 +149,6 @@ def test_an_evaluator_writes_every_field_of_its_record(kind, general):
     held before (a previous phase's evaluator, here garbage) never shows through."""
     table = phase_table(ModelParams(1.2, 0.5, 1.0, 0.4), general=general)
     c = table[0]
-    mod = damped if general else evaluators
     sp0, cp0 = 0.3, math.sqrt(1.0 - 0.09)
     out = []
     for fill in (0x00, 0xFF):
@@ -157,13 +156,12 @@ def test_an_evaluator_writes_every_field_of_its_record(kind, general):
         rec.view(np.uint8)[:] = fill
         e = rec[0]
         if kind == "stick":
-            mod.stick_evaluator(c, 0.1, 0.2, sp0, cp0, 1.0, -1, e)
-        elif kind == "gap" and general:
-            mod.gap_evaluator(float(c["varpi"]), 0.0, 1.0, 0.1, 0.2, sp0, cp0, 1.0, e)
+            evaluators.stick_evaluator(c, 0.1, 0.2, sp0, cp0, 1.0, -1, e)
         elif kind == "gap":
-            mod.gap_evaluator(float(c["varpi"]), 0.1, 0.2, sp0, cp0, 1.0, e)
+            wf = float(c["varpi"])
+            evaluators.gap_evaluator(wf, 0.0, 1.0, 0.1, 0.2, sp0, cp0, 1.0, general, e)
         else:
             phase = SLIP if kind == "slip" else REVERSE
-            mod.slip_evaluator(c, phase, 0.1, 0.2, 0.0, 0.05, sp0, cp0, 1.0, False, e)
+            evaluators.slip_evaluator(c, phase, 0.1, 0.2, 0.0, 0.05, sp0, cp0, 1.0, False, e)
         out.append(rec.tobytes())
     assert out[0] == out[1]

@@ -26,8 +26,8 @@ from betvdesign.errors import SpecError
 from betvdesign.explore.compute import evaluate
 from betvdesign.explore.design import Design, free_name, set_path
 from betvdesign.explore.fields import current_value, designer_fields
-from betvdesign.explore.views import MODE_COLORS
 from betvdesign.nondim.device import derive
+from betvdesign.output.presentation import MODE_COLORS
 from betvdesign.spec.loader import load_device, load_device_text
 from betvdesign.studies.fieldmap import MAP_MODES, FieldAxis, map_rows, mode_map
 

@@ -73,7 +73,7 @@ def test_tutorial_runs(tmp_path):
     assert re.search(r"P\(push\) 1\.000", text)
     assert (tmp_path / "reports" / "my_motor.html").is_file()
     # section 6: the idealised model's verdict depends on e; the measured terms
-    assert "warn model-adequacy: mode-flips" in text and "e ≈ 0.166 (→ not driven)" in text
+    assert "warning model-adequacy: mode-flips" in text and "e ≈ 0.166 (→ not driven)" in text
     assert "my_motor: PASS  (my_motor_measured.yaml)" in text and "roll-off ×0.136" in text
     assert "Q_v 40 Q_h 25 e" in text and "e ≈ 0.165 (→ not driven)" in text
     assert len(re.findall(r"P\(push\) 1\.000", text)) == 2

@@ -49,6 +49,7 @@ import numpy as np
 from pydantic import BaseModel, ConfigDict, Field
 
 from betvdesign.errors import ParameterError
+from betvdesign.model.bisection import bisect
 from betvdesign.model.damping import quality_from_zeta, zeta_from_quality
 from betvdesign.model.domain import mode_of
 from betvdesign.model.params import ModelParams
@@ -636,13 +637,16 @@ def _scan(orbits: _Orbits, base: ModelParams, axis: Axis, device_value: float | 
             continue
         lo, hi, m_hi = float(values[i]), float(values[i + 1]), b.mode
         if len(crossings) < MAX_BISECTED:
-            for _ in range(BISECT_STEPS):
-                mid = math.sqrt(lo * hi) if axis == "quality" else 0.5 * (lo + hi)
-                pm = at(mid)
-                if pm.mode == a.mode:
-                    lo = mid
-                else:
-                    hi, m_hi = mid, pm.mode
+            br = bisect(
+                lambda x: at(x).mode,
+                lo,
+                hi,
+                a.mode,
+                b.mode,
+                steps=BISECT_STEPS,
+                geometric=axis == "quality",
+            )
+            lo, hi, m_hi = br.a, br.b, br.at_b
         crossings.append(Crossing(axis, lo, hi, a.mode, m_hi))
     if axis == "quality":
         fixed = f"e = {fmt_x(base.restitution)}"

@@ -31,6 +31,7 @@ from betvdesign.checks.adequacy import AdequacyOut, adequacy_line
 from betvdesign.checks.rule import RuleResult, no_crossing, travel_axis
 from betvdesign.checks.rules import format_varpi
 from betvdesign.output.numbers import RULE as NUMBER_RULE
+from betvdesign.output.presentation import STATUS_COLORS, STATUS_STYLES, rule_status
 from betvdesign.output.siformat import format_dimensionless as fmt_x
 from betvdesign.output.siformat import format_si, si_key
 
@@ -469,8 +470,6 @@ def _set_out(sc: Any, flt: RuleFilter) -> SetOut:
 #: orbit's, as the JSON's ``basis`` says.
 SPEED_BASIS = {"periodic": "periodic orbit", "crossing": "crossing mean from rest"}
 
-_TAG = {"error": ("FAIL", "bold red"), "warning": ("warn", "yellow"), "info": ("note", "dim")}
-
 
 def _no_motion(sc: Any, mode: str, v: float | None) -> str:
     """Why a set shows no speed, in a few words (never contradicting its rules)."""
@@ -562,7 +561,7 @@ def compact_lines(view: DeviceView, *, width: int = 100, markup: bool = True) ->
 
     esc = escape if markup else (lambda t: t)
     res = view.result
-    colour = "green" if view.verdict == "pass" else "bold red"
+    colour = STATUS_STYLES["pass" if view.verdict == "pass" else "FAIL"]
     verdict = view.verdict.upper()
     head = f"{esc(res.derivation.name)}: " + (f"[{colour}]{verdict}[/]" if markup else verdict)
     if res.source_file:
@@ -582,16 +581,17 @@ def compact_lines(view: DeviceView, *, width: int = 100, markup: bool = True) ->
         key = (r.severity, r.id, r.message, r.fix)
         groups.setdefault(key, []).append(r.set_name)
     for (sev, rid, msg, fix), names in sorted(groups.items(), key=lambda kv: kv[0][0] != "error"):
-        tag, style = _TAG[sev]
+        tag = rule_status(False, sev)
         several = len(res.sets) > 1
         where = f" [{', '.join(n for n in names if n)}]" if several and any(names) else ""
-        tag_s = f"[{style}]{tag}[/]" if markup else tag
+        tag_s = f"[{STATUS_STYLES[tag]}]{tag}[/]" if markup else tag
         text = f"{rid}{where}: {msg}"
-        wrapped = _wrap("  " + tag + " " + text, width, 7, esc)
+        indent = len(tag) + 3  # continuation lines under the rule's text
+        wrapped = _wrap("  " + tag + " " + text, width, indent, esc)
         wrapped[0] = wrapped[0].replace(tag, tag_s, 1)
         lines += wrapped
         if fix:
-            lines += _wrap("       fix: " + fix, width, 12, esc)
+            lines += _wrap(" " * indent + "fix: " + fix, width, indent + 5, esc)
     if not groups:
         lines.append("  all rules pass")
     flt = view.rule_filter
@@ -691,7 +691,7 @@ def device_html(view: DeviceView) -> str:
     """
     e = html.escape
     res = view.result
-    colour = "#1a7f37" if view.verdict == "pass" else "#cf222e"
+    colour = STATUS_COLORS["pass" if view.verdict == "pass" else "FAIL"]
     rows = []
     for sc in res.sets:
         l1, l2 = set_headline(sc)
@@ -706,8 +706,9 @@ def device_html(view: DeviceView) -> str:
             continue
         fix = r.fix
         where = f" [{e(r.set_name)}]" if r.set_name else ""
+        tag = rule_status(r.passed, r.severity)
         rows.append(
-            f"<tr><th>{e(_TAG[r.severity][0])}</th><td><code>{e(r.id)}</code>{where}: "
+            f"<tr><th>{e(tag)}</th><td><code>{e(r.id)}</code>{where}: "
             f"{e(r.message)}" + (f"<br><b>fix:</b> {e(fix)}" if fix else "") + "</td></tr>"
         )
     return (

@@ -37,8 +37,9 @@ unbounded growth at α·ϖ² = 1                     :func:`periodic.resonance_g
 kernel time: N ∝ A sin ϖτ, δ = atan(2ζ_v ϖ)        :func:`flows.normal_force_phase`
 damped phases, y'' + 2g y' + w0² y = F sin + G cos  :func:`flows.forced` (table:
                                                  :func:`flows.phase_table`, ``damped``)
-damped event functions, stick band with damper   :mod:`damped` (values: :mod:`damped_values`)
-damped stick / slip rule                         :func:`damped.decide_band`
+damped event functions, stick band with damper   :mod:`evaluators`, general form (values:
+                                                 :mod:`values`)
+damped stick / slip rule                         :func:`contact.decide_phase`
 restitution ξ' → −e ξ'                           :func:`schedule.rebound`
 chattering accumulation (Budd & Dux)             :func:`schedule.accumulation`
 ==============================================  ========================================

@@ -22,9 +22,8 @@ from typing import NamedTuple
 
 import numpy as np
 
-from betvdesign.dynamics import damped
 from betvdesign.dynamics.bounds import EPS, NOISE
-from betvdesign.dynamics.evaluators import slip_evaluator, stick_evaluator
+from betvdesign.dynamics.evaluators import slip_evaluator, stick_evaluator, taylor_general
 from betvdesign.dynamics.flows import (
     FREE,
     REVERSE,
@@ -131,7 +130,7 @@ def decide_phase(
     (1 − b) sin ϖτ ≤ ζ ≤ (1 + b) sin ϖτ (b = ακ(1 + β)), compared lexicographically on
     the Taylor coefficients of ζ − q sin ϖτ under the stick flow α(1 + 1/β) ζ'' + ζ =
     sin ϖτ: stick inside, slip below, reverse slip above (this also settles the limit
-    sin ϖτ → 0⁺ at a contact opening at τ = 0). With damping: :func:`damped.decide_band`.
+    sin ϖτ → 0⁺ at a contact opening at τ = 0). With damping: :func:`_decide_band_general`.
 
     Parameters
     ----------
@@ -163,7 +162,7 @@ def decide_phase(
             return REVERSE
     vs = stick_velocity(zd, sd, c.beta)
     if c.damped:
-        return damped.decide_band(c, z, vs, sp, cp, on)
+        return _decide_band_general(c, z, vs, sp, cp, on)
     A, wf, b = c.a_stick, c.varpi, c.b
     z2 = (sp - z) / A
     z3 = (wf * cp - vs) / A
@@ -184,6 +183,57 @@ def decide_phase(
             qs = q * sj
             dj = 0.0 if j == 0 and on == edge else sig * (zj - qs)
             nz = NOISE * (abs(zj) + abs(qs))
+            if dj > nz:
+                break  # leaves the band on the admissible side: not this edge
+            if dj < -nz:
+                return phase
+    return STICK
+
+
+@kernel
+def _decide_band_general(c: PhaseTable, z: float, vs: float, sp: float, cp: float, on: int) -> int:
+    """The stick-band rule of :func:`decide_phase` in the general (damped) form.
+
+    g_lo, g_hi (module doc) are compared lexicographically on their Taylor coefficients
+    under the damped stick flow from (ζ, common velocity vs): stick inside, slip below,
+    reverse slip above.
+
+    Parameters
+    ----------
+    c : PhaseTable
+        The constants of the parameter set (a record of :func:`phase_table`).
+    z : float
+        ζ [-].
+    vs : float
+        The common velocity ζ' = s' [-].
+    sp, cp : float
+        sin φ, cos φ [-] now.
+    on : int
+        1 / 2 when on the lower / upper edge (its distance 0 exactly), else 0 or −1.
+
+    Returns
+    -------
+    int
+        ``SLIP``, ``STICK`` or ``REVERSE``.
+
+    References
+    ----------
+    Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773 (the band; damping:
+    docs/damping.md).
+    """
+    st = c.stick
+    w0, F, G, g = st.w0, st.F, st.G, st.g
+    wf, bA, ast = c.varpi, c.bA, c.a_stick
+    sj = (sp, wf * cp, -wf * wf * sp, -(wf**3) * cp)
+    y2, y3, y4, y5, n2, n3, n4, n5 = taylor_general(w0, g, wf, F, G, z, vs, sp, cp)
+    ys = (y2, y3, y4, y5)
+    ns = (n2, n3, n4, n5)
+    for edge in range(1, 3):
+        sig, phase = (-1.0, SLIP) if edge == 1 else (1.0, REVERSE)
+        for j in range(4):
+            yj, nj = ys[j], ns[j]
+            dj = 0.0 if j == 0 and on == edge else bA * sj[j] + sig * ast * yj
+            nz = NOISE * (abs(bA * sj[j]) + ast * nj)
             if dj > nz:
                 break  # leaves the band on the admissible side: not this edge
             if dj < -nz:
@@ -232,13 +282,8 @@ def contact(c, m, tc, z, zd, s, sd, ws, log, nlog, segs, nseg):
         H = te - t
         e = ws.ev[0]
         if phase == STICK:
-            if c.damped:
-                damped.stick_evaluator(c, z, zd, sp, cp, H, on_edge, e)
-            else:
-                stick_evaluator(c, z, zd, sp, cp, H, on_edge, e)
+            stick_evaluator(c, z, zd, sp, cp, H, on_edge, e)
             on_edge = -1
-        elif c.damped:
-            damped.slip_evaluator(c, phase, z, zd, s, sd, sp, cp, H, from_edge, e)
         else:
             slip_evaluator(c, phase, z, zd, s, sd, sp, cp, H, from_edge, e)
         from_edge = False

@@ -1,8 +1,12 @@
 """The model's event functions, as evaluators for the certified search (unit-free).
 
-docs/MODEL.md, "Impacts and separation" and the stick/slip rules. An
-evaluator (a record of :data:`EVALUATOR_DTYPE`) holds one phase's event functions (one
-or two) in closed form:
+docs/MODEL.md, "Impacts and separation" and the stick/slip rules; with damping
+docs/damping.md and MODEL.md "Beyond the paper's idealisation". An evaluator (a record
+of :data:`EVALUATOR_DTYPE`) holds one phase's event functions (one or two) in closed
+form. One builder per kind of phase (:func:`slip_evaluator`, :func:`stick_evaluator`,
+:func:`gap_evaluator`) writes it in one of two forms, chosen by the parameter set:
+
+*Paper's model* (no damping; the phase table's ``damped`` False):
 
 - gap (no contact): f = ξ with ξ'' + ξ = −sin φ; the head hits when f reaches 0.
 - slip (σ = +1) / reverse slip (σ = −1): f = σ(ζ' − s'), f' = σ(q sin φ − ζ)/α with
@@ -17,6 +21,36 @@ whole-window clearance test. Near resonance (exact resonance included: P is NaN)
 uniform closed form (:func:`flows.oscillator`) and energy-growth bounds are used, over
 windows of one radian of the fastest frequency.
 
+*General form* (damping, or restitution for the gap; ``gen`` True in the record). Every
+phase is y'' + 2g y' + w0² y = F sin φ + G cos φ (:func:`flows.forced`; kernel time, the
+contact normal force N ∝ A sin φ), and the same event functions read:
+
+- gap: f = ξ (ξ'' + 2ζ_v ξ' + ξ = −A sin φ).
+- slip / reverse slip: f = σ(ζ' − s'), f' = σ(ζ'' − ds sin φ), ds = σβκA.
+- stick: with R = α(1 + 1/β) ζ'' (the spring and damper force the friction must hold,
+  ζ'' of the stick flow), g_lo = bA sin φ − R and g_hi = bA sin φ + R (undamped this is
+  ζ − (1 ∓ b) sin φ).
+
+Fast mode (:func:`_split`, used when it does not cancel, |(a, b)| w0² ≤ 10 |(F, G)|):
+y = a sin φ + b cos φ + y_h with y_h a free damped oscillation whose energy radius
+E_h = sqrt(y_h'² + w0² y_h²) never grows (d/dh E_h² = −4g y_h'²), so |y_h⁽ᵏ⁾| ≤ c_k E_h for
+every h ≥ 0. Each event function is a slow sinusoid K cos(φ − off) − cc plus a fast part
+bounded by a multiple of E_h: global |f''|, |f'''| bounds, slow envelopes and the
+whole-window clearance test, as undamped. Otherwise (near resonance with light damping,
+tiny chattering flights): values from the closed form and bounds from the energy radius
+R = sqrt(y'² + w0² y²) + |(F, G)|·W, which bounds the radius over a window of length W
+because d/dh sqrt(y'² + w0² y²) ≤ |F sin φ + G cos φ| when g ≥ 0; then |y⁽ᵏ⁾| ≤ B_k with
+B_0 = R/w0, B_1 = R, B_k = |(F, G)|ϖ^(k−2) + 2g B_(k−1) + w0² B_(k−2)
+(:func:`derivative_bound_general`), sharpened at each point from the exact f''
+(:func:`bounds.local_m2`), on windows of :data:`WINDOW` radians of the fastest rate (ϖ,
+w0, 2g). Cost: a damped cycle ≈ 1.3× an undamped one (median of the 26 benchmark
+designs, benchmarks/bench_damped.py).
+
+The two forms are two implementations of the same events: at zero damping they agree
+to round-off (``flows.phase_table(p, general=True)``, tests/test_dynamics_damped.py),
+and the paper's model keeps its own closed form (tighter bounds, its numbers pinned by
+benchmarks/snapshot.py). Values and bounds at a point: :mod:`values`.
+
 ``start`` holds each function's first four Taylor coefficients at the phase start and
 ``noise`` their round-off floors (a phase entered *on* its event surface, e.g. slip at
 ζ' = s', starts from the first non-vanishing one); ``m2s`` bounds |f''| for the first step.
@@ -28,9 +62,7 @@ import math
 
 import numpy as np
 
-from betvdesign.dynamics.bounds import (
-    envelope_prep,
-)
+from betvdesign.dynamics.bounds import envelope_prep
 from betvdesign.dynamics.flows import SLIP, PhaseTable
 from betvdesign.dynamics.jit import kernel
 
@@ -94,7 +126,7 @@ EVALUATOR_DTYPE = np.dtype(
         ("scale", np.float64, (2,)),
         ("start", np.float64, (8,)),
         ("noise", np.float64, (8,)),
-        ("gen", np.bool_),  # general (damped) form: dynamics.damped
+        ("gen", np.bool_),  # general (damped) form (module doc)
         ("g", np.float64),
         ("G", np.float64),
         ("Af", np.float64),
@@ -116,8 +148,8 @@ def init_record(e, kind: int, H: float, W: float) -> None:
     ``pwf``, ``sdc``, ``cc``, ``ct``, ``w02``, ``wf2`` 0), no slider (``ds``, ``s``,
     ``sd`` 0), ``sig`` = ``al`` = ``bdiv`` = 1, ``bj`` = 1, per-function entries 0
     but ``m2b`` inf (no global bound), Taylor coefficients 0 and the undamped form
-    (``gen`` False, ``g``, ``G``, ``Af``, ``bA``, ``ast``, ``offs`` 0: :mod:`damped`
-    writes its general form after this).
+    (``gen`` False, ``g``, ``G``, ``Af``, ``bA``, ``ast``, ``offs`` 0: the general
+    form's builders write it after this).
     """
     n = 2 if kind == STICK_KIND else 1
     e["kind"], e["n"], e["H"], e["W"] = kind, n, H, W
@@ -172,7 +204,8 @@ def slip_evaluator(
 ) -> None:
     """Evaluator of f = σ(ζ' − s') in slip (σ = +1) or reverse slip (σ = −1).
 
-    The phase ends (ζ' = s') where f reaches 0.
+    The phase ends (ζ' = s') where f reaches 0. In the general form when the parameter
+    set is damped (``c.damped``), else in the paper's model's closed form (module doc).
 
     Parameters
     ----------
@@ -187,7 +220,8 @@ def slip_evaluator(
     H : float
         Window length [-].
     from_edge : bool
-        Entered at a band edge, where f' = σ(q sin φ − ζ)/α is 0 exactly.
+        Entered at a band edge, where f' is 0 exactly (undamped σ(q sin φ − ζ)/α,
+        damped σ(R − σbA sin φ)/α).
     e : numpy.void
         The evaluator filled (a record of :data:`EVALUATOR_DTYPE`), by field name.
 
@@ -195,6 +229,114 @@ def slip_evaluator(
     ----------
     Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773.
     """
+    if c.damped:
+        _slip_general(c, phase, z, zd, s, sd, sp0, cp0, H, from_edge, e)
+    else:
+        _slip_closed(c, phase, z, zd, s, sd, sp0, cp0, H, from_edge, e)
+
+
+@kernel
+def stick_evaluator(
+    c: PhaseTable, z: float, zd: float, sp0: float, cp0: float, H: float, on_edge: int, e
+) -> None:
+    """Evaluator of the stick-band distances g_lo, g_hi.
+
+    Stick ends where one reaches 0: below the band slip, above it reverse slip. In the
+    general form when the parameter set is damped (``c.damped``), else in the paper's
+    model's closed form (module doc).
+
+    Parameters
+    ----------
+    c : PhaseTable
+        The constants of the parameter set (a record of :func:`phase_table`).
+    z, zd : float
+        ζ, ζ' (= s') at the window start [-].
+    sp0, cp0 : float
+        sin φ0, cos φ0 [-] of the forcing phase at the start.
+    H : float
+        Window length [-].
+    on_edge : int
+        Stick re-entered on that edge (0 lower, 1 upper), whose distance is 0 exactly; −1
+        none.
+    e : numpy.void
+        The evaluator filled (a record of :data:`EVALUATOR_DTYPE`), by field name.
+
+    References
+    ----------
+    Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773.
+    """
+    if c.damped:
+        _stick_general(c, z, zd, sp0, cp0, H, on_edge, e)
+    else:
+        _stick_closed(c, z, zd, sp0, cp0, H, on_edge, e)
+
+
+@kernel
+def gap_evaluator(
+    wf: float,
+    zv: float,
+    A: float,
+    xi: float,
+    xid: float,
+    sp0: float,
+    cp0: float,
+    H: float,
+    general: bool,
+    e,
+) -> None:
+    """Evaluator of the gap ξ in free flight (ξ'' + 2ζ_v ξ' + ξ = −A sin φ): the head
+    hits where ξ = 0.
+
+    Parameters
+    ----------
+    wf : float
+        ϖ [-].
+    zv : float
+        Normal damping ratio ζ_v [-] (0 in the closed form).
+    A : float
+        Normal-force amplitude [-] (1 in the closed form).
+    xi, xid : float
+        ξ, ξ' at the window start [-].
+    sp0, cp0 : float
+        sin φ0, cos φ0 [-] of the forcing phase at the start.
+    H : float
+        Window length [-].
+    general : bool
+        The general form (with damping, and undamped with restitution: its round-off
+        scale follows the window, so the tiny flights of a chattering sequence are
+        located to their own precision); else the closed form ξ'' + ξ = −sin φ.
+    e : numpy.void
+        The evaluator filled (a record of :data:`EVALUATOR_DTYPE`), by field name.
+
+    References
+    ----------
+    Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773.
+    Budd & Dux, Phil. Trans. R. Soc. A 347 (1994), doi:10.1098/rsta.1994.0044.
+    """
+    if general:
+        _gap_general(wf, zv, A, xi, xid, sp0, cp0, H, e)
+    else:
+        _gap_closed(wf, xi, xid, sp0, cp0, H, e)
+
+
+# --- the paper's model: closed form ------------------------------------------------------
+
+
+@kernel
+def _slip_closed(
+    c: PhaseTable,
+    phase: int,
+    z: float,
+    zd: float,
+    s: float,
+    sd: float,
+    sp0: float,
+    cp0: float,
+    H: float,
+    from_edge: bool,
+    e,
+) -> None:
+    """Evaluator of f = σ(ζ' − s') in slip (σ = +1) or reverse slip (σ = −1)."""
     ph = c.slip if phase == SLIP else c.reverse
     sig, q, w0, F, ds = ph.sig, ph.q, ph.w0, ph.F, ph.ds
     P, apq, K, fast = ph.P, ph.apq, ph.K, ph.fast
@@ -256,34 +398,10 @@ def slip_evaluator(
 
 
 @kernel
-def stick_evaluator(
+def _stick_closed(
     c: PhaseTable, z: float, zd: float, sp0: float, cp0: float, H: float, on_edge: int, e
 ) -> None:
-    """Evaluator of the stick-band distances g_lo, g_hi.
-
-    Stick ends where one reaches 0: below the band slip, above it reverse slip (module
-    doc).
-
-    Parameters
-    ----------
-    c : PhaseTable
-        The constants of the parameter set (a record of :func:`phase_table`).
-    z, zd : float
-        ζ, ζ' (= s') at the window start [-].
-    sp0, cp0 : float
-        sin φ0, cos φ0 [-] of the forcing phase at the start.
-    H : float
-        Window length [-].
-    on_edge : int
-        Stick re-entered on that edge (0 lower, 1 upper), whose distance is 0 exactly; −1
-        none.
-    e : numpy.void
-        The evaluator filled (a record of :data:`EVALUATOR_DTYPE`), by field name.
-
-    References
-    ----------
-    Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773.
-    """
+    """Evaluator of the stick-band distances g_lo, g_hi."""
     st = c.stick
     w0, F, P, fast, w3 = st.w0, st.F, st.P, st.fast, st.w3
     ql, qh = st.q[0], st.q[1]
@@ -358,26 +476,8 @@ def stick_evaluator(
 
 
 @kernel
-def gap_evaluator(wf: float, xi: float, xid: float, sp0: float, cp0: float, H: float, e) -> None:
-    """Evaluator of the gap ξ in free flight (ξ'' + ξ = −sin φ): the head hits where ξ = 0.
-
-    Parameters
-    ----------
-    wf : float
-        ϖ [-].
-    xi, xid : float
-        ξ, ξ' at the window start [-].
-    sp0, cp0 : float
-        sin φ0, cos φ0 [-] of the forcing phase at the start.
-    H : float
-        Window length [-].
-    e : numpy.void
-        The evaluator filled (a record of :data:`EVALUATOR_DTYPE`), by field name.
-
-    References
-    ----------
-    Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773.
-    """
+def _gap_closed(wf: float, xi: float, xid: float, sp0: float, cp0: float, H: float, e) -> None:
+    """Evaluator of the gap ξ in free flight (ξ'' + ξ = −sin φ): the head hits where ξ = 0."""
     w0, F = 1.0, -1.0
     den = w0 * w0 - wf * wf
     if den == 0.0:  # vertical resonance ϖ = 1: no split
@@ -402,3 +502,239 @@ def gap_evaluator(wf: float, xi: float, xid: float, sp0: float, cp0: float, H: f
     e["z"], e["zd"] = xi, xid
     e["m2b"][0], e["m2s"][0] = m2b, min(R0 + 1.0, m2b)
     e["K"][0], e["scale"][0] = P, sc
+
+
+# --- the general form (damping, restitution) ---------------------------------------------
+
+
+#: search window [rad of the fastest rate ϖ, w0, 2g]: long enough for few steps, short
+#: enough for the energy radius R = E + |(F, G)|·W to stay tight (root evaluations per
+#: cycle of the published fit with Q = 30: 49, 44, 58, 70 for 0.25, 0.5, 2, 4)
+WINDOW = 0.5
+
+
+@kernel
+def derivative_bound_general(w0: float, g: float, Af: float, wf: float, R: float, j: int) -> float:
+    """B_j ≥ |y⁽ʲ⁾| on a window of energy radius R (module doc) [-]."""
+    b0, b1 = R / w0, R
+    if j == 0:
+        return b0
+    for k in range(2, j + 1):
+        bk = Af * wf ** float(k - 2) + 2.0 * g * b1 + w0 * w0 * b0
+        b0, b1 = b1, bk
+    return b1
+
+
+@kernel
+def taylor_general(w0, g, wf, F, G, y, yd, sp, cp) -> tuple:
+    """The derivatives of orders 2 to 5 at a point from the equation of motion, then
+    the round-off scale of each (sums of the magnitudes of their terms), in one pass."""
+    fs, fc = F * sp + G * cp, F * cp - G * sp
+    fsa = abs(F * sp) + abs(G * cp)
+    fca = abs(F * cp) + abs(G * sp)
+    g2, w2 = 2.0 * g, w0 * w0
+    y2 = fs - g2 * yd - w2 * y
+    n2 = fsa + g2 * abs(yd) + w2 * abs(y)
+    y3 = wf * fc - g2 * y2 - w2 * yd
+    n3 = wf * fca + g2 * n2 + w2 * abs(yd)
+    y4 = -wf * wf * fs - g2 * y3 - w2 * y2
+    n4 = wf * wf * fsa + g2 * n3 + w2 * n2
+    y5 = -(wf**3) * fc - g2 * y4 - w2 * y3
+    n5 = wf**3 * fca + g2 * n4 + w2 * n3
+    return y2, y3, y4, y5, n2, n3, n4, n5
+
+
+@kernel
+def _window(H: float, w0: float, wf: float, g: float) -> float:
+    return min(H, WINDOW / max(w0, wf, 2.0 * g))
+
+
+@kernel
+def _general(e, g, G, Af, bA, ast) -> None:
+    e["gen"] = True
+    e["g"], e["G"], e["Af"], e["bA"], e["ast"] = g, G, Af, bA, ast
+
+
+@kernel
+def _coeffs(w0: float, g: float, k: int) -> float:
+    """c_k with |y_h⁽ᵏ⁾| ≤ c_k E_h for a free damped oscillation of energy radius E_h:
+    c_0 = 1/w0, c_1 = 1, c_k = 2g c_(k−1) + w0² c_(k−2)."""
+    c0, c1 = 1.0 / w0, 1.0
+    if k == 0:
+        return c0
+    for _ in range(2, k + 1):
+        c0, c1 = c1, 2.0 * g * c1 + w0 * w0 * c0
+    return c1
+
+
+@kernel
+def _split(e, w0, g, wf, F, G, y, yd, sp0, cp0, kind: int, sig: float, ds: float, sd: float):
+    """The fast mode of the general form (the damped analogue of the undamped split):
+    y = a sin φ + b cos φ + y_h with y_h a free damped oscillation whose energy radius
+    E_h = sqrt(y_h'² + w0² y_h²) never grows (d/dh E_h² = −4g y_h'²). Each event function
+    is then K_i cos(φ − off_i) − cc plus a fast part bounded by ct (a multiple of E_h):
+    global |f''|, |f'''| bounds (the whole window is one step range), slow envelopes and
+    the whole-window clearance test. Used when the split does not cancel:
+    |(a, b)| w0² ≤ 10 |(F, G)| (as the undamped |1 − aϖ²| ≥ 0.1)."""
+    dl = (w0 - wf) * (w0 + wf)
+    gw = 2.0 * g * wf
+    den = dl * dl + gw * gw
+    if den == 0.0:
+        return
+    a = (dl * F + gw * G) / den
+    b = (dl * G - gw * F) / den
+    if math.hypot(a, b) * w0 * w0 > 10.0 * math.hypot(F, G):
+        return
+    yh = y - (a * sp0 + b * cp0)
+    yhd = yd - wf * (a * cp0 - b * sp0)
+    Eh = math.sqrt(yhd * yhd + w0 * w0 * yh * yh)
+    if kind == GAP_KIND and math.hypot(a, b) + Eh / w0 > 8.0 * e["scale"][0]:
+        return  # a tiny flight (chattering): the split's terms would swamp the gap
+    w2, w3 = wf * wf, wf * wf * wf
+    if kind == SLIP_KIND:
+        kc, ks = sig * (wf * a + ds / wf), -sig * wf * b
+        K0 = math.hypot(kc, ks)
+        e["offs"][0] = math.atan2(ks, kc)
+        e["K"][0] = K0
+        cc = sig * (sd + ds * cp0 / wf)
+        ct = Eh
+        e["m2b"][0] = K0 * w2 + _coeffs(w0, g, 3) * Eh
+        e["m3b"][0] = K0 * w3 + _coeffs(w0, g, 4) * Eh
+    elif kind == STICK_KIND:
+        bA, ast = e["bA"], e["ast"]
+        kl = (ast * w2 * b, bA + ast * w2 * a)
+        kh = (-ast * w2 * b, bA - ast * w2 * a)
+        cc = 0.0
+        ct = ast * _coeffs(w0, g, 2) * Eh
+        for i in range(2):
+            kc, ks = kl if i == 0 else kh
+            Ki = math.hypot(kc, ks)
+            e["offs"][i] = math.atan2(ks, kc)
+            e["K"][i] = Ki
+            e["m2b"][i] = Ki * w2 + ast * _coeffs(w0, g, 4) * Eh
+            e["m3b"][i] = Ki * w3 + ast * _coeffs(w0, g, 5) * Eh
+    else:
+        K0 = math.hypot(a, b)
+        e["offs"][0] = math.atan2(a, b)
+        e["K"][0] = K0
+        cc = 0.0
+        ct = Eh / w0
+        e["m2b"][0] = K0 * w2 + _coeffs(w0, g, 2) * Eh
+        e["m3b"][0] = K0 * w3 + _coeffs(w0, g, 3) * Eh
+    e["P"], e["pwf"], e["ac"], e["as_"] = a, b, yh, yhd + g * yh  # for evaluate
+    e["fast"] = True
+    e["clearable"] = True
+    e["W"] = e["H"]
+    e["cc"], e["ct"], e["Eh"] = cc, ct, Eh
+    for i in range(e["n"]):
+        e["m2s"][i] = e["m2b"][i]
+        e["env_mode"][i], e["env_acos"][i] = envelope_prep(e["K"][i], -cc, ct)
+
+
+@kernel
+def _slip_general(
+    c: PhaseTable, phase: int, z, zd, s, sd, sp0, cp0, H: float, from_edge: bool, e
+) -> None:
+    """Evaluator of f = σ(ζ' − s') with damping in slip (σ = +1) or reverse slip (σ = −1)."""
+    ph = c.slip if phase == SLIP else c.reverse
+    sig, w0, F, G, g, ds = ph.sig, ph.w0, ph.F, ph.G, ph.g, ph.ds
+    wf = c.varpi
+    Af = math.hypot(F, G)
+    W = _window(H, w0, wf, g)
+    E0 = math.sqrt(zd * zd + w0 * w0 * z * z)
+    R0 = E0 + Af * W
+    y2, y3, y4, _, n2, n3, n4, _ = taylor_general(w0, g, wf, F, G, z, zd, sp0, cp0)
+    ads = abs(ds)
+    start = (
+        sig * (zd - sd),
+        0.0 if from_edge else sig * (y2 - ds * sp0),
+        sig * (y3 - ds * wf * cp0),
+        sig * (y4 + ds * wf * wf * sp0),
+        0.0,
+        0.0,
+        0.0,
+        0.0,
+    )
+    noise = (
+        abs(zd) + abs(sd),
+        n2 + ads * abs(sp0),
+        n3 + ads * wf * abs(cp0),
+        n4 + ads * wf * wf * abs(sp0),
+        0.0,
+        0.0,
+        0.0,
+        0.0,
+    )
+    m2 = derivative_bound_general(w0, g, Af, wf, R0, 3) + ads * wf
+    r = E0 + Af * H
+    init_record(e, SLIP_KIND, H, W)
+    put_forcing(e, wf, w0, F, sp0, cp0)
+    put_start(e, start, noise)
+    e["R0"], e["bj"] = R0, 0
+    e["z"], e["zd"], e["s"], e["sd"] = z, zd, s, sd
+    e["ds"], e["sig"], e["al"] = ds, sig, c.alpha
+    e["q"][0], e["m2s"][0] = ph.q, m2
+    e["scale"][0] = r + abs(sd) + abs(zd) + 1e-300
+    _general(e, g, G, Af, c.bA, c.a_stick)
+    _split(e, w0, g, wf, F, G, z, zd, sp0, cp0, SLIP_KIND, sig, ds, sd)
+
+
+@kernel
+def _stick_general(c: PhaseTable, z, zd, sp0, cp0, H: float, on_edge: int, e) -> None:
+    """Evaluator of the stick-band distances g_lo, g_hi with damping."""
+    st = c.stick
+    w0, F, G, g = st.w0, st.F, st.G, st.g
+    wf, bA, ast = c.varpi, c.bA, c.a_stick
+    Af = math.hypot(F, G)
+    W = _window(H, w0, wf, g)
+    E0 = math.sqrt(zd * zd + w0 * w0 * z * z)
+    R0 = E0 + Af * W
+    sj = (sp0, wf * cp0, -wf * wf * sp0, -(wf**3) * cp0)
+    y2, y3, y4, y5, n2, n3, n4, n5 = taylor_general(w0, g, wf, F, G, z, zd, sp0, cp0)
+    b0, b1, b2, b3 = bA * sj[0], bA * sj[1], bA * sj[2], bA * sj[3]
+    start = (
+        0.0 if on_edge == 0 else b0 - ast * y2,
+        b1 - ast * y3,
+        b2 - ast * y4,
+        b3 - ast * y5,
+        0.0 if on_edge == 1 else b0 + ast * y2,
+        b1 + ast * y3,
+        b2 + ast * y4,
+        b3 + ast * y5,
+    )
+    n0, n1 = abs(b0) + ast * n2, abs(b1) + ast * n3
+    n2, n3 = abs(b2) + ast * n4, abs(b3) + ast * n5
+    noise = (n0, n1, n2, n3, n0, n1, n2, n3)
+    m2 = bA * wf * wf + ast * derivative_bound_general(w0, g, Af, wf, R0, 4)
+    r = E0 + Af * H
+    sc = bA + ast * ((2.0 * g + w0) * r + Af)
+    init_record(e, STICK_KIND, H, W)
+    put_forcing(e, wf, w0, F, sp0, cp0)
+    put_start(e, start, noise)
+    e["R0"], e["z"], e["zd"] = R0, z, zd
+    e["q"][0], e["q"][1] = st.q[0], st.q[1]
+    e["m2s"][0], e["m2s"][1] = m2, m2
+    e["scale"][0], e["scale"][1] = sc, sc
+    _general(e, g, G, Af, bA, ast)
+    _split(e, w0, g, wf, F, G, z, zd, sp0, cp0, STICK_KIND, 1.0, 0.0, 0.0)
+
+
+@kernel
+def _gap_general(wf, zv, A, xi, xid, sp0, cp0, H: float, e) -> None:
+    """Evaluator of the gap ξ in damped free flight (ξ'' + 2ζ_v ξ' + ξ = −A sin φ)."""
+    w0, g, F = 1.0, zv, -A
+    W = _window(H, w0, wf, g)
+    E0 = math.sqrt(xid * xid + xi * xi)
+    R0 = E0 + A * W
+    sc = abs(xi) + E0 + A * H + 1e-300  # |ξ| reachable on the window: its round-off scale
+    y2, y3, _, _, _, _, _, _ = taylor_general(w0, g, wf, F, 0.0, xi, xid, sp0, cp0)
+    start = (xi, xid, y2, y3, 0.0, 0.0, 0.0, 0.0)
+    noise = (sc, sc, sc, sc, 0.0, 0.0, 0.0, 0.0)
+    m2 = derivative_bound_general(w0, g, A, wf, R0, 2)
+    init_record(e, GAP_KIND, H, W)
+    put_forcing(e, wf, w0, F, sp0, cp0)
+    put_start(e, start, noise)
+    e["R0"], e["z"], e["zd"] = R0, xi, xid
+    e["m2s"][0], e["scale"][0] = m2, sc
+    _general(e, g, 0.0, A, 0.0, 0.0)
+    _split(e, w0, g, wf, F, 0.0, xi, xid, sp0, cp0, GAP_KIND, 1.0, 0.0, 0.0)

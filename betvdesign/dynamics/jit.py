@@ -34,8 +34,6 @@ KERNEL_MODULES = (
     "flows",
     "bounds",
     "evaluators",
-    "damped",
-    "damped_values",
     "values",
     "search",
     "contact",

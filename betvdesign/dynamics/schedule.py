@@ -21,7 +21,6 @@ from typing import NamedTuple
 
 import numpy as np
 
-from betvdesign.dynamics import damped
 from betvdesign.dynamics.bounds import EPS
 from betvdesign.dynamics.evaluators import gap_evaluator
 from betvdesign.dynamics.flows import vertical_flight
@@ -377,15 +376,13 @@ def vertical_run(wf, zv, A, e, xi, xid, horizon, cyc, imp, pieces):
                 hs = -1.0
         if hs > 0.0:
             code, h, k = ROOT, hs, 1
-        elif zv == 0.0 and e == 0.0:
-            gap_evaluator(wf, xi, xid, sp, cp, H, ev)
-            code, h, _, k = first_root(ev, H, ws)
         else:
+            general = zv != 0.0 or e != 0.0
             if e != 0.0 and xi == 0.0 and xid > 0.0 and sp > 0.0:
                 # ... else search a window of a few flights first (≈ 2ξ'/(A sin ϖt)),
                 # so the gap's round-off scale is the flight's own
                 H = min(Hcycle, 8.0 * xid / (A * sp))
-            damped.gap_evaluator(wf, zv, A, xi, xid, sp, cp, H, ev)
+            gap_evaluator(wf, zv, A, xi, xid, sp, cp, H, general, ev)
             code, h, _, k = first_root(ev, H, ws)
         evals += k
         if code == SEARCH_FAILED:

@@ -15,34 +15,13 @@ from typing import Any
 
 from betvdesign.checks.rule import no_crossing
 from betvdesign.model.domain import VARPI_WINDOW, in_window
+from betvdesign.output.presentation import MODE_COLORS, PENDING_COLOR, STATUS_COLORS, rule_status
 from betvdesign.output.siformat import format_si
 from betvdesign.studies.fieldmap import MAP_MODES, FieldMap
-
-#: Colours of the map's modes (colour-blind safe pairs for push/pull).
-MODE_COLORS: dict[str, str] = {
-    "push": "#1b9e77",
-    "pull": "#7570b3",
-    "stalled": "#bdbdbd",
-    "not driven": "#f0f0f0",
-    "unbounded": "#d95f02",
-    "not converged": "#636363",
-    "no crossing": "#e7298a",
-    "invalid": "#ffffff",
-    "": "#fafafa",  # not computed yet
-}
-_STATUS = {
-    (True, "error"): ("ok", "#1a7f37"),
-    (True, "warning"): ("ok", "#1a7f37"),
-    (True, "info"): ("info", "#0969da"),
-    (False, "error"): ("FAIL", "#cf222e"),
-    (False, "warning"): ("warn", "#9a6700"),
-    (False, "info"): ("note", "#57606a"),
-}
 
 _CELL = "font-weight:bold;padding-right:6px;vertical-align:top"
 
 __all__ = [
-    "MODE_COLORS",
     "error_html",
     "fixes_html",
     "legend_html",
@@ -123,7 +102,7 @@ def verdict_html(
     """The verdict block: overall verdict, one line per set, every rule with its fix;
     ``timing`` (name -> value) goes into ``data-`` attributes (benchmarks read them)."""
     verdict = out["verdict"]
-    colour = "#1a7f37" if verdict == "pass" else "#cf222e"
+    colour = STATUS_COLORS["pass" if verdict == "pass" else "FAIL"]
     rows = []
     for s in out["sets"]:
         speed = "" if s.get("speed_m_s") is None else repr(float(s["speed_m_s"]))
@@ -140,7 +119,8 @@ def verdict_html(
     several = len(out["sets"]) > 1
     lines = []
     for set_name, r in rules:
-        tag, col = _STATUS[(r["passed"], r["severity"])]
+        tag = rule_status(r["passed"], r["severity"])
+        col = STATUS_COLORS[tag]
         where = f" [{_e(set_name)}]" if several and set_name else ""
         fix = (
             f'<div class="betv-fix" style="color:#0969da">fix: {_e(r["fix"])}</div>'
@@ -236,7 +216,7 @@ def map_cells(fmap: FieldMap) -> dict[str, list[Any]]:
             m = str(fmap.mode[j, i])
             w = fmap.varpi[j, i]
             outside = math.isfinite(w) and not in_window(float(w))
-            colour = MODE_COLORS.get(m, "#fafafa")
+            colour = MODE_COLORS.get(m, PENDING_COLOR)
             data["color"].append(_pale(colour) if outside else colour)
             data["mode"].append(m or "computing")
             v = fmap.speed_m_s[j, i]

@@ -16,6 +16,8 @@ from typing import Literal
 
 import numpy as np
 
+from betvdesign.model.bisection import bisect
+
 #: The validated publication.
 PAPER = "Shin, Pai, Lin, Hui and Tien, J. Appl. Phys. 96 (2004)"
 
@@ -112,17 +114,10 @@ def settled_from(delta_s: Sequence[float], target: float, rtol: float) -> int | 
 def refine_edge(pred: Callable[[float], bool], lo: float, hi: float, tol: float) -> float:
     """Bisect an edge of ``pred`` on [lo, hi] (pred(lo) != pred(hi)) to width ``tol``;
     returns the midpoint of the final bracket."""
-    a, b = lo, hi
-    pa = pred(a)
-    if pa == pred(b):
+    pa, pb = pred(lo), pred(hi)
+    if pa == pb:
         raise ValueError(f"no edge in [{lo:g}, {hi:g}]: the predicate is {pa} at both ends")
-    while b - a > tol:
-        c = 0.5 * (a + b)
-        if pred(c) == pa:
-            a = c
-        else:
-            b = c
-    return 0.5 * (a + b)
+    return bisect(pred, lo, hi, pa, pb, width=tol).mid
 
 
 def true_intervals(x: Sequence[float], flags: Sequence[bool]) -> list[tuple[float, float]]:

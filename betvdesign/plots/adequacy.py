@@ -10,11 +10,9 @@ from collections.abc import Sequence
 import numpy as np
 from matplotlib.axes import Axes
 
+from betvdesign.output.presentation import MODE_COLORS
 from betvdesign.output.siformat import scale_for
-from betvdesign.plots.figure import DEVICE_COLOR, MODE_COLORS, axes_or_new
-
-#: Marker colours of the modes that do not move the slider (push/pull: MODE_COLORS).
-OTHER_COLORS = {"stalled": "#ff7f0e", "none": "#7f7f7f"}
+from betvdesign.plots.figure import DEVICE_COLOR, axes_or_new
 
 
 def mode_speed_scan(
@@ -63,8 +61,8 @@ def mode_speed_scan(
                 label="no periodic orbit",
             )
             continue
-        color = MODE_COLORS.get(mode) or OTHER_COLORS[mode]
         label = {"none": "not driven"}.get(mode, mode)
+        color = MODE_COLORS[label]
         ax.plot(
             xs[sel], v[sel] * k, ls="none", marker="o", ms=3.5, color=color, label=label, zorder=2
         )

@@ -18,27 +18,16 @@ from matplotlib.colors import ListedColormap
 from matplotlib.figure import Figure
 from matplotlib.patches import Patch
 
-from betvdesign.plots.figure import DEVICE_COLOR, MODE_COLORS, new_figure
+from betvdesign.output.presentation import MODE_COLORS
+from betvdesign.plots.figure import DEVICE_COLOR, new_figure
 from betvdesign.plots.studies import save_figure
 
 __all__ = [
-    "FIELD_MODE_COLORS",
     "fieldsweep_figure",
     "mode_map",
     "save_fieldsweep_figure",
     "speed_with_modes",
 ]
-
-#: Colour of every exact mode of a field sweep.
-FIELD_MODE_COLORS: dict[str, str] = {
-    **MODE_COLORS,
-    "stalled": "#ff7f0e",
-    "not driven": "#bdbdbd",
-    "unbounded": "#8c564b",
-    "not converged": "#17becf",
-    "no crossing": "#e7298a",
-    "invalid": "#ffffff",
-}
 
 
 def _label(ax_info: Mapping[str, Any]) -> str:
@@ -81,7 +70,7 @@ def speed_with_modes(
     edges = [x[0], *[fl["at"] for fl in summary.get("flips", [])], x[-1]]
     modes = [rows[0]["exact_mode"], *[fl["above"] for fl in summary.get("flips", [])]]
     for (a, b), m in zip(itertools.pairwise(edges), modes, strict=True):
-        ax.axvspan(a, b, color=FIELD_MODE_COLORS.get(m, "#ffffff"), alpha=0.18, lw=0)
+        ax.axvspan(a, b, color=MODE_COLORS.get(m, "#ffffff"), alpha=0.18, lw=0)
     for fl in summary.get("flips", []):
         ax.axvline(fl["at"], color="0.3", lw=0.6, ls=":")
     ax.plot(x, v, color="k", marker=".", ms=3)
@@ -91,7 +80,7 @@ def speed_with_modes(
     ax.set_ylabel("speed (periodic orbit) [µm/s]")
     ax.set_title(f"{summary.get('name', '')} speed and exact mode against {f['field']}")
     seen = dict.fromkeys(modes)
-    handles = [Patch(color=FIELD_MODE_COLORS.get(m, "#fff"), alpha=0.4, label=m) for m in seen]
+    handles = [Patch(color=MODE_COLORS.get(m, "#fff"), alpha=0.4, label=m) for m in seen]
     handles.append(Patch(color=DEVICE_COLOR, label=f"device ({f['device_value']:g} {f['unit']})"))
     ax.legend(handles=handles, loc="best")
 
@@ -103,10 +92,10 @@ def mode_map(rows: Sequence[Mapping[str, Any]], summary: Mapping[str, Any], *, a
     na, nb = fa["points"], fb["points"]
     xa = np.array([float(r[fa["field"]]) for r in rows]).reshape(na, nb)[:, 0]
     xb = np.array([float(r[fb["field"]]) for r in rows]).reshape(na, nb)[0, :]
-    names = list(FIELD_MODE_COLORS)
+    names = list(MODE_COLORS)
     code = np.array([names.index(r["exact_mode"]) for r in rows]).reshape(na, nb)
     lam = np.array([np.nan if r.get("lam") is None else r["lam"] for r in rows]).reshape(na, nb)
-    cmap = ListedColormap([FIELD_MODE_COLORS[n] for n in names])
+    cmap = ListedColormap([MODE_COLORS[n] for n in names])
     ax.pcolormesh(xa, xb, code.T, cmap=cmap, vmin=-0.5, vmax=len(names) - 0.5, shading="nearest")
     crosses = bool(np.isfinite(lam).any() and np.nanmin(lam) < 1.0 < np.nanmax(lam))
     if crosses:
@@ -130,7 +119,7 @@ def mode_map(rows: Sequence[Mapping[str, Any]], summary: Mapping[str, Any], *, a
     ax.set_ylabel(_label(fb))
     ax.grid(False)
     present = [n for n in names if (code == names.index(n)).any()]
-    handles = [Patch(color=FIELD_MODE_COLORS[n], label=n) for n in present]
+    handles = [Patch(color=MODE_COLORS[n], label=n) for n in present]
     handles.append(Patch(facecolor="none", edgecolor="k", ls="--", label=lam_label))
     handles.append(Patch(color=DEVICE_COLOR, label="device"))
     ax.legend(handles=handles, loc="best", framealpha=0.85)

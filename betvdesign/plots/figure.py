@@ -65,9 +65,6 @@ PHASE_COLORS: dict[str, str] = {
     "stick": "#2ca02c",
 }
 
-#: Colours of the two slider modes.
-MODE_COLORS: dict[str, str] = {"push": "#2ca02c", "pull": "#9467bd"}
-
 DEVICE_COLOR = "#d62728"
 
 

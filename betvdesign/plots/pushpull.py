@@ -16,9 +16,9 @@ from matplotlib.axes import Axes
 
 from betvdesign.model.domain import VARPI_WINDOW
 from betvdesign.model.params import fit_offset
+from betvdesign.output.presentation import MODE_COLORS
 from betvdesign.plots.figure import (
     DEVICE_COLOR,
-    MODE_COLORS,
     axes_or_new,
     dimensionless_twin,
 )

@@ -18,7 +18,8 @@ import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
-from betvdesign.plots.figure import MODE_COLORS, STYLE, axes_or_new, figure_style, new_figure
+from betvdesign.output.presentation import MODE_COLORS
+from betvdesign.plots.figure import STYLE, axes_or_new, figure_style, new_figure
 from betvdesign.plots.pushpull import lambda_one_curve
 from betvdesign.studies.terms import Terms
 
@@ -38,7 +39,8 @@ def pushpull_panel(
     x = np.array([1.0 / r["varpi"] ** 2 for r in sel])
     y = np.array([1.0 / (r["alpha"] * kappa) for r in sel])
     simulated = any(r["status"] != "lambda-only" for r in sel)
-    for mode, color in MODE_COLORS.items():
+    for mode in ("push", "pull"):
+        color = MODE_COLORS[mode]
         if simulated:
             m = np.array([r["converged"] and r["mode"] == mode for r in sel], dtype=bool)
             ax.scatter(x[m], y[m], s=14, color=color, label=f"{mode} (simulated)", zorder=3)

@@ -9,10 +9,10 @@ import numpy as np
 from matplotlib.axes import Axes
 
 from betvdesign.model.domain import VARPI_WINDOW
+from betvdesign.output.presentation import MODE_COLORS
 from betvdesign.output.siformat import format_si, scale_for
 from betvdesign.plots.figure import (
     DEVICE_COLOR,
-    MODE_COLORS,
     axes_or_new,
     dimensionless_twin,
 )

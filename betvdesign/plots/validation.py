@@ -10,7 +10,8 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 from matplotlib.axes import Axes
 
-from betvdesign.plots.figure import DEVICE_COLOR, MODE_COLORS, axes_or_new
+from betvdesign.output.presentation import MODE_COLORS
+from betvdesign.plots.figure import DEVICE_COLOR, axes_or_new
 from betvdesign.plots.pushpull import lambda_one_curve
 
 #: Colour of published values drawn over computed ones.

@@ -14,6 +14,8 @@ import html
 from dataclasses import dataclass, field
 from typing import Literal
 
+from betvdesign.output.presentation import rule_status
+
 Verdict = Literal["pass", "fail", "unknown"]
 
 
@@ -49,6 +51,11 @@ class RuleRow:
     message: str
     source: str
     fix: str = ""
+
+    @property
+    def status(self) -> str:
+        """The rule's status word (:func:`betvdesign.output.presentation.rule_status`)."""
+        return rule_status(self.passed, self.severity)
 
 
 @dataclass(frozen=True)

@@ -21,6 +21,7 @@ import numpy as np
 import pint
 
 from betvdesign.errors import BetvError
+from betvdesign.model.bisection import bisect
 from betvdesign.model.domain import mode_of
 from betvdesign.model.params import ModelParams
 from betvdesign.nondim.device import derive_set
@@ -30,7 +31,7 @@ from betvdesign.spec.fields import FIELDS
 from betvdesign.spec.models import DeviceSpec
 from betvdesign.spec.paths import given, in_set, numeric
 from betvdesign.spec.units import format_quantity
-from betvdesign.studies.fieldsweep import FieldAxis, bisect_flip, field_tasks
+from betvdesign.studies.fieldsweep import FieldAxis, field_tasks
 from betvdesign.studies.sampling import PARAM_FIELDS
 
 #: Width [-] of the relative-change bracket to which a robustness flip is bisected.
@@ -155,14 +156,14 @@ def locate_flips(
             ma, mb = a.mode or "no orbit", b.mode or "no orbit"
             if ma == mb:
                 continue
-            at, above = bisect_flip(
+            br = bisect(
                 lambda r, f=f: mode_at_change(spec, set_index, f, r, opts),
                 a.change,
                 b.change,
                 ma,
                 mb,
-                FLIP_WIDTH,
+                width=FLIP_WIDTH,
             )
             half = 0.5 * FLIP_WIDTH
-            flips.append(FieldFlip(f, at - half, at + half, ma, above))
+            flips.append(FieldFlip(f, br.mid - half, br.mid + half, ma, br.at_b))
     return FieldSweep(sweep.points, sweep.n_orbits, tuple(flips))

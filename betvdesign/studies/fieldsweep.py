@@ -34,7 +34,7 @@ from __future__ import annotations
 import hashlib
 import itertools
 import math
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -43,6 +43,7 @@ import numpy as np
 import pint
 
 from betvdesign.errors import BetvError, ParameterError, UsageError
+from betvdesign.model.bisection import bisect
 from betvdesign.model.domain import mode_of
 from betvdesign.spec.paths import with_values
 from betvdesign.studies.engine.runner import Study, StudyRun, run_study, split_run_args
@@ -54,7 +55,6 @@ __all__ = [
     "MODES",
     "FieldAxis",
     "Flip",
-    "bisect_flip",
     "exact_mode",
     "field_map",
     "field_tasks",
@@ -580,41 +580,6 @@ def _mode_at(spec: Any, axis: FieldAxis, x: float, index: int, tol: float) -> st
     return exact_mode(travel_point(task))
 
 
-def bisect_flip(
-    mode_at: Callable[[float], str], lo: float, hi: float, below: str, above: str, width: float
-) -> tuple[float, str]:
-    """Where the mode changes between ``lo`` (mode ``below``) and ``hi`` (``above``),
-    bisected until the bracket is narrower than ``width``.
-
-    Parameters
-    ----------
-    mode_at : callable
-        The exact mode at a value of the varied quantity.
-    lo, hi : float
-        The bracket [the quantity's unit].
-    below, above : str
-        The modes at ``lo`` and ``hi`` (different).
-    width : float
-        The bracket's width at which bisection stops [the quantity's unit].
-
-    Returns
-    -------
-    tuple of (float, str)
-        The bracket's midpoint and the mode just above it (a third mode met in between
-        ends the bracket there: the first change is kept).
-    """
-    while hi - lo > width:
-        mid = 0.5 * (lo + hi)
-        m = mode_at(mid)
-        if m == below:
-            lo = mid
-        elif m == above:
-            hi = mid
-        else:
-            hi, above = mid, m
-    return 0.5 * (lo + hi), above
-
-
 def locate_flips(
     device: Any,
     axis: FieldAxis,
@@ -654,15 +619,15 @@ def locate_flips(
         ma, mb = a["exact_mode"], b["exact_mode"]
         if ma == mb:
             continue
-        at, above = bisect_flip(
+        br = bisect(
             lambda x: _mode_at(spec, axis, x, index, tol),
             float(a[axis.field]),
             float(b[axis.field]),
             ma,
             mb,
-            FLIP_RTOL * span,
+            width=FLIP_RTOL * span,
         )
-        out.append(Flip(axis.field, at, ma, above))
+        out.append(Flip(axis.field, br.mid, ma, br.at_b))
     return out
 
 

@@ -42,6 +42,7 @@ from typing import Any
 import numpy as np
 
 from betvdesign.errors import BetvError, ParameterError
+from betvdesign.model.bisection import bisect
 from betvdesign.spec.fields import BY_PATH, describe_change
 from betvdesign.spec.paths import with_values
 from betvdesign.studies.fixfields import DEFAULT_BOUNDS, Vary, parse_vary
@@ -273,14 +274,11 @@ class FieldAnswer:
 
 
 def _bisect(ev: Evaluator, name: str, good: float, bad: float) -> float:
-    """Bisect (in log) between a passing and a failing value: the last passing one."""
-    while abs(math.log(good / bad)) > BISECT_RTOL:
-        mid = math.sqrt(good * bad)
-        if ev({name: mid}).passed:
-            good = mid
-        else:
-            bad = mid
-    return good
+    """The last passing value between a passing ``good`` and a failing ``bad`` one,
+    bisected in ratio to :data:`BISECT_RTOL` (:func:`betvdesign.model.bisection.bisect`)."""
+    return bisect(
+        lambda x: ev({name: x}).passed, good, bad, True, False, rtol=BISECT_RTOL, geometric=True
+    ).a
 
 
 def _steps(v: Vary) -> list[tuple[float, float]]:
