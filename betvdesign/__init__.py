@@ -48,6 +48,7 @@ _LAZY = {
 
 __all__ = ["__version__", *_LAZY]
 
+
 def __dir__() -> list[str]:
     """The module's names with the lazily imported public ones (``load_device``,
     ``check``, ...), so ``dir(betvdesign)`` and tab completion show them."""
