@@ -10,6 +10,8 @@ detector is tested on a copy of the package with upward imports planted in it.
 from __future__ import annotations
 
 import ast
+import importlib
+import re
 import shutil
 from dataclasses import dataclass
 from pathlib import Path
@@ -223,3 +225,48 @@ def test_the_document_shows_the_table() -> None:
     """docs/ARCHITECTURE.md's layer table is :func:`markdown_table` (regenerate with
     ``python -m betvdesign.layers``)."""
     assert _doc_table() == markdown_table()
+
+
+#: A dotted path in backquotes whose first part is a package or module of betvdesign.
+_PATH = re.compile(r"`(?:betvdesign\.)?([a-z_]+(?:\.[A-Za-z_][A-Za-z0-9_]*)+)(?:\([^`]*\))?`")
+
+
+def resolve(path: str) -> bool:
+    """Whether ``betvdesign.<path>`` names a module or an attribute of one."""
+    parts = path.split(".")
+    for cut in range(len(parts), 0, -1):
+        try:
+            obj: object = importlib.import_module(".".join(["betvdesign", *parts[:cut]]))
+        except ModuleNotFoundError:
+            continue
+        for name in parts[cut:]:
+            if not hasattr(obj, name):
+                return False
+            obj = getattr(obj, name)
+        return True
+    return False
+
+
+def doc_paths(text: str) -> list[str]:
+    """The dotted betvdesign paths the document names (``checks.rules.evaluate``)."""
+    firsts = {layer.name for layer in LAYERS}
+    return sorted(
+        {m for m in _PATH.findall(text) if m.split(".")[0] in firsts and m.split(".")[1] != "py"}
+    )
+
+
+def test_the_document_names_only_paths_that_exist() -> None:
+    """Every ``package.module.name`` in docs/ARCHITECTURE.md exists (no path from before a
+    reorganisation survives in the document)."""
+    paths = doc_paths(DOC.read_text(encoding="utf-8"))
+    assert len(paths) > 100  # the document is read, not skipped
+    assert [p for p in paths if not resolve(p)] == []
+
+
+def test_a_stale_path_in_the_document_is_found() -> None:
+    """The path check fails on names from before the reorganisation."""
+    text = "`checks.rules.evaluate`, `studies.runner.Study`, `studies.validation.run_validation()`"
+    assert [p for p in doc_paths(text) if not resolve(p)] == [
+        "studies.runner.Study",
+        "studies.validation.run_validation",
+    ]
