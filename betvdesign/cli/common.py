@@ -1,7 +1,8 @@
 """Helpers shared by the CLI commands: error reporting, exit codes, interruption,
-validation of numeric options and output paths, and the options every study command
-takes (execution, output, ``--json``, ``-q``: declared once here, used by ``betv sweep``,
-``betv tolerance``, ``betv calibrate``, ``betv fix`` and ``betv report``).
+validation of numeric options and output paths, and the options the study commands
+share (execution, output, ``--json``, ``-q``: declared once here, used by ``betv sweep``,
+``betv tolerance`` and ``betv calibrate``; ``betv report`` takes ``-q`` and the progress
+bar).
 
 Every command turns user errors into ``error: ...`` lines and exit code 2
 (:func:`user_errors`), stops cleanly on Ctrl-C or SIGTERM with exit 130
