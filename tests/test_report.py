@@ -22,6 +22,7 @@ import pytest
 from conftest import DEVICES, device_files
 from typer.testing import CliRunner
 
+from betvdesign import dynamics
 from betvdesign.cli import app
 from betvdesign.nondim.device import derive
 from betvdesign.output.files import write_atomic
@@ -234,12 +235,14 @@ def test_write_atomic_leaves_no_partial_file(tmp_path: Path) -> None:
 
 
 def test_missing_solver_is_stated_not_invented(monkeypatch: pytest.MonkeyPatch) -> None:
-    """Without a periodic orbit, the verdict box and figures say why; no speed is shown."""
+    """Without the exact solver, the verdict box and the figures that rest on the
+    report's own orbits say why; no speed is shown."""
 
-    def no_api(name: str):
-        raise report_analysis.Missing(f"betvdesign.dynamics.{name} is not available (test)")
+    def unavailable(*args: object, **kwargs: object) -> None:
+        raise report_analysis.Missing("the exact solver is not available (test)")
 
-    monkeypatch.setattr(report_analysis, "dynamics_api", no_api)
+    for name in ("periodic_orbit", "vertical_motion", "simulate"):
+        monkeypatch.setattr(dynamics, name, unavailable)
     report_analysis._vertical.cache_clear()  # the regime strip caches per ϖ
     report = build_report(prepare(DEVICES / "push_demo.yaml"))
     box = report.sets[0].verdict
@@ -247,10 +250,13 @@ def test_missing_solver_is_stated_not_invented(monkeypatch: pytest.MonkeyPatch) 
     assert "not available" in box.predicted_by and box.predicted_mode == "unknown"
     assert box.verdict == "fail"  # no verdict without the exact orbit
     figs = report.figures()
-    assert [f.key for f in figs if f.svg is not None] == ["s1-pushpull"]  # λ needs no solver
+    # λ needs no solver; the mode map, the regime strip and the adequacy scan are studies
+    # that solve their own points (a point whose solve raises is a failed point)
+    drawn = [f.key for f in figs if f.svg is not None]
+    assert drawn == ["s1-modemap", "s1-pushpull", "s1-regime", "s1-adequacy"]
     assert all("(test)" in (f.unavailable or "") for f in figs if f.svg is None)
     text = text_of(render_html(report))
-    assert text.count("Not drawn:") == len(figs) - 1
+    assert text.count("Not drawn:") == len(figs) - len(drawn)
     report_analysis._vertical.cache_clear()  # drop the failures cached for ϖ
 
 

@@ -1,5 +1,8 @@
-"""Helpers shared by the CLI commands: error reporting, exit codes, interruption, and
-validation of numeric options and output paths.
+"""Helpers shared by the CLI commands: error reporting, exit codes, interruption,
+validation of numeric options and output paths, and the options the study commands
+share (execution, output, ``--json``, ``-q``: declared once here, used by ``betv sweep``,
+``betv tolerance`` and ``betv calibrate``; ``betv report`` takes ``-q`` and the progress
+bar).
 
 Every command turns user errors into ``error: ...`` lines and exit code 2
 (:func:`user_errors`), stops cleanly on Ctrl-C or SIGTERM with exit 130
@@ -13,19 +16,23 @@ also writes every file atomically).
 from __future__ import annotations
 
 import contextlib
+import json
 import math
 import signal
 import sys
 import threading
 from collections.abc import Callable, Iterator
+from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import Annotated, Any, TypeVar
 
 import typer
 
 from betvdesign.errors import BetvError
 from betvdesign.output.files import check_output_dir, check_output_file
 from betvdesign.spec import limits
+from betvdesign.studies.engine.executors import make_executor
+from betvdesign.studies.engine.runner import StudyRun
 
 EXIT_OK = 0
 EXIT_RULE_FAILED = 1
@@ -38,17 +45,35 @@ __all__ = [
     "EXIT_INTERRUPTED",
     "EXIT_OK",
     "EXIT_RULE_FAILED",
+    "ChunkOpt",
+    "Execution",
+    "ExecutorOpt",
+    "FidelityOpt",
+    "JsonOpt",
+    "MaxCyclesOpt",
+    "OutOpt",
+    "OverwriteOpt",
+    "QuietOpt",
+    "ResidualTolOpt",
+    "RetiredTolOpt",
+    "SchedulerOpt",
+    "WorkersOpt",
+    "emit",
     "float_option",
     "int_option",
     "interruptible",
     "output_dir",
     "output_file",
+    "progress_bar",
+    "renamed_option",
+    "run_block",
     "seed_option",
     "user_errors",
 ]
 
 output_file = check_output_file
 output_dir = check_output_dir
+T = TypeVar("T")
 
 
 @contextlib.contextmanager
@@ -169,3 +194,165 @@ def renamed_option(new: str, meaning: str) -> Callable:
             raise typer.BadParameter(f"renamed: use {new} ({meaning})")
 
     return check
+
+
+# -- options shared by the study commands (betv sweep ..., betv tolerance, betv calibrate)
+ExecutorOpt = Annotated[
+    str,
+    typer.Option(
+        "--executor", "-x", help="serial, process (all cores) or dask (case-insensitive)."
+    ),
+]
+WorkersOpt = Annotated[
+    int | None,
+    typer.Option(
+        "--workers",
+        "-j",
+        help=f"Worker processes (default: all cores; 1 to {limits.MAX_WORKERS}).",
+        callback=int_option(1, limits.MAX_WORKERS),
+    ),
+]
+ChunkOpt = Annotated[
+    int | None,
+    typer.Option(
+        "--chunksize",
+        help=f"Points per task sent to a worker (1 to {limits.MAX_CHUNKSIZE:,}).",
+        callback=int_option(1, limits.MAX_CHUNKSIZE),
+    ),
+]
+SchedulerOpt = Annotated[
+    str | None, typer.Option("--scheduler", help="dask.distributed scheduler tcp://host:port.")
+]
+OutOpt = Annotated[
+    Path | None,
+    typer.Option("--out", "-o", help="Stream rows to this CSV (+ .json sidecar); resumable."),
+]
+MaxCyclesOpt = Annotated[
+    int | None,
+    typer.Option(
+        "--max-cycles",
+        help="Cycle budget per periodic solve (default: the solver's, 100000; at most "
+        f"{limits.MAX_CYCLES:,}); points that do not settle within it are listed as not "
+        "converged.",
+        callback=int_option(1, limits.MAX_CYCLES),
+    ),
+]
+ResidualTolOpt = Annotated[
+    float,
+    typer.Option(
+        "--residual-tol",
+        help="Periodic solver: fixed-point residual accepted [-], in (0, 0.1].",
+        callback=float_option(gt=0.0, le=0.1),
+    ),
+]
+#: ``--tol`` meant a solver residual here but a Monte Carlo spread in ``betv tolerance``;
+#: both have their own names now, and the old one says so.
+RetiredTolOpt = Annotated[
+    str | None,
+    typer.Option(
+        "--tol",
+        hidden=True,
+        callback=renamed_option(
+            "--residual-tol", "the solver's residual; the Monte Carlo spread is `--spread`"
+        ),
+    ),
+]
+FidelityOpt = Annotated[
+    str,
+    typer.Option(
+        help="Fidelity rung: periodic (exact periodic orbits) or lambda (closed-form fit)."
+    ),
+]
+OverwriteOpt = Annotated[
+    bool, typer.Option("--overwrite", help="Start afresh even if --out holds other results.")
+]
+JsonOpt = Annotated[bool, typer.Option("--json", help="Print a JSON summary on stdout.")]
+QuietOpt = Annotated[bool, typer.Option("--quiet", "-q", help="No progress bar.")]
+
+
+@dataclass(frozen=True)
+class Execution:
+    """The execution options every study command takes, and how to apply them."""
+
+    executor: str
+    workers: int | None
+    chunksize: int | None
+    scheduler: str | None
+    out: Path | None
+    overwrite: bool
+    quiet: bool
+
+    def run(self, label: str, fn: Callable[..., T], /, *args: Any, **kwargs: Any) -> T:
+        """``fn(*args, **kwargs)`` with the executor, output and a progress bar."""
+        if self.out is not None:
+            output_file(self.out, create_parent=True)
+        ex = make_executor(
+            self.executor, workers=self.workers, chunksize=self.chunksize, scheduler=self.scheduler
+        )
+        with progress_bar(label, self.quiet) as progress:
+            return fn(
+                *args,
+                executor=ex,
+                out=str(self.out) if self.out else None,
+                overwrite=self.overwrite,
+                progress=progress,
+                **kwargs,
+            )
+
+
+@contextlib.contextmanager
+def progress_bar(label: str, quiet: bool) -> Iterator[Callable[[int, int], None] | None]:
+    """A rich progress bar on stderr; yields the ``progress(done, total)`` callback."""
+    if quiet:
+        yield None
+        return
+    from rich.console import Console
+    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TimeRemainingColumn
+
+    bar = Progress(
+        "[progress.description]{task.description}",
+        BarColumn(),
+        MofNCompleteColumn(),
+        TimeRemainingColumn(),
+        console=Console(stderr=True),
+        transient=False,
+    )
+    task_id = bar.add_task(label, total=None)
+    started = False
+
+    def update(done: int, total: int) -> None:
+        nonlocal started
+        if not started:  # start on the first report, so input errors print no bar
+            bar.start()
+            started = True
+        bar.update(task_id, completed=done, total=total)
+
+    try:
+        yield update
+    finally:
+        if started:
+            bar.stop()
+
+
+def emit(summary: dict[str, Any], as_json: bool, human: Callable[[], None]) -> None:
+    """Print the JSON summary on stdout, or the human-readable form (led by the fidelity
+    rung the study used and why, when the summary states one)."""
+    if as_json:
+        typer.echo(json.dumps(summary, indent=2, allow_nan=False))
+        return
+    if "fidelity" in summary and "fidelity_reason" in summary:
+        typer.echo(f"fidelity rung {summary['fidelity']}: {summary['fidelity_reason']}")
+    human()
+
+
+def run_block(run: StudyRun) -> dict[str, Any]:
+    """The execution part of every summary."""
+    return {
+        "points": run.total,
+        "computed": run.computed,
+        "resumed": run.resumed,
+        "elapsed_s": round(run.elapsed_s, 6),
+        "executor": run.executor.backend,
+        "workers": run.executor.workers,
+        "out": str(run.path) if run.path else None,
+    }

@@ -16,7 +16,14 @@ from pathlib import Path
 import typer
 
 from betvdesign.cli import app
-from betvdesign.cli.common import EXIT_OK, EXIT_RULE_FAILED, interruptible, user_errors
+from betvdesign.cli.common import (
+    EXIT_OK,
+    EXIT_RULE_FAILED,
+    QuietOpt,
+    interruptible,
+    progress_bar,
+    user_errors,
+)
 
 
 @app.command("report")
@@ -32,7 +39,7 @@ def report_cmd(
         "--timestamp",
         help="Print the generation time and run times (reports then differ between runs).",
     ),
-    quiet: bool = typer.Option(False, "--quiet", "-q", help="No progress bar."),
+    quiet: QuietOpt = False,
     methods: bool = typer.Option(
         False,
         "--methods",
@@ -62,8 +69,6 @@ def report_cmd(
         from betvdesign.cli.bench import methods_report
 
         raise typer.Exit(methods_report(files or [], outdir, pdf=pdf))
-
-    from betvdesign.cli.sweep import progress_bar
 
     with (
         user_errors(),

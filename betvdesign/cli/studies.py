@@ -11,14 +11,6 @@ import typer
 from betvdesign.cli import app
 from betvdesign.cli.common import (
     EXIT_RULE_FAILED,
-    int_option,
-    interruptible,
-    output_file,
-    renamed_option,
-    seed_option,
-    user_errors,
-)
-from betvdesign.cli.sweep import (
     ChunkOpt,
     Execution,
     ExecutorOpt,
@@ -30,7 +22,13 @@ from betvdesign.cli.sweep import (
     SchedulerOpt,
     WorkersOpt,
     emit,
+    int_option,
+    interruptible,
+    output_file,
+    renamed_option,
     run_block,
+    seed_option,
+    user_errors,
 )
 from betvdesign.errors import UsageError
 from betvdesign.spec import limits

@@ -190,11 +190,3 @@ class ControlPanel:
                     sv = min(max(sv, ctl.widget.start), ctl.widget.end)
                     if abs(ctl.widget.value - sv) > 0.5 * ctl.widget.step:
                         ctl.widget.value = sv
-
-    def axis_fields(self) -> list[str]:
-        """Fields a map can have on an axis (numbers the design always gives)."""
-        return [
-            f
-            for f, c in self.controls.items()
-            if c.spec.kind in ("quantity", "number") and not c.spec.optional
-        ]

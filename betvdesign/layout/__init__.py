@@ -11,6 +11,7 @@
   -> device file.
 
 Above :mod:`betvdesign.checks` and :mod:`betvdesign.studies` (it reads and checks
-specs), below :mod:`betvdesign.cli`. Needs gdstk (``pip install 'betvdesign[layout]'``),
-imported when a layout is written or read.
+specs), below :mod:`betvdesign.api` and what presents results (report, explore, cli).
+Needs gdstk (``pip install 'betvdesign[layout]'``), imported when a layout is written or
+read.
 """

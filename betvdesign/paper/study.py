@@ -8,8 +8,8 @@ the published value, the computed one, the relative difference and the measured
 explanation. The comparison is data: nothing here asserts that the paper is right,
 and nothing is tuned to its numbers.
 
-Parts: :mod:`validation_vertical` (Figs 3–6), :mod:`validation_maps` (Figs 7, 8, 12),
-:mod:`validation_slider` (Figs 9–11 and the device's dimensionless values).
+Parts: :mod:`~betvdesign.paper.vertical` (Figs 3–6), :mod:`~betvdesign.paper.maps`
+(Figs 7, 8, 12), :mod:`~betvdesign.paper.slider` (Figs 9–11 and the device's dimensionless values).
 """
 
 from __future__ import annotations

@@ -31,7 +31,6 @@ from betvdesign.checks.adequacy import (
 from betvdesign.nondim.record import DeviceDerivation, SetDerivation
 from betvdesign.output.siformat import format_dimensionless as fmt_x
 from betvdesign.output.siformat import scale_for
-from betvdesign.report import analysis
 from betvdesign.report.analysis import Piece, attempt
 from betvdesign.report.figures import figure_block, ladder
 from betvdesign.report.model import AdequacyBlock, FigureBlock, KeyValue
@@ -54,7 +53,7 @@ _VERDICT = {
 
 def compute(der: DeviceDerivation) -> Piece[DeviceAdequacy]:
     """The adequacy of every set, or why it is missing (solver unavailable)."""
-    return attempt(lambda: assess(der, solver=analysis.dynamics_api("periodic_orbit")))
+    return attempt(lambda: assess(der))
 
 
 def section(

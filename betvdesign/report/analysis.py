@@ -32,6 +32,7 @@ from typing import TYPE_CHECKING, Any, Generic, TypeVar
 
 import numpy as np
 
+from betvdesign import dynamics
 from betvdesign.errors import BetvError
 from betvdesign.model.domain import VARPI_WINDOW, mode_of
 from betvdesign.model.params import ModelParams
@@ -116,18 +117,6 @@ def attempt(fn: Callable[[], T]) -> Piece[T]:
     return Piece(value=value, elapsed_s=time.perf_counter() - t0)
 
 
-def dynamics_api(name: str) -> Callable[..., Any]:
-    """``betvdesign.dynamics.<name>``, or :class:`Missing` saying it is not available."""
-    try:
-        import betvdesign.dynamics as dyn
-    except ImportError as exc:  # pragma: no cover - package always importable once landed
-        raise Missing(f"the exact solver (betvdesign.dynamics) cannot be imported: {exc}") from None
-    fn = getattr(dyn, name, None)
-    if fn is None:
-        raise Missing(f"betvdesign.dynamics.{name} is not available in this build")
-    return fn
-
-
 def require_success(result: R, what: str) -> R:
     """``result`` if its ``success`` is true, else :class:`Missing` with its status/message."""
     if not result.success:
@@ -181,9 +170,7 @@ class OrbitData:
 
 def periodic(p: ModelParams, opts: ReportOptions) -> PeriodicResult:
     """The periodic orbit of the exact model at ``p`` (succeeded), else :class:`Missing`."""
-    res = dynamics_api("periodic_orbit")(
-        p, tol=opts.periodic_tol, max_cycles=opts.periodic_max_cycles
-    )
+    res = dynamics.periodic_orbit(p, tol=opts.periodic_tol, max_cycles=opts.periodic_max_cycles)
     return require_success(res, "periodic_orbit")
 
 
@@ -205,7 +192,6 @@ def _vertical(
     "aperiodic"); period None only where no period is found within the horizon."""
     from betvdesign.studies.regime import LONG_PERIOD, regime_point
 
-    dynamics_api("vertical_motion")  # Missing (stated in the figure) without the solver
     task = {"key": 0, "varpi": varpi, "zeta_v": zeta_v, "restitution": restitution}
     row = regime_point({**task, "max_cycles": REGIME_HORIZON})
     if row["period_cycles"] is None and row["label"] == "aperiodic":
@@ -226,7 +212,7 @@ def _vertical(
 
 def vertical(p: ModelParams) -> VerticalResult:
     """The exact vertical motion at the device's ϖ, ζ_v, e (full default horizon)."""
-    return dynamics_api("vertical_motion")(p.varpi, zeta_v=p.zeta_v, restitution=p.restitution)
+    return dynamics.vertical_motion(p.varpi, zeta_v=p.zeta_v, restitution=p.restitution)
 
 
 def regime_strip(p: ModelParams, opts: ReportOptions) -> RegimeData:
@@ -254,7 +240,7 @@ def samples_per_cycle(p: ModelParams, opts: ReportOptions) -> int:
 
 def transient(p: ModelParams, n_cycles: int, opts: ReportOptions) -> TransientData:
     """Exact run from rest: dense over the first cycles, sections over ``n_cycles``."""
-    simulate = dynamics_api("simulate")
+    simulate = dynamics.simulate
     dense_n = min(opts.dense_cycles, n_cycles)
     head = require_success(simulate(p, dense_n, dense=True), "simulate (dense)")
     period = 2.0 * math.pi / p.varpi
@@ -287,7 +273,7 @@ def _phase_name(raw: str) -> str:
 
 def orbit(p: ModelParams, per: PeriodicResult, opts: ReportOptions) -> OrbitData:
     """Sample one period of the periodic orbit with its contact phases."""
-    simulate = dynamics_api("simulate")
+    simulate = dynamics.simulate
     n = per.period_cycles if per.period_cycles is not None else 1
     state0 = np.asarray(per.state, dtype=float)
     traj = require_success(simulate(p, n, dense=True, state0=state0), "simulate (orbit)")
@@ -379,7 +365,7 @@ def robustness(variants: list[FieldVariant], opts: ReportOptions) -> FieldSweep:
     """Periodic speed of every variant (one periodic orbit per distinct parameter set)."""
     if not variants:
         raise Missing("the device has none of the designer fields the sweep varies")
-    periodic_orbit = dynamics_api("periodic_orbit")
+    periodic_orbit = dynamics.periodic_orbit
     solved: dict[ModelParams, PeriodicResult] = {}
     points: list[FieldPoint] = []
     for v in variants:

@@ -18,12 +18,12 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from betvdesign import plots
+from betvdesign import dynamics, plots
 from betvdesign.model.domain import VARPI_WINDOW
 from betvdesign.model.params import ModelParams
 from betvdesign.nondim.record import SetDerivation
 from betvdesign.output.siformat import format_si
-from betvdesign.report.analysis import Missing, Piece, ReportOptions, dynamics_api
+from betvdesign.report.analysis import Missing, Piece, ReportOptions
 from betvdesign.report.figures import figure_block, ladder
 from betvdesign.report.model import FigureBlock
 
@@ -59,7 +59,7 @@ def frequency_sweep(
 ) -> FrequencySweep:
     """Periodic Δs over :func:`frequency_grid` (α, β, κ fixed); the device's own orbit
     ``per`` is reused."""
-    periodic_orbit = dynamics_api("periodic_orbit")
+    periodic_orbit = dynamics.periodic_orbit
     f_v = f_act_hz / p.varpi
     grid = frequency_grid(p.varpi, opts.frequency_points)
     delta_s: list[float | None] = []

@@ -6,7 +6,8 @@
 reports' CSS, WeasyPrint for the PDF, atomic writes. The work-precision rows are
 measured now (quick study, unless rows are passed in, e.g. loaded from the JSON
 that ``benchmarks/work_precision.py`` writes); the ladder's trust limits are the
-measured ones the toolkit itself uses (:mod:`betvdesign.fidelity_measured`).
+measured ones the toolkit itself uses (``betvdesign/data/fidelity_measured.json``, read by
+:func:`betvdesign.checks.fidelity.measured`).
 The same rows give the same bytes.
 """
 

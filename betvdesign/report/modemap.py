@@ -21,7 +21,6 @@ import numpy as np
 
 from betvdesign.model.domain import VARPI_WINDOW
 from betvdesign.nondim.record import SetDerivation
-from betvdesign.report import analysis
 from betvdesign.report.analysis import FieldSweep, Missing, Piece, ReportOptions
 from betvdesign.report.figures import EXACT, figure_block
 from betvdesign.report.model import FigureBlock
@@ -121,7 +120,6 @@ def compute(
     """The map of set ``set_index`` (ϖ [-] the device's): :data:`ReportOptions.map_points`
     per axis, the ranges of :func:`factors` (the second field over ±
     :data:`MAP_SPAN`)."""
-    analysis.dynamics_api("periodic_orbit")  # the report's way to the solver (or Missing)
     chosen, why = choose_fields(spec, set_index, sweep.value)
     axes = [axis(f, v, *factors(f, varpi, MAP_SPAN), opts.map_points) for f, v in chosen]
     rows, summary = field_map(spec, axes, set_index, tol=opts.periodic_tol)

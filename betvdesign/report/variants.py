@@ -20,12 +20,12 @@ from typing import Any
 import numpy as np
 import pint
 
+from betvdesign import dynamics
 from betvdesign.errors import BetvError
 from betvdesign.model.bisection import bisect
 from betvdesign.model.domain import mode_of
 from betvdesign.model.params import ModelParams
 from betvdesign.nondim.device import derive_set
-from betvdesign.report import analysis
 from betvdesign.report.analysis import FieldFlip, FieldSweep, FieldVariant, ReportOptions
 from betvdesign.spec.fields import FIELDS
 from betvdesign.spec.models import DeviceSpec
@@ -120,7 +120,7 @@ def mode_at_change(
         sd = derive_set(changed, changed.actuator_sets[set_index])
     except BetvError:
         return "no orbit"
-    res = analysis.dynamics_api("periodic_orbit")(
+    res = dynamics.periodic_orbit(
         sd.params, tol=opts.periodic_tol, max_cycles=opts.sweep_max_cycles
     )
     mode = mode_of(res.delta_s) if res.success else None

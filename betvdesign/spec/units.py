@@ -471,21 +471,3 @@ NonNegativeVoltage = _q("[voltage]", "V", "0 V", ge=0.0)
 ImpactAngle = _q(ANGLE, "deg", "45 deg", gt=0.0, lt=90.0)
 LinearGain = _q("[length]/[voltage]", "m/V", "0.01375 um/V", gt=0.0)
 QuadraticGain = _q("[length]/[voltage]**2", "m/V**2", "0.0017 um/V^2", gt=0.0)
-
-
-def to_float(q: pint.Quantity, unit: str) -> float:
-    """Magnitude of a quantity in a unit, as a float.
-
-    Parameters
-    ----------
-    q : pint.Quantity
-        The quantity.
-    unit : str
-        The unit.
-
-    Returns
-    -------
-    float
-        The magnitude.
-    """
-    return float(q.to(unit).magnitude)

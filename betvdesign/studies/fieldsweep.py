@@ -266,11 +266,6 @@ def exact_mode(row: Mapping[str, Any]) -> str:
     return "not converged"
 
 
-def _device_key(path: str | Path) -> tuple[str, int]:
-    p = Path(path)
-    return str(p.resolve()), p.stat().st_mtime_ns
-
-
 def _derive_grid(
     spec: Any, axes: Sequence[FieldAxis], set_index: int
 ) -> tuple[np.ndarray, list[dict[str, Any] | str]]:

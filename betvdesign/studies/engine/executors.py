@@ -5,7 +5,7 @@ Every study is a list of independent tasks and a module-level worker function
 splits the tasks into chunks (to amortise inter-process traffic), runs
 ``fn`` over each chunk somewhere, and yields each finished chunk's rows as
 soon as it completes (completion order, not task order). Rows carry their
-grid key, so the caller (``studies.runner``) can stream them to disk and a
+grid key, so the caller (``studies.engine.runner``) can stream them to disk and a
 resumed run can skip what is finished.
 
 Backends:
