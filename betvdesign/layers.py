@@ -98,6 +98,7 @@ LAYERS: tuple[Layer, ...] = (
     Layer(
         "checks",
         "the verdict: `rule` (RuleResult: rules as data), `rules` (the design rules), "
+        "`window` (the design window's rules: its edges, its margin), "
         "`travel` (which answer a verdict quotes: orbit or crossing of the travel), "
         "`adequacy` (is the idealised model enough: study, rule, JSON), `fidelity` (the "
         "ladder of models), `actuator_rules` (drawn actuator against the file's "

@@ -17,6 +17,15 @@ from betvdesign.nondim.record import SetDerivation
 from betvdesign.output.numbers import json_float
 from betvdesign.output.siformat import format_si
 
+#: The fix text of a mode rule before the search has run: no direction is claimed
+#: here (a direction table cannot know which way the nearest passing design lies); the
+#: check's callers replace it with the search's answer (:func:`betvdesign.studies.fix.
+#: advise`, the same search as ``betv fix``).
+SEARCH_HINT = (
+    "`betv fix FILE` finds the nearest passing value of each field (`betv check` names "
+    "it unless run with --no-advice)"
+)
+
 Severity = Literal["error", "warning", "info"]
 
 

@@ -29,7 +29,7 @@ from pydantic import BaseModel, ConfigDict, Field
 
 from betvdesign.checks.adequacy import AdequacyOut, adequacy_line
 from betvdesign.checks.rule import RuleResult, no_crossing, travel_axis
-from betvdesign.checks.rules import format_varpi
+from betvdesign.checks.window import format_varpi
 from betvdesign.output.numbers import RULE as NUMBER_RULE
 from betvdesign.output.presentation import STATUS_COLORS, STATUS_STYLES, rule_status
 from betvdesign.output.siformat import format_dimensionless as fmt_x
