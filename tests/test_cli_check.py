@@ -112,6 +112,49 @@ def test_json_conforms_to_its_published_schema(no_solver):
     _assert_conforms(doc, schema, schema)
 
 
+def test_json_v3_fields_and_types_and_verbose_only_adds(no_solver):
+    """Version 3: one typed shape. The schema declares the verbose set fields with their
+    types and no untyped 'details'; the --verbose document validates against it, and
+    with the verbose fields taken out it is the plain document: -v adds, never repeats."""
+    schema = json.loads(run("schema", "check").stdout)
+    assert schema["properties"]["version"]["const"] == 3 and "3" in schema["x-betv-changes"]
+    defs = schema["$defs"]
+    assert "details" not in defs["DeviceOut"]["properties"]
+    props = defs["SetOut"]["properties"]
+    required = set(defs["SetOut"]["required"])
+    assert not set(VERBOSE_SET_FIELDS) & required
+
+    def kinds(sch):  # the JSON types a property admits ($ref by name)
+        alts = sch.get("anyOf", [sch])
+        return {a.get("type") or a["$ref"].split("/")[-1] for a in alts}
+
+    assert kinds(props["mode_source"]) == {"string", "null"}
+    assert kinds(props["simulation"]) == {"SimulationOut", "null"}
+    assert kinds(props["vertical"]) == {"VerticalOut", "null"}
+    for name in ("settling", "determination", "travel"):
+        assert kinds(props[name]) == {"object", "null"}
+    assert props["record"]["anyOf"][0]["items"]["$ref"].endswith("/RecordStepOut")
+    assert props["published_fit"]["anyOf"][0]["items"]["$ref"].endswith("/PublishedFitOut")
+    sim = defs["SimulationOut"]["properties"]
+    assert kinds(sim["delta_s"]) == {"number", "null"} and kinds(sim["n_cycles"]) == {
+        "integer",
+        "null",
+    }
+    assert defs["RecordStepOut"]["properties"]["value"]["type"] == "string"
+    files = [str(DEVICES / f"{n}.yaml") for n in ("push_demo", "shin2004")]
+    plain = json.loads(run("check", "--json", *files).stdout)
+    full = json.loads(run("check", "--json", "-v", *files).stdout)
+    _assert_conforms(full, schema, schema)
+    for dp, dv in zip(plain["devices"], full["devices"], strict=True):
+        for sp, sv in zip(dp["sets"], dv["sets"], strict=True):
+            assert set(sv) - set(sp) == set(VERBOSE_SET_FIELDS)
+            assert {k: v for k, v in sv.items() if k not in VERBOSE_SET_FIELDS} == sp
+            assert [st["symbol"] for st in sv["record"]][:2] and sv["simulation"]["success"]
+        assert {k: v for k, v in dv.items() if k != "sets"} == {
+            k: v for k, v in dp.items() if k != "sets"
+        }
+
+
 @pytest.mark.parametrize("name", OWN)
 def test_own_designs_pass(name):
     """Every error and warning rule passes with the exact solver; the mode is the
