@@ -21,7 +21,9 @@ from collections.abc import Callable
 from dataclasses import dataclass, fields, replace
 from typing import TYPE_CHECKING, Any
 
+from betvdesign.errors import UsageError
 from betvdesign.model.domain import TRAVEL_HORIZON
+from betvdesign.spec.limits import MAX_CYCLES
 
 if TYPE_CHECKING:
     from betvdesign.checks.adequacy import DeviceAdequacy
@@ -29,7 +31,18 @@ if TYPE_CHECKING:
     from betvdesign.nondim.record import DeviceDerivation
     from betvdesign.spec.models import DeviceSpec
 
-__all__ = ["CheckOptions", "DeviceSource", "adequacy", "check", "read_source", "run_check"]
+#: The cycles the transient from rest may be given to cross the travel (``--horizon``).
+HORIZON_RANGE = (1000, MAX_CYCLES)
+
+__all__ = [
+    "HORIZON_RANGE",
+    "CheckOptions",
+    "DeviceSource",
+    "adequacy",
+    "check",
+    "read_source",
+    "run_check",
+]
 
 
 @dataclass(frozen=True)
@@ -62,7 +75,8 @@ class CheckOptions:
     Raises
     ------
     UsageError
-        A ``target_speed`` that is not a speed.
+        A ``target_speed`` that is not a speed, a ``horizon`` outside
+        :data:`HORIZON_RANGE`.
     """
 
     select: tuple[str, ...] = ()
@@ -79,6 +93,9 @@ class CheckOptions:
         object.__setattr__(self, "select", tuple(self.select))
         object.__setattr__(self, "ignore", tuple(self.ignore))
         _ = self.target_speed_m_s  # a bad speed is refused now
+        lo, hi = HORIZON_RANGE
+        if not lo <= self.horizon <= hi:
+            raise UsageError(f"horizon: must be {lo:,} to {hi:,} cycles, got {self.horizon:,}")
 
     @property
     def target_speed_m_s(self) -> float | None:
@@ -275,10 +292,12 @@ def check(
     """
     opts = options or CheckOptions()
     if changes:
-        known = {f.name for f in fields(CheckOptions)}
-        unknown = sorted(set(changes) - known)
+        known = [f.name for f in fields(CheckOptions)]
+        unknown = sorted(set(changes) - set(known))
         if unknown:
-            raise TypeError(f"check(): no option {', '.join(unknown)} (CheckOptions: {known})")
+            raise TypeError(
+                f"check(): no option {', '.join(unknown)} (CheckOptions: {', '.join(known)})"
+            )
         opts = replace(opts, **changes)
     res = run_check(device, opts)
     for message in res.rule_filter.unmatched([res]):

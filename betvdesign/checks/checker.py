@@ -21,7 +21,8 @@ decides. Identical parameter sets (mirrored actuator sets) are solved once.
 :class:`CheckResult` is what ``betv check`` prints (through
 :mod:`betvdesign.checks.view`, which also writes its JSON). The check of a device file, a
 GDS layout or a spec, with the advice, is :func:`betvdesign.api.run_check`: it calls
-:func:`check_derivation` and returns its result whole, never mutated afterwards.
+:func:`check_derivation` and adds the source, notes and advice as new frozen results,
+never by mutation.
 """
 
 from __future__ import annotations

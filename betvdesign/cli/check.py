@@ -19,12 +19,12 @@ from rich.console import Console
 from rich.markup import escape as esc
 from rich.table import Table
 
+from betvdesign.api import HORIZON_RANGE
 from betvdesign.cli import app
 from betvdesign.cli.common import EXIT_OK, EXIT_RULE_FAILED, int_option, user_errors
 from betvdesign.cli.config import load_config
 from betvdesign.errors import SpecError, UsageError
 from betvdesign.model.domain import TRAVEL_HORIZON
-from betvdesign.spec import limits
 
 if TYPE_CHECKING:  # the heavy layers load when a check runs, not for `betv --help`
     from betvdesign.checks.checker import CheckResult
@@ -78,7 +78,7 @@ def check_cmd(
         TRAVEL_HORIZON,
         "--horizon",
         metavar="CYCLES",
-        callback=int_option(1000, limits.MAX_CYCLES, why="cycles of the transient from rest"),
+        callback=int_option(*HORIZON_RANGE, why="cycles of the transient from rest"),
         help="Cycles the transient from rest may take to cross the travel range; a slider "
         "that does not cross within them fails the mode rule (raise it for long travels; "
         "about 1 µs per cycle).",
