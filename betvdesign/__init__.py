@@ -42,6 +42,7 @@ _LAZY = {
     "derive": "betvdesign.nondim.device",
     "check": "betvdesign.api",
     "adequacy": "betvdesign.api",
+    "CheckOptions": "betvdesign.api",
     "DeviceView": "betvdesign.checks.view",
     "SpecError": "betvdesign.errors",
 }

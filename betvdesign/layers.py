@@ -138,8 +138,9 @@ LAYERS: tuple[Layer, ...] = (
     ),
     Layer(
         "api",
-        "`betvdesign.check`, `betvdesign.adequacy` (the notebook entry points); below "
-        "`report`, `explore` and `cli`, which may call them",
+        "the one check pipeline (`CheckOptions`, `read_source`, `run_check`: YAML, GDS or "
+        "spec → `CheckResult`) and the notebook entry points `betvdesign.check`, "
+        "`betvdesign.adequacy`; below `report`, `explore` and `cli`, which call it"
     ),
     Layer("report", "the report model → Jinja2 → HTML / PDF; methods and validation reports"),
     Layer(

@@ -221,7 +221,7 @@ def test_public_api_and_text():
 
 
 def _rule(view, rule_id):
-    return next(r for r in view.result.rules if r.id == rule_id)
+    return next(r for r in view.rules if r.id == rule_id)
 
 
 def test_check_rule_info_when_adequate_and_line_in_the_block():
@@ -247,7 +247,7 @@ def test_check_rule_warns_where_the_mode_flips_with_the_studys_numbers():
     assert "warning model-adequacy: mode-flips" in text and "e ≈ 0.166 (→ not driven)" in text
     from betvdesign.checks.view import output_json
 
-    doc = json.loads(output_json([view]))
+    doc = json.loads(output_json([view.view]))
     assert doc["devices"][0]["sets"][0]["adequacy"]["source"] == "default"
 
 
@@ -262,7 +262,7 @@ def test_check_at_resonance_with_damping_uses_the_finite_damped_orbit():
         ("actuator.quality_factor_tangential", 30),
     )
     view = betvdesign.check(spec)
-    sc = view.result.sets[0]
+    sc = view.sets[0]
     p = sc.derivation.params
     direct = periodic_orbit(p)
     assert direct.success and sc.periodic.delta_s == direct.delta_s
@@ -310,7 +310,7 @@ def test_partial_terms_are_the_devices_and_undamped_q_is_null_in_json():
     JSON writes the infinite Q as null."""
     spec = load_device(DEVICES / "push_demo.yaml").replace("contact.restitution", 0.05)
     view = betvdesign.check(spec)
-    a = view.result.sets[0].adequacy
+    a = view.sets[0].adequacy
     assert a.source == "device" and math.isinf(a.richer.quality)
     assert a.richer.restitution == 0.05 and a.richer.terms == "Q ∞, e 0.05"
     out = view.out.sets[0].adequacy

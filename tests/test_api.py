@@ -112,3 +112,19 @@ def test_report_repr_is_short(tmp_path):
     )
     assert repr(r) == "<Report d<x>: FAIL, 0 set(s), 0 figure(s), from f.yaml>"
     assert "d&lt;x&gt;" not in r._repr_html_() and "<b>t</b>" in r._repr_html_()
+
+
+def test_check_options_refuse_bad_values_before_any_solve():
+    """CheckOptions is checked when made: a speed without a speed unit, a horizon outside
+    the CLI's range, an option that does not exist (no device is solved for these)."""
+    from betvdesign.api import HORIZON_RANGE, CheckOptions
+    from betvdesign.errors import UsageError
+
+    with pytest.raises(UsageError, match="target_speed"):
+        CheckOptions(target_speed="3 kHz")
+    with pytest.raises(UsageError, match="horizon"):
+        CheckOptions(horizon=HORIZON_RANGE[0] - 1)
+    assert CheckOptions(target_speed="1 mm/s").target_speed_m_s == pytest.approx(1e-3)
+    assert CheckOptions(select=["mode"]).select == ("mode",)  # hashable, frozen
+    with pytest.raises(TypeError, match="no option"):
+        bd.check(PUSH, horizn=5000)

@@ -109,6 +109,8 @@ def test_unsettled_transient_gives_a_lower_bound_not_an_extrapolation():
 
 def test_check_result_reprs_are_short_and_name_the_exact_mode():
     res = check_derivation(_device(LIAR, "pull"), margin=False, settle=False)
-    assert repr(res) == "<CheckResult 'pull_demo': FAIL (main: push)>"
+    text = repr(res)  # the compact block of betv check
+    assert text.startswith("pull_demo: FAIL\n  main: push instead of pull")
+    assert len(text.splitlines()) <= 15
     html = res._repr_html_()
     assert "FAIL" in html and "push" in html and len(html) < 5000

@@ -9,6 +9,7 @@ from conftest import orbit_stand_in
 from typer.testing import CliRunner
 
 from betvdesign.checks import checker
+from betvdesign.checks.view import VERBOSE_SET_FIELDS
 from betvdesign.cli import app
 from betvdesign.spec.loader import load_device
 from betvdesign.spec.models import DeviceSpec
@@ -26,7 +27,7 @@ def no_solver(monkeypatch):
     def orbit(p):
         return orbit_stand_in(1.0 if p.lam < 1 else -1.0)
 
-    monkeypatch.setattr(checker, "load_solver", lambda: orbit)
+    monkeypatch.setattr(checker, "periodic_orbit", orbit)
     monkeypatch.setattr("betvdesign.checks.checker._settling", lambda p, po, travel, horizon: None)
 
 
@@ -47,7 +48,7 @@ def test_shin2004_fails_the_window_and_shows_fit_mismatch(no_solver):
 
 def _device(stdout: str) -> dict:
     d = json.loads(stdout)
-    assert (d["schema"], d["version"]) == ("betv-check", 2)
+    assert (d["schema"], d["version"]) == ("betv-check", 3)
     assert len(d["devices"]) == 1
     return d["devices"][0]
 
@@ -83,8 +84,8 @@ def test_shin2004_json_contract(no_solver):
         assert rule["severity"] in ("error", "warning", "info")
     win = [x for x in s["rules"] if x["id"] == "frequency-window"]
     assert win and not any(x["passed"] for x in win) and "drive.frequency" in win[0]["fix"]
-    assert "details" not in d
-    full = _device(run("check", SHIN, "--json", "--verbose").stdout)["details"]
+    assert "details" not in d and not set(VERBOSE_SET_FIELDS) & set(s)
+    full = _device(run("check", SHIN, "--json", "--verbose").stdout)
     fit = full["sets"][0]["published_fit"]
     assert {f["param"] for f in fit} == {"varpi", "alpha", "beta", "kappa"}
     assert next(f for f in full["sets"][0]["record"] if f["symbol"] == "f_act")["formula"] == (
@@ -96,7 +97,7 @@ def test_json_conforms_to_its_published_schema(no_solver):
     """Every device's --json output validates against `betv schema check` (a generic
     draft-2020-12 walk of the schema, written below, not pydantic itself)."""
     schema = json.loads(run("schema", "check").stdout)
-    assert schema["properties"]["version"]["const"] == 2
+    assert schema["properties"]["version"]["const"] == 3
     r = run("check", "--json", *(str(p) for p in sorted(DEVICES.glob("*.yaml"))))
     doc = json.loads(r.stdout)
     assert [x["device"] for x in doc["devices"]] == [
@@ -111,6 +112,49 @@ def test_json_conforms_to_its_published_schema(no_solver):
     _assert_conforms(doc, schema, schema)
 
 
+def test_json_v3_fields_and_types_and_verbose_only_adds(no_solver):
+    """Version 3: one typed shape. The schema declares the verbose set fields with their
+    types and no untyped 'details'; the --verbose document validates against it, and
+    with the verbose fields taken out it is the plain document: -v adds, never repeats."""
+    schema = json.loads(run("schema", "check").stdout)
+    assert schema["properties"]["version"]["const"] == 3 and "3" in schema["x-betv-changes"]
+    defs = schema["$defs"]
+    assert "details" not in defs["DeviceOut"]["properties"]
+    props = defs["SetOut"]["properties"]
+    required = set(defs["SetOut"]["required"])
+    assert not set(VERBOSE_SET_FIELDS) & required
+
+    def kinds(sch):  # the JSON types a property admits ($ref by name)
+        alts = sch.get("anyOf", [sch])
+        return {a.get("type") or a["$ref"].split("/")[-1] for a in alts}
+
+    assert kinds(props["mode_source"]) == {"string", "null"}
+    assert kinds(props["simulation"]) == {"SimulationOut", "null"}
+    assert kinds(props["vertical"]) == {"VerticalOut", "null"}
+    for name in ("settling", "determination", "travel"):
+        assert kinds(props[name]) == {"object", "null"}
+    assert props["record"]["anyOf"][0]["items"]["$ref"].endswith("/RecordStepOut")
+    assert props["published_fit"]["anyOf"][0]["items"]["$ref"].endswith("/PublishedFitOut")
+    sim = defs["SimulationOut"]["properties"]
+    assert kinds(sim["delta_s"]) == {"number", "null"} and kinds(sim["n_cycles"]) == {
+        "integer",
+        "null",
+    }
+    assert defs["RecordStepOut"]["properties"]["value"]["type"] == "string"
+    files = [str(DEVICES / f"{n}.yaml") for n in ("push_demo", "shin2004")]
+    plain = json.loads(run("check", "--json", *files).stdout)
+    full = json.loads(run("check", "--json", "-v", *files).stdout)
+    _assert_conforms(full, schema, schema)
+    for dp, dv in zip(plain["devices"], full["devices"], strict=True):
+        for sp, sv in zip(dp["sets"], dv["sets"], strict=True):
+            assert set(sv) - set(sp) == set(VERBOSE_SET_FIELDS)
+            assert {k: v for k, v in sv.items() if k not in VERBOSE_SET_FIELDS} == sp
+            assert [st["symbol"] for st in sv["record"]][:2] and sv["simulation"]["success"]
+        assert {k: v for k, v in dv.items() if k != "sets"} == {
+            k: v for k, v in dp.items() if k != "sets"
+        }
+
+
 @pytest.mark.parametrize("name", OWN)
 def test_own_designs_pass(name):
     """Every error and warning rule passes with the exact solver; the mode is the
@@ -119,7 +163,7 @@ def test_own_designs_pass(name):
     assert r.exit_code == 0, r.stdout
     d = _device(r.stdout)
     assert d["verdict"] == "pass" and d["failed"] == []
-    full = d["details"]
+    every = [x for s in d["sets"] for x in s["rules"]] + d["rules"]
     # model-adequacy judges the paper's idealised model, not the design: at ϖ ≥ 0.5 every
     # design loses its drive at some restitution e < 0.9 (the rebounds leave no finite
     # contact), so it warns here by design (tests/test_adequacy.py).
@@ -127,14 +171,15 @@ def test_own_designs_pass(name):
     # show them, `betv layout` draws them (issue 23)
     kept = [
         x
-        for x in full["rules"]
+        for x in every
         if x["severity"] != "info" and x["id"] not in ("model-adequacy", "process.release")
     ]
-    assert all(x["passed"] for x in kept), full["rules"]
+    assert all(x["passed"] for x in kept), every
     assert all(s["adequacy"]["reference_mode"] == s["mode"] for s in d["sets"])
-    for s, sfull in zip(d["sets"], full["sets"], strict=True):
+    for s in d["sets"]:
         assert s["mode"] == s["intended_mode"] and s["passed"] and s["lambda"]["agrees"]
-        assert sfull["settling"]["status"] == "settled"
+        assert s["settling"]["status"] == "settled"
+        assert s["basis"] == "periodic" and s["mode_source"].startswith("exact periodic orbit")
         assert s["margin"]["holds"] and set(s["margin"]["corners"].values()) == {s["mode"]}
 
 
@@ -248,7 +293,7 @@ def test_check_reports_orbit_speed_and_json(monkeypatch):
     import math
 
     orbit = orbit_stand_in(0.25, message="ok", residual=1e-12, n_cycles=300, elapsed_s=0.01)
-    monkeypatch.setattr(checker, "load_solver", lambda: lambda p: orbit)
+    monkeypatch.setattr(checker, "periodic_orbit", lambda p: orbit)
     monkeypatch.setattr("betvdesign.checks.checker._settling", lambda p, po, travel, horizon: None)
     path = str(DEVICES / "push_demo.yaml")
     v = 0.25 * 0.14e-6 * math.cos(math.radians(20.56)) * 6000.0  # [m/s] = 196.6 µm/s
@@ -256,7 +301,7 @@ def test_check_reports_orbit_speed_and_json(monkeypatch):
     assert r.exit_code == 0, r.stdout
     assert "push as intended, 197 µm/s toward +x, 50 µm in 254 ms" in r.stdout
     top = _device(run("check", "--json", "-v", path).stdout)
-    s = top["details"]["sets"][0]
+    s = top["sets"][0]
     assert s["simulation"]["delta_s"] == 0.25 and s["simulation"]["mode"] == "push"
     out = top["sets"][0]
     assert out["delta_s"] == 0.25 and out["speed_m_s"] == pytest.approx(v, rel=1e-9)
@@ -281,38 +326,36 @@ def test_shin2004_orbit_and_speed_from_the_exact_solver():
     r = run("check", "--json", "-v", SHIN)
     assert r.exit_code == 1  # the frequency-window error
     top = _device(r.stdout)
-    d = top["details"]
-    s = d["sets"][0]
+    s = top["sets"][0]
     p = ModelParams(**{k: s["params"][k] for k in ("varpi", "alpha", "beta", "kappa")})
     orbit = periodic_orbit(p)
     assert orbit.success
     assert s["simulation"]["delta_s"] == pytest.approx(orbit.delta_s, rel=1e-12)
-    assert d["mode"] == ("push" if orbit.delta_s > 0 else "pull")
+    assert s["mode"] == ("push" if orbit.delta_s > 0 else "pull")
     length = 0.11e-6 * math.cos(math.pi / 4)
     n = s["settling"]["cycles_to_cross"]
     tr = simulate(p, n, log_events=False)  # second method: the transient from rest
     assert abs(tr.s) * length >= 40e-6 > abs(tr.section[-2, 4]) * length
     settle = next(x for x in s["rules"] if x["id"] == "settling")
-    speed = s["speed_m_s"]
-    assert top["sets"][0]["speed_m_s"] == pytest.approx(abs(speed), rel=1e-12)
+    speed = s["speed_m_s"]  # its magnitude, toward travel_direction
     text = run("check", SHIN).stdout
     if settle["passed"]:
-        assert speed == pytest.approx(orbit.delta_s * length * 1000.0, rel=1e-9)
+        assert s["basis"] == "periodic" and s["mode_source"].startswith("exact periodic")
+        assert speed == pytest.approx(abs(orbit.delta_s) * length * 1000.0, rel=1e-9)
         assert "(crossing mean from rest)" not in text
     else:
-        assert speed == pytest.approx(tr.s / n * length * 1000.0, rel=1e-9)
+        assert speed == pytest.approx(abs(tr.s) / n * length * 1000.0, rel=1e-9)
         # the text names the speed that is not the periodic orbit's
-        assert top["sets"][0]["basis"] == "crossing"
+        assert top["sets"][0]["basis"] == "crossing" and "crossing" in s["mode_source"]
         assert "(crossing mean from rest)" in text
-    assert d["sets"][1]["simulation"] == s["simulation"]  # the mirrored set reuses it
+    assert top["sets"][1]["simulation"] == s["simulation"]  # the mirrored set reuses it
 
 
 def test_check_quotes_vertical_motion_consistently():
     """The window rule quotes dynamics.vertical_motion(ϖ) for the set's own ϖ."""
     from betvdesign.dynamics import vertical_motion
 
-    d = _device(run("check", "--json", "-v", SHIN).stdout)["details"]
-    s = d["sets"][0]
+    s = _device(run("check", "--json", "-v", SHIN).stdout)["sets"][0]
     vm = vertical_motion(s["params"]["varpi"])
     assert s["vertical"]["regime"] == vm.regime
     win = next(x for x in s["rules"] if x["id"] == "frequency-window")

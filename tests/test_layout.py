@@ -451,3 +451,24 @@ def test_extract_error_is_a_spec_error(shin_gds):
 
     with pytest.raises(SpecError, match="no label for tip"):
         extract(_edit(shin_gds, strip))
+
+
+def test_api_check_of_a_gds_is_betv_check_of_it(tmp_path):
+    """`betvdesign.check(FILE.gds)` is `betv check FILE.gds`: the same JSON (the layout's
+    measured process rules, the extraction's notes, the advice's fix texts), the same
+    verdict and exit code. shin2004 fails its frequency window, so the advice runs."""
+    import json
+
+    import betvdesign
+
+    gds = tmp_path / "shin.gds"
+    assert run("layout", str(DEVICES / "shin2004.yaml"), "-o", str(gds)).exit_code == 0
+    cli = run("check", "--json", "--no-adequacy", str(gds))
+    res = betvdesign.check(gds, adequacy=False)
+    (dev,) = json.loads(cli.stdout)["devices"]
+    assert res.view.as_json() == dev
+    assert cli.exit_code == 1 and res.verdict == dev["verdict"] == "fail"
+    assert dev["file"] == str(gds) and res.notes == dev["notes"]
+    window = next(r for r in res.rules if r.id == "frequency-window")
+    assert "drive.frequency" in window.fix  # the advice's text, not the rule's own
+    assert "cell BETV_shin2004" in next(r for r in res.rules if r.id == "process.min-width").message

@@ -61,7 +61,7 @@ def test_draw_edit_in_klayout_check_fix_and_back(tmp_path):
     res = run("check", "--json", "--verbose", "--no-adequacy", str(edited))
     assert res.exit_code == 1  # the published data: below the frequency window
     dev = json.loads(res.stdout)["devices"][0]
-    w_flex = next(r for r in dev["details"]["sets"][0]["record"] if r["symbol"] == "w_flex")
+    w_flex = next(r for r in dev["sets"][0]["record"] if r["symbol"] == "w_flex")
     assert w_flex["value"] == "3.5 um"
     res = run("fix", str(edited), "-o", str(fixed), "--json")
     assert res.exit_code == 0, res.output

@@ -470,7 +470,7 @@ def test_check_shows_damping_and_restitution(monkeypatch, tmp_path):
             status="success", success=True, message="stand-in", delta_s=1.0, period_cycles=1
         )
 
-    monkeypatch.setattr(checker, "load_solver", lambda: orbit)
+    monkeypatch.setattr(checker, "periodic_orbit", orbit)
     monkeypatch.setattr("betvdesign.checks.checker._settling", lambda p, po, travel, horizon: None)
     (s,) = json.loads(run("check", DEMO, "--json").stdout)["devices"][0]["sets"]
     assert s["params"]["zeta_v"] == s["params"]["zeta_h"] == 1 / 60

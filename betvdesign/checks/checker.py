@@ -18,8 +18,11 @@ verdict never rests on a fit: every actuator set gets
 
 The paper's λ fit is shown beside the exact mode ("agrees"/"disagrees") and never
 decides. Identical parameter sets (mirrored actuator sets) are solved once.
-:class:`CheckResult` is what ``betv check`` prints; ``CheckResult.as_dict()`` is its
-JSON contract.
+:class:`CheckResult` is what ``betv check`` prints (through
+:mod:`betvdesign.checks.view`, which also writes its JSON). The check of a device file, a
+GDS layout or a spec, with the advice, is :func:`betvdesign.api.run_check`: it calls
+:func:`check_derivation` and adds the source, notes and advice as new frozen results,
+never by mutation.
 """
 
 from __future__ import annotations
@@ -31,21 +34,22 @@ from typing import Any, Literal
 from betvdesign.checks.actuator_rules import actuator_rules
 from betvdesign.checks.adequacy import DeviceAdequacy, SetAdequacy, assess
 from betvdesign.checks.process_rules import process_rules
-from betvdesign.checks.rule import RuleResult, format_speed, format_time, orbit_mode, verdict
+from betvdesign.checks.rule import RuleResult, orbit_mode, verdict
 from betvdesign.checks.rules import MARGIN_CORNERS, evaluate_device, time_to_cross_s
 from betvdesign.checks.travel import TravelAnswer, travel_answer, travel_decides
+from betvdesign.checks.view import DeviceView, RuleFilter
+from betvdesign.dynamics import periodic_orbit, vertical_motion
 from betvdesign.dynamics.determination import Determination
 from betvdesign.dynamics.determination import determine as determine_delta_s
 from betvdesign.dynamics.result import PeriodicResult
 from betvdesign.dynamics.settling import Settling, settling
 from betvdesign.dynamics.vertical import VerticalResult
-from betvdesign.model.domain import TRAVEL_HORIZON, mode_of
+from betvdesign.model.domain import TRAVEL_HORIZON
 from betvdesign.model.params import ModelParams
 from betvdesign.nondim.record import DeviceDerivation, SetDerivation
-from betvdesign.output.numbers import json_float
 
 
-@dataclass
+@dataclass(frozen=True)
 class SetCheck:
     """Check outcome of one actuator set.
 
@@ -125,9 +129,10 @@ class SetCheck:
         return self.derivation.travel_range_m / abs(v)
 
 
-@dataclass
+@dataclass(frozen=True)
 class CheckResult:
-    """Everything ``betv check`` reports for one device.
+    """Everything ``betv check`` reports for one device (frozen: built whole, by
+    :func:`check_derivation` and :func:`betvdesign.api.run_check`, never edited after).
 
     Parameters
     ----------
@@ -136,11 +141,15 @@ class CheckResult:
     sets : list of SetCheck
         One per actuator set, in the device's order.
     rules : list of RuleResult
-        Every rule: each set's, then the device-level ones.
+        Every rule: each set's, then the device-level ones (the advice's fix texts in
+        them when the check was advised).
     notes : list of str
-        Remarks of the check (e.g. a mirrored set reused).
+        Remarks of the check (e.g. a mirrored set reused, what a layout's extraction
+        assumed).
     source_file : str
-        The device file ("" when checked from a spec).
+        The device file or layout ("" when checked from a spec).
+    rule_filter : RuleFilter
+        The rules that count (``--select``/``--ignore``; all by default).
     """
 
     derivation: DeviceDerivation
@@ -148,72 +157,51 @@ class CheckResult:
     rules: list[RuleResult]
     notes: list[str] = field(default_factory=list)
     source_file: str = ""
+    rule_filter: RuleFilter = field(default_factory=RuleFilter)
+
+    @property
+    def view(self) -> DeviceView:
+        """The check as a designer reads it (text, JSON, HTML;
+        :class:`~betvdesign.checks.view.DeviceView`)."""
+        return DeviceView(self, self.rule_filter)
 
     @property
     def verdict(self) -> Literal["pass", "fail"]:
-        """ "fail" when any error-severity rule fails, else "pass"."""
-        return verdict(self.rules)
+        """ "fail" when any counted error-severity rule fails, else "pass"."""
+        return verdict([r for r in self.rules if self.rule_filter.keeps(r.id)])
 
-    def as_dict(self) -> dict[str, Any]:
-        """The checker's full record of one device (``betv check --json --verbose``).
+    @property
+    def failed(self) -> list[str]:
+        """Ids of the counted error-severity rules that fail (each once)."""
+        return self.view.failed
+
+    @property
+    def out(self) -> Any:
+        """The JSON of this device (:class:`~betvdesign.checks.view.DeviceOut`)."""
+        return self.view.out
+
+    def text(self, width: int = 100) -> str:
+        """The compact block of ``betv check`` in plain text.
+
+        Parameters
+        ----------
+        width : int
+            Columns to wrap at.
 
         Returns
         -------
-        dict
-            ``device``, ``file``, the first set's ``params``, ``derived`` and ``mode``
-            (the mode the verdict reports), every rule, the verdict, the notes and per
-            set its parameters, derivation record, solver summaries, settling, margin, adequacy
-            and rules (JSON-safe).
+        str
+            :func:`~betvdesign.checks.view.compact_lines` without markup.
         """
-        sets = [_set_dict(sc) for sc in self.sets]
-        first = sets[0]
-        return {
-            "device": self.derivation.name,
-            "file": self.source_file,
-            "params": first["params"],
-            "derived": first["derived"],
-            "mode": first["mode"],
-            "rules": [r.as_dict() for r in self.rules],
-            "verdict": self.verdict,
-            "notes": list(self.notes),
-            "sets": sets,
-        }
+        return self.view.text(width)
 
     def __repr__(self) -> str:
-        modes = ", ".join(f"{sc.derivation.name}: {sc.verdict_mode}" for sc in self.sets)
-        return f"<CheckResult {self.derivation.name!r}: {self.verdict.upper()} ({modes})>"
+        """The compact block (:meth:`text`): verdict, a few lines per set, what fails."""
+        return self.text()
 
     def _repr_html_(self) -> str:
         """The check block for notebooks (:class:`~betvdesign.checks.view.DeviceView`)."""
-        from betvdesign.checks.view import DeviceView
-
-        return DeviceView(self)._repr_html_()
-
-
-def load_solver() -> Callable[[ModelParams], Any]:
-    """The exact periodic-orbit solver, imported lazily.
-
-    Returns
-    -------
-    callable
-        :func:`betvdesign.dynamics.periodic_orbit`.
-    """
-    from betvdesign.dynamics import periodic_orbit
-
-    return periodic_orbit
-
-
-def load_vertical() -> Callable[..., Any]:
-    """The exact vertical-motion fast path, imported lazily.
-
-    Returns
-    -------
-    callable
-        :func:`betvdesign.dynamics.vertical_motion`.
-    """
-    from betvdesign.dynamics import vertical_motion
-
-    return vertical_motion
+        return self.view._repr_html_()
 
 
 def _guarded_orbit(solver: Callable[[ModelParams], Any], p: ModelParams) -> PeriodicResult:
@@ -361,8 +349,8 @@ def check_derivation(
        doi:10.1063/1.1809773.
     """
     custom = solver is not None
-    solver = solver or load_solver()
-    vertical = vertical or load_vertical()
+    solver = solver or periodic_orbit
+    vertical = vertical or vertical_motion
     solved: dict[ModelParams, Any] = {}
 
     def orbit(p: ModelParams) -> Any:
@@ -518,105 +506,3 @@ def _settling(p: ModelParams, po: PeriodicResult, travel_s: float, horizon: int)
             cycles_to_cross=None,
             crossing_delta_s=None,
         )
-
-
-def _set_dict(sc: SetCheck) -> dict[str, Any]:
-    s = sc.derivation
-    params = {**s.params.as_dict(), "lambda": s.lam}
-    derived = s.derived()
-    v = sc.speed_m_s
-    if v is not None and v != 0:
-        derived["speed"] = format_speed(abs(v))
-        derived["time_to_cross"] = format_time(sc.time_to_cross_s)
-    p = sc.periodic
-    st = sc.settling
-    return {
-        "name": s.name,
-        "intended_mode": s.intended_mode,
-        "impact_direction": s.actuator_set.impact_direction,
-        "params": params,
-        "derived": derived,
-        "mode": sc.verdict_mode,
-        "mode_source": "exact periodic orbit",
-        "lambda_mode": sc.lambda_mode,
-        "lambda_agrees": sc.mode in (None, "stalled") or sc.mode == sc.lambda_mode,
-        "speed_m_s": v,
-        "simulation": None if p is None else simulation_summary(p),
-        "settling": None if st is None or st.status == "failed" else st.as_dict(),
-        "determination": None if sc.determination is None else sc.determination.as_dict(),
-        "travel": None if sc.travel is None else sc.travel.as_dict(),
-        "margin": sc.margin,
-        "adequacy": None if sc.adequacy is None else sc.adequacy.as_dict(),
-        "vertical": None if sc.vertical is None else _vertical_summary(sc.vertical),
-        "published_fit": [
-            {
-                "param": c.name,
-                "computed": c.computed,
-                "published": list(c.published),
-                "rel_diff": c.rel_diff,
-            }
-            for c in s.published
-        ],
-        "record": [
-            {
-                "symbol": st.symbol,
-                "key": st.key,
-                "description": st.description,
-                "formula": st.formula,
-                "value": st.value_str,
-                "inputs": list(st.inputs),
-            }
-            for st in s.record
-        ],
-        "rules": [r.as_dict() for r in sc.rules],
-    }
-
-
-def simulation_summary(p: PeriodicResult) -> dict[str, Any]:
-    """JSON-safe summary of a periodic-orbit result.
-
-    Parameters
-    ----------
-    p : PeriodicResult
-        The exact orbit (a failed one included).
-
-    Returns
-    -------
-    dict
-        ``status``, ``success``, ``message``, ``mode`` (None without an orbit),
-        ``delta_s`` [-]; for a solver result also ``residual`` [-], ``impacts_per_cycle``,
-        ``contact_fraction`` [-], ``elapsed_s`` [s], the cycle counts (``period_cycles``,
-        ``n_cycles``, ``transient_cycles``, when known) and ``mu_max`` (slowest Floquet
-        modulus |μ| [-], when known). Non-finite floats as None.
-    """
-    out: dict[str, Any] = {
-        "status": str(p.status),
-        "success": bool(p.success),
-        "message": str(p.message),
-        "mode": mode_of(p.delta_s) if p.success else None,
-        "delta_s": json_float(p.delta_s),
-    }
-    out["residual"] = json_float(p.residual)
-    out["impacts_per_cycle"] = json_float(p.impacts_per_cycle)
-    out["contact_fraction"] = json_float(p.contact_fraction)
-    out["elapsed_s"] = json_float(p.elapsed_s)
-    counts = (
-        ("period_cycles", p.period_cycles),
-        ("n_cycles", p.n_cycles),
-        ("transient_cycles", p.transient_cycles),
-    )
-    out |= {name: int(k) for name, k in counts if k is not None}
-    moduli = p.floquet_moduli
-    if moduli:
-        out["mu_max"] = float(max(moduli))
-    return out
-
-
-def _vertical_summary(v: VerticalResult) -> dict[str, Any]:
-    out: dict[str, Any] = {"success": bool(v.success), "message": str(v.message)}
-    if v.success:
-        out["regime"] = str(v.regime)
-        out["hits_per_cycle"] = json_float(v.hits_per_cycle)
-        out["impulsive_per_cycle"] = json_float(v.impulsive_per_cycle)
-        out["contact_fraction"] = json_float(v.contact_fraction)
-    return out

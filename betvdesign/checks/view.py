@@ -1,4 +1,4 @@
-"""What a designer reads of a design check: one compact block per device, JSON v1, HTML.
+"""What a designer reads of a design check: one compact block per device, JSON v3, HTML.
 
 Built only from the public attributes of :class:`betvdesign.checks.checker.CheckResult`
 (its sets, rules, derivations and periodic orbits), so the check itself stays in
@@ -8,10 +8,10 @@ Quantities are written by :func:`betvdesign.output.siformat.format_si`
 (text) or as SI floats under unit-named keys (JSON).
 
 The JSON shape (``betv check --json``, :data:`JSON_SCHEMA_VERSION`) is the same for
-one or many files: ``{"schema": "betv-check", "version": 2, "verdict": ...,
+one or many files: ``{"schema": "betv-check", "version": 3, "verdict": ...,
 "devices": [...]}``; its JSON schema is :func:`check_json_schema` (``betv schema
-check``). Fields may be added in a minor change; removing or renaming one bumps the
-version.
+check``). ``--verbose`` adds fields to each set (:data:`VERBOSE_SET_FIELDS`) and repeats
+none. Fields may be added in a minor change; removing or renaming one bumps the version.
 """
 
 from __future__ import annotations
@@ -30,17 +30,47 @@ from pydantic import BaseModel, ConfigDict, Field
 from betvdesign.checks.adequacy import AdequacyOut, adequacy_line
 from betvdesign.checks.rule import RuleResult, no_crossing, travel_axis
 from betvdesign.checks.window import format_varpi
+from betvdesign.model.domain import mode_of
 from betvdesign.output.numbers import RULE as NUMBER_RULE
+from betvdesign.output.numbers import json_float
 from betvdesign.output.presentation import STATUS_COLORS, STATUS_STYLES, rule_status
 from betvdesign.output.siformat import format_dimensionless as fmt_x
 from betvdesign.output.siformat import format_si, si_key
 
-JSON_SCHEMA_VERSION = 2
+JSON_SCHEMA_VERSION = 3
 #: What each version changed (``betv schema check``, ``x-betv-changes``; README).
 VERSION_CHANGES = {
     2: "non-finite numbers are null (a rule value of inf was the string 'inf'); per set "
     "basis and delta_s_error (how well Δs is determined; the mode may be 'undetermined'); "
     "details: mode_predicted -> mode (the verdict's mode), lambda_mode (λ's)",
+    3: "one shape: the untyped --verbose 'details' record is gone (its device, file, "
+    "verdict, notes, rules, params, derived, mode, margin, adequacy and speed repeated "
+    "the typed fields); --verbose adds to each set mode_source (worded from basis, no "
+    "longer always 'exact periodic orbit'), simulation, vertical, settling, "
+    "determination, travel, published_fit and record",
+}
+
+#: The set fields that only ``--verbose`` writes (:func:`output_json`).
+VERBOSE_SET_FIELDS = (
+    "mode_source",
+    "simulation",
+    "vertical",
+    "settling",
+    "determination",
+    "travel",
+    "published_fit",
+    "record",
+)
+
+#: What the mode and speed of a set quote, in words, by the travel answer's basis
+#: (:class:`betvdesign.checks.travel.TravelAnswer`).
+MODE_SOURCE = {
+    "periodic": "exact periodic orbit (it settles early in the travel)",
+    "crossing": "transient from rest: the crossing of the travel (the orbit has not "
+    "settled by then, or its Δs is not determined)",
+    "no-crossing": "transient from rest: no crossing of the travel within the horizon",
+    "undetermined": "neither a determined periodic orbit nor a crossing of the travel",
+    "no-orbit": "no exact periodic orbit (its status decides)",
 }
 
 
@@ -113,6 +143,55 @@ class MarginOut(_Out):
     corners: dict[str, str | None] = Field(description="exact mode at each perturbed corner")
 
 
+class SimulationOut(_Out):
+    """The exact periodic orbit of a set (:func:`simulation_summary`)."""
+
+    status: str
+    success: bool
+    message: str
+    mode: str | None = Field(description="Δs's mode (None without an orbit)")
+    delta_s: float | None = Field(description="periodic slider increment per cycle [-]")
+    residual: float | None = Field(description="shooting residual [-]")
+    impacts_per_cycle: float | None
+    contact_fraction: float | None = Field(description="share of a cycle in contact [-]")
+    elapsed_s: float | None = Field(description="solver time [s]")
+    period_cycles: int | None = Field(None, description="cycles per period (None: unknown)")
+    n_cycles: int | None = Field(None, description="cycles simulated (None: unknown)")
+    transient_cycles: int | None = Field(None, description="(None: unknown)")
+    mu_max: float | None = Field(None, description="slowest Floquet modulus |μ| [-]")
+
+
+class VerticalOut(_Out):
+    """The exact vertical motion of a set (:func:`betvdesign.dynamics.vertical_motion`)."""
+
+    success: bool
+    message: str
+    regime: str | None = None
+    hits_per_cycle: float | None = None
+    impulsive_per_cycle: float | None = None
+    contact_fraction: float | None = Field(None, description="[-]")
+
+
+class PublishedFitOut(_Out):
+    """One model parameter against the paper's published fit."""
+
+    param: str
+    computed: float
+    published: list[float] = Field(description="the published value or range")
+    rel_diff: float | None
+
+
+class RecordStepOut(_Out):
+    """One step of a set's derivation (:class:`betvdesign.nondim.record.DerivationStep`)."""
+
+    symbol: str
+    key: str
+    description: str
+    formula: str
+    value: str = Field(description="the value with its unit, as text")
+    inputs: list[str]
+
+
 class SetOut(_Out):
     """One actuator set: mode, speed and parameters."""
 
@@ -154,6 +233,37 @@ class SetOut(_Out):
     adequacy: AdequacyOut | None = Field(None, description="model adequacy (rule of that name)")
     derived: dict[str, float] = Field(description="SI floats, unit-named keys (f_act_hz, ...)")
     rules: list[RuleOut]
+    # --verbose only (VERBOSE_SET_FIELDS): the solvers' answers and the derivation
+    mode_source: str | None = Field(
+        None, description="--verbose: what mode and speed quote, in words (from basis)"
+    )
+    simulation: SimulationOut | None = Field(
+        None, description="--verbose: the exact periodic orbit (None: not solved)"
+    )
+    vertical: VerticalOut | None = Field(
+        None, description="--verbose: the exact vertical motion (None: not solved)"
+    )
+    settling: dict[str, Any] | None = Field(
+        None,
+        description="--verbose: the transient from rest (Settling.as_dict: status, message, "
+        "cycles_to_settle, cycles_to_cross, crossing_delta_s, ...; None: not run or failed)",
+    )
+    determination: dict[str, Any] | None = Field(
+        None,
+        description="--verbose: how well Δs is determined (Determination.as_dict; None: "
+        "not assessed)",
+    )
+    travel: dict[str, Any] | None = Field(
+        None,
+        description="--verbose: the answer quoted (TravelAnswer.as_dict: basis, mode, "
+        "delta_s, delta_s_periodic, cycles_to_cross, horizon_cycles, reason, fix)",
+    )
+    published_fit: list[PublishedFitOut] | None = Field(
+        None, description="--verbose: the device's parameters against the published fit"
+    )
+    record: list[RecordStepOut] | None = Field(
+        None, description="--verbose: the derivation, step by step"
+    )
 
 
 class DeviceOut(_Out):
@@ -167,18 +277,13 @@ class DeviceOut(_Out):
     rules: list[RuleOut] = Field(description="device-level rules (not tied to a set)")
     ignored: list[str] = Field(description="rule ids left out by --select/--ignore")
     notes: list[str]
-    details: dict[str, Any] | None = Field(
-        None,
-        description="--verbose only: the checker's full record (fidelity, solver summary, "
-        "vertical motion, derivation); its shape is not covered by the version",
-    )
 
 
 class CheckOutput(_Out):
     """``betv check --json``: one object for one or many files."""
 
     schema_: Literal["betv-check"] = Field("betv-check", alias="schema")
-    version: Literal[2] = JSON_SCHEMA_VERSION
+    version: Literal[3] = JSON_SCHEMA_VERSION
     betvdesign: str = Field(description="betvdesign version that wrote this")
     verdict: Literal["pass", "fail"] = Field(description="fail when any device fails")
     devices: list[DeviceOut]
@@ -282,7 +387,8 @@ class DeviceView:
         The full :class:`~betvdesign.checks.checker.CheckResult` (not imported here: the
         checker renders itself through this module).
     rule_filter : RuleFilter
-        The rules that count (``--select``/``--ignore``).
+        The rules that count (``--select``/``--ignore``; ``CheckResult.view`` passes
+        the result's own).
     """
 
     result: Any  # betvdesign.checks.checker.CheckResult
@@ -305,16 +411,16 @@ class DeviceView:
 
     @property
     def out(self) -> DeviceOut:
-        """The JSON of this device (:meth:`as_out` without details)."""
+        """The JSON of this device (:meth:`as_out` without the verbose fields)."""
         return self.as_out()
 
-    def as_out(self, *, details: bool = False) -> DeviceOut:
+    def as_out(self, *, verbose: bool = False) -> DeviceOut:
         """The JSON of this device.
 
         Parameters
         ----------
-        details : bool
-            Add the checker's full record (``--verbose``).
+        verbose : bool
+            Fill each set's :data:`VERBOSE_SET_FIELDS` (``--verbose``).
 
         Returns
         -------
@@ -327,12 +433,28 @@ class DeviceView:
             file=res.source_file,
             verdict=self.verdict,
             failed=self.failed,
-            sets=[_set_out(sc, self.rule_filter) for sc in res.sets],
+            sets=[_set_out(sc, self.rule_filter, verbose) for sc in res.sets],
             rules=[_rule_out(r) for r in self.rules if not r.set_name],
             ignored=_unique(r.id for r in res.rules if not self.rule_filter.keeps(r.id)),
             notes=list(res.notes),
-            details=res.as_dict() if details else None,
         )
+
+    def as_json(self, *, verbose: bool = False) -> dict[str, Any]:
+        """The JSON object of this device, as ``betv check --json`` writes it.
+
+        Parameters
+        ----------
+        verbose : bool
+            With each set's :data:`VERBOSE_SET_FIELDS` (``--verbose``).
+
+        Returns
+        -------
+        dict
+            :meth:`as_out` dumped (aliases, JSON numbers; the verbose fields only with
+            ``verbose``).
+        """
+        exclude = None if verbose else {"sets": {"__all__": set(VERBOSE_SET_FIELDS)}}
+        return self.as_out(verbose=verbose).model_dump(mode="json", by_alias=True, exclude=exclude)
 
     def text(self, width: int = 100) -> str:
         """The compact block in plain text.
@@ -420,7 +542,7 @@ def _margin(sc: Any) -> tuple[bool | None, str]:
     return False, f"mode flips at {n} of ϖ ±5 %, α ±10 %!"
 
 
-def _set_out(sc: Any, flt: RuleFilter) -> SetOut:
+def _set_out(sc: Any, flt: RuleFilter, verbose: bool = False) -> SetOut:
     s = sc.derivation
     ds, v, direction = set_motion(sc)
     derived: dict[str, float] = {}
@@ -460,6 +582,95 @@ def _set_out(sc: Any, flt: RuleFilter) -> SetOut:
         adequacy=None if sc.adequacy is None else AdequacyOut.of(sc.adequacy),
         derived=derived,
         rules=[_rule_out(r) for r in rules],
+        **(_verbose_fields(sc) if verbose else {}),
+    )
+
+
+def _verbose_fields(sc: Any) -> dict[str, Any]:
+    """The set's :data:`VERBOSE_SET_FIELDS` (``--verbose``)."""
+    s = sc.derivation
+    st = sc.settling
+    basis = "periodic" if sc.travel is None else sc.travel.basis
+    return {
+        "mode_source": MODE_SOURCE.get(basis, basis),
+        "simulation": None if sc.periodic is None else simulation_summary(sc.periodic),
+        "vertical": None if sc.vertical is None else _vertical_out(sc.vertical),
+        "settling": None if st is None or st.status == "failed" else st.as_dict(),
+        "determination": None if sc.determination is None else sc.determination.as_dict(),
+        "travel": None if sc.travel is None else sc.travel.as_dict(),
+        "published_fit": [
+            PublishedFitOut(
+                param=c.name,
+                computed=c.computed,
+                published=list(c.published),
+                rel_diff=c.rel_diff,
+            )
+            for c in s.published
+        ],
+        "record": [
+            RecordStepOut(
+                symbol=st.symbol,
+                key=st.key,
+                description=st.description,
+                formula=st.formula,
+                value=st.value_str,
+                inputs=list(st.inputs),
+            )
+            for st in s.record
+        ],
+    }
+
+
+def simulation_summary(p: Any) -> SimulationOut:
+    """Summary of a periodic-orbit result (``--verbose`` JSON, ``betv check -v``).
+
+    Parameters
+    ----------
+    p : PeriodicResult
+        The exact orbit (a failed one included).
+
+    Returns
+    -------
+    SimulationOut
+        ``status``, ``success``, ``message``, ``mode`` (None without an orbit),
+        ``delta_s`` [-], ``residual`` [-], ``impacts_per_cycle``, ``contact_fraction``
+        [-], ``elapsed_s`` [s], the cycle counts (``period_cycles``, ``n_cycles``,
+        ``transient_cycles``) and ``mu_max`` (slowest Floquet modulus |μ| [-]); None
+        where unknown or not finite.
+    """
+    moduli = p.floquet_moduli
+
+    def count(k: Any) -> int | None:
+        return None if k is None else int(k)
+
+    return SimulationOut(
+        status=str(p.status),
+        success=bool(p.success),
+        message=str(p.message),
+        mode=mode_of(p.delta_s) if p.success else None,
+        delta_s=json_float(p.delta_s),
+        residual=json_float(p.residual),
+        impacts_per_cycle=json_float(p.impacts_per_cycle),
+        contact_fraction=json_float(p.contact_fraction),
+        elapsed_s=json_float(p.elapsed_s),
+        period_cycles=count(p.period_cycles),
+        n_cycles=count(p.n_cycles),
+        transient_cycles=count(p.transient_cycles),
+        mu_max=float(max(moduli)) if moduli else None,
+    )
+
+
+def _vertical_out(v: Any) -> VerticalOut:
+    """The exact vertical motion (a VerticalResult) for the JSON."""
+    if not v.success:
+        return VerticalOut(success=False, message=str(v.message))
+    return VerticalOut(
+        success=True,
+        message=str(v.message),
+        regime=str(v.regime),
+        hits_per_cycle=json_float(v.hits_per_cycle),
+        impulsive_per_cycle=json_float(v.impulsive_per_cycle),
+        contact_fraction=json_float(v.contact_fraction),
     )
 
 
@@ -629,15 +840,15 @@ def quiet_line(view: DeviceView) -> str | None:
     )
 
 
-def output(views: Sequence[DeviceView], *, details: bool = False) -> CheckOutput:
+def output(views: Sequence[DeviceView], *, verbose: bool = False) -> CheckOutput:
     """The whole ``--json`` document.
 
     Parameters
     ----------
     views : sequence of DeviceView
         The checked devices.
-    details : bool
-        Add each checker's full record (``--verbose``).
+    verbose : bool
+        Fill each set's :data:`VERBOSE_SET_FIELDS` (``--verbose``).
 
     Returns
     -------
@@ -646,31 +857,36 @@ def output(views: Sequence[DeviceView], *, details: bool = False) -> CheckOutput
     """
     from betvdesign import __version__
 
-    devices = [v.as_out(details=details) for v in views]
+    devices = [v.as_out(verbose=verbose) for v in views]
     worst = "fail" if any(d.verdict == "fail" for d in devices) else "pass"
     return CheckOutput(betvdesign=__version__, verdict=worst, devices=devices)
 
 
-def output_json(views: Sequence[DeviceView], *, details: bool = False) -> str:
+def output_json(views: Sequence[DeviceView], *, verbose: bool = False) -> str:
     """The text of ``betv check --json``.
 
     Parameters
     ----------
     views : sequence of DeviceView
         The checked devices.
-    details : bool
-        Add each checker's full record (``--verbose``).
+    verbose : bool
+        Add each set's :data:`VERBOSE_SET_FIELDS` (``--verbose``).
 
     Returns
     -------
     str
-        :func:`output` as indented JSON (None fields kept, ``details`` only with it).
+        :func:`output` as indented JSON (None fields kept; the verbose fields only with
+        ``verbose``).
     """
-    doc = output(views, details=details).model_dump(mode="json", by_alias=True)
-    if not details:
-        for d in doc["devices"]:
-            d.pop("details")
+    exclude = None if verbose else set_fields_excluded()
+    doc = output(views, verbose=verbose).model_dump(mode="json", by_alias=True, exclude=exclude)
     return json.dumps(doc, indent=2, ensure_ascii=False)
+
+
+def set_fields_excluded() -> dict[str, Any]:
+    """The ``exclude`` of ``model_dump`` that leaves out :data:`VERBOSE_SET_FIELDS` of
+    every set of a :class:`CheckOutput`."""
+    return {"devices": {"__all__": {"sets": {"__all__": set(VERBOSE_SET_FIELDS)}}}}
 
 
 # --- HTML (notebooks) ---------------------------------------------------------------------

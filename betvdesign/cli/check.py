@@ -2,9 +2,8 @@
 tables, ``--quiet`` for CI, or versioned ``--json``; presentation in
 :mod:`betvdesign.checks.view`).
 
-Thin: loading is :func:`betvdesign.spec.loader.load_device`, numbers are
-:func:`betvdesign.nondim.device.derive`, rules and the optional exact solver are
-:func:`betvdesign.checks.checker.check_derivation`.
+Thin: every file is checked by the one pipeline, :func:`betvdesign.api.run_check` (the
+device file or layout read, the rules, the advice), and only rendered here.
 
 Exit codes: 0 every error-severity rule passes, 1 a rule fails, 2 bad input or usage.
 """
@@ -20,12 +19,12 @@ from rich.console import Console
 from rich.markup import escape as esc
 from rich.table import Table
 
+from betvdesign.api import HORIZON_RANGE
 from betvdesign.cli import app
 from betvdesign.cli.common import EXIT_OK, EXIT_RULE_FAILED, int_option, user_errors
 from betvdesign.cli.config import load_config
 from betvdesign.errors import SpecError, UsageError
 from betvdesign.model.domain import TRAVEL_HORIZON
-from betvdesign.spec import limits
 
 if TYPE_CHECKING:  # the heavy layers load when a check runs, not for `betv --help`
     from betvdesign.checks.checker import CheckResult
@@ -79,7 +78,7 @@ def check_cmd(
         TRAVEL_HORIZON,
         "--horizon",
         metavar="CYCLES",
-        callback=int_option(1000, limits.MAX_CYCLES, why="cycles of the transient from rest"),
+        callback=int_option(*HORIZON_RANGE, why="cycles of the transient from rest"),
         help="Cycles the transient from rest may take to cross the travel range; a slider "
         "that does not cross within them fails the mode rule (raise it for long travels; "
         "about 1 µs per cycle).",
@@ -104,55 +103,40 @@ def check_cmd(
 
     Exit 0 pass, 1 an error rule fails, 2 bad input/usage.
     """
-    from betvdesign.checks.checker import check_derivation
-    from betvdesign.checks.view import (
-        DeviceView,
-        RuleFilter,
-        compact_lines,
-        output_json,
-        quiet_line,
-    )
+    from betvdesign.api import CheckOptions, read_source, run_check
+    from betvdesign.checks.view import compact_lines, output_json, quiet_line
     from betvdesign.spec.units import parse_speed
-    from betvdesign.studies.fix import advise, with_advice
 
     verbose = verbose or show_derivation
     with user_errors():
         if quiet and verbose:
             raise UsageError("--quiet and --verbose exclude each other")
         cfg = load_config()
-        flt = RuleFilter(
-            tuple(select if select else cfg.select), tuple(ignore if ignore else cfg.ignore)
-        )
         speed_text = target_speed if target_speed is not None else cfg.target_speed
         target = None if speed_text is None else parse_speed(speed_text, "--target-speed")
-        derivations, issues = [], []
+        options = CheckOptions(
+            select=tuple(select if select else cfg.select),
+            ignore=tuple(ignore if ignore else cfg.ignore),
+            target_speed=target,
+            horizon=horizon,
+            adequacy=adequacy,
+            advice=advice,
+        )
+        sources, issues = [], []
         for f in files:  # collect the issues of every file before giving up
             try:
-                derivations.append((f, *_derive(f)))
+                sources.append(read_source(f))
             except SpecError as exc:
                 issues.extend(exc.issues)
         if issues:
             raise SpecError(issues)
-        results = []
-        for f, d, layout in derivations:
-            res = check_derivation(
-                d,
-                target_speed_m_s=target,
-                adequacy=None if adequacy else False,
-                horizon=horizon,
-                layout_rules=None if layout is None else layout.rules,
-            )
-            res.source_file = str(f)
-            if layout is not None:
-                res.notes.extend(layout.notes)
-            if advice:
-                res = with_advice(res, advise(res, target_speed_m_s=target, horizon=horizon))
-            results.append(res)
+        results = [run_check(src, options) for src in sources]
+    flt = results[0].rule_filter
     for warning in flt.unmatched(results):
         print(f"warning: {warning}", file=sys.stderr)
-    views = [DeviceView(r, flt) for r in results]
+    views = [r.view for r in results]
     if as_json:
-        typer.echo(output_json(views, details=verbose))
+        typer.echo(output_json(views, verbose=verbose))
     elif quiet:
         for v in views:
             line = quiet_line(v)
@@ -181,20 +165,9 @@ def check_cmd(
     raise typer.Exit(EXIT_RULE_FAILED if failed else EXIT_OK)
 
 
-def _derive(f: Path) -> tuple:
-    """(derivation, extracted layout or None) of a device file or a GDS layout."""
-    if f.suffix.lower() == ".gds":
-        from betvdesign.layout.extract import derive_gds
-
-        return derive_gds(f)
-    from betvdesign.nondim.device import derive_file
-
-    return derive_file(f), None
-
-
 def render(result: CheckResult, console: Console, *, derivation: bool = False) -> None:
     """Rich tables for one device: per set parameters, derived values, rules; then notes."""
-    from betvdesign.checks.checker import simulation_summary
+    from betvdesign.checks.view import simulation_summary
     from betvdesign.nondim.record import DERIVED_KEYS
     from betvdesign.output.siformat import format_q
 
@@ -218,7 +191,10 @@ def render(result: CheckResult, console: Console, *, derivation: bool = False) -
             highlight=False,
         )
         if sc.periodic is not None:
-            sim = simulation_summary(sc.periodic)
+            sim = simulation_summary(sc.periodic).model_dump()
+            for k in ("period_cycles", "n_cycles", "transient_cycles", "mu_max"):
+                if sim[k] is None:  # unknown: not shown
+                    del sim[k]
             extra = ", ".join(
                 f"{k} = {v:.4g}" if isinstance(v, float) else f"{k} = {v}"
                 for k, v in sim.items()

@@ -1,9 +1,10 @@
 """What the page computes for a design point, in stages, through ``betv check``'s own path.
 
-Every stage is :func:`betvdesign.checks.checker.check_derivation` on
-:func:`betvdesign.nondim.device.derive` of the design's spec, shown through
-:class:`betvdesign.checks.view.DeviceView` (the ``betv check --json`` shape); nothing here
-judges a design:
+Every stage is the check pipeline, :func:`betvdesign.api.run_check`, on
+:func:`betvdesign.nondim.device.derive` of the design's spec with the stage's
+:class:`~betvdesign.api.CheckOptions` (no advice: the page runs ``betv fix`` itself),
+shown through :class:`betvdesign.checks.view.DeviceView` (the ``betv check --json``
+shape); nothing here judges a design:
 
 - ``"orbit"``: exact periodic orbits, vertical motion and the mode-margin corners (the
   part that fits in a frame of a slider drag);
@@ -91,21 +92,21 @@ def evaluate(
     """Check ``spec`` (a DeviceSpec) up to ``stage`` (see the module docstring);
     ``select``/``ignore`` as ``betv check --select/--ignore``; ``with_traces``: sample
     the orbit of every set (True) or of the set of that name."""
-    from betvdesign.checks.checker import check_derivation
-    from betvdesign.checks.view import DeviceView, RuleFilter
+    from betvdesign.api import CheckOptions, DeviceSource, run_check
     from betvdesign.nondim.device import derive
 
     t0 = time.perf_counter()
-    der = derive(spec)
-    res = check_derivation(
-        der,
+    options = CheckOptions(
+        select=select,
+        ignore=ignore,
+        target_speed=target_speed_m_s,
+        adequacy=stage == "full",
+        advice=False,
         settle=stage != "orbit",
         determine=stage != "orbit",
-        target_speed_m_s=target_speed_m_s,
-        adequacy=None if stage == "full" else False,
     )
-    res.source_file = source_file
-    out = DeviceView(res, RuleFilter(select, ignore)).out.model_dump(mode="json", by_alias=True)
+    res = run_check(DeviceSource(derive(spec), source_file), options)
+    out = res.view.as_json()
     settling: dict[str, dict[str, Any] | None] = {}
     tr: dict[str, SetTraces] = {}
     for sc in res.sets:

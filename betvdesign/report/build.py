@@ -1,8 +1,9 @@
 """Build the report model of one device file (data first, rendering later).
 
 load (spec) -> derive (nondim) -> analyse each distinct actuator set (dynamics)
--> the design check (:func:`betvdesign.checks.checker.check_derivation`, fed the periodic
-orbits and vertical motions already computed; the exact orbit decides the mode) -> format
+-> the design check (the pipeline of ``betv check``, :func:`betvdesign.api.run_check`, fed
+the periodic orbits and vertical motions already computed; the exact orbit decides the
+mode) -> format
 everything into a :class:`~betvdesign.report.model.Report`. Bad input raises the loader's
 :class:`~betvdesign.errors.SpecError` before anything is computed or written.
 """
@@ -18,14 +19,11 @@ from typing import Any
 import pint
 
 from betvdesign import __version__
-from betvdesign.checks.checker import (
-    CheckResult,
-    SetCheck,
-    check_derivation,
-    load_solver,
-)
+from betvdesign.api import CheckOptions, run_check
+from betvdesign.checks.checker import CheckResult, SetCheck
 from betvdesign.checks.rule import RuleResult, verdict
 from betvdesign.checks.view import rule_unit
+from betvdesign.dynamics import periodic_orbit
 from betvdesign.dynamics.result import PeriodicResult
 from betvdesign.nondim.device import derive_file
 from betvdesign.nondim.record import DeviceDerivation, SetDerivation
@@ -297,20 +295,24 @@ def design_check(
         (sd.params.varpi, sd.params.zeta_v, sd.params.restitution): an.vertical
         for sd, an, _ in per_set
     }
-    exact = load_solver()
 
     def solver(p: Any) -> Any:
         piece = orbits.get(p)
         if piece is None:
-            return exact(p)
+            return periodic_orbit(p)
         return piece.value if piece.ok else PeriodicResult.failure(p, "failed", str(piece.reason))
 
     def vertical(varpi: float, *, zeta_v: float = 0.0, restitution: float = 0.0) -> Any:
         piece = verticals[(varpi, zeta_v, restitution)]
         return piece.value if piece.ok else None
 
-    return check_derivation(
-        der, solver=solver, vertical=vertical, adequacy=adequacy_result, determine=True
+    options = CheckOptions(advice=False, adequacy=adequacy_result is not False)
+    return run_check(
+        der,
+        options,
+        solver=solver,
+        vertical=vertical,
+        adequacy_result=None if adequacy_result is False else adequacy_result,
     )
 
 

@@ -1,8 +1,9 @@
 """``betv fix`` and the check's advice: the nearest passing value of each field.
 
 One search answers both ``betv fix`` and the ``fix`` text of every failing rule of
-``betv check`` (:func:`advise`, attached by the check's callers): there is no second
-source of advice that could point another way.
+``betv check`` (:func:`advise`, attached by the check pipeline,
+:func:`betvdesign.api.run_check`): there is no second source of advice that could point
+another way.
 
 **Passing** is what ``betv check`` calls PASS (every error rule: frequency window,
 mode, target speed when given) with the mode also held at the margin corners
@@ -725,8 +726,21 @@ def _answer_rank(a: FieldAnswer) -> tuple[int, float]:
 
 
 def with_advice(check: Any, answers: Sequence[FieldAnswer]) -> Any:
-    """``check`` with the fix text of every failing error rule and ``mode-margin``
-    replaced by the search's answer (:func:`advice_text`)."""
+    """A copy of ``check`` with the fix text of every failing error rule and
+    ``mode-margin`` replaced by the search's answer (:func:`advice_text`).
+
+    Parameters
+    ----------
+    check : CheckResult
+        The check advised (not changed).
+    answers : sequence of FieldAnswer
+        :func:`advise`'s answers.
+
+    Returns
+    -------
+    CheckResult
+        ``check`` itself when there is no answer, else a new result (its sets too).
+    """
     if not answers:
         return check
     text = advice_text(answers)
@@ -736,10 +750,8 @@ def with_advice(check: Any, answers: Sequence[FieldAnswer]) -> Any:
             return r
         return replace(r, fix=text)
 
-    check.rules = [fix(r) for r in check.rules]
-    for sc in check.sets:
-        sc.rules = [fix(r) for r in sc.rules]
-    return check
+    sets = [replace(sc, rules=[fix(r) for r in sc.rules]) for sc in check.sets]
+    return replace(check, rules=[fix(r) for r in check.rules], sets=sets)
 
 
 # --- robustness under fabrication spread -------------------------------------------------
@@ -767,7 +779,7 @@ def robust_probability(
     nominal_values(spec, tols)  # unknown or non-numeric fields: UsageError now
 
     def probability(candidate: Any) -> float:
-        from betvdesign.checks.checker import load_solver
+        from betvdesign.dynamics import periodic_orbit as solver
         from betvdesign.model.domain import (
             TANGENTIAL_DETUNING,
             in_window,
@@ -776,7 +788,6 @@ def robust_probability(
         )
         from betvdesign.studies.sampling import check_sample, derive_all
 
-        solver = load_solver()
         nominal = nominal_values(candidate, tols)
         x = draw(tols, nominal, n, seed)
         sets = candidate.actuator_sets
