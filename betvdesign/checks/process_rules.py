@@ -1,4 +1,6 @@
-"""The process's design rules, applied to a device file (``betv check``; the same rule ids
+"""The process's design rules, applied to a device file.
+
+The process's design rules, applied to a device file (``betv check``; the same rule ids
 come from the drawn polygons when a GDS layout is checked, :mod:`betvdesign.layout.drc`).
 
 Rules (each a :class:`~betvdesign.checks.rule.RuleResult` with its source in the
@@ -60,11 +62,14 @@ _REL = 1e-9
 
 @dataclass(frozen=True)
 class Feature:
-    """A drawn element of the device file: ``path`` (field path), ``what`` (words),
+    """A drawn element of the device file.
+
+    A drawn element of the device file: ``path`` (field path), ``what`` (words),
     structural ``layer``, ``width`` and ``length`` [m] (length 0 when not a beam),
     ``thickness`` [m] (None when the file gives none), ``aspect_min`` (the smallest
     length/width the model needs, 0 for none) and ``anchored`` (fixed to the substrate:
-    no release needed)."""
+    no release needed).
+    """
 
     path: str
     what: str
@@ -195,8 +200,11 @@ def _fmt(x: float) -> str:
 
 
 def process_rules(spec: DeviceSpec) -> list[RuleResult]:
-    """The rules of the module docstring for a device file (empty without a process and
-    without an actuator geometry)."""
+    """The process rules for a device file.
+
+    The rules of the module docstring for a device file (empty without a process and
+    without an actuator geometry).
+    """
     feats = drawn_features(spec)
     has_geometry = any(s.actuator.geometry is not None for s in spec.actuator_sets)
     out: list[RuleResult] = []
@@ -214,9 +222,12 @@ def process_rules(spec: DeviceSpec) -> list[RuleResult]:
 def rules_from_measurements(
     spec: DeviceSpec, widths: list[Feature], gaps: list[Gap]
 ) -> list[RuleResult]:
-    """The same rules on measured elements (a layout's polygons), for the rule ids the
+    """The process rules on measured elements (a layout's polygons).
+
+    The same rules on measured elements (a layout's polygons), for the rule ids the
     measurements replace (:mod:`betvdesign.layout.drc` adds its own width, spacing and
-    release findings)."""
+    release findings).
+    """
     assert spec.process is not None
     p = spec.process
     return [
@@ -363,9 +374,12 @@ def _min_spacing(p: Process, gaps: list[Gap]) -> RuleResult:
 
 
 def release_pitch(layer: ProcessLayer) -> float:
-    """Hole pitch [µm] a layout draws on ``layer``: the process's pitch, or less so that no
+    """Hole pitch [µm] a layout draws on ``layer``.
+
+    Hole pitch [µm] a layout draws on ``layer``: the process's pitch, or less so that no
     point of a square lattice lies farther than half the widest unreleased feature from a
-    hole: (pitch − size)/√2 ≤ w_max/2."""
+    hole: (pitch − size)/√2 ≤ w_max/2.
+    """
     h = layer.release_holes
     assert h is not None and layer.max_unreleased_width is not None
     size = float(h.size.to("um").magnitude)
@@ -374,8 +388,11 @@ def release_pitch(layer: ProcessLayer) -> float:
 
 
 def hole_share(p: Process, layer: str) -> float:
-    """The share of a feature's area its release holes take [-]: size²/pitch² at the
-    pitch :func:`release_pitch` draws."""
+    """The share of a feature's area its release holes take [-].
+
+    The share of a feature's area its release holes take [-]: size²/pitch² at the
+    pitch :func:`release_pitch` draws.
+    """
     lay = p.structural(layer)
     h = lay.release_holes
     assert h is not None

@@ -122,8 +122,11 @@ def cos_range_prep(pb: float) -> tuple[float, float, float]:
 
 @kernel
 def cos_range_to(pa: float, cb: float, f1: float, f2: float) -> tuple[float, float]:
-    """(min, max) of cos over the phase interval [pa, pb] [rad], exactly, with pb's part
-    (cb, f1, f2) from :func:`cos_range_prep`."""
+    """Exact (min, max) of cos over the phase interval [pa, pb] [rad].
+
+    (min, max) of cos over the phase interval [pa, pb] [rad], exactly, with pb's part
+    (cb, f1, f2) from :func:`cos_range_prep`.
+    """
     ca = math.cos(pa)
     lo, hi = (ca, cb) if ca < cb else (cb, ca)
     if f1 >= math.ceil((pa - math.pi) / TWO_PI):

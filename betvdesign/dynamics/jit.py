@@ -63,9 +63,12 @@ KERNELS: list = []
 
 
 def kernel(fn: F | None = None, *, inline: bool = False):
-    """``numba.njit(cache=True, nogil=True)`` with the cache in :func:`cache_dir`;
+    """Compile a kernel with numba, cached, without the GIL.
+
+    ``numba.njit(cache=True, nogil=True)`` with the cache in :func:`cache_dir`;
     ``inline=True``: inlined into its callers by numba (hot helpers taking an
-    :class:`evaluators.Evaluator`, which would otherwise be passed field by field)."""
+    :class:`evaluators.Evaluator`, which would otherwise be passed field by field).
+    """
     if fn is None:
         return lambda f: kernel(f, inline=inline)
     saved = numba.config.CACHE_DIR
@@ -97,12 +100,15 @@ _seen: list[int] = [0]
 
 
 def compile_note(what: str, run: Callable[[], object]) -> object:
-    """Run ``run()``; when it has to compile kernels (no cached machine code for this
+    """Run ``run()``, saying on stderr when it compiles kernels.
+
+    Run ``run()``; when it has to compile kernels (no cached machine code for this
     solver version yet), say so on stderr in one line, with what and how long, instead of
     compiling silently (``make demo`` compiles them ahead: :mod:`warm`). The first call of
     each entry point is watched from a thread (the note appears when compiling starts);
     later calls count compilations only when they lasted long enough to have compiled
-    (counting on every call cost as much as a periodic orbit)."""
+    (counting on every call cost as much as a periodic orbit).
+    """
     if not jit_enabled():
         return run()
     t0 = time.perf_counter()

@@ -97,8 +97,11 @@ def resonance_growth_bound(p: ModelParams) -> float | None:
 
 
 class _Map:
-    """Φⁿ: section state (ζ, ζ', s') at the first periodic cycle → n cycles later
-    (compiled: :mod:`shooting`); counts cycles, events and evaluations."""
+    """The section map Φⁿ of the periodic search, with its counters.
+
+    Φⁿ: section state (ζ, ζ', s') at the first periodic cycle → n cycles later
+    (compiled: :mod:`shooting`); counts cycles, events and evaluations.
+    """
 
     def __init__(self, c: np.ndarray, vs: VerticalSchedule, m0: int):
         self.c, self.vs, self.m0 = c, vs, m0
@@ -365,8 +368,11 @@ def _periodic_orbit(
     hits, frac = vs.hits_per_cycle(), vs.contact_fraction()
 
     def spent() -> dict[str, Any]:
-        """What every answer from here on carries: the vertical motion's hits and contact
-        fraction, the counters so far and the time taken."""
+        """What every answer from here on carries.
+
+        What every answer from here on carries: the vertical motion's hits and contact
+        fraction, the counters so far and the time taken.
+        """
         return dict(
             impacts_per_cycle=hits,
             contact_fraction=frac,
@@ -493,11 +499,14 @@ def _periodic_orbit(
 def _measure_growth(
     phi: _Map, x: np.ndarray, bound: float, kv: int, window: int
 ) -> tuple[float, int, float, float] | None:
-    """Iterate about ``window`` cycles (at least ``kv``) from ``x`` in steps of the vertical
+    """Check a proven per-cycle fall of ζ by iterating the map.
+
+    Iterate about ``window`` cycles (at least ``kv``) from ``x`` in steps of the vertical
     period ``kv``; return (mean fall of ζ per cycle [-], cycles, final amplitude
     sqrt(ζ² + (ζ'/ϖ)²) [-], s gained [-]) when every step's fall is at least ``kv`` times
     the proven per-cycle ``bound`` (up to round-off), else None (the bound is not borne
-    out, e.g. a solver defect: then the normal search decides)."""
+    out, e.g. a solver defect: then the normal search decides).
+    """
     varpi = float(phi.c["varpi"][0])
     z0 = float(x[0])
     steps = max(1, window // kv)

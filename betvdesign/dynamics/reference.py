@@ -71,13 +71,16 @@ MAX_HITS = 5000
 
 
 def choose_phase(k: K, tau: float, z: float, zd: float, sd: float, matched: bool) -> str:
-    """MODEL.md stick/slip rules: the sign of ζ' − s' when they differ (slip if ζ' > s',
+    """The phase that follows at τ under MODEL.md's stick/slip rules.
+
+    MODEL.md stick/slip rules: the sign of ζ' − s' when they differ (slip if ζ' > s',
     reverse slip if ζ' < s'); when ζ' = s' (``matched``, or equal within VTOL) the
     friction band (1 − b) sin ϖτ ≤ ζ ≤ (1 + b) sin ϖτ decides: stick inside, slip below,
     reverse slip above. The band is tested a short look-ahead δ after τ on the stick
     flow α(1 + 1/β) ζ'' + ζ = sin ϖτ (third-order Taylor), which settles the cases
     where ζ sits on an edge (a band exit, or sin ϖτ = 0 at a contact opening).
-    With damping the band is |P| ≤ bN (module doc), tested the same way."""
+    With damping the band is |P| ≤ bN (module doc), tested the same way.
+    """
     v = zd - sd
     if not matched and abs(v) > VTOL * (1.0 + abs(zd) + abs(sd)):
         return SLIP if v > 0.0 else REVERSE
@@ -132,8 +135,11 @@ def _rhs_factory(k: K, contact: bool, hmode: str, eps: float):
 
 
 def _events(k: K, contact: bool, hmode: str) -> list:
-    """The terminal events of a phase; each carries ``slope(t, y, f)``, its derivative
-    along the flow f = y' (for :func:`_watch`)."""
+    """The terminal events of a phase.
+
+    The terminal events of a phase; each carries ``slope(t, y, f)``, its derivative
+    along the flow f = y' (for :func:`_watch`).
+    """
     w, b = k.varpi, k.b
     evs = []
     if not contact:
@@ -172,10 +178,13 @@ def _events(k: K, contact: bool, hmode: str) -> list:
 
 
 def _watch(evs: list, rhs) -> list:
-    """Non-terminal companions of the terminal events: the slope of h = −d·g (g an event
+    """Non-terminal companions of the terminal events (grazing watch).
+
+    Non-terminal companions of the terminal events: the slope of h = −d·g (g an event
     of direction d, h > 0 before its crossing), rising through 0 at each local minimum
     of h. A minimum with h < 0 is a pair of crossings inside one step, invisible to
-    solve_ivp's sign test at step ends (a grazing event); :func:`_missed` finds it."""
+    solve_ivp's sign test at step ends (a grazing event); :func:`_missed` finds it.
+    """
     out = []
     for ev in evs:
 
@@ -188,11 +197,14 @@ def _watch(evs: list, rhs) -> list:
 
 
 def _missed(evs: list, sol, tau: float, thr: float, redo) -> tuple[int, float, np.ndarray] | None:
-    """(event index, τ, state) of the earliest crossing stepped over (a watched minimum
+    """The earliest event crossing a step stepped over, or None.
+
+    (event index, τ, state) of the earliest crossing stepped over (a watched minimum
     of h below −thr), located by brentq on the dense output of ``redo(τ_m)`` (the phase
     integrated again up to that minimum with dense output, only then; the watch itself
     costs the dense outputs at the minima, about 1 % more right-hand sides with DOP853);
-    None when there is none."""
+    None when there is none.
+    """
     n, found = len(evs), None
     for j, ev in enumerate(evs):
         d = ev.direction

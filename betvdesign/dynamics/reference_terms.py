@@ -59,6 +59,8 @@ SHORT_FLIGHT = 0.05
 
 
 class K(NamedTuple):
+    """The constants of the reference flows of one parameter set (:func:`constants`)."""
+
     alpha: float
     beta: float
     kappa: float
@@ -74,8 +76,11 @@ class K(NamedTuple):
 
 
 def constants(p: ModelParams) -> K:
-    """MODEL.md: b = ακ(1 + β) stick-band half-width, α(1 + 1/β) stick inertia; damper
-    coefficients 2ζ_vϖ (normal force) and 2ζ_h√α (tangential); the time origin's lead δ."""
+    """Constants of the reference flows (MODEL.md).
+
+    MODEL.md: b = ακ(1 + β) stick-band half-width, α(1 + 1/β) stick inertia; damper
+    coefficients 2ζ_vϖ (normal force) and 2ζ_h√α (tangential); the time origin's lead δ.
+    """
     al, be, ka = p.alpha, p.beta, p.kappa
     dv = 2.0 * p.zeta_v * p.varpi
     return K(
@@ -95,8 +100,11 @@ def constants(p: ModelParams) -> K:
 
 
 def normal_force(k: K, tau: float) -> float:
-    """Contact normal force N = sin ψ + 2ζ_v ϖ cos ψ [-] at τ (cart phase ψ = ϖτ − δ);
-    sin ϖτ undamped."""
+    """Contact normal force N [-] at τ.
+
+    Contact normal force N = sin ψ + 2ζ_v ϖ cos ψ [-] at τ (cart phase ψ = ϖτ − δ);
+    sin ϖτ undamped.
+    """
     if not k.damped:
         return math.sin(k.varpi * tau)
     psi = k.varpi * tau - k.lead
@@ -109,8 +117,11 @@ def push(k: K, psi: float, z: float, zd: float) -> float:
 
 
 def band_damped(k: K, tau: float, z: float, vs: float, d: float) -> str:
-    """The damped band |P| ≤ bN a look-ahead d after τ, on the stick flow
-    α(1 + 1/β) ζ'' = P from (ζ, common velocity vs) (Taylor to third order in ζ)."""
+    """The damped stick band tested a look-ahead after τ.
+
+    The damped band |P| ≤ bN a look-ahead d after τ, on the stick flow
+    α(1 + 1/β) ζ'' = P from (ζ, common velocity vs) (Taylor to third order in ζ).
+    """
     w, A = k.varpi, k.a_stick
     psi = w * tau - k.lead
     z2 = push(k, psi, z, vs) / A
@@ -154,9 +165,12 @@ def rhs_damped(k: K, contact: bool, hmode: str, eps: float):
 
 
 def stick_events(k: K) -> list:
-    """Damped stick-band exits: bN − P = 0 (friction at its limit, → slip) and
+    """Damped stick-band exits and their slopes along the flow.
+
+    Damped stick-band exits: bN − P = 0 (friction at its limit, → slip) and
     bN + P = 0 (→ reverse slip), both falling; ``slope(t, y, f)``: their derivatives
-    along the flow f (N' = ϖ(cos ψ − 2ζ_vϖ sin ψ), P' = ϖ cos ψ − ζ' − 2ζ_h√α(ζ'' + ϖ² sin ψ))."""
+    along the flow f (N' = ϖ(cos ψ − 2ζ_vϖ sin ψ), P' = ϖ cos ψ − ζ' − 2ζ_h√α(ζ'' + ϖ² sin ψ)).
+    """
     w, b = k.varpi, k.b
 
     def lo(t: float, y: np.ndarray) -> float:
@@ -180,9 +194,12 @@ def stick_events(k: K) -> list:
 
 
 class Hit(NamedTuple):
-    """What a hit does (:func:`apply_hit`): ``kind`` "contact", "impulsive" (plastic, N < 0),
+    """What a hit does (:func:`apply_hit`).
+
+    What a hit does (:func:`apply_hit`): ``kind`` "contact", "impulsive" (plastic, N < 0),
     "rebound" (restitution; ``step``: max_step for the flight) or "tail" (a chattering
-    sequence closed: contact at τ + ``tail``, first-order error bound ``bound``)."""
+    sequence closed: contact at τ + ``tail``, first-order error bound ``bound``).
+    """
 
     kind: str
     step: float = math.inf
@@ -191,8 +208,11 @@ class Hit(NamedTuple):
 
 
 def apply_hit(k: K, tau: float, y: np.ndarray, t_close: float) -> Hit:
-    """Apply a hit at τ to y (ξ = 0, ξ' → 0 or −e ξ'); t_close: when a contact opened now
-    would end. Module doc: contact where N ≥ 0, restitution and its chattering closure."""
+    """Apply a hit at τ to the state y.
+
+    Apply a hit at τ to y (ξ = 0, ξ' → 0 or −e ξ'); t_close: when a contact opened now
+    would end. Module doc: contact where N ≥ 0, restitution and its chattering closure.
+    """
     N = normal_force(k, tau)
     y[0] = 0.0
     vin = min(float(y[1]), 0.0)

@@ -74,7 +74,9 @@ def refine(
     has_hi: bool,
     fine: np.ndarray,
 ) -> tuple[float, int]:
-    """Root of function i in (lo, hi]: f(lo) > 0, f decreasing, f(hi) ≤ 0: (root,
+    """Root of function i in (lo, hi], with the evaluations it took.
+
+    Root of function i in (lo, hi]: f(lo) > 0, f decreasing, f(hi) ≤ 0: (root,
     evaluations).
 
     Safeguarded Newton to round-off: a step leaving the bracket is replaced by the

@@ -222,8 +222,11 @@ def settling(
 
 
 def _settle_index(s: np.ndarray, k: int, target: float, tol: float) -> int | None:
-    """First m such that |(s_{j+k} − s_j)/k − target| ≤ tol for every j ≥ m, with at
-    least :data:`MIN_TAIL` such j; None when the run is too short to say."""
+    """First cycle from which the mean speed stays within ``tol`` of ``target``.
+
+    First m such that |(s_{j+k} − s_j)/k − target| ≤ tol for every j ≥ m, with at
+    least :data:`MIN_TAIL` such j; None when the run is too short to say.
+    """
     if len(s) <= k:
         return None
     mean = (s[k:] - s[:-k]) / k

@@ -26,7 +26,9 @@ from betvdesign.model.params import ModelParams
 
 
 class CycleFailure(RuntimeError):
-    """Raised when a cycle cannot be advanced: a chattering contact (a Zeno point), a
+    """Raised when a cycle cannot be advanced.
+
+    Raised when a cycle cannot be advanced: a chattering contact (a Zeno point), a
     non-terminating event search or a non-finite state; the message says which.
 
     Parameters
@@ -67,8 +69,11 @@ def chatter_message(tau: float, m: int, n_switch: int) -> str:
 
 
 class CycleRunner:
-    """Advances the tangential state through whole cycles of one parameter set with the
-    compiled contact loop; keeps the event log / segments when asked."""
+    """Advance the tangential state through whole cycles of one parameter set.
+
+    Advances the tangential state through whole cycles of one parameter set with the
+    compiled contact loop; keeps the event log / segments when asked.
+    """
 
     def __init__(self, c: np.ndarray, vs: VerticalSchedule, log: bool = False, dense: bool = False):
         self.c = c

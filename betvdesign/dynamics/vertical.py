@@ -151,8 +151,11 @@ class VerticalSchedule:
         return self._cycle(int(self.row(np.array([m]))[0]))
 
     def arrays(self, m0: int, n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-        """Cycles m0..m0+n−1 as arrays: section state ξ0, ξ0' [-], contact-opening local
-        time [-] (NaN: none) and number of impulsive hits."""
+        """Cycles m0..m0+n−1 of the vertical motion as arrays.
+
+        Cycles m0..m0+n−1 as arrays: section state ξ0, ξ0' [-], contact-opening local
+        time [-] (NaN: none) and number of impulsive hits.
+        """
         rows = self.table[self.row(np.arange(m0, m0 + n))]
         return rows["xi0"], rows["xid0"], rows["tc"], rows["imp_count"]
 
@@ -188,8 +191,11 @@ class VerticalSchedule:
         return hits / n, tc / (self.T * n)
 
     def n_hits(self) -> int:
-        """Hits (contact starts + impulsive) located in the cycles of ``table`` (the
-        prefix and one period, or the whole horizon when there is none)."""
+        """Hits located in the cycles of ``table``.
+
+        Hits (contact starts + impulsive) located in the cycles of ``table`` (the
+        prefix and one period, or the whole horizon when there is none).
+        """
         rows = self.table
         return int(rows["imp_count"].sum()) + int(np.count_nonzero(~np.isnan(rows["tc"])))
 
@@ -202,10 +208,13 @@ class VerticalSchedule:
         return self._per_period[1]
 
     def chattering_into_contact(self) -> int:
-        """Rebounds per cycle of a period-1 motion whose only impulsive hits are the
+        """Rebounds per cycle of a period-1 motion closing into its contact.
+
+        Rebounds per cycle of a period-1 motion whose only impulsive hits are the
         chattering sequence that closes into its contact (restitution, docs/damping.md
         §4): every hit before the contact start lies where N > 0, so it belongs to that
-        one sequence. 0 when the motion is not of that kind."""
+        one sequence. 0 when the motion is not of that kind.
+        """
         if self.restitution == 0.0 or self.period != 1:
             return 0
         (row,) = self.period_rows()

@@ -64,8 +64,11 @@ ANCHOR_ENCLOSURE_FACTOR = 1.0
 
 
 def beam_gap(min_spacing_um: float) -> float:
-    """Gap between neighbouring slider beams [µm]: 10 µm, or the process's minimum
-    spacing if larger (not in the device file: the model's M does not depend on it)."""
+    """Gap between neighbouring slider beams [µm].
+
+    Gap between neighbouring slider beams [µm]: 10 µm, or the process's minimum
+    spacing if larger (not in the device file: the model's M does not depend on it).
+    """
     return max(10.0, min_spacing_um)
 
 
@@ -79,6 +82,7 @@ class ElementLabel:
 
     @property
     def text(self) -> str:
+        """The element's label text as drawn in the layout."""
         if self.set_name is None:
             return f"slider.{self.part}"
         return f"{self.set_name}.{self.side}.{self.part}"
@@ -94,6 +98,7 @@ class DataLabel:
 
     @property
     def text(self) -> str:
+        """The data label's text: ``set/path = value``."""
         where = f"{self.set_name}/" if self.set_name is not None else ""
         return f"{where}{self.path} = {self.value}"
 
@@ -175,8 +180,11 @@ def _drawn(path: str, drawn: set[str]) -> bool:
 
 
 def data_labels(dump: dict[str, Any], process_ref: str) -> list[DataLabel]:
-    """The data labels of a device (its ``model_dump(mode="json", exclude_unset=True)``
-    with quantities as strings): everything the drawing does not give."""
+    """The data labels of a device: everything the drawing does not give.
+
+    The data labels of a device (its ``model_dump(mode="json", exclude_unset=True)``
+    with quantities as strings): everything the drawing does not give.
+    """
     out = [DataLabel(None, "process", flow(process_ref))]
     sets = dump.get("actuator_sets", [])
     out.append(DataLabel(None, "sets", flow([s["name"] for s in sets])))

@@ -47,6 +47,7 @@ class Violation:
 
     @property
     def where(self) -> str:
+        """The layer and the centre of the finding's box [µm], in words."""
         x0, y0, x1, y1 = self.bbox
         return f"{self.layer} ({self.gds}) at ({(x0 + x1) / 2:.3f}, {(y0 + y1) / 2:.3f}) µm"
 
@@ -88,8 +89,11 @@ IGNORE_ANGLE_DEG = 80.0
 
 
 def _edges(gdstk: Any, polys: list) -> np.ndarray:
-    """Boundary edges (n, 4) of the union of ``polys``, material on each edge's left; the
-    zero-width cuts by which a polygon with holes is written are dropped."""
+    """Boundary edges (n, 4) of the union of ``polys``.
+
+    Boundary edges (n, 4) of the union of ``polys``, material on each edge's left; the
+    zero-width cuts by which a polygon with holes is written are dropped.
+    """
     out = []
     for p in gdstk.boolean(polys, [], "or", precision=_GRID) if polys else []:
         pts = np.asarray(p.points, dtype=float)
@@ -120,11 +124,14 @@ def edge_violations(
     gdstk: Any, polys: list, d: float, kind: str, layer: str = "", gds: str = "",
     edges: np.ndarray | None = None,
 ) -> list[Violation]:  # fmt: skip
-    """Edge pairs of the union of ``polys`` closer than ``d`` [µm] across material
+    """Edge pairs of the union of ``polys`` closer than ``d`` [µm].
+
+    Edge pairs of the union of ``polys`` closer than ``d`` [µm] across material
     (``kind`` "width") or across space ("space"): each edge lies on the other's material
     (or empty) side, they meet at less than :data:`IGNORE_ANGLE_DEG`, and their Euclidean
     distance is below d (KLayout's width/space check with its Euclidean metric). ``edges``:
-    the union's boundary if already computed (:func:`_edges`)."""
+    the union's boundary if already computed (:func:`_edges`).
+    """
     e = _edges(gdstk, polys) if edges is None else edges
     n = len(e)
     if n < 2:
@@ -189,11 +196,14 @@ def _clusters(boxes: list[tuple], layer: str, gds: str) -> list[Violation]:
 
 
 def weld(gdstk: Any, polys: list) -> list:
-    """The polygons with every vertex of another that lies on one of their edges (to
+    """Insert into each polygon the vertices of others lying on its edges.
+
+    The polygons with every vertex of another that lies on one of their edges (to
     1e-6 µm) inserted there: shapes that abut in a rotated cell, flattened in floating
     point, then share their boundary vertex for vertex and merge without the sub-grid
     slivers rounding would leave (a designer's edit in KLayout breaks the shared vertices
-    ``betv layout`` draws)."""
+    ``betv layout`` draws).
+    """
     if len(polys) < 2:
         return list(polys)
     pts = [np.asarray(p.points, dtype=float) for p in polys]
@@ -236,8 +246,11 @@ def width_violations(
 def space_violations(
     gdstk: Any, polys: list, holes: list, s_min: float, layer: str = "", gds: str = ""
 ) -> list[Violation]:
-    """Gaps (between polygons, or notches of one, or holes) narrower than ``s_min`` [µm]:
-    :func:`edge_violations` across space."""
+    """Gaps narrower than ``s_min`` [µm].
+
+    Gaps (between polygons, or notches of one, or holes) narrower than ``s_min`` [µm]:
+    :func:`edge_violations` across space.
+    """
     body = _not(gdstk, weld(gdstk, polys), holes)
     return edge_violations(gdstk, body, s_min, "space", layer, gds)
 
@@ -246,8 +259,11 @@ def unreleased(
     gdstk: Any, polys: list, holes: list, anchors: list, w_max: float, layer: str = "",
     gds: str = "",
 ) -> list[Violation]:  # fmt: skip
-    """Released regions farther than ``w_max``/2 [µm] from every edge (module doc):
-    erode(B) = erode(A) − dilate(H), less what lies within w_max/2 of an anchor."""
+    """Released regions farther than ``w_max``/2 [µm] from every edge.
+
+    Released regions farther than ``w_max``/2 [µm] from every edge (module doc):
+    erode(B) = erode(A) − dilate(H), less what lies within w_max/2 of an anchor.
+    """
     r = w_max / 2 - _GRID
     core = _not(gdstk, _off(gdstk, polys, -r, "round"), _off(gdstk, holes, r, "round"))
     if core and anchors:
@@ -265,8 +281,11 @@ class LayerFindings:
 
 
 def findings(gdstk: Any, process: Process, by_layer: dict[tuple[int, int], list]) -> LayerFindings:
-    """Width, spacing and release findings of every structural layer of ``process`` in
-    ``by_layer`` (gdstk polygons by (layer, datatype), flattened)."""
+    """Width, spacing and release findings of every structural layer.
+
+    Width, spacing and release findings of every structural layer of ``process`` in
+    ``by_layer`` (gdstk polygons by (layer, datatype), flattened).
+    """
     width, space, release = [], [], []
     for name, lay in process.layers.items():
         if lay.role != "structural":
@@ -293,8 +312,11 @@ def _listing(vs: list[Violation], limit: int = 6) -> str:
 
 
 def layout_rules(spec: DeviceSpec, f: LayerFindings, cell: str) -> list[RuleResult]:
-    """The device's process rules with width, spacing and release measured on the drawn
-    polygons of ``cell`` instead of the device file's fields."""
+    """The device's process rules measured on the drawn polygons of ``cell``.
+
+    The device's process rules with width, spacing and release measured on the drawn
+    polygons of ``cell`` instead of the device file's fields.
+    """
     assert spec.process is not None
     p = spec.process
     out = []

@@ -73,9 +73,12 @@ def max_gds_bytes() -> int:
 
 @dataclass
 class Extracted:
-    """What a layout says: the device (``doc``, plain data as a device file holds it, and
+    """What a layout says: the device, notes and process rules.
+
+    What a layout says: the device (``doc``, plain data as a device file holds it, and
     its validated ``spec``), notes (what was read but is not in the model), and the
-    layout's process rules; :attr:`text` is the device file's text."""
+    layout's process rules; :attr:`text` is the device file's text.
+    """
 
     doc: dict
     spec: DeviceSpec
@@ -245,8 +248,11 @@ def _elements(
 
 
 def _overlaps(elements: list[_Element], probs: _Problems, gdstk: Any) -> None:
-    """Two labelled elements on one layer may touch but not overlap, except an actuator's
-    head and its tip (the head is drawn over half the tip)."""
+    """Check that labelled elements on one layer do not overlap.
+
+    Two labelled elements on one layer may touch but not overlap, except an actuator's
+    head and its tip (the head is drawn over half the tip).
+    """
     boxes = [(e, e.points.min(axis=0), e.points.max(axis=0)) for e in elements]
     for i, (a, alo, ahi) in enumerate(boxes):
         for b, blo, bhi in boxes[i + 1 :]:
@@ -454,8 +460,11 @@ def _set_path(data: dict, path: str, value: Any) -> None:
 
 
 def extract(path: str | os.PathLike[str], *, process: str | None = None) -> Extracted:
-    """Read a GDS layout into a device (module doc). Raises :class:`SpecError` naming the
-    file, cell, layer and label of every problem."""
+    """Read a GDS layout into a device (module doc).
+
+    Read a GDS layout into a device (module doc). Raises :class:`SpecError` naming the
+    file, cell, layer and label of every problem.
+    """
     gdstk = gdstk_module()
     path = Path(path)
     probs = _Problems(path)
@@ -620,8 +629,11 @@ def _relocate(issue: SpecIssue, where: dict[str, str], path: Path, cell: str) ->
 def derive_gds(
     path: str | os.PathLike[str], *, process: str | None = None
 ) -> tuple[DeviceDerivation, Extracted]:
-    """Extract a layout and derive it (as :func:`betvdesign.nondim.device.derive_file` does
-    a device file): every problem is a :class:`SpecError` naming the layout."""
+    """Extract a layout and derive it.
+
+    Extract a layout and derive it (as :func:`betvdesign.nondim.device.derive_file` does
+    a device file): every problem is a :class:`SpecError` naming the layout.
+    """
     ex = extract(path, process=process)
     try:
         return derive(ex.spec), ex

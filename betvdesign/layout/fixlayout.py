@@ -25,9 +25,12 @@ __all__ = ["write_fixed_layout"]
 def write_fixed_layout(
     spec: DeviceSpec, res: Any, cand: Any, out: str | os.PathLike[str], *, process_ref: str
 ) -> Path:
-    """Draw ``spec`` with ``cand``'s changes (written as a device file writes them,
+    """Draw ``spec`` with ``cand``'s changes to ``out``, verified.
+
+    Draw ``spec`` with ``cand``'s changes (written as a device file writes them,
     :func:`betvdesign.studies.fixfile.fixed_values`) to ``out``, verified as the module
-    doc says. Raises :class:`BetvError` when the result does not pass."""
+    doc says. Raises :class:`BetvError` when the result does not pass.
+    """
     from betvdesign.checks.checker import check_derivation
     from betvdesign.studies.fixfile import fixed_values
 

@@ -1,5 +1,8 @@
-"""Measuring drawn polygons: area, centroid, the smallest enclosing rectangle (length,
-width, direction), discs, projections. Plain numpy on (n, 2) vertex arrays [µm]."""
+"""Measuring drawn polygons (plain numpy on (n, 2) vertex arrays [µm]).
+
+Measuring drawn polygons: area, centroid, the smallest enclosing rectangle (length,
+width, direction), discs, projections. Plain numpy on (n, 2) vertex arrays [µm].
+"""
 
 from __future__ import annotations
 
@@ -30,9 +33,12 @@ def centroid(p: np.ndarray) -> np.ndarray:
 
 @dataclass(frozen=True)
 class Box:
-    """The smallest-area rectangle around a polygon: ``length`` ≥ ``width`` [µm], unit
+    """The smallest-area rectangle around a polygon.
+
+    The smallest-area rectangle around a polygon: ``length`` ≥ ``width`` [µm], unit
     ``axis`` along the length, ``centre``, and ``fill`` = polygon area / box area (1 for a
-    rectangle)."""
+    rectangle).
+    """
 
     centre: np.ndarray
     length: float
@@ -97,8 +103,11 @@ def min_box(p: np.ndarray) -> Box:
 
 
 def extent(p: np.ndarray) -> float:
-    """The largest distance between two vertices [µm] (a drawn disc's diameter: its
-    vertices lie on the circle, opposite ones on each axis)."""
+    """The largest distance between two vertices [µm].
+
+    The largest distance between two vertices [µm] (a drawn disc's diameter: its
+    vertices lie on the circle, opposite ones on each axis).
+    """
     h = _hull(p)
     d = h[:, None, :] - h[None, :, :]
     return float(np.sqrt(np.max(np.sum(d * d, axis=-1))))

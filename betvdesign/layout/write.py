@@ -86,8 +86,11 @@ def _g(x: float) -> float:
 
 @dataclass(frozen=True)
 class Placement:
-    """Where one actuator stands: local (x, y) [µm] -> M·(x, y) + t; ``rotation`` [rad] and
-    ``x_reflection`` are the same map as a GDS reference."""
+    """Where one actuator stands: local (x, y) [µm] -> M·(x, y) + t.
+
+    Where one actuator stands: local (x, y) [µm] -> M·(x, y) + t; ``rotation`` [rad] and
+    ``x_reflection`` are the same map as a GDS reference.
+    """
 
     set_name: str
     side: str
@@ -97,6 +100,7 @@ class Placement:
     x_reflection: bool
 
     def apply(self, x: float, y: float) -> tuple[float, float]:
+        """Map the local point (x, y) [µm] to the layout: M·(x, y) + t [µm]."""
         (a, b), (c, d) = self.matrix
         return (a * x + b * y + self.t[0], c * x + d * y + self.t[1])
 
@@ -105,9 +109,12 @@ def _placement(
     set_name: str, side: str, theta: float, sx: int, head: tuple[float, float],
     h_max: float, slider_half: float, clearance: float, x_head: float,
 ) -> Placement:  # fmt: skip
-    """The map of one actuator (module doc): its stroke (local y) at θ from the slider,
+    """The map of one actuator (module doc).
+
+    The map of one actuator (module doc): its stroke (local y) at θ from the slider,
     along the impact direction sx, toward the slider from the lower (sy = +1) or upper
-    (sy = −1) side; its highest point (toward the slider) ``clearance`` from it."""
+    (sy = −1) side; its highest point (toward the slider) ``clearance`` from it.
+    """
     sy = 1 if side == "lower" else -1
     s, c = math.sin(theta), math.cos(theta)
     m = ((sx * -s, sx * c), (sy * c, sy * s))
@@ -126,9 +133,12 @@ def _toward(c: float, v: np.ndarray) -> np.ndarray:
 
 
 def _disc(cx: float, cy: float, r: float) -> np.ndarray:
-    """A disc whose extent (centre ± r) lies on the grid: the vertices on the axes exact,
+    """A disc whose extent (centre ± r) lies on the grid.
+
+    A disc whose extent (centre ± r) lies on the grid: the vertices on the axes exact,
     every other rounded toward the centre (none outside the circle: the drawn diameter is
-    the extent)."""
+    the extent).
+    """
     a = 2 * math.pi * np.arange(DISC_VERTICES) / DISC_VERTICES
     dx, dy = r * np.cos(a), r * np.sin(a)
     dx[np.abs(dx) < 1e-12] = 0.0
@@ -141,9 +151,12 @@ def _rect(x0: float, y0: float, x1: float, y1: float) -> np.ndarray:
 
 
 def _shared_vertices(polys: list[np.ndarray]) -> list[np.ndarray]:
-    """Each polygon with the vertices of the others that lie on its edges inserted, so that
+    """Insert into each polygon the vertices of the others on its edges.
+
+    Each polygon with the vertices of the others that lie on its edges inserted, so that
     abutting elements share their boundary vertex for vertex: a reader that rounds a
-    rotated cell to its grid then rounds both sides alike (no sliver between them)."""
+    rotated cell to its grid then rounds both sides alike (no sliver between them).
+    """
     every = np.concatenate(polys)
     out = []
     for p in polys:
@@ -207,9 +220,12 @@ def _fill_release(
     polys: list[np.ndarray], holes: list[np.ndarray], anchors: list[np.ndarray],
     layer: ProcessLayer, gdstk: Any,
 ) -> list[np.ndarray]:  # fmt: skip
-    """More holes where the joined elements (a beam and its end piece, a head and its tip)
+    """More release holes where joined elements still leave unreleased points.
+
+    More holes where the joined elements (a beam and its end piece, a head and its tip)
     still leave a point farther than half the widest unreleased feature from every edge:
-    a hole at the middle of each such region, until none is left."""
+    a hole at the middle of each such region, until none is left.
+    """
     from betvdesign.layout.drc import unreleased
 
     h = layer.release_holes
@@ -369,8 +385,11 @@ def _local_labels(g: FrameGeometry) -> dict[str, tuple[float, float]]:
 
 
 def build_library(spec: DeviceSpec, process_ref: str) -> Any:
-    """The layout of ``spec`` as a gdstk Library (module doc); ``process_ref`` is what the
-    ``process = …`` label says (a shipped name, or a path relative to the GDS file)."""
+    """The layout of ``spec`` as a gdstk Library (module doc).
+
+    The layout of ``spec`` as a gdstk Library (module doc); ``process_ref`` is what the
+    ``process = …`` label says (a shipped name, or a path relative to the GDS file).
+    """
     gdstk = gdstk_module()
     _refuse(spec)
     p = spec.process
@@ -482,9 +501,12 @@ def write_layout(
     spec: DeviceSpec, path: str | os.PathLike[str], *, process_ref: str | None = None,
     svg: str | os.PathLike[str] | None = None,
 ) -> Path:  # fmt: skip
-    """Write the layout of ``spec`` to ``path`` (GDSII, whole or not at all) and, if asked,
+    """Write the layout of ``spec`` to ``path`` (GDSII) and an SVG preview.
+
+    Write the layout of ``spec`` to ``path`` (GDSII, whole or not at all) and, if asked,
     an SVG preview. ``process_ref``: the ``process = …`` label (the shipped process's name
-    by default). Raises :class:`BetvError` when the device cannot be drawn."""
+    by default). Raises :class:`BetvError` when the device cannot be drawn.
+    """
     p = spec.process
     if process_ref is None:
         _refuse(spec)

@@ -119,8 +119,11 @@ def _si(q: Any, unit: str = "m") -> Any:
 
 
 def frame_geometry(spec: DeviceSpec, aset: ActuatorSet) -> FrameGeometry:
-    """The drawn actuator of ``aset`` in SI floats (or arrays, for sampled specs): the
-    one geometry the closed form, the FE check and ``betv layout`` all use."""
+    """The drawn actuator of ``aset`` in SI floats.
+
+    The drawn actuator of ``aset`` in SI floats (or arrays, for sampled specs): the
+    one geometry the closed form, the FE check and ``betv layout`` all use.
+    """
     a = ActuatorInputs(spec, aset)
     g = a.geometry
     return FrameGeometry(
@@ -143,8 +146,11 @@ def frame_geometry(spec: DeviceSpec, aset: ActuatorSet) -> FrameGeometry:
 def head_springs(
     rec: Recorder, spec: DeviceSpec, aset: ActuatorSet, m: pint.Quantity
 ) -> dict[str, Any]:
-    """Record the closed form's steps (module doc); returns the quantities K_nn, K_tt
-    (``k_nn``, ``k_tt``) and the floats ``k_nt``, ``rho``, ``m_arm`` [SI]."""
+    """Record the closed form's steps (module doc).
+
+    Record the closed form's steps (module doc); returns the quantities K_nn, K_tt
+    (``k_nn``, ``k_tt``) and the floats ``k_nt``, ``rho``, ``m_arm`` [SI].
+    """
     a = ActuatorInputs(spec, aset)
     geo = a.geometry
     g = "actuator.geometry"
@@ -281,7 +287,9 @@ def drawn_vertical_stiffness(
 
 
 def drawn_resonance_beside(rec: Recorder, springs: dict[str, Any], m: pint.Quantity) -> None:
-    """Record the drawn actuator's √(K_nn/m)/2π (``f_v,geom``) beside the file's f_v, which
+    """Record the drawn actuator's √(K_nn/m)/2π beside the file's f_v.
+
+    Record the drawn actuator's √(K_nn/m)/2π (``f_v,geom``) beside the file's f_v, which
     is the one used.
 
     Parameters
@@ -334,7 +342,9 @@ def drawn_compliance_ratio(
 
 
 def drawn_alpha_beside(rec: Recorder, springs: dict[str, Any]) -> None:
-    """Record the drawn actuator's K_nn/K_tt (``α_geom``) beside the file's α, which is the
+    """Record the drawn actuator's K_nn/K_tt beside the file's α.
+
+    Record the drawn actuator's K_nn/K_tt (``α_geom``) beside the file's α, which is the
     one used.
 
     Parameters

@@ -1,4 +1,6 @@
-"""Derivation steps of the optional terms beyond the paper's idealisation (MODEL.md,
+"""Derivation steps of the optional terms beyond the paper's idealisation.
+
+Derivation steps of the optional terms beyond the paper's idealisation (MODEL.md,
 "Beyond the paper's idealisation"): the thermal roll-off of the stroke, head damping and
 the restitution of normal impacts.
 

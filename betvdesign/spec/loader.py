@@ -1,4 +1,6 @@
-"""YAML device files -> :class:`~betvdesign.spec.models.DeviceSpec` (and process files ->
+"""YAML device and process files -> validated specs.
+
+YAML device files -> :class:`~betvdesign.spec.models.DeviceSpec` (and process files ->
 :class:`~betvdesign.spec.process.Process`), with errors a user can act on.
 
 Every problem found in a file is collected and raised together as one
@@ -297,7 +299,7 @@ def _join(path: str, key: Any) -> str:
 
 
 def _plain(x: Any) -> Any:
-    """ruamel round-trip objects -> plain Python (dict, list, str, int, float, bool)."""
+    """Ruamel round-trip objects -> plain Python (dict, list, str, int, float, bool)."""
     if isinstance(x, dict):
         return {_plain(k): _plain(v) for k, v in x.items()}
     if isinstance(x, list):
@@ -314,8 +316,11 @@ def _plain(x: Any) -> Any:
 
 
 def _key_pos(node: CommentedMap, key: Any, *, value: bool) -> tuple[int, int]:
-    """0-based (line, col) of a key (or its value); keys brought in by a YAML merge key
-    (``<<: *anchor``) are found in the anchored mapping; else the mapping itself."""
+    """0-based (line, col) of a key (or its value) in a YAML mapping.
+
+    0-based (line, col) of a key (or its value); keys brought in by a YAML merge key
+    (``<<: *anchor``) are found in the anchored mapping; else the mapping itself.
+    """
     data = node.lc.data
     if key in data:
         entry = data[key]

@@ -74,6 +74,7 @@ class GdsLayer(_Model):
     datatype: int = Field(default=0, ge=0, le=65535)
 
     def __str__(self) -> str:
+        """``layer/datatype``, as GDS tools write it."""
         return f"{self.layer}/{self.datatype}"
 
     @property
@@ -94,8 +95,11 @@ def _gds(value: Any) -> Any:
 
 
 class ReleaseHoles(_Model):
-    """Etch holes a wide feature needs to be released: drawn on ``layer``, squares of
-    ``size``, centres at most ``pitch`` apart."""
+    """Etch holes a wide feature needs to be released.
+
+    Etch holes a wide feature needs to be released: drawn on ``layer``, squares of
+    ``size``, centres at most ``pitch`` apart.
+    """
 
     layer: str = Field(min_length=1, max_length=limits.MAX_NAME_CHARS)
     """Name of the hole layer in this process (e.g. 'hole1')."""
@@ -237,8 +241,11 @@ class Process(_Model):
 
     # --- queries -----------------------------------------------------------------------
     def structural(self, name: str | None = None) -> ProcessLayer:
-        """The structural layer ``name`` (the default one when None); ValueError if the
-        process has no such structural layer."""
+        """The structural layer ``name`` (the default one when None).
+
+        The structural layer ``name`` (the default one when None); ValueError if the
+        process has no such structural layer.
+        """
         key = name or self.default_structural
         lay = self.layers.get(key)
         if lay is None or lay.role != "structural":
@@ -259,8 +266,11 @@ class Process(_Model):
         return None
 
     def cite(self, path: str) -> str:
-        """Where the value at ``path`` comes from: the layer's or the file's source, and
-        'not sourced' when the file lists it in ``unsourced``."""
+        """Where the value at ``path`` comes from.
+
+        Where the value at ``path`` comes from: the layer's or the file's source, and
+        'not sourced' when the file lists it in ``unsourced``.
+        """
         if path in self.unsourced:
             return f"process {self.name}: {path} (value NOT sourced; replace it by your foundry's)"
         parts = path.split(".")
@@ -285,9 +295,12 @@ def shipped_process_path(name: str) -> Path | None:
 
 
 def rebase(ref: str, source_dir: str | Path, out: str | Path) -> str:
-    """A device's ``process`` reference as written in a file next to ``out``: a shipped
+    """A device's ``process`` reference as written in a file next to ``out``.
+
+    A device's ``process`` reference as written in a file next to ``out``: a shipped
     name as is, a path (relative to ``source_dir``, where it was read) re-based to ``out``'s
-    directory."""
+    directory.
+    """
     if shipped_process_path(ref) is not None:
         return ref
     p = Path(ref)

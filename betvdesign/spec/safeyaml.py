@@ -121,7 +121,9 @@ def _size(p: Path) -> int | None:
 
 
 def decode(raw: bytes, fname: str) -> str:
-    """Decode the bytes of a YAML file: UTF-8 (BOM optional) or UTF-16 with a BOM, as YAML
+    """Decode the bytes of a YAML file.
+
+    Decode the bytes of a YAML file: UTF-8 (BOM optional) or UTF-16 with a BOM, as YAML
     1.2 allows.
 
     Parameters

@@ -176,7 +176,7 @@ class _Model:
         return self._tau_cache[alpha]
 
     def amplitude(self, theta: np.ndarray) -> np.ndarray:
-        """u [m] at each data point."""
+        """U [m] at each data point."""
         if self.law == "per-voltage":
             return theta[np.searchsorted(self.voltages, self.v)]
         if self.law in ("linear", "quadratic"):
@@ -345,8 +345,11 @@ def calibrate(
 def _along_impacts(
     data: Measurements, aset: Any, signed: bool, direction: str | None
 ) -> tuple[Measurements, str]:
-    """The data signed along the set's impact direction (the model's s), and the
-    observed travel direction ("+x"/"-x"; for signed data, the one the data show)."""
+    """The data signed along the set's impact direction, and its direction.
+
+    The data signed along the set's impact direction (the model's s), and the
+    observed travel direction ("+x"/"-x"; for signed data, the one the data show).
+    """
     impact = 1 if aset.impact_direction == "+x" else -1
     if signed:
         if direction is not None:

@@ -1,4 +1,6 @@
-"""The exact-mode map of two device fields, in the fields' own units, computed a few
+"""The exact-mode map of two device fields, a few rows at a time.
+
+The exact-mode map of two device fields, in the fields' own units, computed a few
 rows at a time (``betv explore``'s map: progress shown, a stale map dropped).
 
 The points are those of :mod:`betvdesign.studies.fieldsweep` (one implementation: its
@@ -38,10 +40,13 @@ TOL = 1e-10
 
 @dataclass(frozen=True)
 class MapRows:
-    """Rows ``rows`` (indices of the y axis) of a map: per point its mode, Δs [-] per
+    """Rows ``rows`` (indices of the y axis) of a map.
+
+    Rows ``rows`` (indices of the y axis) of a map: per point its mode, Δs [-] per
     cycle, speed [m/s] along the impact direction (NaN without an orbit), ϖ [-] (NaN
     where the device cannot take the values) and, for points without a mode, the
-    reason."""
+    reason.
+    """
 
     rows: tuple[int, ...]
     mode: list[list[str]]
@@ -53,9 +58,12 @@ class MapRows:
 
 @dataclass
 class FieldMap:
-    """The exact-mode map of actuator set ``set_name``: ``mode[j][i]`` at
+    """The exact-mode map of actuator set ``set_name``.
+
+    The exact-mode map of actuator set ``set_name``: ``mode[j][i]`` at
     (x.values[i], y.values[j]); ``speed_m_s`` along the set's impact direction [m/s];
-    ``varpi`` the normalised frequency ϖ [-] of each point (the design window's test)."""
+    ``varpi`` the normalised frequency ϖ [-] of each point (the design window's test).
+    """
 
     x: FieldAxis
     y: FieldAxis
@@ -69,6 +77,7 @@ class FieldMap:
 
     @classmethod
     def empty(cls, x: FieldAxis, y: FieldAxis, set_name: str) -> FieldMap:
+        """A map of ``x`` by ``y`` with no row computed yet."""
         shape = (len(y.values), len(x.values))
         return cls(
             x,
@@ -94,6 +103,7 @@ class FieldMap:
 
     @property
     def complete(self) -> bool:
+        """Whether every row has been computed."""
         return bool(self.done.all())
 
 
@@ -110,7 +120,9 @@ def map_rows(
     *,
     max_cycles: int = MAX_CYCLES,
 ) -> MapRows:
-    """Rows ``rows`` of the exact-mode map of set ``set_index`` of ``spec`` (a
+    """Rows ``rows`` of the exact-mode map of set ``set_index`` of ``spec``.
+
+    Rows ``rows`` of the exact-mode map of set ``set_index`` of ``spec`` (a
     :class:`~betvdesign.spec.models.DeviceSpec`).
 
     Raises

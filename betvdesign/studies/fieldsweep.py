@@ -117,8 +117,11 @@ class FieldAxis:
 
     @classmethod
     def scaled(cls, field: str, value: Any, factors: Sequence[float]) -> FieldAxis:
-        """The axis of a field's value as the device file gives it (a quantity or a
-        number) times each of ``factors`` [-], in the value's own unit."""
+        """The axis of a field's value as the device file gives it, scaled.
+
+        The axis of a field's value as the device file gives it (a quantity or a
+        number) times each of ``factors`` [-], in the value's own unit.
+        """
         if isinstance(value, pint.Quantity):
             x0, unit = float(value.magnitude), f"{value.units:~}"
         else:
@@ -127,6 +130,7 @@ class FieldAxis:
 
     @property
     def label(self) -> str:
+        """The axis label: ``field [unit]``."""
         return f"{self.field} [{self.unit}]" if self.unit else self.field
 
     def quantity(self, x: Any) -> Any:
@@ -145,8 +149,11 @@ class FieldAxis:
 
 
 def _bound(text: str, field: str, unit: str) -> float:
-    """One bound in the field's unit: a quantity ("2 kHz"), or a number with an SI prefix
-    alone ("2k" = 2 k of the field's SI unit); a bare number only for a unit-less field."""
+    """One bound in the field's unit.
+
+    One bound in the field's unit: a quantity ("2 kHz"), or a number with an SI prefix
+    alone ("2k" = 2 k of the field's SI unit); a bare number only for a unit-less field.
+    """
     import pint
 
     from betvdesign.spec.units import parse_quantity, ureg
@@ -195,7 +202,9 @@ def _is_number(s: str) -> bool:
 def parse_axis(
     spec: Any, text: str, points: int = DEFAULT_POINTS, *, log: bool = False
 ) -> FieldAxis:
-    """``FIELD=LO:HI`` in any unit of the field -> a :class:`FieldAxis` of ``points``
+    """Parse ``FIELD=LO:HI`` into a :class:`FieldAxis`.
+
+    ``FIELD=LO:HI`` in any unit of the field -> a :class:`FieldAxis` of ``points``
     values (linear, or log-spaced with ``log``).
 
     Parameters
@@ -264,8 +273,11 @@ def _device_key(path: str | Path) -> tuple[str, int]:
 def _derive_grid(
     spec: Any, axes: Sequence[FieldAxis], set_index: int
 ) -> tuple[np.ndarray, list[dict[str, Any] | str]]:
-    """Every grid point derived at once: the points (n, fields) [units] and per point
-    its parameters, length scale [m], f_act [Hz], or the reason it cannot be derived."""
+    """Every grid point derived at once.
+
+    Every grid point derived at once: the points (n, fields) [units] and per point
+    its parameters, length scale [m], f_act [Hz], or the reason it cannot be derived.
+    """
     from betvdesign.nondim.device import derive_set
     from betvdesign.studies.sampling import PARAM_FIELDS, check_sample, derive_all
 
@@ -413,7 +425,9 @@ def field_tasks(
 def field_map(
     spec: Any, axes: Sequence[FieldAxis], set_index: int = 0, tol: float = 1e-10
 ) -> tuple[list[dict[str, Any]], dict[str, Any]]:
-    """The sweep of ``axes`` of a loaded device, solved in this process (no store, no
+    """The sweep of ``axes`` of a loaded device, solved in this process.
+
+    The sweep of ``axes`` of a loaded device, solved in this process (no store, no
     workers): for a report's few hundred points, where starting workers costs more
     than the orbits.
 
@@ -504,6 +518,7 @@ class Flip:
     above: str
 
     def as_dict(self) -> dict[str, Any]:
+        """The crossing as JSON-friendly data."""
         return {"field": self.field, "at": self.at, "below": self.below, "above": self.above}
 
 
@@ -522,7 +537,9 @@ def _mode_at(spec: Any, axis: FieldAxis, x: float, index: int, tol: float) -> st
 def bisect_flip(
     mode_at: Callable[[float], str], lo: float, hi: float, below: str, above: str, width: float
 ) -> tuple[float, str]:
-    """Where the mode changes between ``lo`` (mode ``below``) and ``hi`` (``above``),
+    """Bisect where the mode changes between ``lo`` and ``hi``.
+
+    Where the mode changes between ``lo`` (mode ``below``) and ``hi`` (``above``),
     bisected until the bracket is narrower than ``width``.
 
     Parameters
@@ -562,7 +579,9 @@ def locate_flips(
     set_name: str | None = None,
     tol: float = 1e-10,
 ) -> list[Flip]:
-    """Every change of the exact mode between neighbouring points of a 1-D sweep,
+    """Every change of the exact mode along a 1-D sweep, bisected.
+
+    Every change of the exact mode between neighbouring points of a 1-D sweep,
     bisected along the field to :data:`FLIP_RTOL` of the field's range.
 
     Parameters
@@ -608,8 +627,11 @@ def locate_flips(
 def summarise(
     set_name: str, axes: Sequence[FieldAxis], rows: Sequence[Mapping[str, Any]]
 ) -> dict[str, Any]:
-    """A sweep's summary: the set, each axis (field, unit, device value, range, points),
-    the points and their count per exact mode, and what the speed is."""
+    """A sweep's summary.
+
+    A sweep's summary: the set, each axis (field, unit, device value, range, points),
+    the points and their count per exact mode, and what the speed is.
+    """
     counts = {m: 0 for m in (*MODES, "invalid")}
     for r in rows:
         counts[r["exact_mode"]] = counts.get(r["exact_mode"], 0) + 1
@@ -637,7 +659,9 @@ def run_fieldsweep(
     axes: Sequence[FieldAxis],
     **kwargs: Any,
 ) -> tuple[StudyRun, dict[str, Any]]:
-    """Run :func:`fieldsweep_study` (executor, ``out``, resume as every study) and
+    """Run :func:`fieldsweep_study` and summarise it.
+
+    Run :func:`fieldsweep_study` (executor, ``out``, resume as every study) and
     summarise it.
 
     Parameters

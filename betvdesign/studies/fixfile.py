@@ -1,4 +1,6 @@
-"""The device file with a fix applied: the user's own text with only the changed values'
+"""The device file with a fix applied, verified by ``betv check``.
+
+The device file with a fix applied: the user's own text with only the changed values'
 lines edited (each value replaced in place, with a comment saying what changed and
 why), verified by ``betv check`` before it is returned.
 """

@@ -1,4 +1,6 @@
-"""One design point of a study: the exact orbit as a row, the solver's error as text,
+"""One design point of a study.
+
+One design point of a study: the exact orbit as a row, the solver's error as text,
 the fidelity a study may use.
 
 Every study that solves design points shares these pieces: the push/pull map

@@ -78,8 +78,11 @@ class Tolerance:
     dist_given: bool = True
 
     def describe(self) -> str:
-        """The spread as used, its distribution always stated (the default named as
-        such): ``slider.beam_width: normal σ 5 % (normal: the default)``."""
+        """The spread as used, its distribution always stated.
+
+        The spread as used, its distribution always stated (the default named as
+        such): ``slider.beam_width: normal σ 5 % (normal: the default)``.
+        """
         width = "σ" if self.dist == "normal" else "half-width"
         amount = f"{100 * self.relative:.3g} %" if self.relative is not None else self.absolute
         default = "" if self.dist_given else " (normal: the default)"
@@ -331,8 +334,11 @@ BASE_COLUMNS: dict[str, type] = {
 
 
 def _beyond_columns(spec: Any) -> dict[str, type]:
-    """Columns zeta_v, zeta_h, restitution [-] (ModelParams.as_dict's) when the nominal
-    device gives damping or restitution; none for the paper's model."""
+    """Columns zeta_v, zeta_h, restitution [-] of a damped nominal device.
+
+    Columns zeta_v, zeta_h, restitution [-] (ModelParams.as_dict's) when the nominal
+    device gives damping or restitution; none for the paper's model.
+    """
     from betvdesign.nondim.device import derive
 
     try:
@@ -348,8 +354,11 @@ def _refuse_lambda_beyond_ideal(
     chosen: Sequence[str],
     tolerances: Sequence[Tolerance],
 ) -> None:
-    """UsageError when the λ rung is asked of a device (or a spread) with damping or
-    restitution: λ is a fit to the idealised model and knows neither."""
+    """Refuse the λ rung for a device with damping or restitution.
+
+    UsageError when the λ rung is asked of a device (or a spread) with damping or
+    restitution: λ is a fit to the idealised model and knows neither.
+    """
     from betvdesign.nondim.device import derive_set
 
     spread = [t.field for t in tolerances if term_range(t.field) is not None]
@@ -478,8 +487,11 @@ def _spearman(x: np.ndarray, y: np.ndarray) -> float | None:
 
 
 def intended_sign(intended: str | None) -> float:
-    """+1 for a push set, −1 for a pull set: times a speed signed along the impact
-    direction it gives the speed along the intended direction of travel."""
+    """Sign of a set's travel: +1 for push, −1 for pull.
+
+    +1 for a push set, −1 for a pull set: times a speed signed along the impact
+    direction it gives the speed along the intended direction of travel.
+    """
     return -1.0 if intended == "pull" else 1.0
 
 
