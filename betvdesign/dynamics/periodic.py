@@ -354,50 +354,69 @@ def not_driven_message(p: ModelParams, cycles: int) -> str:
     )
 
 
-def _periodic_orbit(
-    p: ModelParams, tol: float, max_cycles: int, max_period: int, transient: int
-) -> PeriodicResult:
-    t0 = time.perf_counter()
-    k = phase_table(p)
-    try:
-        vs = VerticalSchedule(p.varpi, horizon=1000, zeta_v=p.zeta_v, restitution=p.restitution)
-    except VerticalSearchError as exc:
-        return PeriodicResult.failure(
-            p, "failed", f"vertical motion: {exc}", elapsed_s=time.perf_counter() - t0
-        )
-    hits, frac = vs.hits_per_cycle(), vs.contact_fraction()
+def _spent(vs: VerticalSchedule, phi: _Map | None, t0: float) -> dict[str, Any]:
+    """What every answer of :func:`_periodic_orbit` carries.
 
-    def spent() -> dict[str, Any]:
-        """What every answer from here on carries.
+    Parameters
+    ----------
+    vs : VerticalSchedule
+        The vertical motion.
+    phi : _Map or None
+        The section map (None before it exists).
+    t0 : float
+        :func:`time.perf_counter` at the start [s].
 
-        What every answer from here on carries: the vertical motion's hits and contact
-        fraction, the counters so far and the time taken.
-        """
-        return dict(
-            impacts_per_cycle=hits,
-            contact_fraction=frac,
-            n_cycles=phi.n_cycles if phi else 0,
-            n_events=phi.n_events if phi else 0,
-            n_root_evals=(phi.n_evals if phi else 0) + vs.n_root_evals,
-            elapsed_s=time.perf_counter() - t0,
-        )
+    Returns
+    -------
+    dict
+        The vertical motion's hits and contact fraction, the counters so far and the
+        time taken [s].
+    """
+    return dict(
+        impacts_per_cycle=vs.hits_per_cycle(),
+        contact_fraction=vs.contact_fraction(),
+        n_cycles=phi.n_cycles if phi else 0,
+        n_events=phi.n_events if phi else 0,
+        n_root_evals=(phi.n_evals if phi else 0) + vs.n_root_evals,
+        elapsed_s=time.perf_counter() - t0,
+    )
 
-    phi: _Map | None = None
-    if vs.period is None:
-        return PeriodicResult.failure(
-            p, "not_driven", not_driven_message(p, vs.n_prefix), **spent()
-        )
-    kv = vs.period
-    assert vs.first_end is not None
-    m0 = vs.first_end + 1
-    phi = _Map(k, vs, m0)
-    # From rest to the first periodic cycle, then `transient` more (multiples of k_v).
-    pre = _Map(k, vs, 0)
+
+def _from_rest(
+    p: ModelParams, vs: VerticalSchedule, phi: _Map, max_cycles: int, t0: float
+) -> PeriodicResult | tuple[np.ndarray, float]:
+    """Run from rest to the first periodic cycle of the vertical motion.
+
+    A design whose motion provably grows without bound (:func:`resonance_growth_bound`)
+    is told here, from a measured window of growth.
+
+    Parameters
+    ----------
+    p : ModelParams
+        The model.
+    vs : VerticalSchedule
+        Its vertical motion (periodic).
+    phi : _Map
+        The section map from the first periodic cycle.
+    max_cycles : int
+        The cycle budget [-].
+    t0 : float
+        :func:`time.perf_counter` at the start [s].
+
+    Returns
+    -------
+    PeriodicResult or tuple
+        A failure ("failed", "unbounded"), or the section state (ζ, ζ', s') [-] at the
+        first periodic cycle and the travel s [-] so far.
+    """
+    m0, kv = phi.m0, vs.period
+    pre = _Map(phi.c, vs, 0)
     try:
         x, s_total = pre(np.zeros(3), m0)
     except (CycleFailure, RuntimeError) as exc:
-        return PeriodicResult.failure(p, "failed", f"transient from rest failed: {exc}", **spent())
-    brute = m0
+        return PeriodicResult.failure(
+            p, "failed", f"transient from rest failed: {exc}", **_spent(vs, phi, t0)
+        )
     bound = resonance_growth_bound(p)
     if bound is not None:
         window = min(GROWTH_WINDOW, max_cycles - m0)  # the budget holds here too
@@ -410,8 +429,158 @@ def _periodic_orbit(
                 _unbounded_message(p, bound, rate, n, amp, m0 + n),
                 transient_cycles=m0 + n,
                 transient_s=s_total + s_win,
-                **spent(),
+                **_spent(vs, phi, t0),
             )
+    return x, s_total
+
+
+def _newton_period(
+    phi: _Map, x: np.ndarray, n: int, tol: float, accelerated: set[int]
+) -> tuple[np.ndarray, float, float, int]:
+    """Newton for a fixed point of Φⁿ from ``x``, restarted once per n from Anderson.
+
+    Parameters
+    ----------
+    phi : _Map
+        The section map.
+    x : numpy.ndarray
+        The start (ζ, ζ', s') [-].
+    n : int
+        The period tried [cycles].
+    tol : float
+        The residual asked [-].
+    accelerated : set of int
+        The periods already restarted from Anderson (updated).
+
+    Returns
+    -------
+    tuple
+        The state [-], its residual [-], the travel over n cycles [-] and the Newton
+        iterations.
+    """
+    xs, r, s, n_newton = _newton(phi, x.copy(), n, tol, POLISH)
+    if r > tol and n not in accelerated:  # once per period: a better start
+        accelerated.add(n)
+        xa = _anderson(phi, x.copy(), n)
+        if xa is not None:
+            xs, r, s, it = _newton(phi, xa, n, tol, POLISH)
+            n_newton += it
+    return xs, r, s, n_newton
+
+
+def _shortest_period(
+    phi: _Map, found: tuple[np.ndarray, float, float], j: int, kv: int, tol: float
+) -> tuple[np.ndarray, float, float, int, int]:
+    """The shortest period of a fixed point of Φ^(j·kv): a divisor's, if it is one too.
+
+    Parameters
+    ----------
+    phi : _Map
+        The section map.
+    found : tuple
+        The fixed point (ζ, ζ', s') [-], its residual [-] and travel [-].
+    j : int
+        Its period in vertical periods.
+    kv : int
+        The vertical period [cycles].
+    tol : float
+        The residual asked [-].
+
+    Returns
+    -------
+    tuple
+        The state, residual, travel and period [cycles] kept, and the Newton iterations
+        spent.
+    """
+    xs, r, s = found
+    n, n_newton = j * kv, 0
+    for d in range(1, j):  # a period-n fixed point may have a shorter period
+        if j % d == 0:
+            xd, rd, sd, itd = _newton(phi, xs.copy(), d * kv, tol, POLISH)
+            n_newton += itd
+            if rd <= tol and float(np.max(np.abs(xd - xs))) <= 1e3 * tol:
+                xs, r, s, n = xd, rd, sd, d * kv
+                break
+    return xs, r, s, n, n_newton
+
+
+def _accept(
+    phi: _Map, vs: VerticalSchedule, xs: np.ndarray, n: int, tol: float
+) -> tuple[float, np.ndarray, list[float], float] | None:
+    """Accept a fixed point of Φⁿ if it is stable and periodic to ``tol`` in full.
+
+    Parameters
+    ----------
+    phi : _Map
+        The section map.
+    vs : VerticalSchedule
+        The vertical motion.
+    xs : numpy.ndarray
+        The fixed point (ζ, ζ', s') [-].
+    n : int
+        Its period [cycles].
+    tol : float
+        The residual asked [-].
+
+    Returns
+    -------
+    tuple or None
+        The residual of the whole state, tangential and vertical [-], the Floquet
+        multipliers by decreasing modulus, the vertical section state (ξ, ξ') [-] and
+        the travel over n cycles [-]; None for an unstable orbit (not where the device
+        settles) or one not periodic to ``tol``.
+    """
+    J = phi.jacobian(xs, n, xs, central=True)
+    mu = np.linalg.eigvals(J)
+    mu = mu[np.argsort(-np.abs(mu))]
+    if np.max(np.abs(mu)) >= 1.0:
+        return None  # an unstable orbit: not where the device settles
+    r_final, _, s = phi.residual(xs, n)
+    a, b = vs.table[vs.row(np.array([phi.m0, phi.m0 + n]))].tolist()
+    vert = abs(b[0] - a[0]) + abs(b[1] - a[1])
+    r_final = max(r_final, vert)
+    if r_final > tol:
+        return None
+    return r_final, mu, a, s
+
+
+def _periodic_orbit(
+    p: ModelParams, tol: float, max_cycles: int, max_period: int, transient: int
+) -> PeriodicResult:
+    """The search of :func:`periodic_orbit` (its arguments, checked).
+
+    The vertical motion first (:class:`VerticalSchedule`), the transient from rest
+    (:func:`_from_rest`), then chunks of brute-force iteration, each followed by Newton
+    for every period up to ``max_period`` vertical periods (:func:`_newton_period`,
+    :func:`_shortest_period`, :func:`_accept`).
+
+    Returns
+    -------
+    PeriodicResult
+        The first stable periodic orbit, or why there is none.
+    """
+    t0 = time.perf_counter()
+    k = phase_table(p)
+    try:
+        vs = VerticalSchedule(p.varpi, horizon=1000, zeta_v=p.zeta_v, restitution=p.restitution)
+    except VerticalSearchError as exc:
+        return PeriodicResult.failure(
+            p, "failed", f"vertical motion: {exc}", elapsed_s=time.perf_counter() - t0
+        )
+    if vs.period is None:
+        return PeriodicResult.failure(
+            p, "not_driven", not_driven_message(p, vs.n_prefix), **_spent(vs, None, t0)
+        )
+    kv = vs.period
+    assert vs.first_end is not None
+    m0 = vs.first_end + 1
+    phi = _Map(k, vs, m0)
+    # From rest to the first periodic cycle, then `transient` more (multiples of k_v).
+    start = _from_rest(p, vs, phi, max_cycles, t0)
+    if isinstance(start, PeriodicResult):
+        return start
+    x, s_total = start
+    brute = m0
     chunk = max(kv, (transient // kv) * kv)
     n_newton = 0
     accelerated: set[int] = set()
@@ -421,46 +590,25 @@ def _periodic_orbit(
             x, s_chunk = phi(x, chunk)
             s_total += s_chunk
         except (CycleFailure, RuntimeError) as exc:
-            return PeriodicResult.failure(
-                p, "failed", f"brute-force iteration failed after {brute} cycles: {exc}", **spent()
-            )
+            why = f"brute-force iteration failed after {brute} cycles: {exc}"
+            return PeriodicResult.failure(p, "failed", why, **_spent(vs, phi, t0))
         brute += chunk
         if not np.all(np.isfinite(x)):
-            return PeriodicResult.failure(
-                p, "failed", f"state became non-finite after {brute} cycles", **spent()
-            )
+            why = f"state became non-finite after {brute} cycles"
+            return PeriodicResult.failure(p, "failed", why, **_spent(vs, phi, t0))
         for j in range(1, max_period + 1):
-            n = j * kv
-            xs, r, s, it = _newton(phi, x.copy(), n, tol, POLISH)
+            xs, r, s, it = _newton_period(phi, x, j * kv, tol, accelerated)
             n_newton += it
-            if r > tol and n not in accelerated:  # once per period: a better start
-                accelerated.add(n)
-                xa = _anderson(phi, x.copy(), n)
-                if xa is not None:
-                    xs, r, s, it = _newton(phi, xa, n, tol, POLISH)
-                    n_newton += it
             if r < best[0]:
-                best = (r, n)
+                best = (r, j * kv)
             if r > tol:
                 continue
-            for d in range(1, j):  # a period-n fixed point may have a shorter period
-                if j % d == 0:
-                    xd, rd, sd, itd = _newton(phi, xs.copy(), d * kv, tol, POLISH)
-                    n_newton += itd
-                    if rd <= tol and float(np.max(np.abs(xd - xs))) <= 1e3 * tol:
-                        xs, r, s, n = xd, rd, sd, d * kv
-                        break
-            J = phi.jacobian(xs, n, xs, central=True)
-            mu = np.linalg.eigvals(J)
-            mu = mu[np.argsort(-np.abs(mu))]
-            if np.max(np.abs(mu)) >= 1.0:
-                continue  # an unstable orbit: not where the device settles
-            r_final, _, s = phi.residual(xs, n)
-            a, b = vs.table[vs.row(np.array([m0, m0 + n]))].tolist()
-            vert = abs(b[0] - a[0]) + abs(b[1] - a[1])
-            r_final = max(r_final, vert)
-            if r_final > tol:
+            xs, r, s, n, it = _shortest_period(phi, (xs, r, s), j, kv, tol)
+            n_newton += it
+            accepted = _accept(phi, vs, xs, n, tol)
+            if accepted is None:
                 continue
+            r_final, mu, a, s = accepted
             ds = s / n
             return PeriodicResult(
                 params=p,
@@ -477,7 +625,7 @@ def _periodic_orbit(
                 n_newton=n_newton,
                 transient_cycles=brute,
                 transient_s=s_total,
-                **spent(),
+                **_spent(vs, phi, t0),
             )
         if brute >= max_cycles:
             return PeriodicResult.failure(
@@ -491,7 +639,7 @@ def _periodic_orbit(
                 transient_cycles=brute,
                 transient_s=s_total,
                 residual=best[0],
-                **spent(),
+                **_spent(vs, phi, t0),
             )
         chunk = min(2 * chunk, max(kv, ((max_cycles - brute) // kv) * kv))
 

@@ -338,6 +338,105 @@ def vertical_motion(
     )[0]
 
 
+def _not_periodic(vs: VerticalSchedule, v: float, max_cycles: int, el: float) -> VerticalResult:
+    """The answer for a motion whose contact never recurs within ``max_cycles``.
+
+    Parameters
+    ----------
+    vs : VerticalSchedule
+        The schedule (no period).
+    v : float
+        ϖ [-].
+    max_cycles : int
+        The horizon searched [cycles].
+    el : float
+        Time taken [s].
+
+    Returns
+    -------
+    VerticalResult
+        Status "not_periodic", regime "impulsive-only".
+    """
+    imp = vs.hits_per_cycle()
+    return VerticalResult(
+        varpi=v,
+        status="not_periodic",
+        message=f"no contact recurred within {max_cycles} cycles: hits are impulsive only "
+        "and the slider is not driven ("
+        + (
+            f"restitution e = {vs.restitution:g}: the rebounds never settle into contact "
+            "before the normal force falls to zero; "
+            if vs.restitution > 0.0
+            else ""
+        )
+        + "MODEL.md: ϖ beyond about 2); increase max_cycles to look further",
+        regime="impulsive-only",
+        period_cycles=None,
+        hits_per_cycle=imp,
+        impulsive_per_cycle=imp,
+        contact_fraction=0.0,
+        contact_phase=None,
+        n_cycles=vs.n_prefix,
+        n_events=vs.n_hits(),
+        n_root_evals=vs.n_root_evals,
+        elapsed_s=el,
+    )
+
+
+def _periodic(vs: VerticalSchedule, v: float, el: float) -> VerticalResult:
+    """The answer for a periodic vertical motion: its regime, hits and contact.
+
+    Parameters
+    ----------
+    vs : VerticalSchedule
+        The schedule (periodic).
+    v : float
+        ϖ [-].
+    el : float
+        Time taken [s].
+
+    Returns
+    -------
+    VerticalResult
+        Status "success" with the regime: period-k, chattering-contact, multi-impact or
+        single-impact.
+    """
+    k = vs.period
+    imp = int(vs.period_rows()["imp_count"].sum()) / k
+    hits = vs.hits_per_cycle()
+    chatter = vs.chattering_into_contact()
+    if k > 1:
+        regime = f"period-{k}"
+    elif chatter:
+        regime = "chattering-contact"
+    elif hits > 1.0:
+        regime = "multi-impact"
+    else:
+        regime = "single-impact"
+    tcs = vs.period_rows()["tc"]
+    tc = float(tcs[~np.isnan(tcs)][0])
+    return VerticalResult(
+        varpi=v,
+        status="success",
+        message=f"vertical motion periodic with {k} cycle(s) per period"
+        + (
+            f"; its contact is reached by a chattering sequence of {chatter} rebound(s)"
+            if chatter
+            else ""
+        ),
+        regime=regime,
+        period_cycles=k,
+        hits_per_cycle=hits,
+        impulsive_per_cycle=imp,
+        contact_fraction=vs.contact_fraction(),
+        contact_phase=v * tc,
+        n_cycles=(vs.first_end or 0) + 1 + k,
+        n_events=vs.n_hits(),
+        n_root_evals=vs.n_root_evals,
+        elapsed_s=el,
+    )
+
+
 def vertical_motion_schedule(
     varpi: float, *, zeta_v: float = 0.0, restitution: float = 0.0, max_cycles: int = 1000
 ) -> tuple[VerticalResult, VerticalSchedule]:
@@ -372,63 +471,5 @@ def vertical_motion_schedule(
     )
     el = time.perf_counter() - t0
     if vs.period is None:
-        imp = vs.hits_per_cycle()
-        res = VerticalResult(
-            varpi=v,
-            status="not_periodic",
-            message=f"no contact recurred within {max_cycles} cycles: hits are impulsive only "
-            "and the slider is not driven ("
-            + (
-                f"restitution e = {vs.restitution:g}: the rebounds never settle into contact "
-                "before the normal force falls to zero; "
-                if vs.restitution > 0.0
-                else ""
-            )
-            + "MODEL.md: ϖ beyond about 2); increase max_cycles to look further",
-            regime="impulsive-only",
-            period_cycles=None,
-            hits_per_cycle=imp,
-            impulsive_per_cycle=imp,
-            contact_fraction=0.0,
-            contact_phase=None,
-            n_cycles=vs.n_prefix,
-            n_events=vs.n_hits(),
-            n_root_evals=vs.n_root_evals,
-            elapsed_s=el,
-        )
-        return res, vs
-    k = vs.period
-    imp = int(vs.period_rows()["imp_count"].sum()) / k
-    hits = vs.hits_per_cycle()
-    chatter = vs.chattering_into_contact()
-    if k > 1:
-        regime = f"period-{k}"
-    elif chatter:
-        regime = "chattering-contact"
-    elif hits > 1.0:
-        regime = "multi-impact"
-    else:
-        regime = "single-impact"
-    tcs = vs.period_rows()["tc"]
-    tc = float(tcs[~np.isnan(tcs)][0])
-    res = VerticalResult(
-        varpi=v,
-        status="success",
-        message=f"vertical motion periodic with {k} cycle(s) per period"
-        + (
-            f"; its contact is reached by a chattering sequence of {chatter} rebound(s)"
-            if chatter
-            else ""
-        ),
-        regime=regime,
-        period_cycles=k,
-        hits_per_cycle=hits,
-        impulsive_per_cycle=imp,
-        contact_fraction=vs.contact_fraction(),
-        contact_phase=v * tc,
-        n_cycles=(vs.first_end or 0) + 1 + k,
-        n_events=vs.n_hits(),
-        n_root_evals=vs.n_root_evals,
-        elapsed_s=el,
-    )
-    return res, vs
+        return _not_periodic(vs, v, max_cycles, el), vs
+    return _periodic(vs, v, el), vs
