@@ -384,24 +384,29 @@ def _local_labels(g: FrameGeometry) -> dict[str, tuple[float, float]]:
     return out
 
 
-def build_library(spec: DeviceSpec, process_ref: str) -> Any:
-    """The layout of ``spec`` as a gdstk Library (module doc).
+def _draw_slider(
+    spec: DeviceSpec, Ls: _Layers, lib: Any, top: Any, labels: list, gdstk: Any
+) -> tuple[float, float]:
+    """Draw the slider (its beams and end pieces, released) and its travel stops.
 
-    The layout of ``spec`` as a gdstk Library (module doc); ``process_ref`` is what the
-    ``process = …`` label says (a shipped name, or a path relative to the GDS file).
+    Parameters
+    ----------
+    spec : DeviceSpec
+        The device.
+    Ls : _Layers
+        Its process's layers.
+    lib, top : gdstk.Library, gdstk.Cell
+        The library the slider's cell is added to, and the top cell it is placed in.
+    labels : list of (str, (float, float))
+        Element labels and their positions [µm] (appended to).
+    gdstk : module
+        The gdstk module.
+
+    Returns
+    -------
+    tuple of float
+        The beams' length L and the slider's height H [µm].
     """
-    gdstk = gdstk_module()
-    _refuse(spec)
-    p = spec.process
-    assert p is not None
-    ann = p.layers[p.annotation].gds.pair
-    Ls = _Layers(p, p.structural_name(spec.slider.layer), ann)
-    lib = gdstk.Library("BETVDESIGN", unit=1e-6, precision=1e-9)
-    top_name = "BETV_" + "".join(ch if ch.isalnum() or ch in "_-" else "_" for ch in spec.name)
-    top = gdstk.Cell(top_name[:120])
-    labels: list[tuple[str, tuple[float, float]]] = []
-
-    # --- slider ---------------------------------------------------------------------------
     sl = spec.slider
     lay_s = Ls.structural(Ls.slider)
     L, w, n = _um(sl.beam_length), _um(sl.beam_width), sl.beam_count
@@ -433,7 +438,34 @@ def build_library(spec: DeviceSpec, process_ref: str) -> Any:
         scell.add(gdstk.Polygon(hole, layer=hl[0], datatype=hl[1]))
     lib.add(scell)
     top.add(gdstk.Reference(scell))
-    tr = _um(sl.travel_range)
+    _draw_stops(spec, Ls, top, labels, (xl, L), gdstk)
+    return L, H
+
+
+def _draw_stops(
+    spec: DeviceSpec, Ls: _Layers, top: Any, labels: list, beams: tuple[float, float], gdstk: Any
+) -> None:
+    """Draw the slider's two travel stops, anchored, half the travel range beyond its ends.
+
+    Parameters
+    ----------
+    spec : DeviceSpec
+        The device.
+    Ls : _Layers
+        Its process's layers.
+    top : gdstk.Cell
+        The top cell.
+    labels : list of (str, (float, float))
+        Element labels and their positions [µm] (appended to).
+    beams : tuple of float
+        The beams' left end xl and length L [µm].
+    gdstk : module
+        The gdstk module.
+    """
+    xl, L = beams
+    lay_s = Ls.structural(Ls.slider)
+    sg = Ls.gds(Ls.slider)
+    tr = _um(spec.slider.travel_range)
     anchor = Ls.anchor(Ls.slider)
     enc = ANCHOR_ENCLOSURE_FACTOR * _um(lay_s.min_width)
     for x0, x1 in (
@@ -449,7 +481,30 @@ def build_library(spec: DeviceSpec, process_ref: str) -> Any:
                                   datatype=anchor[1]))  # fmt: skip
         labels.append(("slider.stop", (_g((x0 + x1) / 2), 0.0)))
 
-    # --- actuators ------------------------------------------------------------------------
+
+def _draw_actuators(
+    spec: DeviceSpec, Ls: _Layers, lib: Any, top: Any, labels: list, slider: tuple, gdstk: Any
+) -> None:
+    """Draw each actuator set's cell once and place it on both sides of the slider.
+
+    Parameters
+    ----------
+    spec : DeviceSpec
+        The device.
+    Ls : _Layers
+        Its process's layers.
+    lib, top : gdstk.Library, gdstk.Cell
+        The library the cells are added to, and the top cell they are placed in.
+    labels : list of (str, (float, float))
+        Element labels and their positions [µm] (appended to).
+    slider : tuple of float
+        The beams' length L and the slider's height H [µm].
+    gdstk : module
+        The gdstk module.
+    """
+    p = Ls.process
+    L, H = slider
+    lay_s = Ls.structural(Ls.slider)
     cells: dict[tuple[str, str], Any] = {}
     placed: dict[int, int] = {1: 0, -1: 0}
     clearance = _um(lay_s.min_spacing) + 0.002  # two grid steps: rounding never eats the gap
@@ -478,9 +533,41 @@ def build_library(spec: DeviceSpec, process_ref: str) -> Any:
             for part, (x, y) in local.items():
                 gx, gy = pl.apply(x, y)
                 labels.append((ElementLabel(s.name, side, part).text, (_g(gx), _g(gy))))
+
+
+def build_library(spec: DeviceSpec, process_ref: str) -> Any:
+    """The layout of ``spec`` as a gdstk Library (module doc).
+
+    Parameters
+    ----------
+    spec : DeviceSpec
+        The device, with its process.
+    process_ref : str
+        What the ``process = …`` label says (a shipped name, or a path relative to the
+        GDS file).
+
+    Returns
+    -------
+    gdstk.Library
+        The slider's and the actuators' cells and the top cell, with the element and
+        data labels.
+    """
+    gdstk = gdstk_module()
+    _refuse(spec)
+    p = spec.process
+    assert p is not None
+    ann = p.layers[p.annotation].gds.pair
+    Ls = _Layers(p, p.structural_name(spec.slider.layer), ann)
+    lib = gdstk.Library("BETVDESIGN", unit=1e-6, precision=1e-9)
+    top_name = "BETV_" + "".join(ch if ch.isalnum() or ch in "_-" else "_" for ch in spec.name)
+    top = gdstk.Cell(top_name[:120])
+    labels: list[tuple[str, tuple[float, float]]] = []
+
+    L, H = _draw_slider(spec, Ls, lib, top, labels, gdstk)
+    _draw_actuators(spec, Ls, lib, top, labels, (L, H), gdstk)
     for text, xy in labels:
         top.add(gdstk.Label(text, xy, layer=ann[0], texttype=ann[1]))
-    (x0, y0), (x1, y1) = top.bounding_box()
+    _, (x1, y1) = top.bounding_box()
     dump = spec.model_dump(mode="json", exclude_unset=True)
     for i, lab in enumerate(data_labels(dump, process_ref)):
         top.add(gdstk.Label(lab.text, (_g(x1 + 20), _g(y1 - 8 * i)), layer=ann[0],
