@@ -544,6 +544,112 @@ def _accept(
     return r_final, mu, a, s
 
 
+def _orbit(
+    p: ModelParams,
+    vs: VerticalSchedule,
+    phi: _Map,
+    t0: float,
+    found: tuple[np.ndarray, int, float],
+    accepted: tuple[float, np.ndarray, list[float], float],
+    counts: tuple[int, int, float],
+) -> PeriodicResult:
+    """The answer for an accepted periodic orbit.
+
+    Parameters
+    ----------
+    p : ModelParams
+        The model.
+    vs : VerticalSchedule
+        The vertical motion.
+    phi : _Map
+        The section map.
+    t0 : float
+        :func:`time.perf_counter` at the start [s].
+    found : tuple
+        The fixed point (ζ, ζ', s') [-], its period [cycles] and the residual asked [-].
+    accepted : tuple
+        :func:`_accept`'s answer.
+    counts : tuple
+        Newton iterations, transient cycles and the travel s [-] over them.
+
+    Returns
+    -------
+    PeriodicResult
+        Status "success".
+    """
+    xs, n, tol = found
+    n_newton, brute, s_total = counts
+    r_final, mu, a, s = accepted
+    ds = s / n
+    return PeriodicResult(
+        params=p,
+        status="success",
+        message=f"periodic orbit of {n} cycle(s), residual {r_final:.2e} ≤ {tol:.0e}, "
+        f"|μ|max = {abs(mu[0]):.6f}",
+        delta_s=ds,
+        mode=mode_of(ds),
+        period_cycles=n,
+        residual=r_final,
+        floquet=mu,
+        stable=True,
+        state=np.array([a[0], a[1], xs[0], xs[1], 0.0, xs[2]]),
+        n_newton=n_newton,
+        transient_cycles=brute,
+        transient_s=s_total,
+        **_spent(vs, phi, t0),
+    )
+
+
+def _not_converged(
+    p: ModelParams,
+    vs: VerticalSchedule,
+    phi: _Map,
+    t0: float,
+    best: tuple[float, int],
+    max_period: int,
+    counts: tuple[int, int, float],
+) -> PeriodicResult:
+    """The answer when the cycle budget is spent with no stable orbit accepted.
+
+    Parameters
+    ----------
+    p : ModelParams
+        The model.
+    vs : VerticalSchedule
+        The vertical motion.
+    phi : _Map
+        The section map.
+    t0 : float
+        :func:`time.perf_counter` at the start [s].
+    best : tuple of (float, int)
+        The smallest residual found [-] and its period [cycles].
+    max_period : int
+        The longest period tried, in vertical periods.
+    counts : tuple
+        Newton iterations, transient cycles and the travel s [-] over them.
+
+    Returns
+    -------
+    PeriodicResult
+        Status "not_converged".
+    """
+    kv = vs.period
+    n_newton, brute, s_total = counts
+    return PeriodicResult.failure(
+        p,
+        "not_converged",
+        f"no stable periodic orbit of period ≤ {max_period * kv} cycles found within "
+        f"{brute} cycles (best residual {best[0]:.2e} for period {best[1]}); the "
+        "motion may be quasi-periodic or growing (near a·ϖ² = 1); try a larger "
+        "max_cycles or max_period",
+        n_newton=n_newton,
+        transient_cycles=brute,
+        transient_s=s_total,
+        residual=best[0],
+        **_spent(vs, phi, t0),
+    )
+
+
 def _periodic_orbit(
     p: ModelParams, tol: float, max_cycles: int, max_period: int, transient: int
 ) -> PeriodicResult:
@@ -608,39 +714,11 @@ def _periodic_orbit(
             accepted = _accept(phi, vs, xs, n, tol)
             if accepted is None:
                 continue
-            r_final, mu, a, s = accepted
-            ds = s / n
-            return PeriodicResult(
-                params=p,
-                status="success",
-                message=f"periodic orbit of {n} cycle(s), residual {r_final:.2e} ≤ {tol:.0e}, "
-                f"|μ|max = {abs(mu[0]):.6f}",
-                delta_s=ds,
-                mode=mode_of(ds),
-                period_cycles=n,
-                residual=r_final,
-                floquet=mu,
-                stable=True,
-                state=np.array([a[0], a[1], xs[0], xs[1], 0.0, xs[2]]),
-                n_newton=n_newton,
-                transient_cycles=brute,
-                transient_s=s_total,
-                **_spent(vs, phi, t0),
-            )
+            found = (xs, n, tol)
+            return _orbit(p, vs, phi, t0, found, accepted, (n_newton, brute, s_total))
         if brute >= max_cycles:
-            return PeriodicResult.failure(
-                p,
-                "not_converged",
-                f"no stable periodic orbit of period ≤ {max_period * kv} cycles found within "
-                f"{brute} cycles (best residual {best[0]:.2e} for period {best[1]}); the "
-                "motion may be quasi-periodic or growing (near a·ϖ² = 1); try a larger "
-                "max_cycles or max_period",
-                n_newton=n_newton,
-                transient_cycles=brute,
-                transient_s=s_total,
-                residual=best[0],
-                **_spent(vs, phi, t0),
-            )
+            counts = (n_newton, brute, s_total)
+            return _not_converged(p, vs, phi, t0, best, max_period, counts)
         chunk = min(2 * chunk, max(kv, ((max_cycles - brute) // kv) * kv))
 
 

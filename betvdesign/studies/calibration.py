@@ -238,10 +238,13 @@ def _set_up(
     return model, aset, data, direction, set_name
 
 
-def _least_squares(
-    model: _Model, data: Measurements, x0: np.ndarray
-) -> tuple[Any, np.ndarray, list[float] | None]:
+def _fit(
+    model: _Model, data: Measurements, x0: np.ndarray, sign: tuple[Any, str, bool], fit_alpha: bool
+) -> tuple[Any, np.ndarray, list[float] | None, float | None]:
     """Fit the model to the data, weighted by their σ (or their scale).
+
+    The direction of motion is checked against the data's before the fit (without α,
+    the amplitude cannot change it) or at the optimum (α can flip the mode).
 
     Parameters
     ----------
@@ -251,6 +254,11 @@ def _least_squares(
         The data.
     x0 : numpy.ndarray
         The start [the fitted values' units]; the fit runs on values scaled by it.
+    sign : tuple
+        The set, the observed direction and whether the data are signed
+        (:func:`_check_sign`).
+    fit_alpha : bool
+        Whether α is fitted (the last value).
 
     Returns
     -------
@@ -260,10 +268,24 @@ def _least_squares(
         The fitted values [their units].
     stderr : list of float or None
         Their 1σ, None where the fit's Jacobian cannot tell them apart.
+    alpha : float or None
+        The fitted α [-] (None when not fitted).
+
+    Raises
+    ------
+    UsageError
+        For fewer data points than values.
+    CalibrationMismatch
+        When the model moves the slider the other way than the data.
     """
     from scipy.optimize import least_squares
 
     n, p = len(data.y), len(x0)
+    aset, direction, signed = sign
+    if n < p:
+        raise UsageError(f"{data.source}: {n} data points cannot determine {p} parameters")
+    if not fit_alpha:  # the sign of the motion does not depend on u: check before fitting
+        _check_sign(model, data, None, aset, direction, signed)
     w = 1.0 / data.sigma if data.sigma is not None else np.full(n, 1.0 / _yscale(data))
     scale = np.abs(x0)
 
@@ -284,7 +306,44 @@ def _least_squares(
             stderr = [float(x) for x in np.sqrt(var)] if identifiable else None
         except np.linalg.LinAlgError:
             stderr = None
-    return res, theta, stderr
+    alpha = float(theta[-1]) if fit_alpha else None
+    if fit_alpha:  # α can flip the mode: check the optimum
+        _check_sign(model, data, alpha, aset, direction, signed)
+    return res, theta, stderr, alpha
+
+
+def _goodness(
+    model: _Model, data: Measurements, res: Any, theta: np.ndarray
+) -> tuple[float, float | None, float | None]:
+    """How well the fitted model explains the data.
+
+    Parameters
+    ----------
+    model : _Model
+        The prediction.
+    data : Measurements
+        The data.
+    res : OptimizeResult
+        scipy's result.
+    theta : numpy.ndarray
+        The fitted values.
+
+    Returns
+    -------
+    rms : float
+        Residual rms [m/s or m].
+    r_squared : float or None
+        R² [-] (None for data without spread).
+    chi2_reduced : float or None
+        χ²/dof [-] (None without σ or degrees of freedom).
+    """
+    n, p = len(data.y), len(theta)
+    resid = model.predict(theta) - data.y
+    rms = float(np.sqrt(np.mean(resid**2)))
+    sst = float(np.sum((data.y - data.y.mean()) ** 2))
+    r2 = 1.0 - float(np.sum(resid**2)) / sst if sst > 0 else None
+    chi2 = float(2.0 * res.cost / (n - p)) if data.sigma is not None and n > p else None
+    return rms, r2, chi2
 
 
 def _fit_warnings(
@@ -405,20 +464,8 @@ def calibrate(
         device, data, law, fit_alpha, set_name, signed, direction
     )
     x0, labels, units = _start(model, law, fit_alpha)
-    n, p = len(data.y), len(x0)
-    if n < p:
-        raise UsageError(f"{data.source}: {n} data points cannot determine {p} parameters")
-    if not fit_alpha:  # the sign of the motion does not depend on u: check before fitting
-        _check_sign(model, data, None, aset, direction, signed)
-    res, theta, stderr = _least_squares(model, data, x0)
-    alpha = float(theta[-1]) if fit_alpha else None
-    if fit_alpha:  # α can flip the mode: check the optimum
-        _check_sign(model, data, alpha, aset, direction, signed)
-    resid = model.predict(theta) - data.y
-    rms = float(np.sqrt(np.mean(resid**2)))
-    sst = float(np.sum((data.y - data.y.mean()) ** 2))
-    r2 = 1.0 - float(np.sum(resid**2)) / sst if sst > 0 else None
-    chi2 = float(2.0 * res.cost / (n - p)) if data.sigma is not None and n > p else None
+    res, theta, stderr, alpha = _fit(model, data, x0, (aset, direction, signed), fit_alpha)
+    rms, r2, chi2 = _goodness(model, data, res, theta)
     status, warns = _fit_warnings(res, theta, x0, labels, (r2, chi2, stderr), data, fit_alpha)
     out = CalibrationResult(
         set_name=set_name,
@@ -429,7 +476,7 @@ def calibrate(
         stderr=stderr,
         units=units,
         residual_rms=rms,
-        n_data=n,
+        n_data=len(data.y),
         delta_s=model.delta_s(alpha) if data.kind == "speed" else None,
         status=status,
         message=str(res.message),
