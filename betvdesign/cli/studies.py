@@ -4,7 +4,7 @@
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Annotated
+from typing import Annotated, Any
 
 import typer
 
@@ -34,6 +34,40 @@ from betvdesign.cli.sweep import (
 )
 from betvdesign.errors import UsageError
 from betvdesign.spec import limits
+
+
+def _print_tolerance(
+    device: Path, samples: int, seed: int, fidelity: str, tols: list, summary: dict[str, Any]
+) -> None:
+    """The human listing of ``betv tolerance``: per set its probabilities, speeds, ranks."""
+    typer.echo(f"{device}: {samples} samples, seed {seed}, mode from {fidelity}")
+    for t in tols:
+        typer.echo(f"  spread {t.describe()}")
+    for name, s in summary["sets"].items():
+        typer.echo(
+            f"  set {name} (intended {s['intended_mode']}): "
+            f"P(push) {s['p_push']:.3f}  P(pull) {s['p_pull']:.3f}  "
+            f"P(outside window) {s['p_outside_window']:.3f}  "
+            f"P(wrong mode) {s['p_wrong_mode']:.3f}"
+        )
+        if s["p_not_converged"]:
+            typer.echo(f"    P(not converged) {s['p_not_converged']:.3f}")
+        if s.get("p_not_driven"):
+            typer.echo(f"    P(not driven: no contact recurs) {s['p_not_driven']:.3f}")
+        if s["invalid_samples"]:
+            typer.echo(f"    invalid samples: {s['invalid_samples']}")
+        pct = s["intended_speed_um_s_percentiles"]
+        if pct:
+            typer.echo(
+                f"    speed in the intended {s['intended_mode']} direction [µm/s] "
+                "(− the wrong way; p5 slowest) " + "  ".join(f"{k} {v:.4g}" for k, v in pct.items())
+            )
+        ranked = ", ".join(
+            f"{e['field']} ({e[s['ranked_by']]:+.2f})"
+            for e in s["sensitivities"]
+            if e[s["ranked_by"]] is not None
+        )
+        typer.echo(f"    most sensitive ({s['ranked_by']}): {ranked}")
 
 
 @app.command("tolerance")
@@ -108,38 +142,11 @@ def tolerance_cmd(
         data = {"study": "tolerance", "device": str(device), "seed": seed, **run_block(run)}
         data |= summary
 
-        def human() -> None:
-            typer.echo(f"{device}: {samples} samples, seed {seed}, mode from {fidelity}")
-            for t in tols:
-                typer.echo(f"  spread {t.describe()}")
-            for name, s in summary["sets"].items():
-                typer.echo(
-                    f"  set {name} (intended {s['intended_mode']}): "
-                    f"P(push) {s['p_push']:.3f}  P(pull) {s['p_pull']:.3f}  "
-                    f"P(outside window) {s['p_outside_window']:.3f}  "
-                    f"P(wrong mode) {s['p_wrong_mode']:.3f}"
-                )
-                if s["p_not_converged"]:
-                    typer.echo(f"    P(not converged) {s['p_not_converged']:.3f}")
-                if s.get("p_not_driven"):
-                    typer.echo(f"    P(not driven: no contact recurs) {s['p_not_driven']:.3f}")
-                if s["invalid_samples"]:
-                    typer.echo(f"    invalid samples: {s['invalid_samples']}")
-                pct = s["intended_speed_um_s_percentiles"]
-                if pct:
-                    typer.echo(
-                        f"    speed in the intended {s['intended_mode']} direction [µm/s] "
-                        "(− the wrong way; p5 slowest) "
-                        + "  ".join(f"{k} {v:.4g}" for k, v in pct.items())
-                    )
-                ranked = ", ".join(
-                    f"{e['field']} ({e[s['ranked_by']]:+.2f})"
-                    for e in s["sensitivities"]
-                    if e[s["ranked_by"]] is not None
-                )
-                typer.echo(f"    most sensitive ({s['ranked_by']}): {ranked}")
-
-        emit(data, as_json, human)
+        emit(
+            data,
+            as_json,
+            lambda: _print_tolerance(device, samples, seed, fidelity, tols, summary),
+        )
 
 
 @app.command("calibrate")
