@@ -325,6 +325,12 @@ def run_cycles(table, tab, idx, imp, m0, z, zd, s, sd, rows, check_finite, log, 
         BUFFER_FULL (go on from cycle m0 + j with the state returned, the one at its
         start); the counters and the state reached.
 
+    Notes
+    -----
+    Over 80 lines on purpose: the compiled cycle loop of the exact solver, carrying the
+    state, counters and log rows from cycle to cycle; its numbers are pinned bit for bit
+    by ``benchmarks/snapshot.py``.
+
     References
     ----------
     Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773.

@@ -324,6 +324,13 @@ def vertical_run(wf, zv, A, e, xi, xid, horizon, cyc, imp, pieces):
         gap search did not terminate) or CHATTERED (a sequence did not accumulate); rows
         used, the first contact end, the period and the root evaluations.
 
+    Notes
+    -----
+    Over 80 lines on purpose: a compiled kernel whose loop carries about a dozen scalars
+    (time, state, table rows, counters) from one event to the next; split into
+    functions it would pass and return them all at every event, and its numbers are
+    pinned bit for bit by ``benchmarks/snapshot.py``.
+
     References
     ----------
     Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773 (vertical motion).

@@ -144,6 +144,12 @@ def first_root(e, H: float, ws: Workspace) -> tuple[int, float, int, int]:
         (code, h [-], index of the function, evaluations): code NO_ROOT, ROOT at (h,
         index) or SEARCH_FAILED (no termination within MAX_STEPS steps).
 
+    Notes
+    -----
+    Over 80 lines on purpose: the compiled inner loop of every event search (bracket,
+    certify, refine) with its state in registers; its numbers are pinned bit for bit by
+    ``benchmarks/snapshot.py``.
+
     References
     ----------
     Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773 (the event functions).
