@@ -126,11 +126,30 @@ def edge_violations(
 ) -> list[Violation]:  # fmt: skip
     """Edge pairs of the union of ``polys`` closer than ``d`` [µm].
 
-    Edge pairs of the union of ``polys`` closer than ``d`` [µm] across material
-    (``kind`` "width") or across space ("space"): each edge lies on the other's material
-    (or empty) side, they meet at less than :data:`IGNORE_ANGLE_DEG`, and their Euclidean
-    distance is below d (KLayout's width/space check with its Euclidean metric). ``edges``:
-    the union's boundary if already computed (:func:`_edges`).
+    Across material (``kind`` "width") or across space ("space"): each edge lies on the
+    other's material (or empty) side, they meet at less than :data:`IGNORE_ANGLE_DEG`,
+    and their Euclidean distance is below d (KLayout's width/space check with its
+    Euclidean metric).
+
+    Parameters
+    ----------
+    gdstk : module
+        The gdstk module.
+    polys : list
+        The layer's polygons.
+    d : float
+        The distance checked [µm].
+    kind : {"width", "space"}
+        Across material or across space.
+    layer, gds : str
+        The layer's name and GDS pair, for the findings.
+    edges : numpy.ndarray, optional
+        The union's boundary if already computed (:func:`_edges`).
+
+    Returns
+    -------
+    list of Violation
+        One per region of close edges.
     """
     e = _edges(gdstk, polys) if edges is None else edges
     n = len(e)
@@ -198,11 +217,23 @@ def _clusters(boxes: list[tuple], layer: str, gds: str) -> list[Violation]:
 def weld(gdstk: Any, polys: list) -> list:
     """Insert into each polygon the vertices of others lying on its edges.
 
-    The polygons with every vertex of another that lies on one of their edges (to
-    1e-6 µm) inserted there: shapes that abut in a rotated cell, flattened in floating
-    point, then share their boundary vertex for vertex and merge without the sub-grid
-    slivers rounding would leave (a designer's edit in KLayout breaks the shared vertices
+    Every vertex of another polygon that lies on one of a polygon's edges (to 1e-6 µm)
+    is inserted there: shapes that abut in a rotated cell, flattened in floating point,
+    then share their boundary vertex for vertex and merge without the sub-grid slivers
+    rounding would leave (a designer's edit in KLayout breaks the shared vertices
     ``betv layout`` draws).
+
+    Parameters
+    ----------
+    gdstk : module
+        The gdstk module.
+    polys : list
+        The polygons.
+
+    Returns
+    -------
+    list
+        The polygons with the shared vertices inserted.
     """
     if len(polys) < 2:
         return list(polys)
@@ -238,7 +269,24 @@ def weld(gdstk: Any, polys: list) -> list:
 def width_violations(
     gdstk: Any, polys: list, holes: list, w_min: float, layer: str = "", gds: str = ""
 ) -> list[Violation]:
-    """Material narrower than ``w_min`` [µm]: :func:`edge_violations` across material."""
+    """Material narrower than ``w_min`` [µm]: :func:`edge_violations` across material.
+
+    Parameters
+    ----------
+    gdstk : module
+        The gdstk module.
+    polys, holes : list
+        The layer's polygons and its release holes.
+    w_min : float
+        The minimum width [µm].
+    layer, gds : str
+        The layer's name and GDS pair, for the findings.
+
+    Returns
+    -------
+    list of Violation
+        The narrow regions.
+    """
     body = _not(gdstk, weld(gdstk, polys), holes)
     return edge_violations(gdstk, body, w_min, "width", layer, gds)
 
@@ -248,8 +296,24 @@ def space_violations(
 ) -> list[Violation]:
     """Gaps narrower than ``s_min`` [µm].
 
-    Gaps (between polygons, or notches of one, or holes) narrower than ``s_min`` [µm]:
-    :func:`edge_violations` across space.
+    Gaps between polygons, notches of one, or holes: :func:`edge_violations` across
+    space.
+
+    Parameters
+    ----------
+    gdstk : module
+        The gdstk module.
+    polys, holes : list
+        The layer's polygons and its release holes.
+    s_min : float
+        The minimum spacing [µm].
+    layer, gds : str
+        The layer's name and GDS pair, for the findings.
+
+    Returns
+    -------
+    list of Violation
+        The narrow gaps.
     """
     body = _not(gdstk, weld(gdstk, polys), holes)
     return edge_violations(gdstk, body, s_min, "space", layer, gds)
@@ -261,8 +325,24 @@ def unreleased(
 ) -> list[Violation]:  # fmt: skip
     """Released regions farther than ``w_max``/2 [µm] from every edge.
 
-    Released regions farther than ``w_max``/2 [µm] from every edge (module doc):
-    erode(B) = erode(A) − dilate(H), less what lies within w_max/2 of an anchor.
+    erode(B) = erode(A) − dilate(H), less what lies within w_max/2 of an anchor (module
+    doc).
+
+    Parameters
+    ----------
+    gdstk : module
+        The gdstk module.
+    polys, holes, anchors : list
+        The layer's polygons, its release holes and the anchors.
+    w_max : float
+        The widest feature the etch releases [µm].
+    layer, gds : str
+        The layer's name and GDS pair, for the findings.
+
+    Returns
+    -------
+    list of Violation
+        The regions the etch does not release.
     """
     r = w_max / 2 - _GRID
     core = _not(gdstk, _off(gdstk, polys, -r, "round"), _off(gdstk, holes, r, "round"))
@@ -283,8 +363,19 @@ class LayerFindings:
 def findings(gdstk: Any, process: Process, by_layer: dict[tuple[int, int], list]) -> LayerFindings:
     """Width, spacing and release findings of every structural layer.
 
-    Width, spacing and release findings of every structural layer of ``process`` in
-    ``by_layer`` (gdstk polygons by (layer, datatype), flattened).
+    Parameters
+    ----------
+    gdstk : module
+        The gdstk module.
+    process : Process
+        The process (its structural layers and their rules).
+    by_layer : dict
+        gdstk polygons by (layer, datatype), flattened.
+
+    Returns
+    -------
+    LayerFindings
+        The findings by rule.
     """
     width, space, release = [], [], []
     for name, lay in process.layers.items():
@@ -314,8 +405,22 @@ def _listing(vs: list[Violation], limit: int = 6) -> str:
 def layout_rules(spec: DeviceSpec, f: LayerFindings, cell: str) -> list[RuleResult]:
     """The device's process rules measured on the drawn polygons of ``cell``.
 
-    The device's process rules with width, spacing and release measured on the drawn
-    polygons of ``cell`` instead of the device file's fields.
+    Width, spacing and release are measured on the drawing instead of taken from the
+    device file's fields.
+
+    Parameters
+    ----------
+    spec : DeviceSpec
+        The device extracted from the layout.
+    f : LayerFindings
+        The drawn polygons' findings (:func:`findings`).
+    cell : str
+        The top cell's name, for the messages.
+
+    Returns
+    -------
+    list of RuleResult
+        The process rules.
     """
     assert spec.process is not None
     p = spec.process

@@ -63,7 +63,13 @@ _TOL = 2.5e-3  # µm: lengths that must agree, agree to a few grid steps
 
 
 def max_gds_bytes() -> int:
-    """The GDS size limit [bytes] (``BETV_MAX_GDS_BYTES`` overrides it)."""
+    """The GDS size limit [bytes] (``BETV_MAX_GDS_BYTES`` overrides it).
+
+    Returns
+    -------
+    int
+        The limit [bytes].
+    """
     raw = os.environ.get(GDS_BYTES_ENV)
     try:
         return int(raw) if raw else MAX_GDS_BYTES
@@ -462,8 +468,23 @@ def _set_path(data: dict, path: str, value: Any) -> None:
 def extract(path: str | os.PathLike[str], *, process: str | None = None) -> Extracted:
     """Read a GDS layout into a device (module doc).
 
-    Read a GDS layout into a device (module doc). Raises :class:`SpecError` naming the
-    file, cell, layer and label of every problem.
+    Parameters
+    ----------
+    path : path
+        The GDS file.
+    process : str, optional
+        A process (shipped name or file) instead of the one the layout's label names.
+
+    Returns
+    -------
+    Extracted
+        The device, the notes on what was read but is not in the model, and the
+        layout's process rules.
+
+    Raises
+    ------
+    SpecError
+        Naming the file, cell, layer and label of every problem.
     """
     gdstk = gdstk_module()
     path = Path(path)
@@ -631,8 +652,24 @@ def derive_gds(
 ) -> tuple[DeviceDerivation, Extracted]:
     """Extract a layout and derive it.
 
-    Extract a layout and derive it (as :func:`betvdesign.nondim.device.derive_file` does
-    a device file): every problem is a :class:`SpecError` naming the layout.
+    As :func:`betvdesign.nondim.device.derive_file` does a device file.
+
+    Parameters
+    ----------
+    path : path
+        The GDS file.
+    process : str, optional
+        A process instead of the one the layout names.
+
+    Returns
+    -------
+    tuple of (DeviceDerivation, Extracted)
+        The derivation and what the layout says.
+
+    Raises
+    ------
+    SpecError
+        For every problem, naming the layout.
     """
     ex = extract(path, process=process)
     try:

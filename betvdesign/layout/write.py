@@ -67,7 +67,18 @@ _UM = 1e6
 
 
 def gdstk_module():
-    """gdstk, or a clear error naming the extra to install."""
+    """The gdstk module, or a clear error naming the extra to install.
+
+    Returns
+    -------
+    module
+        gdstk.
+
+    Raises
+    ------
+    BetvError
+        When gdstk is not installed.
+    """
     try:
         import gdstk
     except ImportError:
@@ -590,9 +601,26 @@ def write_layout(
 ) -> Path:  # fmt: skip
     """Write the layout of ``spec`` to ``path`` (GDSII) and an SVG preview.
 
-    Write the layout of ``spec`` to ``path`` (GDSII, whole or not at all) and, if asked,
-    an SVG preview. ``process_ref``: the ``process = …`` label (the shipped process's name
-    by default). Raises :class:`BetvError` when the device cannot be drawn.
+    Parameters
+    ----------
+    spec : DeviceSpec
+        The device, with its process.
+    path : path
+        The GDS file, written whole or not at all.
+    process_ref : str, optional
+        What the ``process = …`` label says (the shipped process's name by default).
+    svg : path, optional
+        An SVG preview to write as well.
+
+    Returns
+    -------
+    Path
+        ``path``.
+
+    Raises
+    ------
+    BetvError
+        When the device cannot be drawn.
     """
     p = spec.process
     if process_ref is None:
