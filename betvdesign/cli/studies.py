@@ -149,6 +149,22 @@ def tolerance_cmd(
         )
 
 
+def _emit_calibration(
+    device: Path, data: Path, out: Path | None, result: Any, as_json: bool
+) -> None:
+    """Print a calibration (its snippet, or JSON) and its warnings; exit 1 unless converged."""
+    payload = {"study": "calibration", "device": str(device), "data": str(data)}
+    payload |= result.as_dict()
+    payload["out"] = str(out) if out else None
+    emit(payload, as_json, lambda: typer.echo(result.snippet, nl=False))
+    for w in result.warnings:
+        typer.echo(f"warning: {w}", err=True)
+    if result.status == "failed":
+        typer.echo(f"error: fit did not converge: {result.message}", err=True)
+    if result.status != "converged":
+        raise typer.Exit(EXIT_RULE_FAILED)
+
+
 @app.command("calibrate")
 def calibrate_cmd(
     device: Annotated[Path, typer.Argument(help="Device YAML file.")],
@@ -226,13 +242,4 @@ def calibrate_cmd(
         )
         if out is not None:
             write_atomic(out, result.snippet)
-        payload = {"study": "calibration", "device": str(device), "data": str(data)}
-        payload |= result.as_dict()
-        payload["out"] = str(out) if out else None
-        emit(payload, as_json, lambda: typer.echo(result.snippet, nl=False))
-        for w in result.warnings:
-            typer.echo(f"warning: {w}", err=True)
-        if result.status == "failed":
-            typer.echo(f"error: fit did not converge: {result.message}", err=True)
-        if result.status != "converged":
-            raise typer.Exit(EXIT_RULE_FAILED)
+        _emit_calibration(device, data, out, result, as_json)

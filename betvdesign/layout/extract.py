@@ -465,6 +465,70 @@ def _set_path(data: dict, path: str, value: Any) -> None:
     node[last] = value
 
 
+def _actuator_sets(
+    elements: list[_Element], sl: dict, grid: float, probs: _Problems, notes: list[str]
+) -> dict[str, _Actuator]:
+    """Group the labelled actuator parts into sets, each measured on its first side.
+
+    The two sides of a set must agree (the model's sets are symmetric).
+
+    Parameters
+    ----------
+    elements : list of _Element
+        The labelled elements of the layout.
+    sl : dict
+        The slider, measured (:func:`_slider`).
+    grid : float
+        The process's grid [µm].
+    probs : _Problems
+        The problems found (added to; raised when no actuator is labelled).
+    notes : list of str
+        Notes on what was read but is not in the model (added to).
+
+    Returns
+    -------
+    dict of str to _Actuator
+        The actuator of each set, by name.
+    """
+    groups: dict[str, dict[str, dict[str, _Element]]] = defaultdict(lambda: defaultdict(dict))
+    for e in elements:
+        lab = e.label
+        if lab.set_name is None:
+            continue
+        groups[lab.set_name][lab.side][lab.part] = e
+    if not groups:
+        probs.add("actuator_sets", "no actuator labels ('SET.lower.hot_arm', …): label each "
+                  f"actuator's parts {', '.join(ACTUATOR_PARTS)}")  # fmt: skip
+        probs.raise_if_any()
+    acts: dict[str, _Actuator] = {}
+    for name, sides in groups.items():
+        got = {side: _actuator(name, side, parts, sl, grid, probs) for side, parts in sides.items()}
+        got = {k: v for k, v in got.items() if v is not None}
+        if not got:
+            continue
+        first_side, first = next(iter(got.items()))
+        for side, other in got.items():
+            diff = [k for k in first.geometry if first.geometry[k] != other.geometry.get(k)]
+            if first.head != other.head:
+                diff.append("head")
+            if abs(first.theta_deg - other.theta_deg) > 1e-6 or first.direction != other.direction:
+                diff.append("impact angle or direction")
+            if diff:
+                probs.add(
+                    f"actuator_sets.{name}",
+                    f"set {name}: the {first_side} and {side} actuators differ "
+                    f"({', '.join(diff)}); the model's sets are symmetric",
+                )
+        if first.head_offset > 10 * grid:
+            notes.append(
+                f"set {name}: the head's centre lies {first.head_offset:.3g} µm from where betv "
+                "draws it (half the tip inside it, at the tip's mid-height); the springs use "
+                "betv's position"
+            )
+        acts[name] = first
+    return acts
+
+
 def extract(path: str | os.PathLike[str], *, process: str | None = None) -> Extracted:
     """Read a GDS layout into a device (module doc).
 
@@ -504,42 +568,7 @@ def extract(path: str | os.PathLike[str], *, process: str | None = None) -> Extr
         )
     slider_els = [e for e in elements if e.label.set_name is None]
     sl = _slider(slider_els, grid, probs)
-    groups: dict[str, dict[str, dict[str, _Element]]] = defaultdict(lambda: defaultdict(dict))
-    for e in elements:
-        lab = e.label
-        if lab.set_name is None:
-            continue
-        groups[lab.set_name][lab.side][lab.part] = e
-    if not groups:
-        probs.add("actuator_sets", "no actuator labels ('SET.lower.hot_arm', …): label each "
-                  f"actuator's parts {', '.join(ACTUATOR_PARTS)}")  # fmt: skip
-        probs.raise_if_any()
-    acts: dict[str, _Actuator] = {}
-    for name, sides in groups.items():
-        got = {side: _actuator(name, side, parts, sl, grid, probs) for side, parts in sides.items()}
-        got = {k: v for k, v in got.items() if v is not None}
-        if not got:
-            continue
-        first_side, first = next(iter(got.items()))
-        for side, other in got.items():
-            diff = [k for k in first.geometry if first.geometry[k] != other.geometry.get(k)]
-            if first.head != other.head:
-                diff.append("head")
-            if abs(first.theta_deg - other.theta_deg) > 1e-6 or first.direction != other.direction:
-                diff.append("impact angle or direction")
-            if diff:
-                probs.add(
-                    f"actuator_sets.{name}",
-                    f"set {name}: the {first_side} and {side} actuators differ "
-                    f"({', '.join(diff)}); the model's sets are symmetric",
-                )
-        if first.head_offset > 10 * grid:
-            notes.append(
-                f"set {name}: the head's centre lies {first.head_offset:.3g} µm from where betv "
-                "draws it (half the tip inside it, at the tip's mid-height); the springs use "
-                "betv's position"
-            )
-        acts[name] = first
+    acts = _actuator_sets(elements, sl, grid, probs, notes)
     probs.raise_if_any()
     doc, where = _document(data, sl, acts, proc, ref, path, probs)
     probs.raise_if_any()

@@ -199,7 +199,7 @@ def _set_up(
     set_name: str | None,
     signed: bool,
     direction: str | None,
-) -> tuple[_Model, Any, Measurements, str, str]:
+) -> tuple[_Model, Any, Measurements, str]:
     """Load the device and build the model the fit evaluates (arguments of :func:`calibrate`).
 
     Returns
@@ -212,8 +212,6 @@ def _set_up(
         The data signed along the set's impact direction.
     direction : str
         The observed direction of travel.
-    set_name : str
-        The set's name.
 
     Raises
     ------
@@ -235,7 +233,7 @@ def _set_up(
     aset = spec.actuator_sets[names.index(set_name)]
     data, direction = _along_impacts(data, aset, signed, direction)
     model = _Model(spec, names.index(set_name), data, law, fit_alpha)
-    return model, aset, data, direction, set_name
+    return model, aset, data, direction
 
 
 def _fit(
@@ -460,15 +458,13 @@ def calibrate(
     ----------
     .. [1] K. Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773
     """
-    model, aset, data, direction, set_name = _set_up(
-        device, data, law, fit_alpha, set_name, signed, direction
-    )
+    model, aset, data, travel = _set_up(device, data, law, fit_alpha, set_name, signed, direction)
     x0, labels, units = _start(model, law, fit_alpha)
-    res, theta, stderr, alpha = _fit(model, data, x0, (aset, direction, signed), fit_alpha)
+    res, theta, stderr, alpha = _fit(model, data, x0, (aset, travel, signed), fit_alpha)
     rms, r2, chi2 = _goodness(model, data, res, theta)
     status, warns = _fit_warnings(res, theta, x0, labels, (r2, chi2, stderr), data, fit_alpha)
     out = CalibrationResult(
-        set_name=set_name,
+        set_name=aset.name,
         kind=data.kind,
         law=law,
         names=labels,
@@ -483,7 +479,7 @@ def calibrate(
         nfev=int(res.nfev),
         r_squared=r2,
         chi2_reduced=chi2,
-        direction=direction,
+        direction=travel,
         signed=signed,
         warnings=warns,
     )
