@@ -45,7 +45,13 @@ KERNEL_MODULES = (
 
 
 def cache_dir() -> str:
-    """Per-source cache directory of the compiled kernels [path]."""
+    """Per-source cache directory of the compiled kernels [path].
+
+    Returns
+    -------
+    str
+        The directory, keyed by a hash of the solver's sources.
+    """
     h = hashlib.sha256()
     here = Path(__file__).resolve().parent
     for name in KERNEL_MODULES:
@@ -84,7 +90,13 @@ def kernel(fn: F | None = None, *, inline: bool = False):
 
 
 def jit_enabled() -> bool:
-    """True unless ``NUMBA_DISABLE_JIT`` makes the kernels run as plain Python."""
+    """True unless ``NUMBA_DISABLE_JIT`` makes the kernels run as plain Python.
+
+    Returns
+    -------
+    bool
+        Whether numba compiles the kernels.
+    """
     return not numba.config.DISABLE_JIT
 
 
@@ -108,6 +120,18 @@ def compile_note(what: str, run: Callable[[], object]) -> object:
     each entry point is watched from a thread (the note appears when compiling starts);
     later calls count compilations only when they lasted long enough to have compiled
     (counting on every call cost as much as a periodic orbit).
+
+    Parameters
+    ----------
+    what : str
+        The entry point, named in the note.
+    run : callable
+        What to run.
+
+    Returns
+    -------
+    object
+        What ``run()`` returns.
     """
     if not jit_enabled():
         return run()

@@ -80,6 +80,22 @@ def choose_phase(k: K, tau: float, z: float, zd: float, sd: float, matched: bool
     flow α(1 + 1/β) ζ'' + ζ = sin ϖτ (third-order Taylor), which settles the cases
     where ζ sits on an edge (a band exit, or sin ϖτ = 0 at a contact opening).
     With damping the band is |P| ≤ bN (module doc), tested the same way.
+
+    Parameters
+    ----------
+    k : K
+        The flows' constants (:func:`constants`).
+    tau : float
+        Time [-].
+    z, zd, sd : float
+        ζ, ζ' and s' [-] at τ.
+    matched : bool
+        Whether ζ' = s' was just reached (a velocity-match event or a stick exit).
+
+    Returns
+    -------
+    str
+        SLIP, REVERSE or STICK.
     """
     v = zd - sd
     if not matched and abs(v) > VTOL * (1.0 + abs(zd) + abs(sd)):
