@@ -204,6 +204,26 @@ def short_flight(wf: float, zv: float, A: float, v: float, sp: float, cp: float,
     G(h) = ξ(h)/h has G(0) = v > 0 and G' < 0 on [0, H] (so one root there), located by
     Newton and bracketed by a sign change of G at h(1 ∓ 64ε). ``d``: optional scratch
     array of SERIES_TERMS + 2 floats (reused along a chattering sequence).
+
+    Parameters
+    ----------
+    wf : float
+        ϖ [-].
+    zv : float
+        ζ_v [-].
+    A : float
+        Normal-force amplitude [-].
+    v : float
+        ξ' just after the hit [-] (> 0).
+    sp, cp : float
+        sin and cos of the hit's phase (sp > 0).
+    d : numpy.ndarray, optional
+        Scratch for the series.
+
+    Returns
+    -------
+    tuple of float
+        The flight time h [-] and ξ' at landing [-]; (−1, 0) when not certified.
     """
     a = A * sp + 2.0 * zv * v  # −ξ''(0)
     if not (v > 0.0 and a > 0.0):
@@ -487,6 +507,24 @@ def gap_at(wf, zv, A, cyc_row_tc, pieces, start, count, t):
 
     (ξ, ξ') at local time t of a cycle with contact opening at cyc_row_tc (NaN: none)
     and free pieces pieces[start : start + count] (0 during contact).
+
+    Parameters
+    ----------
+    wf, zv, A : float
+        ϖ, ζ_v and the normal-force amplitude [-].
+    cyc_row_tc : float
+        The cycle's contact-opening local time [-] (NaN: none).
+    pieces : numpy.ndarray
+        The free-flight pieces (:data:`PIECE_DTYPE`).
+    start, count : int
+        The cycle's pieces.
+    t : float
+        Local time [-].
+
+    Returns
+    -------
+    tuple of float
+        (ξ, ξ') [-].
     """
     te = math.pi / wf
     if cyc_row_tc == cyc_row_tc and cyc_row_tc <= t <= te:

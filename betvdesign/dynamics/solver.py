@@ -112,6 +112,29 @@ class CycleRunner:
 
         rows (n + 1, 4): receives the state at every cycle start and at the end. Raises
         :class:`CycleFailure` naming the cycle that failed (rows up to its start filled).
+
+        Parameters
+        ----------
+        m0 : int
+            First cycle (0-based).
+        n : int
+            Number of cycles.
+        z, zd, s, sd : float
+            (ζ, ζ', s, s') [-] at m0's start.
+        rows : numpy.ndarray, optional
+            (n + 1, 4): receives the state at every cycle start and at the end.
+        check_finite : bool
+            Fail on a non-finite state.
+
+        Returns
+        -------
+        tuple of float
+            (ζ, ζ', s, s') [-] at the end.
+
+        Raises
+        ------
+        CycleFailure
+            Naming the cycle that failed (rows up to its start filled).
         """
         idx = self._idx(m0, n)
         buf = self._norows if rows is None else rows

@@ -138,7 +138,23 @@ class VerticalSchedule:
         return [self._cycle(i) for i in range(self.n_prefix, len(self.table))]
 
     def row(self, m: np.ndarray) -> np.ndarray:
-        """Row of ``table`` of cycles m (int array, 0-based, increasing)."""
+        """Row of ``table`` of cycles m (int array, 0-based, increasing).
+
+        Parameters
+        ----------
+        m : numpy.ndarray
+            Cycles (int, 0-based, increasing).
+
+        Returns
+        -------
+        numpy.ndarray
+            Their rows (cycles past the prefix map into the first period).
+
+        Raises
+        ------
+        IndexError
+            For a cycle beyond the computed horizon of a motion with no period.
+        """
         k = self.n_prefix
         if m.size and m[-1] >= k:
             if self.period is None:
@@ -147,7 +163,18 @@ class VerticalSchedule:
         return m
 
     def cycle(self, m: int) -> VerticalCycle:
-        """Vertical events of cycle m (0-based)."""
+        """Vertical events of cycle m (0-based).
+
+        Parameters
+        ----------
+        m : int
+            The cycle (0-based).
+
+        Returns
+        -------
+        VerticalCycle
+            Its section state, hits and contact.
+        """
         return self._cycle(int(self.row(np.array([m]))[0]))
 
     def arrays(self, m0: int, n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
@@ -155,12 +182,37 @@ class VerticalSchedule:
 
         Cycles m0..m0+n−1 as arrays: section state ξ0, ξ0' [-], contact-opening local
         time [-] (NaN: none) and number of impulsive hits.
+
+        Parameters
+        ----------
+        m0 : int
+            First cycle (0-based).
+        n : int
+            Number of cycles.
+
+        Returns
+        -------
+        tuple of numpy.ndarray
+            ξ0, ξ0' [-], contact-opening time [-] and impulsive hits, per cycle.
         """
         rows = self.table[self.row(np.arange(m0, m0 + n))]
         return rows["xi0"], rows["xid0"], rows["tc"], rows["imp_count"]
 
     def gap(self, m: np.ndarray, t: np.ndarray) -> np.ndarray:
-        """(ξ, ξ') [-] at local times t of cycles m, shape (n, 2) (0 during contact)."""
+        """(ξ, ξ') [-] at local times t of cycles m, shape (n, 2) (0 during contact).
+
+        Parameters
+        ----------
+        m : numpy.ndarray
+            Cycles (int, 0-based).
+        t : numpy.ndarray
+            Local times [-].
+
+        Returns
+        -------
+        numpy.ndarray
+            (ξ, ξ') [-], shape (n, 2).
+        """
         out = np.empty((t.size, 2))
         rows = self.table[self.row(m)]
         for j in range(t.size):
