@@ -102,7 +102,18 @@ def _layer(process: Process | None, name: str | None) -> str:
 
 
 def drawn_features(spec: DeviceSpec) -> list[Feature]:
-    """Every drawn element of the device file with its width, length and thickness."""
+    """Every drawn element of the device file with its width, length and thickness.
+
+    Parameters
+    ----------
+    spec : DeviceSpec
+        The device.
+
+    Returns
+    -------
+    list of Feature
+        Its slider beams and actuator parts, widths and lengths [m].
+    """
     p = spec.process
     sl = spec.slider
     out = [
@@ -175,7 +186,18 @@ def drawn_features(spec: DeviceSpec) -> list[Feature]:
 
 
 def drawn_gaps(spec: DeviceSpec) -> list[Gap]:
-    """The drawn gaps of the device file (between the arms of each actuator)."""
+    """The drawn gaps of the device file (between the arms of each actuator).
+
+    Parameters
+    ----------
+    spec : DeviceSpec
+        The device.
+
+    Returns
+    -------
+    list of Gap
+        The gaps [m].
+    """
     p = spec.process
     out: list[Gap] = []
     seen: set[tuple] = set()
@@ -204,6 +226,16 @@ def process_rules(spec: DeviceSpec) -> list[RuleResult]:
 
     The rules of the module docstring for a device file (empty without a process and
     without an actuator geometry).
+
+    Parameters
+    ----------
+    spec : DeviceSpec
+        The device.
+
+    Returns
+    -------
+    list of RuleResult
+        The rules' results.
     """
     feats = drawn_features(spec)
     has_geometry = any(s.actuator.geometry is not None for s in spec.actuator_sets)
@@ -227,6 +259,20 @@ def rules_from_measurements(
     The same rules on measured elements (a layout's polygons), for the rule ids the
     measurements replace (:mod:`betvdesign.layout.drc` adds its own width, spacing and
     release findings).
+
+    Parameters
+    ----------
+    spec : DeviceSpec
+        The device extracted from the layout.
+    widths : list of Feature
+        The measured elements [m].
+    gaps : list of Gap
+        The measured gaps [m].
+
+    Returns
+    -------
+    list of RuleResult
+        The rules' results.
     """
     assert spec.process is not None
     p = spec.process
@@ -379,6 +425,16 @@ def release_pitch(layer: ProcessLayer) -> float:
     Hole pitch [µm] a layout draws on ``layer``: the process's pitch, or less so that no
     point of a square lattice lies farther than half the widest unreleased feature from a
     hole: (pitch − size)/√2 ≤ w_max/2.
+
+    Parameters
+    ----------
+    layer : ProcessLayer
+        A structural layer with release holes.
+
+    Returns
+    -------
+    float
+        The pitch [µm].
     """
     h = layer.release_holes
     assert h is not None and layer.max_unreleased_width is not None
@@ -392,6 +448,18 @@ def hole_share(p: Process, layer: str) -> float:
 
     The share of a feature's area its release holes take [-]: size²/pitch² at the
     pitch :func:`release_pitch` draws.
+
+    Parameters
+    ----------
+    p : Process
+        The process.
+    layer : str
+        The structural layer (one with release holes).
+
+    Returns
+    -------
+    float
+        size²/pitch² [-].
     """
     lay = p.structural(layer)
     h = lay.release_holes

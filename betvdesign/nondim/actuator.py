@@ -110,7 +110,20 @@ class ActuatorInputs:
 
 
 def actuator_inputs(spec: DeviceSpec, aset: ActuatorSet) -> ActuatorInputs:
-    """The inputs of :func:`frame_geometry` for a set with a drawn actuator."""
+    """The inputs of :func:`frame_geometry` for a set with a drawn actuator.
+
+    Parameters
+    ----------
+    spec : DeviceSpec
+        The device.
+    aset : ActuatorSet
+        The set.
+
+    Returns
+    -------
+    ActuatorInputs
+        Dimensions [m], modulus [Pa], density [kg/m³] and head mass [kg].
+    """
     return ActuatorInputs(spec, aset)
 
 
@@ -123,6 +136,18 @@ def frame_geometry(spec: DeviceSpec, aset: ActuatorSet) -> FrameGeometry:
 
     The drawn actuator of ``aset`` in SI floats (or arrays, for sampled specs): the
     one geometry the closed form, the FE check and ``betv layout`` all use.
+
+    Parameters
+    ----------
+    spec : DeviceSpec
+        The device.
+    aset : ActuatorSet
+        The set.
+
+    Returns
+    -------
+    FrameGeometry
+        Arms, links and head [m].
     """
     a = ActuatorInputs(spec, aset)
     g = a.geometry
@@ -150,6 +175,22 @@ def head_springs(
 
     Record the closed form's steps (module doc); returns the quantities K_nn, K_tt
     (``k_nn``, ``k_tt``) and the floats ``k_nt``, ``rho``, ``m_arm`` [SI].
+
+    Parameters
+    ----------
+    rec : Recorder
+        The record being built.
+    spec : DeviceSpec
+        The device.
+    aset : ActuatorSet
+        The set.
+    m : pint.Quantity
+        The head's mass [kg].
+
+    Returns
+    -------
+    dict
+        ``k_nn``, ``k_tt`` [N/m] as quantities; ``k_nt`` [N/m], ``rho`` [-], ``m_arm`` [kg].
     """
     a = ActuatorInputs(spec, aset)
     geo = a.geometry
@@ -365,7 +406,18 @@ def drawn_alpha_beside(rec: Recorder, springs: dict[str, Any]) -> None:
 
 
 def alpha_given(act: Actuator) -> bool:
-    """True when the file gives α, k_h or f_h (then the drawn actuator's α is not used)."""
+    """True when the file gives α, k_h or f_h (then the drawn actuator's α is not used).
+
+    Parameters
+    ----------
+    act : Actuator
+        The actuator.
+
+    Returns
+    -------
+    bool
+        Whether the file gives the ratio.
+    """
     return (
         act.alpha is not None
         or act.horizontal_stiffness is not None

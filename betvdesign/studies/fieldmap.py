@@ -92,7 +92,13 @@ class FieldMap:
         )
 
     def fill(self, part: MapRows) -> None:
-        """Enter computed rows."""
+        """Enter computed rows.
+
+        Parameters
+        ----------
+        part : MapRows
+            Rows computed by :func:`map_rows`.
+        """
         for k, j in enumerate(part.rows):
             self.mode[j, :] = part.mode[k]
             self.delta_s[j, :] = part.delta_s[k]
@@ -129,6 +135,24 @@ def map_rows(
     ------
     ParameterError
         ``set_index`` or a row index out of range.
+
+    Parameters
+    ----------
+    spec : DeviceSpec
+        The device.
+    set_index : int
+        The actuator set.
+    x, y : FieldAxis
+        The map's axes.
+    rows : sequence of int
+        Indices of the y axis.
+    max_cycles : int
+        Budget of each periodic orbit [cycles].
+
+    Returns
+    -------
+    MapRows
+        Per point its mode, Δs, speed, ϖ and the reason when it has no mode.
     """
     if not 0 <= set_index < len(spec.actuator_sets):
         raise ParameterError(f"no actuator set {set_index}")
@@ -167,7 +191,28 @@ def mode_map(
     progress: Callable[[int, int], None] | None = None,
     max_cycles: int = MAX_CYCLES,
 ) -> FieldMap:
-    """The whole map, ``chunk`` rows at a time (``progress(rows done, rows)`` after each)."""
+    """The whole map, ``chunk`` rows at a time (``progress(rows done, rows)`` after each).
+
+    Parameters
+    ----------
+    spec : DeviceSpec
+        The device.
+    set_index : int
+        The actuator set.
+    x, y : FieldAxis
+        The map's axes.
+    chunk : int
+        Rows per step.
+    progress : callable, optional
+        Called with (rows done, rows).
+    max_cycles : int
+        Budget of each periodic orbit [cycles].
+
+    Returns
+    -------
+    FieldMap
+        The whole map.
+    """
     out = FieldMap.empty(x, y, spec.actuator_sets[set_index].name)
     ny = len(y.values)
     for start in range(0, ny, max(1, chunk)):

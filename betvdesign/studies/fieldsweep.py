@@ -107,7 +107,28 @@ class FieldAxis:
         log: bool = True,
         x0: float | None = None,
     ) -> FieldAxis:
-        """``points`` values from ``lo`` to ``hi`` [unit], log-spaced when ``log``."""
+        """``points`` values from ``lo`` to ``hi`` [unit], log-spaced when ``log``.
+
+        Parameters
+        ----------
+        field : str
+            The field's path.
+        unit : str
+            Its unit.
+        lo, hi : float
+            The range [unit].
+        points : int
+            Number of values.
+        log : bool
+            Log-spaced.
+        x0 : float, optional
+            The device's own value [unit].
+
+        Returns
+        -------
+        FieldAxis
+            The axis.
+        """
         if not (math.isfinite(lo) and math.isfinite(hi) and lo < hi and points >= 2):
             raise ParameterError(f"{field}: need LO < HI and at least 2 points")
         if log and lo <= 0:
@@ -121,6 +142,20 @@ class FieldAxis:
 
         The axis of a field's value as the device file gives it (a quantity or a
         number) times each of ``factors`` [-], in the value's own unit.
+
+        Parameters
+        ----------
+        field : str
+            The field's path.
+        value : Any
+            Its value as the device file gives it.
+        factors : sequence of float
+            Relative values [-].
+
+        Returns
+        -------
+        FieldAxis
+            The axis, in the value's unit.
         """
         if isinstance(value, pint.Quantity):
             x0, unit = float(value.magnitude), f"{value.units:~}"
@@ -134,7 +169,18 @@ class FieldAxis:
         return f"{self.field} [{self.unit}]" if self.unit else self.field
 
     def quantity(self, x: Any) -> Any:
-        """``x`` [unit] as the device file's value (a pint quantity, or a float)."""
+        """``x`` [unit] as the device file's value (a pint quantity, or a float).
+
+        Parameters
+        ----------
+        x : float
+            A value [unit].
+
+        Returns
+        -------
+        Any
+            A pint quantity, or a float for a unit-less field.
+        """
         from betvdesign.spec.units import ureg
 
         return ureg.Quantity(x, self.unit) if self.unit else x
@@ -631,6 +677,20 @@ def summarise(
 
     A sweep's summary: the set, each axis (field, unit, device value, range, points),
     the points and their count per exact mode, and what the speed is.
+
+    Parameters
+    ----------
+    set_name : str
+        The actuator set.
+    axes : sequence of FieldAxis
+        The swept fields.
+    rows : sequence of mapping
+        The sweep's rows.
+
+    Returns
+    -------
+    dict
+        JSON-friendly summary.
     """
     counts = {m: 0 for m in (*MODES, "invalid")}
     for r in rows:

@@ -34,6 +34,18 @@ def drawn_springs_inert(spec: DeviceSpec, name: str) -> bool:
 
     A drawn-actuator field changes nothing when every set's file gives the head's
     resonance and α (the file's values are used): not a default field then.
+
+    Parameters
+    ----------
+    spec : DeviceSpec
+        The device.
+    name : str
+        The field's path.
+
+    Returns
+    -------
+    bool
+        Whether changing the field leaves the model unchanged.
     """
     if not name.startswith("actuator.geometry."):
         return False
@@ -74,6 +86,23 @@ def current_value(spec: Any, name: str) -> tuple[float, str] | None:
 
     The current magnitude and unit of a numeric field (None when the spec does not
     give it or it is not numeric); :class:`UsageError` when the sets differ.
+
+    Parameters
+    ----------
+    spec : DeviceSpec
+        The device.
+    name : str
+        The field's path.
+
+    Returns
+    -------
+    tuple of (float, str) or None
+        Magnitude and unit.
+
+    Raises
+    ------
+    UsageError
+        When the sets give different values.
     """
     present = given(spec, name)
     if not present:
@@ -94,6 +123,23 @@ def parse_vary(spec: Any, items: Sequence[str]) -> list[Vary]:
     ``FIELD`` or ``FIELD=LO:HI`` (quantities in any unit of the field, e.g.
     ``drive.frequency=400Hz:3kHz``); without items, every default field the spec has.
     :class:`UsageError` for unknown fields, unreadable or inverted bounds.
+
+    Parameters
+    ----------
+    spec : DeviceSpec
+        The device.
+    items : sequence of str
+        The ``--vary`` items.
+
+    Returns
+    -------
+    list of Vary
+        The fields and their bounds.
+
+    Raises
+    ------
+    UsageError
+        For unknown fields, unreadable or inverted bounds.
     """
     from betvdesign.spec.units import parse_quantity
 

@@ -568,6 +568,16 @@ def intended_sign(intended: str | None) -> float:
 
     +1 for a push set, −1 for a pull set: times a speed signed along the impact
     direction it gives the speed along the intended direction of travel.
+
+    Parameters
+    ----------
+    intended : str or None
+        The set's intended mode ("push" or "pull").
+
+    Returns
+    -------
+    float
+        +1 or −1.
     """
     return -1.0 if intended == "pull" else 1.0
 
