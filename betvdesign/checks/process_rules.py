@@ -34,7 +34,7 @@ from betvdesign.checks.rule import RuleResult
 from betvdesign.model.frame import head_covers_tip, head_radius_min
 from betvdesign.nondim.actuator import actuator_inputs, frame_geometry
 from betvdesign.output.siformat import format_si
-from betvdesign.spec.models import BoxGeometry, DeviceSpec, DiscGeometry
+from betvdesign.spec.models import ActuatorSet, BoxGeometry, DeviceSpec, DiscGeometry
 from betvdesign.spec.process import Process, ProcessLayer
 
 __all__ = [
@@ -101,6 +101,52 @@ def _layer(process: Process | None, name: str | None) -> str:
     return process.structural_name(name)
 
 
+def _head_feature(spec: DeviceSpec, s: ActuatorSet, where: str, layer: str) -> Feature | None:
+    """The head of actuator set ``s`` as a drawn element (None when nothing is drawn).
+
+    Parameters
+    ----------
+    spec : DeviceSpec
+        The device.
+    s : ActuatorSet
+        The set.
+    where : str
+        The set's field path (``actuator_sets[i]``).
+    layer : str
+        Its structural layer's name.
+
+    Returns
+    -------
+    Feature or None
+        A disc or box head as drawn; a head given by its mass as the disc of that mass
+        when the actuator is drawn; else None.
+    """
+    head = s.head.geometry
+    geo = s.actuator.geometry
+    if isinstance(head, DiscGeometry):
+        return Feature(
+            f"{where}.head.geometry.diameter",
+            f"set {s.name}: head (disc)",
+            layer,
+            _m(head.diameter),
+            0.0,
+            _m(head.thickness),
+        )
+    if isinstance(head, BoxGeometry):
+        return Feature(
+            f"{where}.head.geometry.width",
+            f"set {s.name}: head (box)",
+            layer,
+            min(_m(head.width), _m(head.length)),
+            0.0,
+            _m(head.thickness),
+        )
+    if geo is not None:  # a head given by its mass is drawn as the disc of that mass
+        r = _m(actuator_inputs(spec, s).head_x)
+        return Feature(f"{where}.head.mass", f"set {s.name}: head (disc of its mass)", layer, 2 * r)
+    return None
+
+
 def drawn_features(spec: DeviceSpec) -> list[Feature]:
     """Every drawn element of the device file with its width, length and thickness.
 
@@ -131,38 +177,11 @@ def drawn_features(spec: DeviceSpec) -> list[Feature]:
     for i, s in enumerate(spec.actuator_sets):
         geo = s.actuator.geometry
         layer = _layer(p, geo.layer if geo is not None else None)
-        head = s.head.geometry
         feats: list[Feature] = []
         where = f"actuator_sets[{i}]"
-        if isinstance(head, DiscGeometry):
-            feats.append(
-                Feature(
-                    f"{where}.head.geometry.diameter",
-                    f"set {s.name}: head (disc)",
-                    layer,
-                    _m(head.diameter),
-                    0.0,
-                    _m(head.thickness),
-                )
-            )
-        elif isinstance(head, BoxGeometry):
-            feats.append(
-                Feature(
-                    f"{where}.head.geometry.width",
-                    f"set {s.name}: head (box)",
-                    layer,
-                    min(_m(head.width), _m(head.length)),
-                    0.0,
-                    _m(head.thickness),
-                )
-            )
-        elif geo is not None:  # a head given by its mass is drawn as the disc of that mass
-            r = _m(actuator_inputs(spec, s).head_x)
-            feats.append(
-                Feature(
-                    f"{where}.head.mass", f"set {s.name}: head (disc of its mass)", layer, 2 * r
-                )
-            )
+        head = _head_feature(spec, s, where, layer)
+        if head is not None:
+            feats.append(head)
         if geo is not None:
             t = None if geo.thickness is None else _m(geo.thickness)
             g = f"{where}.actuator.geometry"

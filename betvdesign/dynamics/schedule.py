@@ -204,26 +204,6 @@ def short_flight(wf: float, zv: float, A: float, v: float, sp: float, cp: float,
     G(h) = ξ(h)/h has G(0) = v > 0 and G' < 0 on [0, H] (so one root there), located by
     Newton and bracketed by a sign change of G at h(1 ∓ 64ε). ``d``: optional scratch
     array of SERIES_TERMS + 2 floats (reused along a chattering sequence).
-
-    Parameters
-    ----------
-    wf : float
-        ϖ [-].
-    zv : float
-        ζ_v [-].
-    A : float
-        Normal-force amplitude [-].
-    v : float
-        ξ' just after the hit [-] (> 0).
-    sp, cp : float
-        sin and cos of the hit's phase (sp > 0).
-    d : numpy.ndarray, optional
-        Scratch for the series.
-
-    Returns
-    -------
-    tuple of float
-        The flight time h [-] and ξ' at landing [-]; (−1, 0) when not certified.
     """
     a = A * sp + 2.0 * zv * v  # −ξ''(0)
     if not (v > 0.0 and a > 0.0):

@@ -110,15 +110,10 @@ class CycleRunner:
     ) -> tuple[float, float, float, float]:
         """State (ζ, ζ', s, s') after cycles m0..m0+n−1 from the state at m0's start.
 
-        rows (n + 1, 4): receives the state at every cycle start and at the end. Raises
-        :class:`CycleFailure` naming the cycle that failed (rows up to its start filled).
-
         Parameters
         ----------
-        m0 : int
-            First cycle (0-based).
-        n : int
-            Number of cycles.
+        m0, n : int
+            First cycle (0-based) and number of cycles.
         z, zd, s, sd : float
             (ζ, ζ', s, s') [-] at m0's start.
         rows : numpy.ndarray, optional

@@ -168,6 +168,42 @@ def frame_geometry(spec: DeviceSpec, aset: ActuatorSet) -> FrameGeometry:
     )
 
 
+def _record_drawing(rec: Recorder, a: ActuatorInputs, aset: ActuatorSet) -> None:
+    """Record the drawn actuator's inputs: film, arms, flexures, gap, tip and head size.
+
+    Parameters
+    ----------
+    rec : Recorder
+        The record being built.
+    a : ActuatorInputs
+        The set's drawn actuator.
+    aset : ActuatorSet
+        The set (its head: drawn, or a disc of its mass).
+    """
+    geo = a.geometry
+    g = "actuator.geometry"
+    rec.spec("E", "Young's modulus of the actuator's film", a.e_path, a.youngs.to("GPa"))
+    rec.spec("t_a", "actuator film thickness", a.t_path, a.thickness.to("um"))
+    rec.spec("L_a", "hot-arm length", f"{g}.length", geo.length.to("um"))
+    rec.spec("w_hot", "hot-arm width", f"{g}.hot_arm_width", geo.hot_arm_width.to("um"))
+    rec.spec("w_cold", "cold-arm width", f"{g}.cold_arm_width", geo.cold_arm_width.to("um"))
+    rec.spec("L_flex", "flexure length", f"{g}.flexure_length", geo.flexure_length.to("um"))
+    rec.spec("w_flex", "flexure width", f"{g}.flexure_width", geo.flexure_width.to("um"))
+    rec.spec("g_a", "hot-to-cold arm gap", f"{g}.gap", geo.gap.to("um"))
+    rec.spec("l_tip", "tip connector length", f"{g}.tip_length", geo.tip_length.to("um"))
+    if aset.head.geometry is None:
+        rec.add(
+            "r_head",
+            "head radius (the disc of mass m in the actuator's film)",
+            "sqrt(m/(π·ρ_head·t_a))",
+            a.head_x.to("um"),
+            ("m", "t_a"),
+            "um",
+        )
+    else:
+        rec.spec("r_head", "head half-extent along the arms", "head.geometry", a.head_x.to("um"))
+
+
 def head_springs(
     rec: Recorder, spec: DeviceSpec, aset: ActuatorSet, m: pint.Quantity
 ) -> dict[str, Any]:
@@ -193,28 +229,7 @@ def head_springs(
         ``k_nn``, ``k_tt`` [N/m] as quantities; ``k_nt`` [N/m], ``rho`` [-], ``m_arm`` [kg].
     """
     a = ActuatorInputs(spec, aset)
-    geo = a.geometry
-    g = "actuator.geometry"
-    rec.spec("E", "Young's modulus of the actuator's film", a.e_path, a.youngs.to("GPa"))
-    rec.spec("t_a", "actuator film thickness", a.t_path, a.thickness.to("um"))
-    rec.spec("L_a", "hot-arm length", f"{g}.length", geo.length.to("um"))
-    rec.spec("w_hot", "hot-arm width", f"{g}.hot_arm_width", geo.hot_arm_width.to("um"))
-    rec.spec("w_cold", "cold-arm width", f"{g}.cold_arm_width", geo.cold_arm_width.to("um"))
-    rec.spec("L_flex", "flexure length", f"{g}.flexure_length", geo.flexure_length.to("um"))
-    rec.spec("w_flex", "flexure width", f"{g}.flexure_width", geo.flexure_width.to("um"))
-    rec.spec("g_a", "hot-to-cold arm gap", f"{g}.gap", geo.gap.to("um"))
-    rec.spec("l_tip", "tip connector length", f"{g}.tip_length", geo.tip_length.to("um"))
-    if aset.head.geometry is None:
-        rec.add(
-            "r_head",
-            "head radius (the disc of mass m in the actuator's film)",
-            "sqrt(m/(π·ρ_head·t_a))",
-            a.head_x.to("um"),
-            ("m", "t_a"),
-            "um",
-        )
-    else:
-        rec.spec("r_head", "head half-extent along the arms", "head.geometry", a.head_x.to("um"))
+    _record_drawing(rec, a, aset)
     fg = frame_geometry(spec, aset)
     k = frame_stiffness(fg)
     src = "Euler–Bernoulli frame, flexibility method, rigid tip (MODEL.md; Lobontiu & Garcia ch. 4)"

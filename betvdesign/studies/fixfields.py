@@ -120,16 +120,13 @@ def current_value(spec: Any, name: str) -> tuple[float, str] | None:
 def parse_vary(spec: Any, items: Sequence[str]) -> list[Vary]:
     """Parse ``FIELD`` or ``FIELD=LO:HI`` items into field axes.
 
-    ``FIELD`` or ``FIELD=LO:HI`` (quantities in any unit of the field, e.g.
-    ``drive.frequency=400Hz:3kHz``); without items, every default field the spec has.
-    :class:`UsageError` for unknown fields, unreadable or inverted bounds.
-
     Parameters
     ----------
     spec : DeviceSpec
         The device.
     items : sequence of str
-        The ``--vary`` items.
+        ``FIELD`` or ``FIELD=LO:HI``, quantities in any unit of the field (e.g.
+        ``drive.frequency=400Hz:3kHz``); none: every default field the spec has.
 
     Returns
     -------
