@@ -90,6 +90,7 @@ class CheckOptions:
     determine: bool = True
 
     def __post_init__(self) -> None:
+        """Freeze the selectors as tuples and refuse bad values before any solve."""
         object.__setattr__(self, "select", tuple(self.select))
         object.__setattr__(self, "ignore", tuple(self.ignore))
         _ = self.target_speed_m_s  # a bad speed is refused now
@@ -306,7 +307,9 @@ def check(
 
 
 def adequacy(device: str | os.PathLike[str] | DeviceSpec) -> DeviceAdequacy:
-    """Is the paper's idealised model (undamped, plastic impacts) adequate for a device?
+    """Assess whether the paper's idealised model is adequate for a device.
+
+    The model is undamped with plastic impacts.
 
     Compares the exact periodic orbit of the model of Shin et al. [1]_ for every actuator
     set without and with head damping and restitution (the device's, or Q = 30 and e = 0.1

@@ -140,7 +140,7 @@ LAYERS: tuple[Layer, ...] = (
         "api",
         "the one check pipeline (`CheckOptions`, `read_source`, `run_check`: YAML, GDS or "
         "spec → `CheckResult`) and the notebook entry points `betvdesign.check`, "
-        "`betvdesign.adequacy`; below `report`, `explore` and `cli`, which call it"
+        "`betvdesign.adequacy`; below `report`, `explore` and `cli`, which call it",
     ),
     Layer("report", "the report model → Jinja2 → HTML / PDF; methods and validation reports"),
     Layer(

@@ -33,7 +33,18 @@ SRC = "MODEL.md, From the drawn actuator to the head's springs (betvdesign.model
 
 
 def actuator_rules(s: SetDerivation) -> list[RuleResult]:
-    """The three rules of the module doc for one set (none without a drawn actuator)."""
+    """The three rules of the module doc for one set (none without a drawn actuator).
+
+    Parameters
+    ----------
+    s : SetDerivation
+        The set's derivation.
+
+    Returns
+    -------
+    list of RuleResult
+        The rules' results.
+    """
     sp = s.springs
     if sp is None:
         return []

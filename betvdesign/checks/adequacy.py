@@ -1,4 +1,4 @@
-"""Fidelity ladder upward: is the paper's idealised model adequate for a device?
+"""Fidelity ladder upward: whether the paper's idealised model is adequate for a device.
 
 The idealised model (MODEL.md) is undamped with plastic impacts. For every actuator
 set this study solves the exact periodic orbit (:func:`betvdesign.dynamics.periodic_orbit`)
@@ -319,8 +319,11 @@ class SetAdequacy:
 
     @property
     def speed_change(self) -> float | None:
-        """(v_richer − v_ideal)/v_ideal [-] of the signed speeds at the device (the relative
-        speed change when both move the same way), None without both speeds."""
+        """Relative change of the signed speed from the idealised to the richer model.
+
+        (v_richer − v_ideal)/v_ideal [-] of the signed speeds at the device (the relative
+        speed change when both move the same way), None without both speeds.
+        """
         return speed_change(self.ideal, self.richer)
 
     @property
@@ -429,6 +432,7 @@ class DeviceAdequacy:
         return "not adequate" if self.status != "failed" else "undecided (no exact answer)"
 
     def __repr__(self) -> str:
+        """The answer in words (:meth:`text`)."""
         return self.text()
 
 
@@ -474,7 +478,7 @@ class AdequacyPointOut(BaseModel):
 
 
 class AdequacyOut(BaseModel):
-    """Is the paper's idealised model (undamped, plastic impacts) adequate for this set?"""
+    """Whether the paper's idealised model (undamped, plastic impacts) is adequate for a set."""
 
     model_config = ConfigDict(extra="forbid")
 
@@ -560,8 +564,11 @@ def adequacy_line(a: SetAdequacy | None) -> str | None:
 
 
 class _Orbits:
-    """Periodic orbits of one set, each parameter set solved once (mirrored sets and
-    the device's own point on a scan grid are reused)."""
+    """Periodic orbits of one set, each parameter set solved once.
+
+    Periodic orbits of one set, each parameter set solved once (mirrored sets and
+    the device's own point on a scan grid are reused).
+    """
 
     def __init__(self, sd: SetDerivation, solver: Solver | None):
         if solver is None:
@@ -572,8 +579,11 @@ class _Orbits:
         self.cache: dict[ModelParams, Point] = {}
 
     def point(self, p: ModelParams, max_cycles: int | None = SCAN_MAX_CYCLES) -> Point:
-        """The orbit of ``p`` (``max_cycles`` None: the solver's default budget; the
-        device's own points are solved first, with it, and reused on the scans)."""
+        """Solve the orbit of ``p`` once.
+
+        The orbit of ``p`` (``max_cycles`` None: the solver's default budget; the
+        device's own points are solved first, with it, and reused on the scans).
+        """
         if p not in self.cache:
             self.cache[p] = self._solve(p, max_cycles)
         return self.cache[p]
@@ -620,8 +630,11 @@ def _grid(axis: Axis, device_value: float | None) -> np.ndarray:
 
 
 def _scan(orbits: _Orbits, base: ModelParams, axis: Axis, device_value: float | None) -> Scan:
-    """Orbits along ``axis`` from ``base`` (the other term as ``base`` has it), every
-    change of mode between grid neighbours bisected."""
+    """Orbits along one scan axis, every change of mode bisected.
+
+    Orbits along ``axis`` from ``base`` (the other term as ``base`` has it), every
+    change of mode between grid neighbours bisected.
+    """
 
     def at(x: float) -> Point:
         if axis == "quality":
@@ -657,8 +670,11 @@ def _scan(orbits: _Orbits, base: ModelParams, axis: Axis, device_value: float | 
 
 
 def _first_flip(scan: Scan, reference: str | None) -> tuple[Crossing | None, bool]:
-    """(crossing where the mode first leaves ``reference`` going from the idealised end
-    of the scan, whether it already differs at that end)."""
+    """Find where the mode first leaves ``reference`` along a scan.
+
+    (crossing where the mode first leaves ``reference`` going from the idealised end
+    of the scan, whether it already differs at that end).
+    """
     pts = list(scan.points)
     order = range(len(pts) - 1, -1, -1) if scan.axis == "quality" else range(len(pts))
     idx = [i for i in order if pts[i].mode != reference]
@@ -764,8 +780,11 @@ def _status(
 
 
 def _flips_within(reference: str, q_scan: Scan, e_scan: Scan, *, likely: bool) -> bool:
-    """Does the mode leave ``reference`` anywhere on the scans (``likely``: only within
-    LIKELY_QUALITY and LIKELY_RESTITUTION, by grid point or bisected crossing)?"""
+    """Tell whether the mode leaves ``reference`` anywhere on the scans.
+
+    Does the mode leave ``reference`` anywhere on the scans (``likely``: only within
+    LIKELY_QUALITY and LIKELY_RESTITUTION, by grid point or bisected crossing)?
+    """
     for scan, band in ((q_scan, LIKELY_QUALITY), (e_scan, LIKELY_RESTITUTION)):
         lo, hi = band if likely else (-math.inf, math.inf)
         if any(
@@ -779,8 +798,11 @@ def _flips_within(reference: str, q_scan: Scan, e_scan: Scan, *, likely: bool) -
 
 
 def _message(sd: SetDerivation, a: SetAdequacy, q_end: bool, e_end: bool) -> str:
-    """The verdict in full (``q_end``, ``e_end``: the mode already differs from the
-    reference at the idealised end of the Q, the e scan)."""
+    """The adequacy verdict in full.
+
+    The verdict in full (``q_end``, ``e_end``: the mode already differs from the
+    reference at the idealised end of the Q, the e scan).
+    """
     ideal, richer, reference = a.ideal, a.richer, a.reference
     terms = richer.terms + (
         " (plausible defaults: the device gives none)"
@@ -850,7 +872,7 @@ def assess(derivation: DeviceDerivation, *, solver: Solver | None = None) -> Dev
 
 
 def adequacy(device: Any, *, solver: Solver | None = None) -> DeviceAdequacy:
-    """Is the paper's idealised model adequate for ``device``? (module docstring)
+    """Tell whether the paper's idealised model is adequate for ``device`` (module doc).
 
     Parameters
     ----------

@@ -89,17 +89,23 @@ class SetCheck:
 
     @property
     def mode(self) -> str | None:
-        """The mode the verdict quotes: "push", "pull", "stalled", "undetermined" (Δs not
+        """The mode the verdict quotes.
+
+        The mode the verdict quotes: "push", "pull", "stalled", "undetermined" (Δs not
         determined and no crossing of the travel), or None when no orbit was found; the
-        crossing's mode when the slider crosses its travel before it settles."""
+        crossing's mode when the slider crosses its travel before it settles.
+        """
         if self.travel is not None:
             return self.travel.mode
         return orbit_mode(self.periodic)
 
     @property
     def verdict_mode(self) -> str:
-        """The mode the check reports: the exact one, "not driven" when no contact
-        recurs (the slider is not moved), "unknown" without an orbit."""
+        """The mode the check reports, in words.
+
+        The mode the check reports: the exact one, "not driven" when no contact
+        recurs (the slider is not moved), "unknown" without an orbit.
+        """
         not_driven = self.periodic is not None and self.periodic.status == "not_driven"
         if self.mode is None and not_driven:
             return "not driven"
@@ -118,9 +124,12 @@ class SetCheck:
 
     @property
     def time_to_cross_s(self) -> float | None:
-        """Time to cross the travel range [s] (:func:`~betvdesign.checks.rules.
+        """Time to cross the travel range [s].
+
+        Time to cross the travel range [s] (:func:`~betvdesign.checks.rules.
         time_to_cross_s`: the transient's own crossing whenever it ran; None when the
-        slider does not move)."""
+        slider does not move).
+        """
         v = self.speed_m_s
         if not v:
             return None
@@ -131,7 +140,9 @@ class SetCheck:
 
 @dataclass(frozen=True)
 class CheckResult:
-    """Everything ``betv check`` reports for one device (frozen: built whole, by
+    """Everything ``betv check`` reports for one device.
+
+    Everything ``betv check`` reports for one device (frozen: built whole, by
     :func:`check_derivation` and :func:`betvdesign.api.run_check`, never edited after).
 
     Parameters
@@ -161,13 +172,16 @@ class CheckResult:
 
     @property
     def view(self) -> DeviceView:
-        """The check as a designer reads it (text, JSON, HTML;
-        :class:`~betvdesign.checks.view.DeviceView`)."""
+        """The check as a designer reads it.
+
+        The check as a designer reads it (text, JSON, HTML;
+        :class:`~betvdesign.checks.view.DeviceView`).
+        """
         return DeviceView(self, self.rule_filter)
 
     @property
     def verdict(self) -> Literal["pass", "fail"]:
-        """ "fail" when any counted error-severity rule fails, else "pass"."""
+        """The verdict: "fail" when any counted error-severity rule fails, else "pass"."""
         return verdict([r for r in self.rules if self.rule_filter.keeps(r.id)])
 
     @property
@@ -205,8 +219,11 @@ class CheckResult:
 
 
 def _guarded_orbit(solver: Callable[[ModelParams], Any], p: ModelParams) -> PeriodicResult:
-    """``solver(p)``, or a failed :class:`~betvdesign.dynamics.PeriodicResult` saying why
-    when it raised (a failing solver must not crash the check: the mode rule fails)."""
+    """The orbit of ``p``, or a failed one saying why the solver raised.
+
+    ``solver(p)``, or a failed :class:`~betvdesign.dynamics.PeriodicResult` saying why
+    when it raised (a failing solver must not crash the check: the mode rule fails).
+    """
     try:
         return solver(p)
     except Exception as exc:
@@ -214,8 +231,11 @@ def _guarded_orbit(solver: Callable[[ModelParams], Any], p: ModelParams) -> Peri
 
 
 def _guarded_vertical(vertical: Callable[..., Any], p: ModelParams) -> VerticalResult | None:
-    """The vertical motion of ``p`` (None when a stand-in has none), or a failed
-    :class:`~betvdesign.dynamics.VerticalResult` saying why when it raised."""
+    """The vertical motion of ``p``, or a failed one saying why.
+
+    The vertical motion of ``p`` (None when a stand-in has none), or a failed
+    :class:`~betvdesign.dynamics.VerticalResult` saying why when it raised.
+    """
     try:
         return vertical(p.varpi, zeta_v=p.zeta_v, restitution=p.restitution)
     except Exception as exc:
@@ -483,8 +503,11 @@ def answer_over_travel(
 
 
 def _settling(p: ModelParams, po: PeriodicResult, travel_s: float, horizon: int) -> Settling:
-    """The transient from rest against the orbit ``po`` over at most ``horizon`` cycles
-    (a failure stand-in if it raised)."""
+    """The transient from rest against the orbit ``po``.
+
+    The transient from rest against the orbit ``po`` over at most ``horizon`` cycles
+    (a failure stand-in if it raised).
+    """
     moduli = po.floquet_moduli if po.success else None
     ds = float(po.delta_s) if po.success and po.delta_s is not None else None
     try:

@@ -381,6 +381,159 @@ def _chatter_note(p: ModelParams) -> str:
     )
 
 
+def _forced_rung(p: ModelParams, question: Question, force: Rung) -> Choice:
+    """The rung ``--fidelity`` forces, if it can answer ``question`` for ``p``.
+
+    Parameters
+    ----------
+    p : ModelParams
+        The design's dimensionless parameters.
+    question : Question
+        What is asked.
+    force : Rung
+        The rung named.
+
+    Returns
+    -------
+    Choice
+        The forced rung, its reason naming the measured error of a λ or rigid rung and
+        the chatter limit of the full model.
+
+    Raises
+    ------
+    UsageError
+        For an unknown rung, or one that cannot answer (or is of the idealised model
+        while ``p`` has damping or restitution).
+    """
+    if force not in RUNGS:
+        raise UsageError(f"unknown fidelity {force!r}; one of {', '.join(RUNGS)}")
+    info = RUNG_INFO[force]
+    if question not in info.answers:
+        able = [
+            r
+            for r in RUNGS
+            if question in RUNG_INFO[r].answers and (p.ideal or r not in IDEAL_ONLY)
+        ]
+        raise UsageError(
+            f"fidelity {force!r} ({info.model}) cannot answer {question!r}; "
+            f"use one of {', '.join(able)}"
+        )
+    if not p.ideal and force in IDEAL_ONLY:
+        raise UsageError(
+            f"fidelity {force!r} ({info.model}) is a rung of the idealised model (no "
+            "damping, plastic impacts) and this device has damping or restitution; use "
+            "periodic or full"
+        )
+    why = f"forced by --fidelity {force} ({info.exact})"
+    if force == "lambda":
+        why += f"; {lambda_error_statement()}"
+    elif force == "rigid" and question in ("mode", "delta_s"):
+        why += (
+            f"; measured relative Δs error ≈ {rigid_error_estimate(p.alpha):.2g} at "
+            f"α = {p.alpha:.3g} (an estimate), and its mode is always pull"
+        )
+    elif force in ("full", "periodic"):
+        why += _chatter_note(p)
+    return Choice(force, question, why, True)
+
+
+def _chatter_limit(p: ModelParams) -> str:
+    """The sentence naming the chatter limit α·ϖ² < :data:`CHATTER_Q` for ``p``."""
+    return (
+        f"α·ϖ² = {p.alpha * p.varpi**2:.2g} < {CHATTER_Q:g}, the measured limit below which "
+        "the full model's stick/slip switching chatters from the first contact and the "
+        "periodic orbit cannot be computed (measured in 97 % of the designs at α·ϖ² = "
+        "3e-7, 36 % at 9.5e-7, a few up to 2.4e-6: benchmarks/chatter_limit.py); it runs "
+        "from α = "
+        f"{CHATTER_Q / p.varpi**2:.2g} at this ϖ"
+    )
+
+
+def _mode_rung(p: ModelParams, question: Question, chatter: bool, note: str) -> Choice:
+    """The rung answering "mode" in the window (``chatter``: below the chatter limit).
+
+    Parameters
+    ----------
+    p : ModelParams
+        The design's dimensionless parameters.
+    question : Question
+        "mode".
+    chatter : bool
+        Whether ``p`` is below the chatter limit (the rigid limit answers then).
+    note : str
+        The chatter caution a full-model rung's reason carries.
+
+    Returns
+    -------
+    Choice
+        The periodic orbit, or the rigid limit below the chatter limit.
+    """
+    limit = _chatter_limit(p)
+    if chatter:
+        return Choice(
+            "rigid",
+            question,
+            f"{limit}; the rigid limit (α → 0) answers instead: its mode, always pull, "
+            "was the periodic orbit's on every design measured near the limit (its "
+            f"relative Δs error there at most {RIGID_ERROR_NEAR_LIMIT:g}, below 1)",
+        )
+    return Choice(
+        "periodic",
+        question,
+        "a mode is taken from the exact periodic orbit (≈ 1 ms); the λ fit "
+        f"is a prediction ({lambda_error_statement()}), never a verdict" + note,
+    )
+
+
+def _delta_s_rung(p: ModelParams, question: Question, tol: float, chatter: bool) -> Choice:
+    """The rung answering "delta_s" of an ideal design in the window, to ``tol``.
+
+    Parameters
+    ----------
+    p : ModelParams
+        The design's dimensionless parameters.
+    question : Question
+        "delta_s".
+    tol : float
+        Relative accuracy asked [-].
+    chatter : bool
+        Whether ``p`` is below the chatter limit.
+
+    Returns
+    -------
+    Choice
+        The rigid limit when its measured error is within ``tol`` or the full model
+        cannot run, else the periodic orbit.
+    """
+    est = rigid_error_estimate(p.alpha)
+    limit = _chatter_limit(p)
+    if est <= tol:
+        why = f"α = {p.alpha:.3g}: measured rigid-limit error ≈ {est:.2g} ≤ tol {tol:.2g}"
+        if chatter:
+            why += (
+                f"; an estimate, not a bound: here α·ϖ² = {p.alpha * p.varpi**2:.2g} < "
+                f"{CHATTER_Q:g}, below the measured limit where the full model runs to check "
+                f"it, and near that limit the rigid error was measured up to "
+                f"{RIGID_ERROR_NEAR_LIMIT:g} (largest at small β·κ)"
+            )
+        return Choice("rigid", question, why)
+    if chatter:
+        return Choice(
+            "rigid",
+            question,
+            f"{limit}; the rigid limit (α → 0) is the closest answer there, but its error "
+            f"estimate ≈ {est:.2g} exceeds tol {tol:.2g} (and near the limit its error was "
+            f"measured up to {RIGID_ERROR_NEAR_LIMIT:g}, largest at small β·κ): the accuracy "
+            "asked cannot be had at this α",
+        )
+    return Choice(
+        "periodic",
+        question,
+        f"rigid limit error ≈ {est:.2g} > tol {tol:.2g} at α = {p.alpha:.3g}: "
+        "the periodic orbit of the full model is needed",
+    )
+
+
 def choose_rung(
     p: ModelParams,
     question: Question,
@@ -428,36 +581,7 @@ def choose_rung(
     if question not in QUESTIONS:
         raise UsageError(f"unknown question {question!r}; one of {', '.join(QUESTIONS)}")
     if force is not None:
-        if force not in RUNGS:
-            raise UsageError(f"unknown fidelity {force!r}; one of {', '.join(RUNGS)}")
-        info = RUNG_INFO[force]
-        if question not in info.answers:
-            able = [
-                r
-                for r in RUNGS
-                if question in RUNG_INFO[r].answers and (p.ideal or r not in IDEAL_ONLY)
-            ]
-            raise UsageError(
-                f"fidelity {force!r} ({info.model}) cannot answer {question!r}; "
-                f"use one of {', '.join(able)}"
-            )
-        if not p.ideal and force in IDEAL_ONLY:
-            raise UsageError(
-                f"fidelity {force!r} ({info.model}) is a rung of the idealised model (no "
-                "damping, plastic impacts) and this device has damping or restitution; use "
-                "periodic or full"
-            )
-        why = f"forced by --fidelity {force} ({info.exact})"
-        if force == "lambda":
-            why += f"; {lambda_error_statement()}"
-        elif force == "rigid" and question in ("mode", "delta_s"):
-            why += (
-                f"; measured relative Δs error ≈ {rigid_error_estimate(p.alpha):.2g} at "
-                f"α = {p.alpha:.3g} (an estimate), and its mode is always pull"
-            )
-        elif force in ("full", "periodic"):
-            why += _chatter_note(p)
-        return Choice(force, question, why, True)
+        return _forced_rung(p, question, force)
     in_window = domain.in_window(p.varpi)
     note = _chatter_note(p)
     if not p.ideal and question == "delta_s":
@@ -480,57 +604,10 @@ def choose_rung(
             f"ϖ = {p.varpi:.3g} outside the window {WINDOW[0]}–{WINDOW[1]}: the λ fit and "
             "the rigid limit do not apply there" + note,
         )
-    est = rigid_error_estimate(p.alpha)
     chatter = p.ideal and below_chatter_limit(p)
-    limit = (
-        f"α·ϖ² = {p.alpha * p.varpi**2:.2g} < {CHATTER_Q:g}, the measured limit below which "
-        "the full model's stick/slip switching chatters from the first contact and the "
-        "periodic orbit cannot be computed (measured in 97 % of the designs at α·ϖ² = "
-        "3e-7, 36 % at 9.5e-7, a few up to 2.4e-6: benchmarks/chatter_limit.py); it runs "
-        "from α = "
-        f"{CHATTER_Q / p.varpi**2:.2g} at this ϖ"
-    )
     if question == "mode":
-        if chatter:
-            return Choice(
-                "rigid",
-                question,
-                f"{limit}; the rigid limit (α → 0) answers instead: its mode, always pull, "
-                "was the periodic orbit's on every design measured near the limit (its "
-                f"relative Δs error there at most {RIGID_ERROR_NEAR_LIMIT:g}, below 1)",
-            )
-        return Choice(
-            "periodic",
-            question,
-            "a mode is taken from the exact periodic orbit (≈ 1 ms); the λ fit "
-            f"is a prediction ({lambda_error_statement()}), never a verdict" + note,
-        )
-    # delta_s
-    if est <= tol:
-        why = f"α = {p.alpha:.3g}: measured rigid-limit error ≈ {est:.2g} ≤ tol {tol:.2g}"
-        if chatter:
-            why += (
-                f"; an estimate, not a bound: here α·ϖ² = {p.alpha * p.varpi**2:.2g} < "
-                f"{CHATTER_Q:g}, below the measured limit where the full model runs to check "
-                f"it, and near that limit the rigid error was measured up to "
-                f"{RIGID_ERROR_NEAR_LIMIT:g} (largest at small β·κ)"
-            )
-        return Choice("rigid", question, why)
-    if chatter:
-        return Choice(
-            "rigid",
-            question,
-            f"{limit}; the rigid limit (α → 0) is the closest answer there, but its error "
-            f"estimate ≈ {est:.2g} exceeds tol {tol:.2g} (and near the limit its error was "
-            f"measured up to {RIGID_ERROR_NEAR_LIMIT:g}, largest at small β·κ): the accuracy "
-            "asked cannot be had at this α",
-        )
-    return Choice(
-        "periodic",
-        question,
-        f"rigid limit error ≈ {est:.2g} > tol {tol:.2g} at α = {p.alpha:.3g}: "
-        "the periodic orbit of the full model is needed",
-    )
+        return _mode_rung(p, question, chatter, note)
+    return _delta_s_rung(p, question, tol, chatter)
 
 
 def evaluate(p: ModelParams, choice: Choice, *, cycles: int = 100) -> Answer:

@@ -1,4 +1,6 @@
-"""The process's design rules, applied to a device file (``betv check``; the same rule ids
+"""The process's design rules, applied to a device file.
+
+The process's design rules, applied to a device file (``betv check``; the same rule ids
 come from the drawn polygons when a GDS layout is checked, :mod:`betvdesign.layout.drc`).
 
 Rules (each a :class:`~betvdesign.checks.rule.RuleResult` with its source in the
@@ -32,7 +34,7 @@ from betvdesign.checks.rule import RuleResult
 from betvdesign.model.frame import head_covers_tip, head_radius_min
 from betvdesign.nondim.actuator import actuator_inputs, frame_geometry
 from betvdesign.output.siformat import format_si
-from betvdesign.spec.models import BoxGeometry, DeviceSpec, DiscGeometry
+from betvdesign.spec.models import ActuatorSet, BoxGeometry, DeviceSpec, DiscGeometry
 from betvdesign.spec.process import Process, ProcessLayer
 
 __all__ = [
@@ -60,11 +62,14 @@ _REL = 1e-9
 
 @dataclass(frozen=True)
 class Feature:
-    """A drawn element of the device file: ``path`` (field path), ``what`` (words),
+    """A drawn element of the device file.
+
+    A drawn element of the device file: ``path`` (field path), ``what`` (words),
     structural ``layer``, ``width`` and ``length`` [m] (length 0 when not a beam),
     ``thickness`` [m] (None when the file gives none), ``aspect_min`` (the smallest
     length/width the model needs, 0 for none) and ``anchored`` (fixed to the substrate:
-    no release needed)."""
+    no release needed).
+    """
 
     path: str
     what: str
@@ -96,8 +101,65 @@ def _layer(process: Process | None, name: str | None) -> str:
     return process.structural_name(name)
 
 
+def _head_feature(spec: DeviceSpec, s: ActuatorSet, where: str, layer: str) -> Feature | None:
+    """The head of actuator set ``s`` as a drawn element (None when nothing is drawn).
+
+    Parameters
+    ----------
+    spec : DeviceSpec
+        The device.
+    s : ActuatorSet
+        The set.
+    where : str
+        The set's field path (``actuator_sets[i]``).
+    layer : str
+        Its structural layer's name.
+
+    Returns
+    -------
+    Feature or None
+        A disc or box head as drawn; a head given by its mass as the disc of that mass
+        when the actuator is drawn; else None.
+    """
+    head = s.head.geometry
+    geo = s.actuator.geometry
+    if isinstance(head, DiscGeometry):
+        return Feature(
+            f"{where}.head.geometry.diameter",
+            f"set {s.name}: head (disc)",
+            layer,
+            _m(head.diameter),
+            0.0,
+            _m(head.thickness),
+        )
+    if isinstance(head, BoxGeometry):
+        return Feature(
+            f"{where}.head.geometry.width",
+            f"set {s.name}: head (box)",
+            layer,
+            min(_m(head.width), _m(head.length)),
+            0.0,
+            _m(head.thickness),
+        )
+    if geo is not None:  # a head given by its mass is drawn as the disc of that mass
+        r = _m(actuator_inputs(spec, s).head_x)
+        return Feature(f"{where}.head.mass", f"set {s.name}: head (disc of its mass)", layer, 2 * r)
+    return None
+
+
 def drawn_features(spec: DeviceSpec) -> list[Feature]:
-    """Every drawn element of the device file with its width, length and thickness."""
+    """Every drawn element of the device file with its width, length and thickness.
+
+    Parameters
+    ----------
+    spec : DeviceSpec
+        The device.
+
+    Returns
+    -------
+    list of Feature
+        Its slider beams and actuator parts, widths and lengths [m].
+    """
     p = spec.process
     sl = spec.slider
     out = [
@@ -115,38 +177,11 @@ def drawn_features(spec: DeviceSpec) -> list[Feature]:
     for i, s in enumerate(spec.actuator_sets):
         geo = s.actuator.geometry
         layer = _layer(p, geo.layer if geo is not None else None)
-        head = s.head.geometry
         feats: list[Feature] = []
         where = f"actuator_sets[{i}]"
-        if isinstance(head, DiscGeometry):
-            feats.append(
-                Feature(
-                    f"{where}.head.geometry.diameter",
-                    f"set {s.name}: head (disc)",
-                    layer,
-                    _m(head.diameter),
-                    0.0,
-                    _m(head.thickness),
-                )
-            )
-        elif isinstance(head, BoxGeometry):
-            feats.append(
-                Feature(
-                    f"{where}.head.geometry.width",
-                    f"set {s.name}: head (box)",
-                    layer,
-                    min(_m(head.width), _m(head.length)),
-                    0.0,
-                    _m(head.thickness),
-                )
-            )
-        elif geo is not None:  # a head given by its mass is drawn as the disc of that mass
-            r = _m(actuator_inputs(spec, s).head_x)
-            feats.append(
-                Feature(
-                    f"{where}.head.mass", f"set {s.name}: head (disc of its mass)", layer, 2 * r
-                )
-            )
+        head = _head_feature(spec, s, where, layer)
+        if head is not None:
+            feats.append(head)
         if geo is not None:
             t = None if geo.thickness is None else _m(geo.thickness)
             g = f"{where}.actuator.geometry"
@@ -170,7 +205,18 @@ def drawn_features(spec: DeviceSpec) -> list[Feature]:
 
 
 def drawn_gaps(spec: DeviceSpec) -> list[Gap]:
-    """The drawn gaps of the device file (between the arms of each actuator)."""
+    """The drawn gaps of the device file (between the arms of each actuator).
+
+    Parameters
+    ----------
+    spec : DeviceSpec
+        The device.
+
+    Returns
+    -------
+    list of Gap
+        The gaps [m].
+    """
     p = spec.process
     out: list[Gap] = []
     seen: set[tuple] = set()
@@ -195,8 +241,21 @@ def _fmt(x: float) -> str:
 
 
 def process_rules(spec: DeviceSpec) -> list[RuleResult]:
-    """The rules of the module docstring for a device file (empty without a process and
-    without an actuator geometry)."""
+    """The process rules for a device file.
+
+    The rules of the module docstring for a device file (empty without a process and
+    without an actuator geometry).
+
+    Parameters
+    ----------
+    spec : DeviceSpec
+        The device.
+
+    Returns
+    -------
+    list of RuleResult
+        The rules' results.
+    """
     feats = drawn_features(spec)
     has_geometry = any(s.actuator.geometry is not None for s in spec.actuator_sets)
     out: list[RuleResult] = []
@@ -214,9 +273,26 @@ def process_rules(spec: DeviceSpec) -> list[RuleResult]:
 def rules_from_measurements(
     spec: DeviceSpec, widths: list[Feature], gaps: list[Gap]
 ) -> list[RuleResult]:
-    """The same rules on measured elements (a layout's polygons), for the rule ids the
+    """The process rules on measured elements (a layout's polygons).
+
+    The same rules on measured elements (a layout's polygons), for the rule ids the
     measurements replace (:mod:`betvdesign.layout.drc` adds its own width, spacing and
-    release findings)."""
+    release findings).
+
+    Parameters
+    ----------
+    spec : DeviceSpec
+        The device extracted from the layout.
+    widths : list of Feature
+        The measured elements [m].
+    gaps : list of Gap
+        The measured gaps [m].
+
+    Returns
+    -------
+    list of RuleResult
+        The rules' results.
+    """
     assert spec.process is not None
     p = spec.process
     return [
@@ -363,9 +439,22 @@ def _min_spacing(p: Process, gaps: list[Gap]) -> RuleResult:
 
 
 def release_pitch(layer: ProcessLayer) -> float:
-    """Hole pitch [µm] a layout draws on ``layer``: the process's pitch, or less so that no
+    """Hole pitch [µm] a layout draws on ``layer``.
+
+    Hole pitch [µm] a layout draws on ``layer``: the process's pitch, or less so that no
     point of a square lattice lies farther than half the widest unreleased feature from a
-    hole: (pitch − size)/√2 ≤ w_max/2."""
+    hole: (pitch − size)/√2 ≤ w_max/2.
+
+    Parameters
+    ----------
+    layer : ProcessLayer
+        A structural layer with release holes.
+
+    Returns
+    -------
+    float
+        The pitch [µm].
+    """
     h = layer.release_holes
     assert h is not None and layer.max_unreleased_width is not None
     size = float(h.size.to("um").magnitude)
@@ -374,8 +463,23 @@ def release_pitch(layer: ProcessLayer) -> float:
 
 
 def hole_share(p: Process, layer: str) -> float:
-    """The share of a feature's area its release holes take [-]: size²/pitch² at the
-    pitch :func:`release_pitch` draws."""
+    """The share of a feature's area its release holes take [-].
+
+    The share of a feature's area its release holes take [-]: size²/pitch² at the
+    pitch :func:`release_pitch` draws.
+
+    Parameters
+    ----------
+    p : Process
+        The process.
+    layer : str
+        The structural layer (one with release holes).
+
+    Returns
+    -------
+    float
+        size²/pitch² [-].
+    """
     lay = p.structural(layer)
     h = lay.release_holes
     assert h is not None

@@ -281,8 +281,11 @@ def _mode(s: SetDerivation, orbit: OrbitLike | None, travel: TravelAnswer | None
 
 
 def _travel_mode(s: SetDerivation, ans: TravelAnswer, want: str) -> RuleResult:
-    """The mode rule when the periodic orbit is not the answer (:mod:`betvdesign.checks.
-    travel`): Δs undetermined, no crossing of the travel, or the crossing from rest."""
+    """The mode rule when the periodic orbit is not the answer.
+
+    The mode rule when the periodic orbit is not the answer (:mod:`betvdesign.checks.
+    travel`): Δs undetermined, no crossing of the travel, or the crossing from rest.
+    """
     travel = format_si(s.travel_range_m, "m")
     f = s.scales.f_act_hz
     periodic = ans.delta_s_periodic
@@ -364,9 +367,12 @@ def _margin(
     corners: dict[str, str | None],
     travel: TravelAnswer | None = None,
 ) -> RuleResult:
-    """The rule ``mode-margin``: the quoted mode (the travel answer's, else the orbit's)
+    """The rule ``mode-margin``: the quoted mode at every corner.
+
+    The rule ``mode-margin``: the quoted mode (the travel answer's, else the orbit's)
     at every corner, each corner read on the same basis (the checker's
-    ``corner_modes``)."""
+    ``corner_modes``).
+    """
     mode = travel.mode if travel is not None else orbit_mode(orbit)
     thr = "same mode at ϖ·(1 ± 5 %) and α·(1 ± 10 %)"
     if mode not in ("push", "pull"):

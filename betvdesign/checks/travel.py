@@ -95,7 +95,6 @@ class TravelAnswer:
 
     def as_dict(self) -> dict[str, Any]:
         """JSON-ready record (non-finite floats as None)."""
-
         return {
             "basis": self.basis,
             "mode": self.mode,

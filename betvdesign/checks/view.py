@@ -137,7 +137,7 @@ class LambdaOut(_Out):
 
 
 class MarginOut(_Out):
-    """Does the exact mode survive fabrication spread (rule mode-margin)?"""
+    """Whether the exact mode survives fabrication spread (rule mode-margin)."""
 
     holds: bool | None = Field(description="same mode at every corner (None: not computed)")
     corners: dict[str, str | None] = Field(description="exact mode at each perturbed corner")
@@ -328,7 +328,7 @@ class RuleFilter:
     ignore: tuple[str, ...] = ()
 
     def keeps(self, rule_id: str) -> bool:
-        """Does a rule count?
+        """Whether a rule counts.
 
         Parameters
         ----------
@@ -345,7 +345,9 @@ class RuleFilter:
         return not any(self._hit(rule_id, s) for s in self.ignore)
 
     def unmatched(self, results: Sequence[Any]) -> list[str]:
-        """Selectors that match no rule (a typo, or a rule these devices do not have, e.g.
+        """Selectors that match no rule.
+
+        Selectors that match no rule (a typo, or a rule these devices do not have, e.g.
         published-fit without a published fit).
 
         Parameters
@@ -401,7 +403,7 @@ class DeviceView:
 
     @property
     def verdict(self) -> Literal["pass", "fail"]:
-        """ "fail" when a counted error-severity rule fails."""
+        """The verdict: "fail" when a counted error-severity rule fails."""
         return "fail" if self.failed else "pass"
 
     @property
@@ -472,6 +474,7 @@ class DeviceView:
         return "\n".join(compact_lines(self, width=width, markup=False))
 
     def __repr__(self) -> str:
+        """The compact text block (:meth:`text`)."""
         return self.text()
 
     def _repr_html_(self) -> str:
@@ -884,8 +887,11 @@ def output_json(views: Sequence[DeviceView], *, verbose: bool = False) -> str:
 
 
 def set_fields_excluded() -> dict[str, Any]:
-    """The ``exclude`` of ``model_dump`` that leaves out :data:`VERBOSE_SET_FIELDS` of
-    every set of a :class:`CheckOutput`."""
+    """The ``exclude`` that drops the verbose set fields.
+
+    The ``exclude`` of ``model_dump`` that leaves out :data:`VERBOSE_SET_FIELDS` of
+    every set of a :class:`CheckOutput`.
+    """
     return {"devices": {"__all__": {"sets": {"__all__": set(VERBOSE_SET_FIELDS)}}}}
 
 

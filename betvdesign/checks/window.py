@@ -65,9 +65,12 @@ def _drive_range(s: SetDerivation, lo_varpi: float, hi_varpi: float) -> str:
 
 
 def frequency_window(s: SetDerivation, vertical: VerticalResult | None) -> RuleResult:
-    """The rule ``frequency-window``: 0.5 ≤ ϖ < 2, read by the one comparison
+    """The rule ``frequency-window``: 0.5 ≤ ϖ < 2.
+
+    The rule ``frequency-window``: 0.5 ≤ ϖ < 2, read by the one comparison
     (:func:`~betvdesign.model.domain.window_position`: the lower edge inside, the upper
-    edge outside, each to :data:`~betvdesign.model.domain.WINDOW_EDGE_RTOL`)."""
+    edge outside, each to :data:`~betvdesign.model.domain.WINDOW_EDGE_RTOL`).
+    """
     v = s.params.varpi
     lo, hi = VARPI_WINDOW
     f_v = s.scales.f_act_hz / v
@@ -151,9 +154,12 @@ def _share(x: float) -> str:
 
 
 def window_margin(s: SetDerivation) -> RuleResult | None:
-    """The rule ``window-margin`` (warning): the window holds at ϖ·(1 ± 5 %), or the
+    """The rule ``window-margin`` (warning): the window at ϖ·(1 ± 5 %).
+
+    The rule ``window-margin`` (warning): the window holds at ϖ·(1 ± 5 %), or the
     distance to the nearest edge is named; None when ϖ is outside the window (the
-    window rule fails then)."""
+    window rule fails then).
+    """
     v = s.params.varpi
     if not in_window(v):
         return None

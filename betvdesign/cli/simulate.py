@@ -130,6 +130,52 @@ def _physical(
     return out
 
 
+def _periodic_answer(p: ModelParams, tol: float, max_cycles: int) -> tuple[dict[str, Any], bool]:
+    """The periodic state of ``p`` as ``betv simulate --periodic`` reports it, and success."""
+    from betvdesign.dynamics import periodic_orbit
+
+    po = periodic_orbit(p, tol=tol, max_cycles=max_cycles)
+    out: dict[str, Any] = {
+        "params": p.as_dict(),
+        "status": po.status,
+        "message": po.message,
+        "cycles": po.transient_cycles,
+        "s": po.transient_s,
+        "delta_s": json_float(po.delta_s),
+        "mode": po.mode,
+        "period_cycles": po.period_cycles,
+        "residual": json_float(po.residual),
+        "floquet": po.floquet_moduli,
+        "impacts_per_cycle": po.impacts_per_cycle,
+        "contact_fraction": po.contact_fraction,
+    }
+    return out, po.success
+
+
+def _transient_answer(p: ModelParams, cycles: int) -> tuple[dict[str, Any], bool]:
+    """The transient of ``cycles`` cycles from rest as ``betv simulate`` reports it, and success."""
+    from betvdesign.dynamics import simulate
+    from betvdesign.model.domain import mode_of
+
+    tr = simulate(p, cycles, log_events=False)
+    last = float(tr.delta_s[-1]) if len(tr.delta_s) else None
+    out: dict[str, Any] = {
+        "params": p.as_dict(),
+        "status": tr.status,
+        "message": tr.message,
+        "cycles": tr.n_cycles,
+        "s": tr.s,
+        "delta_s": last,
+        "mode": mode_of(last) if tr.driven else "not driven",
+        "period_cycles": None,
+        "residual": None,
+        "floquet": None,
+        "impacts_per_cycle": tr.impacts_per_cycle,
+        "contact_fraction": tr.contact_fraction,
+    }
+    return out, tr.success
+
+
 @app.command("simulate")
 def simulate_cmd(
     file: Path | None = typer.Argument(None, help="Device YAML file (see devices/)."),
@@ -183,9 +229,6 @@ def simulate_cmd(
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object on stdout."),
 ) -> None:
     """Simulate one design exactly: a transient (--cycles) or the periodic state (--periodic)."""
-    from betvdesign.dynamics import periodic_orbit, simulate
-    from betvdesign.model.domain import mode_of
-
     opts = {"varpi": varpi, "alpha": alpha, "beta": beta, "kappa": kappa}
     with user_errors(), interruptible(resumable=False):
         physics = {
@@ -197,40 +240,9 @@ def simulate_cmd(
         }
         p, scales, ident = _params_from_options(file, set_name, opts, physics)
         if periodic:
-            po = periodic_orbit(p, tol=residual_tol, max_cycles=max_cycles)
-            out: dict[str, Any] = {
-                "params": p.as_dict(),
-                "status": po.status,
-                "message": po.message,
-                "cycles": po.transient_cycles,
-                "s": po.transient_s,
-                "delta_s": json_float(po.delta_s),
-                "mode": po.mode,
-                "period_cycles": po.period_cycles,
-                "residual": json_float(po.residual),
-                "floquet": po.floquet_moduli,
-                "impacts_per_cycle": po.impacts_per_cycle,
-                "contact_fraction": po.contact_fraction,
-            }
-            success = po.success
+            out, success = _periodic_answer(p, residual_tol, max_cycles)
         else:
-            tr = simulate(p, cycles, log_events=False)
-            last = float(tr.delta_s[-1]) if len(tr.delta_s) else None
-            out = {
-                "params": p.as_dict(),
-                "status": tr.status,
-                "message": tr.message,
-                "cycles": tr.n_cycles,
-                "s": tr.s,
-                "delta_s": last,
-                "mode": mode_of(last) if tr.driven else "not driven",
-                "period_cycles": None,
-                "residual": None,
-                "floquet": None,
-                "impacts_per_cycle": tr.impacts_per_cycle,
-                "contact_fraction": tr.contact_fraction,
-            }
-            success = tr.success
+            out, success = _transient_answer(p, cycles)
     out.update(ident)
     if scales is not None:
         out["physical"] = _physical(

@@ -4,7 +4,7 @@
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Annotated
+from typing import Annotated, Any
 
 import typer
 
@@ -32,6 +32,40 @@ from betvdesign.cli.common import (
 )
 from betvdesign.errors import UsageError
 from betvdesign.spec import limits
+
+
+def _print_tolerance(
+    device: Path, samples: int, seed: int, fidelity: str, tols: list, summary: dict[str, Any]
+) -> None:
+    """The human listing of ``betv tolerance``: per set its probabilities, speeds, ranks."""
+    typer.echo(f"{device}: {samples} samples, seed {seed}, mode from {fidelity}")
+    for t in tols:
+        typer.echo(f"  spread {t.describe()}")
+    for name, s in summary["sets"].items():
+        typer.echo(
+            f"  set {name} (intended {s['intended_mode']}): "
+            f"P(push) {s['p_push']:.3f}  P(pull) {s['p_pull']:.3f}  "
+            f"P(outside window) {s['p_outside_window']:.3f}  "
+            f"P(wrong mode) {s['p_wrong_mode']:.3f}"
+        )
+        if s["p_not_converged"]:
+            typer.echo(f"    P(not converged) {s['p_not_converged']:.3f}")
+        if s.get("p_not_driven"):
+            typer.echo(f"    P(not driven: no contact recurs) {s['p_not_driven']:.3f}")
+        if s["invalid_samples"]:
+            typer.echo(f"    invalid samples: {s['invalid_samples']}")
+        pct = s["intended_speed_um_s_percentiles"]
+        if pct:
+            typer.echo(
+                f"    speed in the intended {s['intended_mode']} direction [µm/s] "
+                "(− the wrong way; p5 slowest) " + "  ".join(f"{k} {v:.4g}" for k, v in pct.items())
+            )
+        ranked = ", ".join(
+            f"{e['field']} ({e[s['ranked_by']]:+.2f})"
+            for e in s["sensitivities"]
+            if e[s["ranked_by"]] is not None
+        )
+        typer.echo(f"    most sensitive ({s['ranked_by']}): {ranked}")
 
 
 @app.command("tolerance")
@@ -106,38 +140,27 @@ def tolerance_cmd(
         data = {"study": "tolerance", "device": str(device), "seed": seed, **run_block(run)}
         data |= summary
 
-        def human() -> None:
-            typer.echo(f"{device}: {samples} samples, seed {seed}, mode from {fidelity}")
-            for t in tols:
-                typer.echo(f"  spread {t.describe()}")
-            for name, s in summary["sets"].items():
-                typer.echo(
-                    f"  set {name} (intended {s['intended_mode']}): "
-                    f"P(push) {s['p_push']:.3f}  P(pull) {s['p_pull']:.3f}  "
-                    f"P(outside window) {s['p_outside_window']:.3f}  "
-                    f"P(wrong mode) {s['p_wrong_mode']:.3f}"
-                )
-                if s["p_not_converged"]:
-                    typer.echo(f"    P(not converged) {s['p_not_converged']:.3f}")
-                if s.get("p_not_driven"):
-                    typer.echo(f"    P(not driven: no contact recurs) {s['p_not_driven']:.3f}")
-                if s["invalid_samples"]:
-                    typer.echo(f"    invalid samples: {s['invalid_samples']}")
-                pct = s["intended_speed_um_s_percentiles"]
-                if pct:
-                    typer.echo(
-                        f"    speed in the intended {s['intended_mode']} direction [µm/s] "
-                        "(− the wrong way; p5 slowest) "
-                        + "  ".join(f"{k} {v:.4g}" for k, v in pct.items())
-                    )
-                ranked = ", ".join(
-                    f"{e['field']} ({e[s['ranked_by']]:+.2f})"
-                    for e in s["sensitivities"]
-                    if e[s["ranked_by"]] is not None
-                )
-                typer.echo(f"    most sensitive ({s['ranked_by']}): {ranked}")
+        emit(
+            data,
+            as_json,
+            lambda: _print_tolerance(device, samples, seed, fidelity, tols, summary),
+        )
 
-        emit(data, as_json, human)
+
+def _emit_calibration(
+    device: Path, data: Path, out: Path | None, result: Any, as_json: bool
+) -> None:
+    """Print a calibration (its snippet, or JSON) and its warnings; exit 1 unless converged."""
+    payload = {"study": "calibration", "device": str(device), "data": str(data)}
+    payload |= result.as_dict()
+    payload["out"] = str(out) if out else None
+    emit(payload, as_json, lambda: typer.echo(result.snippet, nl=False))
+    for w in result.warnings:
+        typer.echo(f"warning: {w}", err=True)
+    if result.status == "failed":
+        typer.echo(f"error: fit did not converge: {result.message}", err=True)
+    if result.status != "converged":
+        raise typer.Exit(EXIT_RULE_FAILED)
 
 
 @app.command("calibrate")
@@ -217,13 +240,4 @@ def calibrate_cmd(
         )
         if out is not None:
             write_atomic(out, result.snippet)
-        payload = {"study": "calibration", "device": str(device), "data": str(data)}
-        payload |= result.as_dict()
-        payload["out"] = str(out) if out else None
-        emit(payload, as_json, lambda: typer.echo(result.snippet, nl=False))
-        for w in result.warnings:
-            typer.echo(f"warning: {w}", err=True)
-        if result.status == "failed":
-            typer.echo(f"error: fit did not converge: {result.message}", err=True)
-        if result.status != "converged":
-            raise typer.Exit(EXIT_RULE_FAILED)
+        _emit_calibration(device, data, out, result, as_json)

@@ -32,7 +32,20 @@ MAX_STEPS = 5000
 
 @kernel
 def safe_step(f: float, fp: float, m2: float) -> float:
-    """Smallest x > 0 with f + f'x − M2 x²/2 = 0 (f > 0), written without cancellation."""
+    """Smallest x > 0 with f + f'x − M2 x²/2 = 0 (f > 0), written without cancellation.
+
+    Parameters
+    ----------
+    f, fp : float
+        f > 0 and f' at the point.
+    m2 : float
+        A bound on |f''| over the step.
+
+    Returns
+    -------
+    float
+        The step [-] within which f cannot reach 0.
+    """
     if m2 <= 0.0:
         return math.inf if fp >= 0.0 else f / -fp
     root = math.sqrt(fp * fp + 2.0 * m2 * f)
@@ -50,6 +63,20 @@ def local_m2(f: float, fp: float, fpp: float, m2: float, m3: float) -> float:
     the Newton bracket [h, h + 2f/|f'|] if it passes the bracket test; when it would pass
     that test without covering the bracket, it is raised just enough to fail it. Capped
     by the global bound ``m2`` (valid everywhere).
+
+    Parameters
+    ----------
+    f, fp, fpp : float
+        f > 0, f' and f'' at the point.
+    m2 : float
+        The global bound on |f''|.
+    m3 : float
+        A bound on the third derivative |f⁽³⁾|.
+
+    Returns
+    -------
+    float
+        The bound on |f''|.
     """
     if f <= 0.0:
         return m2
@@ -80,6 +107,18 @@ def envelope_prep(K: float, E: float, a: float) -> tuple[int, float]:
     mode 0: the threshold is already reached for every θ0 (time 0); 1: never (inf);
     2: K > 0, cos θ ≤ c on [acos c, 2π − acos c]; 3: K < 0, cos θ ≥ c on
     [0, acos c] ∪ [2π − acos c, 2π), with c = (a − E)/K.
+
+    Parameters
+    ----------
+    K, E : float
+        Amplitude and offset of the forced part.
+    a : float
+        The threshold.
+
+    Returns
+    -------
+    tuple of (int, float)
+        The mode and acos c [rad].
     """
     if K == 0.0:
         return (0, 0.0) if E <= a else (1, 0.0)
@@ -99,7 +138,24 @@ def envelope_prep(K: float, E: float, a: float) -> tuple[int, float]:
 
 @kernel
 def envelope_at(mode: int, al: float, th0: float, wf: float) -> float:
-    """The certified no-root length from phase θ0 [-] prepared by :func:`envelope_prep`."""
+    """The certified no-root length from phase θ0 [-] prepared by :func:`envelope_prep`.
+
+    Parameters
+    ----------
+    mode : int
+        From :func:`envelope_prep`.
+    al : float
+        acos c [rad], from :func:`envelope_prep`.
+    th0 : float
+        The phase θ0 [rad].
+    wf : float
+        ϖ [-].
+
+    Returns
+    -------
+    float
+        The length [-] (0 or inf in modes 0 and 1).
+    """
     if mode == 0:
         return 0.0
     if mode == 1:
@@ -116,14 +172,40 @@ def envelope_at(mode: int, al: float, th0: float, wf: float) -> float:
 
 @kernel
 def cos_range_prep(pb: float) -> tuple[float, float, float]:
-    """The part of the range of cos over [pa, pb] that depends on the end pb only."""
+    """The part of the range of cos over [pa, pb] that depends on the end pb only.
+
+    Parameters
+    ----------
+    pb : float
+        The interval's end [rad].
+
+    Returns
+    -------
+    tuple of float
+        cos pb and the counts of odd and even multiples of π below pb.
+    """
     return math.cos(pb), math.floor((pb - math.pi) / TWO_PI), math.floor(pb / TWO_PI)
 
 
 @kernel
 def cos_range_to(pa: float, cb: float, f1: float, f2: float) -> tuple[float, float]:
-    """(min, max) of cos over the phase interval [pa, pb] [rad], exactly, with pb's part
-    (cb, f1, f2) from :func:`cos_range_prep`."""
+    """Exact (min, max) of cos over the phase interval [pa, pb] [rad].
+
+    (min, max) of cos over the phase interval [pa, pb] [rad], exactly, with pb's part
+    (cb, f1, f2) from :func:`cos_range_prep`.
+
+    Parameters
+    ----------
+    pa : float
+        The interval's start [rad].
+    cb, f1, f2 : float
+        pb's part, from :func:`cos_range_prep`.
+
+    Returns
+    -------
+    tuple of float
+        (min, max) of cos.
+    """
     ca = math.cos(pa)
     lo, hi = (ca, cb) if ca < cb else (cb, ca)
     if f1 >= math.ceil((pa - math.pi) / TWO_PI):
@@ -139,6 +221,24 @@ def derivative_bound(w0: float, F: float, wf: float, R: float, j: int) -> float:
 
     From y⁽ᵏ⁾ = −w0² y⁽ᵏ⁻²⁾ + F wf^(k−2) sin^(k−2)(φ): |y⁽ᵏ⁾| ≤ w0²|y⁽ᵏ⁻²⁾| + |F| wf^(k−2),
     with |y| ≤ R/w0, |y'| ≤ R (R ≥ sqrt(y'² + w0² y²) on the window).
+
+    Parameters
+    ----------
+    w0 : float
+        Angular frequency of the oscillator [-].
+    F : float
+        Forcing amplitude [-].
+    wf : float
+        Forcing frequency ϖ [-].
+    R : float
+        Energy radius of the window [-].
+    j : int
+        Order of the derivative.
+
+    Returns
+    -------
+    float
+        The bound.
     """
     b0, b1 = R / w0, R
     bj = b0 if j == 0 else b1

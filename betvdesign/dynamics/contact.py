@@ -83,10 +83,13 @@ PER_CYCLE = MAX_SWITCHES + 4
 
 
 class ContactEnd(NamedTuple):
-    """What :func:`contact` returns: ``code`` (OK, SEARCH_FAILED_CODE, CHATTER), the state
+    """What :func:`contact` returns.
+
+    What :func:`contact` returns: ``code`` (OK, SEARCH_FAILED_CODE, CHATTER), the state
     (ζ, ζ', s, s') reached, events and root evaluations counted, ``where`` (the search
     window on SEARCH_FAILED_CODE, the local time on CHATTER), ``switches`` (CHATTER) and the
-    log / segment counters."""
+    log / segment counters.
+    """
 
     code: int
     z: float
@@ -102,9 +105,12 @@ class ContactEnd(NamedTuple):
 
 
 class CyclesRun(NamedTuple):
-    """What :func:`run_cycles` returns: ``code`` and the cycle offset ``j`` it refers to,
+    """What :func:`run_cycles` returns.
+
+    What :func:`run_cycles` returns: ``code`` and the cycle offset ``j`` it refers to,
     events and root evaluations counted, ``where`` / ``switches`` as in
-    :class:`ContactEnd`, the log / segment counters and the state (ζ, ζ', s, s') reached."""
+    :class:`ContactEnd`, the log / segment counters and the state (ζ, ζ', s, s') reached.
+    """
 
     code: int
     j: int
@@ -258,9 +264,12 @@ def _seg(segs, k, m, t0, t1, phase, z, zd, s, sd, sp, cp) -> int:
 
 @kernel
 def contact(c, m, tc, z, zd, s, sd, ws, log, nlog, segs, nseg):
-    """Cycle m from the contact-opening hit at local time tc to the contact end π/ϖ
+    """Advance cycle m from its contact-opening hit to its contact end.
+
+    Cycle m from the contact-opening hit at local time tc to the contact end π/ϖ
     (a :class:`ContactEnd`). Logs (nlog ≥ 0) and records segments (nseg ≥ 0) when those
-    counters are not −1."""
+    counters are not −1.
+    """
     wf, beta = c.varpi, c.beta
     te = math.pi / wf
     if tc > 0.0:
@@ -360,6 +369,12 @@ def run_cycles(table, tab, idx, imp, m0, z, zd, s, sd, rows, check_finite, log, 
         ``code`` OK, SEARCH_FAILED_CODE, CHATTER or NON_FINITE in cycle m0 + j, or
         BUFFER_FULL (go on from cycle m0 + j with the state returned, the one at its
         start); the counters and the state reached.
+
+    Notes
+    -----
+    Over 80 lines on purpose: the compiled cycle loop of the exact solver, carrying the
+    state, counters and log rows from cycle to cycle; its numbers are pinned bit for bit
+    by ``benchmarks/snapshot.py``.
 
     References
     ----------

@@ -110,7 +110,6 @@ class Determination:
 
     def as_dict(self) -> dict[str, Any]:
         """JSON-ready record (non-finite floats as None)."""
-
         return {
             "status": self.status,
             "mode": self.mode,
@@ -170,8 +169,11 @@ def degeneracy(p: ModelParams) -> tuple[str, str] | None:
 
 
 def _perturbed(p: ModelParams) -> list[tuple[str, ModelParams]]:
-    """(field, design) of each re-solve: ϖ, α, β, κ and each optional term that is set,
-    each moved by every one of :data:`PERTURBATIONS`."""
+    """The (field, design) of each re-solve.
+
+    (field, design) of each re-solve: ϖ, α, β, κ and each optional term that is set,
+    each moved by every one of :data:`PERTURBATIONS`.
+    """
     out = []
     for name in ("varpi", "alpha", "beta", "kappa", "zeta_v", "zeta_h", "restitution"):
         value = getattr(p, name)
@@ -295,9 +297,12 @@ def determine(
 def _lost_orbit(
     p: ModelParams, ds: float, failures: list[tuple[str, Any]], n: int
 ) -> tuple[str, str]:
-    """(reason, fix) when re-solves lose the orbit: which re-solves, their status and
+    """The (reason, fix) when re-solves lose the orbit.
+
+    (reason, fix) when re-solves lose the orbit: which re-solves, their status and
     message, and a fix that names the parameter whose move lost it (never a generic
-    cause)."""
+    cause).
+    """
     listed = "; ".join(
         f"{name} → {r.status} ({str(r.message).split(';')[0][:160]})" for name, r in failures
     )

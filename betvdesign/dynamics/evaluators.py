@@ -173,16 +173,22 @@ def init_record(e, kind: int, H: float, W: float) -> None:
 
 @kernel(inline=True)
 def put_forcing(e, wf: float, w0: float, F: float, sp0: float, cp0: float) -> None:
-    """The oscillator y'' + w0² y = F sin φ of the evaluator e, φ = φ0 + ϖh (ϖ = wf), and
-    its forcing phase at the window start: (sin φ0, cos φ0) = (sp0, cp0) and φ0 [rad]."""
+    """Set the oscillator and its forcing phase of an evaluator.
+
+    The oscillator y'' + w0² y = F sin φ of the evaluator e, φ = φ0 + ϖh (ϖ = wf), and
+    its forcing phase at the window start: (sin φ0, cos φ0) = (sp0, cp0) and φ0 [rad].
+    """
     e["wf"], e["w0"], e["F"] = wf, w0, F
     e["sp0"], e["cp0"], e["phi0"] = sp0, cp0, math.atan2(sp0, cp0)
 
 
 @kernel(inline=True)
 def put_start(e, start, noise) -> None:
-    """The Taylor coefficients 0..3 of each event function at the window start (entries
-    4i..4i+3 of the 8-tuple ``start``) and their round-off floors (``noise``)."""
+    """Set the Taylor coefficients and round-off floors at the window start.
+
+    The Taylor coefficients 0..3 of each event function at the window start (entries
+    4i..4i+3 of the 8-tuple ``start``) and their round-off floors (``noise``).
+    """
     for k in range(8):
         e["start"][k] = start[k]
         e["noise"][k] = noise[k]
@@ -284,7 +290,9 @@ def gap_evaluator(
     general: bool,
     e,
 ) -> None:
-    """Evaluator of the gap ξ in free flight (ξ'' + 2ζ_v ξ' + ξ = −A sin φ): the head
+    """Evaluator of the gap ξ in free flight.
+
+    Evaluator of the gap ξ in free flight (ξ'' + 2ζ_v ξ' + ξ = −A sin φ): the head
     hits where ξ = 0.
 
     Parameters
@@ -527,8 +535,11 @@ def derivative_bound_general(w0: float, g: float, Af: float, wf: float, R: float
 
 @kernel
 def taylor_general(w0, g, wf, F, G, y, yd, sp, cp) -> tuple:
-    """The derivatives of orders 2 to 5 at a point from the equation of motion, then
-    the round-off scale of each (sums of the magnitudes of their terms), in one pass."""
+    """The derivatives of orders 2 to 5 at a point and their round-off scales.
+
+    The derivatives of orders 2 to 5 at a point from the equation of motion, then
+    the round-off scale of each (sums of the magnitudes of their terms), in one pass.
+    """
     fs, fc = F * sp + G * cp, F * cp - G * sp
     fsa = abs(F * sp) + abs(G * cp)
     fca = abs(F * cp) + abs(G * sp)
@@ -557,8 +568,11 @@ def _general(e, g, G, Af, bA, ast) -> None:
 
 @kernel
 def _coeffs(w0: float, g: float, k: int) -> float:
-    """c_k with |y_h⁽ᵏ⁾| ≤ c_k E_h for a free damped oscillation of energy radius E_h:
-    c_0 = 1/w0, c_1 = 1, c_k = 2g c_(k−1) + w0² c_(k−2)."""
+    """Bounds c_k on the derivatives of a free damped oscillation.
+
+    c_k with |y_h⁽ᵏ⁾| ≤ c_k E_h for a free damped oscillation of energy radius E_h:
+    c_0 = 1/w0, c_1 = 1, c_k = 2g c_(k−1) + w0² c_(k−2).
+    """
     c0, c1 = 1.0 / w0, 1.0
     if k == 0:
         return c0
@@ -569,13 +583,16 @@ def _coeffs(w0: float, g: float, k: int) -> float:
 
 @kernel
 def _split(e, w0, g, wf, F, G, y, yd, sp0, cp0, kind: int, sig: float, ds: float, sd: float):
-    """The fast mode of the general form (the damped analogue of the undamped split):
+    """The fast mode of the general form.
+
+    The fast mode of the general form (the damped analogue of the undamped split):
     y = a sin φ + b cos φ + y_h with y_h a free damped oscillation whose energy radius
     E_h = sqrt(y_h'² + w0² y_h²) never grows (d/dh E_h² = −4g y_h'²). Each event function
     is then K_i cos(φ − off_i) − cc plus a fast part bounded by ct (a multiple of E_h):
     global |f''|, |f'''| bounds (the whole window is one step range), slow envelopes and
     the whole-window clearance test. Used when the split does not cancel:
-    |(a, b)| w0² ≤ 10 |(F, G)| (as the undamped |1 − aϖ²| ≥ 0.1)."""
+    |(a, b)| w0² ≤ 10 |(F, G)| (as the undamped |1 − aϖ²| ≥ 0.1).
+    """
     dl = (w0 - wf) * (w0 + wf)
     gw = 2.0 * g * wf
     den = dl * dl + gw * gw

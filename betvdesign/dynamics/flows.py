@@ -137,8 +137,11 @@ def _split_ok(P: float, w0: float, F: float) -> bool:
 
 
 def _record(dtype: np.dtype, fields: dict[str, Any]) -> tuple:
-    """The tuple numpy builds one record of ``dtype`` from, taken from ``fields`` by name
-    (a nested record from a nested dict); a missing or unknown name is a KeyError."""
+    """The tuple numpy builds one record of ``dtype`` from.
+
+    The tuple numpy builds one record of ``dtype`` from, taken from ``fields`` by name
+    (a nested record from a nested dict); a missing or unknown name is a KeyError.
+    """
     names = dtype.names or ()
     unknown = set(fields) - set(names)
     if unknown:
@@ -221,7 +224,9 @@ def phase_table(p: ModelParams, *, general: bool = False) -> np.ndarray:
 
 
 def _damped_fields(p: ModelParams, b: float, a_st: float) -> dict[str, Any]:
-    """The fields of the table row that damping changes (docs/damping.md, kernel time
+    """The fields of the table row that damping changes.
+
+    The fields of the table row that damping changes (docs/damping.md, kernel time
     φ = ϖτ, N ∝ A sin φ).
 
     Every phase is y'' + 2g y' + w0² y = F sin φ + G cos φ with inertia a (α, or
@@ -277,7 +282,18 @@ def _damped_fields(p: ModelParams, b: float, a_st: float) -> dict[str, Any]:
 
 @kernel
 def sinc(x: float) -> float:
-    """sin(x)/x with the removable singularity filled in (Taylor for |x| < 1e-3)."""
+    """sin(x)/x with the removable singularity filled in (Taylor for |x| < 1e-3).
+
+    Parameters
+    ----------
+    x : float
+        The argument [-].
+
+    Returns
+    -------
+    float
+        sin(x)/x (1 at 0).
+    """
     if -1e-3 < x < 1e-3:
         x2 = x * x
         return 1.0 - x2 / 6.0 * (1.0 - x2 / 20.0)
@@ -336,12 +352,29 @@ def oscillator(
 
 @kernel
 def decaying_basis(w0: float, g: float, h: float) -> tuple[float, float]:
-    """(e^(−gh) cos(w_d h), e^(−gh) sin(w_d h)/w_d), w_d² = w0² − g² [-]: the basis of the
+    """The basis of the free damped oscillation over a step h [-].
+
+    (e^(−gh) cos(w_d h), e^(−gh) sin(w_d h)/w_d), w_d² = w0² − g² [-]: the basis of the
     free damped oscillation y'' + 2g y' + w0² y = 0, one expression for under-, critically
     and overdamped motion (cosh/sinh when w_d² < 0), with no cancellation near critical
     damping: a Taylor series in x = w_d² h² for |x| < 0.01 (9 terms: error < 1e-20
     relative), exponentials of −w0²h/(g + r) and −(g + r)h (r² = g² − w0²) when
-    overdamped."""
+    overdamped.
+
+    Parameters
+    ----------
+    w0 : float
+        Undamped angular frequency [-].
+    g : float
+        Decay rate [-].
+    h : float
+        Step [-].
+
+    Returns
+    -------
+    tuple of float
+        The two basis functions at h [-].
+    """
     x = (w0 - g) * (w0 + g) * h * h
     eg = math.exp(-g * h) if g * h < 745.0 else 0.0
     if -0.01 < x < 0.01:
@@ -431,7 +464,22 @@ def forced(
 
 @kernel
 def rotate(wf: float, sp0: float, cp0: float, h: float) -> tuple[float, float]:
-    """(sin φ, cos φ) at φ = φ0 + wf h from (sin φ0, cos φ0)."""
+    """(sin φ, cos φ) at φ = φ0 + wf h from (sin φ0, cos φ0).
+
+    Parameters
+    ----------
+    wf : float
+        ϖ [-].
+    sp0, cp0 : float
+        sin φ0, cos φ0.
+    h : float
+        Step [-].
+
+    Returns
+    -------
+    tuple of float
+        sin φ, cos φ.
+    """
     cw, sw = math.cos(wf * h), math.sin(wf * h)
     return sp0 * cw + cp0 * sw, cp0 * cw - sp0 * sw
 

@@ -8,7 +8,23 @@ from betvdesign.errors import ParameterError
 
 
 def check_state0(state0: object) -> tuple[float, ...]:
-    """(ξ, ξ', ζ, ζ', s, s') from a user's state0 (None: all zero) or ParameterError."""
+    """(ξ, ξ', ζ, ζ', s, s') from a user's state0 (None: all zero) or ParameterError.
+
+    Parameters
+    ----------
+    state0 : sequence of 6 floats or None
+        The state asked for [-].
+
+    Returns
+    -------
+    tuple of float
+        (ξ, ξ', ζ, ζ', s, s') [-].
+
+    Raises
+    ------
+    ParameterError
+        For anything but six finite numbers (or None), or a negative gap ξ.
+    """
     if state0 is None:
         return (0.0,) * 6
     try:
@@ -23,7 +39,23 @@ def check_state0(state0: object) -> tuple[float, ...]:
 
 
 def check_cycles(cycles: object) -> int:
-    """A non-negative cycle count or ParameterError."""
+    """A non-negative cycle count or ParameterError.
+
+    Parameters
+    ----------
+    cycles : int
+        The cycle count asked for [-].
+
+    Returns
+    -------
+    int
+        The count.
+
+    Raises
+    ------
+    ParameterError
+        For a negative or non-integer count.
+    """
     if isinstance(cycles, bool) or not isinstance(cycles, (int, np.integer)) or cycles < 0:
         raise ParameterError(f"cycles must be a non-negative integer, got {cycles!r}")
     return int(cycles)

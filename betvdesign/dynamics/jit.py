@@ -43,7 +43,13 @@ KERNEL_MODULES = (
 
 
 def cache_dir() -> str:
-    """Per-source cache directory of the compiled kernels [path]."""
+    """Per-source cache directory of the compiled kernels [path].
+
+    Returns
+    -------
+    str
+        The directory, keyed by a hash of the solver's sources.
+    """
     h = hashlib.sha256()
     here = Path(__file__).resolve().parent
     for name in KERNEL_MODULES:
@@ -61,9 +67,12 @@ KERNELS: list = []
 
 
 def kernel(fn: F | None = None, *, inline: bool = False):
-    """``numba.njit(cache=True, nogil=True)`` with the cache in :func:`cache_dir`;
+    """Compile a kernel with numba, cached, without the GIL.
+
+    ``numba.njit(cache=True, nogil=True)`` with the cache in :func:`cache_dir`;
     ``inline=True``: inlined into its callers by numba (hot helpers taking an
-    :class:`evaluators.Evaluator`, which would otherwise be passed field by field)."""
+    :class:`evaluators.Evaluator`, which would otherwise be passed field by field).
+    """
     if fn is None:
         return lambda f: kernel(f, inline=inline)
     saved = numba.config.CACHE_DIR
@@ -79,7 +88,13 @@ def kernel(fn: F | None = None, *, inline: bool = False):
 
 
 def jit_enabled() -> bool:
-    """True unless ``NUMBA_DISABLE_JIT`` makes the kernels run as plain Python."""
+    """True unless ``NUMBA_DISABLE_JIT`` makes the kernels run as plain Python.
+
+    Returns
+    -------
+    bool
+        Whether numba compiles the kernels.
+    """
     return not numba.config.DISABLE_JIT
 
 
@@ -95,12 +110,27 @@ _seen: list[int] = [0]
 
 
 def compile_note(what: str, run: Callable[[], object]) -> object:
-    """Run ``run()``; when it has to compile kernels (no cached machine code for this
+    """Run ``run()``, saying on stderr when it compiles kernels.
+
+    Run ``run()``; when it has to compile kernels (no cached machine code for this
     solver version yet), say so on stderr in one line, with what and how long, instead of
     compiling silently (``make demo`` compiles them ahead: :mod:`warm`). The first call of
     each entry point is watched from a thread (the note appears when compiling starts);
     later calls count compilations only when they lasted long enough to have compiled
-    (counting on every call cost as much as a periodic orbit)."""
+    (counting on every call cost as much as a periodic orbit).
+
+    Parameters
+    ----------
+    what : str
+        The entry point, named in the note.
+    run : callable
+        What to run.
+
+    Returns
+    -------
+    object
+        What ``run()`` returns.
+    """
     if not jit_enabled():
         return run()
     t0 = time.perf_counter()

@@ -97,8 +97,11 @@ def resonance_growth_bound(p: ModelParams) -> float | None:
 
 
 class _Map:
-    """Φⁿ: section state (ζ, ζ', s') at the first periodic cycle → n cycles later
-    (compiled: :mod:`shooting`); counts cycles, events and evaluations."""
+    """The section map Φⁿ of the periodic search, with its counters.
+
+    Φⁿ: section state (ζ, ζ', s') at the first periodic cycle → n cycles later
+    (compiled: :mod:`shooting`); counts cycles, events and evaluations.
+    """
 
     def __init__(self, c: np.ndarray, vs: VerticalSchedule, m0: int):
         self.c, self.vs, self.m0 = c, vs, m0
@@ -363,51 +366,69 @@ def not_driven_message(p: ModelParams, cycles: int, contact_fraction: float | No
     )
 
 
-def _periodic_orbit(
-    p: ModelParams, tol: float, max_cycles: int, max_period: int, transient: int
-) -> PeriodicResult:
-    t0 = time.perf_counter()
-    k = phase_table(p)
-    try:
-        vs = VerticalSchedule(p.varpi, horizon=1000, zeta_v=p.zeta_v, restitution=p.restitution)
-    except VerticalSearchError as exc:
-        return PeriodicResult.failure(
-            p, "failed", f"vertical motion: {exc}", elapsed_s=time.perf_counter() - t0
-        )
-    hits, frac = vs.hits_per_cycle(), vs.contact_fraction()
+def _spent(vs: VerticalSchedule, phi: _Map | None, t0: float) -> dict[str, Any]:
+    """What every answer of :func:`_periodic_orbit` carries.
 
-    def spent() -> dict[str, Any]:
-        """What every answer from here on carries: the vertical motion's hits and contact
-        fraction, the counters so far and the time taken."""
-        return dict(
-            impacts_per_cycle=hits,
-            contact_fraction=frac,
-            n_cycles=phi.n_cycles if phi else 0,
-            n_events=phi.n_events if phi else 0,
-            n_root_evals=(phi.n_evals if phi else 0) + vs.n_root_evals,
-            elapsed_s=time.perf_counter() - t0,
-        )
+    Parameters
+    ----------
+    vs : VerticalSchedule
+        The vertical motion.
+    phi : _Map or None
+        The section map (None before it exists).
+    t0 : float
+        :func:`time.perf_counter` at the start [s].
 
-    phi: _Map | None = None
-    if vs.period is None:
-        return PeriodicResult.failure(
-            p, "not_driven", not_driven_message(p, vs.n_prefix), **spent()
-        )
-    if frac <= ROUND_OFF_SCALE:  # contact recurs, but below round-off of the cycle
-        return PeriodicResult.failure(
-            p, "not_driven", not_driven_message(p, vs.n_prefix, frac), **spent()
-        )
-    kv = vs.period
-    assert vs.first_end is not None
-    m0 = vs.first_end + 1
-    phi = _Map(k, vs, m0)
-    # From rest to the first periodic cycle, then `transient` more (multiples of k_v).
-    pre = _Map(k, vs, 0)
+    Returns
+    -------
+    dict
+        The vertical motion's hits and contact fraction, the counters so far and the
+        time taken [s].
+    """
+    return dict(
+        impacts_per_cycle=vs.hits_per_cycle(),
+        contact_fraction=vs.contact_fraction(),
+        n_cycles=phi.n_cycles if phi else 0,
+        n_events=phi.n_events if phi else 0,
+        n_root_evals=(phi.n_evals if phi else 0) + vs.n_root_evals,
+        elapsed_s=time.perf_counter() - t0,
+    )
+
+
+def _from_rest(
+    p: ModelParams, vs: VerticalSchedule, phi: _Map, max_cycles: int, t0: float
+) -> PeriodicResult | tuple[np.ndarray, float]:
+    """Run from rest to the first periodic cycle of the vertical motion.
+
+    A design whose motion provably grows without bound (:func:`resonance_growth_bound`)
+    is told here, from a measured window of growth.
+
+    Parameters
+    ----------
+    p : ModelParams
+        The model.
+    vs : VerticalSchedule
+        Its vertical motion (periodic).
+    phi : _Map
+        The section map from the first periodic cycle.
+    max_cycles : int
+        The cycle budget [-].
+    t0 : float
+        :func:`time.perf_counter` at the start [s].
+
+    Returns
+    -------
+    PeriodicResult or tuple
+        A failure ("failed", "unbounded"), or the section state (ζ, ζ', s') [-] at the
+        first periodic cycle and the travel s [-] so far.
+    """
+    m0, kv = phi.m0, vs.period
+    pre = _Map(phi.c, vs, 0)
     try:
         x, s_total = pre(np.zeros(3), m0)
     except (CycleFailure, RuntimeError) as exc:
-        return PeriodicResult.failure(p, "failed", f"transient from rest failed: {exc}", **spent())
-    brute = m0
+        return PeriodicResult.failure(
+            p, "failed", f"transient from rest failed: {exc}", **_spent(vs, phi, t0)
+        )
     bound = resonance_growth_bound(p)
     if bound is not None:
         window = min(GROWTH_WINDOW, max_cycles - m0)  # the budget holds here too
@@ -420,8 +441,269 @@ def _periodic_orbit(
                 _unbounded_message(p, bound, rate, n, amp, m0 + n),
                 transient_cycles=m0 + n,
                 transient_s=s_total + s_win,
-                **spent(),
+                **_spent(vs, phi, t0),
             )
+    return x, s_total
+
+
+def _newton_period(
+    phi: _Map, x: np.ndarray, n: int, tol: float, accelerated: set[int]
+) -> tuple[np.ndarray, float, float, int]:
+    """Newton for a fixed point of Φⁿ from ``x``, restarted once per n from Anderson.
+
+    Parameters
+    ----------
+    phi : _Map
+        The section map.
+    x : numpy.ndarray
+        The start (ζ, ζ', s') [-].
+    n : int
+        The period tried [cycles].
+    tol : float
+        The residual asked [-].
+    accelerated : set of int
+        The periods already restarted from Anderson (updated).
+
+    Returns
+    -------
+    tuple
+        The state [-], its residual [-], the travel over n cycles [-] and the Newton
+        iterations.
+    """
+    xs, r, s, n_newton = _newton(phi, x.copy(), n, tol, POLISH)
+    if r > tol and n not in accelerated:  # once per period: a better start
+        accelerated.add(n)
+        xa = _anderson(phi, x.copy(), n)
+        if xa is not None:
+            xs, r, s, it = _newton(phi, xa, n, tol, POLISH)
+            n_newton += it
+    return xs, r, s, n_newton
+
+
+def _shortest_period(
+    phi: _Map, found: tuple[np.ndarray, float, float], j: int, kv: int, tol: float
+) -> tuple[np.ndarray, float, float, int, int]:
+    """The shortest period of a fixed point of Φ^(j·kv): a divisor's, if it is one too.
+
+    Parameters
+    ----------
+    phi : _Map
+        The section map.
+    found : tuple
+        The fixed point (ζ, ζ', s') [-], its residual [-] and travel [-].
+    j : int
+        Its period in vertical periods.
+    kv : int
+        The vertical period [cycles].
+    tol : float
+        The residual asked [-].
+
+    Returns
+    -------
+    tuple
+        The state, residual, travel and period [cycles] kept, and the Newton iterations
+        spent.
+    """
+    xs, r, s = found
+    n, n_newton = j * kv, 0
+    for d in range(1, j):  # a period-n fixed point may have a shorter period
+        if j % d == 0:
+            xd, rd, sd, itd = _newton(phi, xs.copy(), d * kv, tol, POLISH)
+            n_newton += itd
+            if rd <= tol and float(np.max(np.abs(xd - xs))) <= 1e3 * tol:
+                xs, r, s, n = xd, rd, sd, d * kv
+                break
+    return xs, r, s, n, n_newton
+
+
+def _accept(
+    phi: _Map, vs: VerticalSchedule, xs: np.ndarray, n: int, tol: float
+) -> tuple[float, np.ndarray, list[float], float] | None:
+    """Accept a fixed point of Φⁿ if it is stable and periodic to ``tol`` in full.
+
+    Parameters
+    ----------
+    phi : _Map
+        The section map.
+    vs : VerticalSchedule
+        The vertical motion.
+    xs : numpy.ndarray
+        The fixed point (ζ, ζ', s') [-].
+    n : int
+        Its period [cycles].
+    tol : float
+        The residual asked [-].
+
+    Returns
+    -------
+    tuple or None
+        The residual of the whole state, tangential and vertical [-], the Floquet
+        multipliers by decreasing modulus, the vertical section state (ξ, ξ') [-] and
+        the travel over n cycles [-]; None for an unstable orbit (not where the device
+        settles) or one not periodic to ``tol``.
+    """
+    J = phi.jacobian(xs, n, xs, central=True)
+    mu = np.linalg.eigvals(J)
+    mu = mu[np.argsort(-np.abs(mu))]
+    if np.max(np.abs(mu)) >= 1.0:
+        return None  # an unstable orbit: not where the device settles
+    r_final, _, s = phi.residual(xs, n)
+    a, b = vs.table[vs.row(np.array([phi.m0, phi.m0 + n]))].tolist()
+    vert = abs(b[0] - a[0]) + abs(b[1] - a[1])
+    r_final = max(r_final, vert)
+    if r_final > tol:
+        return None
+    return r_final, mu, a, s
+
+
+def _orbit(
+    p: ModelParams,
+    vs: VerticalSchedule,
+    phi: _Map,
+    t0: float,
+    found: tuple[np.ndarray, int, float],
+    accepted: tuple[float, np.ndarray, list[float], float],
+    counts: tuple[int, int, float],
+) -> PeriodicResult:
+    """The answer for an accepted periodic orbit.
+
+    Parameters
+    ----------
+    p : ModelParams
+        The model.
+    vs : VerticalSchedule
+        The vertical motion.
+    phi : _Map
+        The section map.
+    t0 : float
+        :func:`time.perf_counter` at the start [s].
+    found : tuple
+        The fixed point (ζ, ζ', s') [-], its period [cycles] and the residual asked [-].
+    accepted : tuple
+        :func:`_accept`'s answer.
+    counts : tuple
+        Newton iterations, transient cycles and the travel s [-] over them.
+
+    Returns
+    -------
+    PeriodicResult
+        Status "success".
+    """
+    xs, n, tol = found
+    n_newton, brute, s_total = counts
+    r_final, mu, a, s = accepted
+    ds = s / n
+    return PeriodicResult(
+        params=p,
+        status="success",
+        message=f"periodic orbit of {n} cycle(s), residual {r_final:.2e} ≤ {tol:.0e}, "
+        f"|μ|max = {abs(mu[0]):.6f}",
+        delta_s=ds,
+        mode=mode_of(ds),
+        period_cycles=n,
+        residual=r_final,
+        floquet=mu,
+        stable=True,
+        state=np.array([a[0], a[1], xs[0], xs[1], 0.0, xs[2]]),
+        n_newton=n_newton,
+        transient_cycles=brute,
+        transient_s=s_total,
+        **_spent(vs, phi, t0),
+    )
+
+
+def _not_converged(
+    p: ModelParams,
+    vs: VerticalSchedule,
+    phi: _Map,
+    t0: float,
+    best: tuple[float, int],
+    max_period: int,
+    counts: tuple[int, int, float],
+) -> PeriodicResult:
+    """The answer when the cycle budget is spent with no stable orbit accepted.
+
+    Parameters
+    ----------
+    p : ModelParams
+        The model.
+    vs : VerticalSchedule
+        The vertical motion.
+    phi : _Map
+        The section map.
+    t0 : float
+        :func:`time.perf_counter` at the start [s].
+    best : tuple of (float, int)
+        The smallest residual found [-] and its period [cycles].
+    max_period : int
+        The longest period tried, in vertical periods.
+    counts : tuple
+        Newton iterations, transient cycles and the travel s [-] over them.
+
+    Returns
+    -------
+    PeriodicResult
+        Status "not_converged".
+    """
+    kv = vs.period
+    n_newton, brute, s_total = counts
+    return PeriodicResult.failure(
+        p,
+        "not_converged",
+        f"no stable periodic orbit of period ≤ {max_period * kv} cycles found within "
+        f"{brute} cycles (best residual {best[0]:.2e} for period {best[1]}); the "
+        "motion may be quasi-periodic or growing (near a·ϖ² = 1); try a larger "
+        "max_cycles or max_period",
+        n_newton=n_newton,
+        transient_cycles=brute,
+        transient_s=s_total,
+        residual=best[0],
+        **_spent(vs, phi, t0),
+    )
+
+
+def _periodic_orbit(
+    p: ModelParams, tol: float, max_cycles: int, max_period: int, transient: int
+) -> PeriodicResult:
+    """The search of :func:`periodic_orbit` (its arguments, checked).
+
+    The vertical motion first (:class:`VerticalSchedule`), the transient from rest
+    (:func:`_from_rest`), then chunks of brute-force iteration, each followed by Newton
+    for every period up to ``max_period`` vertical periods (:func:`_newton_period`,
+    :func:`_shortest_period`, :func:`_accept`).
+
+    Returns
+    -------
+    PeriodicResult
+        The first stable periodic orbit, or why there is none.
+    """
+    t0 = time.perf_counter()
+    k = phase_table(p)
+    try:
+        vs = VerticalSchedule(p.varpi, horizon=1000, zeta_v=p.zeta_v, restitution=p.restitution)
+    except VerticalSearchError as exc:
+        return PeriodicResult.failure(
+            p, "failed", f"vertical motion: {exc}", elapsed_s=time.perf_counter() - t0
+        )
+    if vs.period is None:
+        return PeriodicResult.failure(
+            p, "not_driven", not_driven_message(p, vs.n_prefix), **_spent(vs, None, t0)
+        )
+    frac = vs.contact_fraction()
+    if frac <= ROUND_OFF_SCALE:  # contact recurs, but below round-off of the cycle
+        return PeriodicResult.failure(
+            p, "not_driven", not_driven_message(p, vs.n_prefix, frac), **_spent(vs, None, t0)
+        )
+    kv = vs.period
+    assert vs.first_end is not None
+    m0 = vs.first_end + 1
+    phi = _Map(k, vs, m0)
+    # From rest to the first periodic cycle, then `transient` more (multiples of k_v).
+    start = _from_rest(p, vs, phi, max_cycles, t0)
+    if isinstance(start, PeriodicResult):
+        return start
+    x, s_total = start
+    brute = m0
     chunk = max(kv, (transient // kv) * kv)
     n_newton = 0
     accelerated: set[int] = set()
@@ -431,89 +713,43 @@ def _periodic_orbit(
             x, s_chunk = phi(x, chunk)
             s_total += s_chunk
         except (CycleFailure, RuntimeError) as exc:
-            return PeriodicResult.failure(
-                p, "failed", f"brute-force iteration failed after {brute} cycles: {exc}", **spent()
-            )
+            why = f"brute-force iteration failed after {brute} cycles: {exc}"
+            return PeriodicResult.failure(p, "failed", why, **_spent(vs, phi, t0))
         brute += chunk
         if not np.all(np.isfinite(x)):
-            return PeriodicResult.failure(
-                p, "failed", f"state became non-finite after {brute} cycles", **spent()
-            )
+            why = f"state became non-finite after {brute} cycles"
+            return PeriodicResult.failure(p, "failed", why, **_spent(vs, phi, t0))
         for j in range(1, max_period + 1):
-            n = j * kv
-            xs, r, s, it = _newton(phi, x.copy(), n, tol, POLISH)
+            xs, r, s, it = _newton_period(phi, x, j * kv, tol, accelerated)
             n_newton += it
-            if r > tol and n not in accelerated:  # once per period: a better start
-                accelerated.add(n)
-                xa = _anderson(phi, x.copy(), n)
-                if xa is not None:
-                    xs, r, s, it = _newton(phi, xa, n, tol, POLISH)
-                    n_newton += it
             if r < best[0]:
-                best = (r, n)
+                best = (r, j * kv)
             if r > tol:
                 continue
-            for d in range(1, j):  # a period-n fixed point may have a shorter period
-                if j % d == 0:
-                    xd, rd, sd, itd = _newton(phi, xs.copy(), d * kv, tol, POLISH)
-                    n_newton += itd
-                    if rd <= tol and float(np.max(np.abs(xd - xs))) <= 1e3 * tol:
-                        xs, r, s, n = xd, rd, sd, d * kv
-                        break
-            J = phi.jacobian(xs, n, xs, central=True)
-            mu = np.linalg.eigvals(J)
-            mu = mu[np.argsort(-np.abs(mu))]
-            if np.max(np.abs(mu)) >= 1.0:
-                continue  # an unstable orbit: not where the device settles
-            r_final, _, s = phi.residual(xs, n)
-            a, b = vs.table[vs.row(np.array([m0, m0 + n]))].tolist()
-            vert = abs(b[0] - a[0]) + abs(b[1] - a[1])
-            r_final = max(r_final, vert)
-            if r_final > tol:
+            xs, r, s, n, it = _shortest_period(phi, (xs, r, s), j, kv, tol)
+            n_newton += it
+            accepted = _accept(phi, vs, xs, n, tol)
+            if accepted is None:
                 continue
-            ds = s / n
-            return PeriodicResult(
-                params=p,
-                status="success",
-                message=f"periodic orbit of {n} cycle(s), residual {r_final:.2e} ≤ {tol:.0e}, "
-                f"|μ|max = {abs(mu[0]):.6f}",
-                delta_s=ds,
-                mode=mode_of(ds),
-                period_cycles=n,
-                residual=r_final,
-                floquet=mu,
-                stable=True,
-                state=np.array([a[0], a[1], xs[0], xs[1], 0.0, xs[2]]),
-                n_newton=n_newton,
-                transient_cycles=brute,
-                transient_s=s_total,
-                **spent(),
-            )
+            found = (xs, n, tol)
+            return _orbit(p, vs, phi, t0, found, accepted, (n_newton, brute, s_total))
         if brute >= max_cycles:
-            return PeriodicResult.failure(
-                p,
-                "not_converged",
-                f"no stable periodic orbit of period ≤ {max_period * kv} cycles found within "
-                f"{brute} cycles (best residual {best[0]:.2e} for period {best[1]}); the "
-                "motion may be quasi-periodic or growing (near a·ϖ² = 1); try a larger "
-                "max_cycles or max_period",
-                n_newton=n_newton,
-                transient_cycles=brute,
-                transient_s=s_total,
-                residual=best[0],
-                **spent(),
-            )
+            counts = (n_newton, brute, s_total)
+            return _not_converged(p, vs, phi, t0, best, max_period, counts)
         chunk = min(2 * chunk, max(kv, ((max_cycles - brute) // kv) * kv))
 
 
 def _measure_growth(
     phi: _Map, x: np.ndarray, bound: float, kv: int, window: int
 ) -> tuple[float, int, float, float] | None:
-    """Iterate about ``window`` cycles (at least ``kv``) from ``x`` in steps of the vertical
+    """Check a proven per-cycle fall of ζ by iterating the map.
+
+    Iterate about ``window`` cycles (at least ``kv``) from ``x`` in steps of the vertical
     period ``kv``; return (mean fall of ζ per cycle [-], cycles, final amplitude
     sqrt(ζ² + (ζ'/ϖ)²) [-], s gained [-]) when every step's fall is at least ``kv`` times
     the proven per-cycle ``bound`` (up to round-off), else None (the bound is not borne
-    out, e.g. a solver defect: then the normal search decides)."""
+    out, e.g. a solver defect: then the normal search decides).
+    """
     varpi = float(phi.c["varpi"][0])
     z0 = float(x[0])
     steps = max(1, window // kv)

@@ -71,13 +71,32 @@ MAX_HITS = 5000
 
 
 def choose_phase(k: K, tau: float, z: float, zd: float, sd: float, matched: bool) -> str:
-    """MODEL.md stick/slip rules: the sign of ζ' − s' when they differ (slip if ζ' > s',
+    """The phase that follows at τ under MODEL.md's stick/slip rules.
+
+    MODEL.md stick/slip rules: the sign of ζ' − s' when they differ (slip if ζ' > s',
     reverse slip if ζ' < s'); when ζ' = s' (``matched``, or equal within VTOL) the
     friction band (1 − b) sin ϖτ ≤ ζ ≤ (1 + b) sin ϖτ decides: stick inside, slip below,
     reverse slip above. The band is tested a short look-ahead δ after τ on the stick
     flow α(1 + 1/β) ζ'' + ζ = sin ϖτ (third-order Taylor), which settles the cases
     where ζ sits on an edge (a band exit, or sin ϖτ = 0 at a contact opening).
-    With damping the band is |P| ≤ bN (module doc), tested the same way."""
+    With damping the band is |P| ≤ bN (module doc), tested the same way.
+
+    Parameters
+    ----------
+    k : K
+        The flows' constants (:func:`constants`).
+    tau : float
+        Time [-].
+    z, zd, sd : float
+        ζ, ζ' and s' [-] at τ.
+    matched : bool
+        Whether ζ' = s' was just reached (a velocity-match event or a stick exit).
+
+    Returns
+    -------
+    str
+        SLIP, REVERSE or STICK.
+    """
     v = zd - sd
     if not matched and abs(v) > VTOL * (1.0 + abs(zd) + abs(sd)):
         return SLIP if v > 0.0 else REVERSE
@@ -132,8 +151,11 @@ def _rhs_factory(k: K, contact: bool, hmode: str, eps: float):
 
 
 def _events(k: K, contact: bool, hmode: str) -> list:
-    """The terminal events of a phase; each carries ``slope(t, y, f)``, its derivative
-    along the flow f = y' (for :func:`_watch`)."""
+    """The terminal events of a phase.
+
+    The terminal events of a phase; each carries ``slope(t, y, f)``, its derivative
+    along the flow f = y' (for :func:`_watch`).
+    """
     w, b = k.varpi, k.b
     evs = []
     if not contact:
@@ -172,10 +194,13 @@ def _events(k: K, contact: bool, hmode: str) -> list:
 
 
 def _watch(evs: list, rhs) -> list:
-    """Non-terminal companions of the terminal events: the slope of h = −d·g (g an event
+    """Non-terminal companions of the terminal events (grazing watch).
+
+    Non-terminal companions of the terminal events: the slope of h = −d·g (g an event
     of direction d, h > 0 before its crossing), rising through 0 at each local minimum
     of h. A minimum with h < 0 is a pair of crossings inside one step, invisible to
-    solve_ivp's sign test at step ends (a grazing event); :func:`_missed` finds it."""
+    solve_ivp's sign test at step ends (a grazing event); :func:`_missed` finds it.
+    """
     out = []
     for ev in evs:
 
@@ -188,11 +213,14 @@ def _watch(evs: list, rhs) -> list:
 
 
 def _missed(evs: list, sol, tau: float, thr: float, redo) -> tuple[int, float, np.ndarray] | None:
-    """(event index, τ, state) of the earliest crossing stepped over (a watched minimum
+    """The earliest event crossing a step stepped over, or None.
+
+    (event index, τ, state) of the earliest crossing stepped over (a watched minimum
     of h below −thr), located by brentq on the dense output of ``redo(τ_m)`` (the phase
     integrated again up to that minimum with dense output, only then; the watch itself
     costs the dense outputs at the minima, about 1 % more right-hand sides with DOP853);
-    None when there is none."""
+    None when there is none.
+    """
     n, found = len(evs), None
     for j, ev in enumerate(evs):
         d = ev.direction
@@ -215,6 +243,394 @@ def _missed(evs: list, sol, tau: float, thr: float, redo) -> tuple[int, float, n
         return None
     tr = brentq(h, left[-1], tm, xtol=1e-300, rtol=4.0 * np.finfo(float).eps)
     return j, tr, again.sol(tr)
+
+
+def _check_options(method: str, friction: str, tolerances: dict[str, float]) -> None:
+    """Refuse an unknown method or friction model and a tolerance that is not > 0.
+
+    Parameters
+    ----------
+    method : str
+        The solve_ivp method asked for.
+    friction : str
+        The friction model asked for.
+    tolerances : dict of str to float
+        ``rtol``, ``atol``, ``eps`` and ``max_step`` by name [-].
+
+    Raises
+    ------
+    ParameterError
+        Naming the option at fault.
+    """
+    if method not in METHODS:
+        raise ParameterError(f"method must be one of {', '.join(METHODS)}, got {method!r}")
+    if friction not in FRICTION:
+        raise ParameterError(f"friction must be 'exact' or 'tanh', got {friction!r}")
+    for name, v in tolerances.items():
+        if not (isinstance(v, (int, float)) and v > 0 and not math.isnan(v)):
+            raise ParameterError(f"{name} must be > 0, got {v!r}")
+
+
+class _Run:
+    """One integration by :func:`simulate`: the hybrid automaton and its bookkeeping.
+
+    The discrete state (contact or free, the tangential phase, the rebound and
+    chattering bookkeeping of restitution) with time τ and state y between integration
+    pieces, the sections, events and counters so far. Its methods are the stages of a
+    step: where the piece ends (:meth:`piece_end`), the integration up to the first
+    event (:meth:`integrate_piece`), the automaton's switch there (:meth:`switch`) or
+    what the piece's end means (:meth:`reach`: an accumulated chattering sequence, a
+    contact end, a section).
+
+    Parameters
+    ----------
+    p : ModelParams
+        The model.
+    n : int
+        Cycles to integrate [-].
+    y : numpy.ndarray
+        The state (ξ, ξ', ζ, ζ', s, s') [-] at τ = 0.
+    opts : dict
+        ``method``, ``friction``, ``rtol``, ``atol``, ``eps``, ``max_step`` and
+        ``dense`` as :func:`simulate` takes them.
+    """
+
+    def __init__(self, p: ModelParams, n: int, y: np.ndarray, opts: dict) -> None:
+        self.p, self.o = p, opts
+        self.k = constants(p)
+        self.w = p.varpi
+        self.T = 2.0 * math.pi / self.w
+        self.tau, self.y = 0.0, y
+        self.contact = bool(y[0] == 0.0 and y[1] <= 0.0)  # hit at phase 0: contact opens
+        self.hmode = FREE
+        self.events: list[Event] = []
+        self.flight_step = math.inf  # max_step of the current rebound flight
+        self.tail_end = math.nan  # contact start of a closed chattering sequence
+        self.closed, self.worst, self.hits = 0, 0.0, 0
+        self.pieces: list = []
+        self.section = np.empty((n + 1, 6))
+        self.section[0] = y
+        self.m, self.zero_len, self.nfev, self.n_missed = 0, 0, 0, 0
+        self.status, self.message = "success", f"{n} cycles integrated"
+
+    # -- the automaton's transitions --------------------------------------------------
+    def open_contact(self, on: int = -1) -> str:
+        """The tangential phase a contact starts (or goes on) in at τ.
+
+        Parameters
+        ----------
+        on : int
+            −1: contact opens; 0: velocities matched; ≥ 1: stick band exit ``on − 1``.
+            The velocities are made common when the phase is stick or ``on`` is 0.
+
+        Returns
+        -------
+        str
+            The phase (:data:`TANH` with regularised friction).
+        """
+        if self.o["friction"] == "tanh":
+            return TANH
+        y = self.y
+        ph = choose_phase(self.k, self.tau, y[2], y[3], y[5], on >= 0)
+        if ph == STICK or on == 0:
+            y[3] = y[5] = (y[3] + y[5] / self.p.beta) / (1.0 + 1.0 / self.p.beta)
+        return ph
+
+    def contact_end(self, tau: float) -> float:
+        """The end (2j + 1)π/ϖ [-] of the contact window holding τ [-]."""
+        return (2.0 * math.floor(tau / self.T + 1e-12) + 1.0) * math.pi / self.w
+
+    def start(self) -> None:
+        """Apply a hit at phase 0 (a contact opening, or a rebound with restitution)."""
+        y = self.y
+        if self.contact and self.k.e != 0.0 and y[1] < 0.0:  # a hit at phase 0 that rebounds
+            self.contact = False
+            y[1] = -self.k.e * y[1]
+            self.events.append(Event(0.0, "impulsive", "free", "free"))
+        elif self.contact:
+            y[1] = 0.0
+            self.hmode = self.open_contact()
+            self.events.append(Event(0.0, "impact", "free", self.hmode))
+
+    def on_event(self, i: int) -> str | None:
+        """Switch at event ``i`` of the current phase, reached at τ with state y.
+
+        Parameters
+        ----------
+        i : int
+            Index of the event in :func:`_events`'s list.
+
+        Returns
+        -------
+        str or None
+            Why the run fails (too many hits in a cycle), else None.
+        """
+        tau, y, k = self.tau, self.y, self.k
+        before = self.hmode
+        if not self.contact:
+            h = apply_hit(k, tau, y, self.contact_end(tau))
+            self.flight_step = h.step
+            if h.kind == "contact":
+                self.contact = True
+                self.hmode = self.open_contact()
+                self.events.append(Event(tau, "impact", "free", self.hmode))
+            else:
+                self.events.append(Event(tau, "impulsive", "free", "free"))
+                self.hits += 1
+                if self.hits > MAX_HITS:
+                    return (
+                        f"more than {MAX_HITS} hits in cycle {self.m} (τ = {tau:.12g}): a "
+                        f"rebound sequence (e = {k.e:g}) that does not accumulate"
+                    )
+            if h.kind == "tail":
+                self.tail_end = tau + h.tail
+                self.closed, self.worst = self.closed + 1, max(self.worst, h.bound)
+        elif self.hmode == STICK:
+            self.hmode = self.open_contact(1 + i)
+            self.events.append(Event(tau, "band-exit", "stick", self.hmode))
+        else:
+            self.hmode = self.open_contact(0)
+            self.events.append(Event(tau, "velocity-match", before, self.hmode))
+        return None
+
+    # -- one step: a piece of integration and what ends it -----------------------------
+    def integrate(self) -> None:
+        """Advance until all cycles are integrated or the integration fails."""
+        n = len(self.section) - 1
+        self.start()
+        while self.m < n and self.step():
+            pass
+
+    def step(self) -> bool:
+        """Integrate one piece and act on its end.
+
+        Returns
+        -------
+        bool
+            False when the integration failed (``status`` and ``message`` say why).
+        """
+        t_sec = (self.m + 1) * self.T
+        t_end = self.piece_end(t_sec)
+        evs = [] if self.tail_end == self.tail_end else _events(self.k, self.contact, self.hmode)
+        if self.zero_len:  # an event fired where the phase started: step past it unmasked
+            t_end = min(t_end, self.tau + MASK * self.T)
+            evs = []
+        sol, hit = None, []
+        if t_end > self.tau:
+            sol, hit = self.integrate_piece(t_end, evs)
+            if sol.status == -1:
+                self.fail(f"solve_ivp ({self.o['method']}) failed in cycle {self.m}: {sol.message}")
+                return False
+        if hit:
+            return self.switch(sol, hit[0])
+        self.reach(sol, t_end, t_sec)
+        return True
+
+    def piece_end(self, t_sec: float) -> float:
+        """Where the next integration piece ends at the latest [-].
+
+        Parameters
+        ----------
+        t_sec : float
+            The next section time [-].
+
+        Returns
+        -------
+        float
+            The section, or the contact end before it, or the accumulation time of a
+            closed chattering sequence.
+        """
+        t_end = t_sec
+        if self.contact:
+            t_end = min(t_sec, self.contact_end(self.tau))
+            if t_end <= self.tau:  # contact end reached exactly at tau
+                t_end = self.tau
+        if self.tail_end == self.tail_end:  # the tail of a chattering sequence: free
+            t_end = min(t_sec, self.tail_end)
+        return t_end
+
+    def integrate_piece(self, t_end: float, evs: list) -> tuple[object, list[int]]:
+        """Integrate from τ to ``t_end`` until the first terminal event.
+
+        With a watched method (:data:`WATCHED`) the minima of the events are watched too
+        and a crossing pair stepped over is found (:func:`_missed`) and made the event.
+
+        Parameters
+        ----------
+        t_end : float
+            End of the piece [-].
+        evs : list
+            The phase's terminal events (:func:`_events`).
+
+        Returns
+        -------
+        sol : OdeResult
+            solve_ivp's solution.
+        hit : list of int
+            Indices of the terminal events that fired, the earliest first.
+        """
+        o, tau, y = self.o, self.tau, self.y
+        step = min(o["max_step"], self.flight_step)
+        rhs = _rhs_factory(self.k, self.contact, self.hmode, o["eps"])
+        watch = _watch(evs, rhs) if o["method"] in WATCHED else []
+        opts = {
+            "method": o["method"],
+            "rtol": o["rtol"],
+            "atol": o["atol"],
+            "max_step": step,
+            "first_step": None if step == math.inf else min(step / 4.0, t_end - tau),
+        }
+        dense = o["dense"]
+        try:
+            sol = solve_ivp(
+                rhs, (tau, t_end), y, events=(evs + watch) or None, dense_output=dense, **opts
+            )
+        except ValueError:  # scipy's event bracket lost to round-off on a watch: without
+            watch = []
+            evs_only = evs or None
+            sol = solve_ivp(rhs, (tau, t_end), y, events=evs_only, dense_output=dense, **opts)
+        self.nfev += sol.nfev
+        if sol.status == -1:
+            return sol, []
+        hit = [i for i, te in enumerate((sol.t_events or [])[: len(evs)]) if len(te)]
+        if watch:
+
+            def redo(tm, rhs=rhs, tau=tau, y=y, opts=opts):
+                again = solve_ivp(rhs, (tau, tm), y, dense_output=True, **opts)
+                self.nfev += again.nfev
+                return again
+
+            missed = _missed(evs, sol, tau, 10.0 * o["atol"], redo)
+            if missed and (not hit or missed[1] < sol.t_events[hit[0]][0]):
+                i, t_new, y_new = missed
+                hit = [i]
+                sol.t_events[i] = np.array([t_new])
+                sol.y_events[i] = np.array([y_new])
+                self.n_missed += 1
+                if dense:
+                    sol.sol = redo(t_new).sol
+        if dense:
+            self.pieces.append((tau, float(sol.t_events[hit[0]][0]) if hit else sol.t[-1], sol.sol))
+        return sol, hit
+
+    def switch(self, sol: object, i: int) -> bool:
+        """Take terminal event ``i`` of the piece ``sol``.
+
+        An event that fired where the piece began is stepped past (masked); any other
+        switches the automaton (:meth:`on_event`).
+
+        Parameters
+        ----------
+        sol : OdeResult
+            The piece's solution.
+        i : int
+            The event's index.
+
+        Returns
+        -------
+        bool
+            False when the integration failed.
+        """
+        t_new = float(sol.t_events[i][0])
+        self.y = np.array(sol.y_events[i][0], dtype=float)
+        if t_new - self.tau <= 1e-14 * max(1.0, self.tau):
+            self.zero_len += 1
+            if self.zero_len > MAX_ZERO_LENGTH:
+                self.fail(f"events repeat without progress at τ = {t_new:.12g}")
+                return False
+            return True  # masked step next
+        self.zero_len = 0
+        self.tau = t_new
+        failure = self.on_event(i)
+        if failure:
+            self.fail(failure)
+            return False
+        return True
+
+    def reach(self, sol: object, t_end: float, t_sec: float) -> None:
+        """Act on reaching the piece's end with no event.
+
+        The accumulation of a chattering sequence opens the contact; a contact end
+        separates; a section is recorded.
+
+        Parameters
+        ----------
+        sol : OdeResult or None
+            The piece's solution (None: the piece was empty).
+        t_end : float
+            The piece's end [-].
+        t_sec : float
+            The next section time [-].
+        """
+        if sol is not None:
+            self.y = np.array(sol.y[:, -1], dtype=float)
+        self.tau = t_end
+        if self.tau == self.tail_end:  # the chattering sequence has accumulated: contact opens
+            self.tail_end, self.flight_step = math.nan, math.inf
+            self.y[0], self.y[1] = 0.0, 0.0
+            self.contact = True
+            self.hmode = self.open_contact()
+            self.events.append(Event(self.tau, "impact", "free", self.hmode))
+            return
+        if self.zero_len:
+            self.zero_len = 0
+            if t_end < t_sec and not (self.contact and _is_contact_end(self.tau, self.w)):
+                return
+        ends = t_end < t_sec or (t_end == t_sec and _is_contact_end(self.tau, self.w))
+        if self.contact and ends:
+            self.events.append(Event(self.tau, "separation", self.hmode, "free"))
+            self.contact, self.hmode = False, FREE
+            self.y[0], self.y[1] = 0.0, 0.0
+        if t_end == t_sec:
+            self.m += 1
+            self.hits = 0
+            self.section[self.m] = self.y
+
+    def fail(self, message: str) -> None:
+        """Mark the integration failed, with why."""
+        self.status, self.message = "failed", message
+
+    def trajectory(self, method: str, friction: str, t_start: float) -> Trajectory:
+        """The result so far, as :func:`simulate` returns it.
+
+        Parameters
+        ----------
+        method, friction : str
+            As :func:`simulate` was given them (the solver's name).
+        t_start : float
+            :func:`time.perf_counter` at the start [s].
+
+        Returns
+        -------
+        Trajectory
+            Sections, events and counters, the message completed with the grazing events
+            found and the chattering sequences closed.
+        """
+        message = self.message
+        if self.n_missed and self.status == "success":
+            message += f"; {self.n_missed} grazing event(s) found between steps (minimum watch)"
+        if self.closed and self.status == "success":
+            message += (
+                f"; {self.closed} chattering sequence(s) closed by their geometric tail, "
+                f"accumulation-time error bound ≤ {self.worst:.1e}"
+            )
+        section = self.section[: self.m + 1]
+        return Trajectory(
+            params=self.p,
+            solver=f"solve_ivp:{method}/{friction}",
+            status=self.status,
+            message=message,
+            s=float(section[-1, 4]),
+            delta_s=np.diff(section[:, 4]),
+            section=section,
+            events=self.events,
+            n_events=len(self.events),
+            n_cycles=self.m,
+            n_root_evals=0,
+            elapsed_s=time.perf_counter() - t_start,
+            n_fev=self.nfev,
+            _sampler=_sampler(self.pieces) if self.o["dense"] else None,
+        )
 
 
 def simulate(
@@ -278,199 +694,12 @@ def simulate(
         raise ParameterError(f"p must be a ModelParams, got {type(p).__name__}")
     n = check_cycles(cycles)
     st = np.array(check_state0(state0))
-    if method not in METHODS:
-        raise ParameterError(f"method must be one of {', '.join(METHODS)}, got {method!r}")
-    if friction not in FRICTION:
-        raise ParameterError(f"friction must be 'exact' or 'tanh', got {friction!r}")
-    for name, v in (("rtol", rtol), ("atol", atol), ("eps", eps), ("max_step", max_step)):
-        if not (isinstance(v, (int, float)) and v > 0 and not math.isnan(v)):
-            raise ParameterError(f"{name} must be > 0, got {v!r}")
+    _check_options(method, friction, {"rtol": rtol, "atol": atol, "eps": eps, "max_step": max_step})
     t_start = time.perf_counter()
-    k = constants(p)
-    w = p.varpi
-    T = 2.0 * math.pi / w
-    tau, y = 0.0, st.copy()
-    contact = y[0] == 0.0 and y[1] <= 0.0  # hit at phase 0: contact opens
-    hmode = FREE
-    events: list[Event] = []
-    pieces: list = []
-    section = np.empty((n + 1, 6))
-    section[0] = y
-    nfev = 0
-    zero_len = 0
-    status, message, m = "success", f"{n} cycles integrated", 0
-    flight_step = math.inf  # max_step of the current rebound flight
-    tail_end = math.nan  # contact start of a closed chattering sequence
-    closed, worst, hits, n_missed = 0, 0.0, 0, 0
-
-    def open_contact(y: np.ndarray, on: int = -1) -> str:
-        if friction == "tanh":
-            return TANH
-        ph = choose_phase(k, tau, y[2], y[3], y[5], on >= 0)
-        if ph == STICK or on == 0:
-            y[3] = y[5] = (y[3] + y[5] / p.beta) / (1.0 + 1.0 / p.beta)
-        return ph
-
-    def contact_end(tau: float) -> float:
-        return (2.0 * math.floor(tau / T + 1e-12) + 1.0) * math.pi / w
-
-    if contact and k.e != 0.0 and y[1] < 0.0:  # a hit at phase 0 that rebounds
-        contact = False
-        y[1] = -k.e * y[1]
-        events.append(Event(0.0, "impulsive", "free", "free"))
-    elif contact:
-        y[1] = 0.0
-        hmode = open_contact(y)
-        events.append(Event(0.0, "impact", "free", hmode))
-    while m < n:
-        t_sec = (m + 1) * T
-        t_end = t_sec
-        if contact:
-            t_end = min(t_sec, contact_end(tau))
-            if t_end <= tau:  # contact end reached exactly at tau
-                t_end = tau
-        evs = _events(k, contact, hmode)
-        if tail_end == tail_end:  # the tail of a chattering sequence: free, no events
-            t_end, evs = min(t_sec, tail_end), []
-        if zero_len:  # an event fired where the phase started: step past it unmasked
-            t_end = min(t_end, tau + MASK * T)
-            evs = []
-        if t_end > tau:
-            step = min(max_step, flight_step)
-            rhs = _rhs_factory(k, contact, hmode, eps)
-            watch = _watch(evs, rhs) if method in WATCHED else []
-            opts = {
-                "method": method,
-                "rtol": rtol,
-                "atol": atol,
-                "max_step": step,
-                "first_step": None if step == math.inf else min(step / 4.0, t_end - tau),
-            }
-            try:
-                sol = solve_ivp(
-                    rhs, (tau, t_end), y, events=(evs + watch) or None, dense_output=dense, **opts
-                )
-            except ValueError:  # scipy's event bracket lost to round-off on a watch: without
-                watch = []
-                evs_only = evs or None
-                sol = solve_ivp(rhs, (tau, t_end), y, events=evs_only, dense_output=dense, **opts)
-            nfev += sol.nfev
-            if sol.status == -1:
-                status, message = (
-                    "failed",
-                    f"solve_ivp ({method}) failed in cycle {m}: {sol.message}",
-                )
-                break
-            hit = [i for i, te in enumerate((sol.t_events or [])[: len(evs)]) if len(te)]
-            if watch:
-
-                def redo(tm, rhs=rhs, tau=tau, y=y, opts=opts):
-                    nonlocal nfev
-                    again = solve_ivp(rhs, (tau, tm), y, dense_output=True, **opts)
-                    nfev += again.nfev
-                    return again
-
-                missed = _missed(evs, sol, tau, 10.0 * atol, redo)
-                if missed and (not hit or missed[1] < sol.t_events[hit[0]][0]):
-                    i, t_new, y_new = missed
-                    hit = [i]
-                    sol.t_events[i] = np.array([t_new])
-                    sol.y_events[i] = np.array([y_new])
-                    n_missed += 1
-                    if dense:
-                        sol.sol = redo(t_new).sol
-            if dense:
-                pieces.append((tau, float(sol.t_events[hit[0]][0]) if hit else sol.t[-1], sol.sol))
-        else:
-            sol, hit = None, []
-        if hit:
-            i = hit[0]
-            t_new = float(sol.t_events[i][0])
-            y = np.array(sol.y_events[i][0], dtype=float)
-            if t_new - tau <= 1e-14 * max(1.0, tau):
-                zero_len += 1
-                if zero_len > MAX_ZERO_LENGTH:
-                    status = "failed"
-                    message = f"events repeat without progress at τ = {t_new:.12g}"
-                    break
-                continue  # masked step next
-            zero_len = 0
-            tau = t_new
-            before = hmode
-            if not contact:
-                h = apply_hit(k, tau, y, contact_end(tau))
-                flight_step = h.step
-                if h.kind == "contact":
-                    contact = True
-                    hmode = open_contact(y)
-                    events.append(Event(tau, "impact", "free", hmode))
-                else:
-                    events.append(Event(tau, "impulsive", "free", "free"))
-                    hits += 1
-                    if hits > MAX_HITS:
-                        status = "failed"
-                        message = (
-                            f"more than {MAX_HITS} hits in cycle {m} (τ = {tau:.12g}): a "
-                            f"rebound sequence (e = {k.e:g}) that does not accumulate"
-                        )
-                        break
-                if h.kind == "tail":
-                    tail_end = tau + h.tail
-                    closed, worst = closed + 1, max(worst, h.bound)
-            elif hmode == STICK:
-                hmode = open_contact(y, 1 + i)
-                events.append(Event(tau, "band-exit", "stick", hmode))
-            else:
-                hmode = open_contact(y, 0)
-                events.append(Event(tau, "velocity-match", before, hmode))
-            continue
-        if sol is not None:
-            y = np.array(sol.y[:, -1], dtype=float)
-        tau = t_end
-        if tau == tail_end:  # the chattering sequence has accumulated: contact opens
-            tail_end, flight_step = math.nan, math.inf
-            y[0], y[1] = 0.0, 0.0
-            contact = True
-            hmode = open_contact(y)
-            events.append(Event(tau, "impact", "free", hmode))
-            continue
-        if zero_len:
-            zero_len = 0
-            if t_end < t_sec and not (contact and _is_contact_end(tau, w)):
-                continue
-        if (contact and t_end < t_sec) or (contact and t_end == t_sec and _is_contact_end(tau, w)):
-            events.append(Event(tau, "separation", hmode, "free"))
-            contact, hmode = False, FREE
-            y[0], y[1] = 0.0, 0.0
-        if t_end == t_sec:
-            m += 1
-            hits = 0
-            section[m] = y
-    if n_missed and status == "success":
-        message += f"; {n_missed} grazing event(s) found between steps (minimum watch)"
-    if closed and status == "success":
-        message += (
-            f"; {closed} chattering sequence(s) closed by their geometric tail, "
-            f"accumulation-time error bound ≤ {worst:.1e}"
-        )
-    section = section[: m + 1]
-    sampler = _sampler(pieces) if dense else None
-    return Trajectory(
-        params=p,
-        solver=f"solve_ivp:{method}/{friction}",
-        status=status,
-        message=message,
-        s=float(section[-1, 4]),
-        delta_s=np.diff(section[:, 4]),
-        section=section,
-        events=events,
-        n_events=len(events),
-        n_cycles=m,
-        n_root_evals=0,
-        elapsed_s=time.perf_counter() - t_start,
-        n_fev=nfev,
-        _sampler=sampler,
-    )
+    opts = {"method": method, "friction": friction, "rtol": rtol, "atol": atol, "eps": eps}
+    run = _Run(p, n, st.copy(), opts | {"max_step": max_step, "dense": dense})
+    run.integrate()
+    return run.trajectory(method, friction, t_start)
 
 
 def _is_contact_end(tau: float, w: float) -> bool:

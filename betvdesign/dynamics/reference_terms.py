@@ -59,6 +59,8 @@ SHORT_FLIGHT = 0.05
 
 
 class K(NamedTuple):
+    """The constants of the reference flows of one parameter set (:func:`constants`)."""
+
     alpha: float
     beta: float
     kappa: float
@@ -74,8 +76,21 @@ class K(NamedTuple):
 
 
 def constants(p: ModelParams) -> K:
-    """MODEL.md: b = ακ(1 + β) stick-band half-width, α(1 + 1/β) stick inertia; damper
-    coefficients 2ζ_vϖ (normal force) and 2ζ_h√α (tangential); the time origin's lead δ."""
+    """Constants of the reference flows (MODEL.md).
+
+    MODEL.md: b = ακ(1 + β) stick-band half-width, α(1 + 1/β) stick inertia; damper
+    coefficients 2ζ_vϖ (normal force) and 2ζ_h√α (tangential); the time origin's lead δ.
+
+    Parameters
+    ----------
+    p : ModelParams
+        The model.
+
+    Returns
+    -------
+    K
+        The constants.
+    """
     al, be, ka = p.alpha, p.beta, p.kappa
     dv = 2.0 * p.zeta_v * p.varpi
     return K(
@@ -95,8 +110,23 @@ def constants(p: ModelParams) -> K:
 
 
 def normal_force(k: K, tau: float) -> float:
-    """Contact normal force N = sin ψ + 2ζ_v ϖ cos ψ [-] at τ (cart phase ψ = ϖτ − δ);
-    sin ϖτ undamped."""
+    """Contact normal force N [-] at τ.
+
+    Contact normal force N = sin ψ + 2ζ_v ϖ cos ψ [-] at τ (cart phase ψ = ϖτ − δ);
+    sin ϖτ undamped.
+
+    Parameters
+    ----------
+    k : K
+        The flows' constants.
+    tau : float
+        Time [-].
+
+    Returns
+    -------
+    float
+        N [-].
+    """
     if not k.damped:
         return math.sin(k.varpi * tau)
     psi = k.varpi * tau - k.lead
@@ -104,13 +134,49 @@ def normal_force(k: K, tau: float) -> float:
 
 
 def push(k: K, psi: float, z: float, zd: float) -> float:
-    """P = sin ψ − ζ − 2ζ_h√α(ζ' − ϖ cos ψ): the cart's spring and damper on the head."""
+    """P = sin ψ − ζ − 2ζ_h√α(ζ' − ϖ cos ψ): the cart's spring and damper on the head.
+
+    Parameters
+    ----------
+    k : K
+        The flows' constants.
+    psi : float
+        Cart phase ψ [rad].
+    z, zd : float
+        ζ and ζ' [-].
+
+    Returns
+    -------
+    float
+        P [-].
+    """
     return math.sin(psi) - z - k.ch * (zd - k.varpi * math.cos(psi))
 
 
 def band_damped(k: K, tau: float, z: float, vs: float, d: float) -> str:
-    """The damped band |P| ≤ bN a look-ahead d after τ, on the stick flow
-    α(1 + 1/β) ζ'' = P from (ζ, common velocity vs) (Taylor to third order in ζ)."""
+    """The damped stick band tested a look-ahead after τ.
+
+    The damped band |P| ≤ bN a look-ahead d after τ, on the stick flow
+    α(1 + 1/β) ζ'' = P from (ζ, common velocity vs) (Taylor to third order in ζ).
+
+    Parameters
+    ----------
+    k : K
+        The flows' constants.
+    tau : float
+        Time [-].
+    z : float
+        ζ [-].
+    vs : float
+        The common velocity ζ' = s' [-].
+    d : float
+        The look-ahead [-].
+
+    Returns
+    -------
+    str
+        STICK inside the band, SLIP below it, REVERSE above.
+    """
     w, A = k.varpi, k.a_stick
     psi = w * tau - k.lead
     z2 = push(k, psi, z, vs) / A
@@ -126,7 +192,24 @@ def band_damped(k: K, tau: float, z: float, vs: float, d: float) -> str:
 
 
 def rhs_damped(k: K, contact: bool, hmode: str, eps: float):
-    """MODEL.md "Beyond the paper's idealisation", literally (module doc)."""
+    """MODEL.md "Beyond the paper's idealisation", literally (module doc).
+
+    Parameters
+    ----------
+    k : K
+        The flows' constants.
+    contact : bool
+        Head in contact with the slider.
+    hmode : str
+        The tangential phase (FREE, SLIP, REVERSE, STICK or TANH).
+    eps : float
+        Width of the tanh regularisation [-].
+
+    Returns
+    -------
+    callable
+        ``rhs(t, y)`` of the state (ξ, ξ', ζ, ζ', s, s') [-].
+    """
     al, be, ka, w, A = k.alpha, k.beta, k.kappa, k.varpi, k.a_stick
     zv, dv, ch, lead = k.zv, k.dv, k.ch, k.lead
 
@@ -154,9 +237,22 @@ def rhs_damped(k: K, contact: bool, hmode: str, eps: float):
 
 
 def stick_events(k: K) -> list:
-    """Damped stick-band exits: bN − P = 0 (friction at its limit, → slip) and
+    """Damped stick-band exits and their slopes along the flow.
+
+    Damped stick-band exits: bN − P = 0 (friction at its limit, → slip) and
     bN + P = 0 (→ reverse slip), both falling; ``slope(t, y, f)``: their derivatives
-    along the flow f (N' = ϖ(cos ψ − 2ζ_vϖ sin ψ), P' = ϖ cos ψ − ζ' − 2ζ_h√α(ζ'' + ϖ² sin ψ))."""
+    along the flow f (N' = ϖ(cos ψ − 2ζ_vϖ sin ψ), P' = ϖ cos ψ − ζ' − 2ζ_h√α(ζ'' + ϖ² sin ψ)).
+
+    Parameters
+    ----------
+    k : K
+        The flows' constants.
+
+    Returns
+    -------
+    list of callable
+        The two events, terminal and falling, each with its ``slope``.
+    """
     w, b = k.varpi, k.b
 
     def lo(t: float, y: np.ndarray) -> float:
@@ -180,9 +276,12 @@ def stick_events(k: K) -> list:
 
 
 class Hit(NamedTuple):
-    """What a hit does (:func:`apply_hit`): ``kind`` "contact", "impulsive" (plastic, N < 0),
+    """What a hit does (:func:`apply_hit`).
+
+    What a hit does (:func:`apply_hit`): ``kind`` "contact", "impulsive" (plastic, N < 0),
     "rebound" (restitution; ``step``: max_step for the flight) or "tail" (a chattering
-    sequence closed: contact at τ + ``tail``, first-order error bound ``bound``)."""
+    sequence closed: contact at τ + ``tail``, first-order error bound ``bound``).
+    """
 
     kind: str
     step: float = math.inf
@@ -191,8 +290,27 @@ class Hit(NamedTuple):
 
 
 def apply_hit(k: K, tau: float, y: np.ndarray, t_close: float) -> Hit:
-    """Apply a hit at τ to y (ξ = 0, ξ' → 0 or −e ξ'); t_close: when a contact opened now
-    would end. Module doc: contact where N ≥ 0, restitution and its chattering closure."""
+    """Apply a hit at τ to the state y.
+
+    Apply a hit at τ to y (ξ = 0, ξ' → 0 or −e ξ'); t_close: when a contact opened now
+    would end. Module doc: contact where N ≥ 0, restitution and its chattering closure.
+
+    Parameters
+    ----------
+    k : K
+        The flows' constants.
+    tau : float
+        Time of the hit [-].
+    y : numpy.ndarray
+        The state (ξ, ξ', ζ, ζ', s, s') [-], changed in place.
+    t_close : float
+        When a contact opened now would end [-].
+
+    Returns
+    -------
+    Hit
+        What the hit does.
+    """
     N = normal_force(k, tau)
     y[0] = 0.0
     vin = min(float(y[1]), 0.0)

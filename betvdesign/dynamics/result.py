@@ -119,6 +119,7 @@ class SolverResult:
     elapsed_s: float = 0.0
 
     def __post_init__(self) -> None:
+        """Refuse a status outside :attr:`STATUSES`."""
         if self.status not in self.STATUSES:
             raise ValueError(
                 f"{type(self).__name__}: status {self.status!r} is not one of {self.STATUSES}"

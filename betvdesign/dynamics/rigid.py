@@ -250,6 +250,120 @@ def contact_schedule(varpi: float, tau_end: float, *, max_contacts: int | None =
     return contacts, impulsive, vs.n_root_evals
 
 
+def _require_ideal(p: ModelParams) -> None:
+    """Refuse a model with damping or restitution (the rigid limit is of the ideal one).
+
+    Raises
+    ------
+    ParameterError
+        For a ``p`` with damping or restitution.
+    """
+    if not p.ideal:
+        raise ParameterError(
+            "the rigid limit is a limit of the idealised model; this p has damping or "
+            "restitution: use dynamics.periodic_orbit / simulate"
+        )
+
+
+def _sections(
+    p: ModelParams, contacts: list[Contact], cycles: int, state0: tuple[float, float], events
+) -> tuple[list[float], float, int]:
+    """Carry the slider through free flight and the contacts, section by section.
+
+    Parameters
+    ----------
+    p : ModelParams
+        The model.
+    contacts : list of Contact
+        The finite-duration contacts (:func:`contact_schedule`).
+    cycles : int
+        Actuation cycles [-].
+    state0 : tuple of 2 floats
+        (s, s') [-] at τ = 0.
+    events : list or None
+        The event log, appended to (None: none kept).
+
+    Returns
+    -------
+    sections : list of float
+        s [-] at τ = 2mπ/ϖ, m = 0..cycles.
+    v : float
+        The final velocity s' [-].
+    k : int
+        The contacts passed.
+    """
+    period = TWO_PI / p.varpi
+    s, v = state0
+    tau = 0.0
+    sections = [s]
+    k = 0
+    for m in range(1, cycles + 1):
+        t_sec = m * period
+        while k < len(contacts) and contacts[k].end <= t_sec + 1e-12 * period:
+            c = contacts[k]
+            s += v * (c.start - tau)
+            s, v = _contact_flow(c, s, v, p, events)
+            tau = c.end
+            k += 1
+        if k < len(contacts) and contacts[k].start < t_sec:  # contact spans the section
+            raise AssertionError("contacts end at (2j+1)π/ϖ, never across a section")
+        s += v * (t_sec - tau)
+        tau = t_sec
+        sections.append(s)
+    return sections, v, k
+
+
+def _no_contact(
+    p: ModelParams,
+    max_cycles: int,
+    contacts: list[Contact],
+    n_impulsive: int,
+    n_evals: int,
+    t0: float,
+) -> RigidPeriodic:
+    """The answer of :func:`rigid_periodic` when the head makes no two finite contacts.
+
+    Parameters
+    ----------
+    p : ModelParams
+        The model.
+    max_cycles : int
+        The horizon searched [cycles].
+    contacts : list of Contact
+        The contacts found (fewer than two).
+    n_impulsive : int
+        Impulsive hits within the horizon.
+    n_evals : int
+        Root evaluations of the vertical search.
+    t0 : float
+        :func:`time.perf_counter` at the start [s].
+
+    Returns
+    -------
+    RigidPeriodic
+        Status "no_contact".
+    """
+    wv = p.varpi
+    return RigidPeriodic(
+        status="no_contact",
+        message=(
+            f"no finite-duration contact within {max_cycles} cycles after the first: "
+            f"ϖ = {wv:g} is outside the window where this model drives the slider"
+        ),
+        params=p,
+        delta_s=0.0,
+        mode=None,
+        period_cycles=0,
+        v_section=float("nan"),
+        residual=float("nan"),
+        contacts=contacts,
+        impacts_per_cycle=n_impulsive / max_cycles,
+        contact_fraction=0.0,
+        n_root_evals=n_evals,
+        elapsed_s=time.perf_counter() - t0,
+    )
+
+
 # ----------------------------------------------------------------------- public API
 def rigid_simulate(
     p: ModelParams, cycles: int, *, state0: tuple[float, float] = (0.0, 0.0), log: bool = False
@@ -287,11 +401,7 @@ def rigid_simulate(
     Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773 (α → 0 always gives pull
     mode).
     """
-    if not p.ideal:
-        raise ParameterError(
-            "the rigid limit is a limit of the idealised model; this p has damping or "
-            "restitution: use dynamics.periodic_orbit / simulate"
-        )
+    _require_ideal(p)
     t0 = time.perf_counter()
     if cycles < 1:
         raise ValueError(f"cycles must be >= 1, got {cycles}")
@@ -302,23 +412,8 @@ def rigid_simulate(
     events: list = [] if log else None  # type: ignore[assignment]
     for t in impulsive if log else ():
         events.append((t, "impulsive_hit", "free", "free"))
-    s, v = state0
-    tau = 0.0
-    sections = [s]
-    k = 0
-    for m in range(1, cycles + 1):
-        t_sec = m * period
-        while k < len(contacts) and contacts[k].end <= t_sec + 1e-12 * period:
-            c = contacts[k]
-            s += v * (c.start - tau)
-            s, v = _contact_flow(c, s, v, p, events)
-            tau = c.end
-            k += 1
-        if k < len(contacts) and contacts[k].start < t_sec:  # contact spans the section
-            raise AssertionError("contacts end at (2j+1)π/ϖ, never across a section")
-        s += v * (t_sec - tau)
-        tau = t_sec
-        sections.append(s)
+    sections, v, k = _sections(p, contacts, cycles, state0, events)
+    s = sections[-1]
     if log:
         events.sort(key=lambda e: e[0])
     n_ev = 2 * k + len(impulsive)
@@ -370,34 +465,13 @@ def rigid_periodic(p: ModelParams, *, max_cycles: int = 200) -> RigidPeriodic:
     Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773 (α → 0 always gives pull
     mode).
     """
-    if not p.ideal:
-        raise ParameterError(
-            "the rigid limit is a limit of the idealised model; this p has damping or "
-            "restitution: use dynamics.periodic_orbit / simulate"
-        )
+    _require_ideal(p)
     t0 = time.perf_counter()
     wv = p.varpi
     period = TWO_PI / wv
     contacts, impulsive, n_evals = contact_schedule(wv, max_cycles * period, max_contacts=2)
     if len(contacts) < 2:
-        return RigidPeriodic(
-            status="no_contact",
-            message=(
-                f"no finite-duration contact within {max_cycles} cycles after the first: "
-                f"ϖ = {wv:g} is outside the window where this model drives the slider"
-            ),
-            params=p,
-            delta_s=0.0,
-            mode=None,
-            period_cycles=0,
-            v_section=float("nan"),
-            residual=float("nan"),
-            contacts=contacts,
-            impacts_per_cycle=len(impulsive) / max_cycles,
-            contact_fraction=0.0,
-            n_root_evals=n_evals,
-            elapsed_s=time.perf_counter() - t0,
-        )
+        return _no_contact(p, max_cycles, contacts, len(impulsive), n_evals, t0)
     first, second = contacts[0], contacts[1]
     n_cyc = round((second.end - first.end) / period)
     cycle_contact = Contact(second.start, second.end)

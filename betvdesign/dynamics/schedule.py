@@ -57,11 +57,14 @@ MAX_BOUNCES = 20000
 
 
 class VerticalRun(NamedTuple):
-    """What :func:`vertical_run` returns: ``code`` (DONE, FULL: a table is too small,
+    """What :func:`vertical_run` returns.
+
+    What :func:`vertical_run` returns: ``code`` (DONE, FULL: a table is too small,
     enlarge and call again, FAILED: the gap search did not terminate on window ``H``),
     rows used in the tables (``cycles``, ``hits``: impulsive, ``pieces``), ``first_end``
     (cycle of the first contact end, −1: none), ``period`` (cycles between contact ends,
-    −1: none recurred within the horizon) and root ``evals``."""
+    −1: none recurred within the horizon) and root ``evals``.
+    """
 
     code: int
     cycles: int
@@ -75,7 +78,9 @@ class VerticalRun(NamedTuple):
 
 @kernel
 def plastic_hit(xid: float) -> float:
-    """Normal velocity just after a hit: plastic impact, ξ' → 0 (MODEL.md "Impacts and
+    """Normal velocity just after a plastic hit: ξ' → 0.
+
+    Normal velocity just after a hit: plastic impact, ξ' → 0 (MODEL.md "Impacts and
     separation": no rebound).
 
     Parameters
@@ -180,7 +185,9 @@ SERIES_HMAX = 0.25
 
 @kernel
 def short_flight(wf: float, zv: float, A: float, v: float, sp: float, cp: float, d=None):
-    """Certified flight time h and landing velocity of a rebound from ξ = 0 with ξ' = v > 0
+    """Certified flight time and landing velocity of a rebound.
+
+    Certified flight time h and landing velocity of a rebound from ξ = 0 with ξ' = v > 0
     at a phase with sin = sp > 0, cos = cp (kernel time), by its Taylor series; (−1, 0)
     when the series cannot certify it (long flight: use the gap search).
 
@@ -315,6 +322,13 @@ def vertical_run(wf, zv, A, e, xi, xid, horizon, cyc, imp, pieces):
         ``code`` DONE, FULL (a table is too small: enlarge and call again), FAILED (the
         gap search did not terminate) or CHATTERED (a sequence did not accumulate); rows
         used, the first contact end, the period and the root evaluations.
+
+    Notes
+    -----
+    Over 80 lines on purpose: a compiled kernel whose loop carries about a dozen scalars
+    (time, state, table rows, counters) from one event to the next; split into
+    functions it would pass and return them all at every event, and its numbers are
+    pinned bit for bit by ``benchmarks/snapshot.py``.
 
     References
     ----------
@@ -466,8 +480,29 @@ def vertical_run(wf, zv, A, e, xi, xid, horizon, cyc, imp, pieces):
 
 @kernel
 def gap_at(wf, zv, A, cyc_row_tc, pieces, start, count, t):
-    """(ξ, ξ') at local time t of a cycle with contact opening at cyc_row_tc (NaN: none)
-    and free pieces pieces[start : start + count] (0 during contact)."""
+    """Normal state (ξ, ξ') at local time t of a cycle.
+
+    (ξ, ξ') at local time t of a cycle with contact opening at cyc_row_tc (NaN: none)
+    and free pieces pieces[start : start + count] (0 during contact).
+
+    Parameters
+    ----------
+    wf, zv, A : float
+        ϖ, ζ_v and the normal-force amplitude [-].
+    cyc_row_tc : float
+        The cycle's contact-opening local time [-] (NaN: none).
+    pieces : numpy.ndarray
+        The free-flight pieces (:data:`PIECE_DTYPE`).
+    start, count : int
+        The cycle's pieces.
+    t : float
+        Local time [-].
+
+    Returns
+    -------
+    tuple of float
+        (ξ, ξ') [-].
+    """
     te = math.pi / wf
     if cyc_row_tc == cyc_row_tc and cyc_row_tc <= t <= te:
         return 0.0, 0.0

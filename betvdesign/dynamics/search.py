@@ -46,7 +46,13 @@ class Workspace(NamedTuple):
 
 @kernel
 def workspace() -> Workspace:
-    """A fresh :class:`Workspace`."""
+    """A fresh :class:`Workspace`.
+
+    Returns
+    -------
+    Workspace
+        Scratch arrays for :func:`first_root`.
+    """
     return Workspace(
         np.zeros(1, dtype=EVALUATOR_DTYPE),
         np.zeros(8),
@@ -58,7 +64,18 @@ def workspace() -> Workspace:
 
 
 def search_failure_message(H: float) -> str:
-    """What a non-terminating search (code SEARCH_FAILED) on a window H [-] reports."""
+    """What a non-terminating search (code SEARCH_FAILED) on a window H [-] reports.
+
+    Parameters
+    ----------
+    H : float
+        The search window [-].
+
+    Returns
+    -------
+    str
+        The message.
+    """
     return f"event search did not terminate within {MAX_STEPS} steps on a window of {H:.6g}"
 
 
@@ -74,7 +91,9 @@ def refine(
     has_hi: bool,
     fine: np.ndarray,
 ) -> tuple[float, int]:
-    """Root of function i in (lo, hi]: f(lo) > 0, f decreasing, f(hi) ≤ 0: (root,
+    """Root of function i in (lo, hi], with the evaluations it took.
+
+    Root of function i in (lo, hi]: f(lo) > 0, f decreasing, f(hi) ≤ 0: (root,
     evaluations).
 
     Safeguarded Newton to round-off: a step leaving the bracket is replaced by the
@@ -82,6 +101,28 @@ def refine(
     bisection otherwise and never twice in a row. Where the evaluator gives f'' (fast
     mode) the steps carry Halley's correction; the bracket, the stopping tests and hence
     the accuracy are those of Newton.
+
+    Parameters
+    ----------
+    e : Evaluator
+        The event functions.
+    i : int
+        The function's index.
+    lo, hi : float
+        The bracket [-].
+    flo, fplo : float
+        f and f' at ``lo``.
+    fhi : float
+        f at ``hi`` (when ``has_hi``).
+    has_hi : bool
+        Whether ``fhi`` is known.
+    fine : numpy.ndarray
+        Scratch for the evaluator's values.
+
+    Returns
+    -------
+    tuple of (float, int)
+        The root [-] and the evaluations it took.
     """
     x, f, fp, fpp = lo, flo, fplo, 0.0
     f_lo, f_hi = flo, fhi
@@ -141,6 +182,12 @@ def first_root(e, H: float, ws: Workspace) -> tuple[int, float, int, int]:
     tuple of (int, float, int, int)
         (code, h [-], index of the function, evaluations): code NO_ROOT, ROOT at (h,
         index) or SEARCH_FAILED (no termination within MAX_STEPS steps).
+
+    Notes
+    -----
+    Over 80 lines on purpose: the compiled inner loop of every event search (bracket,
+    certify, refine) with its state in registers; its numbers are pinned bit for bit by
+    ``benchmarks/snapshot.py``.
 
     References
     ----------

@@ -26,7 +26,7 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass
-from typing import Any, ClassVar, get_args
+from typing import Any, ClassVar, NamedTuple, get_args
 
 import numpy as np
 
@@ -109,6 +109,115 @@ class Settling(SolverResult):
         }
 
 
+class _FromRest(NamedTuple):
+    """The transient from rest of :func:`_from_rest`.
+
+    ``s``: the travel [-] at every cycle end (s[0] = 0); ``done``: cycles simulated;
+    ``settle``, ``cross``: the cycle the running mean settles from and the one the
+    travel range is crossed at (None: not within ``done``); counters of the solver;
+    ``failure``: the solver's message when a chunk failed (``s`` then ends before it,
+    ``failed_at``: the cycles it reached).
+    """
+
+    s: np.ndarray
+    done: int
+    settle: int | None
+    cross: int | None
+    n_events: int
+    n_root_evals: int
+    failure: str | None = None
+    failed_at: int = 0
+
+
+def _from_rest(
+    p: ModelParams, k: int, target: float | None, tol: float, travel_s: float, max_cycles: int
+) -> _FromRest:
+    """Simulate from rest in doubling chunks until settled (and crossed) or at the cap.
+
+    Parameters
+    ----------
+    p : ModelParams
+        The model.
+    k : int
+        The orbit's period [cycles].
+    target : float or None
+        The periodic Δs* [-]; None: no periodic answer, the run stops once it crosses.
+    tol : float
+        Settled means within ``tol`` of Δs* [-].
+    travel_s : float
+        Travel range [-]; inf: no crossing asked.
+    max_cycles : int
+        Cap on the cycles simulated [-].
+
+    Returns
+    -------
+    _FromRest
+        The travel at every cycle end, where it settles and crosses, the counters.
+    """
+    s_all = [np.zeros(1)]
+    state = None
+    done, chunk = 0, FIRST_CHUNK
+    n_events = n_root_evals = 0
+    if math.isfinite(travel_s) and target is not None and target != 0.0:
+        chunk = max(chunk, min(max_cycles, int(2 * travel_s / abs(target)) + 1))
+    settle: int | None = None
+    cross: int | None = None
+    while True:
+        n = min(chunk, max_cycles - done)
+        tr = simulate(p, n, state0=state, log_events=False)
+        n_events += tr.n_events
+        n_root_evals += tr.n_root_evals
+        if not tr.success:
+            s = np.concatenate(s_all)
+            return _FromRest(
+                s, done, None, cross, n_events, n_root_evals, tr.message, done + len(tr.delta_s)
+            )
+        s_all.append(s_all[-1][-1] + tr.section[1:, 4] - tr.section[0, 4])
+        state = tr.section[-1].copy()
+        done += n
+        s = np.concatenate(s_all)
+        s_all = [s]
+        if cross is None and math.isfinite(travel_s):
+            hit = np.nonzero(np.abs(s) >= travel_s)[0]
+            cross = int(hit[0]) if len(hit) else None
+        settle = None if target is None else _settle_index(s, k, target, tol)
+        crossed = cross is not None or not math.isfinite(travel_s)
+        if (target is None and crossed) or (settle is not None and crossed):
+            return _FromRest(s, done, settle, cross, n_events, n_root_evals)
+        if done >= max_cycles:
+            return _FromRest(s, done, settle, cross, n_events, n_root_evals)
+        chunk = done  # double the horizon
+
+
+def _result(run: _FromRest, rtol: float, t0: float, **fields: Any) -> Settling:
+    """The :class:`Settling` of a transient from rest, with its counters.
+
+    Parameters
+    ----------
+    run : _FromRest
+        The transient.
+    rtol : float
+        The settling tolerance [-].
+    t0 : float
+        :func:`time.perf_counter` at the start [s].
+    **fields
+        The answer's other fields (status, message, cycles).
+
+    Returns
+    -------
+    Settling
+        The answer.
+    """
+    return Settling(
+        rtol=rtol,
+        cycles_to_cross=run.cross,
+        n_events=run.n_events,
+        n_root_evals=run.n_root_evals,
+        elapsed_s=time.perf_counter() - t0,
+        **fields,
+    )
+
+
 def settling(
     p: ModelParams,
     delta_s: float | None,
@@ -152,60 +261,22 @@ def settling(
     from a few hundred to about 10⁵ cycles).
     """
     t0 = time.perf_counter()
-    k = max(1, int(period_cycles))
-    crossing_only = delta_s is None
-    target = 0.0 if delta_s is None else float(delta_s)
-    tol = rtol * abs(target)
-    s_all = [np.zeros(1)]
-    state = None
-    done, chunk = 0, FIRST_CHUNK
-    n_events = n_root_evals = 0
-    if math.isfinite(travel_s) and target != 0.0:
-        chunk = max(chunk, min(max_cycles, int(2 * travel_s / abs(target)) + 1))
-    settle: int | None = None
-    cross: int | None = None
+    target = None if delta_s is None else float(delta_s)
+    tol = 0.0 if target is None else rtol * abs(target)
+    run = _from_rest(p, max(1, int(period_cycles)), target, tol, travel_s, max_cycles)
+    s, done, settle, cross = run.s, run.done, run.settle, run.cross
 
     def result(status: SettlingStatus, message: str, cycles: int, **fields: Any) -> Settling:
-        return Settling(
-            status=status,
-            message=message,
-            rtol=rtol,
-            cycles_to_cross=cross,
-            n_cycles=cycles,
-            n_events=n_events,
-            n_root_evals=n_root_evals,
-            elapsed_s=time.perf_counter() - t0,
-            **fields,
-        )
+        return _result(run, rtol, t0, status=status, message=message, n_cycles=cycles, **fields)
 
-    while True:
-        n = min(chunk, max_cycles - done)
-        tr = simulate(p, n, state0=state, log_events=False)
-        n_events += tr.n_events
-        n_root_evals += tr.n_root_evals
-        if not tr.success:
-            return result(
-                "failed",
-                f"transient from rest failed after {done} cycles: {tr.message}",
-                done + len(tr.delta_s),
-                cycles_to_settle=None,
-                crossing_delta_s=None,
-            )
-        s_all.append(s_all[-1][-1] + tr.section[1:, 4] - tr.section[0, 4])
-        state = tr.section[-1].copy()
-        done += n
-        s = np.concatenate(s_all)
-        s_all = [s]
-        if cross is None and math.isfinite(travel_s):
-            hit = np.nonzero(np.abs(s) >= travel_s)[0]
-            cross = int(hit[0]) if len(hit) else None
-        settle = None if crossing_only else _settle_index(s, k, target, tol)
-        crossed = cross is not None or not math.isfinite(travel_s)
-        if (crossing_only and crossed) or (settle is not None and crossed):
-            break
-        if done >= max_cycles:
-            break
-        chunk = done  # double the horizon
+    if run.failure is not None:
+        return result(
+            "failed",
+            f"transient from rest failed after {done} cycles: {run.failure}",
+            run.failed_at,
+            cycles_to_settle=None,
+            crossing_delta_s=None,
+        )
     crossing = None if cross is None else float(s[cross] / cross)
     if settle is not None:
         return result(
@@ -216,7 +287,7 @@ def settling(
             cycles_to_settle=settle,
             crossing_delta_s=crossing,
         )
-    if crossing_only:
+    if target is None:
         return result(
             "not_settled",
             "no periodic Δs to settle to: the transient from rest "
@@ -240,8 +311,11 @@ def settling(
 
 
 def _settle_index(s: np.ndarray, k: int, target: float, tol: float) -> int | None:
-    """First m such that |(s_{j+k} − s_j)/k − target| ≤ tol for every j ≥ m, with at
-    least :data:`MIN_TAIL` such j; None when the run is too short to say."""
+    """First cycle from which the mean speed stays within ``tol`` of ``target``.
+
+    First m such that |(s_{j+k} − s_j)/k − target| ≤ tol for every j ≥ m, with at
+    least :data:`MIN_TAIL` such j; None when the run is too short to say.
+    """
     if len(s) <= k:
         return None
     mean = (s[k:] - s[:-k]) / k

@@ -26,7 +26,9 @@ from betvdesign.model.params import ModelParams
 
 
 class CycleFailure(RuntimeError):
-    """Raised when a cycle cannot be advanced: a chattering contact (a Zeno point), a
+    """Raised when a cycle cannot be advanced.
+
+    Raised when a cycle cannot be advanced: a chattering contact (a Zeno point), a
     non-terminating event search or a non-finite state; the message says which.
 
     Parameters
@@ -67,8 +69,11 @@ def chatter_message(tau: float, m: int, n_switch: int) -> str:
 
 
 class CycleRunner:
-    """Advances the tangential state through whole cycles of one parameter set with the
-    compiled contact loop; keeps the event log / segments when asked."""
+    """Advance the tangential state through whole cycles of one parameter set.
+
+    Advances the tangential state through whole cycles of one parameter set with the
+    compiled contact loop; keeps the event log / segments when asked.
+    """
 
     def __init__(self, c: np.ndarray, vs: VerticalSchedule, log: bool = False, dense: bool = False):
         self.c = c
@@ -105,8 +110,26 @@ class CycleRunner:
     ) -> tuple[float, float, float, float]:
         """State (ζ, ζ', s, s') after cycles m0..m0+n−1 from the state at m0's start.
 
-        rows (n + 1, 4): receives the state at every cycle start and at the end. Raises
-        :class:`CycleFailure` naming the cycle that failed (rows up to its start filled).
+        Parameters
+        ----------
+        m0, n : int
+            First cycle (0-based) and number of cycles.
+        z, zd, s, sd : float
+            (ζ, ζ', s, s') [-] at m0's start.
+        rows : numpy.ndarray, optional
+            (n + 1, 4): receives the state at every cycle start and at the end.
+        check_finite : bool
+            Fail on a non-finite state.
+
+        Returns
+        -------
+        tuple of float
+            (ζ, ζ', s, s') [-] at the end.
+
+        Raises
+        ------
+        CycleFailure
+            Naming the cycle that failed (rows up to its start filled).
         """
         idx = self._idx(m0, n)
         buf = self._norows if rows is None else rows

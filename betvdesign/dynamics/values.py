@@ -52,8 +52,11 @@ def _evaluate_uniform(e, h: float, out) -> tuple[float, float]:
 
 @kernel(inline=True)
 def evaluate(e, h: float, out) -> tuple[float, float]:
-    """(f_i, f_i', f_i'') at h into out[0:2], out[2:4], out[4:6]; returns (y, y') of the
-    oscillator."""
+    """The event functions' values and derivatives at h.
+
+    (f_i, f_i', f_i'') at h into out[0:2], out[2:4], out[4:6]; returns (y, y') of the
+    oscillator.
+    """
     if e["gen"]:
         return _evaluate_general(e, h, out)
     if not e["fast"]:
@@ -83,8 +86,11 @@ def evaluate(e, h: float, out) -> tuple[float, float]:
 
 @kernel(inline=True)
 def probe(e, h: float, out) -> None:
-    """One search step's look at h: f, f', a local |f''| bound and the envelope's
-    certified no-root length of each function into out[0:2], [2:4], [4:6], [6:8]."""
+    """One search step's look at h.
+
+    One search step's look at h: f, f', a local |f''| bound and the envelope's
+    certified no-root length of each function into out[0:2], [2:4], [4:6], [6:8].
+    """
     y, yd = evaluate(e, h, out)
     if e["gen"]:
         _m2_general(e, h, y, yd, out)
@@ -112,9 +118,12 @@ def probe(e, h: float, out) -> None:
 
 @kernel(inline=True)
 def clear(e, h: float, end) -> bool:
-    """Every function provably positive on [h, H] (slow envelope minus the free
+    """Whether every function is provably positive on [h, H].
+
+    Every function provably positive on [h, H] (slow envelope minus the free
     oscillation's amplitude). ``end``: 4 floats, cos_range_prep of the window's end,
-    filled on first use (end[3] = 1)."""
+    filled on first use (end[3] = 1).
+    """
     if not e["clearable"]:
         return False
     if e["gen"]:
@@ -133,9 +142,12 @@ def clear(e, h: float, end) -> bool:
 
 @kernel
 def start_bound(e, i: int, order: int) -> float:
-    """Bound on |f_i⁽ᵒʳᵈᵉʳ⁺¹⁾| over the window: the smaller of the energy-growth bound
+    """Bound on the next derivative of each function over the window.
+
+    Bound on |f_i⁽ᵒʳᵈᵉʳ⁺¹⁾| over the window: the smaller of the energy-growth bound
     (plus |q|ϖʲ) and the split bound |P − q|ϖʲ + w0^(j−1) E_h (j = order + bj); the
-    general form's bound (:func:`_start_bound_general`) with damping."""
+    general form's bound (:func:`_start_bound_general`) with damping.
+    """
     if e["gen"]:
         return _start_bound_general(e, order)
     j = order + e["bj"]
@@ -153,8 +165,11 @@ def start_bound(e, i: int, order: int) -> float:
 
 @kernel(inline=True)
 def _evaluate_general(e, h: float, out) -> tuple[float, float]:
-    """General-form values (f_i, f_i', f_i'') at h into out[0:2], out[2:4], out[4:6];
-    returns (y, y')."""
+    """General-form values and derivatives at h.
+
+    General-form values (f_i, f_i', f_i'') at h into out[0:2], out[2:4], out[4:6];
+    returns (y, y').
+    """
     wf, w0, F, G, g = e["wf"], e["w0"], e["F"], e["G"], e["g"]
     sp0, cp0 = e["sp0"], e["cp0"]
     sp, cp = rotate(wf, sp0, cp0, h)
@@ -192,9 +207,12 @@ def _evaluate_general(e, h: float, out) -> tuple[float, float]:
 
 @kernel(inline=True)
 def _m2_general(e, h: float, y: float, yd: float, out) -> None:
-    """Local bounds on the second derivatives of the event functions (from their exact
+    """Local bounds on the second derivatives of the event functions.
+
+    Local bounds on the second derivatives of the event functions (from their exact
     values and a bound on the third over the next window, :func:`bounds.local_m2`), from
-    the point (y, y'), into out[4:6]; no envelope (out[6:8] = 0)."""
+    the point (y, y'), into out[4:6]; no envelope (out[6:8] = 0).
+    """
     w0, g, Af, wf = e["w0"], e["g"], e["Af"], e["wf"]
     if e["fast"]:  # split: global bounds, slow envelopes
         for i in range(e["n"]):
@@ -235,8 +253,11 @@ def _start_bound_general(e, order: int) -> float:
 
 @kernel(inline=True)
 def _clear_general(e, h: float) -> bool:
-    """Every function provably positive on [h, H] (fast mode: the slow part's least value
-    over the phase range minus the fast part's bound ct)."""
+    """Whether every function is provably positive on [h, H] (fast mode).
+
+    Every function provably positive on [h, H] (fast mode: the slow part's least value
+    over the phase range minus the fast part's bound ct).
+    """
     wf, H = e["wf"], e["H"]
     for i in range(e["n"]):
         off = e["offs"][i]

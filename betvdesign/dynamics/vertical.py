@@ -138,7 +138,23 @@ class VerticalSchedule:
         return [self._cycle(i) for i in range(self.n_prefix, len(self.table))]
 
     def row(self, m: np.ndarray) -> np.ndarray:
-        """Row of ``table`` of cycles m (int array, 0-based, increasing)."""
+        """Row of ``table`` of cycles m (int array, 0-based, increasing).
+
+        Parameters
+        ----------
+        m : numpy.ndarray
+            Cycles (int, 0-based, increasing).
+
+        Returns
+        -------
+        numpy.ndarray
+            Their rows (cycles past the prefix map into the first period).
+
+        Raises
+        ------
+        IndexError
+            For a cycle beyond the computed horizon of a motion with no period.
+        """
         k = self.n_prefix
         if m.size and m[-1] >= k:
             if self.period is None:
@@ -147,17 +163,56 @@ class VerticalSchedule:
         return m
 
     def cycle(self, m: int) -> VerticalCycle:
-        """Vertical events of cycle m (0-based)."""
+        """Vertical events of cycle m (0-based).
+
+        Parameters
+        ----------
+        m : int
+            The cycle (0-based).
+
+        Returns
+        -------
+        VerticalCycle
+            Its section state, hits and contact.
+        """
         return self._cycle(int(self.row(np.array([m]))[0]))
 
     def arrays(self, m0: int, n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-        """Cycles m0..m0+n−1 as arrays: section state ξ0, ξ0' [-], contact-opening local
-        time [-] (NaN: none) and number of impulsive hits."""
+        """Cycles m0..m0+n−1 of the vertical motion as arrays.
+
+        Cycles m0..m0+n−1 as arrays: section state ξ0, ξ0' [-], contact-opening local
+        time [-] (NaN: none) and number of impulsive hits.
+
+        Parameters
+        ----------
+        m0 : int
+            First cycle (0-based).
+        n : int
+            Number of cycles.
+
+        Returns
+        -------
+        tuple of numpy.ndarray
+            ξ0, ξ0' [-], contact-opening time [-] and impulsive hits, per cycle.
+        """
         rows = self.table[self.row(np.arange(m0, m0 + n))]
         return rows["xi0"], rows["xid0"], rows["tc"], rows["imp_count"]
 
     def gap(self, m: np.ndarray, t: np.ndarray) -> np.ndarray:
-        """(ξ, ξ') [-] at local times t of cycles m, shape (n, 2) (0 during contact)."""
+        """(ξ, ξ') [-] at local times t of cycles m, shape (n, 2) (0 during contact).
+
+        Parameters
+        ----------
+        m : numpy.ndarray
+            Cycles (int, 0-based).
+        t : numpy.ndarray
+            Local times [-].
+
+        Returns
+        -------
+        numpy.ndarray
+            (ξ, ξ') [-], shape (n, 2).
+        """
         out = np.empty((t.size, 2))
         rows = self.table[self.row(m)]
         for j in range(t.size):
@@ -188,8 +243,11 @@ class VerticalSchedule:
         return hits / n, tc / (self.T * n)
 
     def n_hits(self) -> int:
-        """Hits (contact starts + impulsive) located in the cycles of ``table`` (the
-        prefix and one period, or the whole horizon when there is none)."""
+        """Hits located in the cycles of ``table``.
+
+        Hits (contact starts + impulsive) located in the cycles of ``table`` (the
+        prefix and one period, or the whole horizon when there is none).
+        """
         rows = self.table
         return int(rows["imp_count"].sum()) + int(np.count_nonzero(~np.isnan(rows["tc"])))
 
@@ -202,10 +260,13 @@ class VerticalSchedule:
         return self._per_period[1]
 
     def chattering_into_contact(self) -> int:
-        """Rebounds per cycle of a period-1 motion whose only impulsive hits are the
+        """Rebounds per cycle of a period-1 motion closing into its contact.
+
+        Rebounds per cycle of a period-1 motion whose only impulsive hits are the
         chattering sequence that closes into its contact (restitution, docs/damping.md
         §4): every hit before the contact start lies where N > 0, so it belongs to that
-        one sequence. 0 when the motion is not of that kind."""
+        one sequence. 0 when the motion is not of that kind.
+        """
         if self.restitution == 0.0 or self.period != 1:
             return 0
         (row,) = self.period_rows()
@@ -329,6 +390,105 @@ def vertical_motion(
     )[0]
 
 
+def _not_periodic(vs: VerticalSchedule, v: float, max_cycles: int, el: float) -> VerticalResult:
+    """The answer for a motion whose contact never recurs within ``max_cycles``.
+
+    Parameters
+    ----------
+    vs : VerticalSchedule
+        The schedule (no period).
+    v : float
+        ϖ [-].
+    max_cycles : int
+        The horizon searched [cycles].
+    el : float
+        Time taken [s].
+
+    Returns
+    -------
+    VerticalResult
+        Status "not_periodic", regime "impulsive-only".
+    """
+    imp = vs.hits_per_cycle()
+    return VerticalResult(
+        varpi=v,
+        status="not_periodic",
+        message=f"no contact recurred within {max_cycles} cycles: hits are impulsive only "
+        "and the slider is not driven ("
+        + (
+            f"restitution e = {vs.restitution:g}: the rebounds never settle into contact "
+            "before the normal force falls to zero; "
+            if vs.restitution > 0.0
+            else ""
+        )
+        + "MODEL.md: ϖ beyond about 2); increase max_cycles to look further",
+        regime="impulsive-only",
+        period_cycles=None,
+        hits_per_cycle=imp,
+        impulsive_per_cycle=imp,
+        contact_fraction=0.0,
+        contact_phase=None,
+        n_cycles=vs.n_prefix,
+        n_events=vs.n_hits(),
+        n_root_evals=vs.n_root_evals,
+        elapsed_s=el,
+    )
+
+
+def _periodic(vs: VerticalSchedule, v: float, el: float) -> VerticalResult:
+    """The answer for a periodic vertical motion: its regime, hits and contact.
+
+    Parameters
+    ----------
+    vs : VerticalSchedule
+        The schedule (periodic).
+    v : float
+        ϖ [-].
+    el : float
+        Time taken [s].
+
+    Returns
+    -------
+    VerticalResult
+        Status "success" with the regime: period-k, chattering-contact, multi-impact or
+        single-impact.
+    """
+    k = vs.period
+    imp = int(vs.period_rows()["imp_count"].sum()) / k
+    hits = vs.hits_per_cycle()
+    chatter = vs.chattering_into_contact()
+    if k > 1:
+        regime = f"period-{k}"
+    elif chatter:
+        regime = "chattering-contact"
+    elif hits > 1.0:
+        regime = "multi-impact"
+    else:
+        regime = "single-impact"
+    tcs = vs.period_rows()["tc"]
+    tc = float(tcs[~np.isnan(tcs)][0])
+    return VerticalResult(
+        varpi=v,
+        status="success",
+        message=f"vertical motion periodic with {k} cycle(s) per period"
+        + (
+            f"; its contact is reached by a chattering sequence of {chatter} rebound(s)"
+            if chatter
+            else ""
+        ),
+        regime=regime,
+        period_cycles=k,
+        hits_per_cycle=hits,
+        impulsive_per_cycle=imp,
+        contact_fraction=vs.contact_fraction(),
+        contact_phase=v * tc,
+        n_cycles=(vs.first_end or 0) + 1 + k,
+        n_events=vs.n_hits(),
+        n_root_evals=vs.n_root_evals,
+        elapsed_s=el,
+    )
+
+
 def vertical_motion_schedule(
     varpi: float, *, zeta_v: float = 0.0, restitution: float = 0.0, max_cycles: int = 1000
 ) -> tuple[VerticalResult, VerticalSchedule]:
@@ -363,63 +523,5 @@ def vertical_motion_schedule(
     )
     el = time.perf_counter() - t0
     if vs.period is None:
-        imp = vs.hits_per_cycle()
-        res = VerticalResult(
-            varpi=v,
-            status="not_periodic",
-            message=f"no contact recurred within {max_cycles} cycles: hits are impulsive only "
-            "and the slider is not driven ("
-            + (
-                f"restitution e = {vs.restitution:g}: the rebounds never settle into contact "
-                "before the normal force falls to zero; "
-                if vs.restitution > 0.0
-                else ""
-            )
-            + "MODEL.md: ϖ beyond about 2); increase max_cycles to look further",
-            regime="impulsive-only",
-            period_cycles=None,
-            hits_per_cycle=imp,
-            impulsive_per_cycle=imp,
-            contact_fraction=0.0,
-            contact_phase=None,
-            n_cycles=vs.n_prefix,
-            n_events=vs.n_hits(),
-            n_root_evals=vs.n_root_evals,
-            elapsed_s=el,
-        )
-        return res, vs
-    k = vs.period
-    imp = int(vs.period_rows()["imp_count"].sum()) / k
-    hits = vs.hits_per_cycle()
-    chatter = vs.chattering_into_contact()
-    if k > 1:
-        regime = f"period-{k}"
-    elif chatter:
-        regime = "chattering-contact"
-    elif hits > 1.0:
-        regime = "multi-impact"
-    else:
-        regime = "single-impact"
-    tcs = vs.period_rows()["tc"]
-    tc = float(tcs[~np.isnan(tcs)][0])
-    res = VerticalResult(
-        varpi=v,
-        status="success",
-        message=f"vertical motion periodic with {k} cycle(s) per period"
-        + (
-            f"; its contact is reached by a chattering sequence of {chatter} rebound(s)"
-            if chatter
-            else ""
-        ),
-        regime=regime,
-        period_cycles=k,
-        hits_per_cycle=hits,
-        impulsive_per_cycle=imp,
-        contact_fraction=vs.contact_fraction(),
-        contact_phase=v * tc,
-        n_cycles=(vs.first_end or 0) + 1 + k,
-        n_events=vs.n_hits(),
-        n_root_evals=vs.n_root_evals,
-        elapsed_s=el,
-    )
-    return res, vs
+        return _not_periodic(vs, v, max_cycles, el), vs
+    return _periodic(vs, v, el), vs

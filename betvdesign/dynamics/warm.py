@@ -27,6 +27,7 @@ def warm() -> float:
 
 
 def main() -> int:
+    """Compile every solver kernel into the cache (``make demo``); the exit status."""
     from betvdesign.dynamics.jit import cache_dir, jit_enabled
 
     if not jit_enabled():

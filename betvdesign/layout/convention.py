@@ -64,8 +64,21 @@ ANCHOR_ENCLOSURE_FACTOR = 1.0
 
 
 def beam_gap(min_spacing_um: float) -> float:
-    """Gap between neighbouring slider beams [µm]: 10 µm, or the process's minimum
-    spacing if larger (not in the device file: the model's M does not depend on it)."""
+    """Gap between neighbouring slider beams [µm].
+
+    10 µm, or the process's minimum spacing if larger (not in the device file: the
+    model's M does not depend on it).
+
+    Parameters
+    ----------
+    min_spacing_um : float
+        The process's minimum spacing on the slider's layer [µm].
+
+    Returns
+    -------
+    float
+        The gap [µm].
+    """
     return max(10.0, min_spacing_um)
 
 
@@ -79,6 +92,7 @@ class ElementLabel:
 
     @property
     def text(self) -> str:
+        """The element's label text as drawn in the layout."""
         if self.set_name is None:
             return f"slider.{self.part}"
         return f"{self.set_name}.{self.side}.{self.part}"
@@ -94,6 +108,7 @@ class DataLabel:
 
     @property
     def text(self) -> str:
+        """The data label's text: ``set/path = value``."""
         where = f"{self.set_name}/" if self.set_name is not None else ""
         return f"{where}{self.path} = {self.value}"
 
@@ -103,7 +118,19 @@ _DATA = re.compile(r"^(?:(?P<set>[^/=]+)/)?(?P<path>[A-Za-z_][A-Za-z0-9_.\[\]]*)
 
 
 def parse_label(text: str) -> ElementLabel | DataLabel | None:
-    """The meaning of a label's text (None: not a betv label)."""
+    """The meaning of a label's text.
+
+    Parameters
+    ----------
+    text : str
+        The label's text as drawn.
+
+    Returns
+    -------
+    ElementLabel or DataLabel or None
+        What it names (an element, or a data field and its value); None when it is not
+        a betv label.
+    """
     t = text.strip()
     m = _DATA.match(t)
     if m and "=" in t:
@@ -121,7 +148,18 @@ def parse_label(text: str) -> ElementLabel | DataLabel | None:
 
 
 def check_set_name(name: str) -> None:
-    """A set name must survive the labels (no '/', '=', newline; not 'slider')."""
+    """Check that a set name survives the labels.
+
+    Parameters
+    ----------
+    name : str
+        The actuator set's name.
+
+    Raises
+    ------
+    BetvError
+        For a name with '/', '=' or a newline, or the name 'slider'.
+    """
     if any(c in name for c in "/=\n") or name.strip() != name or name == "slider":
         raise BetvError(
             f"actuator set name {name!r} cannot be written as a layout label: use one "
@@ -133,7 +171,18 @@ _PLAIN = re.compile(r"^[A-Za-z0-9_][A-Za-z0-9_ .+\-*/^()µ°]*$")
 
 
 def flow(value: Any) -> str:
-    """``value`` as one line of YAML (flow style): a data label's VALUE."""
+    """``value`` as one line of YAML (flow style): a data label's VALUE.
+
+    Parameters
+    ----------
+    value : Any
+        Plain data (a quantity as its string).
+
+    Returns
+    -------
+    str
+        One line of flow-style YAML.
+    """
     if isinstance(value, bool):
         return "true" if value else "false"
     if value is None:
@@ -175,8 +224,21 @@ def _drawn(path: str, drawn: set[str]) -> bool:
 
 
 def data_labels(dump: dict[str, Any], process_ref: str) -> list[DataLabel]:
-    """The data labels of a device (its ``model_dump(mode="json", exclude_unset=True)``
-    with quantities as strings): everything the drawing does not give."""
+    """The data labels of a device: everything the drawing does not give.
+
+    Parameters
+    ----------
+    dump : dict
+        The device's ``model_dump(mode="json", exclude_unset=True)`` (quantities as
+        strings).
+    process_ref : str
+        What the ``process = …`` label says.
+
+    Returns
+    -------
+    list of DataLabel
+        One label per field the drawing does not give.
+    """
     out = [DataLabel(None, "process", flow(process_ref))]
     sets = dump.get("actuator_sets", [])
     out.append(DataLabel(None, "sets", flow([s["name"] for s in sets])))
@@ -192,6 +254,17 @@ def data_labels(dump: dict[str, Any], process_ref: str) -> list[DataLabel]:
 
 
 def cell_token(x_um: float) -> str:
-    """A length for a cell name, to the nm: 2.5 -> '2p5', 170 -> '170'."""
+    """A length for a cell name, to the nm: 2.5 -> '2p5', 170 -> '170'.
+
+    Parameters
+    ----------
+    x_um : float
+        The length [µm].
+
+    Returns
+    -------
+    str
+        The token (``p`` for the decimal point).
+    """
     s = f"{round(x_um, 3):.3f}".rstrip("0").rstrip(".")
     return s.replace("-", "m").replace(".", "p")

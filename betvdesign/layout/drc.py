@@ -47,6 +47,7 @@ class Violation:
 
     @property
     def where(self) -> str:
+        """The layer and the centre of the finding's box [µm], in words."""
         x0, y0, x1, y1 = self.bbox
         return f"{self.layer} ({self.gds}) at ({(x0 + x1) / 2:.3f}, {(y0 + y1) / 2:.3f}) µm"
 
@@ -88,8 +89,11 @@ IGNORE_ANGLE_DEG = 80.0
 
 
 def _edges(gdstk: Any, polys: list) -> np.ndarray:
-    """Boundary edges (n, 4) of the union of ``polys``, material on each edge's left; the
-    zero-width cuts by which a polygon with holes is written are dropped."""
+    """Boundary edges (n, 4) of the union of ``polys``.
+
+    Boundary edges (n, 4) of the union of ``polys``, material on each edge's left; the
+    zero-width cuts by which a polygon with holes is written are dropped.
+    """
     out = []
     for p in gdstk.boolean(polys, [], "or", precision=_GRID) if polys else []:
         pts = np.asarray(p.points, dtype=float)
@@ -120,11 +124,33 @@ def edge_violations(
     gdstk: Any, polys: list, d: float, kind: str, layer: str = "", gds: str = "",
     edges: np.ndarray | None = None,
 ) -> list[Violation]:  # fmt: skip
-    """Edge pairs of the union of ``polys`` closer than ``d`` [µm] across material
-    (``kind`` "width") or across space ("space"): each edge lies on the other's material
-    (or empty) side, they meet at less than :data:`IGNORE_ANGLE_DEG`, and their Euclidean
-    distance is below d (KLayout's width/space check with its Euclidean metric). ``edges``:
-    the union's boundary if already computed (:func:`_edges`)."""
+    """Edge pairs of the union of ``polys`` closer than ``d`` [µm].
+
+    Across material (``kind`` "width") or across space ("space"): each edge lies on the
+    other's material (or empty) side, they meet at less than :data:`IGNORE_ANGLE_DEG`,
+    and their Euclidean distance is below d (KLayout's width/space check with its
+    Euclidean metric).
+
+    Parameters
+    ----------
+    gdstk : module
+        The gdstk module.
+    polys : list
+        The layer's polygons.
+    d : float
+        The distance checked [µm].
+    kind : {"width", "space"}
+        Across material or across space.
+    layer, gds : str
+        The layer's name and GDS pair, for the findings.
+    edges : numpy.ndarray, optional
+        The union's boundary if already computed (:func:`_edges`).
+
+    Returns
+    -------
+    list of Violation
+        One per region of close edges.
+    """
     e = _edges(gdstk, polys) if edges is None else edges
     n = len(e)
     if n < 2:
@@ -189,11 +215,26 @@ def _clusters(boxes: list[tuple], layer: str, gds: str) -> list[Violation]:
 
 
 def weld(gdstk: Any, polys: list) -> list:
-    """The polygons with every vertex of another that lies on one of their edges (to
-    1e-6 µm) inserted there: shapes that abut in a rotated cell, flattened in floating
-    point, then share their boundary vertex for vertex and merge without the sub-grid
-    slivers rounding would leave (a designer's edit in KLayout breaks the shared vertices
-    ``betv layout`` draws)."""
+    """Insert into each polygon the vertices of others lying on its edges.
+
+    Every vertex of another polygon that lies on one of a polygon's edges (to 1e-6 µm)
+    is inserted there: shapes that abut in a rotated cell, flattened in floating point,
+    then share their boundary vertex for vertex and merge without the sub-grid slivers
+    rounding would leave (a designer's edit in KLayout breaks the shared vertices
+    ``betv layout`` draws).
+
+    Parameters
+    ----------
+    gdstk : module
+        The gdstk module.
+    polys : list
+        The polygons.
+
+    Returns
+    -------
+    list
+        The polygons with the shared vertices inserted.
+    """
     if len(polys) < 2:
         return list(polys)
     pts = [np.asarray(p.points, dtype=float) for p in polys]
@@ -228,7 +269,24 @@ def weld(gdstk: Any, polys: list) -> list:
 def width_violations(
     gdstk: Any, polys: list, holes: list, w_min: float, layer: str = "", gds: str = ""
 ) -> list[Violation]:
-    """Material narrower than ``w_min`` [µm]: :func:`edge_violations` across material."""
+    """Material narrower than ``w_min`` [µm]: :func:`edge_violations` across material.
+
+    Parameters
+    ----------
+    gdstk : module
+        The gdstk module.
+    polys, holes : list
+        The layer's polygons and its release holes.
+    w_min : float
+        The minimum width [µm].
+    layer, gds : str
+        The layer's name and GDS pair, for the findings.
+
+    Returns
+    -------
+    list of Violation
+        The narrow regions.
+    """
     body = _not(gdstk, weld(gdstk, polys), holes)
     return edge_violations(gdstk, body, w_min, "width", layer, gds)
 
@@ -236,8 +294,27 @@ def width_violations(
 def space_violations(
     gdstk: Any, polys: list, holes: list, s_min: float, layer: str = "", gds: str = ""
 ) -> list[Violation]:
-    """Gaps (between polygons, or notches of one, or holes) narrower than ``s_min`` [µm]:
-    :func:`edge_violations` across space."""
+    """Gaps narrower than ``s_min`` [µm].
+
+    Gaps between polygons, notches of one, or holes: :func:`edge_violations` across
+    space.
+
+    Parameters
+    ----------
+    gdstk : module
+        The gdstk module.
+    polys, holes : list
+        The layer's polygons and its release holes.
+    s_min : float
+        The minimum spacing [µm].
+    layer, gds : str
+        The layer's name and GDS pair, for the findings.
+
+    Returns
+    -------
+    list of Violation
+        The narrow gaps.
+    """
     body = _not(gdstk, weld(gdstk, polys), holes)
     return edge_violations(gdstk, body, s_min, "space", layer, gds)
 
@@ -246,8 +323,27 @@ def unreleased(
     gdstk: Any, polys: list, holes: list, anchors: list, w_max: float, layer: str = "",
     gds: str = "",
 ) -> list[Violation]:  # fmt: skip
-    """Released regions farther than ``w_max``/2 [µm] from every edge (module doc):
-    erode(B) = erode(A) − dilate(H), less what lies within w_max/2 of an anchor."""
+    """Released regions farther than ``w_max``/2 [µm] from every edge.
+
+    erode(B) = erode(A) − dilate(H), less what lies within w_max/2 of an anchor (module
+    doc).
+
+    Parameters
+    ----------
+    gdstk : module
+        The gdstk module.
+    polys, holes, anchors : list
+        The layer's polygons, its release holes and the anchors.
+    w_max : float
+        The widest feature the etch releases [µm].
+    layer, gds : str
+        The layer's name and GDS pair, for the findings.
+
+    Returns
+    -------
+    list of Violation
+        The regions the etch does not release.
+    """
     r = w_max / 2 - _GRID
     core = _not(gdstk, _off(gdstk, polys, -r, "round"), _off(gdstk, holes, r, "round"))
     if core and anchors:
@@ -265,8 +361,22 @@ class LayerFindings:
 
 
 def findings(gdstk: Any, process: Process, by_layer: dict[tuple[int, int], list]) -> LayerFindings:
-    """Width, spacing and release findings of every structural layer of ``process`` in
-    ``by_layer`` (gdstk polygons by (layer, datatype), flattened)."""
+    """Width, spacing and release findings of every structural layer.
+
+    Parameters
+    ----------
+    gdstk : module
+        The gdstk module.
+    process : Process
+        The process (its structural layers and their rules).
+    by_layer : dict
+        gdstk polygons by (layer, datatype), flattened.
+
+    Returns
+    -------
+    LayerFindings
+        The findings by rule.
+    """
     width, space, release = [], [], []
     for name, lay in process.layers.items():
         if lay.role != "structural":
@@ -293,8 +403,25 @@ def _listing(vs: list[Violation], limit: int = 6) -> str:
 
 
 def layout_rules(spec: DeviceSpec, f: LayerFindings, cell: str) -> list[RuleResult]:
-    """The device's process rules with width, spacing and release measured on the drawn
-    polygons of ``cell`` instead of the device file's fields."""
+    """The device's process rules measured on the drawn polygons of ``cell``.
+
+    Width, spacing and release are measured on the drawing instead of taken from the
+    device file's fields.
+
+    Parameters
+    ----------
+    spec : DeviceSpec
+        The device extracted from the layout.
+    f : LayerFindings
+        The drawn polygons' findings (:func:`findings`).
+    cell : str
+        The top cell's name, for the messages.
+
+    Returns
+    -------
+    list of RuleResult
+        The process rules.
+    """
     assert spec.process is not None
     p = spec.process
     out = []

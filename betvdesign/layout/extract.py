@@ -63,7 +63,13 @@ _TOL = 2.5e-3  # µm: lengths that must agree, agree to a few grid steps
 
 
 def max_gds_bytes() -> int:
-    """The GDS size limit [bytes] (``BETV_MAX_GDS_BYTES`` overrides it)."""
+    """The GDS size limit [bytes] (``BETV_MAX_GDS_BYTES`` overrides it).
+
+    Returns
+    -------
+    int
+        The limit [bytes].
+    """
     raw = os.environ.get(GDS_BYTES_ENV)
     try:
         return int(raw) if raw else MAX_GDS_BYTES
@@ -73,9 +79,12 @@ def max_gds_bytes() -> int:
 
 @dataclass
 class Extracted:
-    """What a layout says: the device (``doc``, plain data as a device file holds it, and
+    """What a layout says: the device, notes and process rules.
+
+    What a layout says: the device (``doc``, plain data as a device file holds it, and
     its validated ``spec``), notes (what was read but is not in the model), and the
-    layout's process rules; :attr:`text` is the device file's text."""
+    layout's process rules; :attr:`text` is the device file's text.
+    """
 
     doc: dict
     spec: DeviceSpec
@@ -245,8 +254,11 @@ def _elements(
 
 
 def _overlaps(elements: list[_Element], probs: _Problems, gdstk: Any) -> None:
-    """Two labelled elements on one layer may touch but not overlap, except an actuator's
-    head and its tip (the head is drawn over half the tip)."""
+    """Check that labelled elements on one layer do not overlap.
+
+    Two labelled elements on one layer may touch but not overlap, except an actuator's
+    head and its tip (the head is drawn over half the tip).
+    """
     boxes = [(e, e.points.min(axis=0), e.points.max(axis=0)) for e in elements]
     for i, (a, alo, ahi) in enumerate(boxes):
         for b, blo, bhi in boxes[i + 1 :]:
@@ -453,27 +465,31 @@ def _set_path(data: dict, path: str, value: Any) -> None:
     node[last] = value
 
 
-def extract(path: str | os.PathLike[str], *, process: str | None = None) -> Extracted:
-    """Read a GDS layout into a device (module doc). Raises :class:`SpecError` naming the
-    file, cell, layer and label of every problem."""
-    gdstk = gdstk_module()
-    path = Path(path)
-    probs = _Problems(path)
-    top = _read(path, probs)
-    probs.cell = top.name
-    labels = top.get_labels()
-    ref, proc = _process(top, labels, path, process, probs)
-    grid = float(proc.grid.to("um").magnitude)
-    elements, data, by_layer = _elements(top, proc, labels, probs, gdstk)
-    notes: list[str] = []
-    for d in [d for d in data if d.path == "_unlabelled"]:
-        data.remove(d)
-        notes.append(
-            f"{d.value} polygon(s) of a structural layer carry no label: not part of the "
-            "model (the process rules check them all)"
-        )
-    slider_els = [e for e in elements if e.label.set_name is None]
-    sl = _slider(slider_els, grid, probs)
+def _actuator_sets(
+    elements: list[_Element], sl: dict, grid: float, probs: _Problems, notes: list[str]
+) -> dict[str, _Actuator]:
+    """Group the labelled actuator parts into sets, each measured on its first side.
+
+    The two sides of a set must agree (the model's sets are symmetric).
+
+    Parameters
+    ----------
+    elements : list of _Element
+        The labelled elements of the layout.
+    sl : dict
+        The slider, measured (:func:`_slider`).
+    grid : float
+        The process's grid [µm].
+    probs : _Problems
+        The problems found (added to; raised when no actuator is labelled).
+    notes : list of str
+        Notes on what was read but is not in the model (added to).
+
+    Returns
+    -------
+    dict of str to _Actuator
+        The actuator of each set, by name.
+    """
     groups: dict[str, dict[str, dict[str, _Element]]] = defaultdict(lambda: defaultdict(dict))
     for e in elements:
         lab = e.label
@@ -510,6 +526,49 @@ def extract(path: str | os.PathLike[str], *, process: str | None = None) -> Extr
                 "betv's position"
             )
         acts[name] = first
+    return acts
+
+
+def extract(path: str | os.PathLike[str], *, process: str | None = None) -> Extracted:
+    """Read a GDS layout into a device (module doc).
+
+    Parameters
+    ----------
+    path : path
+        The GDS file.
+    process : str, optional
+        A process (shipped name or file) instead of the one the layout's label names.
+
+    Returns
+    -------
+    Extracted
+        The device, the notes on what was read but is not in the model, and the
+        layout's process rules.
+
+    Raises
+    ------
+    SpecError
+        Naming the file, cell, layer and label of every problem.
+    """
+    gdstk = gdstk_module()
+    path = Path(path)
+    probs = _Problems(path)
+    top = _read(path, probs)
+    probs.cell = top.name
+    labels = top.get_labels()
+    ref, proc = _process(top, labels, path, process, probs)
+    grid = float(proc.grid.to("um").magnitude)
+    elements, data, by_layer = _elements(top, proc, labels, probs, gdstk)
+    notes: list[str] = []
+    for d in [d for d in data if d.path == "_unlabelled"]:
+        data.remove(d)
+        notes.append(
+            f"{d.value} polygon(s) of a structural layer carry no label: not part of the "
+            "model (the process rules check them all)"
+        )
+    slider_els = [e for e in elements if e.label.set_name is None]
+    sl = _slider(slider_els, grid, probs)
+    acts = _actuator_sets(elements, sl, grid, probs, notes)
     probs.raise_if_any()
     doc, where = _document(data, sl, acts, proc, ref, path, probs)
     probs.raise_if_any()
@@ -620,8 +679,27 @@ def _relocate(issue: SpecIssue, where: dict[str, str], path: Path, cell: str) ->
 def derive_gds(
     path: str | os.PathLike[str], *, process: str | None = None
 ) -> tuple[DeviceDerivation, Extracted]:
-    """Extract a layout and derive it (as :func:`betvdesign.nondim.device.derive_file` does
-    a device file): every problem is a :class:`SpecError` naming the layout."""
+    """Extract a layout and derive it.
+
+    As :func:`betvdesign.nondim.device.derive_file` does a device file.
+
+    Parameters
+    ----------
+    path : path
+        The GDS file.
+    process : str, optional
+        A process instead of the one the layout names.
+
+    Returns
+    -------
+    tuple of (DeviceDerivation, Extracted)
+        The derivation and what the layout says.
+
+    Raises
+    ------
+    SpecError
+        For every problem, naming the layout.
+    """
     ex = extract(path, process=process)
     try:
         return derive(ex.spec), ex

@@ -25,9 +25,35 @@ __all__ = ["write_fixed_layout"]
 def write_fixed_layout(
     spec: DeviceSpec, res: Any, cand: Any, out: str | os.PathLike[str], *, process_ref: str
 ) -> Path:
-    """Draw ``spec`` with ``cand``'s changes (written as a device file writes them,
-    :func:`betvdesign.studies.fixfile.fixed_values`) to ``out``, verified as the module
-    doc says. Raises :class:`BetvError` when the result does not pass."""
+    """Draw ``spec`` with ``cand``'s changes to ``out``, verified.
+
+    The changes are written as a device file writes them
+    (:func:`betvdesign.studies.fixfile.fixed_values`); the drawing is verified as the
+    module doc says.
+
+    Parameters
+    ----------
+    spec : DeviceSpec
+        The device as the layout gives it.
+    res : FixResult
+        The fix search's answer.
+    cand : Candidate
+        The fix applied.
+    out : path
+        The GDS file written.
+    process_ref : str
+        What the ``process = …`` label says.
+
+    Returns
+    -------
+    Path
+        ``out``.
+
+    Raises
+    ------
+    BetvError
+        When the result does not pass.
+    """
     from betvdesign.checks.checker import check_derivation
     from betvdesign.studies.fixfile import fixed_values
 

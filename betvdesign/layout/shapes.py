@@ -1,5 +1,8 @@
-"""Measuring drawn polygons: area, centroid, the smallest enclosing rectangle (length,
-width, direction), discs, projections. Plain numpy on (n, 2) vertex arrays [µm]."""
+"""Measuring drawn polygons (plain numpy on (n, 2) vertex arrays [µm]).
+
+Measuring drawn polygons: area, centroid, the smallest enclosing rectangle (length,
+width, direction), discs, projections. Plain numpy on (n, 2) vertex arrays [µm].
+"""
 
 from __future__ import annotations
 
@@ -12,13 +15,35 @@ __all__ = ["Box", "area", "centroid", "extent", "min_box", "radius_about", "span
 
 
 def area(p: np.ndarray) -> float:
-    """Signed area (counter-clockwise positive) [µm²] (shoelace)."""
+    """Signed area (counter-clockwise positive) [µm²] (shoelace).
+
+    Parameters
+    ----------
+    p : numpy.ndarray
+        Vertices (n, 2) [µm].
+
+    Returns
+    -------
+    float
+        The area [µm²].
+    """
     x, y = p[:, 0], p[:, 1]
     return 0.5 * float(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1)))
 
 
 def centroid(p: np.ndarray) -> np.ndarray:
-    """Area centroid of a simple polygon [µm]."""
+    """Area centroid of a simple polygon [µm].
+
+    Parameters
+    ----------
+    p : numpy.ndarray
+        Vertices (n, 2) [µm].
+
+    Returns
+    -------
+    numpy.ndarray
+        (x, y) [µm].
+    """
     x, y = p[:, 0], p[:, 1]
     xn, yn = np.roll(x, -1), np.roll(y, -1)
     cr = x * yn - xn * y
@@ -30,9 +55,12 @@ def centroid(p: np.ndarray) -> np.ndarray:
 
 @dataclass(frozen=True)
 class Box:
-    """The smallest-area rectangle around a polygon: ``length`` ≥ ``width`` [µm], unit
+    """The smallest-area rectangle around a polygon.
+
+    The smallest-area rectangle around a polygon: ``length`` ≥ ``width`` [µm], unit
     ``axis`` along the length, ``centre``, and ``fill`` = polygon area / box area (1 for a
-    rectangle)."""
+    rectangle).
+    """
 
     centre: np.ndarray
     length: float
@@ -71,7 +99,19 @@ def _hull(p: np.ndarray) -> np.ndarray:
 
 
 def min_box(p: np.ndarray) -> Box:
-    """Rotating calipers over the convex hull's edges."""
+    """The smallest-area rectangle around a polygon (rotating calipers).
+
+    Parameters
+    ----------
+    p : numpy.ndarray
+        Vertices (n, 2) [µm].
+
+    Returns
+    -------
+    Box
+        Its length, width, axis, centre and fill; the calipers run over the convex
+        hull's edges.
+    """
     h = _hull(p)
     best = None
     for i in range(len(h)):
@@ -97,19 +137,57 @@ def min_box(p: np.ndarray) -> Box:
 
 
 def extent(p: np.ndarray) -> float:
-    """The largest distance between two vertices [µm] (a drawn disc's diameter: its
-    vertices lie on the circle, opposite ones on each axis)."""
+    """The largest distance between two vertices [µm].
+
+    A drawn disc's diameter: its vertices lie on the circle, opposite ones on each axis.
+
+    Parameters
+    ----------
+    p : numpy.ndarray
+        Vertices (n, 2) [µm].
+
+    Returns
+    -------
+    float
+        The distance [µm].
+    """
     h = _hull(p)
     d = h[:, None, :] - h[None, :, :]
     return float(np.sqrt(np.max(np.sum(d * d, axis=-1))))
 
 
 def radius_about(p: np.ndarray, c: np.ndarray) -> float:
-    """Largest distance of a vertex from ``c`` [µm] (a drawn disc's radius)."""
+    """Largest distance of a vertex from ``c`` [µm] (a drawn disc's radius).
+
+    Parameters
+    ----------
+    p : numpy.ndarray
+        Vertices (n, 2) [µm].
+    c : numpy.ndarray
+        The centre (x, y) [µm].
+
+    Returns
+    -------
+    float
+        The distance [µm].
+    """
     return float(np.max(np.hypot(p[:, 0] - c[0], p[:, 1] - c[1])))
 
 
 def span_along(p: np.ndarray, u: np.ndarray) -> tuple[float, float]:
-    """(min, max) of the vertices' projections on ``u``."""
+    """(min, max) of the vertices' projections on ``u``.
+
+    Parameters
+    ----------
+    p : numpy.ndarray
+        Vertices (n, 2) [µm].
+    u : numpy.ndarray
+        A unit vector.
+
+    Returns
+    -------
+    tuple of float
+        The smallest and largest projection [µm].
+    """
     s = p @ u
     return float(s.min()), float(s.max())

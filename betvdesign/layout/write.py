@@ -67,7 +67,18 @@ _UM = 1e6
 
 
 def gdstk_module():
-    """gdstk, or a clear error naming the extra to install."""
+    """The gdstk module, or a clear error naming the extra to install.
+
+    Returns
+    -------
+    module
+        gdstk.
+
+    Raises
+    ------
+    BetvError
+        When gdstk is not installed.
+    """
     try:
         import gdstk
     except ImportError:
@@ -86,8 +97,11 @@ def _g(x: float) -> float:
 
 @dataclass(frozen=True)
 class Placement:
-    """Where one actuator stands: local (x, y) [µm] -> M·(x, y) + t; ``rotation`` [rad] and
-    ``x_reflection`` are the same map as a GDS reference."""
+    """Where one actuator stands: local (x, y) [µm] -> M·(x, y) + t.
+
+    Where one actuator stands: local (x, y) [µm] -> M·(x, y) + t; ``rotation`` [rad] and
+    ``x_reflection`` are the same map as a GDS reference.
+    """
 
     set_name: str
     side: str
@@ -97,6 +111,7 @@ class Placement:
     x_reflection: bool
 
     def apply(self, x: float, y: float) -> tuple[float, float]:
+        """Map the local point (x, y) [µm] to the layout: M·(x, y) + t [µm]."""
         (a, b), (c, d) = self.matrix
         return (a * x + b * y + self.t[0], c * x + d * y + self.t[1])
 
@@ -105,9 +120,12 @@ def _placement(
     set_name: str, side: str, theta: float, sx: int, head: tuple[float, float],
     h_max: float, slider_half: float, clearance: float, x_head: float,
 ) -> Placement:  # fmt: skip
-    """The map of one actuator (module doc): its stroke (local y) at θ from the slider,
+    """The map of one actuator (module doc).
+
+    The map of one actuator (module doc): its stroke (local y) at θ from the slider,
     along the impact direction sx, toward the slider from the lower (sy = +1) or upper
-    (sy = −1) side; its highest point (toward the slider) ``clearance`` from it."""
+    (sy = −1) side; its highest point (toward the slider) ``clearance`` from it.
+    """
     sy = 1 if side == "lower" else -1
     s, c = math.sin(theta), math.cos(theta)
     m = ((sx * -s, sx * c), (sy * c, sy * s))
@@ -126,9 +144,12 @@ def _toward(c: float, v: np.ndarray) -> np.ndarray:
 
 
 def _disc(cx: float, cy: float, r: float) -> np.ndarray:
-    """A disc whose extent (centre ± r) lies on the grid: the vertices on the axes exact,
+    """A disc whose extent (centre ± r) lies on the grid.
+
+    A disc whose extent (centre ± r) lies on the grid: the vertices on the axes exact,
     every other rounded toward the centre (none outside the circle: the drawn diameter is
-    the extent)."""
+    the extent).
+    """
     a = 2 * math.pi * np.arange(DISC_VERTICES) / DISC_VERTICES
     dx, dy = r * np.cos(a), r * np.sin(a)
     dx[np.abs(dx) < 1e-12] = 0.0
@@ -141,9 +162,12 @@ def _rect(x0: float, y0: float, x1: float, y1: float) -> np.ndarray:
 
 
 def _shared_vertices(polys: list[np.ndarray]) -> list[np.ndarray]:
-    """Each polygon with the vertices of the others that lie on its edges inserted, so that
+    """Insert into each polygon the vertices of the others on its edges.
+
+    Each polygon with the vertices of the others that lie on its edges inserted, so that
     abutting elements share their boundary vertex for vertex: a reader that rounds a
-    rotated cell to its grid then rounds both sides alike (no sliver between them)."""
+    rotated cell to its grid then rounds both sides alike (no sliver between them).
+    """
     every = np.concatenate(polys)
     out = []
     for p in polys:
@@ -207,9 +231,12 @@ def _fill_release(
     polys: list[np.ndarray], holes: list[np.ndarray], anchors: list[np.ndarray],
     layer: ProcessLayer, gdstk: Any,
 ) -> list[np.ndarray]:  # fmt: skip
-    """More holes where the joined elements (a beam and its end piece, a head and its tip)
+    """More release holes where joined elements still leave unreleased points.
+
+    More holes where the joined elements (a beam and its end piece, a head and its tip)
     still leave a point farther than half the widest unreleased feature from every edge:
-    a hole at the middle of each such region, until none is left."""
+    a hole at the middle of each such region, until none is left.
+    """
     from betvdesign.layout.drc import unreleased
 
     h = layer.release_holes
@@ -368,21 +395,29 @@ def _local_labels(g: FrameGeometry) -> dict[str, tuple[float, float]]:
     return out
 
 
-def build_library(spec: DeviceSpec, process_ref: str) -> Any:
-    """The layout of ``spec`` as a gdstk Library (module doc); ``process_ref`` is what the
-    ``process = …`` label says (a shipped name, or a path relative to the GDS file)."""
-    gdstk = gdstk_module()
-    _refuse(spec)
-    p = spec.process
-    assert p is not None
-    ann = p.layers[p.annotation].gds.pair
-    Ls = _Layers(p, p.structural_name(spec.slider.layer), ann)
-    lib = gdstk.Library("BETVDESIGN", unit=1e-6, precision=1e-9)
-    top_name = "BETV_" + "".join(ch if ch.isalnum() or ch in "_-" else "_" for ch in spec.name)
-    top = gdstk.Cell(top_name[:120])
-    labels: list[tuple[str, tuple[float, float]]] = []
+def _draw_slider(
+    spec: DeviceSpec, Ls: _Layers, lib: Any, top: Any, labels: list, gdstk: Any
+) -> tuple[float, float]:
+    """Draw the slider (its beams and end pieces, released) and its travel stops.
 
-    # --- slider ---------------------------------------------------------------------------
+    Parameters
+    ----------
+    spec : DeviceSpec
+        The device.
+    Ls : _Layers
+        Its process's layers.
+    lib, top : gdstk.Library, gdstk.Cell
+        The library the slider's cell is added to, and the top cell it is placed in.
+    labels : list of (str, (float, float))
+        Element labels and their positions [µm] (appended to).
+    gdstk : module
+        The gdstk module.
+
+    Returns
+    -------
+    tuple of float
+        The beams' length L and the slider's height H [µm].
+    """
     sl = spec.slider
     lay_s = Ls.structural(Ls.slider)
     L, w, n = _um(sl.beam_length), _um(sl.beam_width), sl.beam_count
@@ -414,7 +449,34 @@ def build_library(spec: DeviceSpec, process_ref: str) -> Any:
         scell.add(gdstk.Polygon(hole, layer=hl[0], datatype=hl[1]))
     lib.add(scell)
     top.add(gdstk.Reference(scell))
-    tr = _um(sl.travel_range)
+    _draw_stops(spec, Ls, top, labels, (xl, L), gdstk)
+    return L, H
+
+
+def _draw_stops(
+    spec: DeviceSpec, Ls: _Layers, top: Any, labels: list, beams: tuple[float, float], gdstk: Any
+) -> None:
+    """Draw the slider's two travel stops, anchored, half the travel range beyond its ends.
+
+    Parameters
+    ----------
+    spec : DeviceSpec
+        The device.
+    Ls : _Layers
+        Its process's layers.
+    top : gdstk.Cell
+        The top cell.
+    labels : list of (str, (float, float))
+        Element labels and their positions [µm] (appended to).
+    beams : tuple of float
+        The beams' left end xl and length L [µm].
+    gdstk : module
+        The gdstk module.
+    """
+    xl, L = beams
+    lay_s = Ls.structural(Ls.slider)
+    sg = Ls.gds(Ls.slider)
+    tr = _um(spec.slider.travel_range)
     anchor = Ls.anchor(Ls.slider)
     enc = ANCHOR_ENCLOSURE_FACTOR * _um(lay_s.min_width)
     for x0, x1 in (
@@ -430,7 +492,30 @@ def build_library(spec: DeviceSpec, process_ref: str) -> Any:
                                   datatype=anchor[1]))  # fmt: skip
         labels.append(("slider.stop", (_g((x0 + x1) / 2), 0.0)))
 
-    # --- actuators ------------------------------------------------------------------------
+
+def _draw_actuators(
+    spec: DeviceSpec, Ls: _Layers, lib: Any, top: Any, labels: list, slider: tuple, gdstk: Any
+) -> None:
+    """Draw each actuator set's cell once and place it on both sides of the slider.
+
+    Parameters
+    ----------
+    spec : DeviceSpec
+        The device.
+    Ls : _Layers
+        Its process's layers.
+    lib, top : gdstk.Library, gdstk.Cell
+        The library the cells are added to, and the top cell they are placed in.
+    labels : list of (str, (float, float))
+        Element labels and their positions [µm] (appended to).
+    slider : tuple of float
+        The beams' length L and the slider's height H [µm].
+    gdstk : module
+        The gdstk module.
+    """
+    p = Ls.process
+    L, H = slider
+    lay_s = Ls.structural(Ls.slider)
     cells: dict[tuple[str, str], Any] = {}
     placed: dict[int, int] = {1: 0, -1: 0}
     clearance = _um(lay_s.min_spacing) + 0.002  # two grid steps: rounding never eats the gap
@@ -459,9 +544,41 @@ def build_library(spec: DeviceSpec, process_ref: str) -> Any:
             for part, (x, y) in local.items():
                 gx, gy = pl.apply(x, y)
                 labels.append((ElementLabel(s.name, side, part).text, (_g(gx), _g(gy))))
+
+
+def build_library(spec: DeviceSpec, process_ref: str) -> Any:
+    """The layout of ``spec`` as a gdstk Library (module doc).
+
+    Parameters
+    ----------
+    spec : DeviceSpec
+        The device, with its process.
+    process_ref : str
+        What the ``process = …`` label says (a shipped name, or a path relative to the
+        GDS file).
+
+    Returns
+    -------
+    gdstk.Library
+        The slider's and the actuators' cells and the top cell, with the element and
+        data labels.
+    """
+    gdstk = gdstk_module()
+    _refuse(spec)
+    p = spec.process
+    assert p is not None
+    ann = p.layers[p.annotation].gds.pair
+    Ls = _Layers(p, p.structural_name(spec.slider.layer), ann)
+    lib = gdstk.Library("BETVDESIGN", unit=1e-6, precision=1e-9)
+    top_name = "BETV_" + "".join(ch if ch.isalnum() or ch in "_-" else "_" for ch in spec.name)
+    top = gdstk.Cell(top_name[:120])
+    labels: list[tuple[str, tuple[float, float]]] = []
+
+    L, H = _draw_slider(spec, Ls, lib, top, labels, gdstk)
+    _draw_actuators(spec, Ls, lib, top, labels, (L, H), gdstk)
     for text, xy in labels:
         top.add(gdstk.Label(text, xy, layer=ann[0], texttype=ann[1]))
-    (x0, y0), (x1, y1) = top.bounding_box()
+    _, (x1, y1) = top.bounding_box()
     dump = spec.model_dump(mode="json", exclude_unset=True)
     for i, lab in enumerate(data_labels(dump, process_ref)):
         top.add(gdstk.Label(lab.text, (_g(x1 + 20), _g(y1 - 8 * i)), layer=ann[0],
@@ -482,9 +599,29 @@ def write_layout(
     spec: DeviceSpec, path: str | os.PathLike[str], *, process_ref: str | None = None,
     svg: str | os.PathLike[str] | None = None,
 ) -> Path:  # fmt: skip
-    """Write the layout of ``spec`` to ``path`` (GDSII, whole or not at all) and, if asked,
-    an SVG preview. ``process_ref``: the ``process = …`` label (the shipped process's name
-    by default). Raises :class:`BetvError` when the device cannot be drawn."""
+    """Write the layout of ``spec`` to ``path`` (GDSII) and an SVG preview.
+
+    Parameters
+    ----------
+    spec : DeviceSpec
+        The device, with its process.
+    path : path
+        The GDS file, written whole or not at all.
+    process_ref : str, optional
+        What the ``process = …`` label says (the shipped process's name by default).
+    svg : path, optional
+        An SVG preview to write as well.
+
+    Returns
+    -------
+    Path
+        ``path``.
+
+    Raises
+    ------
+    BetvError
+        When the device cannot be drawn.
+    """
     p = spec.process
     if process_ref is None:
         _refuse(spec)

@@ -28,6 +28,7 @@ import math
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -74,6 +75,114 @@ def _breaks(
     return np.concatenate(out)
 
 
+def _body_mesh(
+    rects: Sequence[Rect],
+    discs: Sequence[tuple[float, float, float]],
+    h_across: float,
+    h_along: float,
+    fine: Sequence[tuple[float, float, float]] | None,
+    skfem: Any,
+) -> Any:
+    """A quadrilateral mesh of the body [µm], its edges on every rectangle's and disc's.
+
+    Parameters
+    ----------
+    rects, discs
+        The body [m] (discs as (cx, cy, r)).
+    h_across, h_along : float
+        Largest cell size across (y) and along (x) [m].
+    fine : sequence of (float, float, float) or None
+        y-bands (lo, hi, size) [m] with their own cell size across.
+    skfem : module
+        scikit-fem.
+
+    Returns
+    -------
+    skfem.MeshQuad
+        The tensor mesh less the cells whose centres lie outside the body.
+    """
+    xs_e = [r.x0 for r in rects] + [r.x1 for r in rects]
+    ys_e = [r.y0 for r in rects] + [r.y1 for r in rects]
+    for cx, cy, r in discs:
+        xs_e += [cx - r, cx + r]
+        ys_e += [cy - r, cy + r]
+    xs = _breaks(np.array(xs_e) * _UM, h_along * _UM)
+    if fine is None:
+        ys = _breaks(np.array(ys_e) * _UM, h_across * _UM)
+    else:
+        bands = [(lo * _UM, hi * _UM, hb * _UM) for lo, hi, hb in fine]
+        ys = _breaks(np.array(ys_e) * _UM, h_along * _UM, bands)
+    mesh = skfem.MeshQuad.init_tensor(xs, ys)
+    c = mesh.p[:, mesh.t].mean(axis=1)
+    inside = np.zeros(c.shape[1], dtype=bool)
+    for r in rects:
+        inside |= (
+            (c[0] > r.x0 * _UM) & (c[0] < r.x1 * _UM) & (c[1] > r.y0 * _UM) & (c[1] < r.y1 * _UM)
+        )
+    for cx, cy, r in discs:
+        inside |= (c[0] - cx * _UM) ** 2 + (c[1] - cy * _UM) ** 2 < (r * _UM) ** 2
+    mesh = mesh.remove_elements(np.nonzero(~inside)[0])
+    return mesh
+
+
+def _loads(
+    mesh: Any,
+    basis: Any,
+    e: Any,
+    load: Callable[[np.ndarray, np.ndarray], np.ndarray] | None,
+    ends: tuple[float, float | None, bool],
+    skfem: Any,
+) -> tuple[list[np.ndarray], list[np.ndarray]]:
+    """The two unit load vectors (x, y) and the fixed degrees of freedom.
+
+    Parameters
+    ----------
+    mesh, basis, e
+        The mesh, its basis and element.
+    load : callable or None
+        The loaded cells (a predicate on cell centres [µm]), or None for a uniform
+        traction on the end face.
+    ends : tuple
+        ``clamp_x`` and ``traction_x`` [m] and ``guided`` (:func:`plane_stress_stiffness`).
+    skfem : module
+        scikit-fem.
+
+    Returns
+    -------
+    loads : list of numpy.ndarray
+        Load vectors of unit total force along x and y [µN].
+    fixed : list of numpy.ndarray
+        The clamped degrees of freedom (and the guided end's u_x).
+
+    Raises
+    ------
+    BetvError
+        When no mesh cell lies in the loaded region.
+    """
+    clamp_x, traction_x, guided = ends
+    clamped = basis.get_dofs(lambda x: np.isclose(x[0], clamp_x * _UM, atol=1e-6)).all()
+    fixed = [clamped]
+    if load is None:
+        assert traction_x is not None
+        xe = traction_x * _UM
+        facets = mesh.facets_satisfying(lambda x: np.isclose(x[0], xe, atol=1e-6))
+        fb = skfem.FacetBasis(mesh, e, facets=facets, intorder=4)
+        area = float(np.sum(fb.dx))
+        loads = [skfem.LinearForm(lambda v, w, k=k: v[k]).assemble(fb) / area for k in (0, 1)]
+        if guided:
+            end = basis.get_dofs(lambda x: np.isclose(x[0], xe, atol=1e-6))
+            fixed.append(end.all(["u^1"]))
+    else:
+        cc = mesh.p[:, mesh.t].mean(axis=1)
+        head = np.nonzero(load(cc[0], cc[1]))[0]
+        if head.size == 0:
+            raise BetvError("finite-element model: no mesh cell in the loaded region")
+        hb = skfem.Basis(mesh, e, elements=head, intorder=4)
+        area = float(np.sum(hb.dx))
+        loads = [skfem.LinearForm(lambda v, w, k=k: v[k]).assemble(hb) / area for k in (0, 1)]
+    return loads, fixed
+
+
 def plane_stress_stiffness(
     rects: Sequence[Rect],
     discs: Sequence[tuple[float, float, float]],
@@ -104,27 +213,7 @@ def plane_stress_stiffness(
     from skfem.helpers import ddot, sym_grad, trace
 
     t0 = time.perf_counter()
-    xs_e = [r.x0 for r in rects] + [r.x1 for r in rects]
-    ys_e = [r.y0 for r in rects] + [r.y1 for r in rects]
-    for cx, cy, r in discs:
-        xs_e += [cx - r, cx + r]
-        ys_e += [cy - r, cy + r]
-    xs = _breaks(np.array(xs_e) * _UM, h_along * _UM)
-    if fine is None:
-        ys = _breaks(np.array(ys_e) * _UM, h_across * _UM)
-    else:
-        bands = [(lo * _UM, hi * _UM, hb * _UM) for lo, hi, hb in fine]
-        ys = _breaks(np.array(ys_e) * _UM, h_along * _UM, bands)
-    mesh = skfem.MeshQuad.init_tensor(xs, ys)
-    c = mesh.p[:, mesh.t].mean(axis=1)
-    inside = np.zeros(c.shape[1], dtype=bool)
-    for r in rects:
-        inside |= (
-            (c[0] > r.x0 * _UM) & (c[0] < r.x1 * _UM) & (c[1] > r.y0 * _UM) & (c[1] < r.y1 * _UM)
-        )
-    for cx, cy, r in discs:
-        inside |= (c[0] - cx * _UM) ** 2 + (c[1] - cy * _UM) ** 2 < (r * _UM) ** 2
-    mesh = mesh.remove_elements(np.nonzero(~inside)[0])
+    mesh = _body_mesh(rects, discs, h_across, h_along, fine, skfem)
     e = skfem.ElementVector(skfem.ElementQuad2())
     basis = skfem.Basis(mesh, e, intorder=4)
     E = youngs_modulus / 1e6  # µN/µm²
@@ -138,26 +227,7 @@ def plane_stress_stiffness(
         return t * ddot(sig, ev)
 
     K = stiffness.assemble(basis)
-    clamped = basis.get_dofs(lambda x: np.isclose(x[0], clamp_x * _UM, atol=1e-6)).all()
-    fixed = [clamped]
-    if load is None:
-        assert traction_x is not None
-        xe = traction_x * _UM
-        facets = mesh.facets_satisfying(lambda x: np.isclose(x[0], xe, atol=1e-6))
-        fb = skfem.FacetBasis(mesh, e, facets=facets, intorder=4)
-        area = float(np.sum(fb.dx))
-        loads = [skfem.LinearForm(lambda v, w, k=k: v[k]).assemble(fb) / area for k in (0, 1)]
-        if guided:
-            end = basis.get_dofs(lambda x: np.isclose(x[0], xe, atol=1e-6))
-            fixed.append(end.all(["u^1"]))
-    else:
-        cc = mesh.p[:, mesh.t].mean(axis=1)
-        head = np.nonzero(load(cc[0], cc[1]))[0]
-        if head.size == 0:
-            raise BetvError("finite-element model: no mesh cell in the loaded region")
-        hb = skfem.Basis(mesh, e, elements=head, intorder=4)
-        area = float(np.sum(hb.dx))
-        loads = [skfem.LinearForm(lambda v, w, k=k: v[k]).assemble(hb) / area for k in (0, 1)]
+    loads, fixed = _loads(mesh, basis, e, load, (clamp_x, traction_x, guided), skfem)
     fixed_dofs = np.unique(np.concatenate(fixed))
     free = np.setdiff1d(np.arange(basis.N), fixed_dofs)
     lu = splu(K[free][:, free].tocsc())

@@ -1,4 +1,6 @@
-"""Device spec -> dimensionless model: (ϖ, α, β, κ) and the optional terms, the scales
+"""Device spec -> dimensionless model, scales and derivation record.
+
+Device spec -> dimensionless model: (ϖ, α, β, κ) and the optional terms, the scales
 back to SI and the record of every step. The only package that strips units.
 
 - :mod:`~betvdesign.nondim.device`: :func:`derive`, :func:`derive_file`,

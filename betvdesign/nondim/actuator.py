@@ -110,7 +110,20 @@ class ActuatorInputs:
 
 
 def actuator_inputs(spec: DeviceSpec, aset: ActuatorSet) -> ActuatorInputs:
-    """The inputs of :func:`frame_geometry` for a set with a drawn actuator."""
+    """The inputs of :func:`frame_geometry` for a set with a drawn actuator.
+
+    Parameters
+    ----------
+    spec : DeviceSpec
+        The device.
+    aset : ActuatorSet
+        The set.
+
+    Returns
+    -------
+    ActuatorInputs
+        Dimensions [m], modulus [Pa], density [kg/m³] and head mass [kg].
+    """
     return ActuatorInputs(spec, aset)
 
 
@@ -119,8 +132,23 @@ def _si(q: Any, unit: str = "m") -> Any:
 
 
 def frame_geometry(spec: DeviceSpec, aset: ActuatorSet) -> FrameGeometry:
-    """The drawn actuator of ``aset`` in SI floats (or arrays, for sampled specs): the
-    one geometry the closed form, the FE check and ``betv layout`` all use."""
+    """The drawn actuator of ``aset`` in SI floats.
+
+    The drawn actuator of ``aset`` in SI floats (or arrays, for sampled specs): the
+    one geometry the closed form, the FE check and ``betv layout`` all use.
+
+    Parameters
+    ----------
+    spec : DeviceSpec
+        The device.
+    aset : ActuatorSet
+        The set.
+
+    Returns
+    -------
+    FrameGeometry
+        Arms, links and head [m].
+    """
     a = ActuatorInputs(spec, aset)
     g = a.geometry
     return FrameGeometry(
@@ -140,12 +168,18 @@ def frame_geometry(spec: DeviceSpec, aset: ActuatorSet) -> FrameGeometry:
     )
 
 
-def head_springs(
-    rec: Recorder, spec: DeviceSpec, aset: ActuatorSet, m: pint.Quantity
-) -> dict[str, Any]:
-    """Record the closed form's steps (module doc); returns the quantities K_nn, K_tt
-    (``k_nn``, ``k_tt``) and the floats ``k_nt``, ``rho``, ``m_arm`` [SI]."""
-    a = ActuatorInputs(spec, aset)
+def _record_drawing(rec: Recorder, a: ActuatorInputs, aset: ActuatorSet) -> None:
+    """Record the drawn actuator's inputs: film, arms, flexures, gap, tip and head size.
+
+    Parameters
+    ----------
+    rec : Recorder
+        The record being built.
+    a : ActuatorInputs
+        The set's drawn actuator.
+    aset : ActuatorSet
+        The set (its head: drawn, or a disc of its mass).
+    """
     geo = a.geometry
     g = "actuator.geometry"
     rec.spec("E", "Young's modulus of the actuator's film", a.e_path, a.youngs.to("GPa"))
@@ -168,6 +202,34 @@ def head_springs(
         )
     else:
         rec.spec("r_head", "head half-extent along the arms", "head.geometry", a.head_x.to("um"))
+
+
+def head_springs(
+    rec: Recorder, spec: DeviceSpec, aset: ActuatorSet, m: pint.Quantity
+) -> dict[str, Any]:
+    """Record the closed form's steps (module doc).
+
+    Record the closed form's steps (module doc); returns the quantities K_nn, K_tt
+    (``k_nn``, ``k_tt``) and the floats ``k_nt``, ``rho``, ``m_arm`` [SI].
+
+    Parameters
+    ----------
+    rec : Recorder
+        The record being built.
+    spec : DeviceSpec
+        The device.
+    aset : ActuatorSet
+        The set.
+    m : pint.Quantity
+        The head's mass [kg].
+
+    Returns
+    -------
+    dict
+        ``k_nn``, ``k_tt`` [N/m] as quantities; ``k_nt`` [N/m], ``rho`` [-], ``m_arm`` [kg].
+    """
+    a = ActuatorInputs(spec, aset)
+    _record_drawing(rec, a, aset)
     fg = frame_geometry(spec, aset)
     k = frame_stiffness(fg)
     src = "Euler–Bernoulli frame, flexibility method, rigid tip (MODEL.md; Lobontiu & Garcia ch. 4)"
@@ -281,7 +343,9 @@ def drawn_vertical_stiffness(
 
 
 def drawn_resonance_beside(rec: Recorder, springs: dict[str, Any], m: pint.Quantity) -> None:
-    """Record the drawn actuator's √(K_nn/m)/2π (``f_v,geom``) beside the file's f_v, which
+    """Record the drawn actuator's √(K_nn/m)/2π beside the file's f_v.
+
+    Record the drawn actuator's √(K_nn/m)/2π (``f_v,geom``) beside the file's f_v, which
     is the one used.
 
     Parameters
@@ -334,7 +398,9 @@ def drawn_compliance_ratio(
 
 
 def drawn_alpha_beside(rec: Recorder, springs: dict[str, Any]) -> None:
-    """Record the drawn actuator's K_nn/K_tt (``α_geom``) beside the file's α, which is the
+    """Record the drawn actuator's K_nn/K_tt beside the file's α.
+
+    Record the drawn actuator's K_nn/K_tt (``α_geom``) beside the file's α, which is the
     one used.
 
     Parameters
@@ -355,7 +421,18 @@ def drawn_alpha_beside(rec: Recorder, springs: dict[str, Any]) -> None:
 
 
 def alpha_given(act: Actuator) -> bool:
-    """True when the file gives α, k_h or f_h (then the drawn actuator's α is not used)."""
+    """True when the file gives α, k_h or f_h (then the drawn actuator's α is not used).
+
+    Parameters
+    ----------
+    act : Actuator
+        The actuator.
+
+    Returns
+    -------
+    bool
+        Whether the file gives the ratio.
+    """
     return (
         act.alpha is not None
         or act.horizontal_stiffness is not None

@@ -189,7 +189,9 @@ def derive_set(spec: DeviceSpec, aset: ActuatorSet) -> SetDerivation:
 
 
 def derive_samples(spec: DeviceSpec, aset: ActuatorSet) -> SampleDerivation:
-    """The derivation of :func:`derive_set` (the same steps) for a spec whose numeric
+    """The derivation of :func:`derive_set` for sampled specs.
+
+    The derivation of :func:`derive_set` (the same steps) for a spec whose numeric
     fields hold numpy arrays of samples (Monte Carlo studies).
 
     Vectorised, so a 10⁴-sample study derives in milliseconds.

@@ -1,4 +1,6 @@
-"""What a derivation produces (plain data): the record of every step, the scales, the
+"""What a derivation produces (plain data), and the recorder that builds it.
+
+What a derivation produces (plain data): the record of every step, the scales, the
 comparison with a published fit, the derivation of one actuator set and of a device;
 and the :class:`Recorder` that builds the record.
 
@@ -88,6 +90,7 @@ class DerivationStep:
     key: str = ""
 
     def __post_init__(self) -> None:
+        """Default the key to the symbol's ASCII name."""
         if not self.key:
             object.__setattr__(self, "key", _ASCII.get(self.symbol, self.symbol))
 
@@ -159,8 +162,11 @@ class Scales:
 
     @property
     def rolloff_factor(self) -> float:
-        """H(f_act)/H(f_cal) [-]: the stroke at f_act relative to the calibrated one
-        (1 without a cut-off)."""
+        """H(f_act)/H(f_cal) [-]: the stroke at f_act relative to the calibrated one.
+
+        H(f_act)/H(f_cal) [-]: the stroke at f_act relative to the calibrated one
+        (1 without a cut-off).
+        """
         if self.calibration_hz is None:
             return 1.0
         return float(rolloff.ratio(self.f_act_hz, self.calibration_hz, self.cutoff_hz))
@@ -217,11 +223,14 @@ class FitComparison:
 
 @dataclass(frozen=True)
 class HeadSprings:
-    """The head's springs from the drawn actuator (:mod:`betvdesign.nondim.actuator`),
+    """The head's springs from the drawn actuator, float SI.
+
+    The head's springs from the drawn actuator (:mod:`betvdesign.nondim.actuator`),
     float SI: k_nn, k_tt, k_nt [N/m] in the slider's frame, the coupling ρ [-], the arms'
     first-mode mass m_arm [kg] against the head's m [kg]; ``used``: for "k_v" and
     "alpha", "geometry" when the drawn actuator gave it, "file" when the device file's
-    value was used (then ``file_f_v_hz``/``file_alpha`` hold it for comparison)."""
+    value was used (then ``file_f_v_hz``/``file_alpha`` hold it for comparison).
+    """
 
     k_nn: float
     k_tt: float
@@ -316,9 +325,12 @@ class DeviceDerivation:
 
 @dataclass(frozen=True)
 class SampleDerivation:
-    """:func:`derive_samples`: the model parameters and scales of many samples at once
+    """Model parameters and scales of many samples at once.
+
+    :func:`derive_samples`: the model parameters and scales of many samples at once
     (arrays of equal length, float SI; zeta_v, zeta_h, restitution 0 where the spec gives
-    none)."""
+    none).
+    """
 
     varpi: np.ndarray
     alpha: np.ndarray
@@ -368,8 +380,11 @@ def mag(q: pint.Quantity, unit: str) -> Any:
 
 
 class Recorder:
-    """Builds the record of a derivation: every step checked (finite, > 0 unless an
-    input or λ) and converted to the unit it is best read in."""
+    """Build the record of a derivation.
+
+    Builds the record of a derivation: every step checked (finite, > 0 unless an
+    input or λ) and converted to the unit it is best read in.
+    """
 
     def __init__(self) -> None:
         self.steps: list[DerivationStep] = []

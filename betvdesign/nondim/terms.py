@@ -1,4 +1,6 @@
-"""Derivation steps of the optional terms beyond the paper's idealisation (MODEL.md,
+"""Derivation steps of the optional terms beyond the paper's idealisation.
+
+Derivation steps of the optional terms beyond the paper's idealisation (MODEL.md,
 "Beyond the paper's idealisation"): the thermal roll-off of the stroke, head damping and
 the restitution of normal impacts.
 
@@ -24,6 +26,43 @@ from betvdesign.model.params import normal_force_phase
 from betvdesign.nondim.record import Recorder, cached_unit, mag
 from betvdesign.spec.models import Actuator, ActuatorSet
 from betvdesign.spec.units import ureg
+
+
+def _cutoff(rec: Recorder, act: Actuator) -> pint.Quantity:
+    """Record the thermal cut-off f_c [Hz]: given, or 1/(2π·τ_th) from the time constant.
+
+    Parameters
+    ----------
+    rec : Recorder
+        The record being built.
+    act : Actuator
+        The actuator (thermal cut-off [Hz] or time constant [s]).
+
+    Returns
+    -------
+    pint.Quantity
+        f_c [Hz].
+    """
+    if act.thermal_cutoff is not None:
+        f_c = rec.spec(
+            "f_c", "thermal cut-off of the stroke", "actuator.thermal_cutoff", act.thermal_cutoff
+        )
+    else:
+        tau = rec.spec(
+            "τ_th",
+            "thermal time constant of the actuator",
+            "actuator.thermal_time_constant",
+            act.thermal_time_constant.to(cached_unit("ms")),
+        )
+        f_c = rec.add(
+            "f_c",
+            "thermal cut-off of the stroke",
+            "1/(2π·τ_th)",
+            ureg.Quantity(first_order.cutoff_from_time_constant(mag(tau, "s")), cached_unit("Hz")),
+            ("τ_th",),
+            "Hz",
+        )
+    return f_c
 
 
 def rolloff(
@@ -59,25 +98,7 @@ def rolloff(
     ----------
     MODEL.md, "Beyond the paper's idealisation" (thermal roll-off of the actuator).
     """
-    if act.thermal_cutoff is not None:
-        f_c = rec.spec(
-            "f_c", "thermal cut-off of the stroke", "actuator.thermal_cutoff", act.thermal_cutoff
-        )
-    else:
-        tau = rec.spec(
-            "τ_th",
-            "thermal time constant of the actuator",
-            "actuator.thermal_time_constant",
-            act.thermal_time_constant.to(cached_unit("ms")),
-        )
-        f_c = rec.add(
-            "f_c",
-            "thermal cut-off of the stroke",
-            "1/(2π·τ_th)",
-            ureg.Quantity(first_order.cutoff_from_time_constant(mag(tau, "s")), cached_unit("Hz")),
-            ("τ_th",),
-            "Hz",
-        )
+    f_c = _cutoff(rec, act)
     f_cal = rec.spec(
         "f_cal",
         "actuation frequency of the amplitude calibration",

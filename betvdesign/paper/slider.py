@@ -202,18 +202,54 @@ def _s_um(delta_s: np.ndarray, n: int, unit_m: float) -> float:
     return abs(float(np.sum(delta_s[:n]))) * unit_m * 1e6
 
 
-def _fig10_11(
-    fit: Fit, scales: Scales, v_op: float, f_drive: float
-) -> tuple[list[Comparison], dict, dict, list[dict]]:
-    """Figs 10-11; ``v_op`` the device's drive voltage [V], ``f_drive`` its input
-    frequency [Hz]."""
-    u, th, f_act = scales.u_m, scales.theta_rad, scales.f_act_hz
-    units = (("u·cosθ", u * math.cos(th)), ("u", u))
+def _fig10_runs(fit: Fit) -> dict[float, tuple[ModelParams, Any, Any]]:
+    """The exact runs Figs 10-11 read, per β of the fit.
+
+    Parameters
+    ----------
+    fit : Fit
+        The published fit.
+
+    Returns
+    -------
+    dict of float to tuple
+        Per β: the parameters, the :data:`LONG_RUN`-cycle transient from rest and the
+        periodic orbit.
+    """
     runs = {}
-    b10, b11 = fit.betas
     for b in fit.betas:
         p = fit.params(b)
         runs[b] = (p, simulate(p, LONG_RUN, log_events=False), periodic_orbit(p))
+    return runs
+
+
+def _fig10_travel(
+    fit: Fit, runs: dict, units: tuple, f_act: float, f_drive: float
+) -> tuple[Comparison, list[dict]]:
+    """Fig. 10: the travel after 30 impacts, in every reading of the published figure.
+
+    Parameters
+    ----------
+    fit : Fit
+        The published fit.
+    runs : dict
+        :func:`_fig10_runs`.
+    units : tuple of (str, float)
+        The length units the figure may use, by name [m].
+    f_act : float
+        Actuation frequency [Hz].
+    f_drive : float
+        Input frequency [Hz].
+
+    Returns
+    -------
+    comparison : Comparison
+        The 40 µm claim against the restated fit.
+    table : list of dict
+        |s| [µm] for each β, unit and cycle count, with its difference from 40 µm.
+    """
+    u = units[1][1]
+    b10, _ = fit.betas
     table = []
     for b in fit.betas:
         for name, unit in units:
@@ -226,31 +262,52 @@ def _fig10_11(
     main = next(
         r for r in table if r["beta"] == b10 and r["unit"] == "u·cosθ" and r["cycles"] == 30
     )
-    comps = [
-        Comparison(
-            "10",
-            f"the slider moves 40 µm after 30 impacts (ϖ = {fit.varpi:g}, α = {fit.alpha:g}, "
-            f"β = {b10:g}, κ = {fit.kappa:g}, "
-            f"u = {u * 1e6:.3g} µm)",
-            f"{FIG10_UM:g} µm",
-            f"{main['s_um']:.2f} µm (|s| = {main['s_um'] / (units[0][1] * 1e6):.2f} u·cosθ)",
-            numeric_verdict(main["s_um"], FIG10_UM, digits=0),
-            f"exact transient from rest, 30 cycles (one impact per cycle at ϖ = {fit.varpi:g}), "
-            "|s|·u·cosθ; both β, both length units and 60 cycles in the table below",
-            f"nearest of the {len(table)} variants: β = {best['beta']:g}, unit {best['unit']}, "
-            f"{best['cycles']} cycles: {best['s_um']:.1f} µm ({100 * best['rel']:+.1f} %); "
-            f"{2 * FIG10_IMPACTS} actuation cycles are {FIG10_IMPACTS} periods of the "
-            f"{f_drive:g} Hz input when each heats twice (f_act/f_drive = "
-            f"{f_act / f_drive:g}). The "
-            f"restated fit (β = {b10:g}, u·cosθ, 30 impacts) gives {main['s_um'] / FIG10_UM:.2f} "
-            "of the published travel",
-            FIG10_UM,
-            main["s_um"],
-        )
-    ]
+    comp = Comparison(
+        "10",
+        f"the slider moves 40 µm after 30 impacts (ϖ = {fit.varpi:g}, α = {fit.alpha:g}, "
+        f"β = {b10:g}, κ = {fit.kappa:g}, "
+        f"u = {u * 1e6:.3g} µm)",
+        f"{FIG10_UM:g} µm",
+        f"{main['s_um']:.2f} µm (|s| = {main['s_um'] / (units[0][1] * 1e6):.2f} u·cosθ)",
+        numeric_verdict(main["s_um"], FIG10_UM, digits=0),
+        f"exact transient from rest, 30 cycles (one impact per cycle at ϖ = {fit.varpi:g}), "
+        "|s|·u·cosθ; both β, both length units and 60 cycles in the table below",
+        f"nearest of the {len(table)} variants: β = {best['beta']:g}, unit {best['unit']}, "
+        f"{best['cycles']} cycles: {best['s_um']:.1f} µm ({100 * best['rel']:+.1f} %); "
+        f"{2 * FIG10_IMPACTS} actuation cycles are {FIG10_IMPACTS} periods of the "
+        f"{f_drive:g} Hz input when each heats twice (f_act/f_drive = "
+        f"{f_act / f_drive:g}). The "
+        f"restated fit (β = {b10:g}, u·cosθ, 30 impacts) gives {main['s_um'] / FIG10_UM:.2f} "
+        "of the published travel",
+        FIG10_UM,
+        main["s_um"],
+    )
+    return comp, table
+
+
+def _fig10_settling(fit: Fit, runs: dict) -> tuple[list[Comparison], dict]:
+    """Fig. 10: how long the transient takes to become periodic.
+
+    Parameters
+    ----------
+    fit : Fit
+        The published fit.
+    runs : dict
+        :func:`_fig10_runs`.
+
+    Returns
+    -------
+    comparisons : list of Comparison
+        "not yet periodic after 30 impacts" and "at least 300 impacts".
+    settle : dict
+        Per β: the paper's stop, the cycles settled to 1e-3 and 1e-6, the offsets at 30
+        and 300 cycles [-], the slowest Floquet multiplier and the periodic Δs [-].
+    """
+    b10, b11 = fit.betas
+    comps: list[Comparison] = []
     settle = {}
     for b in fit.betas:
-        p, tr, orb = runs[b]
+        _, tr, orb = runs[b]
         target = float(orb.delta_s)
         stop = successive_stop(tr.delta_s)
         settle[b] = {
@@ -306,17 +363,39 @@ def _fig10_11(
             float(s09["1e-6"] or math.nan),
         )
     )
-    fig10 = {
-        "cycles": np.arange(LONG_RUN + 1),
-        "s": {b: runs[b][1].section[:, 4] for b in fit.betas},
-        "delta_s": {b: runs[b][1].delta_s for b in fit.betas},
-        "periodic": {b: settle[b]["delta_s"] for b in fit.betas},
-        "stop": {b: settle[b]["stop"] for b in fit.betas},
-        "unit_um": units[0][1] * 1e6,
-        "f_act_hz": f_act,
-    }
-    # Fig. 11: speed against voltage, β = 9, u ∝ V (the device's calibration).
-    ds9 = s9["delta_s"]
+    return comps, settle
+
+
+def _fig11(
+    fit: Fit, runs: dict, ds9: float, scales: Scales, v_op: float, f_drive: float
+) -> tuple[Comparison, dict]:
+    """Fig. 11: speed against voltage, β = 9, u ∝ V (the device's calibration).
+
+    Parameters
+    ----------
+    fit : Fit
+        The published fit.
+    runs : dict
+        :func:`_fig10_runs`.
+    ds9 : float
+        The periodic Δs [-] at the second β.
+    scales : Scales
+        The device's scales.
+    v_op : float
+        The device's drive voltage [V].
+    f_drive : float
+        Its input frequency [Hz].
+
+    Returns
+    -------
+    comparison : Comparison
+        Speed proportional to voltage.
+    fig11 : dict
+        The figure's data: voltages [V], speeds and travel speeds [µm/s], the gain.
+    """
+    u, th, f_act = scales.u_m, scales.theta_rad, scales.f_act_hz
+    _, b11 = fit.betas
+    comps: list[Comparison] = []
     gain = u / v_op  # the device's linear calibration u = gain·V
     speeds = [abs(ds9) * gain * v * math.cos(th) * f_act * 1e6 for v in VOLTAGES]
     tr9 = runs[b11][1]
@@ -353,7 +432,50 @@ def _fig10_11(
         "v_op": v_op,
         "f_act_hz": f_act,
     }
-    return comps, fig10, fig11, table
+    return comps[0], fig11
+
+
+def _fig10_11(
+    fit: Fit, scales: Scales, v_op: float, f_drive: float
+) -> tuple[list[Comparison], dict, dict, list[dict]]:
+    """Figs 10-11: travel, settling and speed against voltage.
+
+    Parameters
+    ----------
+    fit : Fit
+        The published fit.
+    scales : Scales
+        The device's scales.
+    v_op : float
+        The device's drive voltage [V].
+    f_drive : float
+        Its input frequency [Hz].
+
+    Returns
+    -------
+    comparisons : list of Comparison
+        Fig. 10's and Fig. 11's claims.
+    fig10, fig11 : dict
+        The figures' data.
+    table : list of dict
+        Fig. 10's travel in every reading (:func:`_fig10_travel`).
+    """
+    u, th, f_act = scales.u_m, scales.theta_rad, scales.f_act_hz
+    units = (("u·cosθ", u * math.cos(th)), ("u", u))
+    runs = _fig10_runs(fit)
+    comp10, table = _fig10_travel(fit, runs, units, f_act, f_drive)
+    comps10, settle = _fig10_settling(fit, runs)
+    fig10 = {
+        "cycles": np.arange(LONG_RUN + 1),
+        "s": {b: runs[b][1].section[:, 4] for b in fit.betas},
+        "delta_s": {b: runs[b][1].delta_s for b in fit.betas},
+        "periodic": {b: settle[b]["delta_s"] for b in fit.betas},
+        "stop": {b: settle[b]["stop"] for b in fit.betas},
+        "unit_um": units[0][1] * 1e6,
+        "f_act_hz": f_act,
+    }
+    comp11, fig11 = _fig11(fit, runs, settle[fit.betas[1]]["delta_s"], scales, v_op, f_drive)
+    return [comp10, *comps10, comp11], fig10, fig11, table
 
 
 def _device_rows(sd: SetDerivation, fit: Fit) -> list[Comparison]:

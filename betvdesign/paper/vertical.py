@@ -108,16 +108,19 @@ def regime_grid(step: float, top: float) -> np.ndarray:
     return np.concatenate([fine, coarse])
 
 
-def vertical_part(step: float = 0.005, top: float = 10.0) -> VerticalPart:
-    """Regime grid (:func:`regime_grid`) on (0, ``top``], the claims of Figs 3–6."""
-    grid = regime_grid(step, top)
-    run, _ = run_regime(grid, max_cycles=MAX_CYCLES)
-    rows = run.rows
-    w = np.array([r["varpi"] for r in rows])
-    comps: list[Comparison] = []
+def _fig3() -> tuple[Comparison, dict[str, np.ndarray]]:
+    """Fig. 3: one impact period of the head is a closed orbit.
 
-    # Fig. 3: one impact period is a closed orbit (vertical motion periodic after the
-    # first contact end at τ = π/ϖ).
+    The vertical motion is periodic after the first contact end at τ = π/ϖ.
+
+    Returns
+    -------
+    comparison : Comparison
+        The claim against the exact dense output at :data:`FIG3_VARPI`.
+    fig3 : dict of str to numpy.ndarray
+        ``tau``, ``xi``, ``dxi`` [-] over one impact period, for the figure.
+    """
+    comps: list[Comparison] = []
     T3 = 2.0 * math.pi / FIG3_VARPI
     tr = simulate(ModelParams(FIG3_VARPI, *_ANY_SLIDER), 3, dense=True, log_events=False)
     a, b = tr.sample(np.array([T3 / 2.0, 1.5 * T3]))[:, :2]
@@ -138,8 +141,33 @@ def vertical_part(step: float = 0.005, top: float = 10.0) -> VerticalPart:
             "exactly from the first contact end",
         )
     )
+    return comps[0], fig3
 
-    # Fig. 4: impact period 1 only for 0.5 ≤ ϖ ≤ 2.6.
+
+def _fig4_main(
+    rows: list[dict[str, Any]], w: np.ndarray, step: float
+) -> tuple[list[Comparison], float, float, list[tuple[float, float]]]:
+    """Fig. 4: the interval of one hit per cycle around ϖ = 1, its edges against 0.5, 2.6.
+
+    Parameters
+    ----------
+    rows : list of dict
+        The regime grid's rows.
+    w : numpy.ndarray
+        Their ϖ [-].
+    step : float
+        The grid's fine step [-].
+
+    Returns
+    -------
+    comparisons : list of Comparison
+        The lower and the upper edge against the paper's.
+    lo_edge, hi_edge : float
+        The interval's bisected edges [-].
+    others : list of (float, float)
+        The other grid intervals with one hit per cycle [-].
+    """
+    comps: list[Comparison] = []
     one = [one_hit_per_cycle(r) for r in rows]
     ivs = true_intervals(list(w), one)
     main = next(iv for iv in ivs if iv[0] <= 1.0 <= iv[1])
@@ -186,6 +214,38 @@ def vertical_part(step: float = 0.005, top: float = 10.0) -> VerticalPart:
             hi_edge,
         )
     )
+    return comps, lo_edge, hi_edge, others
+
+
+def _fig4_elsewhere(
+    rows: list[dict[str, Any]],
+    w: np.ndarray,
+    step: float,
+    edges: tuple[float, float],
+    others: list[tuple[float, float]],
+) -> list[Comparison]:
+    """Fig. 4: one hit per cycle "only" in [0.5, 2.6], and two hits per cycle below 0.5.
+
+    Parameters
+    ----------
+    rows : list of dict
+        The regime grid's rows.
+    w : numpy.ndarray
+        Their ϖ [-].
+    step : float
+        The grid's fine step [-].
+    edges : (float, float)
+        The main interval's edges (:func:`_fig4_main`) [-].
+    others : list of (float, float)
+        The other grid intervals with one hit per cycle [-].
+
+    Returns
+    -------
+    list of Comparison
+        The "only" claim and the two-hit regions.
+    """
+    lo_edge, hi_edge = edges
+    comps: list[Comparison] = []
     low = [iv for iv in others if iv[1] < 0.5]
     fr_low = [
         r["contact_fraction"]
@@ -228,8 +288,21 @@ def vertical_part(step: float = 0.005, top: float = 10.0) -> VerticalPart:
             "the count of hits, not a period of two cycles",
         )
     )
+    return comps
 
-    # Fig. 5: three trajectories.
+
+def _fig5() -> tuple[list[Comparison], list[dict[str, Any]]]:
+    """Fig. 5: the three published trajectories, periodic, period doubling, aperiodic.
+
+    Returns
+    -------
+    comparisons : list of Comparison
+        Each trajectory's kind against the paper's.
+    fig5 : list of dict
+        Per trajectory its ϖ, the published kind, the regime row and 30 cycles of
+        (ξ, ξ') for the figure.
+    """
+    comps: list[Comparison] = []
     fig5 = []
     for v, said in FIG5:
         r = _point(v)
@@ -264,8 +337,29 @@ def vertical_part(step: float = 0.005, top: float = 10.0) -> VerticalPart:
                 else AS_PUBLISHED,
             )
         )
+    return comps, fig5
 
-    # Fig. 6: finite contact only below ϖ ≈ 2.
+
+def _fig6(rows: list[dict[str, Any]], w: np.ndarray, step: float) -> tuple[list[Comparison], float]:
+    """Fig. 6: finite contact only below ϖ ≈ 2.
+
+    Parameters
+    ----------
+    rows : list of dict
+        The regime grid's rows.
+    w : numpy.ndarray
+        Their ϖ [-].
+    step : float
+        The grid's fine step [-].
+
+    Returns
+    -------
+    comparisons : list of Comparison
+        The edge of finite contact, and finite contacts above it.
+    edge : float
+        The bisected upper edge of the first interval with finite contact [-].
+    """
+    comps: list[Comparison] = []
     fc = [finite_contact(r) for r in rows]
     fivs = true_intervals(list(w), fc)
     first = fivs[0]
@@ -315,9 +409,37 @@ def vertical_part(step: float = 0.005, top: float = 10.0) -> VerticalPart:
             else AS_PUBLISHED,
         )
     )
+    return comps, edge2
+
+
+def vertical_part(step: float = 0.005, top: float = 10.0) -> VerticalPart:
+    """Regime grid (:func:`regime_grid`) on (0, ``top``], the claims of Figs 3–6.
+
+    Parameters
+    ----------
+    step : float
+        Fine grid step [-].
+    top : float
+        Largest ϖ of the grid [-].
+
+    Returns
+    -------
+    VerticalPart
+        The grid's rows, the comparisons figure by figure, the figures' data and the
+        bisected edges.
+    """
+    grid = regime_grid(step, top)
+    run, _ = run_regime(grid, max_cycles=MAX_CYCLES)
+    rows = run.rows
+    w = np.array([r["varpi"] for r in rows])
+    comp3, fig3 = _fig3()
+    comps4, lo_edge, hi_edge, others = _fig4_main(rows, w, step)
+    comps4 += _fig4_elsewhere(rows, w, step, (lo_edge, hi_edge), others)
+    comps5, fig5 = _fig5()
+    comps6, edge2 = _fig6(rows, w, step)
     return VerticalPart(
         rows=rows,
-        comparisons=comps,
+        comparisons=[comp3, *comps4, *comps5, *comps6],
         fig3=fig3,
         fig5=fig5,
         edges={"one_hit_lo": lo_edge, "one_hit_hi": hi_edge, "contact_end": edge2},

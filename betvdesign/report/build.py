@@ -316,20 +316,24 @@ def design_check(
     )
 
 
-def build_report(
-    prepared: PreparedDevice,
-    *,
-    options: ReportOptions | None = None,
-    generated: str | None = None,
-    reproduce: str | None = None,
-) -> Report:
-    """The full report model of one prepared device.
+def _analyse_sets(
+    der: Any, opts: ReportOptions
+) -> list[tuple[SetDerivation, SetAnalysis, str | None]]:
+    """Analyse every actuator set once: orbits, robustness, mode map, frequency sweep.
 
-    generated: an ISO timestamp to print (None: no date anywhere, byte-reproducible;
-    then run times are also left out).
+    Parameters
+    ----------
+    der : DeviceDerivation
+        The device's derivation.
+    opts : ReportOptions
+        The report's options.
+
+    Returns
+    -------
+    list of tuple
+        Per set its derivation, its analysis and the name of the earlier set with the
+        same parameters whose analysis it shares (None: its own).
     """
-    opts = options or ReportOptions()
-    der = prepared.derivation
     analyses: dict[tuple[Any, ...], tuple[str, SetAnalysis]] = {}
     per_set: list[tuple[SetDerivation, SetAnalysis, str | None]] = []
     changes = relative_changes(opts.robustness_points, opts.robustness_span)
@@ -357,6 +361,24 @@ def build_report(
         )
         analyses[key] = (sd.name, an)
         per_set.append((sd, an, None))
+    return per_set
+
+
+def build_report(
+    prepared: PreparedDevice,
+    *,
+    options: ReportOptions | None = None,
+    generated: str | None = None,
+    reproduce: str | None = None,
+) -> Report:
+    """The full report model of one prepared device.
+
+    generated: an ISO timestamp to print (None: no date anywhere, byte-reproducible;
+    then run times are also left out).
+    """
+    opts = options or ReportOptions()
+    der = prepared.derivation
+    per_set = _analyse_sets(der, opts)
     adq = adequacy.compute(der)
     check = design_check(der, per_set, opts, adq.value if adq.ok else False)
     results = check.rules

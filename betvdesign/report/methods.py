@@ -88,22 +88,20 @@ def _lambda_figure(bands: Sequence[dict[str, Any]]) -> str:
         return plots.figure_svg(fig, "lam")
 
 
-def build(
-    rows: Sequence[Row], fm_rows: Sequence[dict[str, Any]], *, level: str = "quick"
-) -> MethodsReport:
-    """The report model from work-precision rows, the failure map along ϖ
-    (:func:`betvdesign.bench.failuremap.scan` rows) and the measured ladder data."""
-    from betvdesign import __version__
-    from betvdesign.checks.fidelity import RUNG_INFO, RUNGS, measured_document
+def _ratio_rows(rows: Sequence[Row]) -> tuple[dict[str, str], ...]:
+    """The speed table: per design the exact solver against its cheapest alternative.
 
-    doc = measured_document()
-    MEASURED = doc["measured"]
-    lam = MEASURED["lambda"]
-    val = lam["held_out"]
-    costs = MEASURED["costs_cpu_s"]
-    rig = MEASURED["rigid"]
-    fig = work_precision_figure(rows, tall=True)
-    ratios = tuple(
+    Parameters
+    ----------
+    rows : sequence of Row
+        Work-precision rows.
+
+    Returns
+    -------
+    tuple of dict
+        Per design and metric: errors, times [s] and their ratio, as text.
+    """
+    return tuple(
         {
             "design": s["design"],
             "metric": s["metric"],
@@ -115,39 +113,62 @@ def build(
         }
         for s in summarise(rows)
     )
-    rungs = tuple(
+
+
+def _rung_rows(costs: dict[str, float], full_cycles: int) -> tuple[RungRow, ...]:
+    """The fidelity ladder's table: per rung its model, answers, exactness and cost.
+
+    Parameters
+    ----------
+    costs : dict of str to float
+        Measured CPU time per rung [s].
+    full_cycles : int
+        Cycles of the "full" rung's measured transient.
+
+    Returns
+    -------
+    tuple of RungRow
+        One row per rung.
+    """
+    from betvdesign.checks.fidelity import RUNG_INFO, RUNGS
+
+    return tuple(
         RungRow(
             r,
             RUNG_INFO[r].model,
             ", ".join(sorted(RUNG_INFO[r].answers)),
             RUNG_INFO[r].exact,
-            f"{costs[r]:.2e} s" + (f" ({MEASURED['full_cycles']} cycles)" if r == "full" else ""),
+            f"{costs[r]:.2e} s" + (f" ({full_cycles} cycles)" if r == "full" else ""),
             RUNG_INFO[r].source,
         )
         for r in RUNGS
     )
+
+
+def _lambda_tables(lam: dict[str, Any]) -> dict[str, Any]:
+    """The λ rule's section: its misprediction rates, in words and tables.
+
+    Parameters
+    ----------
+    lam : dict
+        The measured λ data (map and held-out sample).
+
+    Returns
+    -------
+    dict
+        :class:`MethodsReport`'s ``lambda_summary``, ``sample_summary``,
+        ``mispredictions``, ``held_out_bands`` and ``not_converged``.
+    """
+    val = lam["held_out"]
     mis = tuple(
         {k: (f"{v:.4g}" if isinstance(v, float) else str(v)) for k, v in m.items()}
         for m in lam["mispredictions"]
     )
-    alphas = [s["alpha"] for s in rig["samples"]]
     nc: dict[str, int] = {}
     for r in lam["not_converged"]:
         key = f"{r['status']} at ϖ = {r['varpi']:g}"
         nc[key] = nc.get(key, 0) + 1
-    return MethodsReport(
-        title="betvdesign methods: speed, accuracy and model choice",
-        version=__version__,
-        level=level,
-        chart_svg=plots.figure_svg(fig, "wp"),
-        designs=tuple(
-            (d.name, ", ".join(f"{k} = {v:g}" for k, v in d.params.as_dict().items()), d.why)
-            for d in DESIGNS.values()
-            if any(r.design == d.name for r in rows)
-        ),
-        ratios=ratios,
-        failures=FAILURES,
-        rungs=rungs,
+    return dict(
         lambda_summary=(
             f"On the push/pull map ({lam['points']} points, {lam['converged']} with a converged "
             f"periodic orbit) the λ rule names the wrong mode at {lam['mispredicted']} points "
@@ -162,9 +183,6 @@ def build(
             "|λ − 1| > 1. So no verdict rests on λ: betv check and betv report always take "
             "the mode from the exact periodic orbit, and λ is shown beside it."
         ),
-        lambda_bands=tuple(lam["bands"]),
-        lambda_svg=_lambda_figure(lam["bands"]),
-        failure_svg=plots.figure_svg(failure_map_figure(fm_rows), "fm"),
         mispredictions=mis,
         held_out_bands=tuple(
             (
@@ -175,8 +193,42 @@ def build(
             )
             for b in val["bands"]
         ),
-        provenance=", ".join(f"{k}: {v}" for k, v in doc["provenance"].items()),
         not_converged="; ".join(f"{n} {k}" for k, n in sorted(nc.items())) or "none",
+    )
+
+
+def build(
+    rows: Sequence[Row], fm_rows: Sequence[dict[str, Any]], *, level: str = "quick"
+) -> MethodsReport:
+    """The report model from work-precision rows, the failure map along ϖ
+    (:func:`betvdesign.bench.failuremap.scan` rows) and the measured ladder data."""
+    from betvdesign import __version__
+    from betvdesign.checks.fidelity import measured_document
+
+    doc = measured_document()
+    MEASURED = doc["measured"]
+    lam = MEASURED["lambda"]
+    rig = MEASURED["rigid"]
+    fig = work_precision_figure(rows, tall=True)
+    alphas = [s["alpha"] for s in rig["samples"]]
+    return MethodsReport(
+        title="betvdesign methods: speed, accuracy and model choice",
+        version=__version__,
+        level=level,
+        chart_svg=plots.figure_svg(fig, "wp"),
+        designs=tuple(
+            (d.name, ", ".join(f"{k} = {v:g}" for k, v in d.params.as_dict().items()), d.why)
+            for d in DESIGNS.values()
+            if any(r.design == d.name for r in rows)
+        ),
+        ratios=_ratio_rows(rows),
+        failures=FAILURES,
+        rungs=_rung_rows(MEASURED["costs_cpu_s"], MEASURED["full_cycles"]),
+        **_lambda_tables(lam),
+        lambda_bands=tuple(lam["bands"]),
+        lambda_svg=_lambda_figure(lam["bands"]),
+        failure_svg=plots.figure_svg(failure_map_figure(fm_rows), "fm"),
+        provenance=", ".join(f"{k}: {v}" for k, v in doc["provenance"].items()),
         rigid_summary=(
             f"relative Δs error of the α → 0 rigid limit ≤ {rig['coef']:.3g}·α^{rig['power']:.2f} "
             f"over {len(alphas)} samples (α from {min(alphas):g} "

@@ -160,7 +160,9 @@ def bounds(path: str) -> Bounds:
 
 
 def describe_change(path: str, old: float, new: float) -> str:
-    """What a change of a field means physically (resonances and stiffnesses in the
+    """What a change of a field means physically.
+
+    What a change of a field means physically (resonances and stiffnesses in the
     suspension a designer draws); "" for fields that are drawn or set directly.
 
     Parameters

@@ -1,4 +1,6 @@
-"""YAML device files -> :class:`~betvdesign.spec.models.DeviceSpec` (and process files ->
+"""YAML device and process files -> validated specs.
+
+YAML device files -> :class:`~betvdesign.spec.models.DeviceSpec` (and process files ->
 :class:`~betvdesign.spec.process.Process`), with errors a user can act on.
 
 Every problem found in a file is collected and raised together as one
@@ -161,6 +163,91 @@ def resolve_process(ref: str, base_dir: str | Path | None = None) -> Process:
     return load_process(path)
 
 
+def _parse_yaml(text: str, filename: str) -> tuple[Any, list[SpecIssue]]:
+    """Parse YAML text within the size limits, finding every duplicate key.
+
+    Parameters
+    ----------
+    text : str
+        The YAML text.
+    filename : str
+        The file, for messages.
+
+    Returns
+    -------
+    data : Any
+        The round-trip data (None for an empty text).
+    issues : list of SpecIssue
+        The duplicate keys (the caller adds what validation finds).
+
+    Raises
+    ------
+    SpecError
+        At a crossed limit (:func:`safeyaml.check_events`) or malformed YAML, with its
+        ``file:line:col`` where known.
+    """
+    issues: list[SpecIssue] = []
+    yaml = YAML(typ="rt")
+    yaml.allow_duplicate_keys = True  # duplicates are found on the node tree, all at once
+    try:
+        with warnings.catch_warnings():  # a re-defined anchor is legal YAML: the last wins
+            warnings.simplefilter("ignore", YAMLWarning)
+            safeyaml.check_events(text, filename)  # bounded: before composing anything
+            root_node = yaml.compose(text)
+            issues.extend(_duplicate_keys(root_node, filename))
+            data = yaml.load(text)
+    except MarkedYAMLError as exc:
+        mark = exc.problem_mark or exc.context_mark
+        loc = Location(filename, mark.line + 1, mark.column + 1) if mark else Location(filename)
+        problem = exc.problem or exc.context or "malformed YAML"
+        cm = exc.context_mark
+        if exc.problem and exc.context and cm is not None and cm is not mark:
+            problem += f" ({exc.context} at line {cm.line + 1}, column {cm.column + 1})"
+        raise SpecError([*issues, SpecIssue(loc, "", f"invalid YAML: {problem}")]) from None
+    except YAMLError as exc:  # a ReaderError (control character) knows only its offset
+        pos = exc.position if isinstance(exc, ReaderError) else None
+        loc = Location(filename)
+        msg = str(exc).split("\n")[0]
+        if isinstance(pos, int) and 0 <= pos <= len(text):
+            line = text.count("\n", 0, pos) + 1
+            loc = Location(filename, line, pos - (text.rfind("\n", 0, pos) + 1) + 1)
+            msg = msg.split(":")[0].strip() + " (a control character in a text file)"
+        raise SpecError([*issues, SpecIssue(loc, "", f"invalid YAML: {msg}")]) from None
+    return data, issues
+
+
+def _resolve_process_ref(
+    plain: dict[str, Any], data: CommentedMap, filename: str, issues: list[SpecIssue]
+) -> None:
+    """Replace a device's ``process:`` reference by the process it names, in ``plain``.
+
+    Parameters
+    ----------
+    plain : dict
+        The device file's plain data (changed in place).
+    data : CommentedMap
+        The round-trip data, for the reference's position.
+    filename : str
+        The file: a relative path is taken from its directory.
+    issues : list of SpecIssue
+        The issues found so far (raised with the process's).
+
+    Raises
+    ------
+    SpecError
+        When the process cannot be read, at the reference's ``file:line:col``.
+    """
+    if isinstance(plain.get("process"), str):
+        try:
+            base = Path(filename).parent if not filename.startswith("<") else None
+            plain["process"] = resolve_process(plain["process"], base)
+        except SpecError as exc:
+            line, col = _key_pos(data, "process", value=True)
+            nested = "; ".join(str(i) for i in exc.issues)
+            issues.append(SpecIssue(Location(filename, line + 1, col + 1), "process", nested))
+            raise SpecError(issues) from None
+
+
 def load_model_text(text: str, filename: str, model: Any, empty_hint: str) -> Any:
     """Validate YAML text against a pydantic model with the device file's rules.
 
@@ -194,34 +281,7 @@ def load_model_text(text: str, filename: str, model: Any, empty_hint: str) -> An
             f"text of {len(text):,} characters; the limit is {cap:,} "
             f"(set {limits.FILE_BYTES_ENV} to raise it)",
         )
-    issues: list[SpecIssue] = []
-    yaml = YAML(typ="rt")
-    yaml.allow_duplicate_keys = True  # duplicates are found on the node tree, all at once
-    try:
-        with warnings.catch_warnings():  # a re-defined anchor is legal YAML: the last wins
-            warnings.simplefilter("ignore", YAMLWarning)
-            safeyaml.check_events(text, filename)  # bounded: before composing anything
-            root_node = yaml.compose(text)
-            issues.extend(_duplicate_keys(root_node, filename))
-            data = yaml.load(text)
-    except MarkedYAMLError as exc:
-        mark = exc.problem_mark or exc.context_mark
-        loc = Location(filename, mark.line + 1, mark.column + 1) if mark else Location(filename)
-        problem = exc.problem or exc.context or "malformed YAML"
-        cm = exc.context_mark
-        if exc.problem and exc.context and cm is not None and cm is not mark:
-            problem += f" ({exc.context} at line {cm.line + 1}, column {cm.column + 1})"
-        raise SpecError([*issues, SpecIssue(loc, "", f"invalid YAML: {problem}")]) from None
-    except YAMLError as exc:  # a ReaderError (control character) knows only its offset
-        pos = exc.position if isinstance(exc, ReaderError) else None
-        loc = Location(filename)
-        msg = str(exc).split("\n")[0]
-        if isinstance(pos, int) and 0 <= pos <= len(text):
-            line = text.count("\n", 0, pos) + 1
-            loc = Location(filename, line, pos - (text.rfind("\n", 0, pos) + 1) + 1)
-            msg = msg.split(":")[0].strip() + " (a control character in a text file)"
-        raise SpecError([*issues, SpecIssue(loc, "", f"invalid YAML: {msg}")]) from None
-
+    data, issues = _parse_yaml(text, filename)
     if data is None:
         raise _one(filename, f"empty file: {empty_hint}")
     if not isinstance(data, CommentedMap):
@@ -236,15 +296,8 @@ def load_model_text(text: str, filename: str, model: Any, empty_hint: str) -> An
             ]
         )
     plain = _plain(data)
-    if model is DeviceSpec and isinstance(plain.get("process"), str):
-        try:
-            base = Path(filename).parent if not filename.startswith("<") else None
-            plain["process"] = resolve_process(plain["process"], base)
-        except SpecError as exc:
-            line, col = _key_pos(data, "process", value=True)
-            nested = "; ".join(str(i) for i in exc.issues)
-            issues.append(SpecIssue(Location(filename, line + 1, col + 1), "process", nested))
-            raise SpecError(issues) from None
+    if model is DeviceSpec:
+        _resolve_process_ref(plain, data, filename, issues)
     try:
         spec = model.model_validate(plain)
     except ValidationError as exc:
@@ -297,7 +350,7 @@ def _join(path: str, key: Any) -> str:
 
 
 def _plain(x: Any) -> Any:
-    """ruamel round-trip objects -> plain Python (dict, list, str, int, float, bool)."""
+    """Ruamel round-trip objects -> plain Python (dict, list, str, int, float, bool)."""
     if isinstance(x, dict):
         return {_plain(k): _plain(v) for k, v in x.items()}
     if isinstance(x, list):
@@ -314,8 +367,11 @@ def _plain(x: Any) -> Any:
 
 
 def _key_pos(node: CommentedMap, key: Any, *, value: bool) -> tuple[int, int]:
-    """0-based (line, col) of a key (or its value); keys brought in by a YAML merge key
-    (``<<: *anchor``) are found in the anchored mapping; else the mapping itself."""
+    """0-based (line, col) of a key (or its value) in a YAML mapping.
+
+    0-based (line, col) of a key (or its value); keys brought in by a YAML merge key
+    (``<<: *anchor``) are found in the anchored mapping; else the mapping itself.
+    """
     data = node.lc.data
     if key in data:
         entry = data[key]

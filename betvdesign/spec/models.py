@@ -97,8 +97,11 @@ POLYSILICON = MATERIALS["polysilicon"]
 
 
 def _lower(value: Any) -> Any:
-    """Enum words are case-insensitive in files (``AC``, ``Push``, ``+X``): lower-cased
-    before validation, so the model holds the canonical spelling."""
+    """Lower-case enum words before validation (files are case-insensitive).
+
+    Enum words are case-insensitive in files (``AC``, ``Push``, ``+X``): lower-cased
+    before validation, so the model holds the canonical spelling.
+    """
     return value.strip().lower() if isinstance(value, str) else value
 
 
@@ -126,8 +129,11 @@ def _named_material(value: Any) -> Any:
 
 
 def _drawable(value: Any) -> Any:
-    """A drawn dimension of at least :data:`~betvdesign.spec.process.MIN_DRAWN` (1 nm, the
-    layout database unit): below it nothing can be drawn or fabricated."""
+    """Check a drawn dimension against the layout database unit.
+
+    A drawn dimension of at least :data:`~betvdesign.spec.process.MIN_DRAWN` (1 nm, the
+    layout database unit): below it nothing can be drawn or fabricated.
+    """
     if isinstance(value, pint.Quantity) and value < MIN_DRAWN:
         raise ValueError(
             f"{format_quantity(value)} is below {format_quantity(MIN_DRAWN)}, the smallest "
@@ -192,8 +198,11 @@ HeadGeometry = Annotated[DiscGeometry | BoxGeometry, Field(discriminator="shape"
 
 
 class ImpactHead(_Model):
-    """The impact head on the actuator's cold arm: its mass m, given directly or by
-    geometry (+ material, the device material by default)."""
+    """The impact head on the actuator's cold arm.
+
+    The impact head on the actuator's cold arm: its mass m, given directly or by
+    geometry (+ material, the device material by default).
+    """
 
     mass: Mass | None = None
     """Head mass m, e.g. '0.036 ug' (or give geometry)."""
@@ -215,7 +224,9 @@ class ImpactHead(_Model):
 
 
 class Contact(_Model):
-    """Head/slider contact: impact angle θ in (0°, 90°), Coulomb friction μ [-] and the
+    """Head/slider contact: impact angle, friction and restitution.
+
+    Head/slider contact: impact angle θ in (0°, 90°), Coulomb friction μ [-] and the
     coefficient of restitution e [-] of normal impacts (optional, 0 by default). e lives
     here, beside μ, because like μ it is a property of the pair of surfaces that meet
     (head and slider), not of the actuator's springs and dampers (MODEL.md "Beyond the
@@ -253,6 +264,8 @@ class QuadraticCalibration(_Model):
 
 
 class CalibrationPoint(_Model):
+    """One measured point of the actuator: drive voltage and stroke amplitude."""
+
     voltage: NonNegativeVoltage
     amplitude: NonNegativeLength
 
@@ -286,7 +299,9 @@ Calibration = Annotated[
 
 
 class ActuatorGeometry(_Model):
-    """The drawn hot/cold-arm electrothermal actuator (MODEL.md, "From the drawn actuator
+    """The drawn hot/cold-arm electrothermal actuator.
+
+    The drawn hot/cold-arm electrothermal actuator (MODEL.md, "From the drawn actuator
     to the head's springs"). In its own frame x runs along the arms from the anchors
     (x = 0) to the tip, y across them toward the cold arm (the stroke direction):
 
@@ -583,8 +598,11 @@ class DeviceSpec(_Model):
 
     @model_validator(mode="after")
     def _layers(self) -> DeviceSpec:
-        """Layers named must be the process's structural ones; a geometry without a
-        process gives its own thickness and Young's modulus."""
+        """Check that named layers are the process's structural ones.
+
+        Layers named must be the process's structural ones; a geometry without a
+        process gives its own thickness and Young's modulus.
+        """
         p = self.process
         if p is None and self.slider.layer is not None:
             raise at("slider.layer", "only applies with 'process'")

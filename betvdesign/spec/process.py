@@ -74,6 +74,7 @@ class GdsLayer(_Model):
     datatype: int = Field(default=0, ge=0, le=65535)
 
     def __str__(self) -> str:
+        """``layer/datatype``, as GDS tools write it."""
         return f"{self.layer}/{self.datatype}"
 
     @property
@@ -94,8 +95,11 @@ def _gds(value: Any) -> Any:
 
 
 class ReleaseHoles(_Model):
-    """Etch holes a wide feature needs to be released: drawn on ``layer``, squares of
-    ``size``, centres at most ``pitch`` apart."""
+    """Etch holes a wide feature needs to be released.
+
+    Etch holes a wide feature needs to be released: drawn on ``layer``, squares of
+    ``size``, centres at most ``pitch`` apart.
+    """
 
     layer: str = Field(min_length=1, max_length=limits.MAX_NAME_CHARS)
     """Name of the hole layer in this process (e.g. 'hole1')."""
@@ -237,8 +241,26 @@ class Process(_Model):
 
     # --- queries -----------------------------------------------------------------------
     def structural(self, name: str | None = None) -> ProcessLayer:
-        """The structural layer ``name`` (the default one when None); ValueError if the
-        process has no such structural layer."""
+        """The structural layer ``name`` (the default one when None).
+
+        The structural layer ``name`` (the default one when None); ValueError if the
+        process has no such structural layer.
+
+        Parameters
+        ----------
+        name : str, optional
+            The layer's name.
+
+        Returns
+        -------
+        ProcessLayer
+            The layer.
+
+        Raises
+        ------
+        ValueError
+            If the process has no such structural layer.
+        """
         key = name or self.default_structural
         lay = self.layers.get(key)
         if lay is None or lay.role != "structural":
@@ -247,20 +269,55 @@ class Process(_Model):
         return lay
 
     def structural_name(self, name: str | None = None) -> str:
-        """The name of the structural layer ``name`` refers to (the default when None)."""
+        """The name of the structural layer ``name`` refers to (the default when None).
+
+        Parameters
+        ----------
+        name : str, optional
+            The layer's name.
+
+        Returns
+        -------
+        str
+            The structural layer's name.
+        """
         self.structural(name)
         return name or self.default_structural
 
     def by_gds(self, pair: tuple[int, int]) -> str | None:
-        """The name of the layer with this (layer, datatype), or None."""
+        """The name of the layer with this (layer, datatype), or None.
+
+        Parameters
+        ----------
+        pair : tuple of (int, int)
+            GDS layer and datatype.
+
+        Returns
+        -------
+        str or None
+            The layer's name.
+        """
         for name, lay in self.layers.items():
             if lay.gds.pair == pair:
                 return name
         return None
 
     def cite(self, path: str) -> str:
-        """Where the value at ``path`` comes from: the layer's or the file's source, and
-        'not sourced' when the file lists it in ``unsourced``."""
+        """Where the value at ``path`` comes from.
+
+        Where the value at ``path`` comes from: the layer's or the file's source, and
+        'not sourced' when the file lists it in ``unsourced``.
+
+        Parameters
+        ----------
+        path : str
+            A value's path in the process file.
+
+        Returns
+        -------
+        str
+            The source.
+        """
         if path in self.unsourced:
             return f"process {self.name}: {path} (value NOT sourced; replace it by your foundry's)"
         parts = path.split(".")
@@ -272,12 +329,29 @@ class Process(_Model):
 
 
 def shipped_processes() -> list[str]:
-    """Names of the shipped process files."""
+    """Names of the shipped process files.
+
+    Returns
+    -------
+    list of str
+        The names, sorted.
+    """
     return sorted(p.stem for p in SHIPPED_DIR.glob("*.yaml"))
 
 
 def shipped_process_path(name: str) -> Path | None:
-    """The file of the shipped process ``name`` (None if there is none)."""
+    """The file of the shipped process ``name`` (None if there is none).
+
+    Parameters
+    ----------
+    name : str
+        A process name.
+
+    Returns
+    -------
+    Path or None
+        The file.
+    """
     if not re.fullmatch(r"[A-Za-z0-9_\-]+", name):
         return None
     p = SHIPPED_DIR / f"{name}.yaml"
@@ -285,9 +359,26 @@ def shipped_process_path(name: str) -> Path | None:
 
 
 def rebase(ref: str, source_dir: str | Path, out: str | Path) -> str:
-    """A device's ``process`` reference as written in a file next to ``out``: a shipped
+    """A device's ``process`` reference as written in a file next to ``out``.
+
+    A device's ``process`` reference as written in a file next to ``out``: a shipped
     name as is, a path (relative to ``source_dir``, where it was read) re-based to ``out``'s
-    directory."""
+    directory.
+
+    Parameters
+    ----------
+    ref : str
+        The reference as read.
+    source_dir : path
+        Where it was read.
+    out : path
+        The file it is written to.
+
+    Returns
+    -------
+    str
+        The reference to write.
+    """
     if shipped_process_path(ref) is not None:
         return ref
     p = Path(ref)
@@ -296,7 +387,18 @@ def rebase(ref: str, source_dir: str | Path, out: str | Path) -> str:
 
 
 def process_ref(path: str | Path) -> str | None:
-    """The ``process`` value of a device file as written (None when it names none)."""
+    """The ``process`` value of a device file as written (None when it names none).
+
+    Parameters
+    ----------
+    path : path
+        The device file.
+
+    Returns
+    -------
+    str or None
+        The reference.
+    """
     from ruamel.yaml import YAML
 
     try:

@@ -121,7 +121,9 @@ def _size(p: Path) -> int | None:
 
 
 def decode(raw: bytes, fname: str) -> str:
-    """Decode the bytes of a YAML file: UTF-8 (BOM optional) or UTF-16 with a BOM, as YAML
+    """Decode the bytes of a YAML file.
+
+    Decode the bytes of a YAML file: UTF-8 (BOM optional) or UTF-16 with a BOM, as YAML
     1.2 allows.
 
     Parameters
@@ -174,6 +176,132 @@ class _Frame:
     children: list[Any] = field(default_factory=list)
 
 
+class _Walk:
+    """The state of :func:`check_events`'s walk and what each kind of event does to it.
+
+    ``sizes``: nodes and depth of each anchor, for the aliases that name it; ``stack``:
+    the open collections; ``total``: nodes of the closed top-level ones.
+
+    Parameters
+    ----------
+    filename : str
+        The file, for messages.
+    """
+
+    def __init__(self, filename: str) -> None:
+        self.filename = filename
+        self.sizes: dict[str, tuple[int, int]] = {}  # anchor -> (nodes, depth)
+        self.stack: list[_Frame] = []
+        self.total = 0
+
+    def fail(self, event: Any, path: str, message: str) -> None:
+        """Raise the limit crossed at ``event``, at field ``path``.
+
+        Raises
+        ------
+        SpecError
+            At the event's ``file:line:col``.
+        """
+        m = event.start_mark
+        if len(path) > 120:
+            path = path[:60] + "…" + path[-59:]
+        raise SpecError(
+            [SpecIssue(Location(self.filename, m.line + 1, m.column + 1), path, message)]
+        )
+
+    def child_path(self) -> str:
+        """The field path of the next node (its mapping's path for a key)."""
+        stack = self.stack
+        if not stack:
+            return ""
+        top = stack[-1]
+        if top.is_map:
+            if top.index % 2 == 0:  # a key
+                return top.path
+            key = top.key
+            return f"{top.path}.{key}" if top.path else str(key)
+        return f"{top.path}[{top.index}]"
+
+    def add(self, nodes: int, depth: int, event: Any, path: str) -> None:
+        """Count a node of ``nodes`` nodes and ``depth`` levels; fail past a limit."""
+        stack = self.stack
+        if stack:
+            top = stack[-1]
+            top.nodes += nodes
+            top.depth = max(top.depth, depth + 1)
+            top.index += 1
+        else:
+            self.total += nodes
+        running = self.total + sum(f.nodes for f in stack)
+        if running > limits.MAX_YAML_NODES:
+            self.fail(
+                event,
+                path,
+                f"more than {limits.MAX_YAML_NODES:,} YAML nodes"
+                + (" once aliases are expanded" if self.sizes else "")
+                + "; a device file has a few hundred",
+            )
+        if len(stack) + depth > limits.MAX_YAML_DEPTH:
+            self.fail(event, path, f"YAML nested deeper than {limits.MAX_YAML_DEPTH} levels")
+
+    def scalar(self, event: ScalarEvent) -> None:
+        """A scalar: its length and digits, then count it."""
+        stack = self.stack
+        path = self.child_path()
+        value = event.value
+        if len(value) > limits.MAX_STRING_CHARS:
+            self.fail(
+                event,
+                path,
+                f"string of {len(value):,} characters; the limit is {limits.MAX_STRING_CHARS:,}",
+            )
+        plain = bool(event.implicit and event.implicit[0])
+        digits = (
+            number_digits(value, event.tag, plain) if len(value) > limits.MAX_NUMBER_DIGITS else 0
+        )
+        if digits > limits.MAX_NUMBER_DIGITS:
+            self.fail(
+                event,
+                path,
+                f"number of {digits:,} digits; the limit is {limits.MAX_NUMBER_DIGITS} digits",
+            )
+        if stack and stack[-1].is_map and stack[-1].index % 2 == 0:
+            stack[-1].key = value
+        if event.anchor:
+            self.sizes[event.anchor] = (1, 0)
+        self.add(1, 0, event, path)
+
+    def alias(self, event: AliasEvent) -> None:
+        """An alias: refuse a recursive one, count what it names."""
+        stack = self.stack
+        path = self.child_path()
+        if any(f.anchor == event.anchor for f in stack):
+            self.fail(
+                event,
+                path,
+                f"alias *{event.anchor} refers to a mapping or list that contains it "
+                "(a recursive structure)",
+            )
+        nodes, depth = self.sizes.get(event.anchor, (1, 0))
+        if stack and stack[-1].is_map and stack[-1].index % 2 == 0:
+            stack[-1].key = f"*{event.anchor}"
+        self.add(nodes, depth, event, path)
+
+    def start(self, event: CollectionStartEvent) -> None:
+        """A mapping or sequence opens."""
+        path = self.child_path()
+        if len(self.stack) + 1 > limits.MAX_YAML_DEPTH:
+            self.fail(event, path, f"YAML nested deeper than {limits.MAX_YAML_DEPTH} levels")
+        self.stack.append(_Frame(path, isinstance(event, MappingStartEvent), event.anchor))
+
+    def end(self, event: CollectionEndEvent) -> None:
+        """A mapping or sequence closes: remember its size if anchored, count it."""
+        frame = self.stack.pop()
+        if frame.anchor:
+            self.sizes[frame.anchor] = (frame.nodes, frame.depth)
+        self.add(frame.nodes, frame.depth, event, frame.path)
+
+
 def check_events(text: str, filename: str) -> None:
     """Walk the YAML events of a text; raise at the first limit crossed.
 
@@ -197,96 +325,13 @@ def check_events(text: str, filename: str) -> None:
         longer than :data:`~betvdesign.spec.limits.MAX_STRING_CHARS` or a number of
         more than :data:`~betvdesign.spec.limits.MAX_NUMBER_DIGITS` digits.
     """
-    sizes: dict[str, tuple[int, int]] = {}  # anchor -> (nodes, depth)
-    stack: list[_Frame] = []
-    total = 0
-
-    def fail(event: Any, path: str, message: str) -> None:
-        m = event.start_mark
-        if len(path) > 120:
-            path = path[:60] + "…" + path[-59:]
-        raise SpecError([SpecIssue(Location(filename, m.line + 1, m.column + 1), path, message)])
-
-    def child_path() -> str:
-        if not stack:
-            return ""
-        top = stack[-1]
-        if top.is_map:
-            if top.index % 2 == 0:  # a key
-                return top.path
-            key = top.key
-            return f"{top.path}.{key}" if top.path else str(key)
-        return f"{top.path}[{top.index}]"
-
-    def add(nodes: int, depth: int, event: Any, path: str) -> None:
-        nonlocal total
-        if stack:
-            top = stack[-1]
-            top.nodes += nodes
-            top.depth = max(top.depth, depth + 1)
-            top.index += 1
-        else:
-            total += nodes
-        running = total + sum(f.nodes for f in stack)
-        if running > limits.MAX_YAML_NODES:
-            fail(
-                event,
-                path,
-                f"more than {limits.MAX_YAML_NODES:,} YAML nodes"
-                + (" once aliases are expanded" if sizes else "")
-                + "; a device file has a few hundred",
-            )
-        if len(stack) + depth > limits.MAX_YAML_DEPTH:
-            fail(event, path, f"YAML nested deeper than {limits.MAX_YAML_DEPTH} levels")
-
+    walk = _Walk(filename)
     for event in YAML(typ="rt").parse(text):
         if isinstance(event, ScalarEvent):
-            path = child_path()
-            value = event.value
-            if len(value) > limits.MAX_STRING_CHARS:
-                fail(
-                    event,
-                    path,
-                    f"string of {len(value):,} characters; the limit is "
-                    f"{limits.MAX_STRING_CHARS:,}",
-                )
-            plain = bool(event.implicit and event.implicit[0])
-            digits = (
-                number_digits(value, event.tag, plain)
-                if len(value) > limits.MAX_NUMBER_DIGITS
-                else 0
-            )
-            if digits > limits.MAX_NUMBER_DIGITS:
-                fail(
-                    event,
-                    path,
-                    f"number of {digits:,} digits; the limit is {limits.MAX_NUMBER_DIGITS} digits",
-                )
-            if stack and stack[-1].is_map and stack[-1].index % 2 == 0:
-                stack[-1].key = value
-            if event.anchor:
-                sizes[event.anchor] = (1, 0)
-            add(1, 0, event, path)
+            walk.scalar(event)
         elif isinstance(event, AliasEvent):
-            path = child_path()
-            if any(f.anchor == event.anchor for f in stack):
-                fail(
-                    event,
-                    path,
-                    f"alias *{event.anchor} refers to a mapping or list that contains it "
-                    "(a recursive structure)",
-                )
-            nodes, depth = sizes.get(event.anchor, (1, 0))
-            if stack and stack[-1].is_map and stack[-1].index % 2 == 0:
-                stack[-1].key = f"*{event.anchor}"
-            add(nodes, depth, event, path)
+            walk.alias(event)
         elif isinstance(event, CollectionStartEvent):
-            path = child_path()
-            if len(stack) + 1 > limits.MAX_YAML_DEPTH:
-                fail(event, path, f"YAML nested deeper than {limits.MAX_YAML_DEPTH} levels")
-            stack.append(_Frame(path, isinstance(event, MappingStartEvent), event.anchor))
+            walk.start(event)
         elif isinstance(event, CollectionEndEvent):
-            frame = stack.pop()
-            if frame.anchor:
-                sizes[frame.anchor] = (frame.nodes, frame.depth)
-            add(frame.nodes, frame.depth, event, frame.path)
+            walk.end(event)

@@ -48,10 +48,13 @@ _SHAPE = re.compile(
 
 
 def _check_shape(text: str) -> None:
-    """Bound the work pint may do on ``text`` before it sees it: a number and at most
+    """Bound the work pint may do on ``text`` before it sees it.
+
+    Bound the work pint may do on ``text`` before it sees it: a number and at most
     :data:`~betvdesign.spec.limits.MAX_UNIT_FACTORS` unit names joined by ``*``, ``/`` or
     spaces, each with at most one integer power of modest size. No parentheses, no
-    powers of powers, no arithmetic on numbers: a quantity is written "2330 kg/m^3"."""
+    powers of powers, no arithmetic on numbers: a quantity is written "2330 kg/m^3".
+    """
     if len(text) > limits.MAX_QUANTITY_CHARS:
         raise ValueError(
             f"quantity string of {len(text)} characters; the limit is "
@@ -154,7 +157,7 @@ COMMON_UNITS = (
 
 
 def _unit_hint(text: str) -> str:
-    """ "; did you mean '2 kHz'?" for a unit written in the wrong case or nearly right."""
+    """Suggest ``"; did you mean '2 kHz'?"`` for a unit in the wrong case or nearly right."""
     import difflib
 
     number, _, unit = text.strip().partition(" ")
@@ -422,6 +425,7 @@ class QuantitySpec:
     def __get_pydantic_core_schema__(
         self, source: Any, handler: GetCoreSchemaHandler
     ) -> core_schema.CoreSchema:
+        """Validate with :meth:`validate` (pydantic hook)."""
         return core_schema.no_info_plain_validator_function(
             self.validate,
             serialization=core_schema.plain_serializer_function_ser_schema(
@@ -432,6 +436,7 @@ class QuantitySpec:
     def __get_pydantic_json_schema__(
         self, schema: core_schema.CoreSchema, handler: GetJsonSchemaHandler
     ) -> JsonSchemaValue:
+        """The JSON schema of the quantity: a string with its unit and bounds (pydantic hook)."""
         bounds = []
         if self.gt is not None:
             bounds.append(f"> {self.gt:g} {self.unit}")

@@ -31,7 +31,9 @@ Spec = TypeVar("Spec", bound=BaseModel)
 
 
 def replace(spec: Spec, path: str, value: Any, *more: tuple[str, Any]) -> Spec:
-    """A copy of ``spec`` with ``path`` set to ``value`` (and each ``(path, value)`` of
+    """A validated copy of ``spec`` with ``path`` set to ``value``.
+
+    A copy of ``spec`` with ``path`` set to ``value`` (and each ``(path, value)`` of
     ``more``), validated like a device file.
 
     Parameters
@@ -70,8 +72,11 @@ def replace(spec: Spec, path: str, value: Any, *more: tuple[str, Any]) -> Spec:
 
 
 def _issues(exc: ValidationError, data: Any, model: Any, where: str) -> list[SpecIssue]:
-    """The loader's messages (:mod:`betvdesign.spec.messages`) with dotted field paths; union
-    tags pydantic adds to a location (not keys of the data) are left out, as there."""
+    """The loader's messages with dotted field paths.
+
+    The loader's messages (:mod:`betvdesign.spec.messages`) with dotted field paths; union
+    tags pydantic adds to a location (not keys of the data) are left out, as there.
+    """
     out: list[SpecIssue] = []
     for err in exc.errors():
         loc, msg = located(err, known_fields(model))
@@ -113,8 +118,11 @@ def _fail(where: str, path: str, message: str) -> SpecError:
 
 
 def _assign(data: dict[str, Any], path: str, value: Any, where: str) -> None:
-    """Set (None: remove) ``path`` in the plain ``data``; the last key may be new (the
-    validation judges it)."""
+    """Set (None: remove) ``path`` in the plain ``data``.
+
+    Set (None: remove) ``path`` in the plain ``data``; the last key may be new (the
+    validation judges it).
+    """
     found = targets(data, path)
     if not found:
         parts = path.split(".")

@@ -176,7 +176,7 @@ class _Model:
         return self._tau_cache[alpha]
 
     def amplitude(self, theta: np.ndarray) -> np.ndarray:
-        """u [m] at each data point."""
+        """U [m] at each data point."""
         if self.law == "per-voltage":
             return theta[np.searchsorted(self.voltages, self.v)]
         if self.law in ("linear", "quadratic"):
@@ -189,6 +189,220 @@ class _Model:
         if self.data.kind == "speed":
             return self.delta_s(alpha) * self.amplitude(theta) * c * self.scales.f_act_hz
         return self.s_of_t(alpha) * self.amplitude(theta) * c
+
+
+def _set_up(
+    device: str | os.PathLike[str],
+    data: Measurements,
+    law: Law,
+    fit_alpha: bool,
+    set_name: str | None,
+    signed: bool,
+    direction: str | None,
+) -> tuple[_Model, Any, Measurements, str]:
+    """Load the device and build the model the fit evaluates (arguments of :func:`calibrate`).
+
+    Returns
+    -------
+    model : _Model
+        The prediction of ``data`` as a function of the fitted values.
+    aset : ActuatorSet
+        The set calibrated.
+    data : Measurements
+        The data signed along the set's impact direction.
+    direction : str
+        The observed direction of travel.
+
+    Raises
+    ------
+    UsageError
+        For an unknown set or law, or ``fixed`` without ``fit_alpha``.
+    """
+    from betvdesign.spec.loader import load_device
+
+    spec = load_device(device)
+    names = [s.name for s in spec.actuator_sets]
+    if set_name is None:
+        set_name = names[0]
+    if set_name not in names:
+        raise UsageError(f"{device}: no actuator set {set_name!r} (sets: {', '.join(names)})")
+    if law not in ("per-voltage", "linear", "quadratic", "fixed"):
+        raise UsageError(f"unknown law {law!r} (per-voltage, linear, quadratic or fixed)")
+    if law == "fixed" and not fit_alpha:
+        raise UsageError("law 'fixed' keeps u from the device: fit alpha (--fit-alpha) then")
+    aset = spec.actuator_sets[names.index(set_name)]
+    data, direction = _along_impacts(data, aset, signed, direction)
+    model = _Model(spec, names.index(set_name), data, law, fit_alpha)
+    return model, aset, data, direction
+
+
+def _fit(
+    model: _Model, data: Measurements, x0: np.ndarray, sign: tuple[Any, str, bool], fit_alpha: bool
+) -> tuple[Any, np.ndarray, list[float] | None, float | None]:
+    """Fit the model to the data, weighted by their σ (or their scale).
+
+    The direction of motion is checked against the data's before the fit (without α,
+    the amplitude cannot change it) or at the optimum (α can flip the mode).
+
+    Parameters
+    ----------
+    model : _Model
+        The prediction.
+    data : Measurements
+        The data.
+    x0 : numpy.ndarray
+        The start [the fitted values' units]; the fit runs on values scaled by it.
+    sign : tuple
+        The set, the observed direction and whether the data are signed
+        (:func:`_check_sign`).
+    fit_alpha : bool
+        Whether α is fitted (the last value).
+
+    Returns
+    -------
+    res : OptimizeResult
+        scipy's least_squares result (on the scaled values).
+    theta : numpy.ndarray
+        The fitted values [their units].
+    stderr : list of float or None
+        Their 1σ, None where the fit's Jacobian cannot tell them apart.
+    alpha : float or None
+        The fitted α [-] (None when not fitted).
+
+    Raises
+    ------
+    UsageError
+        For fewer data points than values.
+    CalibrationMismatch
+        When the model moves the slider the other way than the data.
+    """
+    from scipy.optimize import least_squares
+
+    n, p = len(data.y), len(x0)
+    aset, direction, signed = sign
+    if n < p:
+        raise UsageError(f"{data.source}: {n} data points cannot determine {p} parameters")
+    if not fit_alpha:  # the sign of the motion does not depend on u: check before fitting
+        _check_sign(model, data, None, aset, direction, signed)
+    w = 1.0 / data.sigma if data.sigma is not None else np.full(n, 1.0 / _yscale(data))
+    scale = np.abs(x0)
+
+    def residual(z: np.ndarray) -> np.ndarray:
+        return (model.predict(z * scale) - data.y) * w
+
+    res = least_squares(residual, np.ones_like(x0), bounds=(0.0, np.inf))
+    theta = res.x * scale
+    stderr: list[float] | None = None
+    jac = res.jac / scale[None, :]
+    if data.sigma is not None or n > p:
+        s2 = 1.0 if data.sigma is not None else float(2.0 * res.cost / (n - p))
+        try:
+            cov = np.linalg.inv(jac.T @ jac) * s2
+            var = np.diag(cov)
+            # a singular or ill-conditioned fit gives no usable uncertainty: say None
+            identifiable = np.all(var >= 0) and np.linalg.cond(res.jac) < MAX_CONDITION
+            stderr = [float(x) for x in np.sqrt(var)] if identifiable else None
+        except np.linalg.LinAlgError:
+            stderr = None
+    alpha = float(theta[-1]) if fit_alpha else None
+    if fit_alpha:  # α can flip the mode: check the optimum
+        _check_sign(model, data, alpha, aset, direction, signed)
+    return res, theta, stderr, alpha
+
+
+def _goodness(
+    model: _Model, data: Measurements, res: Any, theta: np.ndarray
+) -> tuple[float, float | None, float | None]:
+    """How well the fitted model explains the data.
+
+    Parameters
+    ----------
+    model : _Model
+        The prediction.
+    data : Measurements
+        The data.
+    res : OptimizeResult
+        scipy's result.
+    theta : numpy.ndarray
+        The fitted values.
+
+    Returns
+    -------
+    rms : float
+        Residual rms [m/s or m].
+    r_squared : float or None
+        R² [-] (None for data without spread).
+    chi2_reduced : float or None
+        χ²/dof [-] (None without σ or degrees of freedom).
+    """
+    n, p = len(data.y), len(theta)
+    resid = model.predict(theta) - data.y
+    rms = float(np.sqrt(np.mean(resid**2)))
+    sst = float(np.sum((data.y - data.y.mean()) ** 2))
+    r2 = 1.0 - float(np.sum(resid**2)) / sst if sst > 0 else None
+    chi2 = float(2.0 * res.cost / (n - p)) if data.sigma is not None and n > p else None
+    return rms, r2, chi2
+
+
+def _fit_warnings(
+    res: Any,
+    theta: np.ndarray,
+    x0: np.ndarray,
+    labels: list[str],
+    fit: tuple[float | None, float | None, list[float] | None],
+    data: Measurements,
+    fit_alpha: bool,
+) -> tuple[str, list[str]]:
+    """The fit's status and what a user should know about its quality.
+
+    Parameters
+    ----------
+    res : OptimizeResult
+        scipy's result.
+    theta, x0 : numpy.ndarray
+        The fitted values and the start [their units].
+    labels : list of str
+        Their names.
+    fit : tuple
+        R², χ²/dof (None when unknown) and the 1σ of the values.
+    data : Measurements
+        The data.
+    fit_alpha : bool
+        Whether α was fitted.
+
+    Returns
+    -------
+    status : str
+        "converged", "failed" or "at_bound".
+    warnings : list of str
+        Values at their bound, a poor R², χ²/dof far from 1, unknown uncertainty.
+    """
+    r2, chi2, stderr = fit
+    n, p = len(data.y), len(x0)
+    warns: list[str] = []
+    status = "converged" if res.success else "failed"
+    at_bound = [lab for lab, t, x in zip(labels, theta, x0, strict=True) if t <= 1e-9 * abs(x)]
+    if at_bound:
+        status = "at_bound"
+        warns.append(f"{', '.join(at_bound)} at the lower bound 0: the fit is not usable")
+    if r2 is not None and r2 < POOR_FIT_R2:
+        warns.append(f"R² = {r2:.3g} < {POOR_FIT_R2:g}: the model explains the data poorly")
+    if chi2 is not None and not 0.2 < chi2 < 5.0:
+        warns.append(f"χ²/dof = {chi2:.3g}: residuals and the given σ do not match")
+    if stderr is None and data.sigma is None and n <= p:
+        warns.append(f"uncertainty unknown: {n} points for {p} parameters and no sigma column")
+    elif stderr is None:
+        hint = (
+            " (the speed scales with the stroke's gain and depends on α through Δs alike "
+            "over these data: measure u(V) separately, or give α and fit the gain)"
+            if fit_alpha
+            else ""
+        )
+        warns.append(
+            f"uncertainty unknown: {', '.join(labels)} cannot be told apart from these "
+            f"data (the fit's Jacobian is singular or ill-conditioned){hint}"
+        )
+    return status, warns
 
 
 def calibrate(
@@ -244,82 +458,13 @@ def calibrate(
     ----------
     .. [1] K. Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773
     """
-    from scipy.optimize import least_squares
-
-    from betvdesign.spec.loader import load_device
-
-    spec = load_device(device)
-    names = [s.name for s in spec.actuator_sets]
-    if set_name is None:
-        set_name = names[0]
-    if set_name not in names:
-        raise UsageError(f"{device}: no actuator set {set_name!r} (sets: {', '.join(names)})")
-    if law not in ("per-voltage", "linear", "quadratic", "fixed"):
-        raise UsageError(f"unknown law {law!r} (per-voltage, linear, quadratic or fixed)")
-    if law == "fixed" and not fit_alpha:
-        raise UsageError("law 'fixed' keeps u from the device: fit alpha (--fit-alpha) then")
-    aset = spec.actuator_sets[names.index(set_name)]
-    data, direction = _along_impacts(data, aset, signed, direction)
-    model = _Model(spec, names.index(set_name), data, law, fit_alpha)
+    model, aset, data, travel = _set_up(device, data, law, fit_alpha, set_name, signed, direction)
     x0, labels, units = _start(model, law, fit_alpha)
-    n, p = len(data.y), len(x0)
-    if n < p:
-        raise UsageError(f"{data.source}: {n} data points cannot determine {p} parameters")
-    if not fit_alpha:  # the sign of the motion does not depend on u: check before fitting
-        _check_sign(model, data, None, aset, direction, signed)
-    w = 1.0 / data.sigma if data.sigma is not None else np.full(n, 1.0 / _yscale(data))
-    scale = np.abs(x0)
-
-    def residual(z: np.ndarray) -> np.ndarray:
-        return (model.predict(z * scale) - data.y) * w
-
-    res = least_squares(residual, np.ones_like(x0), bounds=(0.0, np.inf))
-    theta = res.x * scale
-    stderr: list[float] | None = None
-    jac = res.jac / scale[None, :]
-    if data.sigma is not None or n > p:
-        s2 = 1.0 if data.sigma is not None else float(2.0 * res.cost / (n - p))
-        try:
-            cov = np.linalg.inv(jac.T @ jac) * s2
-            var = np.diag(cov)
-            # a singular or ill-conditioned fit gives no usable uncertainty: say None
-            identifiable = np.all(var >= 0) and np.linalg.cond(res.jac) < MAX_CONDITION
-            stderr = [float(x) for x in np.sqrt(var)] if identifiable else None
-        except np.linalg.LinAlgError:
-            stderr = None
-    alpha = float(theta[-1]) if fit_alpha else None
-    if fit_alpha:  # α can flip the mode: check the optimum
-        _check_sign(model, data, alpha, aset, direction, signed)
-    resid = model.predict(theta) - data.y
-    rms = float(np.sqrt(np.mean(resid**2)))
-    sst = float(np.sum((data.y - data.y.mean()) ** 2))
-    r2 = 1.0 - float(np.sum(resid**2)) / sst if sst > 0 else None
-    chi2 = float(2.0 * res.cost / (n - p)) if data.sigma is not None and n > p else None
-    warns: list[str] = []
-    status = "converged" if res.success else "failed"
-    at_bound = [lab for lab, t, x in zip(labels, theta, x0, strict=True) if t <= 1e-9 * abs(x)]
-    if at_bound:
-        status = "at_bound"
-        warns.append(f"{', '.join(at_bound)} at the lower bound 0: the fit is not usable")
-    if r2 is not None and r2 < POOR_FIT_R2:
-        warns.append(f"R² = {r2:.3g} < {POOR_FIT_R2:g}: the model explains the data poorly")
-    if chi2 is not None and not 0.2 < chi2 < 5.0:
-        warns.append(f"χ²/dof = {chi2:.3g}: residuals and the given σ do not match")
-    if stderr is None and data.sigma is None and n <= p:
-        warns.append(f"uncertainty unknown: {n} points for {p} parameters and no sigma column")
-    elif stderr is None:
-        hint = (
-            " (the speed scales with the stroke's gain and depends on α through Δs alike "
-            "over these data: measure u(V) separately, or give α and fit the gain)"
-            if fit_alpha
-            else ""
-        )
-        warns.append(
-            f"uncertainty unknown: {', '.join(labels)} cannot be told apart from these "
-            f"data (the fit's Jacobian is singular or ill-conditioned){hint}"
-        )
+    res, theta, stderr, alpha = _fit(model, data, x0, (aset, travel, signed), fit_alpha)
+    rms, r2, chi2 = _goodness(model, data, res, theta)
+    status, warns = _fit_warnings(res, theta, x0, labels, (r2, chi2, stderr), data, fit_alpha)
     out = CalibrationResult(
-        set_name=set_name,
+        set_name=aset.name,
         kind=data.kind,
         law=law,
         names=labels,
@@ -327,14 +472,14 @@ def calibrate(
         stderr=stderr,
         units=units,
         residual_rms=rms,
-        n_data=n,
+        n_data=len(data.y),
         delta_s=model.delta_s(alpha) if data.kind == "speed" else None,
         status=status,
         message=str(res.message),
         nfev=int(res.nfev),
         r_squared=r2,
         chi2_reduced=chi2,
-        direction=direction,
+        direction=travel,
         signed=signed,
         warnings=warns,
     )
@@ -345,8 +490,11 @@ def calibrate(
 def _along_impacts(
     data: Measurements, aset: Any, signed: bool, direction: str | None
 ) -> tuple[Measurements, str]:
-    """The data signed along the set's impact direction (the model's s), and the
-    observed travel direction ("+x"/"-x"; for signed data, the one the data show)."""
+    """The data signed along the set's impact direction, and its direction.
+
+    The data signed along the set's impact direction (the model's s), and the
+    observed travel direction ("+x"/"-x"; for signed data, the one the data show).
+    """
     impact = 1 if aset.impact_direction == "+x" else -1
     if signed:
         if direction is not None:

@@ -1,4 +1,6 @@
-"""The exact-mode map of two device fields, in the fields' own units, computed a few
+"""The exact-mode map of two device fields, a few rows at a time.
+
+The exact-mode map of two device fields, in the fields' own units, computed a few
 rows at a time (``betv explore``'s map: progress shown, a stale map dropped).
 
 The points are those of :mod:`betvdesign.studies.fieldsweep` (one implementation: its
@@ -39,10 +41,13 @@ TOL = 1e-10
 
 @dataclass(frozen=True)
 class MapRows:
-    """Rows ``rows`` (indices of the y axis) of a map: per point its mode, Δs [-] per
+    """Rows ``rows`` (indices of the y axis) of a map.
+
+    Rows ``rows`` (indices of the y axis) of a map: per point its mode, Δs [-] per
     cycle, speed [m/s] along the impact direction (NaN without an orbit), ϖ [-] (NaN
     where the device cannot take the values) and, for points without a mode, the
-    reason."""
+    reason.
+    """
 
     rows: tuple[int, ...]
     mode: list[list[str]]
@@ -55,9 +60,12 @@ class MapRows:
 
 @dataclass
 class FieldMap:
-    """The exact-mode map of actuator set ``set_name``: ``mode[j][i]`` at
+    """The exact-mode map of actuator set ``set_name``.
+
+    The exact-mode map of actuator set ``set_name``: ``mode[j][i]`` at
     (x.values[i], y.values[j]); ``speed_m_s`` along the set's impact direction [m/s];
-    ``varpi`` the normalised frequency ϖ [-] of each point (the design window's test)."""
+    ``varpi`` the normalised frequency ϖ [-] of each point (the design window's test).
+    """
 
     x: FieldAxis
     y: FieldAxis
@@ -72,11 +80,13 @@ class FieldMap:
     basis: np.ndarray = field(default=None)  # type: ignore[assignment]
 
     def __post_init__(self) -> None:
+        """An empty basis grid when none is given."""
         if self.basis is None:
             self.basis = np.full(self.mode.shape, "", dtype=object)
 
     @classmethod
     def empty(cls, x: FieldAxis, y: FieldAxis, set_name: str) -> FieldMap:
+        """A map of ``x`` by ``y`` with no row computed yet."""
         shape = (len(y.values), len(x.values))
         return cls(
             x,
@@ -91,7 +101,13 @@ class FieldMap:
         )
 
     def fill(self, part: MapRows) -> None:
-        """Enter computed rows."""
+        """Enter computed rows.
+
+        Parameters
+        ----------
+        part : MapRows
+            Rows computed by :func:`map_rows`.
+        """
         for k, j in enumerate(part.rows):
             self.mode[j, :] = part.mode[k]
             self.delta_s[j, :] = part.delta_s[k]
@@ -104,6 +120,7 @@ class FieldMap:
 
     @property
     def complete(self) -> bool:
+        """Whether every row has been computed."""
         return bool(self.done.all())
 
 
@@ -120,13 +137,33 @@ def map_rows(
     *,
     max_cycles: int = MAX_CYCLES,
 ) -> MapRows:
-    """Rows ``rows`` of the exact-mode map of set ``set_index`` of ``spec`` (a
+    """Rows ``rows`` of the exact-mode map of set ``set_index`` of ``spec``.
+
+    Rows ``rows`` of the exact-mode map of set ``set_index`` of ``spec`` (a
     :class:`~betvdesign.spec.models.DeviceSpec`).
 
     Raises
     ------
     ParameterError
         ``set_index`` or a row index out of range.
+
+    Parameters
+    ----------
+    spec : DeviceSpec
+        The device.
+    set_index : int
+        The actuator set.
+    x, y : FieldAxis
+        The map's axes.
+    rows : sequence of int
+        Indices of the y axis.
+    max_cycles : int
+        Budget of each periodic orbit [cycles].
+
+    Returns
+    -------
+    MapRows
+        Per point its mode, Δs, speed, ϖ and the reason when it has no mode.
     """
     if not 0 <= set_index < len(spec.actuator_sets):
         raise ParameterError(f"no actuator set {set_index}")
@@ -167,7 +204,28 @@ def mode_map(
     progress: Callable[[int, int], None] | None = None,
     max_cycles: int = MAX_CYCLES,
 ) -> FieldMap:
-    """The whole map, ``chunk`` rows at a time (``progress(rows done, rows)`` after each)."""
+    """The whole map, ``chunk`` rows at a time (``progress(rows done, rows)`` after each).
+
+    Parameters
+    ----------
+    spec : DeviceSpec
+        The device.
+    set_index : int
+        The actuator set.
+    x, y : FieldAxis
+        The map's axes.
+    chunk : int
+        Rows per step.
+    progress : callable, optional
+        Called with (rows done, rows).
+    max_cycles : int
+        Budget of each periodic orbit [cycles].
+
+    Returns
+    -------
+    FieldMap
+        The whole map.
+    """
     out = FieldMap.empty(x, y, spec.actuator_sets[set_index].name)
     ny = len(y.values)
     for start in range(0, ny, max(1, chunk)):

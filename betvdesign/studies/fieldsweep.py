@@ -111,7 +111,28 @@ class FieldAxis:
         log: bool = True,
         x0: float | None = None,
     ) -> FieldAxis:
-        """``points`` values from ``lo`` to ``hi`` [unit], log-spaced when ``log``."""
+        """``points`` values from ``lo`` to ``hi`` [unit], log-spaced when ``log``.
+
+        Parameters
+        ----------
+        field : str
+            The field's path.
+        unit : str
+            Its unit.
+        lo, hi : float
+            The range [unit].
+        points : int
+            Number of values.
+        log : bool
+            Log-spaced.
+        x0 : float, optional
+            The device's own value [unit].
+
+        Returns
+        -------
+        FieldAxis
+            The axis.
+        """
         if not (math.isfinite(lo) and math.isfinite(hi) and lo < hi and points >= 2):
             raise ParameterError(f"{field}: need LO < HI and at least 2 points")
         if log and lo <= 0:
@@ -121,8 +142,25 @@ class FieldAxis:
 
     @classmethod
     def scaled(cls, field: str, value: Any, factors: Sequence[float]) -> FieldAxis:
-        """The axis of a field's value as the device file gives it (a quantity or a
-        number) times each of ``factors`` [-], in the value's own unit."""
+        """The axis of a field's value as the device file gives it, scaled.
+
+        The axis of a field's value as the device file gives it (a quantity or a
+        number) times each of ``factors`` [-], in the value's own unit.
+
+        Parameters
+        ----------
+        field : str
+            The field's path.
+        value : Any
+            Its value as the device file gives it.
+        factors : sequence of float
+            Relative values [-].
+
+        Returns
+        -------
+        FieldAxis
+            The axis, in the value's unit.
+        """
         if isinstance(value, pint.Quantity):
             x0, unit = float(value.magnitude), f"{value.units:~}"
         else:
@@ -131,10 +169,22 @@ class FieldAxis:
 
     @property
     def label(self) -> str:
+        """The axis label: ``field [unit]``."""
         return f"{self.field} [{self.unit}]" if self.unit else self.field
 
     def quantity(self, x: Any) -> Any:
-        """``x`` [unit] as the device file's value (a pint quantity, or a float)."""
+        """``x`` [unit] as the device file's value (a pint quantity, or a float).
+
+        Parameters
+        ----------
+        x : float
+            A value [unit].
+
+        Returns
+        -------
+        Any
+            A pint quantity, or a float for a unit-less field.
+        """
         from betvdesign.spec.units import ureg
 
         return ureg.Quantity(x, self.unit) if self.unit else x
@@ -149,8 +199,11 @@ class FieldAxis:
 
 
 def _bound(text: str, field: str, unit: str) -> float:
-    """One bound in the field's unit: a quantity ("2 kHz"), or a number with an SI prefix
-    alone ("2k" = 2 k of the field's SI unit); a bare number only for a unit-less field."""
+    """One bound in the field's unit.
+
+    One bound in the field's unit: a quantity ("2 kHz"), or a number with an SI prefix
+    alone ("2k" = 2 k of the field's SI unit); a bare number only for a unit-less field.
+    """
     import pint
 
     from betvdesign.spec.units import parse_quantity, ureg
@@ -199,7 +252,9 @@ def _is_number(s: str) -> bool:
 def parse_axis(
     spec: Any, text: str, points: int = DEFAULT_POINTS, *, log: bool = False
 ) -> FieldAxis:
-    """``FIELD=LO:HI`` in any unit of the field -> a :class:`FieldAxis` of ``points``
+    """Parse ``FIELD=LO:HI`` into a :class:`FieldAxis`.
+
+    ``FIELD=LO:HI`` in any unit of the field -> a :class:`FieldAxis` of ``points``
     values (linear, or log-spaced with ``log``).
 
     Parameters
@@ -249,8 +304,11 @@ def parse_axis(
 
 
 def exact_mode(row: Mapping[str, Any]) -> str:
-    """The exact mode of a point's row: one of :data:`MODES` (the travel answer's when
-    the row has one: ``basis`` and ``travel_mode``)."""
+    """The exact mode of a point's row.
+
+    The exact mode of a point's row: one of :data:`MODES` (the travel answer's when
+    the row has one: ``basis`` and ``travel_mode``).
+    """
     basis = row.get("basis")
     if basis == "no-crossing":
         return "no crossing"
@@ -269,8 +327,11 @@ def exact_mode(row: Mapping[str, Any]) -> str:
 def _derive_grid(
     spec: Any, axes: Sequence[FieldAxis], set_index: int
 ) -> tuple[np.ndarray, list[dict[str, Any] | str]]:
-    """Every grid point derived at once: the points (n, fields) [units] and per point
-    its parameters, length scale [m], f_act [Hz], or the reason it cannot be derived."""
+    """Every grid point derived at once.
+
+    Every grid point derived at once: the points (n, fields) [units] and per point
+    its parameters, length scale [m], f_act [Hz], or the reason it cannot be derived.
+    """
     from betvdesign.nondim.device import derive_set
     from betvdesign.studies.sampling import PARAM_FIELDS, check_sample, derive_all
 
@@ -469,7 +530,9 @@ def field_tasks(
 def field_map(
     spec: Any, axes: Sequence[FieldAxis], set_index: int = 0, tol: float = 1e-10
 ) -> tuple[list[dict[str, Any]], dict[str, Any]]:
-    """The sweep of ``axes`` of a loaded device, solved in this process (no store, no
+    """The sweep of ``axes`` of a loaded device, solved in this process.
+
+    The sweep of ``axes`` of a loaded device, solved in this process (no store, no
     workers): for a report's few hundred points, where starting workers costs more
     than the orbits.
 
@@ -560,6 +623,7 @@ class Flip:
     above: str
 
     def as_dict(self) -> dict[str, Any]:
+        """The crossing as JSON-friendly data."""
         return {"field": self.field, "at": self.at, "below": self.below, "above": self.above}
 
 
@@ -583,7 +647,9 @@ def locate_flips(
     set_name: str | None = None,
     tol: float = 1e-10,
 ) -> list[Flip]:
-    """Every change of the exact mode between neighbouring points of a 1-D sweep,
+    """Every change of the exact mode along a 1-D sweep, bisected.
+
+    Every change of the exact mode between neighbouring points of a 1-D sweep,
     bisected along the field to :data:`FLIP_RTOL` of the field's range.
 
     Parameters
@@ -629,8 +695,25 @@ def locate_flips(
 def summarise(
     set_name: str, axes: Sequence[FieldAxis], rows: Sequence[Mapping[str, Any]]
 ) -> dict[str, Any]:
-    """A sweep's summary: the set, each axis (field, unit, device value, range, points),
-    the points and their count per exact mode, and what the speed is."""
+    """A sweep's summary.
+
+    A sweep's summary: the set, each axis (field, unit, device value, range, points),
+    the points and their count per exact mode, and what the speed is.
+
+    Parameters
+    ----------
+    set_name : str
+        The actuator set.
+    axes : sequence of FieldAxis
+        The swept fields.
+    rows : sequence of mapping
+        The sweep's rows.
+
+    Returns
+    -------
+    dict
+        JSON-friendly summary.
+    """
     counts = {m: 0 for m in (*MODES, "invalid")}
     for r in rows:
         counts[r["exact_mode"]] = counts.get(r["exact_mode"], 0) + 1
@@ -658,7 +741,9 @@ def run_fieldsweep(
     axes: Sequence[FieldAxis],
     **kwargs: Any,
 ) -> tuple[StudyRun, dict[str, Any]]:
-    """Run :func:`fieldsweep_study` (executor, ``out``, resume as every study) and
+    """Run :func:`fieldsweep_study` and summarise it.
+
+    Run :func:`fieldsweep_study` (executor, ``out``, resume as every study) and
     summarise it.
 
     Parameters

@@ -92,8 +92,11 @@ MARGIN_TEXT = (
 
 @dataclass(frozen=True)
 class Outcome:
-    """One exact check of a candidate: passes, the failing rules (error rules and
-    :data:`REQUIRED_WARNINGS`), the warnings that fail but do not block, the check."""
+    """One exact check of a candidate.
+
+    One exact check of a candidate: passes, the failing rules (error rules and
+    :data:`REQUIRED_WARNINGS`), the warnings that fail but do not block, the check.
+    """
 
     passed: bool
     failing: tuple[str, ...]
@@ -221,10 +224,12 @@ class FieldAnswer:
 
     @property
     def size(self) -> float:
+        """The change's size |ln(x/x0)| [-] (inf without a value)."""
         return math.inf if self.value is None else abs(math.log(self.value / self.x0))
 
     @property
     def kind(self) -> str:
+        """What kind of field it is (drive setting, drawn dimension, ...)."""
         known = BY_PATH.get(self.field)
         return known.kind if known is not None else "drawn dimension"
 
@@ -234,9 +239,11 @@ class FieldAnswer:
         return self.kind in ("drive setting", "drawn dimension")
 
     def text(self, x: float) -> str:
+        """A value of the field with its unit."""
         return f"{x:.4g} {self.unit}".strip()
 
     def tried(self) -> str:
+        """The bounds the search tried."""
         return f"{self.text(self.lo)} to {self.text(self.hi)}"
 
     def advice(self) -> str:
@@ -257,6 +264,7 @@ class FieldAnswer:
         )
 
     def as_dict(self) -> dict[str, Any]:
+        """The JSON-ready record."""
         return {
             "field": self.field,
             "kind": self.kind,
@@ -275,8 +283,11 @@ class FieldAnswer:
 
 
 def _bisect(ev: Evaluator, name: str, good: float, bad: float) -> float:
-    """The last passing value between a passing ``good`` and a failing ``bad`` one,
-    bisected in ratio to :data:`BISECT_RTOL` (:func:`betvdesign.model.bisection.bisect`)."""
+    """The last passing value between ``good`` and ``bad``.
+
+    The last passing value between a passing ``good`` and a failing ``bad`` one,
+    bisected in ratio to :data:`BISECT_RTOL` (:func:`betvdesign.model.bisection.bisect`).
+    """
     return bisect(
         lambda x: ev({name: x}).passed, good, bad, True, False, rtol=BISECT_RTOL, geometric=True
     ).a
@@ -399,9 +410,11 @@ class FixResult:
 
     @property
     def best(self) -> Candidate | None:
+        """The best passing candidate (None when none passes)."""
         return next((c for c in self.candidates if c.passed), None)
 
     def as_dict(self) -> dict[str, Any]:
+        """The JSON-ready record."""
         return {
             "status": self.status,
             "message": self.message,
@@ -584,8 +597,11 @@ def _candidate(
 
 
 def _deeper(ev: Evaluator, v: Vary, a: FieldAnswer, base: Outcome) -> list[Candidate]:
-    """Passing values further from the boundary (for the robust search): steps of
-    :data:`FIELD_MARGIN` beyond the proposed value, both ways when already passing."""
+    """Passing values further from the boundary.
+
+    Passing values further from the boundary (for the robust search): steps of
+    :data:`FIELD_MARGIN` beyond the proposed value, both ways when already passing.
+    """
     out = []
     signs = (1, -1) if a.direction == 0 else (a.direction,)
     for sign in signs:
@@ -726,7 +742,9 @@ def _answer_rank(a: FieldAnswer) -> tuple[int, float]:
 
 
 def with_advice(check: Any, answers: Sequence[FieldAnswer]) -> Any:
-    """A copy of ``check`` with the fix text of every failing error rule and
+    """A copy of ``check`` with the search's fix texts.
+
+    A copy of ``check`` with the fix text of every failing error rule and
     ``mode-margin`` replaced by the search's answer (:func:`advice_text`).
 
     Parameters
@@ -767,11 +785,14 @@ def robust_probability(
     seed: int = 0,
     target_speed_m_s: float | None = None,
 ) -> Callable[[Any], float]:
-    """P(pass) under the spreads ``items`` (``betv tolerance`` syntax): the share of a
+    """P(pass) under the spreads ``items``.
+
+    P(pass) under the spreads ``items`` (``betv tolerance`` syntax): the share of a
     seeded Monte Carlo of ``n`` samples in which every set passes every error rule —
     the frequency window 0.5 ≤ ϖ < 2, the tangential resonance |a·ϖ² − 1| ≥ 0.1, the
     exact mode (the intended one) and the target speed when given. Validates the
-    spreads against ``spec`` now (:class:`UsageError`)."""
+    spreads against ``spec`` now (:class:`UsageError`).
+    """
     from betvdesign.studies.sampling import draw, nominal_values
     from betvdesign.studies.tolerance import parse_tolerance
 
@@ -824,8 +845,11 @@ def robust_probability(
 def _sample_set(
     spec: Any, arrays: dict[str, Any] | None, i: int, j: int, values: dict[str, Any]
 ) -> tuple[Any, float, float]:
-    """Model parameters, length scale [m] and f_act [Hz] of set ``i`` at sample ``j``:
-    from the vectorised derivation, or by deriving that sample alone."""
+    """Model parameters and scales of set ``i`` at sample ``j``.
+
+    Model parameters, length scale [m] and f_act [Hz] of set ``i`` at sample ``j``:
+    from the vectorised derivation, or by deriving that sample alone.
+    """
     from betvdesign.nondim.device import derive_set
     from betvdesign.spec.units import ureg
     from betvdesign.studies.sampling import params_of

@@ -30,8 +30,23 @@ DEFAULT_BOUNDS: dict[str, Bounds] = {f.path: f.bounds for f in FIELDS if f.chose
 
 
 def drawn_springs_inert(spec: DeviceSpec, name: str) -> bool:
-    """A drawn-actuator field changes nothing when every set's file gives the head's
-    resonance and α (the file's values are used): not a default field then."""
+    """Tell whether a drawn-actuator field changes nothing for ``spec``.
+
+    A drawn-actuator field changes nothing when every set's file gives the head's
+    resonance and α (the file's values are used): not a default field then.
+
+    Parameters
+    ----------
+    spec : DeviceSpec
+        The device.
+    name : str
+        The field's path.
+
+    Returns
+    -------
+    bool
+        Whether changing the field leaves the model unchanged.
+    """
     if not name.startswith("actuator.geometry."):
         return False
     return all(
@@ -56,17 +71,39 @@ class Vary:
     unit: str
 
     def quantity(self, x: float) -> Any:
+        """The magnitude ``x`` in the field's unit (a float for a unit-less field)."""
         from betvdesign.spec.units import ureg
 
         return ureg.Quantity(x, self.unit) if self.unit else float(x)
 
     def text(self, x: float) -> str:
+        """The magnitude ``x`` with the field's unit, as text."""
         return f"{x:.4g} {self.unit}".strip()
 
 
 def current_value(spec: Any, name: str) -> tuple[float, str] | None:
-    """The current magnitude and unit of a numeric field (None when the spec does not
-    give it or it is not numeric); :class:`UsageError` when the sets differ."""
+    """The current magnitude and unit of a numeric field.
+
+    The current magnitude and unit of a numeric field (None when the spec does not
+    give it or it is not numeric); :class:`UsageError` when the sets differ.
+
+    Parameters
+    ----------
+    spec : DeviceSpec
+        The device.
+    name : str
+        The field's path.
+
+    Returns
+    -------
+    tuple of (float, str) or None
+        Magnitude and unit.
+
+    Raises
+    ------
+    UsageError
+        When the sets give different values.
+    """
     present = given(spec, name)
     if not present:
         return None
@@ -81,9 +118,26 @@ def current_value(spec: Any, name: str) -> tuple[float, str] | None:
 
 
 def parse_vary(spec: Any, items: Sequence[str]) -> list[Vary]:
-    """``FIELD`` or ``FIELD=LO:HI`` (quantities in any unit of the field, e.g.
-    ``drive.frequency=400Hz:3kHz``); without items, every default field the spec has.
-    :class:`UsageError` for unknown fields, unreadable or inverted bounds."""
+    """Parse ``FIELD`` or ``FIELD=LO:HI`` items into field axes.
+
+    Parameters
+    ----------
+    spec : DeviceSpec
+        The device.
+    items : sequence of str
+        ``FIELD`` or ``FIELD=LO:HI``, quantities in any unit of the field (e.g.
+        ``drive.frequency=400Hz:3kHz``); none: every default field the spec has.
+
+    Returns
+    -------
+    list of Vary
+        The fields and their bounds.
+
+    Raises
+    ------
+    UsageError
+        For unknown fields, unreadable or inverted bounds.
+    """
     from betvdesign.spec.units import parse_quantity
 
     out: list[Vary] = []

@@ -1,4 +1,6 @@
-"""The device file with a fix applied: the user's own text with only the changed values'
+"""The device file with a fix applied, verified by ``betv check``.
+
+The device file with a fix applied: the user's own text with only the changed values'
 lines edited (each value replaced in place, with a comment saying what changed and
 why), verified by ``betv check`` before it is returned.
 """
@@ -40,7 +42,20 @@ def _value_end(line: str, col: int, flow: bool) -> int:
 
 
 def fixed_values(res: Any, cand: Any) -> dict[str, Any]:
-    """The fix's new values as a device file writes them (quantities to 4 digits)."""
+    """The fix's new values as a device file writes them (quantities to 4 digits).
+
+    Parameters
+    ----------
+    res : FixResult
+        The fix search's answer.
+    cand : Candidate
+        The fix.
+
+    Returns
+    -------
+    dict
+        New value per field path.
+    """
     from betvdesign.spec.units import format_quantity
 
     out = {}
@@ -57,6 +72,20 @@ def fixed_text(path: str | Path, res: Any, cand: Any) -> str:
     in place and a comment ``# betv fix: was OLD; WHY`` added (an existing comment on
     the line is kept after it). Raises :class:`BetvError` if the result does not load
     or does not pass ``betv check`` (never written then).
+
+    Parameters
+    ----------
+    path : path
+        The device file.
+    res : FixResult
+        The fix search's answer.
+    cand : Candidate
+        The fix.
+
+    Returns
+    -------
+    str
+        The fixed file's text.
     """
     from ruamel.yaml import YAML
 

@@ -1,4 +1,6 @@
-"""One design point of a study: the exact orbit as a row, the solver's error as text,
+"""One design point of a study.
+
+One design point of a study: the exact orbit as a row, the solver's error as text,
 the fidelity a study may use.
 
 Every study that solves design points shares these pieces: the push/pull map
@@ -183,7 +185,9 @@ def periodic_point(task: Mapping[str, Any]) -> dict[str, Any]:
 
 
 def periodic_solve(task: Mapping[str, Any]) -> tuple[dict[str, Any], Any]:
-    """:func:`periodic_point`'s row with the solver's result (for a worker that goes on
+    """The periodic point's row with the solver's result.
+
+    :func:`periodic_point`'s row with the solver's result (for a worker that goes on
     from the orbit, e.g. to the travel from rest).
 
     Parameters

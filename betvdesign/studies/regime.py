@@ -117,9 +117,12 @@ def impulsive_period(vs: VerticalSchedule) -> tuple[int | None, float]:
 
 
 def _state_recurs(vs: VerticalSchedule, k: int) -> bool:
-    """Whether the section state (ξ, ξ') of every cycle of the second half of the
+    """Whether the normal section state of the schedule recurs k cycles later.
+
+    Whether the section state (ξ, ξ') of every cycle of the second half of the
     schedule recurs k cycles later (to :data:`STATE_RTOL`): with rebounds (e > 0) the
-    state after a hit is not fixed by its phase, so the phases alone prove no period."""
+    state after a hit is not fixed by its phase, so the phases alone prove no period.
+    """
     cyc = vs.prefix[len(vs.prefix) // 2 :]
     if len(cyc) <= k:
         return False

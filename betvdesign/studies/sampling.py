@@ -1,4 +1,6 @@
-"""Monte Carlo samples in spec space: nominal values, seeded draws, and every sample of
+"""Monte Carlo samples in spec space.
+
+Monte Carlo samples in spec space: nominal values, seeded draws, and every sample of
 an actuator set derived at once.
 
 Used by ``betv tolerance`` (:mod:`betvdesign.studies.tolerance`) and the robust search

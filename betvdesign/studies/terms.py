@@ -37,15 +37,19 @@ SYMBOLS = {"zeta_v": "ζ_v", "zeta_h": "ζ_h", "restitution": "e"}
 
 @dataclass(frozen=True)
 class Terms:
-    """ζ_v, ζ_h [-] and e [-] of a study (0: the paper's model), validated as
+    """ζ_v, ζ_h [-] and e [-] of a study (0: the paper's model), validated.
+
+    ζ_v, ζ_h [-] and e [-] of a study (0: the paper's model), validated as
     :class:`~betvdesign.model.params.ModelParams` validates them (a :class:`UsageError`
-    naming the term otherwise)."""
+    naming the term otherwise).
+    """
 
     zeta_v: float = 0.0
     zeta_h: float = 0.0
     restitution: float = 0.0
 
     def __post_init__(self) -> None:
+        """Validate the terms as :class:`ModelParams` does."""
         try:
             p = ModelParams(1.0, 1.0, 1.0, 1.0, self.zeta_v, self.zeta_h, self.restitution)
         except ParameterError as exc:

@@ -78,8 +78,11 @@ class Tolerance:
     dist_given: bool = True
 
     def describe(self) -> str:
-        """The spread as used, its distribution always stated (the default named as
-        such): ``slider.beam_width: normal σ 5 % (normal: the default)``."""
+        """The spread as used, its distribution always stated.
+
+        The spread as used, its distribution always stated (the default named as
+        such): ``slider.beam_width: normal σ 5 % (normal: the default)``.
+        """
         width = "σ" if self.dist == "normal" else "half-width"
         amount = f"{100 * self.relative:.3g} %" if self.relative is not None else self.absolute
         default = "" if self.dist_given else " (normal: the default)"
@@ -331,8 +334,11 @@ BASE_COLUMNS: dict[str, type] = {
 
 
 def _beyond_columns(spec: Any) -> dict[str, type]:
-    """Columns zeta_v, zeta_h, restitution [-] (ModelParams.as_dict's) when the nominal
-    device gives damping or restitution; none for the paper's model."""
+    """Columns zeta_v, zeta_h, restitution [-] of a damped nominal device.
+
+    Columns zeta_v, zeta_h, restitution [-] (ModelParams.as_dict's) when the nominal
+    device gives damping or restitution; none for the paper's model.
+    """
     from betvdesign.nondim.device import derive
 
     try:
@@ -348,8 +354,11 @@ def _refuse_lambda_beyond_ideal(
     chosen: Sequence[str],
     tolerances: Sequence[Tolerance],
 ) -> None:
-    """UsageError when the λ rung is asked of a device (or a spread) with damping or
-    restitution: λ is a fit to the idealised model and knows neither."""
+    """Refuse the λ rung for a device with damping or restitution.
+
+    UsageError when the λ rung is asked of a device (or a spread) with damping or
+    restitution: λ is a fit to the idealised model and knows neither.
+    """
     from betvdesign.nondim.device import derive_set
 
     spread = [t.field for t in tolerances if term_range(t.field) is not None]
@@ -365,6 +374,118 @@ def _refuse_lambda_beyond_ideal(
             f"{device}: --fidelity lambda is a fit to the idealised model (undamped, plastic "
             f"impacts) and {what} damping or restitution; use --fidelity periodic (the default)"
         )
+
+
+def _chosen_sets(
+    device: str | os.PathLike[str],
+    spec: Any,
+    tolerances: Sequence[Tolerance],
+    request: tuple[int, int, Fidelity],
+    sets: Sequence[str] | None,
+) -> list[str]:
+    """Check a tolerance study's request; the actuator sets it analyses.
+
+    Parameters
+    ----------
+    device : path
+        The device file, for messages.
+    spec : DeviceSpec
+        The device.
+    tolerances : sequence of Tolerance
+        The fields' variations.
+    request : tuple
+        The samples, the seed and the rung asked for.
+    sets : sequence of str, optional
+        The sets asked for (None: every set).
+
+    Returns
+    -------
+    list of str
+        The sets' names.
+
+    Raises
+    ------
+    UsageError
+        As :func:`tolerance_study`.
+    """
+    samples, seed, fidelity = request
+    if not 1 <= samples <= limits.MAX_SAMPLES:
+        raise UsageError(f"--samples must be >= 1 and <= {limits.MAX_SAMPLES:,}, got {samples}")
+    limits.check_seed(seed)
+    require_fidelity(fidelity)
+    if not tolerances:
+        raise UsageError("give at least one tolerance (--spread FIELD=AMOUNT or --tolerances FILE)")
+    names = [s.name for s in spec.actuator_sets]
+    chosen = list(sets) if sets else names
+    for name in chosen:
+        if name not in names:
+            raise UsageError(f"{device}: no actuator set {name!r} (sets: {', '.join(names)})")
+    if fidelity == "lambda":
+        _refuse_lambda_beyond_ideal(device, spec, chosen, tolerances)
+    return chosen
+
+
+def _tasks(
+    spec: Any,
+    tolerances: Sequence[Tolerance],
+    nominal: dict[str, tuple[float, str]],
+    x: np.ndarray,
+    chosen: list[str],
+    common: dict[str, Any],
+) -> list[dict[str, Any]]:
+    """One task per (sample, set), in plain floats.
+
+    Parameters
+    ----------
+    spec : DeviceSpec
+        The nominal device.
+    tolerances : sequence of Tolerance
+        The fields' variations.
+    nominal : dict
+        Each field's nominal magnitude and unit.
+    x : numpy.ndarray
+        The drawn values (samples, fields) [the fields' units].
+    chosen : list of str
+        The sets analysed.
+    common : dict
+        ``path``, ``mtime``, ``fidelity``, ``tol`` and ``columns`` of the study.
+
+    Returns
+    -------
+    list of dict
+        The tasks of :func:`tolerance_point`.
+    """
+    path, mtime, fidelity, tol, columns = (
+        common[k] for k in ("path", "mtime", "fidelity", "tol", "columns")
+    )
+    names = [s.name for s in spec.actuator_sets]
+    samples = len(x)
+    derived = {name: derive_all(spec, tolerances, nominal, x, names.index(name)) for name in chosen}
+    intended = {s.name: s.intended_mode for s in spec.actuator_sets}
+    tasks = []
+    for i in range(samples):
+        values = {t.field: (float(x[i, j]), nominal[t.field][1]) for j, t in enumerate(tolerances)}
+        for name in chosen:
+            arrays = derived[name]
+            tasks.append(
+                {
+                    "key": len(tasks),
+                    "sample": i,
+                    "set_name": name,
+                    "set_index": names.index(name),
+                    "device": path,
+                    "mtime_ns": mtime,
+                    "values": values,
+                    "fidelity": fidelity,
+                    "tol": tol,
+                    "columns": tuple(columns),
+                    "intended": intended[name],
+                    "derived": None
+                    if arrays is None
+                    else {k: float(v[i]) for k, v in arrays.items()},
+                }
+            )
+    return tasks
 
 
 def tolerance_study(
@@ -409,52 +530,17 @@ def tolerance_study(
     """
     from betvdesign.spec.loader import load_device
 
-    if not 1 <= samples <= limits.MAX_SAMPLES:
-        raise UsageError(f"--samples must be >= 1 and <= {limits.MAX_SAMPLES:,}, got {samples}")
-    limits.check_seed(seed)
-    require_fidelity(fidelity)
-    if not tolerances:
-        raise UsageError("give at least one tolerance (--spread FIELD=AMOUNT or --tolerances FILE)")
     path = str(Path(device).resolve())
     spec = load_device(path)
-    names = [s.name for s in spec.actuator_sets]
-    chosen = list(sets) if sets else names
-    for name in chosen:
-        if name not in names:
-            raise UsageError(f"{device}: no actuator set {name!r} (sets: {', '.join(names)})")
-    if fidelity == "lambda":
-        _refuse_lambda_beyond_ideal(device, spec, chosen, tolerances)
+    chosen = _chosen_sets(device, spec, tolerances, (samples, seed, fidelity), sets)
     limits.refuse_long_study("tolerance", samples * len(chosen), 0.0, 1)  # before drawing
     nominal = nominal_values(spec, tolerances)
     x = draw(tolerances, nominal, samples, seed)
     columns = dict(BASE_COLUMNS) | _beyond_columns(spec)
     columns |= {f"in:{t.field}": float for t in tolerances}
     mtime = os.stat(path).st_mtime_ns
-    derived = {name: derive_all(spec, tolerances, nominal, x, names.index(name)) for name in chosen}
-    intended = {s.name: s.intended_mode for s in spec.actuator_sets}
-    tasks = []
-    for i in range(samples):
-        values = {t.field: (float(x[i, j]), nominal[t.field][1]) for j, t in enumerate(tolerances)}
-        for name in chosen:
-            arrays = derived[name]
-            tasks.append(
-                {
-                    "key": len(tasks),
-                    "sample": i,
-                    "set_name": name,
-                    "set_index": names.index(name),
-                    "device": path,
-                    "mtime_ns": mtime,
-                    "values": values,
-                    "fidelity": fidelity,
-                    "tol": tol,
-                    "columns": tuple(columns),
-                    "intended": intended[name],
-                    "derived": None
-                    if arrays is None
-                    else {k: float(v[i]) for k, v in arrays.items()},
-                }
-            )
+    common = {"path": path, "mtime": mtime, "fidelity": fidelity, "tol": tol, "columns": columns}
+    tasks = _tasks(spec, tolerances, nominal, x, chosen, common)
     params = {
         "device": path,
         "device_mtime_ns": mtime,
@@ -478,9 +564,122 @@ def _spearman(x: np.ndarray, y: np.ndarray) -> float | None:
 
 
 def intended_sign(intended: str | None) -> float:
-    """+1 for a push set, −1 for a pull set: times a speed signed along the impact
-    direction it gives the speed along the intended direction of travel."""
+    """Sign of a set's travel: +1 for push, −1 for pull.
+
+    +1 for a push set, −1 for a pull set: times a speed signed along the impact
+    direction it gives the speed along the intended direction of travel.
+
+    Parameters
+    ----------
+    intended : str or None
+        The set's intended mode ("push" or "pull").
+
+    Returns
+    -------
+    float
+        +1 or −1.
+    """
     return -1.0 if intended == "pull" else 1.0
+
+
+def _set_summary(rs: list[Mapping[str, Any]], fidelity: str) -> dict[str, Any]:
+    """The probabilities and speed percentiles of one set's rows.
+
+    Parameters
+    ----------
+    rs : list of mapping
+        The set's rows.
+    fidelity : {"periodic", "lambda"}
+        The rung the rows were made on.
+
+    Returns
+    -------
+    dict
+        Samples, P(push), P(pull), P(not converged), P(not driven), P(outside the window),
+        P(wrong mode) [-] and the speed percentiles [um/s] (:func:`summarise`).
+    """
+    n = len(rs)
+    valid = [r for r in rs if r["status"] != "invalid-sample"]
+    mode_key = "mode" if fidelity == "periodic" else "lambda_mode"
+    decided = [r for r in valid if r[mode_key] is not None]
+    speeds = np.array([r["speed_um_s"] for r in valid if r["speed_um_s"] is not None])
+    intended = rs[0]["intended"] if valid else None
+    s: dict[str, Any] = {
+        "samples": n,
+        "invalid_samples": n - len(valid),
+        "mode_from": "periodic orbit" if fidelity == "periodic" else "λ fit (stated rung)",
+        "p_push": sum(r[mode_key] == "push" for r in decided) / n,
+        "p_pull": sum(r[mode_key] == "pull" for r in decided) / n,
+        "p_not_converged": (
+            sum(not r["converged"] and r["status"] != "not_driven" for r in valid) / n
+            if fidelity == "periodic"
+            else None
+        ),
+        # a definite answer, not a failure: no contact recurs, the slider stays put
+        "p_not_driven": (
+            sum(r["status"] == "not_driven" for r in valid) / n if fidelity == "periodic" else None
+        ),
+        "p_outside_window": sum(not r["in_window"] for r in valid) / n,
+        "intended_mode": intended,
+        # the opposite of the intended mode (not converged counts separately)
+        "p_wrong_mode": sum(r[mode_key] is not None and r[mode_key] != intended for r in valid) / n,
+        # signed along the impact direction (+ push, − pull): README "Versioned outputs"
+        "speed_um_s_percentiles": (
+            {f"p{q:g}": float(np.percentile(speeds, q)) for q in PERCENTILES}
+            if speeds.size
+            else None
+        ),
+        # along the intended travel (+ the intended way): p5 is the slowest 5 %
+        "intended_speed_um_s_percentiles": (
+            {
+                f"p{q:g}": float(np.percentile(speeds * intended_sign(intended), q))
+                for q in PERCENTILES
+            }
+            if speeds.size
+            else None
+        ),
+    }
+    return s
+
+
+def _sensitivities(
+    valid: list[Mapping[str, Any]], tolerances: Sequence[Tolerance], fidelity: str
+) -> tuple[list[dict[str, Any]], str]:
+    """Spearman rank correlations of each input with λ and the speed, strongest first.
+
+    Parameters
+    ----------
+    valid : list of mapping
+        The set's rows of valid samples.
+    tolerances : sequence of Tolerance
+        The sampled fields.
+    fidelity : {"periodic", "lambda"}
+        The rung (the speed ranks on "periodic", λ on "lambda").
+
+    Returns
+    -------
+    sensitivities : list of dict
+        Per field its ρ with λ and with the speed [-].
+    ranked_by : str
+        The key they are ranked by.
+    """
+    sens = []
+    for t in tolerances:
+        xin = np.array([r[f"in:{t.field}"] for r in valid], dtype=float)
+        lam = np.array([r["lam"] for r in valid], dtype=float)
+        spd = np.array(
+            [np.nan if r["speed_um_s"] is None else r["speed_um_s"] for r in valid], float
+        )
+        sens.append(
+            {
+                "field": t.field,
+                "rho_lambda": _spearman(xin, lam),
+                "rho_speed": _spearman(xin, spd),
+            }
+        )
+    key = "rho_speed" if fidelity == "periodic" else "rho_lambda"
+    sens.sort(key=lambda e: -abs(e[key] or 0.0))
+    return sens, key
 
 
 def summarise(
@@ -514,68 +713,9 @@ def summarise(
     }
     for name in dict.fromkeys(r["set"] for r in rows):
         rs = [r for r in rows if r["set"] == name]
-        n = len(rs)
+        s = _set_summary(rs, fidelity)
         valid = [r for r in rs if r["status"] != "invalid-sample"]
-        mode_key = "mode" if fidelity == "periodic" else "lambda_mode"
-        decided = [r for r in valid if r[mode_key] is not None]
-        speeds = np.array([r["speed_um_s"] for r in valid if r["speed_um_s"] is not None])
-        intended = rs[0]["intended"] if valid else None
-        s: dict[str, Any] = {
-            "samples": n,
-            "invalid_samples": n - len(valid),
-            "mode_from": "periodic orbit" if fidelity == "periodic" else "λ fit (stated rung)",
-            "p_push": sum(r[mode_key] == "push" for r in decided) / n,
-            "p_pull": sum(r[mode_key] == "pull" for r in decided) / n,
-            "p_not_converged": (
-                sum(not r["converged"] and r["status"] != "not_driven" for r in valid) / n
-                if fidelity == "periodic"
-                else None
-            ),
-            # a definite answer, not a failure: no contact recurs, the slider stays put
-            "p_not_driven": (
-                sum(r["status"] == "not_driven" for r in valid) / n
-                if fidelity == "periodic"
-                else None
-            ),
-            "p_outside_window": sum(not r["in_window"] for r in valid) / n,
-            "intended_mode": intended,
-            # the opposite of the intended mode (not converged counts separately)
-            "p_wrong_mode": sum(r[mode_key] is not None and r[mode_key] != intended for r in valid)
-            / n,
-            # signed along the impact direction (+ push, − pull): README "Versioned outputs"
-            "speed_um_s_percentiles": (
-                {f"p{q:g}": float(np.percentile(speeds, q)) for q in PERCENTILES}
-                if speeds.size
-                else None
-            ),
-            # along the intended travel (+ the intended way): p5 is the slowest 5 %
-            "intended_speed_um_s_percentiles": (
-                {
-                    f"p{q:g}": float(np.percentile(speeds * intended_sign(intended), q))
-                    for q in PERCENTILES
-                }
-                if speeds.size
-                else None
-            ),
-        }
-        sens = []
-        for t in tolerances:
-            xin = np.array([r[f"in:{t.field}"] for r in valid], dtype=float)
-            lam = np.array([r["lam"] for r in valid], dtype=float)
-            spd = np.array(
-                [np.nan if r["speed_um_s"] is None else r["speed_um_s"] for r in valid], float
-            )
-            sens.append(
-                {
-                    "field": t.field,
-                    "rho_lambda": _spearman(xin, lam),
-                    "rho_speed": _spearman(xin, spd),
-                }
-            )
-        key = "rho_speed" if fidelity == "periodic" else "rho_lambda"
-        sens.sort(key=lambda e: -abs(e[key] or 0.0))
-        s["sensitivities"] = sens
-        s["ranked_by"] = key
+        s["sensitivities"], s["ranked_by"] = _sensitivities(valid, tolerances, fidelity)
         s["failures"] = [
             {k: r[k] for k in ("key", "sample", "status", "message")}
             for r in rs

@@ -1,1 +1,1 @@
-"""engine"""
+"""Study engine: grids, executors, the resumable store and the runner."""

@@ -96,9 +96,12 @@ def _watch_parent(pid: int) -> None:
 
 
 def _init_worker(main_pid: int) -> None:
-    """Worker start-up: Ctrl-C is the main process's to handle (it stops the pool;
+    """Worker start-up: leave Ctrl-C to the main process, watch for it to end.
+
+    Worker start-up: Ctrl-C is the main process's to handle (it stops the pool;
     a worker printing its own KeyboardInterrupt traceback would only be noise), and
-    a watchdog ends the worker when the main process is gone."""
+    a watchdog ends the worker when the main process is gone.
+    """
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     threading.Thread(
         target=_watch_parent, args=(main_pid,), name="betv-parent-watch", daemon=True
@@ -272,8 +275,11 @@ class ProcessExecutor:
         return ExecutorInfo("process", self.workers, self.chunksize)
 
     def run(self, fn: Worker, tasks: Sequence[Task]) -> Iterator[list[Row]]:
-        """Run ``fn`` over ``tasks`` on local worker processes (:meth:`Executor.run`); an
-        interrupted run terminates them."""
+        """Run ``fn`` over ``tasks`` on local worker processes.
+
+        Run ``fn`` over ``tasks`` on local worker processes (:meth:`Executor.run`); an
+        interrupted run terminates them.
+        """
         if not tasks:
             return
         size = self.chunksize or default_chunksize(len(tasks), self.workers)
@@ -306,7 +312,9 @@ class ProcessExecutor:
 
 
 def _terminate(pool: ProcessPoolExecutor) -> None:
-    """Terminate the pool's worker processes and shut the pool down (the rows they
+    """Terminate the pool's worker processes and shut the pool down.
+
+    Terminate the pool's worker processes and shut the pool down (the rows they
     finished are already ours; what they were computing is recomputed on resume).
 
     The pool's manager thread then marks the futures it still holds as broken; on

@@ -172,6 +172,7 @@ class Grid:
         return math.prod(self.shape)
 
     def __len__(self) -> int:
+        """The number of grid points."""
         return self.size
 
     def point(self, key: int) -> GridPoint:
@@ -200,6 +201,7 @@ class Grid:
         )
 
     def __iter__(self) -> Iterator[GridPoint]:
+        """Every grid point in key order."""
         names = self.names
         for key, combo in enumerate(itertools.product(*self.axes.values())):
             yield GridPoint(key, {n: float(v) for n, v in zip(names, combo, strict=True)})

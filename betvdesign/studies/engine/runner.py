@@ -81,6 +81,99 @@ class StudyRun:
     extra: dict[str, Any] = field(default_factory=dict)
 
 
+def _open_store(
+    study: Study, executor: Executor, out: str | os.PathLike[str] | None, overwrite: bool
+) -> tuple[ResultStore | None, dict[int, Row]]:
+    """Open the output of ``study`` (resuming one of the same study) and its done rows.
+
+    Parameters
+    ----------
+    study : Study
+        The study.
+    executor : Executor
+        Where the tasks run (recorded in the sidecar).
+    out : path or None
+        The CSV file (None: rows kept in memory only).
+    overwrite : bool
+        Replace an output of another study.
+
+    Returns
+    -------
+    store : ResultStore or None
+        The output.
+    done : dict of int to Row
+        The rows already computed, by key (the store's own, kept up to date by it).
+    """
+    total = len(study.tasks)
+    store: ResultStore | None = None
+    done: dict[int, Row] = {}
+    if out is not None:
+        store = ResultStore(
+            out,
+            study=study.name,
+            columns=study.columns,
+            parameters=study.parameters,
+            seed=study.seed,
+            total=total,
+            overwrite=overwrite,
+        )
+        store.write_sidecar(executor=executor.info().__dict__)
+        done = store.done
+    return store, done
+
+
+def _compute(
+    study: Study,
+    executor: Executor,
+    todo: list[dict[str, Any]],
+    sink: tuple[ResultStore | None, dict[int, Row]],
+    progress: Progress | None,
+) -> int:
+    """Run the tasks not done yet, streaming their rows to the store (or ``done``).
+
+    Parameters
+    ----------
+    study : Study
+        The study.
+    executor : Executor
+        Where the tasks run.
+    todo : list of dict
+        The tasks to run.
+    sink : tuple
+        The store (None: none) and the done rows by key.
+    progress : callable, optional
+        ``progress(done, total)`` after every chunk.
+
+    Returns
+    -------
+    int
+        Rows computed.
+
+    Raises
+    ------
+    BaseException
+        Whatever interrupts the run, after the store is closed as "interrupted".
+    """
+    store, done = sink
+    total = len(study.tasks)
+    computed = 0
+    try:
+        for rows in executor.run(study.worker, todo):
+            if store is not None:
+                store.append(rows)
+            else:
+                for row in rows:
+                    done[int(row["key"])] = row
+            computed += len(rows)
+            if progress:
+                progress(len(done), total)
+    except BaseException:
+        if store is not None:
+            store.close("interrupted", computed_this_run=computed)
+        raise
+    return computed
+
+
 def run_study(
     study: Study,
     executor: Executor | None = None,
@@ -124,40 +217,13 @@ def run_study(
         limits.refuse_long_study(
             f"{study.name} study", total, limits.point_cost_s(study.name, study.parameters), workers
         )
-    store: ResultStore | None = None
-    done: dict[int, Row] = {}
-    if out is not None:
-        store = ResultStore(
-            out,
-            study=study.name,
-            columns=study.columns,
-            parameters=study.parameters,
-            seed=study.seed,
-            total=total,
-            overwrite=overwrite,
-        )
-        store.write_sidecar(executor=executor.info().__dict__)
-        done = store.done
+    store, done = _open_store(study, executor, out, overwrite)
     resumed = len(done)
     todo = [t for t in study.tasks if t["key"] not in done]
     if progress:
         progress(len(done), total)
     t0 = time.perf_counter()
-    computed = 0
-    try:
-        for rows in executor.run(study.worker, todo):
-            if store is not None:
-                store.append(rows)
-            else:
-                for row in rows:
-                    done[int(row["key"])] = row
-            computed += len(rows)
-            if progress:
-                progress(len(done), total)
-    except BaseException:
-        if store is not None:
-            store.close("interrupted", computed_this_run=computed)
-        raise
+    computed = _compute(study, executor, todo, (store, done), progress)
     elapsed = time.perf_counter() - t0
     if store is not None:
         # the executor again: a dask cluster's size is known only once it has run
