@@ -11,6 +11,7 @@ WeasyPrint's PDF is deterministic for the same HTML and fonts.
 from __future__ import annotations
 
 import logging
+import os
 from importlib import resources
 
 import jinja2
@@ -24,6 +25,10 @@ __all__ = ["render_html", "render_pdf", "render_template", "report_pdf", "write_
 _TEMPLATE = "report.html.j2"
 _CSS = "report.css"
 
+
+#: The timestamp [s since 1970] written into the PDF's embedded font subsets when the
+#: environment gives no SOURCE_DATE_EPOCH: 2024-01-01T00:00:00Z (any fixed value does).
+PDF_EPOCH = 1_704_067_200
 
 def _environment() -> jinja2.Environment:
     return jinja2.Environment(
@@ -107,8 +112,17 @@ def render_pdf(html: str) -> bytes:
     logger = logging.getLogger("weasyprint")
     level = logger.level
     logger.setLevel(logging.ERROR)
+    # The embedded font subsets carry a "modified" timestamp (fontTools' head table):
+    # the time of writing unless SOURCE_DATE_EPOCH is set (reproducible-builds.org), so
+    # two runs a second apart wrote different bytes. The report's PDF is byte-reproducible:
+    # the timestamp is pinned for the write (a caller's own SOURCE_DATE_EPOCH wins).
+    pinned = "SOURCE_DATE_EPOCH" not in os.environ
+    if pinned:
+        os.environ["SOURCE_DATE_EPOCH"] = str(PDF_EPOCH)
     try:
         doc = weasyprint.HTML(string=html, base_url=None, url_fetcher=fetcher)
         return doc.write_pdf()
     finally:
         logger.setLevel(level)
+        if pinned:
+            del os.environ["SOURCE_DATE_EPOCH"]
