@@ -180,6 +180,23 @@ def test_narrow_beam_fails_min_width_with_a_fix():
     assert "widen" in r.fix
 
 
+def test_narrow_arm_gap_fails_min_spacing():
+    """The Handbook's 2 µm minimum spacing: a 1.5 µm arm gap fails (both sets of the
+    published device draw the same gap; listed once, the right set first); the value is
+    the smallest gap, the hot arm to the cold arm (the flexure sits farther out)."""
+    text = SHIN_SHIPPED.replace("gap: 3 um", "gap: 1.5 um")
+    r = rules(text)["process.min-spacing"]
+    assert not r.passed and r.severity == "error"
+    assert r.value == pytest.approx(1.5e-6)
+    assert r.message.startswith("gaps below the process's minimum spacing: set right: hot arm")
+    assert "1.5 µm < 2 µm (actuator_sets[0].actuator.geometry.gap)" in r.message
+    assert "set left" not in r.message
+    assert r.threshold == "gap >= minimum spacing (poly1: 2 µm)"
+    ok = rules(SHIN_SHIPPED)["process.min-spacing"]
+    assert ok.passed and ok.value == pytest.approx(3e-6)
+    assert "smallest: set right: hot arm to cold arm 3 µm" in ok.message
+
+
 def test_wide_plate_needs_release_holes():
     """Issue 23: a 45 µm-wide plate cannot be released without etch holes."""
     r = rules(sub("beam_width: 5 um", "beam_width: 45 um"))["process.release"]

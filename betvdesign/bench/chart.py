@@ -87,16 +87,37 @@ def work_precision_figure(rows: Sequence[Row], *, tall: bool = False) -> Figure:
     return fig
 
 
+def save_chart(fig: Figure, out_dir: Path, stem: str) -> list[Path]:
+    """Write a bench chart as ``stem``.png and ``stem``.svg into ``out_dir``.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The chart.
+    out_dir : pathlib.Path
+        The folder (made when missing).
+    stem : str
+        The files' name without suffix.
+
+    Returns
+    -------
+    list of pathlib.Path
+        The PNG and the SVG, written reproducibly (no date, the same bytes for the same
+        figure).
+    """
+    out_dir.mkdir(parents=True, exist_ok=True)
+    written = [out_dir / f"{stem}.png", out_dir / f"{stem}.svg"]
+    for path in written:
+        save_figure(fig, path)
+    return written
+
+
 def write_outputs(rows: Sequence[Row], out_dir: Path, stem: str = "work_precision") -> list[Path]:
     """Write ``stem``.png/.svg (chart), .csv and .json (rows + summary) into ``out_dir``."""
     from betvdesign.bench.workprecision import summarise
 
     out_dir = Path(out_dir)
-    out_dir.mkdir(parents=True, exist_ok=True)
-    fig = work_precision_figure(rows)
-    written = [out_dir / f"{stem}.png", out_dir / f"{stem}.svg"]
-    for path in written:
-        save_figure(fig, path)
+    written = save_chart(work_precision_figure(rows), out_dir, stem)
     text = io.StringIO()
     fields = list(rows[0].as_dict()) if rows else list(Row.__dataclass_fields__)
     w = csv.DictWriter(text, fieldnames=fields, lineterminator="\n")

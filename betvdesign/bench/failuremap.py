@@ -19,7 +19,7 @@ import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
-from betvdesign.bench.chart import ERROR_FLOOR, STYLES
+from betvdesign.bench.chart import ERROR_FLOOR, STYLES, save_chart
 from betvdesign.bench.workprecision import Method, reference_runner, rk4_runner, run_exact
 from betvdesign.model.params import ModelParams
 from betvdesign.plots.figure import figure_style, new_figure
@@ -146,14 +146,9 @@ def write_failure_map(rows: Sequence[dict[str, Any]], out_dir: Any, stem: str = 
     from pathlib import Path
 
     from betvdesign.output.files import write_atomic
-    from betvdesign.plots.studies import save_figure
 
     out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
-    fig = failure_map_figure(rows)
-    paths = [out / f"{stem}.png", out / f"{stem}.svg"]
-    for p in paths:
-        save_figure(fig, p)
+    paths = save_chart(failure_map_figure(rows), out, stem)
     doc = {"base": BASE, "cycles": CYCLES, "rows": list(rows)}
     paths.append(write_atomic(out / f"{stem}.json", json.dumps(doc, indent=1) + "\n"))
     return paths

@@ -28,6 +28,7 @@ geometry (their rule list is unchanged otherwise).
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 from betvdesign.checks.rule import RuleResult
@@ -240,6 +241,17 @@ def _fmt(x: float) -> str:
     return format_si(x, "m")
 
 
+def _per_layer(p: Process, drawn: Sequence[Feature | Gap], field: str) -> tuple[str, str]:
+    """The process's ``field`` of each structural layer ``drawn`` lies on.
+
+    The process's ``field`` of each structural layer ``drawn`` lies on: as words
+    ("name: value, ...", by layer name) and as a rule's source (their citations).
+    """
+    layers = sorted({d.layer for d in drawn})
+    text = ", ".join(f"{n}: {_fmt(_m(getattr(p.structural(n), field)))}" for n in layers)
+    return text, "; ".join(p.cite(f"layers.{n}.{field}") for n in layers)
+
+
 def process_rules(spec: DeviceSpec) -> list[RuleResult]:
     """The process rules for a device file.
 
@@ -315,8 +327,7 @@ def _thickness(p: Process, feats: list[Feature]) -> RuleResult:
         worst = max(worst, d)
         if d > _REL * want:
             bad.append(f"{f.what} {_fmt(f.thickness)} ({f.path.rsplit('.', 1)[0]}.thickness)")
-    layers = sorted({f.layer for f in feats})
-    want_txt = ", ".join(f"{n}: {_fmt(_m(p.structural(n).thickness))}" for n in layers)
+    want_txt, source = _per_layer(p, feats, "thickness")
     ok = not bad
     msg = (
         f"every drawn element has its layer's thickness ({want_txt})"
@@ -330,7 +341,7 @@ def _thickness(p: Process, feats: list[Feature]) -> RuleResult:
         worst,
         f"thickness = the structural layer's ({want_txt})",
         msg,
-        "; ".join(p.cite(f"layers.{n}.thickness") for n in layers),
+        source,
         fix=""
         if ok
         else "set each thickness to its layer's (a deposited film cannot be thinned), or draw "
@@ -360,38 +371,83 @@ def _material(spec: DeviceSpec, p: Process) -> RuleResult:
     )
 
 
-def _min_width(p: Process, feats: list[Feature]) -> RuleResult:
-    bad, ratio = [], []
-    for f in feats:
-        mn = _m(p.structural(f.layer).min_width)
-        ratio.append((f.width / mn, f))
-        if f.width < mn * (1 - _REL):
-            bad.append(f"{f.what} {_fmt(f.width)} < {_fmt(mn)} ({f.path})")
-    _, worst = min(ratio, key=lambda x: x[0])
-    layers = sorted({f.layer for f in feats})
-    mins = ", ".join(f"{n}: {_fmt(_m(p.structural(n).min_width))}" for n in layers)
-    ok = not bad
-    msg = (
-        f"every drawn width is at least the minimum ({mins}); narrowest: {worst.what} "
-        f"{_fmt(worst.width)}"
-        if ok
-        else f"below the process's minimum width: {'; '.join(bad)}"
-    )
-    return RuleResult(
+@dataclass(frozen=True)
+class _Minimum:
+    """A process minimum checked on drawn elements.
+
+    A process minimum checked on drawn elements: its rule id, the elements' measure
+    (``width`` of a :class:`Feature`, ``gap`` of a :class:`Gap`) and the rule's words.
+    """
+
+    rule: str
+    measure: str
+    limit: str
+    extreme: str
+    below: str
+    fix: str
+
+
+_MINIMA = {
+    "min_width": _Minimum(
         "process.min-width",
-        "error",
-        ok,
-        worst.width,
-        f"width >= minimum ({mins})",
-        msg,
-        "; ".join(p.cite(f"layers.{n}.min_width") for n in layers),
-        fix=""
-        if ok
-        else "widen each listed element to at least its layer's minimum width; the process "
+        "width",
+        "minimum",
+        "narrowest",
+        "below the process's minimum width",
+        "widen each listed element to at least its layer's minimum width; the process "
         "cannot define narrower lines (`betv fix FILE --vary FIELD=LO:HI` keeps the design "
         "passing while you do)",
+    ),
+    "min_spacing": _Minimum(
+        "process.min-spacing",
+        "gap",
+        "minimum spacing",
+        "smallest",
+        "gaps below the process's minimum spacing",
+        "widen the gap to at least the minimum spacing (actuator.geometry.gap); "
+        "narrower gaps do not open in the process",
+    ),
+}
+
+
+def _at_least_minimum(p: Process, drawn: Sequence[Feature | Gap], field: str) -> RuleResult:
+    """The rule of the layer's minimum ``field`` on ``drawn``.
+
+    The rule of the layer's minimum ``field`` (a key of :data:`_MINIMA`) on ``drawn``
+    (not empty).
+    """
+    m = _MINIMA[field]
+    bad, ratio = [], []
+    for d in drawn:
+        have, mn = getattr(d, m.measure), _m(getattr(p.structural(d.layer), field))
+        ratio.append((have / mn, d))
+        if have < mn * (1 - _REL):
+            bad.append(f"{d.what} {_fmt(have)} < {_fmt(mn)} ({d.path})")
+    _, worst = min(ratio, key=lambda x: x[0])  # the nearest its minimum (first of equals)
+    mins, source = _per_layer(p, drawn, field)
+    size = getattr(worst, m.measure)
+    ok = not bad
+    msg = (
+        f"every drawn {m.measure} is at least the {m.limit} ({mins}); {m.extreme}: "
+        f"{worst.what} {_fmt(size)}"
+        if ok
+        else f"{m.below}: {'; '.join(bad)}"
+    )
+    return RuleResult(
+        m.rule,
+        "error",
+        ok,
+        size,
+        f"{m.measure} >= {m.limit} ({mins})",
+        msg,
+        source,
+        fix="" if ok else m.fix,
         unit="m",
     )
+
+
+def _min_width(p: Process, feats: list[Feature]) -> RuleResult:
+    return _at_least_minimum(p, feats, "min_width")
 
 
 def _min_spacing(p: Process, gaps: list[Gap]) -> RuleResult:
@@ -407,35 +463,7 @@ def _min_spacing(p: Process, gaps: list[Gap]) -> RuleResult:
             p.source,
             unit="m",
         )
-    bad = []
-    for g in gaps:
-        mn = _m(p.structural(g.layer).min_spacing)
-        if g.gap < mn * (1 - _REL):
-            bad.append(f"{g.what} {_fmt(g.gap)} < {_fmt(mn)} ({g.path})")
-    worst = min(gaps, key=lambda g: g.gap / _m(p.structural(g.layer).min_spacing))
-    layers = sorted({g.layer for g in gaps})
-    mins = ", ".join(f"{n}: {_fmt(_m(p.structural(n).min_spacing))}" for n in layers)
-    ok = not bad
-    msg = (
-        f"every drawn gap is at least the minimum spacing ({mins}); smallest: {worst.what} "
-        f"{_fmt(worst.gap)}"
-        if ok
-        else f"gaps below the process's minimum spacing: {'; '.join(bad)}"
-    )
-    return RuleResult(
-        "process.min-spacing",
-        "error",
-        ok,
-        worst.gap,
-        f"gap >= minimum spacing ({mins})",
-        msg,
-        "; ".join(p.cite(f"layers.{n}.min_spacing") for n in layers),
-        fix=""
-        if ok
-        else "widen the gap to at least the minimum spacing (actuator.geometry.gap); "
-        "narrower gaps do not open in the process",
-        unit="m",
-    )
+    return _at_least_minimum(p, gaps, "min_spacing")
 
 
 def release_pitch(layer: ProcessLayer) -> float:
@@ -499,8 +527,7 @@ def _release(p: Process, feats: list[Feature]) -> RuleResult:
                 "mass, not in the model)"
             )
     widest = max((f for f in feats if not f.anchored), key=lambda f: f.width)
-    layers = sorted({f.layer for f in feats})
-    mx = ", ".join(f"{n}: {_fmt(_m(p.structural(n).max_unreleased_width))}" for n in layers)
+    mx, source = _per_layer(p, feats, "max_unreleased_width")
     ok = not wide
     msg = (
         f"every released feature is narrower than the widest the release etch frees without "
@@ -515,7 +542,7 @@ def _release(p: Process, feats: list[Feature]) -> RuleResult:
         widest.width,
         f"width <= {mx} or etch holes",
         msg,
-        "; ".join(p.cite(f"layers.{n}.max_unreleased_width") for n in layers),
+        source,
         fix="" if ok else "`betv layout` draws the holes; or narrow it below the limit",
         unit="m",
     )

@@ -424,27 +424,31 @@ def layout_rules(spec: DeviceSpec, f: LayerFindings, cell: str) -> list[RuleResu
     """
     assert spec.process is not None
     p = spec.process
+    # rule id: (findings, words when none, words before the listing, fix)
+    measured = {
+        "process.min-width": (
+            f.width,
+            "every drawn feature is at least the minimum width",
+            "narrower than the minimum width",
+            "widen the listed features to the minimum width",
+        ),
+        "process.min-spacing": (
+            f.space,
+            "every drawn gap is at least the minimum spacing",
+            "gaps below the minimum spacing",
+            "open the listed gaps to the minimum spacing",
+        ),
+    }
     out = []
     for r in process_rules(spec):
-        if r.id == "process.min-width":
-            ok = not f.width
+        if r.id in measured:
+            found, none, listed, fix = measured[r.id]
+            ok = not found
             r = RuleResult(
-                r.id, "error", ok, None if ok else min(v.extent for v in f.width) * 1e-6,
+                r.id, "error", ok, None if ok else min(v.extent for v in found) * 1e-6,
                 r.threshold,
-                f"cell {cell}: every drawn feature is at least the minimum width"
-                if ok else f"cell {cell}: narrower than the minimum width: {_listing(f.width)}",
-                r.source, fix="" if ok else "widen the listed features to the minimum width",
-                unit="m",
-            )  # fmt: skip
-        elif r.id == "process.min-spacing":
-            ok = not f.space
-            r = RuleResult(
-                r.id, "error", ok, None if ok else min(v.extent for v in f.space) * 1e-6,
-                r.threshold,
-                f"cell {cell}: every drawn gap is at least the minimum spacing"
-                if ok else f"cell {cell}: gaps below the minimum spacing: {_listing(f.space)}",
-                r.source, fix="" if ok else "open the listed gaps to the minimum spacing",
-                unit="m",
+                f"cell {cell}: {none}" if ok else f"cell {cell}: {listed}: {_listing(found)}",
+                r.source, fix="" if ok else fix, unit="m",
             )  # fmt: skip
         elif r.id == "process.release":
             ok = not f.release

@@ -12,7 +12,7 @@ from matplotlib.axes import Axes
 
 from betvdesign.output.presentation import MODE_COLORS
 from betvdesign.output.siformat import scale_for
-from betvdesign.plots.figure import DEVICE_COLOR, axes_or_new
+from betvdesign.plots.figure import DEVICE_COLOR, axes_or_new, known_values
 
 
 def mode_speed_scan(
@@ -41,7 +41,7 @@ def mode_speed_scan(
     if logx:
         ax.set_xscale("log")
     xs = np.asarray(x, float)
-    v = np.array([s if s is not None else 0.0 for s in speed_m_s], float)
+    _, v = known_values(speed_m_s)
     top = max(float(np.abs(v).max(initial=0.0)), abs(ideal_m_s or 0.0))
     k, unit = speed_scale or scale_for(top, "m/s")
     moving = np.array([m in ("push", "pull", "stalled") for m in modes], bool)

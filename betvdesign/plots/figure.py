@@ -21,7 +21,7 @@ from __future__ import annotations
 import contextlib
 import io
 import re
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 from typing import Any
 
 import matplotlib
@@ -94,6 +94,25 @@ def axes_or_new(ax: Axes | None, width_in: float = 6.4, height_in: float = 3.4) 
 
 #: A physical axis: (physical units per dimensionless unit, axis label with the unit).
 Scale = tuple[float, str]
+
+
+def known_values(values: Sequence[float | None]) -> tuple[np.ndarray, np.ndarray]:
+    """Where a series with gaps is known, and its values.
+
+    Parameters
+    ----------
+    values : sequence of float or None
+        The series; None where nothing was found (no periodic orbit, no period).
+
+    Returns
+    -------
+    known : numpy.ndarray of bool
+        True where the entry is a number.
+    value : numpy.ndarray of float
+        The entries, 0.0 in the gaps (where the figures draw their crosses on zero).
+    """
+    known = np.array([v is not None for v in values], dtype=bool)
+    return known, np.array([v if v is not None else 0.0 for v in values], dtype=float)
 
 
 def dimensionless_twin(ax: Axes, which: str, factor: float, label: str) -> Any:

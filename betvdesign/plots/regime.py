@@ -18,10 +18,20 @@ from betvdesign.plots.figure import (
     Scale,
     axes_or_new,
     dimensionless_twin,
+    known_values,
 )
 
 
-def _decorate(ax: Axes, device_varpi: float | None, k: float = 1.0) -> None:
+def _strip_axes(
+    ax: Axes | None,
+    varpi: Sequence[float],
+    device_varpi: float | None,
+    varpi_scale: Scale | None,
+) -> tuple[Axes, float, np.ndarray]:
+    """A strip's axes (``ax`` or new) with the design window shaded and the device's ϖ
+    marked; the scale's factor k and the x values ϖ·k (ϖ itself without a scale)."""
+    ax = axes_or_new(ax)
+    k = varpi_scale[0] if varpi_scale else 1.0
     lo, hi = VARPI_WINDOW
     ax.axvspan(lo * k, hi * k, color="#ffbf00", alpha=0.15, lw=0, label="design window")
     if device_varpi is not None:
@@ -32,6 +42,7 @@ def _decorate(ax: Axes, device_varpi: float | None, k: float = 1.0) -> None:
             ls="--",
             label=f"device ϖ = {device_varpi:.3g}",
         )
+    return ax, k, np.asarray(varpi, dtype=float) * k
 
 
 def impact_period_strip(
@@ -53,19 +64,14 @@ def impact_period_strip(
     varpi_scale: (physical units per unit ϖ, label), e.g. f_v in kHz: the x axis in
     actuation frequency with ϖ on a secondary (top) axis.
     """
-    ax = axes_or_new(ax)
-    k = varpi_scale[0] if varpi_scale else 1.0
-    w = np.asarray(varpi, dtype=float) * k
-    known = np.array([p is not None for p in period_cycles], dtype=bool)
-    per = np.array([p if p is not None else 0.0 for p in period_cycles], dtype=float)
-    _decorate(ax, device_varpi, k)
+    ax, k, w = _strip_axes(ax, varpi, device_varpi, varpi_scale)
+    known, per = known_values(period_cycles)
     ax.plot(
         w[known], per[known], ls="none", marker="o", ms=2.5, color="black", label="impact period"
     )
     top = max(4.0, float(per[known].max()) + 1.0) if known.any() else 4.0
     if hits_per_cycle is not None:
-        hk = np.array([h is not None for h in hits_per_cycle], dtype=bool)
-        hv = np.array([h if h is not None else 0.0 for h in hits_per_cycle], dtype=float)
+        hk, hv = known_values(hits_per_cycle)
         ax.plot(
             w[hk],
             hv[hk],
@@ -109,12 +115,8 @@ def contact_fraction_strip(
     None entries (no periodic vertical motion found) are left out and drawn as
     crosses on the zero line.
     """
-    ax = axes_or_new(ax)
-    k = varpi_scale[0] if varpi_scale else 1.0
-    w = np.asarray(varpi, dtype=float) * k
-    known = np.array([c is not None for c in contact_fraction], dtype=bool)
-    frac = np.array([c if c is not None else 0.0 for c in contact_fraction], dtype=float)
-    _decorate(ax, device_varpi, k)
+    ax, _, w = _strip_axes(ax, varpi, device_varpi, varpi_scale)
+    known, frac = known_values(contact_fraction)
     ax.plot(
         w[known], frac[known], ls="-", marker="o", ms=2.0, color="black", label="contact fraction"
     )

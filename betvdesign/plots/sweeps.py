@@ -15,6 +15,7 @@ from betvdesign.plots.figure import (
     DEVICE_COLOR,
     axes_or_new,
     dimensionless_twin,
+    known_values,
 )
 
 
@@ -69,8 +70,7 @@ def speed_vs_frequency(
     cut-off, one solid curve (the stroke constant)."""
     ax = axes_or_new(ax)
     f = np.asarray(f_act_hz, float)
-    ok = np.array([v is not None for v in speed_m_s], dtype=bool)
-    v = np.array([x if x is not None else 0.0 for x in speed_m_s], float)
+    ok, v = known_values(speed_m_s)
     v0 = np.array([x if x is not None else np.nan for x in constant_stroke_m_s], float)
     kf, f_unit = scale_for(float(f.max()) if f.size else 0.0, "Hz")
     top = max(float(np.abs(v[ok]).max(initial=0.0)), float(np.nanmax(np.abs(v0), initial=0.0)))
@@ -162,8 +162,8 @@ def speed_vs_field_change(
     colors: dict[str, str] = {}
     for k, (label, xs, ys, misses) in enumerate(series):
         x = np.asarray(xs, dtype=float)
-        ok = np.array([y is not None for y in ys], dtype=bool)
-        y = np.array([y * factor if y is not None else 0.0 for y in ys], dtype=float)
+        ok, y = known_values(ys)
+        y = y * factor
         (line,) = ax.plot(
             x[ok], y[ok], marker=markers[k % len(markers)], ms=3.5, lw=1.1, label=label
         )
@@ -226,8 +226,7 @@ def robustness_vs_lambda(
     if logx:
         ax.set_xscale("log")
     x = np.asarray(lam, dtype=float)
-    ok = np.array([d is not None for d in delta_s], dtype=bool)
-    y = np.array([d if d is not None else 0.0 for d in delta_s], dtype=float)
+    ok, y = known_values(delta_s)
     order = np.argsort(x[ok])
     ax.plot(
         x[ok][order],

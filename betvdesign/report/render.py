@@ -30,6 +30,7 @@ _CSS = "report.css"
 #: environment gives no SOURCE_DATE_EPOCH: 2024-01-01T00:00:00Z (any fixed value does).
 PDF_EPOCH = 1_704_067_200
 
+
 def _environment() -> jinja2.Environment:
     return jinja2.Environment(
         loader=jinja2.PackageLoader("betvdesign.report", "templates"),

@@ -14,14 +14,14 @@ from typing import Annotated, Any, Literal
 
 import numpy as np
 import pint
-from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
+from pydantic import Field, field_validator, model_validator
 
 from betvdesign.errors import ParameterError
 from betvdesign.model import damping
 from betvdesign.model.rolloff import calibration_problem
 from betvdesign.model.rolloff import cutoff_from_time_constant as cutoff_hz
 from betvdesign.spec import limits
-from betvdesign.spec.process import MIN_DRAWN, Modulus, Process
+from betvdesign.spec.process import MIN_DRAWN, Modulus, Process, StrictModel
 from betvdesign.spec.units import (
     Density,
     Duration,
@@ -70,17 +70,7 @@ def at(path: str, message: str) -> ValueError:
     return ValueError(f"@{path}: {message}")
 
 
-class _Model(BaseModel):
-    model_config = ConfigDict(
-        extra="forbid",
-        frozen=True,
-        strict=True,
-        arbitrary_types_allowed=True,
-        use_attribute_docstrings=True,
-    )
-
-
-class Material(_Model):
+class Material(StrictModel):
     """A structural material [density in mass/length³]."""
 
     name: str = Field(min_length=1, max_length=limits.MAX_NAME_CHARS)
@@ -147,7 +137,7 @@ def drawable(*fields: str) -> Any:
     return field_validator(*fields)(_drawable)
 
 
-class Slider(_Model):
+class Slider(StrictModel):
     """The slider: parallel beams joined at both ends.
 
     Half the slider mass (the model's M) is (beam_count·ρ·L·w·t + extra_mass)/2
@@ -173,7 +163,7 @@ class Slider(_Model):
     _drawn = drawable("beam_length", "beam_width", "beam_thickness", "travel_range")
 
 
-class DiscGeometry(_Model):
+class DiscGeometry(StrictModel):
     """A round impact head (a disc) [lengths]."""
 
     shape: Literal["disc"]
@@ -183,7 +173,7 @@ class DiscGeometry(_Model):
     _drawn = drawable("diameter", "thickness")
 
 
-class BoxGeometry(_Model):
+class BoxGeometry(StrictModel):
     """A rectangular impact head [lengths]."""
 
     shape: Literal["box"]
@@ -197,7 +187,7 @@ class BoxGeometry(_Model):
 HeadGeometry = Annotated[DiscGeometry | BoxGeometry, Field(discriminator="shape")]
 
 
-class ImpactHead(_Model):
+class ImpactHead(StrictModel):
     """The impact head on the actuator's cold arm.
 
     The impact head on the actuator's cold arm: its mass m, given directly or by
@@ -223,7 +213,7 @@ class ImpactHead(_Model):
         return self
 
 
-class Contact(_Model):
+class Contact(StrictModel):
     """Head/slider contact: impact angle, friction and restitution.
 
     Head/slider contact: impact angle θ in (0°, 90°), Coulomb friction μ [-] and the
@@ -249,28 +239,28 @@ class Contact(_Model):
         return v
 
 
-class LinearCalibration(_Model):
+class LinearCalibration(StrictModel):
     """u = gain·V."""
 
     law: Literal["linear"]
     gain: LinearGain
 
 
-class QuadraticCalibration(_Model):
+class QuadraticCalibration(StrictModel):
     """u = gain·V² (Joule heating: deflection ∝ power ∝ V²)."""
 
     law: Literal["quadratic"]
     gain: QuadraticGain
 
 
-class CalibrationPoint(_Model):
+class CalibrationPoint(StrictModel):
     """One measured point of the actuator: drive voltage and stroke amplitude."""
 
     voltage: NonNegativeVoltage
     amplitude: NonNegativeLength
 
 
-class MeasuredCalibration(_Model):
+class MeasuredCalibration(StrictModel):
     """Measured (V, u) points, linearly interpolated; no extrapolation."""
 
     law: Literal["measured"]
@@ -298,7 +288,7 @@ Calibration = Annotated[
 ]
 
 
-class ActuatorGeometry(_Model):
+class ActuatorGeometry(StrictModel):
     """The drawn hot/cold-arm electrothermal actuator.
 
     The drawn hot/cold-arm electrothermal actuator (MODEL.md, "From the drawn actuator
@@ -369,7 +359,7 @@ class ActuatorGeometry(_Model):
         return self
 
 
-class Actuator(_Model):
+class Actuator(StrictModel):
     """An electrothermal actuator with its head's contact compliance and amplitude.
 
     Vertical stiffness from ``vertical_resonance`` f_v: k_v = m·(2π f_v)².
@@ -471,7 +461,7 @@ class Actuator(_Model):
         return self
 
 
-class Drive(_Model):
+class Drive(StrictModel):
     """Electrical drive.
 
     waveform: ``ac`` (zero DC bias: heats on both half waves, actuation frequency
@@ -494,7 +484,7 @@ class Drive(_Model):
         return self.waveform == "ac"
 
 
-class ActuatorSet(_Model):
+class ActuatorSet(StrictModel):
     """One set of symmetric actuators driving the slider one way.
 
     impact_direction: the direction (+x/−x) the heads strike along the slider; a push
@@ -537,7 +527,7 @@ class ActuatorSet(_Model):
         return s if self.intended_mode == "push" else -s
 
 
-class PublishedFit(_Model):
+class PublishedFit(StrictModel):
     """Dimensionless parameters a publication fitted for this device (optional).
 
     ``betv check`` compares them with the values computed from the dimensional data
@@ -574,7 +564,7 @@ class PublishedFit(_Model):
         return [float(x) for x in (v if isinstance(v, list) else [v])]
 
 
-class DeviceSpec(_Model):
+class DeviceSpec(StrictModel):
     """A BETV device: material, slider, one or more actuator sets."""
 
     name: str = Field(min_length=1, max_length=limits.MAX_NAME_CHARS)

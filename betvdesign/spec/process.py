@@ -36,6 +36,7 @@ __all__ = [
     "Process",
     "ProcessLayer",
     "ReleaseHoles",
+    "StrictModel",
     "process_ref",
     "rebase",
     "shipped_process_path",
@@ -57,7 +58,13 @@ LayerRole = Literal["structural", "anchor", "hole", "via", "dimple", "metal", "a
 _GDS = re.compile(r"^\s*(\d{1,5})\s*/\s*(\d{1,5})\s*$")
 
 
-class _Model(BaseModel):
+class StrictModel(BaseModel):
+    """The base of every model read from a file.
+
+    The base of every model read from a file (device and process files): unknown keys
+    refused, frozen, strict types, each field's docstring its description.
+    """
+
     model_config = ConfigDict(
         extra="forbid",
         frozen=True,
@@ -67,7 +74,7 @@ class _Model(BaseModel):
     )
 
 
-class GdsLayer(_Model):
+class GdsLayer(StrictModel):
     """A GDS layer/datatype pair (both 0–65535), written ``"45/0"`` in files."""
 
     layer: int = Field(ge=0, le=65535)
@@ -94,7 +101,7 @@ def _gds(value: Any) -> Any:
     return value
 
 
-class ReleaseHoles(_Model):
+class ReleaseHoles(StrictModel):
     """Etch holes a wide feature needs to be released.
 
     Etch holes a wide feature needs to be released: drawn on ``layer``, squares of
@@ -109,7 +116,7 @@ class ReleaseHoles(_Model):
     """Largest centre-to-centre distance of neighbouring holes."""
 
 
-class ProcessLayer(_Model):
+class ProcessLayer(StrictModel):
     """One mask layer of the process."""
 
     gds: GdsLayer
@@ -157,7 +164,7 @@ _STRUCTURAL = (
 )
 
 
-class Process(_Model):
+class Process(StrictModel):
     """A fabrication process: layers, materials, design rules (see the module doc)."""
 
     name: str = Field(min_length=1, max_length=limits.MAX_NAME_CHARS)
