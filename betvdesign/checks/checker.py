@@ -367,78 +367,170 @@ def check_derivation(
     ----------
     .. [1] Shin, Pai, Lin, Hui and Tien, J. Appl. Phys. 96, 7603 (2004),
        doi:10.1063/1.1809773.
+
+    Over 80 lines on purpose: most of it is this docstring of the check's stages and
+    options; the body solves the sets (:func:`_solve_sets`), judges them
+    (:func:`~betvdesign.checks.rules.evaluate_device`) and assembles the result.
     """
     custom = solver is not None
-    solver = solver or periodic_orbit
+    orbit = _Orbits(solver or periodic_orbit)
     vertical = vertical or vertical_motion
-    solved: dict[ModelParams, Any] = {}
-
-    def orbit(p: ModelParams) -> Any:
-        if p not in solved:
-            solved[p] = _guarded_orbit(solver, p)
-        return solved[p]
-
     if determine is None:
         determine = not custom
-    notes: list[str] = []
-    orbits, verticals, settlings, margins = {}, {}, {}, {}
-    determinations: dict[str, Determination] = {}
-    answers: dict[str, TravelAnswer] = {}
+    got = _solve_sets(
+        derivation,
+        orbit,
+        vertical,
+        margin=margin,
+        settle=settle,
+        determine=determine,
+        horizon=horizon,
+    )
+    adq = _adequacy(derivation, adequacy, (lambda p, **_: orbit(p)) if custom else None)
+    rules = evaluate_device(
+        derivation,
+        orbits=got.orbits,
+        vertical=got.verticals,
+        settling=got.settlings,
+        margins=got.margins if margin else None,
+        target_speed_m_s=target_speed_m_s,
+        adequacy=adq,
+        travel=got.answers,
+    )
+    rules += [r for s in derivation.sets for r in actuator_rules(s)]
+    rules += process_rules(derivation.spec) if layout_rules is None else layout_rules
+    return CheckResult(derivation, got.set_checks(derivation, rules, adq), rules, got.notes)
+
+
+class _Orbits:
+    """The exact orbit of a design, each design solved once per check.
+
+    Guarded: a raising solver gives a failed result (:func:`_guarded_orbit`).
+    """
+
+    def __init__(self, solver: Callable[[ModelParams], Any]) -> None:
+        """Cache the answers of ``solver`` [a PeriodicResult per design]."""
+        self.solver = solver
+        self.solved: dict[ModelParams, Any] = {}
+
+    def __call__(self, p: ModelParams) -> Any:
+        """The orbit of ``p`` (solved on first use)."""
+        if p not in self.solved:
+            self.solved[p] = _guarded_orbit(self.solver, p)
+        return self.solved[p]
+
+
+@dataclass
+class _Solved:
+    """The exact answers of every set of a check, by set name (:func:`_solve_sets`)."""
+
+    orbits: dict[str, Any] = field(default_factory=dict)
+    verticals: dict[str, Any] = field(default_factory=dict)
+    settlings: dict[str, Settling] = field(default_factory=dict)
+    margins: dict[str, dict[str, str | None]] = field(default_factory=dict)
+    determinations: dict[str, Determination] = field(default_factory=dict)
+    answers: dict[str, TravelAnswer] = field(default_factory=dict)
+    notes: list[str] = field(default_factory=list)
+
+    def set_checks(
+        self, derivation: DeviceDerivation, rules: list[RuleResult], adq: dict[str, SetAdequacy]
+    ) -> list[SetCheck]:
+        """One :class:`SetCheck` per set, in the device's order, with its own rules.
+
+        Parameters
+        ----------
+        derivation : DeviceDerivation
+            The derived device.
+        rules : list of RuleResult
+            Every rule of the check.
+        adq : dict
+            Set name -> its adequacy.
+
+        Returns
+        -------
+        list of SetCheck
+            The sets' outcomes.
+        """
+        return [
+            SetCheck(
+                s,
+                [r for r in rules if r.set_name == s.name],
+                self.orbits.get(s.name),
+                self.verticals.get(s.name),
+                self.settlings.get(s.name),
+                self.margins.get(s.name),
+                adq.get(s.name),
+                self.determinations.get(s.name),
+                self.answers.get(s.name),
+            )
+            for s in derivation.sets
+        ]
+
+
+def _solve_sets(
+    derivation: DeviceDerivation,
+    orbit: Callable[[ModelParams], Any],
+    vertical: Callable[..., Any],
+    *,
+    margin: bool,
+    settle: bool,
+    determine: bool,
+    horizon: int,
+) -> _Solved:
+    """The exact answers of every set: orbit, vertical motion, travel, margin corners.
+
+    Identical parameter sets (mirrored sets) are solved once and said so; each set's
+    answer over its travel is :func:`answer_over_travel`, its corners
+    :func:`corner_modes`.
+
+    Parameters
+    ----------
+    derivation : DeviceDerivation
+        The derived device.
+    orbit : callable
+        The check's cached exact orbit of a design.
+    vertical : callable
+        The exact vertical motion (or a stand-in).
+    margin, settle, determine : bool
+        Run the margin corners, the transient from rest, the determination.
+    horizon : int
+        Cycles the transient may take to cross the travel [-].
+
+    Returns
+    -------
+    _Solved
+        The answers by set name, and the notes.
+    """
+    out = _Solved()
+    seen: set[ModelParams] = set()
     answered: dict[tuple[ModelParams, float], tuple[Any, Any, TravelAnswer]] = {}
     vert_of: dict[tuple[float, float, float], Any] = {}
     for s in derivation.sets:
         p = s.params
-        seen = p in solved
-        orbits[s.name] = po = orbit(p)
-        if seen:
-            notes.append(f"set {s.name}: same parameters as an already solved set, reused")
+        if p in seen:
+            out.notes.append(f"set {s.name}: same parameters as an already solved set, reused")
+        seen.add(p)
+        out.orbits[s.name] = po = orbit(p)
         vkey = (p.varpi, p.zeta_v, p.restitution)
         if vkey not in vert_of:
             vert_of[vkey] = _guarded_vertical(vertical, p)
         if vert_of[vkey] is not None:
-            verticals[s.name] = vert_of[vkey]
+            out.verticals[s.name] = vert_of[vkey]
         key = (p, s.travel_range_m / s.scales.length_m)
         if key not in answered:
             answered[key] = answer_over_travel(
                 p, po, key[1], solver=orbit, determine=determine, settle=settle, horizon=horizon
             )
-        det, st, answers[s.name] = answered[key]
+        det, st, out.answers[s.name] = answered[key]
         if det is not None:
-            determinations[s.name] = det
+            out.determinations[s.name] = det
         if st is not None:
-            settlings[s.name] = st
-        if margin and answers[s.name].moves:
-            margins[s.name] = corner_modes(
-                p, answers[s.name], key[1], solver=orbit, settle=settle, horizon=horizon
+            out.settlings[s.name] = st
+        if margin and out.answers[s.name].moves:
+            out.margins[s.name] = corner_modes(
+                p, out.answers[s.name], key[1], solver=orbit, settle=settle, horizon=horizon
             )
-    adq = _adequacy(derivation, adequacy, (lambda p, **_: orbit(p)) if custom else None)
-    rules = evaluate_device(
-        derivation,
-        orbits=orbits,
-        vertical=verticals,
-        settling=settlings,
-        margins=margins if margin else None,
-        target_speed_m_s=target_speed_m_s,
-        adequacy=adq,
-        travel=answers,
-    )
-    rules += [r for s in derivation.sets for r in actuator_rules(s)]
-    rules += process_rules(derivation.spec) if layout_rules is None else layout_rules
-    sets = [
-        SetCheck(
-            s,
-            [r for r in rules if r.set_name == s.name],
-            orbits.get(s.name),
-            verticals.get(s.name),
-            settlings.get(s.name),
-            margins.get(s.name),
-            adq.get(s.name),
-            determinations.get(s.name),
-            answers.get(s.name),
-        )
-        for s in derivation.sets
-    ]
-    return CheckResult(derivation, sets, rules, notes)
+    return out
 
 
 def _adequacy(

@@ -500,20 +500,7 @@ def speed_rules(
     """
     ans = travel if travel is not None else travel_answer(orbit, None, settling)
     if ans.basis in ("no-crossing", "undetermined", "no-orbit") or not ans.moves:
-        if ans.basis == "no-crossing":
-            why = f"the slider does not cross its travel range: {ans.reason}"
-        elif ans.basis == "undetermined":
-            why = "the periodic Δs is not determined and the slider does not cross its travel"
-        elif ans.mode == "stalled":
-            why = "the slider does not move"
-        else:
-            why = "no exact periodic orbit"
-        out = [RuleResult("speed", "info", False, None, "needs a moving orbit", why, SRC_SPEED)]
-        if ans.basis == "no-crossing" and settling is not None and ans.delta_s_periodic is not None:
-            out.append(_settling_rule(s, settling, ok=False))
-        if target is not None:
-            out.append(_target(None, target, why))
-        return out
+        return _no_speed(s, ans, settling, target)
     periodic = ans.delta_s_periodic
     travel_m = s.travel_range_m
     out = []
@@ -545,6 +532,44 @@ def speed_rules(
     out.insert(0, speed)
     if target is not None:
         out.append(_target(abs(v), target, ""))
+    return out
+
+
+def _no_speed(
+    s: SetDerivation, ans: TravelAnswer, settling: Settling | None, target: float | None
+) -> list[RuleResult]:
+    """The speed rules of an answer that does not move the slider over its travel.
+
+    Parameters
+    ----------
+    s : SetDerivation
+        The derived set.
+    ans : TravelAnswer
+        Its answer (no crossing, undetermined, no orbit, or stalled).
+    settling : Settling, optional
+        The transient from rest.
+    target : float, optional
+        The target speed [m/s].
+
+    Returns
+    -------
+    list of RuleResult
+        ``speed`` (failed, saying why), the ``settling`` line when the orbit moves but the
+        travel is not crossed, ``target-speed`` when a target is given.
+    """
+    if ans.basis == "no-crossing":
+        why = f"the slider does not cross its travel range: {ans.reason}"
+    elif ans.basis == "undetermined":
+        why = "the periodic Δs is not determined and the slider does not cross its travel"
+    elif ans.mode == "stalled":
+        why = "the slider does not move"
+    else:
+        why = "no exact periodic orbit"
+    out = [RuleResult("speed", "info", False, None, "needs a moving orbit", why, SRC_SPEED)]
+    if ans.basis == "no-crossing" and settling is not None and ans.delta_s_periodic is not None:
+        out.append(_settling_rule(s, settling, ok=False))
+    if target is not None:
+        out.append(_target(None, target, why))
     return out
 
 

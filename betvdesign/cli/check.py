@@ -102,6 +102,12 @@ def check_cmd(
     of pyproject.toml.
 
     Exit 0 pass, 1 an error rule fails, 2 bad input/usage.
+
+    \f
+    Over 80 lines on purpose (not in ``--help``: click stops the help at the form
+    feed): a typer command, most of it the declaration of its options
+    (one Annotated block each); its body reads the sources and renders the one pipeline's
+    results (:func:`betvdesign.api.run_check`).
     """
     from betvdesign.api import CheckOptions, read_source, run_check
     from betvdesign.checks.view import compact_lines, output_json, quiet_line

@@ -91,6 +91,11 @@ def fix_cmd(
     ] = None,
     as_json: Annotated[bool, typer.Option("--json", help="Print JSON on stdout.")] = False,
 ) -> None:
+    """The ``betv fix`` command (its help text is the decorator's).
+
+    Over 80 lines on purpose: a typer command, most of it the declaration of its options
+    (one Annotated block each, typer's way); its body only calls the search and renders it.
+    """
     from betvdesign.spec.loader import load_device
     from betvdesign.spec.process import process_ref, rebase
     from betvdesign.spec.units import parse_speed

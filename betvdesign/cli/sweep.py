@@ -16,7 +16,7 @@ vertical motion does not depend on ζ_h).
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Annotated
+from typing import Annotated, Any
 
 import typer
 from typer.core import TyperGroup
@@ -114,7 +114,13 @@ def pushpull_cmd(
     as_json: JsonOpt = False,
     quiet: QuietOpt = False,
 ) -> None:
-    """Push/pull map over ϖ, α, β, κ, each point solved to its periodic state."""
+    """Push/pull map over ϖ, α, β, κ, each point solved to its periodic state.
+
+    \f
+    Over 80 lines on purpose (not in ``--help``: click stops the help at the form
+    feed): a typer command, most of it the declaration of its options
+    (the four parameter ranges and the shared study options).
+    """
     from betvdesign.studies.pushpull import run_pushpull
 
     with user_errors(), interruptible(out):
@@ -358,8 +364,9 @@ def device_cmd(
     field with the exact mode's bands and every mode flip bisected; 2-D, the exact-mode
     map (push/pull/stalled/not driven/unbounded) with the device marked and the paper's
     λ = 1 curve over it. Every point is the device with those values through the same
-    derivation as `betv check` and its exact periodic orbit (speed: the periodic
-    orbit's Δs·u·cosθ·f_act)."""
+    derivation as `betv check` and its answer over the travel (mode and speed: the
+    periodic orbit, or the crossing from rest where the slider has not settled by then;
+    each row names its basis)."""
     from betvdesign.spec.loader import load_device
     from betvdesign.studies.fieldsweep import parse_axis, run_fieldsweep
 
@@ -382,20 +389,20 @@ def device_cmd(
                 save_fieldsweep_figure(run.rows, summary, tmp)
         data = {"study": "fieldsweep", **run_block(run), **summary}
         data["figure"] = str(figure) if figure else None
+        emit(data, as_json, lambda: _print_fieldsweep(spec.name, summary, run))
 
-        def human() -> None:
-            fields = " × ".join(
-                f"{f['field']} {f['lo']:.4g}–{f['hi']:.4g} {f['unit']}".rstrip()
-                for f in summary["fields"]
-            )
-            typer.echo(f"{spec.name} [{summary['set']}]: {fields}, {summary['points']} points")
-            typer.echo("exact modes: " + ", ".join(f"{k} {v}" for k, v in summary["modes"].items()))
-            for fl in summary.get("flips", []):
-                f0 = summary["fields"][0]
-                typer.echo(
-                    f"  mode flips at {f0['field']} = {fl['at']:.5g} {f0['unit']}: "
-                    f"{fl['below']} below, {fl['above']} above"
-                )
-            typer.echo(f"{run.computed} computed, {run.resumed} resumed in {run.elapsed_s:.2f} s")
 
-        emit(data, as_json, human)
+def _print_fieldsweep(name: str, summary: dict[str, Any], run: Any) -> None:
+    """The text of ``betv sweep FILE``: the fields, the modes' counts, the flips."""
+    fields = " × ".join(
+        f"{f['field']} {f['lo']:.4g}–{f['hi']:.4g} {f['unit']}".rstrip() for f in summary["fields"]
+    )
+    typer.echo(f"{name} [{summary['set']}]: {fields}, {summary['points']} points")
+    typer.echo("exact modes: " + ", ".join(f"{k} {v}" for k, v in summary["modes"].items()))
+    for fl in summary.get("flips", []):
+        f0 = summary["fields"][0]
+        typer.echo(
+            f"  mode flips at {f0['field']} = {fl['at']:.5g} {f0['unit']}: "
+            f"{fl['below']} below, {fl['above']} above"
+        )
+    typer.echo(f"{run.computed} computed, {run.resumed} resumed in {run.elapsed_s:.2f} s")

@@ -221,6 +221,58 @@ def determine(
     |Δs| + error ≤ DELTA_S_STALL (stalled).
     """
     t0 = time.perf_counter()
+    unassessed = _unassessed(p, orbit)
+    if unassessed is not None:
+        return unassessed
+    if solver is None:
+        from betvdesign.dynamics.periodic import periodic_orbit
+
+        solver = periodic_orbit
+    ds = float(orbit.delta_s)
+    fields, values, failures = _resolve(p, solver)
+    errs = [abs(v - ds) for v in values if math.isfinite(v)]
+    err = math.inf if failures else max(errs, default=0.0)
+    mode = mode_of(ds, error=err)
+    n = len(values)
+    record = dict(
+        delta_s=ds,
+        delta_s_error=err,
+        perturbed=tuple(values),
+        fields=tuple(fields),
+        n_solves=n,
+        elapsed_s=time.perf_counter() - t0,
+    )
+    if mode != "undetermined":
+        reason = (
+            f"Δs = {ds:.6g} changes by at most {err:.2g} under {n} re-solves with a "
+            "parameter moved by 1e-12 or 1e-10"
+        )
+        return Determination(status="determined", mode=mode, reason=reason, **record)
+    if failures:
+        reason, fix = _lost_orbit(p, ds, failures, n)
+    else:
+        reason, fix = _moved_orbit(orbit, ds, fields, values, err)
+    return Determination(
+        status="undetermined", mode="undetermined", reason=reason, fix=fix, **record
+    )
+
+
+def _unassessed(p: ModelParams, orbit: Any) -> Determination | None:
+    """The determination of a design that is not re-solved, or None.
+
+    Parameters
+    ----------
+    p : ModelParams
+        The design [-].
+    orbit : PeriodicResult or None
+        Its orbit.
+
+    Returns
+    -------
+    Determination or None
+        "degenerate" (a force below round-off, :func:`degeneracy`), "not_solved" (no
+        orbit to assess), or None when the re-solves are to run.
+    """
     degenerate = degeneracy(p)
     if degenerate is not None:
         why, fix = degenerate
@@ -240,12 +292,29 @@ def determine(
             mode=None,
             reason="no periodic orbit to assess",
         )
-    if solver is None:
-        from betvdesign.dynamics.periodic import periodic_orbit
+    return None
 
-        solver = periodic_orbit
-    ds = float(orbit.delta_s)
-    fields, values = [], []
+
+def _resolve(
+    p: ModelParams, solver: Callable[[ModelParams], Any]
+) -> tuple[list[str], list[float], list[tuple[str, Any]]]:
+    """The perturbed re-solves of a design.
+
+    Parameters
+    ----------
+    p : ModelParams
+        The design [-].
+    solver : callable
+        ``solver(params) -> PeriodicResult``.
+
+    Returns
+    -------
+    tuple
+        (the field moved in each re-solve, its Δs [-] or nan when it failed, the failed
+        re-solves as (field, result)).
+    """
+    fields: list[str] = []
+    values: list[float] = []
     failures: list[tuple[str, Any]] = []
     for name, q in _perturbed(p):
         r = solver(q)
@@ -255,43 +324,43 @@ def determine(
         else:
             values.append(math.nan)
             failures.append((name, r))
-    errs = [abs(v - ds) for v in values if math.isfinite(v)]
-    err = math.inf if failures else max(errs, default=0.0)
-    mode = mode_of(ds, error=err)
-    elapsed = time.perf_counter() - t0
-    n = len(values)
-    record = dict(
-        delta_s=ds,
-        delta_s_error=err,
-        perturbed=tuple(values),
-        fields=tuple(fields),
-        n_solves=n,
-        elapsed_s=elapsed,
+    return fields, values, failures
+
+
+def _moved_orbit(
+    orbit: Any, ds: float, fields: list[str], values: list[float], err: float
+) -> tuple[str, str]:
+    """The (reason, fix) when every re-solve finds an orbit but Δs moves too much.
+
+    Parameters
+    ----------
+    orbit : PeriodicResult
+        The design's orbit.
+    ds : float
+        Its Δs [-].
+    fields, values : list
+        The field moved in each re-solve and its Δs [-].
+    err : float
+        The largest change of Δs [-].
+
+    Returns
+    -------
+    tuple of str
+        The re-solve that moved it most and by how much; what to change.
+    """
+    worst = max(range(len(values)), key=lambda i: abs(values[i] - ds))
+    reason = (
+        f"Δs = {ds:.4g} is not determined: the re-solve with {fields[worst]} gives "
+        f"Δs = {values[worst]:.4g}, a change of {err:.3g} (> {DETERMINED_RTOL:.0%} of "
+        "|Δs|, or across zero); the periodic answer here is round-off (slowest Floquet "
+        f"multiplier |μ| = {max(orbit.floquet_moduli or [math.nan]):.12f})"
     )
-    if mode != "undetermined":
-        reason = (
-            f"Δs = {ds:.6g} changes by at most {err:.2g} under {n} re-solves with a "
-            "parameter moved by 1e-12 or 1e-10"
-        )
-        return Determination(status="determined", mode=mode, reason=reason, **record)
-    if failures:
-        reason, fix = _lost_orbit(p, ds, failures, n)
-    else:
-        worst = max(range(n), key=lambda i: abs(values[i] - ds))
-        reason = (
-            f"Δs = {ds:.4g} is not determined: the re-solve with {fields[worst]} gives "
-            f"Δs = {values[worst]:.4g}, a change of {err:.3g} (> {DETERMINED_RTOL:.0%} of "
-            "|Δs|, or across zero); the periodic answer here is round-off (slowest Floquet "
-            f"multiplier |μ| = {max(orbit.floquet_moduli or [math.nan]):.12f})"
-        )
-        fix = (
-            "move the design away from the edge of the parameter space where the slider's "
-            "motion is set by forces near round-off (friction κ or the mass ratio β near 0, "
-            "α·ϖ² near 1 without damping); `betv fix FILE` finds a change"
-        )
-    return Determination(
-        status="undetermined", mode="undetermined", reason=reason, fix=fix, **record
+    fix = (
+        "move the design away from the edge of the parameter space where the slider's "
+        "motion is set by forces near round-off (friction κ or the mass ratio β near 0, "
+        "α·ϖ² near 1 without damping); `betv fix FILE` finds a change"
     )
+    return reason, fix
 
 
 def _lost_orbit(

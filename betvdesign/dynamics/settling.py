@@ -278,35 +278,45 @@ def settling(
             crossing_delta_s=None,
         )
     crossing = None if cross is None else float(s[cross] / cross)
-    if settle is not None:
-        return result(
-            "settled",
-            f"within {rtol:.0%} of the periodic Δs from cycle {settle} on "
-            f"({done} cycles simulated from rest)",
-            done,
-            cycles_to_settle=settle,
-            crossing_delta_s=crossing,
-        )
+    status, message = _verdict(run, target, rtol, mu_max)
+    return result(status, message, done, cycles_to_settle=settle, crossing_delta_s=crossing)
+
+
+def _verdict(
+    run: _FromRest, target: float | None, rtol: float, mu_max: float | None
+) -> tuple[SettlingStatus, str]:
+    """The status and message of a transient from rest that did not fail.
+
+    Parameters
+    ----------
+    run : _FromRest
+        The transient.
+    target : float or None
+        The periodic Δs* [-] (None: crossing only).
+    rtol : float
+        The settling tolerance [-].
+    mu_max : float, optional
+        Slowest Floquet modulus |μ|max [-], quoted when not settled.
+
+    Returns
+    -------
+    tuple
+        ("settled" or "not_settled", what was found).
+    """
     if target is None:
-        return result(
-            "not_settled",
-            "no periodic Δs to settle to: the transient from rest "
-            + (
-                f"crosses the travel after {cross} cycles"
-                if cross is not None
-                else f"does not cross the travel within {done} cycles"
-            ),
-            done,
-            cycles_to_settle=None,
-            crossing_delta_s=crossing,
+        return "not_settled", "no periodic Δs to settle to: the transient from rest " + (
+            f"crosses the travel after {run.cross} cycles"
+            if run.cross is not None
+            else f"does not cross the travel within {run.done} cycles"
+        )
+    if run.settle is not None:
+        return "settled", (
+            f"within {rtol:.0%} of the periodic Δs from cycle {run.settle} on "
+            f"({run.done} cycles simulated from rest)"
         )
     shown = f" (slowest Floquet multiplier |μ| = {mu_max:.6g})" if mu_max is not None else ""
-    return result(
-        "not_settled",
-        f"not within {rtol:.0%} of the periodic Δs after {done} cycles from rest{shown}",
-        done,
-        cycles_to_settle=None,
-        crossing_delta_s=crossing,
+    return "not_settled", (
+        f"not within {rtol:.0%} of the periodic Δs after {run.done} cycles from rest{shown}"
     )
 
 

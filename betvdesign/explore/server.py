@@ -89,6 +89,9 @@ def serve(
         Rules that count / do not count (as ``betv check --select/--ignore``).
     say : callable
         Where the URL and the stop message go.
+
+    Over 80 lines on purpose: the server's start, its signal handling and its shutdown
+    belong together (the workers are started and stopped in one place).
     """
     t0 = time.perf_counter()
     from betvdesign.explore.design import Design

@@ -67,7 +67,12 @@ def speed_vs_frequency(
     there (crosses on zero). Top axis ϖ = f_act/f_v; the design window 0.5 ≤ ϖ < 2 is
     shaded, the cut-off f_c drawn where it falls inside the plot; ``operating``:
     (f_act [Hz], speed [m/s]) of the device. ``rolloff`` False: the device gives no
-    cut-off, one solid curve (the stroke constant)."""
+    cut-off, one solid curve (the stroke constant).
+
+    Over 80 lines on purpose: one figure, its curves, bands, the design window, the roll-off
+    and the device's marker drawn on one axes; splitting it would pass the axes' state
+    between pieces.
+    """
     ax = axes_or_new(ax)
     f = np.asarray(f_act_hz, float)
     ok, v = known_values(speed_m_s)

@@ -503,6 +503,10 @@ def find_fixes(
     -------
     FixResult
         Candidates ranked (designer's fields first, then the smallest change).
+
+    Over 80 lines on purpose: the search's stages (single fields, deeper values for the
+    spread, pairs only when no single field fixes it) share the evaluator, the candidates
+    and the counts; its docstring is most of it.
     """
     ev = Evaluator(spec, varies, target_speed_m_s, horizon)
     vmap = {v.field: v for v in varies}
