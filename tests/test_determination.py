@@ -234,9 +234,8 @@ def test_headline_and_settling_line_never_contradict(angle: str, verdict: str | 
     import betvdesign as bd
 
     spec = bd.load_device(DEVICES / "push_demo.yaml").replace("contact.impact_angle", angle)
-    view = bd.check(spec)
-    text = view.text(width=400)
-    res = view.result
+    res = bd.check(spec)
+    text = res.view.text(width=400)
     sc = res.sets[0]
     settle = next((r for r in sc.rules if r.id == "settling"), None)
     headline = text.splitlines()[1]

@@ -28,10 +28,19 @@ def run(*args):
     return CliRunner().invoke(app, [str(a) for a in args])
 
 
-def _check_mode(path: Path, field: str, value: str) -> str:
+def _check(path: Path, field: str, value: str):
+    """``betv check``'s answer over the travel for one value (a map cell's basis: the
+    check without its determination re-solves)."""
     spec = load_device(path).replace(field, value)
-    res = check_derivation(derive(spec), margin=False, settle=False, adequacy=False)
-    return res.sets[0].verdict_mode
+    res = check_derivation(derive(spec), margin=False, determine=False, adequacy=False)
+    return res.sets[0]
+
+
+def _check_mode(path: Path, field: str, value: str) -> str:
+    """The check's mode in the map's words ("no crossing" where the check says the
+    slider does not cross its travel within the horizon)."""
+    sc = _check(path, field, value)
+    return "no crossing" if sc.travel.basis == "no-crossing" else sc.verdict_mode
 
 
 def test_one_field_speed_modes_and_flips(tmp_path):
@@ -63,12 +72,20 @@ def test_one_field_speed_modes_and_flips(tmp_path):
             DESIGNER, "drive.frequency", f"{row['drive.frequency']} kHz"
         )
         if row["exact_mode"] in ("push", "pull"):
-            assert row["basis"] == "periodic" and float(row["speed_m_s"]) != 0.0
-    (flip, *_) = doc["flips"]  # pull below ~1.92 kHz is push (the check's ϖ×0.95 corner)
-    at = flip["at"]
-    assert 1.9 < at < 2.0
-    assert _check_mode(DESIGNER, "drive.frequency", f"{at * 0.999} kHz") == flip["below"]
-    assert _check_mode(DESIGNER, "drive.frequency", f"{at * 1.001} kHz") == flip["above"]
+            sc = _check(DESIGNER, "drive.frequency", f"{row['drive.frequency']} kHz")
+            assert row["basis"] == sc.travel.basis and float(row["speed_m_s"]) != 0.0
+            assert float(row["speed_m_s"]) == pytest.approx(sc.speed_m_s, rel=1e-12)
+    # push below ~1.923 kHz, pull above ~1.925 kHz: between them the speed passes through
+    # zero and the slider does not cross its travel within the horizon (every change
+    # located, each bracket 0.1 % of the range wide: 0.4 Hz)
+    flips = doc["flips"]
+    assert [f["below"] for f in flips] == ["push", "no crossing"]
+    assert [f["above"] for f in flips] == ["no crossing", "pull"]
+    for flip in flips:
+        lo, hi = flip["bracket"]
+        assert 1.9 < lo < flip["at"] < hi < 2.0 and hi - lo <= 1e-3 * (2.2 - 1.8)
+        assert _check_mode(DESIGNER, "drive.frequency", f"{lo!r} kHz") == flip["below"]
+        assert _check_mode(DESIGNER, "drive.frequency", f"{hi!r} kHz") == flip["above"]
     assert fig.read_text().startswith("<?xml")
     again = run(
         "sweep",

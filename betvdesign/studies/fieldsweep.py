@@ -615,16 +615,23 @@ class Flip:
         Where the mode changes [the field's unit] (to :data:`FLIP_RTOL`).
     below, above : str
         The exact mode below and above it.
+    bracket : tuple of float, optional
+        The bisection's last bracket [the field's unit]: ``below`` holds at its first
+        end, ``above`` at its second (``at`` is its midpoint).
     """
 
     field: str
     at: float
     below: str
     above: str
+    bracket: tuple[float, float] | None = None
 
     def as_dict(self) -> dict[str, Any]:
         """The crossing as JSON-friendly data."""
-        return {"field": self.field, "at": self.at, "below": self.below, "above": self.above}
+        out = {"field": self.field, "at": self.at, "below": self.below, "above": self.above}
+        if self.bracket is not None:
+            out["bracket"] = list(self.bracket)
+        return out
 
 
 def _mode_at(spec: Any, axis: FieldAxis, x: float, index: int, tol: float) -> str:
@@ -676,19 +683,21 @@ def locate_flips(
     index, _ = _set_index(spec, set_name)
     span = axis.values[-1] - axis.values[0]
     out = []
+    width = FLIP_RTOL * span
     for a, b in itertools.pairwise(rows):
-        ma, mb = a["exact_mode"], b["exact_mode"]
-        if ma == mb:
-            continue
-        br = bisect(
-            lambda x: _mode_at(spec, axis, x, index, tol),
-            float(a[axis.field]),
-            float(b[axis.field]),
-            ma,
-            mb,
-            width=FLIP_RTOL * span,
-        )
-        out.append(Flip(axis.field, br.mid, ma, br.at_b))
+        lo, ma = float(a[axis.field]), a["exact_mode"]
+        hi, mb = float(b[axis.field]), b["exact_mode"]
+        # a third mode met in between ends a bracket: go on from it until ``b``'s mode
+        # (e.g. push -> no crossing -> pull: the speed passes through zero), each change
+        # located; at most a few modes lie between two grid points
+        for _ in range(len(MODES) + 1):
+            if ma == mb or abs(hi - lo) <= width:
+                break
+            br = bisect(
+                lambda x: _mode_at(spec, axis, x, index, tol), lo, hi, ma, mb, width=width
+            )
+            out.append(Flip(axis.field, br.mid, ma, br.at_b, (br.a, br.b)))
+            lo, ma = br.b, br.at_b
     return out
 
 
