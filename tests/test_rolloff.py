@@ -263,7 +263,7 @@ def test_report_of_the_demo_has_the_roll_off_figure():
 
 
 def _check(path: Path) -> dict:
-    r = run("check", path, "--json")
+    r = run("check", path, "--json", "-v")
     assert r.exit_code in (0, 1), r.output
     (dev,) = json.loads(r.stdout)["devices"]
     return dev
@@ -279,7 +279,13 @@ def test_check_speed_is_the_rolled_off_speed(tmp_path):
     f_c = 1.0 / (2.0 * math.pi * 0.2e-3)
     ratio = closed_form_ratio(6000.0, 200.0, f_c)
     assert a["speed_m_s"] / b["speed_m_s"] == pytest.approx(ratio, rel=1e-12)
-    assert a["time_to_cross_s"] / b["time_to_cross_s"] == pytest.approx(1 / ratio, rel=1e-12)
+    # the time to cross is the transient's own (from rest): the periodic speed's travel
+    # time plus the lag of the settling (the slider starts from rest and is within 1 % of
+    # its periodic speed after cycles_to_settle; it loses at most that many cycles)
+    for s in (a, b):
+        lag = s["settling"]["cycles_to_settle"] / 6000.0
+        ideal = s["travel_range_m"] / abs(s["speed_m_s"])
+        assert 0.0 <= s["time_to_cross_s"] - ideal <= lag + 1.0 / 6000.0
     da, db = a["derived"], b["derived"]
     assert da["calibrated_amplitude_m"] == db["amplitude_m"] == pytest.approx(0.14e-6)
     assert da["thermal_cutoff_hz"] == pytest.approx(f_c) and da["calibration_frequency_hz"] == 200
