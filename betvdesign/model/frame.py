@@ -59,18 +59,24 @@ __all__ = [
     "COVER_MARGIN",
     "DISC_VERTICES",
     "JOINT_AXIAL",
+    "MODAL_RTOL",
     "RHO_MAX",
     "FrameGeometry",
     "FrameStiffness",
     "Rect",
-    "arm_modal_mass",
     "beam_tip_compliance",
+    "contact_offset",
+    "directional_mass",
+    "first_mode",
+    "head_compliance",
     "frame_stiffness",
     "head_covers_tip",
     "head_disc_diameter",
     "head_radius_min",
     "random_geometries",
+    "rayleigh_matrices",
     "shape",
+    "slider_point_compliance",
     "slider_springs",
 ]
 
@@ -87,6 +93,11 @@ ARM_MASS_SHARE_MAX = 0.1
 #: (benchmarks/bench_layout.py, benchmarks/README.md). Below the ±5 % on ϖ (±10 % on k_v)
 #: and ±10 % on α the mode-margin rule probes, so the check uses the closed form.
 CLOSED_FORM_RTOL = 0.03
+#: Largest relative error of the Rayleigh–Ritz first in-plane mode
+#: (:func:`rayleigh_matrices`, :func:`first_mode`) against the modal plane-stress FE
+#: (:func:`betvdesign.model.frame_fe.frame_modes`) on the shipped actuators and the seeded
+#: random ones (benchmarks/bench_modal.py, benchmarks/README.md).
+MODAL_RTOL = 0.05
 
 
 @dataclass(frozen=True)
@@ -315,57 +326,170 @@ def _gauss(n: int = 24) -> tuple[np.ndarray, np.ndarray]:
     return (x + 1) / 2, w / 2
 
 
-def arm_modal_mass(g: FrameGeometry, density: Any, direction: tuple[Any, Any]) -> Any:
-    """The arms' share of the first mode's mass at the head [kg] (Rayleigh estimate).
+def head_compliance(k: FrameStiffness, theta_rad: Any) -> tuple[Any, Any, Any]:
+    """(C_nn, C_tt, C_nt) [m/N]: the head's compliance in the slider's frame, C = K⁻¹ of
+    :func:`slider_springs`'s 2×2 (each direction with the other free: MODEL.md, "What the
+    model's springs mean")."""
+    k_nn, k_tt, k_nt = slider_springs(k, theta_rad)
+    det = k_nn * k_tt - k_nt * k_nt
+    return k_tt / det, k_nn / det, -k_nt / det
 
-    The head moves along ``direction`` (a unit vector in the actuator's (x, y)) under a
-    load there; the frame's static shape (rigid tip; each arm clamped at its root, its
-    transverse deflection the cubic of its tip displacement and rotation, its axial one
-    linear) gives the arms' kinetic energy ½·Σ ρ·A ∫ (u² + v²) dx per unit head velocity
-    squared along ``direction``, i.e. the mass they add to the head's. The tip connector
-    moves with the head (rigid) and counts fully.
+
+def slider_point_compliance(
+    length: Any, width: Any, thickness: Any, youngs_modulus: Any, offset: Any, beam_count: int
+) -> tuple[Any, Any]:
+    """(C_s,n, C_s,t) [m/N]: the slider's own compliance where a head strikes it, normal
+    to the slider (bending) and along it (axial).
+
+    The two actuators of a set strike the two outer beams at the same x, mirrored about
+    the slider's axis, so the rigid end pieces neither turn nor move across it: each outer
+    beam is a beam with both ends fixed under a point load at ``offset`` = a from its
+    nearer end (b = L − a). Deflection under the load (Roark's Formulas for Stress and
+    Strain, 7th ed., Table 8.1 case 1d; Gere, Mechanics of Materials, fixed-end beam with
+    a concentrated load): C_s,n = a³b³/(3·E·I·L³), I = t·w³/12. Along the slider, the
+    beam fixed at both ends carries the load to both ends in parallel (Gere, statically
+    indeterminate bar): C_s,t = a·b/(E·A·L), A = w·t. One beam: the two heads press its
+    opposite faces at the same point, so it does not bend (C_s,n = 0).
     """
-    t = g.thickness
+    a = offset
+    b = length - offset
+    inertia = thickness * width**3 / 12
+    c_n = a**3 * b**3 / (3 * youngs_modulus * inertia * length**3)
+    if beam_count < 2:
+        c_n = 0.0 * c_n
+    c_t = a * b / (youngs_modulus * width * thickness * length)
+    return c_n, c_t
+
+
+def contact_offset(beam_length: float, head_radius: float, clearance: float, index: int) -> float:
+    """Distance [m] of a set's contact point from the slider's centre, as ``betv layout``
+    draws it: max(L/4, r + c) for the first set striking one way, each next one
+    2·(r + c) further (r the head's half-extent, c the drawn clearance)."""
+    return max(beam_length / 4, head_radius + clearance) + index * (2 * head_radius + 2 * clearance)
+
+
+def _segmented_shape(
+    segments: list[tuple[Any, Any, Any, Any]], length: Any, tip: np.ndarray, E: Any
+) -> list[tuple[Any, Any, np.ndarray, np.ndarray]]:
+    """The static shape of a cantilever of ``segments`` (x0, x1, area, inertia) under the
+    tip loads that give it the tip displacement ``tip`` (…, 3) = (u, v, φ): per segment,
+    (x0, x1, u(x), v(x)) at the Gauss points (exact: u = N·∫dx/EA, v'' = M(x)/EI with
+    M = V·(L − x) + M_tip; the joints' axial compliance left out of u)."""
+    C = beam_tip_compliance([(s[1] - s[0], s[2], s[3]) for s in segments], E)
+    C[..., 0, 0] = sum((s[1] - s[0]) / (E * s[2]) for s in segments)
+    f = np.linalg.solve(C, tip[..., None])[..., 0]
+    N, V, Mt = (f[..., k][..., None] for k in range(3))
+    s_, _ = _gauss()
+    out = []
+    u_a = v_a = th_a = 0.0
+    for x0, x1, area, inertia in segments:
+        x0_, x1_, A_, I_ = (np.asarray(v, dtype=float)[..., None] for v in (x0, x1, area, inertia))
+        L_ = np.asarray(length, dtype=float)[..., None]
+        ma = V * (L_ - x0_) + Mt
+        sx = (x1_ - x0_) * s_
+        u = u_a + N * sx / (E * A_)
+        v = v_a + th_a * sx + (ma * sx**2 / 2 - V * sx**3 / 6) / (E * I_)
+        out.append((x0, x1, u, v))
+        d = x1_ - x0_
+        u_a = u_a + N * d / (E * A_)
+        v_a = v_a + th_a * d + (ma * d**2 / 2 - V * d**3 / 6) / (E * I_)
+        th_a = th_a + (ma * d - V * d**2 / 2) / (E * I_)
+    return out
+
+
+def rayleigh_matrices(
+    g: FrameGeometry, arm_density: Any, head_mass: Any
+) -> tuple[np.ndarray, np.ndarray]:
+    """(C, M): the head's 2×2 compliance [m/N] and the Rayleigh–Ritz mass matrix [kg·m²/N²]
+    of the frame's static shapes, both in the actuator's (x, y) per unit load at the head.
+
+    The shape under a load f (2-vector) at the head is the frame's static one: the rigid
+    tip and head move by (u, v, φ) = K_P⁻¹·(f, 0) at P; each arm, clamped at its root,
+    takes the exact static shape of its segments under the tip loads that give its end
+    that motion (:func:`_segmented_shape`). Its kinetic energy per ω² is ½·fᵀ·M·f with
+
+        M = Σ_arms ρ·t·∫ w(x)·(φ_u φ_uᵀ + φ_v φ_vᵀ) dx + Σ_{tip, head} (m·φ_c φ_cᵀ + J·φ_φ φ_φᵀ),
+
+    φ_c the velocity of each rigid body's centroid and J its moment of inertia (tip:
+    m(l² + H²)/12; a disc head: m r²/2; a box: m(a² + b²)/3 with a, b its half-extents).
+    Rayleigh's quotient of the shape under f is ω² = fᵀCf / fᵀMf (the strain energy of a
+    unit static load is ½ fᵀCf); its minimum, the smallest eigenvalue of C·u = ω²·M·u, is
+    the Rayleigh–Ritz first in-plane mode (Meirovitch, *Fundamentals of Vibrations*,
+    2001, §8.5)."""
+    t, E = g.thickness, g.youngs_modulus
+    K = _frame_matrix(g)
+    Kinv = np.linalg.inv(K)
+    C = Kinv[..., :2, :2]
     xp, yp = g.head_centre
-    dx, dy = direction
-    # the rigid tip's (u, v, φ) at P under a unit force along `direction`
-    hot = beam_tip_compliance([(g.length, t * g.hot_width, t * g.hot_width**3 / 12)],
-                              g.youngs_modulus)  # fmt: skip
-    cold = beam_tip_compliance(
-        [
-            (g.flexure_length, t * g.flexure_width, t * g.flexure_width**3 / 12),
-            (g.length - g.flexure_length, t * g.cold_width, t * g.cold_width**3 / 12),
-        ],
-        g.youngs_modulus,
-    )
-    Ts = [_transfer(g.length, yb, xp, yp) for yb in (0.0, g.d)]
-    K = sum(
-        np.swapaxes(T, -1, -2) @ np.linalg.inv(C) @ T for C, T in zip((hot, cold), Ts, strict=True)
-    )
-    f = np.stack(np.broadcast_arrays(dx, dy, 0.0 * dx), axis=-1)[..., None]
-    q = np.linalg.solve(K, f)  # (…, 3, 1)
-    along = (q[..., 0, 0] * dx + q[..., 1, 0] * dy) ** 2  # head displacement² along it
-    s, w = _gauss()
-    total = 0.0
-    L = np.asarray(g.length, dtype=float)[..., None]
-    for T, widths in (
-        (Ts[0], [(0.0, g.length, g.hot_width)]),
+    M = np.zeros((*C.shape[:-2], 2, 2))
+    s_, w_ = _gauss()
+    arms = (
+        (0.0, [(0.0, g.length, t * g.hot_width, t * g.hot_width**3 / 12)]),
         (
-            Ts[1],
-            [(0.0, g.flexure_length, g.flexure_width), (g.flexure_length, g.length, g.cold_width)],
+            g.d,
+            [
+                (0.0, g.flexure_length, t * g.flexure_width, t * g.flexure_width**3 / 12),
+                (g.flexure_length, g.length, t * g.cold_width, t * g.cold_width**3 / 12),
+            ],
         ),
-    ):
-        b = T @ q  # the arm tip's (u, v, φ)
-        ub, vb, pb = (b[..., k, 0][..., None] for k in range(3))
-        for a0, a1, width in widths:
-            a0_, a1_ = (np.asarray(v, dtype=float)[..., None] for v in (a0, a1))
-            xi = (a0_ + (a1_ - a0_) * s) / L
-            u = ub * xi
-            v = vb * (3 * xi**2 - 2 * xi**3) + pb * L * (xi**3 - xi**2)
-            seg = np.sum((u**2 + v**2) * w, axis=-1) * (np.asarray(a1) - np.asarray(a0))
-            total = total + density * t * width * seg
-    tip = density * t * g.tip_length * (g.hot_width + g.gap + g.cold_width)
-    return total / along + tip
+    )
+    for yb, segs in arms:
+        T = _transfer(g.length, yb, xp, yp)
+        shapes = [_segmented_shape(segs, g.length, (T @ Kinv[..., :, j : j + 1])[..., 0], E)
+                  for j in range(2)]  # fmt: skip
+        for i in range(2):
+            for j in range(2):
+                for (x0, x1, ui, vi), (_, _, uj, vj), seg in zip(
+                    shapes[i], shapes[j], segs, strict=True
+                ):
+                    dx = np.asarray(x1) - np.asarray(x0)
+                    integral = np.sum((ui * uj + vi * vj) * w_, axis=-1) * dx
+                    M[..., i, j] = M[..., i, j] + arm_density * seg[2] * integral
+    # the rigid tip and head: (u, v, φ) at P of each unit load
+    H = g.tip_height
+    m_tip = arm_density * t * g.tip_length * H
+    J_tip = m_tip * (g.tip_length**2 + H**2) / 12
+    tip_c = (g.length + g.tip_length / 2, (g.d + g.cold_width / 2 - g.hot_width / 2) / 2)
+    hy = g.head_x if g.head_y is None else g.head_y
+    J_head = (
+        head_mass * g.head_x**2 / 2
+        if g.head_shape == "disc"
+        else head_mass * (g.head_x**2 + hy**2) / 3
+    )
+    for m_b, J_b, (cx, cy) in ((m_tip, J_tip, tip_c), (head_mass, J_head, (xp, yp))):
+        vel = []
+        for j in range(2):
+            u, v, ph = (Kinv[..., k, j] for k in range(3))
+            vel.append((u - ph * (cy - yp), v + ph * (cx - xp), ph))
+        for i in range(2):
+            for j in range(2):
+                a, b = vel[i], vel[j]
+                M[..., i, j] = M[..., i, j] + m_b * (a[0] * b[0] + a[1] * b[1]) + J_b * a[2] * b[2]
+    return C, M
+
+
+def first_mode(C: np.ndarray, M: np.ndarray) -> tuple[Any, np.ndarray]:
+    """The Rayleigh–Ritz first mode of :func:`rayleigh_matrices`: (f_1 [Hz], the load
+    direction (…, 2) whose static shape it is)."""
+    # ω² = fᵀCf/fᵀMf: the smallest eigenvalue of M⁻¹C... in symmetric form via Cholesky of M
+    Lm = np.linalg.cholesky(M)
+    Li = np.linalg.inv(Lm)
+    S = Li @ C @ np.swapaxes(Li, -1, -2)
+    lam, vec = np.linalg.eigh(S)
+    w2 = lam[..., 0]
+    f = np.swapaxes(Li, -1, -2) @ vec[..., :, :1]
+    f = f[..., 0] / np.linalg.norm(f[..., 0], axis=-1, keepdims=True)
+    return np.sqrt(w2) / (2 * math.pi), f
+
+
+def directional_mass(C: np.ndarray, M: np.ndarray, direction: np.ndarray) -> tuple[Any, Any]:
+    """(k, m_eff): the stiffness 1/(dᵀCd) [N/m] and Rayleigh effective mass
+    dᵀMd/(dᵀCd)² [kg] of the static shape under a load along the unit vector d (…, 2):
+    √(k/m_eff) is that shape's Rayleigh frequency [rad/s]."""
+    d = np.asarray(direction, dtype=float)
+    c = np.einsum("...i,...ij,...j->...", d, C, d)
+    m = np.einsum("...i,...ij,...j->...", d, M, d)
+    return 1 / c, m / (c * c)
 
 
 #: Seed of the random actuators the closed form's error is stated on.

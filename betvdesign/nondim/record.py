@@ -218,8 +218,11 @@ class FitComparison:
 @dataclass(frozen=True)
 class HeadSprings:
     """The head's springs from the drawn actuator (:mod:`betvdesign.nondim.actuator`),
-    float SI: k_nn, k_tt, k_nt [N/m] in the slider's frame, the coupling ρ [-], the arms'
-    first-mode mass m_arm [kg] against the head's m [kg]; ``used``: for "k_v" and
+    float SI: k_nn, k_tt, k_nt [N/m] the frame's stiffness in the slider's frame; k_v, k_h
+    [N/m] the model's springs (each direction with the other free, the slider's compliance
+    in series), m_v, m_h [kg] their Rayleigh effective masses, f_v, f_h [Hz] the drawn
+    resonances, f_1 [Hz] the actuator's first in-plane mode; the coupling ρ [-]; the
+    arms' first-mode mass m_arm [kg] against the head's m [kg]; ``used``: for "k_v" and
     "alpha", "geometry" when the drawn actuator gave it, "file" when the device file's
     value was used (then ``file_f_v_hz``/``file_alpha`` hold it for comparison)."""
 
@@ -229,19 +232,21 @@ class HeadSprings:
     rho: float
     m_arm_kg: float
     m_head_kg: float
+    k_v: float
+    k_h: float
+    m_v_kg: float
+    m_h_kg: float
+    f_v_hz: float
+    f_h_hz: float
+    f_1_hz: float
     used: dict[str, str]
     file_f_v_hz: float | None = None
     file_alpha: float | None = None
 
     @property
-    def f_v_hz(self) -> float:
-        """The geometry's vertical resonance sqrt(k_nn/m)/2π [Hz]."""
-        return math.sqrt(self.k_nn / self.m_head_kg) / (2 * math.pi)
-
-    @property
     def alpha(self) -> float:
-        """The geometry's α = k_nn/k_tt [-]."""
-        return self.k_nn / self.k_tt
+        """The geometry's α = (f_v/f_h)² [-]."""
+        return (self.f_v_hz / self.f_h_hz) ** 2
 
 
 @dataclass(frozen=True)
