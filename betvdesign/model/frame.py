@@ -68,8 +68,8 @@ __all__ = [
     "contact_offset",
     "directional_mass",
     "first_mode",
-    "head_compliance",
     "frame_stiffness",
+    "head_compliance",
     "head_covers_tip",
     "head_disc_diameter",
     "head_radius_min",
@@ -422,7 +422,7 @@ def rayleigh_matrices(
     C = Kinv[..., :2, :2]
     xp, yp = g.head_centre
     M = np.zeros((*C.shape[:-2], 2, 2))
-    s_, w_ = _gauss()
+    _, w_ = _gauss()
     arms = (
         (0.0, [(0.0, g.length, t * g.hot_width, t * g.hot_width**3 / 12)]),
         (
