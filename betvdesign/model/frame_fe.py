@@ -34,7 +34,15 @@ import numpy as np
 from betvdesign.errors import BetvError
 from betvdesign.model.frame import FrameGeometry, FrameStiffness, Rect, shape
 
-__all__ = ["FeResult", "converged", "frame_fe", "plane_stress_stiffness"]
+__all__ = [
+    "FeModes",
+    "FeResult",
+    "converged",
+    "frame_fe",
+    "frame_modes",
+    "plane_stress_modes",
+    "plane_stress_stiffness",
+]
 
 _UM = 1e6
 
@@ -74,36 +82,20 @@ def _breaks(
     return np.concatenate(out)
 
 
-def plane_stress_stiffness(
+def _assemble(
     rects: Sequence[Rect],
     discs: Sequence[tuple[float, float, float]],
-    *,
     youngs_modulus: float,
     poisson_ratio: float,
     thickness: float,
-    load: Callable[[np.ndarray, np.ndarray], np.ndarray] | None,
-    clamp_x: float = 0.0,
-    traction_x: float | None = None,
-    guided: bool = False,
     h_across: float,
     h_along: float,
-    fine: Sequence[tuple[float, float, float]] | None = None,
-) -> FeResult:
-    """The 2×2 stiffness [N/m] at a loaded region of a plane-stress body (module doc).
-
-    rects, discs: the body, in m (discs as (cx, cy, r)); load: a predicate on cell
-    centres (µm) choosing the loaded cells (body load, mean displacement), or None to
-    load the end face x = ``traction_x`` [m] with a uniform traction instead (the
-    textbook cantilever); guided: that end face also keeps u_x = 0 (a guided end);
-    clamp_x: the clamped edge [m]; h_across / h_along: largest cell size across (y) and
-    along (x) [m]; fine: y-bands (lo, hi, size) [m] with their own cell size across
-    (h_across everywhere when None; outside the bands cells are h_along square).
-    """
+    fine: Sequence[tuple[float, float, float]] | None,
+) -> tuple:
+    """The mesh of the drawn body (module doc), its Q2 vector basis and stiffness matrix."""
     skfem = _skfem()
-    from scipy.sparse.linalg import splu
     from skfem.helpers import ddot, sym_grad, trace
 
-    t0 = time.perf_counter()
     xs_e = [r.x0 for r in rects] + [r.x1 for r in rects]
     ys_e = [r.y0 for r in rects] + [r.y1 for r in rects]
     for cx, cy, r in discs:
@@ -138,6 +130,41 @@ def plane_stress_stiffness(
         return t * ddot(sig, ev)
 
     K = stiffness.assemble(basis)
+    return mesh, basis, K
+
+
+def plane_stress_stiffness(
+    rects: Sequence[Rect],
+    discs: Sequence[tuple[float, float, float]],
+    *,
+    youngs_modulus: float,
+    poisson_ratio: float,
+    thickness: float,
+    load: Callable[[np.ndarray, np.ndarray], np.ndarray] | None,
+    clamp_x: float = 0.0,
+    traction_x: float | None = None,
+    guided: bool = False,
+    h_across: float,
+    h_along: float,
+    fine: Sequence[tuple[float, float, float]] | None = None,
+) -> FeResult:
+    """The 2×2 stiffness [N/m] at a loaded region of a plane-stress body (module doc).
+
+    rects, discs: the body, in m (discs as (cx, cy, r)); load: a predicate on cell
+    centres (µm) choosing the loaded cells (body load, mean displacement), or None to
+    load the end face x = ``traction_x`` [m] with a uniform traction instead (the
+    textbook cantilever); guided: that end face also keeps u_x = 0 (a guided end);
+    clamp_x: the clamped edge [m]; h_across / h_along: largest cell size across (y) and
+    along (x) [m]; fine: y-bands (lo, hi, size) [m] with their own cell size across
+    (h_across everywhere when None; outside the bands cells are h_along square).
+    """
+    skfem = _skfem()
+    from scipy.sparse.linalg import splu
+
+    t0 = time.perf_counter()
+    mesh, basis, K = _assemble(rects, discs, youngs_modulus, poisson_ratio, thickness,
+                               h_across, h_along, fine)  # fmt: skip
+    e = basis.elem
     clamped = basis.get_dofs(lambda x: np.isclose(x[0], clamp_x * _UM, atol=1e-6)).all()
     fixed = [clamped]
     if load is None:
@@ -178,13 +205,75 @@ def plane_stress_stiffness(
     )
 
 
-def frame_fe(g: FrameGeometry, *, poisson_ratio: float = 0.22, level: int = 1) -> FeResult:
-    """The plane-stress FE stiffness of the actuator ``g`` at its head (module doc).
+@dataclass(frozen=True)
+class FeModes:
+    """The lowest in-plane natural frequencies [Hz] of a plane-stress body, with the
+    mesh's size."""
 
-    level: mesh refinement; level 1 puts 4 cells across each arm and the flexure, cells
-    along the arms (and everywhere else) at most 4 times the narrowest arm's cell; each
-    level halves both.
-    """
+    frequencies_hz: tuple[float, ...]
+    cells: int
+    dofs: int
+    elapsed_s: float
+
+
+def plane_stress_modes(
+    rects: Sequence[Rect],
+    discs: Sequence[tuple[float, float, float]],
+    *,
+    youngs_modulus: float,
+    poisson_ratio: float,
+    thickness: float,
+    density: float,
+    lumped: Callable[[np.ndarray, np.ndarray], np.ndarray] | None = None,
+    lumped_mass: float = 0.0,
+    clamp_x: float = 0.0,
+    h_across: float,
+    h_along: float,
+    fine: Sequence[tuple[float, float, float]] | None = None,
+    count: int = 1,
+) -> FeModes:
+    """The ``count`` lowest natural frequencies [Hz] of the plane-stress body of
+    :func:`plane_stress_stiffness` (same mesh, elements and clamp), from K·φ = ω²·M·φ with
+    the consistent mass matrix M = ρ·t·∫ φ·ψ dA (shift-invert Lanczos about 0).
+
+    density: the body's [kg/m³]; lumped, lumped_mass: the cells (a predicate on their
+    centres, µm) whose mass is replaced by ``lumped_mass`` [kg] spread uniformly over
+    them (the head: its mass the model's m, whatever the film's density)."""
+    skfem = _skfem()
+    from scipy.sparse.linalg import eigsh
+    from skfem.helpers import dot
+
+    t0 = time.perf_counter()
+    mesh, basis, K = _assemble(rects, discs, youngs_modulus, poisson_ratio, thickness,
+                               h_across, h_along, fine)  # fmt: skip
+    t = thickness * _UM
+    rho = density * 1e-18  # kg/µm³
+
+    @skfem.BilinearForm
+    def mass(u, v, w):
+        return dot(u, v)
+
+    M = mass.assemble(basis) * (rho * t)
+    if lumped is not None:
+        cc = mesh.p[:, mesh.t].mean(axis=1)
+        cells = np.nonzero(lumped(cc[0], cc[1]))[0]
+        if cells.size == 0:
+            raise BetvError("finite-element model: no mesh cell in the lumped-mass region")
+        hb = skfem.Basis(mesh, basis.elem, elements=cells, intorder=4)
+        area = float(np.sum(hb.dx))
+        M = M + mass.assemble(hb) * (lumped_mass / area - rho * t)
+    clamped = basis.get_dofs(lambda x: np.isclose(x[0], clamp_x * _UM, atol=1e-6)).all()
+    free = np.setdiff1d(np.arange(basis.N), clamped)
+    w2 = eigsh(K[free][:, free].tocsc(), k=count, M=M[free][:, free].tocsc(), sigma=0.0,
+               which="LM", return_eigenvectors=False)  # fmt: skip
+    f = tuple(float(x) for x in np.sort(np.sqrt(np.abs(w2)) / (2 * math.pi)))
+    return FeModes(f, int(mesh.t.shape[1]), int(basis.N), time.perf_counter() - t0)
+
+
+def _frame_body(
+    g: FrameGeometry, level: int
+) -> tuple[list[Rect], list, Callable[[np.ndarray, np.ndarray], np.ndarray], dict]:
+    """The drawn actuator's polygons for the FE, the head's cells and the mesh sizes."""
     rects, (cx, cy, hx, hy, kind) = shape(g)
     body = [r for r in rects if not r.name.startswith("anchor")]
     w_min = float(min(g.hot_width, g.flexure_width, g.cold_width, g.gap))
@@ -192,36 +281,72 @@ def frame_fe(g: FrameGeometry, *, poisson_ratio: float = 0.22, level: int = 1) -
     if kind == "disc":
         discs = [(cx, cy, hx)]
 
-        def load(x: np.ndarray, y: np.ndarray) -> np.ndarray:
+        def head(x: np.ndarray, y: np.ndarray) -> np.ndarray:
             return (x - cx * _UM) ** 2 + (y - cy * _UM) ** 2 < (hx * _UM) ** 2
 
     else:
         discs = []
-        head = Rect("head", cx - hx, cy - hy, cx + hx, cy + hy)
-        body.append(head)
+        box = Rect("head", cx - hx, cy - hy, cx + hx, cy + hy)
+        body.append(box)
 
-        def load(x: np.ndarray, y: np.ndarray) -> np.ndarray:
-            return (
-                (x > head.x0 * _UM)
-                & (x < head.x1 * _UM)
-                & (y > head.y0 * _UM)
-                & (y < head.y1 * _UM)
-            )
+        def head(x: np.ndarray, y: np.ndarray) -> np.ndarray:
+            return (x > box.x0 * _UM) & (x < box.x1 * _UM) & (y > box.y0 * _UM) & (y < box.y1 * _UM)
 
+    sizes = {
+        "h_across": h,
+        "h_along": 4 * h,
+        "fine": [
+            (r.y0, r.y1, (r.y1 - r.y0) / (4 * 2 ** (level - 1)))
+            for r in body
+            if r.name in ("hot_arm", "flexure", "cold_arm")
+        ],
+    }
+    return body, discs, head, sizes
+
+
+def frame_modes(
+    g: FrameGeometry,
+    *,
+    density: float,
+    head_mass: float,
+    poisson_ratio: float = 0.22,
+    level: int = 1,
+    count: int = 1,
+) -> FeModes:
+    """The drawn actuator's lowest in-plane natural frequencies [Hz] (plane stress, the
+    mesh of :func:`frame_fe` at ``level``): the film of ``density`` [kg/m³], the head's
+    cells carrying ``head_mass`` [kg], clamped at the anchors' edge x = 0."""
+    body, discs, head, sizes = _frame_body(g, level)
+    return plane_stress_modes(
+        body,
+        discs,
+        youngs_modulus=float(g.youngs_modulus),
+        poisson_ratio=poisson_ratio,
+        thickness=float(g.thickness),
+        density=density,
+        lumped=head,
+        lumped_mass=head_mass,
+        count=count,
+        **sizes,
+    )
+
+
+def frame_fe(g: FrameGeometry, *, poisson_ratio: float = 0.22, level: int = 1) -> FeResult:
+    """The plane-stress FE stiffness of the actuator ``g`` at its head (module doc).
+
+    level: mesh refinement; level 1 puts 4 cells across each arm and the flexure, cells
+    along the arms (and everywhere else) at most 4 times the narrowest arm's cell; each
+    level halves both.
+    """
+    body, discs, head, sizes = _frame_body(g, level)
     return plane_stress_stiffness(
         body,
         discs,
         youngs_modulus=float(g.youngs_modulus),
         poisson_ratio=poisson_ratio,
         thickness=float(g.thickness),
-        load=load,
-        h_across=h,
-        h_along=4 * h,
-        fine=[
-            (r.y0, r.y1, (r.y1 - r.y0) / (4 * 2 ** (level - 1)))
-            for r in body
-            if r.name in ("hot_arm", "flexure", "cold_arm")
-        ],
+        load=head,
+        **sizes,
     )
 
 

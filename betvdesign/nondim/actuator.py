@@ -273,7 +273,7 @@ def _modal_springs(
                  "1/(C_tt + C_s,t)", ureg.Quantity(1 / ctot_t, nm), ("C_tt", "C_s,t"),
                  "N/m")  # fmt: skip
     rho = c_nt / np.sqrt(ctot_n * ctot_t)
-    rec.add("ρ", "spring coupling (the model has none)", "C_nt/√((C_nn + C_s,n)(C_tt + C_s,t))",
+    rec.add("ρ_C", "spring coupling (the model has none)", "C_nt/√((C_nn + C_s,n)(C_tt + C_s,t))",
             ureg.Quantity(rho, cached_unit("")), ("C_nt", "C_nn", "C_tt", "C_s,n", "C_s,t"),
             "", signed=True)  # fmt: skip
     m_kg = np.asarray(mag(m, "kg"), dtype=float)
