@@ -254,16 +254,18 @@ def _modal_springs(
     L_s, w_s, t_s, E_s, a_s = _slider_contact(spec, aset, float(np.max(fg.head_x)))
     rec.add("a_s", "the contact's distance from the slider beam's nearer end (as betv layout "
             "draws it)", "L_s/2 − max(L_s/4, r_head + spacing) (+ 2(r_head + spacing) per "
-            "earlier set striking the same way)", ureg.Quantity(a_s, "m").to(cached_unit("um")),
-            ("r_head",), "um")  # fmt: skip
+            "earlier set striking the same way; 0 at or beyond the end piece)",
+            ureg.Quantity(a_s, "m").to(cached_unit("um")), ("r_head",), "um",
+            signed=True)  # fmt: skip
     cs_n, cs_t = slider_point_compliance(L_s, w_s, t_s, E_s, a_s, spec.slider.beam_count)
     rec.add("C_s,n", "slider beam's bending compliance at the contact (both ends fixed by "
             "the mirrored pair of heads; none with one beam)",
             "a³b³/(3·E·I·L³), b = L − a, I = t·w³/12 (Roark, Formulas for Stress and Strain, "
-            "Table 8.1 case 1d)", ureg.Quantity(cs_n, mn), ("a_s",), "m/N")  # fmt: skip
+            "Table 8.1 case 1d)", ureg.Quantity(cs_n, mn), ("a_s",), "m/N",
+            signed=True)  # fmt: skip
     rec.add("C_s,t", "slider beam's axial compliance at the contact (both ends fixed)",
             "a·b/(E·A·L), A = w·t (Gere, Mechanics of Materials, statically indeterminate "
-            "bar)", ureg.Quantity(cs_t, mn), ("a_s",), "m/N")  # fmt: skip
+            "bar)", ureg.Quantity(cs_t, mn), ("a_s",), "m/N", signed=True)  # fmt: skip
     ctot_n, ctot_t = c_nn + cs_n, c_tt + cs_t
     nm = cached_unit("N/m")
     kv = rec.add("k_v,geom", "normal spring of the drawn head against the slider",

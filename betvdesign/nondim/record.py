@@ -309,6 +309,20 @@ class SetDerivation:
         by_key = {s.key: s for s in self.record}
         return {k: by_key[k].value_str for k in DERIVED_KEYS if k in by_key}
 
+    def drawn(self) -> dict[str, float | None]:
+        """The drawn actuator's mechanics for ``betv check --json`` (``derived.drawn``),
+        float SI, each None without a drawing: f_v_hz, f_h_hz (the drawn resonances),
+        k_v_n_m, k_h_n_m (the head's springs, each direction with the other free, slider
+        in series), m_eff_kg (the normal spring's Rayleigh effective mass), coupling (ρ),
+        f_1_hz (the actuator's first in-plane mode) and f_oop_hz (the first out-of-plane
+        mode: not computed yet, always None)."""
+        sp = self.springs
+        keys = ("f_v_hz", "f_h_hz", "k_v_n_m", "k_h_n_m", "m_eff_kg", "coupling", "f_1_hz")
+        if sp is None:
+            return {**dict.fromkeys(keys), "f_oop_hz": None}
+        vals = (sp.f_v_hz, sp.f_h_hz, sp.k_v, sp.k_h, sp.m_v_kg, sp.rho, sp.f_1_hz)
+        return {**{k: float(v) for k, v in zip(keys, vals, strict=True)}, "f_oop_hz": None}
+
 
 @dataclass(frozen=True)
 class DeviceDerivation:
