@@ -151,3 +151,44 @@ def test_drawn_resonances_are_the_structures_kilohertz(stem):
         assert 1e3 < sp.f_v_hz < 2e5 and 1e3 < sp.f_h_hz < 2e5
         assert sp.f_v_hz == pytest.approx(sp.f_1_hz, rel=0.1)
         assert d.step("f_v").value.to("Hz").magnitude == pytest.approx(sp.f_v_hz, rel=1e-12)
+
+
+def _with_resonances(f_v: str, alpha: str) -> str:
+    text = (DEVICES / "shin2004.yaml").read_text()
+    text = text.replace("vertical_resonance: 2.94 kHz", f"vertical_resonance: {f_v}")
+    return re.sub(r"alpha: 0\.1 ", f"alpha: {alpha} ", text)
+
+
+def test_measured_values_win_with_a_note_within_2x_and_a_warning_beyond():
+    from betvdesign.checks.actuator_rules import PREDICTION_FACTOR, actuator_rules
+
+    base = derive(load_device_text(_with_resonances("2.94 kHz", "0.1"), "s.yaml")).sets[0]
+    sp = base.springs
+    # within 2× of the drawn values: a note (info, passed)
+    near = _with_resonances(f"{sp.f_v_hz / 1.9 / 1e3:.6g} kHz", f"{sp.alpha * 1.9:.6g}")
+    d = derive(load_device_text(near, "s.yaml")).sets[0]
+    r = {x.id: x for x in actuator_rules(d)}["actuator.geometry"]
+    assert r.passed and r.severity == "info" and "note" in r.message
+    assert d.params.varpi == pytest.approx(1e3 / (sp.f_v_hz / 1.9), rel=1e-5)  # the file's
+    # beyond 2×: a warning naming the likely cause
+    far = _with_resonances(f"{sp.f_v_hz / 2.1 / 1e3:.6g} kHz", f"{sp.alpha:.6g}")
+    r = {x.id: x for x in actuator_rules(derive(load_device_text(far, "s.yaml")).sets[0])}
+    g = r["actuator.geometry"]
+    assert not g.passed and g.severity == "warning" and "likely cause: f_v" in g.message
+    assert PREDICTION_FACTOR == 2.0
+
+
+def test_drawn_json_fields_are_null_without_a_drawing():
+    text = (DEVICES / "shin2004.yaml").read_text()
+    plain = re.sub(r"\n *# The drawn hot/cold[^\n]*\n *# compared[^\n]*", "", text)
+    plain = re.sub(r"\n *geometry:\n( {8,}[a-z_]+: [^\n]*\n?)+", "\n", plain)
+    keys = {"f_v_hz", "f_h_hz", "k_v_n_m", "k_h_n_m", "m_eff_kg", "coupling", "f_1_hz",
+            "f_oop_hz"}  # fmt: skip
+    none = derive(load_device_text(plain, "s.yaml")).sets[0].drawn()
+    assert set(none) == keys and all(v is None for v in none.values())
+    d = derive(load_device_text(text, "s.yaml")).sets[0]
+    drawn = d.drawn()
+    assert set(drawn) == keys and drawn["f_oop_hz"] is None
+    assert drawn["f_v_hz"] == pytest.approx(
+        math.sqrt(drawn["k_v_n_m"] / drawn["m_eff_kg"]) / (2 * math.pi), rel=1e-12
+    )
