@@ -125,11 +125,11 @@ def test_own_designs_pass(name):
     # contact), so it warns here by design (tests/test_adequacy.py).
     # process.release: a 36 µm head needs etch holes in the process; a device file cannot
     # show them, `betv layout` draws them (issue 23)
-    kept = [
-        x
-        for x in full["rules"]
-        if x["severity"] != "info" and x["id"] not in ("model-adequacy", "process.release")
-    ]
+    # actuator.geometry: the demo files' phenomenological resonances (2.9–6 kHz) are 20–30×
+    # below their drawn actuators' first in-plane mode; the file's values win and the rule
+    # warns with the likely cause (issue 30, item 5)
+    skip = ("model-adequacy", "process.release", "actuator.geometry")
+    kept = [x for x in full["rules"] if x["severity"] != "info" and x["id"] not in skip]
     assert all(x["passed"] for x in kept), full["rules"]
     assert all(s["adequacy"]["reference_mode"] == s["mode"] for s in d["sets"])
     for s, sfull in zip(d["sets"], full["sets"], strict=True):
