@@ -47,9 +47,9 @@ def actuator_rules(s: SetDerivation) -> list[RuleResult]:
     return [_geometry(s), *out]
 
 
-def _ratio_text(a: float, b: float) -> str:
+def _times(a: float, b: float) -> str:
     r = a / b
-    return f"{r:.3g}× the file's" if r >= 1 else f"{1 / r:.3g}× below the file's"
+    return f"{r:.3g}×" if r >= 1 else f"1/{1 / r:.3g}"
 
 
 def _far(a: float, b: float) -> float:
@@ -60,23 +60,13 @@ def _far(a: float, b: float) -> float:
 def _cause(sp: HeadSprings, which: str) -> str:
     """The likely cause of a drawn prediction far from the file's measured value."""
     if which == "α":
-        return (
-            "α: the drawn head moves along its stroke (ρ = "
-            f"{sp.rho:.3g}), so its normal and tangential resonances are one mode and α ≈ 1; "
-            "a small measured α means a tangential spring the drawing does not have "
-            "(contact compliance, a stiffer tangential support) or a fitted α"
-        )
+        return f"α: the drawn head is one mode along its stroke (ρ {sp.rho:.2g}, α ≈ 1)"
     if sp.file_f_v_hz is not None and sp.f_v_hz > sp.file_f_v_hz:
         return (
-            f"f_v: the file's {format_si(sp.file_f_v_hz, 'Hz')} lies far below the drawn "
-            f"actuator's first in-plane mode ({format_si(sp.f_1_hz, 'Hz')}): the measured "
-            "resonance is likely another mode (out of plane, the slider's, the "
-            "package's), the head heavier than drawn, or the drawing not the device measured"
+            "another mode measured (the drawn first in-plane mode is "
+            f"{format_si(sp.f_1_hz, 'Hz')}), a heavier head, or not the drawn device"
         )
-    return (
-        "f_v: the drawing is stiffer or lighter than the device: arms or flexure drawn "
-        "wider or shorter than made, or the process's E or thickness off"
-    )
+    return "the drawing stiffer or lighter than the device (widths, lengths, E, t)"
 
 
 def _geometry(s: SetDerivation) -> RuleResult:
@@ -105,32 +95,29 @@ def _geometry(s: SetDerivation) -> RuleResult:
     parts, far = [], []
     if sp.file_f_v_hz is not None:
         parts.append(
-            f"f_v {format_si(sp.f_v_hz, 'Hz')} ({_ratio_text(sp.f_v_hz, sp.file_f_v_hz)} "
-            f"{format_si(sp.file_f_v_hz, 'Hz')})"
+            f"f_v {format_si(sp.f_v_hz, 'Hz')} vs the file's {format_si(sp.file_f_v_hz, 'Hz')} "
+            f"({_times(sp.f_v_hz, sp.file_f_v_hz)})"
         )
         if _far(sp.f_v_hz, sp.file_f_v_hz) > PREDICTION_FACTOR:
             far.append("f_v")
     if sp.file_alpha is not None:
-        parts.append(
-            f"α {sp.alpha:.3g} ({_ratio_text(sp.alpha, sp.file_alpha)} {sp.file_alpha:.3g})"
-        )
+        parts.append(f"α {sp.alpha:.3g} vs {sp.file_alpha:.3g}")
         if _far(sp.alpha, sp.file_alpha) > PREDICTION_FACTOR:
             far.append("α")
-    which = " and ".join(
-        "the file's " + ("f_v" if k == "k_v" else "α")
-        if v == "file"
-        else "the drawing's " + ("f_v" if k == "k_v" else "α")
-        for k, v in used.items()
+    which = (
+        "the file's"
+        if set(used.values()) == {"file"}
+        else ", ".join(
+            ("the file's " if v == "file" else "the drawing's ") + ("f_v" if k == "k_v" else "α")
+            for k, v in used.items()
+        )
     )
     ok = not far
-    msg = f"the drawn actuator gives {'; '.join(parts)}; the check uses {which}"
+    msg = f"drawn {', '.join(parts)}; {which} used"
     if ok:
-        msg += f" (within {PREDICTION_FACTOR:g}× of each other: a note)"
+        msg += f" (within {PREDICTION_FACTOR:g}×: a note)"
     else:
-        msg += (
-            f": {', '.join(far)} more than {PREDICTION_FACTOR:g}× apart; likely cause: "
-            + "; ".join(_cause(sp, w) for w in far)
-        )
+        msg += f". Likely cause: {_cause(sp, far[0])}"
     return RuleResult(
         "actuator.geometry",
         "info" if ok else "warning",
@@ -141,10 +128,7 @@ def _geometry(s: SetDerivation) -> RuleResult:
         msg,
         SRC,
         set_name=s.name,
-        fix=""
-        if ok
-        else "measure the head's resonances again, or correct the drawing; remove the file's "
-        "resonances (or α) to use the drawing's",
+        fix="" if ok else "measure the resonances again or correct the drawing",
         unit="Hz",
     )
 
