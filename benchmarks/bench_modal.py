@@ -1,7 +1,8 @@
 """The drawn actuator's first in-plane mode: Rayleigh–Ritz closed form against modal FE
 (issue 30).
 
-    python benchmarks/bench_modal.py            # the table below, into benchmarks/README.md
+    python benchmarks/bench_modal.py            # in-plane: the table of benchmarks/README.md
+    python benchmarks/bench_modal.py oop 10     # out of plane: shipped + 10 seeded, 3-D FE
 
 The closed form (:func:`betvdesign.model.frame.rayleigh_matrices`,
 :func:`~betvdesign.model.frame.first_mode`: the frame's flexibility-method compliance and
@@ -13,6 +14,13 @@ with its head) and the 50 seeded random ones of
 :func:`betvdesign.model.frame.random_geometries` (film density 2330 kg/m³; heads: the
 drawn disc or box of that film, so the head's mass is its area × t × ρ). Writes
 ``benchmarks/out/modal.json`` and prints the Markdown table of benchmarks/README.md.
+
+``oop N``: the first out-of-plane mode of
+:func:`betvdesign.model.frame.out_of_plane_first_mode` against the 3-D solid FE
+(:func:`betvdesign.model.frame_fe.frame_modes_3d`, level 1: one 27-node hexahedron through
+the film) on the shipped actuators and the first N seeded ones; the FE's first mode with
+more than half its kinetic energy out of the plane is the reference. Writes
+``benchmarks/out/modal_oop.json``.
 """
 
 from __future__ import annotations
@@ -103,5 +111,32 @@ def main() -> None:
     )
 
 
+def oop(n: int) -> None:
+    from betvdesign.model.frame import out_of_plane_first_mode
+    from betvdesign.model.frame_fe import frame_modes_3d
+
+    cases = _cases()
+    cases = [c for c in cases if not c[0].startswith("random")] + [
+        c for c in cases if c[0].startswith("random")
+    ][:n]
+    rows = []
+    for name, g, m, nu in cases:
+        f_cf = float(out_of_plane_first_mode(g, RHO, m, nu))
+        modes, shares = frame_modes_3d(g, density=RHO, head_mass=m, poisson_ratio=nu, count=3)
+        f_fe = next(f for f, z in zip(modes.frequencies_hz, shares, strict=True) if z > 0.5)
+        rows.append({"name": name, "f_closed_hz": f_cf, "f_fe_hz": f_fe,
+                     "err_closed": f_cf / f_fe - 1, "t_fe_s": modes.elapsed_s,
+                     "dofs": modes.dofs})  # fmt: skip
+        print(f"| {name} | {f_cf / 1e3:.2f} kHz | {f_fe / 1e3:.2f} kHz | {f_cf / f_fe - 1:+.2%} | "
+              f"{modes.elapsed_s:.0f} s |", flush=True)  # fmt: skip
+    OUT.mkdir(parents=True, exist_ok=True)
+    (OUT / "modal_oop.json").write_text(json.dumps(rows, indent=1) + "\n")
+    errs = [abs(r["err_closed"]) for r in rows]
+    print(f"all {len(rows)}: max |error| {max(errs):.2%}, median {statistics.median(errs):.2%}")
+
+
 if __name__ == "__main__":
-    main()
+    if len(sys.argv) > 1 and sys.argv[1] == "oop":
+        oop(int(sys.argv[2]) if len(sys.argv) > 2 else 10)
+    else:
+        main()

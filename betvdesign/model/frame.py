@@ -73,11 +73,13 @@ __all__ = [
     "head_covers_tip",
     "head_disc_diameter",
     "head_radius_min",
+    "out_of_plane_first_mode",
     "random_geometries",
     "rayleigh_matrices",
     "shape",
     "slider_point_compliance",
     "slider_springs",
+    "torsion_constant",
 ]
 
 #: Axial compliance of a joint, in widths of the arm entering a wider body (see above).
@@ -469,17 +471,18 @@ def rayleigh_matrices(
 
 
 def first_mode(C: np.ndarray, M: np.ndarray) -> tuple[Any, np.ndarray]:
-    """The Rayleigh–Ritz first mode of :func:`rayleigh_matrices`: (f_1 [Hz], the load
-    direction (…, 2) whose static shape it is)."""
-    # ω² = fᵀCf/fᵀMf: the smallest eigenvalue of M⁻¹C... in symmetric form via Cholesky of M
-    Lm = np.linalg.cholesky(M)
-    Li = np.linalg.inv(Lm)
-    S = Li @ C @ np.swapaxes(Li, -1, -2)
+    """The Rayleigh–Ritz first mode of a compliance C and mass M in load coordinates
+    (:func:`rayleigh_matrices`, :func:`out_of_plane_first_mode`): (f_1 [Hz], the unit
+    load (…, n) whose static shape it is). ω² = min fᵀCf/fᵀMf, taken as 1/max of
+    fᵀMf/fᵀCf through the Cholesky factor of C (positive definite for a connected frame;
+    M may be singular, e.g. a point head on massless arms)."""
+    Lc = np.linalg.cholesky(C)
+    Li = np.linalg.inv(Lc)
+    S = Li @ M @ np.swapaxes(Li, -1, -2)
     lam, vec = np.linalg.eigh(S)
-    w2 = lam[..., 0]
-    f = np.swapaxes(Li, -1, -2) @ vec[..., :, :1]
+    f = np.swapaxes(Li, -1, -2) @ vec[..., :, -1:]
     f = f[..., 0] / np.linalg.norm(f[..., 0], axis=-1, keepdims=True)
-    return np.sqrt(w2) / (2 * math.pi), f
+    return 1 / np.sqrt(lam[..., -1]) / (2 * math.pi), f
 
 
 def directional_mass(C: np.ndarray, M: np.ndarray, direction: np.ndarray) -> tuple[Any, Any]:
@@ -490,6 +493,105 @@ def directional_mass(C: np.ndarray, M: np.ndarray, direction: np.ndarray) -> tup
     c = np.einsum("...i,...ij,...j->...", d, C, d)
     m = np.einsum("...i,...ij,...j->...", d, M, d)
     return 1 / c, m / (c * c)
+
+
+def torsion_constant(a: Any, b: Any) -> Any:
+    """Saint-Venant torsion constant J [m⁴] of an a × b rectangle (any order): with
+    h ≥ k its sides, J = h·k³·(1/3 − 0.21·(k/h)·(1 − k⁴/(12·h⁴))) (Roark, Formulas for
+    Stress and Strain, 7th ed., Table 10.7 case 4; within 4 % for every aspect ratio)."""
+    h, k = np.maximum(a, b), np.minimum(a, b)
+    return h * k**3 * (1 / 3 - 0.21 * (k / h) * (1 - k**4 / (12 * h**4)))
+
+
+def out_of_plane_first_mode(
+    g: FrameGeometry, arm_density: Any, head_mass: Any, poisson_ratio: Any = 0.22
+) -> Any:
+    """The drawn actuator's first out-of-plane mode [Hz] (Rayleigh–Ritz, closed form).
+
+    Each arm bends out of the plane (I = w·t³/12, the in-plane integrals of
+    :func:`beam_tip_compliance` with it) and twists (G·J, G = E/(2(1 + ν)), J of
+    :func:`torsion_constant`), clamped at its root; the rigid tip and head move by
+    (w, θ_x, θ_y) at P, an arm's end at (Δx, Δy) from P by (w + θ_x·Δy − θ_y·Δx, slope
+    −θ_y, twist θ_x). The static shapes under a force and two moments at P (each arm's
+    exact static bending shape, linear twist) give the 3×3 compliance and Rayleigh–Ritz
+    mass (arms' translation and twist inertia ρ·A·(w² + t²)/12, the tip's and head's
+    translation and rotation about x and y; a disc head m·r²/4 about each, a box
+    m·(2a)²/12 about the axis across a); the first mode is the smallest eigenvalue."""
+    t, E = g.thickness, g.youngs_modulus
+    G = E / (2 * (1 + poisson_ratio))
+    xp, yp = g.head_centre
+    arms = (
+        (0.0, [(0.0, g.length, g.hot_width)]),
+        (g.d, [(0.0, g.flexure_length, g.flexure_width), (g.flexure_length, g.length,
+                                                          g.cold_width)]),
+    )  # fmt: skip
+    Kp = 0.0
+    Ts, parts = [], []
+    for yb, segs in arms:
+        bend = [(x1 - x0, t * w, w * t**3 / 12) for x0, x1, w in segs]
+        Cb = beam_tip_compliance(bend, E)[..., 1:, 1:]  # (w, slope)
+        c_phi = sum((x1 - x0) / (G * torsion_constant(w, t)) for x0, x1, w in segs)
+        shp = np.broadcast(Cb[..., 0, 0], c_phi).shape
+        Ka = np.zeros((*shp, 3, 3))
+        Ka[..., :2, :2] = np.linalg.inv(Cb)
+        Ka[..., 2, 2] = 1 / c_phi
+        dx, dy = g.length - xp, yb - yp
+        T = np.zeros((*np.broadcast(dx, dy).shape, 3, 3))
+        T[..., 0, 0] = 1.0
+        T[..., 0, 1] = dy
+        T[..., 0, 2] = -dx
+        T[..., 1, 2] = -1.0
+        T[..., 2, 1] = 1.0
+        Kp = Kp + np.swapaxes(T, -1, -2) @ Ka @ T
+        Ts.append(T)
+        parts.append((segs, c_phi))
+    C = np.linalg.inv(Kp)  # (w, θx, θy) per unit (F, Mx, My)
+    M = np.zeros(C.shape)
+    _, wq = _gauss()
+    for T, (segs, c_phi) in zip(Ts, parts, strict=True):
+        ends = T @ C  # each column: the arm end's (w, slope, twist) under one unit load
+        bend_segs = [(x0, x1, t * w, w * t**3 / 12) for x0, x1, w in segs]
+        shapes = []
+        for j in range(3):
+            tip = np.stack(np.broadcast_arrays(0.0 * ends[..., 0, j], ends[..., 0, j],
+                                               ends[..., 1, j]), axis=-1)  # fmt: skip
+            shapes.append(_segmented_shape(bend_segs, g.length, tip, E))
+        for i in range(3):
+            for j in range(3):
+                for (x0, x1, _, vi), (_, _, _, vj), (_, _, w) in zip(
+                    shapes[i], shapes[j], segs, strict=True
+                ):
+                    dxs = np.asarray(x1) - np.asarray(x0)
+                    M[..., i, j] += arm_density * t * w * np.sum(vi * vj * wq, axis=-1) * dxs
+        # twist: linear in the torsional compliance along the arm, φ(x) = φ_B·c(x)/c_phi
+        tw = ends[..., 2, :]  # (…, 3)
+        acc = 0.0
+        for x0, x1, w in segs:
+            c0 = acc
+            c1 = acc + (x1 - x0) / (G * torsion_constant(w, t))
+            # ∫ (c(x)/c_phi)² dx over the segment, c linear from c0 to c1
+            frac = (c0 * c0 + c0 * c1 + c1 * c1) / 3 / (c_phi * c_phi) * (x1 - x0)
+            ip = arm_density * t * w * (w * w + t * t) / 12
+            M = M + (ip * frac)[..., None, None] * (tw[..., :, None] * tw[..., None, :])
+            acc = c1
+    H = g.tip_height
+    m_tip = arm_density * t * g.tip_length * H
+    tip_c = (g.length + g.tip_length / 2, (g.d + g.cold_width / 2 - g.hot_width / 2) / 2)
+    hy = g.head_x if g.head_y is None else g.head_y
+    if g.head_shape == "disc":
+        jx = jy = head_mass * g.head_x**2 / 4
+    else:
+        jx, jy = head_mass * (2 * hy) ** 2 / 12, head_mass * (2 * g.head_x) ** 2 / 12
+    bodies = (
+        (m_tip, m_tip * H**2 / 12, m_tip * g.tip_length**2 / 12, tip_c),
+        (head_mass, jx, jy, (xp, yp)),
+    )
+    for m_b, j_x, j_y, (cx, cy) in bodies:
+        w_c = C[..., 0, :] + C[..., 1, :] * (cy - yp) - C[..., 2, :] * (cx - xp)
+        M = M + m_b * w_c[..., :, None] * w_c[..., None, :]
+        M = M + j_x * C[..., 1, :, None] * C[..., 1, None, :]
+        M = M + j_y * C[..., 2, :, None] * C[..., 2, None, :]
+    return first_mode(C, M)[0]
 
 
 #: Seed of the random actuators the closed form's error is stated on.

@@ -47,6 +47,7 @@ from betvdesign.model.frame import (
     frame_stiffness,
     head_compliance,
     head_disc_diameter,
+    out_of_plane_first_mode,
     rayleigh_matrices,
     slider_point_compliance,
     slider_springs,
@@ -101,6 +102,12 @@ class ActuatorInputs:
             nu = geo.poisson_ratio
             self.t_path, self.e_path = f"{g}.thickness", f"{g}.youngs_modulus"
         self.poisson = DEFAULT_POISSON if nu is None else float(nu)
+        if geo.poisson_ratio is not None:
+            self.nu_source = f"spec: {g}.poisson_ratio"
+        elif nu is not None:
+            self.nu_source = f"spec: process {p.name}: layers.{self.layer}.poisson_ratio"
+        else:
+            self.nu_source = "polysilicon, Sharpe et al. 1997 (the default)"
         self.density = (aset.head.material or spec.material).density
         self.arm_density = spec.material.density
         head = aset.head.geometry
@@ -307,6 +314,14 @@ def _modal_springs(
     rec.add("f_1", "first in-plane mode of the drawn actuator with its head, free of the "
             "slider (Rayleigh–Ritz over the static shapes along x and y)",
             "min fᵀCf/fᵀMf", ureg.Quantity(f1, "Hz").to(khz), ins, "kHz")  # fmt: skip
+    rec.add("ν", "Poisson's ratio of the actuator's film (torsion: G = E/(2(1 + ν)))",
+            a.nu_source, ureg.Quantity(a.poisson, cached_unit("")), (), "")  # fmt: skip
+    f_oop = out_of_plane_first_mode(fg, _si(a.arm_density, "kg/m^3"), m_kg, a.poisson)
+    rec.add("f_oop", "first out-of-plane mode of the drawn actuator with its head "
+            "(Rayleigh–Ritz over the static shapes under a force and two moments at the head; "
+            "bending w·t³/12 and torsion G·J of the arms, Roark Table 10.7)",
+            "min fᵀCf/fᵀMf (out of plane)", ureg.Quantity(f_oop, "Hz").to(khz),
+            (*ins, "ν"), "kHz")  # fmt: skip
     # the arms' (and tip's) share of the first mode's mass at the head
     C0, M0 = rayleigh_matrices(fg, _si(a.arm_density, "kg/m^3"), 0.0 * m_kg)
     m_arm = directional_mass(C0, M0, d1)[1]
@@ -320,7 +335,7 @@ def _modal_springs(
         "ug",
     )
     return {"rho": rho, "m_arm": m_arm, "k_v": kv, "k_h": kh, "m_v": mv, "m_h": mh,
-            "f_v": f_v, "f_h": f_h, "f_1": f1}  # fmt: skip
+            "f_v": f_v, "f_h": f_h, "f_1": f1, "f_oop": f_oop}  # fmt: skip
 
 
 def drawn_springs(
@@ -510,4 +525,5 @@ def springs_data(
         f_v_hz=mag(springs["f_v"], "Hz"),
         f_h_hz=mag(springs["f_h"], "Hz"),
         f_1_hz=float(springs["f_1"]),
+        f_oop_hz=float(springs["f_oop"]),
     )

@@ -221,7 +221,8 @@ class HeadSprings:
     float SI: k_nn, k_tt, k_nt [N/m] the frame's stiffness in the slider's frame; k_v, k_h
     [N/m] the model's springs (each direction with the other free, the slider's compliance
     in series), m_v, m_h [kg] their Rayleigh effective masses, f_v, f_h [Hz] the drawn
-    resonances, f_1 [Hz] the actuator's first in-plane mode; the coupling ρ [-]; the
+    resonances, f_1, f_oop [Hz] the actuator's first in-plane and out-of-plane modes; the
+    coupling ρ [-]; the
     arms' first-mode mass m_arm [kg] against the head's m [kg]; ``used``: for "k_v" and
     "alpha", "geometry" when the drawn actuator gave it, "file" when the device file's
     value was used (then ``file_f_v_hz``/``file_alpha`` hold it for comparison)."""
@@ -239,6 +240,7 @@ class HeadSprings:
     f_v_hz: float
     f_h_hz: float
     f_1_hz: float
+    f_oop_hz: float
     used: dict[str, str]
     file_f_v_hz: float | None = None
     file_alpha: float | None = None
@@ -314,14 +316,15 @@ class SetDerivation:
         float SI, each None without a drawing: f_v_hz, f_h_hz (the drawn resonances),
         k_v_n_m, k_h_n_m (the head's springs, each direction with the other free, slider
         in series), m_eff_kg (the normal spring's Rayleigh effective mass), coupling (ρ),
-        f_1_hz (the actuator's first in-plane mode) and f_oop_hz (the first out-of-plane
-        mode: not computed yet, always None)."""
+        f_1_hz and f_oop_hz (the actuator's first in-plane and out-of-plane modes)."""
         sp = self.springs
-        keys = ("f_v_hz", "f_h_hz", "k_v_n_m", "k_h_n_m", "m_eff_kg", "coupling", "f_1_hz")
+        keys = ("f_v_hz", "f_h_hz", "k_v_n_m", "k_h_n_m", "m_eff_kg", "coupling", "f_1_hz",
+                "f_oop_hz")  # fmt: skip
         if sp is None:
-            return {**dict.fromkeys(keys), "f_oop_hz": None}
-        vals = (sp.f_v_hz, sp.f_h_hz, sp.k_v, sp.k_h, sp.m_v_kg, sp.rho, sp.f_1_hz)
-        return {**{k: float(v) for k, v in zip(keys, vals, strict=True)}, "f_oop_hz": None}
+            return dict.fromkeys(keys)
+        vals = (sp.f_v_hz, sp.f_h_hz, sp.k_v, sp.k_h, sp.m_v_kg, sp.rho, sp.f_1_hz,
+                sp.f_oop_hz)  # fmt: skip
+        return {k: float(v) for k, v in zip(keys, vals, strict=True)}
 
 
 @dataclass(frozen=True)
