@@ -39,8 +39,12 @@ rotation is condensed out: K = ((K_P⁻¹)[:2, :2])⁻¹, a 2×2 stiffness in (x
 is u·sinθ, as the dimensionless scales ξ = x_v/(u sinθ) say); the arms point toward the
 slider at θ from its normal. With t along the slider (impact direction) and n its normal
 (toward the slider): y = cosθ·t + sinθ·n, x = −sinθ·t + cosθ·n, and K_tn = Q·K·Qᵀ with
-Q = [[−sinθ, cosθ], [cosθ, sinθ]]. The model's springs are k_v = K_nn, k_h = K_tt; the
-coupling ρ = K_nt/√(K_nn·K_tt) is reported (the model has none).
+Q = [[−sinθ, cosθ], [cosθ, sinθ]]. The model's springs are the head's compliance in each
+direction with the other free, C = K⁻¹ (:func:`head_compliance`), with the slider beam's
+own compliance in series (:func:`slider_point_compliance`), and their effective masses
+and the first modes in and out of the plane come from Rayleigh–Ritz over the frame's
+static shapes (:func:`rayleigh_matrices`, :func:`first_mode`,
+:func:`out_of_plane_first_mode`; MODAL_RTOL against the modal FE).
 
 Every function takes floats or numpy arrays (broadcast), SI units.
 """
