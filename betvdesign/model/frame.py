@@ -360,18 +360,20 @@ def slider_point_compliance(
     a = offset
     b = length - offset
     inertia = thickness * width**3 / 12
-    c_n = a**3 * b**3 / (3 * youngs_modulus * inertia * length**3)
-    if beam_count < 2:
-        c_n = 0.0 * c_n
+    c_n = np.where(
+        np.asarray(beam_count) < 2, 0.0, a**3 * b**3 / (3 * youngs_modulus * inertia * length**3)
+    )
     c_t = a * b / (youngs_modulus * width * thickness * length)
     return c_n, c_t
 
 
-def contact_offset(beam_length: float, head_radius: float, clearance: float, index: int) -> float:
+def contact_offset(beam_length: Any, head_radius: Any, clearance: Any, index: int) -> Any:
     """Distance [m] of a set's contact point from the slider's centre, as ``betv layout``
     draws it: max(L/4, r + c) for the first set striking one way, each next one
     2·(r + c) further (r the head's half-extent, c the drawn clearance)."""
-    return max(beam_length / 4, head_radius + clearance) + index * (2 * head_radius + 2 * clearance)
+    return np.maximum(beam_length / 4, head_radius + clearance) + index * (
+        2 * head_radius + 2 * clearance
+    )
 
 
 def _segmented_shape(

@@ -215,7 +215,7 @@ def head_springs(
     return {"k_nn": knn, "k_tt": ktt, "k_nt": k_nt, **_modal_springs(rec, spec, aset, fg, a, m)}
 
 
-def _slider_contact(spec: DeviceSpec, aset: ActuatorSet, head_x_m: float) -> tuple[float, ...]:
+def _slider_contact(spec: DeviceSpec, aset: ActuatorSet, head_x_m: Any) -> tuple[Any, ...]:
     """(L_s, w_s, t_s, E_s, a) [SI] of the slider beam the set's heads strike, a the
     contact's distance from the beam's nearer end as ``betv layout`` draws it
     (:func:`betvdesign.model.frame.contact_offset`)."""
@@ -232,7 +232,7 @@ def _slider_contact(spec: DeviceSpec, aset: ActuatorSet, head_x_m: float) -> tup
     k = index.count(aset.impact_direction)
     L = _si(sl.beam_length)
     x_c = contact_offset(L, head_x_m, c, k)
-    return L, _si(sl.beam_width), _si(sl.beam_thickness), E_s, max(L / 2 - x_c, 0.0)
+    return L, _si(sl.beam_width), _si(sl.beam_thickness), E_s, np.maximum(L / 2 - x_c, 0.0)
 
 
 def _modal_springs(
@@ -258,13 +258,14 @@ def _modal_springs(
             ureg.Quantity(c_tt, mn), kk, "m/N")  # fmt: skip
     rec.add("C_nt", "head compliance, normal × along", inv + " (n, t)",
             ureg.Quantity(c_nt, mn), kk, "m/N", signed=True)  # fmt: skip
-    L_s, w_s, t_s, E_s, a_s = _slider_contact(spec, aset, float(np.max(fg.head_x)))
+    L_s, w_s, t_s, E_s, a_s = _slider_contact(spec, aset, fg.head_x)
     rec.add("a_s", "the contact's distance from the slider beam's nearer end (as betv layout "
             "draws it)", "L_s/2 − max(L_s/4, r_head + spacing) (+ 2(r_head + spacing) per "
             "earlier set striking the same way; 0 at or beyond the end piece)",
             ureg.Quantity(a_s, "m").to(cached_unit("um")), ("r_head",), "um",
             signed=True)  # fmt: skip
     cs_n, cs_t = slider_point_compliance(L_s, w_s, t_s, E_s, a_s, spec.slider.beam_count)
+    cs_n = cs_n if np.ndim(cs_n) else float(cs_n)
     rec.add("C_s,n", "slider beam's bending compliance at the contact (both ends fixed by "
             "the mirrored pair of heads; none with one beam)",
             "a³b³/(3·E·I·L³), b = L − a, I = t·w³/12 (Roark, Formulas for Stress and Strain, "
