@@ -98,11 +98,13 @@ def test_failing_rules_grouped_across_mirrored_sets_with_fix():
     assert r.stdout.count("FAIL frequency-window") == 1
     assert "FAIL frequency-window [right, left]: ϖ = 0.34 below the window" in r.stdout
     lines = r.stdout.splitlines()
-    # ≤ 30 lines: 25, the two headlines wrapped by the speed's label (shin2004 quotes the
+    # ≤ 32 lines: 25, the two headlines wrapped by the speed's label (shin2004 quotes the
     # crossing mean from rest, not the periodic orbit's speed), and the release-holes
     # warning of the published head (issue 23: 0.036 µg in PolyMUMPs' Poly1 is a 99 µm
-    # disc, wider than the 30 µm the release etch frees)
-    assert len(lines) <= 30 and max(len(x) for x in lines) <= 100
+    # disc, wider than the 30 µm the release etch frees), and the warning that the drawn
+    # actuator's f_v is 21× the file's (issue 30: measured values win, the check says how
+    # far the drawing is from them, 4 lines)
+    assert len(lines) <= 32 and max(len(x) for x in lines) <= 100
     fix = next(i for i, x in enumerate(lines) if x.startswith("       fix: raise drive.frequency"))
     assert "FAIL frequency-window" in "\n".join(lines[fix - 4 : fix])
     d = json.loads(run("check", "--json", SHIN).stdout)["devices"][0]
@@ -211,7 +213,9 @@ def test_python_view_repr_and_html():
 
     view = DeviceView(check_derivation(derive_file(SHIN)))
     text = repr(view)
-    assert text.startswith("shin2004: FAIL") and len(text.splitlines()) <= 30  # see above
+    assert (
+        text.startswith("shin2004: FAIL") and len(text.splitlines()) <= 33
+    )  # see above (+1: repr wraps)
     html = view._repr_html_()
     assert "<table>" in html and "frequency-window" in html and "FAIL" in html
     assert view.verdict == "fail" and view.failed == ["frequency-window"]

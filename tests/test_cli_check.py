@@ -2,6 +2,7 @@
 hand-computed shin2004 parameters, the issue's JSON contract)."""
 
 import json
+import math
 from pathlib import Path
 
 import pytest
@@ -67,6 +68,12 @@ def test_shin2004_json_contract(no_solver):
     assert s["derived"]["f_act_hz"] == pytest.approx(1000.0)
     assert s["derived"]["head_mass_kg"] == pytest.approx(3.6e-11)  # 0.036 ug
     assert s["derived"]["amplitude_m"] == pytest.approx(0.11e-6)
+    # the drawn actuator's mechanics (issue 30): kHz, never MHz; f_v = √(k_v/m_eff)/2π
+    drawn = s["derived"]["drawn"]
+    assert 1e3 < drawn["f_oop_hz"] < drawn["f_1_hz"] < 2e5 and 1e3 < drawn["f_v_hz"] < 2e5
+    assert drawn["f_v_hz"] == pytest.approx(
+        (drawn["k_v_n_m"] / drawn["m_eff_kg"]) ** 0.5 / (2 * math.pi), rel=1e-9
+    )
     assert s["travel_range_m"] == pytest.approx(40e-6)
     assert s["mode"] == "pull" and s["lambda"]["predicts"] == "pull"
     for rule in s["rules"]:
@@ -169,11 +176,11 @@ def test_own_designs_pass(name):
     # contact), so it warns here by design (tests/test_adequacy.py).
     # process.release: a 36 µm head needs etch holes in the process; a device file cannot
     # show them, `betv layout` draws them (issue 23)
-    kept = [
-        x
-        for x in every
-        if x["severity"] != "info" and x["id"] not in ("model-adequacy", "process.release")
-    ]
+    # actuator.geometry: the demo files' phenomenological resonances (2.9–6 kHz) are 20–30×
+    # below their drawn actuators' first in-plane mode; the file's values win and the rule
+    # warns with the likely cause (issue 30, item 5)
+    skip = ("model-adequacy", "process.release", "actuator.geometry")
+    kept = [x for x in every if x["severity"] != "info" and x["id"] not in skip]
     assert all(x["passed"] for x in kept), every
     assert all(s["adequacy"]["reference_mode"] == s["mode"] for s in d["sets"])
     for s in d["sets"]:

@@ -20,10 +20,11 @@ from betvdesign.model.frame import (
     CLOSED_FORM_RTOL,
     FrameGeometry,
     Rect,
-    arm_modal_mass,
     beam_tip_compliance,
+    directional_mass,
     frame_stiffness,
     random_geometries,
+    rayleigh_matrices,
     slider_springs,
 )
 from betvdesign.nondim.actuator import frame_geometry
@@ -89,7 +90,9 @@ def test_slider_frame_keeps_trace_and_determinant(theta_deg):
 def test_arm_mass_is_the_guided_beams_13_over_35():
     g = _pair(300e-6)  # wide enough to guide the tip, the head's lever on the axial motion small
     beams = 2 * 2330 * T * 2.5e-6 * 200e-6
-    share = float(arm_modal_mass(g, 2330.0, (0.0, 1.0))) / beams
+    C, M = rayleigh_matrices(g, 2330.0, 0.0)
+    tip = 2330.0 * T * g.tip_length * g.tip_height  # the rigid tip moves with the head
+    share = (float(directional_mass(C, M, np.array([0.0, 1.0]))[1]) - tip) / beams
     assert share == pytest.approx(13 / 35, rel=2e-3)
 
 
@@ -190,15 +193,18 @@ def test_geometry_alone_gives_the_springs_with_every_step():
     d = derive(load_device_text(text, str(DEVICES / "push.yaml"))).sets[0]
     sp = d.springs
     assert sp.used == {"k_v": "geometry", "alpha": "geometry"}
-    assert d.step("k_v").formula == "K_nn" and d.step("k_h").formula == "K_tt"
-    assert d.step("k_v").magnitude == pytest.approx(sp.k_nn)
-    assert d.params.alpha == pytest.approx(sp.k_nn / sp.k_tt)
+    assert d.step("f_v").formula == "f_v,geom" and d.step("f_h").formula == "f_h,geom"
     m = d.step("m").value.to("kg").magnitude
-    assert d.step("f_v").value.to("Hz").magnitude == pytest.approx(
-        math.sqrt(sp.k_nn / m) / (2 * math.pi)
+    # the drawn resonance is used as a measured one: k_v = m·(2π f_v)²
+    assert d.step("k_v").value.to("N/m").magnitude == pytest.approx(
+        m * (2 * math.pi * sp.f_v_hz) ** 2, rel=1e-12
     )
+    assert d.params.alpha == pytest.approx((sp.f_v_hz / sp.f_h_hz) ** 2, rel=1e-12)
+    assert sp.f_v_hz == pytest.approx(math.sqrt(sp.k_v / sp.m_v_kg) / (2 * math.pi), rel=1e-12)
     for sym in ("E", "t_a", "L_a", "w_hot", "w_cold", "L_flex", "w_flex", "g_a", "K_xx",
-                "K_yy", "K_xy", "K_nn", "K_tt", "K_nt", "ρ_K", "m_arm"):  # fmt: skip
+                "K_yy", "K_xy", "K_nn", "K_tt", "K_nt", "C_nn", "C_tt", "C_nt", "a_s", "C_s,n",
+                "C_s,t", "k_v,geom", "k_h,geom", "ρ_C", "m_v", "m_h", "f_v,geom", "f_h,geom",
+                "f_1", "m_arm"):  # fmt: skip
         d.step(sym)
     assert "demo25" in d.step("E").formula  # the process layer's E
     rules = {r.id: r for r in actuator_rules(d)}
@@ -209,10 +215,11 @@ def test_geometry_alone_gives_the_springs_with_every_step():
 def test_check_says_which_springs_it_used_when_both_are_given():
     d = derive(load_device(DEVICES / "shin2004.yaml")).sets[0]
     r = {r.id: r for r in actuator_rules(d)}["actuator.geometry"]
-    # the file's values are used: the comparison informs, the verdict does not rest on it
-    assert not r.passed and r.severity == "info"
-    assert "the check uses the file's f_v and the file's α" in r.message
-    assert "2.94 kHz" in r.message
+    # the file's values are used; the drawing's f_v is far (> 2×) from them: a warning
+    # with the likely cause, the verdict does not rest on it
+    assert not r.passed and r.severity == "warning"
+    assert "the file's used" in r.message
+    assert "2.94 kHz" in r.message and "Likely cause" in r.message
     coupling = {r.id: r for r in actuator_rules(d)}["actuator.coupling"]
     assert not coupling.passed and abs(coupling.value) > 0.9 and coupling.severity == "info"
     assert coupling.message.startswith("the file's resonances are used, not the drawing's")

@@ -231,7 +231,11 @@ class SetOut(_Out):
     lambda_: LambdaOut = Field(alias="lambda")
     margin: MarginOut
     adequacy: AdequacyOut | None = Field(None, description="model adequacy (rule of that name)")
-    derived: dict[str, float] = Field(description="SI floats, unit-named keys (f_act_hz, ...)")
+    derived: dict[str, Any] = Field(
+        description="SI floats, unit-named keys (f_act_hz, ...); 'drawn': the drawn "
+        "actuator's f_v_hz, f_h_hz, k_v_n_m, k_h_n_m, m_eff_kg, coupling, f_1_hz, f_oop_hz "
+        "(each null without a drawing)"
+    )
     rules: list[RuleOut]
     # --verbose only (VERBOSE_SET_FIELDS): the solvers' answers and the derivation
     mode_source: str | None = Field(
@@ -548,13 +552,14 @@ def _margin(sc: Any) -> tuple[bool | None, str]:
 def _set_out(sc: Any, flt: RuleFilter, verbose: bool = False) -> SetOut:
     s = sc.derivation
     ds, v, direction = set_motion(sc)
-    derived: dict[str, float] = {}
+    derived: dict[str, Any] = {}
     for sym, name, unit in _DERIVED_SI:
         try:
             q = s.step(sym).value
         except KeyError:
             continue
         derived[si_key(name, unit)] = float(q.to(unit).magnitude)
+    derived["drawn"] = s.drawn()  # issue 30: the drawn actuator's mechanics
     rules = [r for r in sc.rules if flt.keeps(r.id)]
     p = s.params
     lam_mode = "push" if s.lam < 1.0 else "pull"

@@ -42,3 +42,11 @@ def layout_cmd(
         ref = None if ref is None else rebase(ref, file.parent, output)
         write_layout(spec, output, process_ref=ref, svg=svg)
     typer.echo(f"wrote {output}" + (f" and {svg}" if svg is not None else ""))
+    p = spec.process
+    gds = [u.split(".")[1] for u in p.unsourced if u.startswith("layers.") and u.endswith(".gds")]
+    if gds:
+        levels = ", ".join(f"{n} {p.layers[n].gds.pair[0]}/{p.layers[n].gds.pair[1]}" for n in gds)
+        typer.echo(
+            f"note: process {p.name}: GDS levels NOT verified against a source: {levels}; "
+            "check them against your foundry's handbook"
+        )

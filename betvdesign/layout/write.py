@@ -47,7 +47,7 @@ from betvdesign.layout.convention import (
     check_set_name,
     data_labels,
 )
-from betvdesign.model.frame import DISC_VERTICES, FrameGeometry, Rect, shape
+from betvdesign.model.frame import DISC_VERTICES, FrameGeometry, Rect, contact_offset, shape
 from betvdesign.nondim.actuator import frame_geometry
 from betvdesign.output.files import atomic_path
 from betvdesign.spec.models import DeviceSpec
@@ -533,7 +533,7 @@ def _draw_actuators(
         pts = np.concatenate([pl.points for pl in cell.polygons])
         h_max = float(np.max(c * pts[:, 0] + si * pts[:, 1]))
         r_head = float(g.head_x) * _UM
-        x_head = sx * (max(L / 4, r_head + clearance) + placed[sx] * (2 * r_head + 2 * clearance))
+        x_head = sx * contact_offset(L, r_head, clearance, placed[sx])
         placed[sx] += 1
         _, (hcx, hcy, _hx, _hy, _k) = shape(g, grid=1e-9)
         head = (hcx * _UM, hcy * _UM)

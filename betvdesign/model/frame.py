@@ -39,8 +39,12 @@ rotation is condensed out: K = ((K_P⁻¹)[:2, :2])⁻¹, a 2×2 stiffness in (x
 is u·sinθ, as the dimensionless scales ξ = x_v/(u sinθ) say); the arms point toward the
 slider at θ from its normal. With t along the slider (impact direction) and n its normal
 (toward the slider): y = cosθ·t + sinθ·n, x = −sinθ·t + cosθ·n, and K_tn = Q·K·Qᵀ with
-Q = [[−sinθ, cosθ], [cosθ, sinθ]]. The model's springs are k_v = K_nn, k_h = K_tt; the
-coupling ρ = K_nt/√(K_nn·K_tt) is reported (the model has none).
+Q = [[−sinθ, cosθ], [cosθ, sinθ]]. The model's springs are the head's compliance in each
+direction with the other free, C = K⁻¹ (:func:`head_compliance`), with the slider beam's
+own compliance in series (:func:`slider_point_compliance`), and their effective masses
+and the first modes in and out of the plane come from Rayleigh–Ritz over the frame's
+static shapes (:func:`rayleigh_matrices`, :func:`first_mode`,
+:func:`out_of_plane_first_mode`; MODAL_RTOL against the modal FE).
 
 Every function takes floats or numpy arrays (broadcast), SI units.
 """
@@ -59,19 +63,27 @@ __all__ = [
     "COVER_MARGIN",
     "DISC_VERTICES",
     "JOINT_AXIAL",
+    "MODAL_RTOL",
     "RHO_MAX",
     "FrameGeometry",
     "FrameStiffness",
     "Rect",
-    "arm_modal_mass",
     "beam_tip_compliance",
+    "contact_offset",
+    "directional_mass",
+    "first_mode",
     "frame_stiffness",
+    "head_compliance",
     "head_covers_tip",
     "head_disc_diameter",
     "head_radius_min",
+    "out_of_plane_first_mode",
     "random_geometries",
+    "rayleigh_matrices",
     "shape",
+    "slider_point_compliance",
     "slider_springs",
+    "torsion_constant",
 ]
 
 #: Axial compliance of a joint, in widths of the arm entering a wider body (see above).
@@ -87,6 +99,11 @@ ARM_MASS_SHARE_MAX = 0.1
 #: (benchmarks/bench_layout.py, benchmarks/README.md). Below the ±5 % on ϖ (±10 % on k_v)
 #: and ±10 % on α the mode-margin rule probes, so the check uses the closed form.
 CLOSED_FORM_RTOL = 0.03
+#: Largest relative error of the Rayleigh–Ritz first in-plane mode
+#: (:func:`rayleigh_matrices`, :func:`first_mode`) against the modal plane-stress FE
+#: (:func:`betvdesign.model.frame_fe.frame_modes`) on the shipped actuators and the seeded
+#: random ones (benchmarks/bench_modal.py, benchmarks/README.md).
+MODAL_RTOL = 0.05
 
 
 @dataclass(frozen=True)
@@ -315,57 +332,332 @@ def _gauss(n: int = 24) -> tuple[np.ndarray, np.ndarray]:
     return (x + 1) / 2, w / 2
 
 
-def arm_modal_mass(g: FrameGeometry, density: Any, direction: tuple[Any, Any]) -> Any:
-    """The arms' share of the first mode's mass at the head [kg] (Rayleigh estimate).
+def head_compliance(k: FrameStiffness, theta_rad: Any) -> tuple[Any, Any, Any]:
+    """(C_nn, C_tt, C_nt) [m/N]: the head's compliance in the slider's frame, C = K⁻¹ of
+    :func:`slider_springs`'s 2×2 (each direction with the other free: MODEL.md, "What the
+    model's springs mean")."""
+    k_nn, k_tt, k_nt = slider_springs(k, theta_rad)
+    det = k_nn * k_tt - k_nt * k_nt
+    return k_tt / det, k_nn / det, -k_nt / det
 
-    The head moves along ``direction`` (a unit vector in the actuator's (x, y)) under a
-    load there; the frame's static shape (rigid tip; each arm clamped at its root, its
-    transverse deflection the cubic of its tip displacement and rotation, its axial one
-    linear) gives the arms' kinetic energy ½·Σ ρ·A ∫ (u² + v²) dx per unit head velocity
-    squared along ``direction``, i.e. the mass they add to the head's. The tip connector
-    moves with the head (rigid) and counts fully.
+
+def slider_point_compliance(
+    length: Any, width: Any, thickness: Any, youngs_modulus: Any, offset: Any, beam_count: int
+) -> tuple[Any, Any]:
+    """(C_s,n, C_s,t) [m/N]: the slider's own compliance where a head strikes it, normal
+    to the slider (bending) and along it (axial).
+
+    The two actuators of a set strike the two outer beams at the same x, mirrored about
+    the slider's axis, so the rigid end pieces neither turn nor move across it: each outer
+    beam is a beam with both ends fixed under a point load at ``offset`` = a from its
+    nearer end (b = L − a). Deflection under the load (Roark's Formulas for Stress and
+    Strain, 7th ed., Table 8.1 case 1d; Gere, Mechanics of Materials, fixed-end beam with
+    a concentrated load): C_s,n = a³b³/(3·E·I·L³), I = t·w³/12. Along the slider, the
+    beam fixed at both ends carries the load to both ends in parallel (Gere, statically
+    indeterminate bar): C_s,t = a·b/(E·A·L), A = w·t. One beam: the two heads press its
+    opposite faces at the same point, so it does not bend (C_s,n = 0).
+    """
+    a = offset
+    b = length - offset
+    inertia = thickness * width**3 / 12
+    c_n = np.where(
+        np.asarray(beam_count) < 2, 0.0, a**3 * b**3 / (3 * youngs_modulus * inertia * length**3)
+    )
+    c_t = a * b / (youngs_modulus * width * thickness * length)
+    return c_n, c_t
+
+
+def contact_offset(beam_length: Any, head_radius: Any, clearance: Any, index: int) -> Any:
+    """Distance [m] of a set's contact point from the slider's centre, as ``betv layout``
+    draws it: max(L/4, r + c) for the first set striking one way, each next one
+    2·(r + c) further (r the head's half-extent, c the drawn clearance)."""
+    return np.maximum(beam_length / 4, head_radius + clearance) + index * (
+        2 * head_radius + 2 * clearance
+    )
+
+
+def _segmented_shape(
+    segments: list[tuple[Any, Any, Any, Any]], length: Any, tip: np.ndarray, E: Any
+) -> list[tuple[Any, Any, np.ndarray, np.ndarray]]:
+    """The static shape of a cantilever of ``segments`` (x0, x1, area, inertia) under the
+    tip loads that give it the tip displacement ``tip`` (…, 3) = (u, v, φ): per segment,
+    (x0, x1, u(x), v(x)) at the Gauss points (exact: u = N·∫dx/EA, v'' = M(x)/EI with
+    M = V·(L − x) + M_tip; the joints' axial compliance left out of u)."""
+    C = beam_tip_compliance([(s[1] - s[0], s[2], s[3]) for s in segments], E)
+    C[..., 0, 0] = sum((s[1] - s[0]) / (E * s[2]) for s in segments)
+    f = np.linalg.solve(C, tip[..., None])[..., 0]
+    N, V, Mt = (f[..., k][..., None] for k in range(3))
+    s_, _ = _gauss()
+    out = []
+    u_a = v_a = th_a = 0.0
+    for x0, x1, area, inertia in segments:
+        x0_, x1_, A_, I_ = (np.asarray(v, dtype=float)[..., None] for v in (x0, x1, area, inertia))
+        L_ = np.asarray(length, dtype=float)[..., None]
+        ma = V * (L_ - x0_) + Mt
+        sx = (x1_ - x0_) * s_
+        u = u_a + N * sx / (E * A_)
+        v = v_a + th_a * sx + (ma * sx**2 / 2 - V * sx**3 / 6) / (E * I_)
+        out.append((x0, x1, u, v))
+        d = x1_ - x0_
+        u_a = u_a + N * d / (E * A_)
+        v_a = v_a + th_a * d + (ma * d**2 / 2 - V * d**3 / 6) / (E * I_)
+        th_a = th_a + (ma * d - V * d**2 / 2) / (E * I_)
+    return out
+
+
+def rayleigh_matrices(
+    g: FrameGeometry, arm_density: Any, head_mass: Any
+) -> tuple[np.ndarray, np.ndarray]:
+    """(C, M): the head's 2×2 compliance [m/N] and the Rayleigh–Ritz mass matrix [kg·m²/N²]
+    of the frame's static shapes, both in the actuator's (x, y) per unit load at the head.
+
+    The shape under a load f (2-vector) at the head is the frame's static one: the rigid
+    tip and head move by (u, v, φ) = K_P⁻¹·(f, 0) at P; each arm, clamped at its root,
+    takes the exact static shape of its segments under the tip loads that give its end
+    that motion (:func:`_segmented_shape`). Its kinetic energy per ω² is ½·fᵀ·M·f with
+
+        M = Σ_arms ρ·t·∫ w(x)·(φ_u φ_uᵀ + φ_v φ_vᵀ) dx + Σ_{tip, head} (m·φ_c φ_cᵀ + J·φ_φ φ_φᵀ),
+
+    φ_c the velocity of each rigid body's centroid and J its moment of inertia (tip:
+    m(l² + H²)/12; a disc head: m r²/2; a box: m(a² + b²)/3 with a, b its half-extents).
+    Rayleigh's quotient of the shape under f is ω² = fᵀCf / fᵀMf (the strain energy of a
+    unit static load is ½ fᵀCf); its minimum, the smallest eigenvalue of C·u = ω²·M·u, is
+    the Rayleigh–Ritz first in-plane mode (Meirovitch, *Fundamentals of Vibrations*,
+    2001, §8.5)."""
+    t, E = g.thickness, g.youngs_modulus
+    K = _frame_matrix(g)
+    Kinv = np.linalg.inv(K)
+    C = Kinv[..., :2, :2]
+    xp, yp = g.head_centre
+    M = np.zeros((*C.shape[:-2], 2, 2))
+    _, w_ = _gauss()
+    arms = (
+        (0.0, [(0.0, g.length, t * g.hot_width, t * g.hot_width**3 / 12)]),
+        (
+            g.d,
+            [
+                (0.0, g.flexure_length, t * g.flexure_width, t * g.flexure_width**3 / 12),
+                (g.flexure_length, g.length, t * g.cold_width, t * g.cold_width**3 / 12),
+            ],
+        ),
+    )
+    for yb, segs in arms:
+        T = _transfer(g.length, yb, xp, yp)
+        shapes = [_segmented_shape(segs, g.length, (T @ Kinv[..., :, j : j + 1])[..., 0], E)
+                  for j in range(2)]  # fmt: skip
+        for i in range(2):
+            for j in range(2):
+                for (x0, x1, ui, vi), (_, _, uj, vj), seg in zip(
+                    shapes[i], shapes[j], segs, strict=True
+                ):
+                    dx = np.asarray(x1) - np.asarray(x0)
+                    integral = np.sum((ui * uj + vi * vj) * w_, axis=-1) * dx
+                    M[..., i, j] = M[..., i, j] + arm_density * seg[2] * integral
+    # the rigid tip and head: (u, v, φ) at P of each unit load
+    H = g.tip_height
+    m_tip = arm_density * t * g.tip_length * H
+    J_tip = m_tip * (g.tip_length**2 + H**2) / 12
+    tip_c = (g.length + g.tip_length / 2, (g.d + g.cold_width / 2 - g.hot_width / 2) / 2)
+    hy = g.head_x if g.head_y is None else g.head_y
+    J_head = (
+        head_mass * g.head_x**2 / 2
+        if g.head_shape == "disc"
+        else head_mass * (g.head_x**2 + hy**2) / 3
+    )
+    for m_b, J_b, (cx, cy) in ((m_tip, J_tip, tip_c), (head_mass, J_head, (xp, yp))):
+        vel = []
+        for j in range(2):
+            u, v, ph = (Kinv[..., k, j] for k in range(3))
+            vel.append((u - ph * (cy - yp), v + ph * (cx - xp), ph))
+        for i in range(2):
+            for j in range(2):
+                a, b = vel[i], vel[j]
+                M[..., i, j] = M[..., i, j] + m_b * (a[0] * b[0] + a[1] * b[1]) + J_b * a[2] * b[2]
+    return C, M
+
+
+def first_mode(C: np.ndarray, M: np.ndarray) -> tuple[Any, np.ndarray]:
+    """The Rayleigh–Ritz first mode of a compliance C and mass M in load coordinates
+    (:func:`rayleigh_matrices`, :func:`out_of_plane_first_mode`): (f_1 [Hz], the unit
+    load (…, n) whose static shape it is). ω² = min fᵀCf/fᵀMf, taken as 1/max of
+    fᵀMf/fᵀCf through the Cholesky factor of C (positive definite for a connected frame;
+    M may be singular, e.g. a point head on massless arms)."""
+    Lc = np.linalg.cholesky(C)
+    Li = np.linalg.inv(Lc)
+    S = Li @ M @ np.swapaxes(Li, -1, -2)
+    lam, vec = np.linalg.eigh(S)
+    f = np.swapaxes(Li, -1, -2) @ vec[..., :, -1:]
+    f = f[..., 0] / np.linalg.norm(f[..., 0], axis=-1, keepdims=True)
+    return 1 / np.sqrt(lam[..., -1]) / (2 * math.pi), f
+
+
+def directional_mass(C: np.ndarray, M: np.ndarray, direction: np.ndarray) -> tuple[Any, Any]:
+    """(k, m_eff): the stiffness 1/(dᵀCd) [N/m] and Rayleigh effective mass
+    dᵀMd/(dᵀCd)² [kg] of the static shape under a load along the unit vector d (…, 2):
+    √(k/m_eff) is that shape's Rayleigh frequency [rad/s]."""
+    d = np.asarray(direction, dtype=float)
+    c = np.einsum("...i,...ij,...j->...", d, C, d)
+    m = np.einsum("...i,...ij,...j->...", d, M, d)
+    return 1 / c, m / (c * c)
+
+
+def torsion_constant(a: Any, b: Any) -> Any:
+    """Saint-Venant torsion constant J [m⁴] of an a × b rectangle (any order): with
+    h ≥ k its sides, J = h·k³·(1/3 − 0.21·(k/h)·(1 − k⁴/(12·h⁴))) (Roark, Formulas for
+    Stress and Strain, 7th ed., Table 10.7 case 4; within 4 % for every aspect ratio)."""
+    h, k = np.maximum(a, b), np.minimum(a, b)
+    return h * k**3 * (1 / 3 - 0.21 * (k / h) * (1 - k**4 / (12 * h**4)))
+
+
+def out_of_plane_first_mode(
+    g: FrameGeometry, arm_density: Any, head_mass: Any, poisson_ratio: Any = 0.22
+) -> Any:
+    """The drawn actuator's first out-of-plane mode [Hz] (Rayleigh–Ritz, closed form).
+
+    Each arm bends out of the plane (I = w·t³/12, the in-plane integrals of
+    :func:`beam_tip_compliance` with it) and twists (G·J, G = E/(2(1 + ν)), J of
+    :func:`torsion_constant`), clamped at its root; the rigid tip and head move by
+    (w, θ_x, θ_y) at P, an arm's end at (Δx, Δy) from P by (w + θ_x·Δy − θ_y·Δx, slope
+    −θ_y, twist θ_x). The static shapes under a force and two moments at P (each arm's
+    exact static bending shape, linear twist) give the 3×3 compliance and Rayleigh–Ritz
+    mass (arms' translation and twist inertia ρ·A·(w² + t²)/12, the tip's and head's
+    translation and rotation about x and y; a disc head m·r²/4 about each, a box
+    m·(2a)²/12 about the axis across a); the first mode is the smallest eigenvalue."""
+    t, E = g.thickness, g.youngs_modulus
+    G = E / (2 * (1 + poisson_ratio))
+    xp, yp = g.head_centre
+    arms = (
+        (0.0, [(0.0, g.length, g.hot_width)]),
+        (g.d, [(0.0, g.flexure_length, g.flexure_width), (g.flexure_length, g.length,
+                                                          g.cold_width)]),
+    )  # fmt: skip
+    Kp = 0.0
+    Ts, parts = [], []
+    for yb, segs in arms:
+        bend = [(x1 - x0, t * w, w * t**3 / 12) for x0, x1, w in segs]
+        Cb = beam_tip_compliance(bend, E)[..., 1:, 1:]  # (w, slope)
+        c_phi = sum((x1 - x0) / (G * torsion_constant(w, t)) for x0, x1, w in segs)
+        shp = np.broadcast(Cb[..., 0, 0], c_phi).shape
+        Ka = np.zeros((*shp, 3, 3))
+        Ka[..., :2, :2] = np.linalg.inv(Cb)
+        Ka[..., 2, 2] = 1 / c_phi
+        dx, dy = g.length - xp, yb - yp
+        T = np.zeros((*np.broadcast(dx, dy).shape, 3, 3))
+        T[..., 0, 0] = 1.0
+        T[..., 0, 1] = dy
+        T[..., 0, 2] = -dx
+        T[..., 1, 2] = -1.0
+        T[..., 2, 1] = 1.0
+        Kp = Kp + np.swapaxes(T, -1, -2) @ Ka @ T
+        Ts.append(T)
+        parts.append((segs, c_phi))
+    C = np.linalg.inv(Kp)  # (w, θx, θy) per unit (F, Mx, My)
+    M = np.zeros(C.shape)
+    for T, (segs, c_phi) in zip(Ts, parts, strict=True):
+        M = _oop_arm_mass(M, T @ C, segs, c_phi, g, arm_density, G)
+    M = _oop_body_mass(M, C, g, arm_density, head_mass)
+    return first_mode(C, M)[0]
+
+
+def _oop_arm_mass(
+    M: Any, ends: Any, segs: list, c_phi: Any, g: FrameGeometry, arm_density: Any, G: Any
+) -> Any:
+    """One arm's share of the out-of-plane Rayleigh–Ritz mass matrix.
+
+    Parameters
+    ----------
+    M : array
+        The mass matrix so far (…, 3, 3) [kg, kg·m, kg·m²].
+    ends : array
+        The arm end's (w, slope, twist) under each unit load at P (…, 3, 3).
+    segs : list
+        The arm's segments (x0, x1, width) [m].
+    c_phi : array
+        The arm's torsional compliance [1/(N·m)].
+    g : FrameGeometry
+        The frame (thickness, length).
+    arm_density : float
+        Density of the arms [kg/m³].
+    G : float
+        Shear modulus [Pa].
+
+    Returns
+    -------
+    array
+        ``M`` with the arm's bending (exact static shapes) and twist (linear in the
+        torsional compliance) inertia added.
+    """
+    t, E = g.thickness, g.youngs_modulus
+    _, wq = _gauss()
+    bend_segs = [(x0, x1, t * w, w * t**3 / 12) for x0, x1, w in segs]
+    shapes = []
+    for j in range(3):
+        tip = np.stack(np.broadcast_arrays(0.0 * ends[..., 0, j], ends[..., 0, j],
+                                           ends[..., 1, j]), axis=-1)  # fmt: skip
+        shapes.append(_segmented_shape(bend_segs, g.length, tip, E))
+    for i in range(3):
+        for j in range(3):
+            for (x0, x1, _, vi), (_, _, _, vj), (_, _, w) in zip(
+                shapes[i], shapes[j], segs, strict=True
+            ):
+                dxs = np.asarray(x1) - np.asarray(x0)
+                M[..., i, j] += arm_density * t * w * np.sum(vi * vj * wq, axis=-1) * dxs
+    # twist: linear in the torsional compliance along the arm, φ(x) = φ_B·c(x)/c_phi
+    tw = ends[..., 2, :]  # (…, 3)
+    acc = 0.0
+    for x0, x1, w in segs:
+        c0 = acc
+        c1 = acc + (x1 - x0) / (G * torsion_constant(w, t))
+        # ∫ (c(x)/c_phi)² dx over the segment, c linear from c0 to c1
+        frac = (c0 * c0 + c0 * c1 + c1 * c1) / 3 / (c_phi * c_phi) * (x1 - x0)
+        ip = arm_density * t * w * (w * w + t * t) / 12
+        M = M + (ip * frac)[..., None, None] * (tw[..., :, None] * tw[..., None, :])
+        acc = c1
+    return M
+
+
+def _oop_body_mass(M: Any, C: Any, g: FrameGeometry, arm_density: Any, head_mass: Any) -> Any:
+    """The rigid tip's and head's share of the out-of-plane mass matrix.
+
+    Parameters
+    ----------
+    M : array
+        The mass matrix so far (…, 3, 3).
+    C : array
+        The compliance at P (…, 3, 3): (w, θ_x, θ_y) per unit (F, M_x, M_y).
+    g : FrameGeometry
+        The frame (tip and head sizes, head shape and centre P).
+    arm_density : float
+        Density of the tip [kg/m³].
+    head_mass : float
+        The head's mass [kg].
+
+    Returns
+    -------
+    array
+        ``M`` with each body's translation and rotation about x and y (a disc head
+        m·r²/4 about each, a box m·(2a)²/12 about the axis across a).
     """
     t = g.thickness
     xp, yp = g.head_centre
-    dx, dy = direction
-    # the rigid tip's (u, v, φ) at P under a unit force along `direction`
-    hot = beam_tip_compliance([(g.length, t * g.hot_width, t * g.hot_width**3 / 12)],
-                              g.youngs_modulus)  # fmt: skip
-    cold = beam_tip_compliance(
-        [
-            (g.flexure_length, t * g.flexure_width, t * g.flexure_width**3 / 12),
-            (g.length - g.flexure_length, t * g.cold_width, t * g.cold_width**3 / 12),
-        ],
-        g.youngs_modulus,
+    H = g.tip_height
+    m_tip = arm_density * t * g.tip_length * H
+    tip_c = (g.length + g.tip_length / 2, (g.d + g.cold_width / 2 - g.hot_width / 2) / 2)
+    hy = g.head_x if g.head_y is None else g.head_y
+    if g.head_shape == "disc":
+        jx = jy = head_mass * g.head_x**2 / 4
+    else:
+        jx, jy = head_mass * (2 * hy) ** 2 / 12, head_mass * (2 * g.head_x) ** 2 / 12
+    bodies = (
+        (m_tip, m_tip * H**2 / 12, m_tip * g.tip_length**2 / 12, tip_c),
+        (head_mass, jx, jy, (xp, yp)),
     )
-    Ts = [_transfer(g.length, yb, xp, yp) for yb in (0.0, g.d)]
-    K = sum(
-        np.swapaxes(T, -1, -2) @ np.linalg.inv(C) @ T for C, T in zip((hot, cold), Ts, strict=True)
-    )
-    f = np.stack(np.broadcast_arrays(dx, dy, 0.0 * dx), axis=-1)[..., None]
-    q = np.linalg.solve(K, f)  # (…, 3, 1)
-    along = (q[..., 0, 0] * dx + q[..., 1, 0] * dy) ** 2  # head displacement² along it
-    s, w = _gauss()
-    total = 0.0
-    L = np.asarray(g.length, dtype=float)[..., None]
-    for T, widths in (
-        (Ts[0], [(0.0, g.length, g.hot_width)]),
-        (
-            Ts[1],
-            [(0.0, g.flexure_length, g.flexure_width), (g.flexure_length, g.length, g.cold_width)],
-        ),
-    ):
-        b = T @ q  # the arm tip's (u, v, φ)
-        ub, vb, pb = (b[..., k, 0][..., None] for k in range(3))
-        for a0, a1, width in widths:
-            a0_, a1_ = (np.asarray(v, dtype=float)[..., None] for v in (a0, a1))
-            xi = (a0_ + (a1_ - a0_) * s) / L
-            u = ub * xi
-            v = vb * (3 * xi**2 - 2 * xi**3) + pb * L * (xi**3 - xi**2)
-            seg = np.sum((u**2 + v**2) * w, axis=-1) * (np.asarray(a1) - np.asarray(a0))
-            total = total + density * t * width * seg
-    tip = density * t * g.tip_length * (g.hot_width + g.gap + g.cold_width)
-    return total / along + tip
+    for m_b, j_x, j_y, (cx, cy) in bodies:
+        w_c = C[..., 0, :] + C[..., 1, :] * (cy - yp) - C[..., 2, :] * (cx - xp)
+        M = M + m_b * w_c[..., :, None] * w_c[..., None, :]
+        M = M + j_x * C[..., 1, :, None] * C[..., 1, None, :]
+        M = M + j_y * C[..., 2, :, None] * C[..., 2, None, :]
+    return M
 
 
 #: Seed of the random actuators the closed form's error is stated on.

@@ -28,14 +28,21 @@ import math
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 
 from betvdesign.errors import BetvError
 from betvdesign.model.frame import FrameGeometry, FrameStiffness, Rect, shape
 
-__all__ = ["FeResult", "converged", "frame_fe", "plane_stress_stiffness"]
+__all__ = [
+    "FeModes",
+    "FeResult",
+    "converged",
+    "frame_fe",
+    "frame_modes",
+    "plane_stress_modes",
+    "plane_stress_stiffness",
+]
 
 _UM = 1e6
 
@@ -75,32 +82,20 @@ def _breaks(
     return np.concatenate(out)
 
 
-def _body_mesh(
+def _assemble(
     rects: Sequence[Rect],
     discs: Sequence[tuple[float, float, float]],
+    youngs_modulus: float,
+    poisson_ratio: float,
+    thickness: float,
     h_across: float,
     h_along: float,
     fine: Sequence[tuple[float, float, float]] | None,
-    skfem: Any,
-) -> Any:
-    """A quadrilateral mesh of the body [µm], its edges on every rectangle's and disc's.
+) -> tuple:
+    """The mesh of the drawn body (module doc), its Q2 vector basis and stiffness matrix."""
+    skfem = _skfem()
+    from skfem.helpers import ddot, sym_grad, trace
 
-    Parameters
-    ----------
-    rects, discs
-        The body [m] (discs as (cx, cy, r)).
-    h_across, h_along : float
-        Largest cell size across (y) and along (x) [m].
-    fine : sequence of (float, float, float) or None
-        y-bands (lo, hi, size) [m] with their own cell size across.
-    skfem : module
-        scikit-fem.
-
-    Returns
-    -------
-    skfem.MeshQuad
-        The tensor mesh less the cells whose centres lie outside the body.
-    """
     xs_e = [r.x0 for r in rects] + [r.x1 for r in rects]
     ys_e = [r.y0 for r in rects] + [r.y1 for r in rects]
     for cx, cy, r in discs:
@@ -122,65 +117,20 @@ def _body_mesh(
     for cx, cy, r in discs:
         inside |= (c[0] - cx * _UM) ** 2 + (c[1] - cy * _UM) ** 2 < (r * _UM) ** 2
     mesh = mesh.remove_elements(np.nonzero(~inside)[0])
-    return mesh
+    e = skfem.ElementVector(skfem.ElementQuad2())
+    basis = skfem.Basis(mesh, e, intorder=4)
+    E = youngs_modulus / 1e6  # µN/µm²
+    nu = poisson_ratio
+    t = thickness * _UM
 
+    @skfem.BilinearForm
+    def stiffness(u, v, w):
+        eu, ev = sym_grad(u), sym_grad(v)
+        sig = E / (1 - nu**2) * ((1 - nu) * eu + nu * trace(eu) * np.eye(2)[:, :, None, None])
+        return t * ddot(sig, ev)
 
-def _loads(
-    mesh: Any,
-    basis: Any,
-    e: Any,
-    load: Callable[[np.ndarray, np.ndarray], np.ndarray] | None,
-    ends: tuple[float, float | None, bool],
-    skfem: Any,
-) -> tuple[list[np.ndarray], list[np.ndarray]]:
-    """The two unit load vectors (x, y) and the fixed degrees of freedom.
-
-    Parameters
-    ----------
-    mesh, basis, e
-        The mesh, its basis and element.
-    load : callable or None
-        The loaded cells (a predicate on cell centres [µm]), or None for a uniform
-        traction on the end face.
-    ends : tuple
-        ``clamp_x`` and ``traction_x`` [m] and ``guided`` (:func:`plane_stress_stiffness`).
-    skfem : module
-        scikit-fem.
-
-    Returns
-    -------
-    loads : list of numpy.ndarray
-        Load vectors of unit total force along x and y [µN].
-    fixed : list of numpy.ndarray
-        The clamped degrees of freedom (and the guided end's u_x).
-
-    Raises
-    ------
-    BetvError
-        When no mesh cell lies in the loaded region.
-    """
-    clamp_x, traction_x, guided = ends
-    clamped = basis.get_dofs(lambda x: np.isclose(x[0], clamp_x * _UM, atol=1e-6)).all()
-    fixed = [clamped]
-    if load is None:
-        assert traction_x is not None
-        xe = traction_x * _UM
-        facets = mesh.facets_satisfying(lambda x: np.isclose(x[0], xe, atol=1e-6))
-        fb = skfem.FacetBasis(mesh, e, facets=facets, intorder=4)
-        area = float(np.sum(fb.dx))
-        loads = [skfem.LinearForm(lambda v, w, k=k: v[k]).assemble(fb) / area for k in (0, 1)]
-        if guided:
-            end = basis.get_dofs(lambda x: np.isclose(x[0], xe, atol=1e-6))
-            fixed.append(end.all(["u^1"]))
-    else:
-        cc = mesh.p[:, mesh.t].mean(axis=1)
-        head = np.nonzero(load(cc[0], cc[1]))[0]
-        if head.size == 0:
-            raise BetvError("finite-element model: no mesh cell in the loaded region")
-        hb = skfem.Basis(mesh, e, elements=head, intorder=4)
-        area = float(np.sum(hb.dx))
-        loads = [skfem.LinearForm(lambda v, w, k=k: v[k]).assemble(hb) / area for k in (0, 1)]
-    return loads, fixed
+    K = stiffness.assemble(basis)
+    return mesh, basis, K
 
 
 def plane_stress_stiffness(
@@ -210,24 +160,31 @@ def plane_stress_stiffness(
     """
     skfem = _skfem()
     from scipy.sparse.linalg import splu
-    from skfem.helpers import ddot, sym_grad, trace
 
     t0 = time.perf_counter()
-    mesh = _body_mesh(rects, discs, h_across, h_along, fine, skfem)
-    e = skfem.ElementVector(skfem.ElementQuad2())
-    basis = skfem.Basis(mesh, e, intorder=4)
-    E = youngs_modulus / 1e6  # µN/µm²
-    nu = poisson_ratio
-    t = thickness * _UM
-
-    @skfem.BilinearForm
-    def stiffness(u, v, w):
-        eu, ev = sym_grad(u), sym_grad(v)
-        sig = E / (1 - nu**2) * ((1 - nu) * eu + nu * trace(eu) * np.eye(2)[:, :, None, None])
-        return t * ddot(sig, ev)
-
-    K = stiffness.assemble(basis)
-    loads, fixed = _loads(mesh, basis, e, load, (clamp_x, traction_x, guided), skfem)
+    mesh, basis, K = _assemble(rects, discs, youngs_modulus, poisson_ratio, thickness,
+                               h_across, h_along, fine)  # fmt: skip
+    e = basis.elem
+    clamped = basis.get_dofs(lambda x: np.isclose(x[0], clamp_x * _UM, atol=1e-6)).all()
+    fixed = [clamped]
+    if load is None:
+        assert traction_x is not None
+        xe = traction_x * _UM
+        facets = mesh.facets_satisfying(lambda x: np.isclose(x[0], xe, atol=1e-6))
+        fb = skfem.FacetBasis(mesh, e, facets=facets, intorder=4)
+        area = float(np.sum(fb.dx))
+        loads = [skfem.LinearForm(lambda v, w, k=k: v[k]).assemble(fb) / area for k in (0, 1)]
+        if guided:
+            end = basis.get_dofs(lambda x: np.isclose(x[0], xe, atol=1e-6))
+            fixed.append(end.all(["u^1"]))
+    else:
+        cc = mesh.p[:, mesh.t].mean(axis=1)
+        head = np.nonzero(load(cc[0], cc[1]))[0]
+        if head.size == 0:
+            raise BetvError("finite-element model: no mesh cell in the loaded region")
+        hb = skfem.Basis(mesh, e, elements=head, intorder=4)
+        area = float(np.sum(hb.dx))
+        loads = [skfem.LinearForm(lambda v, w, k=k: v[k]).assemble(hb) / area for k in (0, 1)]
     fixed_dofs = np.unique(np.concatenate(fixed))
     free = np.setdiff1d(np.arange(basis.N), fixed_dofs)
     lu = splu(K[free][:, free].tocsc())
@@ -248,13 +205,75 @@ def plane_stress_stiffness(
     )
 
 
-def frame_fe(g: FrameGeometry, *, poisson_ratio: float = 0.22, level: int = 1) -> FeResult:
-    """The plane-stress FE stiffness of the actuator ``g`` at its head (module doc).
+@dataclass(frozen=True)
+class FeModes:
+    """The lowest in-plane natural frequencies [Hz] of a plane-stress body, with the
+    mesh's size."""
 
-    level: mesh refinement; level 1 puts 4 cells across each arm and the flexure, cells
-    along the arms (and everywhere else) at most 4 times the narrowest arm's cell; each
-    level halves both.
-    """
+    frequencies_hz: tuple[float, ...]
+    cells: int
+    dofs: int
+    elapsed_s: float
+
+
+def plane_stress_modes(
+    rects: Sequence[Rect],
+    discs: Sequence[tuple[float, float, float]],
+    *,
+    youngs_modulus: float,
+    poisson_ratio: float,
+    thickness: float,
+    density: float,
+    lumped: Callable[[np.ndarray, np.ndarray], np.ndarray] | None = None,
+    lumped_mass: float = 0.0,
+    clamp_x: float = 0.0,
+    h_across: float,
+    h_along: float,
+    fine: Sequence[tuple[float, float, float]] | None = None,
+    count: int = 1,
+) -> FeModes:
+    """The ``count`` lowest natural frequencies [Hz] of the plane-stress body of
+    :func:`plane_stress_stiffness` (same mesh, elements and clamp), from K·φ = ω²·M·φ with
+    the consistent mass matrix M = ρ·t·∫ φ·ψ dA (shift-invert Lanczos about 0).
+
+    density: the body's [kg/m³]; lumped, lumped_mass: the cells (a predicate on their
+    centres, µm) whose mass is replaced by ``lumped_mass`` [kg] spread uniformly over
+    them (the head: its mass the model's m, whatever the film's density)."""
+    skfem = _skfem()
+    from scipy.sparse.linalg import eigsh
+    from skfem.helpers import dot
+
+    t0 = time.perf_counter()
+    mesh, basis, K = _assemble(rects, discs, youngs_modulus, poisson_ratio, thickness,
+                               h_across, h_along, fine)  # fmt: skip
+    t = thickness * _UM
+    rho = density * 1e-18  # kg/µm³
+
+    @skfem.BilinearForm
+    def mass(u, v, w):
+        return dot(u, v)
+
+    M = mass.assemble(basis) * (rho * t)
+    if lumped is not None:
+        cc = mesh.p[:, mesh.t].mean(axis=1)
+        cells = np.nonzero(lumped(cc[0], cc[1]))[0]
+        if cells.size == 0:
+            raise BetvError("finite-element model: no mesh cell in the lumped-mass region")
+        hb = skfem.Basis(mesh, basis.elem, elements=cells, intorder=4)
+        area = float(np.sum(hb.dx))
+        M = M + mass.assemble(hb) * (lumped_mass / area - rho * t)
+    clamped = basis.get_dofs(lambda x: np.isclose(x[0], clamp_x * _UM, atol=1e-6)).all()
+    free = np.setdiff1d(np.arange(basis.N), clamped)
+    w2 = eigsh(K[free][:, free].tocsc(), k=count, M=M[free][:, free].tocsc(), sigma=0.0,
+               which="LM", return_eigenvectors=False)  # fmt: skip
+    f = tuple(float(x) for x in np.sort(np.sqrt(np.abs(w2)) / (2 * math.pi)))
+    return FeModes(f, int(mesh.t.shape[1]), int(basis.N), time.perf_counter() - t0)
+
+
+def _frame_body(
+    g: FrameGeometry, level: int
+) -> tuple[list[Rect], list, Callable[[np.ndarray, np.ndarray], np.ndarray], dict]:
+    """The drawn actuator's polygons for the FE, the head's cells and the mesh sizes."""
     rects, (cx, cy, hx, hy, kind) = shape(g)
     body = [r for r in rects if not r.name.startswith("anchor")]
     w_min = float(min(g.hot_width, g.flexure_width, g.cold_width, g.gap))
@@ -262,36 +281,151 @@ def frame_fe(g: FrameGeometry, *, poisson_ratio: float = 0.22, level: int = 1) -
     if kind == "disc":
         discs = [(cx, cy, hx)]
 
-        def load(x: np.ndarray, y: np.ndarray) -> np.ndarray:
+        def head(x: np.ndarray, y: np.ndarray) -> np.ndarray:
             return (x - cx * _UM) ** 2 + (y - cy * _UM) ** 2 < (hx * _UM) ** 2
 
     else:
         discs = []
-        head = Rect("head", cx - hx, cy - hy, cx + hx, cy + hy)
-        body.append(head)
+        box = Rect("head", cx - hx, cy - hy, cx + hx, cy + hy)
+        body.append(box)
 
-        def load(x: np.ndarray, y: np.ndarray) -> np.ndarray:
-            return (
-                (x > head.x0 * _UM)
-                & (x < head.x1 * _UM)
-                & (y > head.y0 * _UM)
-                & (y < head.y1 * _UM)
-            )
+        def head(x: np.ndarray, y: np.ndarray) -> np.ndarray:
+            return (x > box.x0 * _UM) & (x < box.x1 * _UM) & (y > box.y0 * _UM) & (y < box.y1 * _UM)
 
+    sizes = {
+        "h_across": h,
+        "h_along": 4 * h,
+        "fine": [
+            (r.y0, r.y1, (r.y1 - r.y0) / (4 * 2 ** (level - 1)))
+            for r in body
+            if r.name in ("hot_arm", "flexure", "cold_arm")
+        ],
+    }
+    return body, discs, head, sizes
+
+
+def frame_modes(
+    g: FrameGeometry,
+    *,
+    density: float,
+    head_mass: float,
+    poisson_ratio: float = 0.22,
+    level: int = 1,
+    count: int = 1,
+) -> FeModes:
+    """The drawn actuator's lowest in-plane natural frequencies [Hz] (plane stress, the
+    mesh of :func:`frame_fe` at ``level``): the film of ``density`` [kg/m³], the head's
+    cells carrying ``head_mass`` [kg], clamped at the anchors' edge x = 0."""
+    body, discs, head, sizes = _frame_body(g, level)
+    return plane_stress_modes(
+        body,
+        discs,
+        youngs_modulus=float(g.youngs_modulus),
+        poisson_ratio=poisson_ratio,
+        thickness=float(g.thickness),
+        density=density,
+        lumped=head,
+        lumped_mass=head_mass,
+        count=count,
+        **sizes,
+    )
+
+
+def frame_modes_3d(
+    g: FrameGeometry,
+    *,
+    density: float,
+    head_mass: float,
+    poisson_ratio: float = 0.22,
+    level: int = 1,
+    count: int = 4,
+) -> tuple[FeModes, tuple[float, ...]]:
+    """The drawn actuator's lowest natural frequencies [Hz] as a 3-D solid: the mesh of
+    :func:`frame_modes` extruded through the film (one triquadratic hexahedron, 27
+    nodes, through the thickness: bending through it is exact), isotropic linear
+    elasticity, consistent mass, the head's cells carrying ``head_mass``, clamped at
+    x = 0. Returns the modes and, for each, the share of its kinetic energy out of the
+    plane (z): near 1 for an out-of-plane mode, near 0 for an in-plane one."""
+    skfem = _skfem()
+    from scipy.sparse.linalg import eigsh
+    from skfem.helpers import ddot, dot, sym_grad, trace
+
+    t0 = time.perf_counter()
+    body, discs, head, sizes = _frame_body(g, level)
+    mesh2, _, _ = _assemble(body, discs, float(g.youngs_modulus), poisson_ratio,
+                            float(g.thickness), sizes["h_across"], sizes["h_along"],
+                            sizes["fine"])  # fmt: skip
+    t = float(g.thickness) * _UM
+    xs = np.unique(mesh2.p[0])
+    ys = np.unique(mesh2.p[1])
+    mesh = skfem.MeshHex.init_tensor(xs, ys, np.array([0.0, t]))
+    c3 = mesh.p[:, mesh.t].mean(axis=1)
+    c2 = mesh2.p[:, mesh2.t].mean(axis=1)
+    keep = {(round(a, 6), round(b, 6)) for a, b in zip(c2[0], c2[1], strict=True)}
+    inside = np.array([(round(a, 6), round(b, 6)) in keep for a, b in zip(c3[0], c3[1],
+                                                                       strict=True)])  # fmt: skip
+    mesh = mesh.remove_elements(np.nonzero(~inside)[0])
+    basis = skfem.Basis(mesh, skfem.ElementVector(skfem.ElementHex2()), intorder=4)
+    E = float(g.youngs_modulus) / 1e6
+    nu = poisson_ratio
+    lam, mu = E * nu / ((1 + nu) * (1 - 2 * nu)), E / (2 * (1 + nu))
+    rho = density * 1e-18
+
+    @skfem.BilinearForm
+    def stiffness(u, v, w):
+        eu, ev = sym_grad(u), sym_grad(v)
+        return 2 * mu * ddot(eu, ev) + lam * trace(eu) * trace(ev)
+
+    @skfem.BilinearForm
+    def mass(u, v, w):
+        return dot(u, v)
+
+    K = stiffness.assemble(basis)
+    M = mass.assemble(basis) * rho
+    cc = mesh.p[:, mesh.t].mean(axis=1)
+    cells = np.nonzero(head(cc[0], cc[1]))[0]
+    if cells.size == 0:
+        raise BetvError("finite-element model: no mesh cell in the head")
+    hb = skfem.Basis(mesh, basis.elem, elements=cells, intorder=4)
+    vol = float(np.sum(hb.dx))
+    M = M + mass.assemble(hb) * (head_mass / vol - rho)
+    clamped = basis.get_dofs(lambda x: np.isclose(x[0], 0.0, atol=1e-6)).all()
+    free = np.setdiff1d(np.arange(basis.N), clamped)
+    Mf = M[free][:, free].tocsc()
+    w2, vec = eigsh(K[free][:, free].tocsc(), k=count, M=Mf, sigma=0.0, which="LM")
+    order = np.argsort(w2)
+    zdofs = np.zeros(basis.N, dtype=bool)
+    zdofs[basis.nodal_dofs[2]] = True
+    zdofs[basis.facet_dofs[2]] = True if basis.facet_dofs.size else False
+    zdofs[basis.edge_dofs[2]] = True if basis.edge_dofs.size else False
+    zdofs[basis.interior_dofs[2]] = True if basis.interior_dofs.size else False
+    zf = zdofs[free]
+    shares = []
+    for k in order:
+        v = vec[:, k]
+        Mv = Mf @ v
+        shares.append(float((v[zf] @ Mv[zf]) / (v @ Mv)))
+    f = tuple(float(x) for x in np.sqrt(np.abs(w2[order])) / (2 * math.pi))
+    modes = FeModes(f, int(mesh.t.shape[1]), int(basis.N), time.perf_counter() - t0)
+    return modes, tuple(shares)
+
+
+def frame_fe(g: FrameGeometry, *, poisson_ratio: float = 0.22, level: int = 1) -> FeResult:
+    """The plane-stress FE stiffness of the actuator ``g`` at its head (module doc).
+
+    level: mesh refinement; level 1 puts 4 cells across each arm and the flexure, cells
+    along the arms (and everywhere else) at most 4 times the narrowest arm's cell; each
+    level halves both.
+    """
+    body, discs, head, sizes = _frame_body(g, level)
     return plane_stress_stiffness(
         body,
         discs,
         youngs_modulus=float(g.youngs_modulus),
         poisson_ratio=poisson_ratio,
         thickness=float(g.thickness),
-        load=load,
-        h_across=h,
-        h_along=4 * h,
-        fine=[
-            (r.y0, r.y1, (r.y1 - r.y0) / (4 * 2 ** (level - 1)))
-            for r in body
-            if r.name in ("hot_arm", "flexure", "cold_arm")
-        ],
+        load=head,
+        **sizes,
     )
 
 

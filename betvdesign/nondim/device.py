@@ -7,13 +7,13 @@ doi:10.1063/1.1809773) are one step each, in the order :func:`derive_set` takes 
 
 1. :func:`slider_mass`          M = (n·ρ·L·w·t + m_extra)/2
 2. :func:`head_mass`            m given, or ρ_head·V_head; with a drawn actuator
-   (``actuator.geometry``) θ, then the frame's K_nn, K_tt at the head
-   (:mod:`betvdesign.nondim.actuator`)
-3. :func:`vertical_stiffness`   k_v = m·(2π·f_v)², or K_nn of the drawn actuator where the
-   file gives no f_v (then f_v = √(k_v/m)/2π)
-4. :func:`compliance_ratio`     α given, k_v/k_h or (f_v/f_h)², or K_nn/K_tt of the drawn
-   actuator where the file gives none of them; given values win and the drawn
-   actuator's are recorded beside them (f_v,geom, α_geom) for the check to compare
+   (``actuator.geometry``) θ, then the drawn head's springs, effective masses and
+   resonances f_v,geom, f_h,geom (:mod:`betvdesign.nondim.actuator`)
+3. :func:`vertical_stiffness`   k_v = m·(2π·f_v)², f_v the file's or, where it gives none,
+   the drawn actuator's f_v,geom
+4. :func:`compliance_ratio`     α given, k_v/k_h or (f_v/f_h)², or (f_v/f_h)² with the
+   drawn actuator's f_h where the file gives none of them; given values win and the
+   drawn actuator's are recorded beside them (f_v,geom, α_geom) for the check to compare
 5. :func:`actuation_frequency`  f_act = 2·f_drive (AC, zero DC bias) or f_drive; ω = 2π·f_act
 6. :func:`amplitude`            u given or from the calibration u(V); with a thermal cut-off
    this is u_cal and u = u_cal·H(f_act)/H(f_cal) (:func:`betvdesign.nondim.terms.rolloff`)
@@ -391,9 +391,8 @@ def vertical_stiffness(
     """The head's vertical (normal) contact stiffness: k_v = m·(2π·f_v)².
 
     From the head's vertical resonance f_v, sqrt(k_v/m) = 2π·f_v. Records f_v and k_v.
-    Where the file gives no f_v, k_v is the drawn actuator's K_nn and
-    f_v = √(k_v/m)/2π; where it gives both, the drawn actuator's resonance is recorded
-    beside it (``f_v,geom``, not used).
+    Where the file gives no f_v, f_v is the drawn actuator's (``f_v,geom``, recorded by
+    :func:`betvdesign.nondim.actuator.drawn_springs` either way) and k_v = m·(2π·f_v)².
 
     Parameters
     ----------
@@ -433,8 +432,6 @@ def vertical_stiffness(
         ("m", "f_v"),
         "N/m",
     )
-    if springs is not None:
-        actuator.drawn_resonance_beside(rec, springs, m)
     return f_v, k_v
 
 
@@ -449,9 +446,9 @@ def compliance_ratio(
 
     Phenomenological: given directly, through the tangential stiffness k_h
     (α = k_v/k_h), or through a tangential resonance f_h (α = (f_v/f_h)²). Records the
-    input and α. Where the file gives none of them, k_h is the drawn actuator's K_tt;
-    where it gives one, the drawn actuator's K_nn/K_tt is recorded beside it
-    (``α_geom``, not used).
+    input and α. Where the file gives none of them, α = (f_v/f_h)² with the drawn
+    actuator's f_h; where it gives one, the drawn actuator's (f_v,geom/f_h,geom)² is
+    recorded beside it (``α_geom``, not used).
 
     Parameters
     ----------
@@ -479,7 +476,7 @@ def compliance_ratio(
     """
     if not actuator.alpha_given(act):
         assert springs is not None
-        return actuator.drawn_compliance_ratio(rec, springs, k_v)
+        return actuator.drawn_compliance_ratio(rec, springs, f_v)
     if act.alpha is not None:
         alpha = rec.spec(
             "α",

@@ -1,4 +1,4 @@
-"""What a derivation produces (plain data), and the recorder that builds it.
+"""What a derivation produces (plain data).
 
 What a derivation produces (plain data): the record of every step, the scales, the
 comparison with a published fit, the derivation of one actuator set and of a device;
@@ -90,7 +90,7 @@ class DerivationStep:
     key: str = ""
 
     def __post_init__(self) -> None:
-        """Default the key to the symbol's ASCII name."""
+        """Default the ASCII key from the symbol."""
         if not self.key:
             object.__setattr__(self, "key", _ASCII.get(self.symbol, self.symbol))
 
@@ -162,7 +162,7 @@ class Scales:
 
     @property
     def rolloff_factor(self) -> float:
-        """H(f_act)/H(f_cal) [-]: the stroke at f_act relative to the calibrated one.
+        """The roll-off factor H(f_act)/H(f_cal) [-].
 
         H(f_act)/H(f_cal) [-]: the stroke at f_act relative to the calibrated one
         (1 without a cut-off).
@@ -226,8 +226,12 @@ class HeadSprings:
     """The head's springs from the drawn actuator, float SI.
 
     The head's springs from the drawn actuator (:mod:`betvdesign.nondim.actuator`),
-    float SI: k_nn, k_tt, k_nt [N/m] in the slider's frame, the coupling ρ [-], the arms'
-    first-mode mass m_arm [kg] against the head's m [kg]; ``used``: for "k_v" and
+    float SI: k_nn, k_tt, k_nt [N/m] the frame's stiffness in the slider's frame; k_v, k_h
+    [N/m] the model's springs (each direction with the other free, the slider's compliance
+    in series), m_v, m_h [kg] their Rayleigh effective masses, f_v, f_h [Hz] the drawn
+    resonances, f_1, f_oop [Hz] the actuator's first in-plane and out-of-plane modes; the
+    coupling ρ [-]; the
+    arms' first-mode mass m_arm [kg] against the head's m [kg]; ``used``: for "k_v" and
     "alpha", "geometry" when the drawn actuator gave it, "file" when the device file's
     value was used (then ``file_f_v_hz``/``file_alpha`` hold it for comparison).
     """
@@ -238,19 +242,22 @@ class HeadSprings:
     rho: float
     m_arm_kg: float
     m_head_kg: float
+    k_v: float
+    k_h: float
+    m_v_kg: float
+    m_h_kg: float
+    f_v_hz: float
+    f_h_hz: float
+    f_1_hz: float
+    f_oop_hz: float
     used: dict[str, str]
     file_f_v_hz: float | None = None
     file_alpha: float | None = None
 
     @property
-    def f_v_hz(self) -> float:
-        """The geometry's vertical resonance sqrt(k_nn/m)/2π [Hz]."""
-        return math.sqrt(self.k_nn / self.m_head_kg) / (2 * math.pi)
-
-    @property
     def alpha(self) -> float:
-        """The geometry's α = k_nn/k_tt [-]."""
-        return self.k_nn / self.k_tt
+        """The geometry's α = (f_v/f_h)² [-]."""
+        return (self.f_v_hz / self.f_h_hz) ** 2
 
 
 @dataclass(frozen=True)
@@ -313,6 +320,24 @@ class SetDerivation:
         by_key = {s.key: s for s in self.record}
         return {k: by_key[k].value_str for k in DERIVED_KEYS if k in by_key}
 
+    def drawn(self) -> dict[str, float | None]:
+        """The drawn actuator's mechanics for ``betv check --json``.
+
+        The drawn actuator's mechanics for ``betv check --json`` (``derived.drawn``),
+        float SI, each None without a drawing: f_v_hz, f_h_hz (the drawn resonances),
+        k_v_n_m, k_h_n_m (the head's springs, each direction with the other free, slider
+        in series), m_eff_kg (the normal spring's Rayleigh effective mass), coupling (ρ),
+        f_1_hz and f_oop_hz (the actuator's first in-plane and out-of-plane modes).
+        """
+        sp = self.springs
+        keys = ("f_v_hz", "f_h_hz", "k_v_n_m", "k_h_n_m", "m_eff_kg", "coupling", "f_1_hz",
+                "f_oop_hz")  # fmt: skip
+        if sp is None:
+            return dict.fromkeys(keys)
+        vals = (sp.f_v_hz, sp.f_h_hz, sp.k_v, sp.k_h, sp.m_v_kg, sp.rho, sp.f_1_hz,
+                sp.f_oop_hz)  # fmt: skip
+        return {k: float(v) for k, v in zip(keys, vals, strict=True)}
+
 
 @dataclass(frozen=True)
 class DeviceDerivation:
@@ -325,7 +350,7 @@ class DeviceDerivation:
 
 @dataclass(frozen=True)
 class SampleDerivation:
-    """Model parameters and scales of many samples at once.
+    """The model parameters and scales of many samples at once.
 
     :func:`derive_samples`: the model parameters and scales of many samples at once
     (arrays of equal length, float SI; zeta_v, zeta_h, restitution 0 where the spec gives

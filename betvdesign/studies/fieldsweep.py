@@ -693,9 +693,7 @@ def locate_flips(
         for _ in range(len(MODES) + 1):
             if ma == mb or abs(hi - lo) <= width:
                 break
-            br = bisect(
-                lambda x: _mode_at(spec, axis, x, index, tol), lo, hi, ma, mb, width=width
-            )
+            br = bisect(lambda x: _mode_at(spec, axis, x, index, tol), lo, hi, ma, mb, width=width)
             out.append(Flip(axis.field, br.mid, ma, br.at_b, (br.a, br.b)))
             lo, ma = br.b, br.at_b
     return out
