@@ -130,11 +130,12 @@ def test_unknown_or_broken_process_is_reported_at_the_process_line(tmp_path):
 
 def test_a_beam_below_one_nanometre_is_refused_at_its_line():
     """Issue 23: a 1e-30 µm beam passed `betv check`; it is not a dimension at all."""
-    text = SHIN.replace("beam_width: 5 um", "beam_width: 1e-30 um")
-    (msg,) = issues(text)
-    line = text[: text.index("beam_width:")].count("\n") + 1
-    assert msg.startswith(f"dev.yaml:{line}:15: slider.beam_width: ")
-    assert "below 1 nm" in msg
+    for width, why in (("0.5 nm", "below 1 nm"), ("1e-30 um", "outside 1e-12 m to 1 m")):
+        text = SHIN.replace("beam_width: 5 um", f"beam_width: {width}")
+        (msg,) = issues(text)
+        line = text[: text.index("beam_width:")].count("\n") + 1
+        assert msg.startswith(f"dev.yaml:{line}:15: slider.beam_width: ")
+        assert why in msg
 
 
 def test_layer_names_must_be_structural_layers_of_the_process():
@@ -228,7 +229,7 @@ def test_cli_check_fails_a_narrow_beam_with_message(tmp_path):
 
 def test_cli_check_refuses_a_sub_nanometre_beam(tmp_path):
     f = tmp_path / "tiny.yaml"
-    f.write_text(SHIN.replace("beam_width: 5 um", "beam_width: 1e-30 um"))
+    f.write_text(SHIN.replace("beam_width: 5 um", "beam_width: 0.5 nm"))
     res = run("check", str(f))
     assert res.exit_code == 2
     assert "below 1 nm" in res.stderr and "Traceback" not in res.output

@@ -356,14 +356,14 @@ class QuantitySpec:
             if _SHAPE.fullmatch(value).group("num") is None:  # parse_quantity matched it
                 raise PydanticCustomError(
                     "missing_number",
-                    "missing number in {text!r}: write e.g. '{example}'",
-                    {"text": value, "example": self.example},
+                    "missing number in {text}: write e.g. '{example}'",
+                    {"text": repr(value), "example": self.example},
                 )
             if q.units == ureg.dimensionless:
                 raise PydanticCustomError(
                     "missing_unit",
-                    "missing unit in {text!r}: write it with units, e.g. '{example}'",
-                    {"text": value, "example": self.example},
+                    "missing unit in {text}: write it with units, e.g. '{example}'",
+                    {"text": repr(value), "example": self.example},
                 )
         else:
             raise PydanticCustomError(
@@ -416,6 +416,21 @@ class QuantitySpec:
                 "out_of_range",
                 "must be < {b} {u}, got {q}",
                 {"b": f"{self.lt:g}", "u": u, "q": format_quantity(q)},
+            )
+        span = limits.QUANTITY_RANGE.get(u)
+        if span is not None and mag != 0.0 and not span[0] <= abs(mag) <= span[1]:
+            lo, hi, what = span
+            raise PydanticCustomError(
+                "out_of_model_range",
+                "{q} is outside {lo} {u} to {hi} {u}, the range of {what} the model computes "
+                "with (inside it no derived value underflows or overflows)",
+                {
+                    "q": format_quantity(q),
+                    "lo": f"{lo:.8g}",
+                    "hi": f"{hi:.8g}",
+                    "u": u,
+                    "what": what,
+                },
             )
 
     # --- pydantic hooks -------------------------------------------------------------
