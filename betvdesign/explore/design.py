@@ -2,9 +2,11 @@
 
 A :class:`Design` holds the file's text and spec and an ordered set of edits (dotted
 path -> the value as a device file writes it). Every proposed edit goes through
-:meth:`betvdesign.spec.models.DeviceSpec.replace`, the device file's own validation, so a
-refused value raises the loader's :class:`~betvdesign.errors.SpecError` and leaves the
-design as it was.
+:meth:`betvdesign.spec.models.DeviceSpec.replace`, the device file's own validation, and
+then the derivation ``betv check`` runs on a file
+(:func:`betvdesign.nondim.device.derive_refusing`), so a refused value raises the same
+:class:`~betvdesign.errors.SpecError` ``betv check`` gives the file and leaves the design
+as it was.
 
 :meth:`Design.yaml_text` writes the user's file with only the changed values replaced,
 in place (every other byte kept: comments, layout, flow mappings), a value the file does
@@ -72,7 +74,7 @@ class Design:
     def __init__(self, text: str, filename: str) -> None:
         self.text = text
         self.filename = filename
-        self.original = load_device_text(text, filename)
+        self.original = _derivable(load_device_text(text, filename), filename)
         self.spec = self.original
         self.edits: dict[str, Any] = {}
 
@@ -99,12 +101,15 @@ class Design:
 
     def propose(self, changes: dict[str, Any]) -> Any:
         """The spec with ``changes`` (path -> value) on top of the current edits,
-        validated like a device file; raises its :class:`SpecError`."""
+        refused exactly as ``betv check`` refuses a file: validated like a device file,
+        then derived (a value the model cannot take, such as a voltage where the
+        calibration gives no stroke); raises that :class:`SpecError`."""
         edits = self._merged(changes)
         if not edits:
             return self.original
         items = list(edits.items())
-        return self.original.replace(items[0][0], items[0][1], *items[1:])
+        spec = self.original.replace(items[0][0], items[0][1], *items[1:])
+        return _derivable(spec, self.filename)
 
     def apply(self, changes: dict[str, Any]) -> Any:
         """Commit ``changes`` (validated first; the design is unchanged when refused)."""
@@ -169,6 +174,15 @@ class Design:
         diff = difflib.unified_diff(self.text.splitlines(), text.splitlines(), n=0, lineterm="")
         n = sum(1 for d in diff if d.startswith("+") and not d.startswith("+++"))
         return SaveResult(p, True, f"wrote {p} ({n} changed line{'s' * (n != 1)})")
+
+
+def _derivable(spec: Any, filename: str) -> Any:
+    """``spec`` when the model can take it, else ``betv check``'s refusal of its file
+    (:func:`betvdesign.nondim.device.derive_refusing`: a :class:`SpecError`)."""
+    from betvdesign.nondim.device import derive_refusing
+
+    derive_refusing(spec, filename)
+    return spec
 
 
 # --- writing values in place -------------------------------------------------------------

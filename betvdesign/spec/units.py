@@ -426,8 +426,8 @@ class QuantitySpec:
                 "with (inside it no derived value underflows or overflows)",
                 {
                     "q": format_quantity(q),
-                    "lo": f"{lo:.8g}",
-                    "hi": f"{hi:.8g}",
+                    "lo": _exact(lo),
+                    "hi": _exact(hi),
                     "u": u,
                     "what": what,
                 },
@@ -465,6 +465,11 @@ class QuantitySpec:
             "description": desc,
             "examples": [self.example],
         }
+
+
+def _exact(x: float) -> str:
+    """``x`` short (``1e+06``) where that is exact, else with the digits it needs."""
+    return f"{x:g}" if float(f"{x:g}") == x else repr(x)
 
 
 def _q(dimension: str, unit: str, example: str, **bounds: float) -> Any:
