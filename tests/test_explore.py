@@ -564,3 +564,36 @@ def test_a_server_started_in_the_background_stops_on_sigint(tmp_path: Path) -> N
             proc.wait()
     assert proc.returncode == 0, err
     assert "stopped" in out and "Traceback" not in err, err
+
+
+# --- saving (issue 32, item 5) -----------------------------------------------------------------
+
+
+def test_save_writes_beside_the_device_file_or_says_why_not(tmp_path: Path) -> None:
+    """An empty name, an absolute path, `~`, `..` or a folder are refused with a message
+    naming the device file's folder; nothing is written anywhere; only an existing file
+    offers an overwrite."""
+    import uuid
+
+    folder = tmp_path / "dev"
+    folder.mkdir()
+    src = folder / "push_demo.yaml"
+    shutil.copy(DEVICES / "push_demo.yaml", src)
+    d = Design.from_file(src)
+    d.apply({"slider.beam_width": "12 um"})
+    unique = f"betv-{uuid.uuid4().hex}.yaml"
+    elsewhere = tmp_path / "elsewhere" / unique
+    elsewhere.parent.mkdir()
+    names = ["", "   ", str(elsewhere), f"~/{unique}", f"../{unique}", f"sub/{unique}", ".."]
+    for name in names:
+        res = d.save(name)
+        assert not res.written and not res.exists, name
+        assert str(folder) in res.message, res.message
+    home = Path("~").expanduser() / unique
+    assert not elsewhere.exists() and not home.exists() and not (tmp_path / unique).exists()
+    assert sorted(p.name for p in folder.iterdir()) == ["push_demo.yaml"]
+    res = d.save(unique)
+    assert res.written and res.path == folder / unique
+    again = d.save(unique)
+    assert not again.written and again.exists
+    assert load_device(folder / unique) == d.spec

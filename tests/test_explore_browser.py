@@ -333,6 +333,27 @@ def test_a_value_the_model_cannot_take_is_refused_at_the_control(browser, push_s
     page.close()
 
 
+def test_save_box_refuses_names_that_leave_the_device_folder(browser, push_server) -> None:
+    """Issue 32 item 5: an empty name, an absolute path or `..` are refused with a
+    message naming the folder, no Overwrite button, nothing written."""
+    page = Page(browser, push_server)
+    before = sorted(p.name for p in push_server.workdir.iterdir())
+    box = page.p.locator(".betv-save-name input")
+    for name in ("", "/tmp/betv-abs.yaml", "../up.yaml"):
+        box.fill(name)
+        box.press("Enter")
+        page.p.locator(".betv-save button").click()
+        msg = page.p.locator(".betv-save-message").first
+        deadline = time.monotonic() + WAIT_MS / 1e3
+        while str(push_server.workdir) not in msg.inner_text() and time.monotonic() < deadline:
+            time.sleep(0.1)
+        assert str(push_server.workdir) in msg.inner_text()
+        assert not page.p.locator(".betv-overwrite button").is_visible()
+    assert sorted(p.name for p in push_server.workdir.iterdir()) == before
+    assert not Path("/tmp/betv-abs.yaml").exists()
+    page.close()
+
+
 def test_report_download_is_betv_reports_html(browser, push_server) -> None:
     """ "Build report" gives, byte for byte, the HTML `betv report` writes for the
     design saved under the name in the save box."""

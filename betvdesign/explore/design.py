@@ -52,12 +52,14 @@ def free_name(path: Path) -> Path:
 
 @dataclass(frozen=True)
 class SaveResult:
-    """What :meth:`Design.save` did: ``written`` (the path) or ``exists`` (nothing written,
-    the caller must ask before overwriting)."""
+    """What :meth:`Design.save` did: ``written`` (the path), or nothing written and
+    ``message`` says why; ``exists``: only because a file is there (the caller may ask
+    before overwriting it)."""
 
     path: Path
     written: bool
     message: str
+    exists: bool = False
 
 
 class Design:
@@ -153,14 +155,29 @@ class Design:
                 out[k] = value
         return list(out.items())
 
-    def save(self, target: str | Path, *, overwrite: bool = False) -> SaveResult:
-        """Write :meth:`yaml_text` to ``target`` (relative: beside the device file);
-        an existing file is only replaced with ``overwrite``."""
+    def save(self, name: str, *, overwrite: bool = False) -> SaveResult:
+        """Write :meth:`yaml_text` to the file ``name`` beside the device file; a name
+        with a folder (absolute, ``~``, ``..``, ``a/b.yaml``) or without one is refused
+        with a message (nothing written); an existing file is only replaced with
+        ``overwrite``."""
         from betvdesign.output.files import check_output_file, write_atomic
 
-        p = Path(target).expanduser()
-        if not p.is_absolute():
-            p = Path(self.filename).resolve().parent / p
+        folder = Path(self.filename).resolve().parent
+        name = str(name).strip()
+        if not name:
+            return SaveResult(
+                folder,
+                False,
+                f"give a file name ending in .yaml (saved beside the device file, in {folder})",
+            )
+        if Path(name).name != name or name.startswith("~") or name in (".", ".."):
+            return SaveResult(
+                folder / Path(name).name,
+                False,
+                f"{name}: give a file name only; the design is saved beside the device file, "
+                f"in {folder}",
+            )
+        p = folder / name
         if p.suffix.lower() not in (".yaml", ".yml"):
             return SaveResult(p, False, f"{p.name}: the file name must end in .yaml")
         try:
@@ -168,7 +185,9 @@ class Design:
         except BetvError as exc:
             return SaveResult(p, False, str(exc))
         if p.exists() and not overwrite:
-            return SaveResult(p, False, f"{p} exists; overwrite it, or give another name")
+            return SaveResult(
+                p, False, f"{p} exists; overwrite it, or give another name", exists=True
+            )
         text = self.yaml_text()
         write_atomic(p, text)
         diff = difflib.unified_diff(self.text.splitlines(), text.splitlines(), n=0, lineterm="")
