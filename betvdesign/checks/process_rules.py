@@ -19,8 +19,8 @@ process file and a fix; device-level, the message names the element):
   are plates) and actuator arms at least :data:`ARM_ASPECT_MIN` (the stiffness closed
   form is Euler–Bernoulli beam theory, :mod:`betvdesign.model.frame`).
 
-Devices without ``process`` get only the geometry rule, and only with an actuator
-geometry (their rule list is unchanged otherwise).
+Devices without ``process`` get the note ``process`` (a warning: the process's rules were
+not checked) and the geometry rule, only with an actuator geometry.
 """
 
 from __future__ import annotations
@@ -204,11 +204,30 @@ def process_rules(spec: DeviceSpec) -> list[RuleResult]:
         p = spec.process
         out += [_thickness(p, feats), _material(spec, p), _min_width(p, feats)]
         out += [_min_spacing(p, drawn_gaps(spec)), _release(p, feats)]
+    else:
+        out.append(_unchecked())
     if spec.process is not None or has_geometry:
         out.append(_aspect(feats))
     if has_geometry:
         out.append(_head_tip(spec))
     return out
+
+
+def _unchecked() -> RuleResult:
+    """The note of a device that names no process: its design rules were not checked (a
+    warning, so that every output shows it; it never fails the verdict)."""
+    return RuleResult(
+        "process",
+        "warning",
+        False,
+        None,
+        "the device names its fabrication process",
+        "no process named: the process's design rules (layer thickness, minimum width and "
+        "spacing, release) were not checked",
+        "device file (process)",
+        fix="name the device's process (process: polymumps, a shipped name, or the path of a "
+        "process file) so that betv check applies its rules",
+    )
 
 
 def rules_from_measurements(
@@ -228,8 +247,17 @@ def rules_from_measurements(
     ]
 
 
+def _thickness_path(f: Feature) -> str:
+    """The field giving a drawn element's thickness (``slider.beam_thickness``,
+    ``...head.geometry.thickness``, ``...actuator.geometry.thickness``)."""
+    if f.path.startswith("slider."):
+        return "slider.beam_thickness"
+    return f"{f.path.rsplit('.', 1)[0]}.thickness"
+
+
 def _thickness(p: Process, feats: list[Feature]) -> RuleResult:
-    bad = []
+    bad: list[str] = []
+    fixes: list[str] = []
     worst = 0.0
     for f in feats:
         if f.thickness is None:
@@ -238,7 +266,8 @@ def _thickness(p: Process, feats: list[Feature]) -> RuleResult:
         d = abs(f.thickness - want)
         worst = max(worst, d)
         if d > _REL * want:
-            bad.append(f"{f.what} {_fmt(f.thickness)} ({f.path.rsplit('.', 1)[0]}.thickness)")
+            bad.append(f"{f.what} {_fmt(f.thickness)} ({_thickness_path(f)})")
+            fixes.append(f"set {_thickness_path(f)} to {_fmt(want)} ({f.layer})")
     layers = sorted({f.layer for f in feats})
     want_txt = ", ".join(f"{n}: {_fmt(_m(p.structural(n).thickness))}" for n in layers)
     ok = not bad
@@ -257,8 +286,8 @@ def _thickness(p: Process, feats: list[Feature]) -> RuleResult:
         "; ".join(p.cite(f"layers.{n}.thickness") for n in layers),
         fix=""
         if ok
-        else "set each thickness to its layer's (a deposited film cannot be thinned), or draw "
-        "the element on the layer whose thickness it has (slider.layer, "
+        else "; ".join(fixes) + " (the process's film: a deposited layer cannot be thinned), "
+        "or draw the element on the layer whose thickness it has (slider.layer, "
         "actuator.geometry.layer)",
         unit="m",
     )
@@ -285,12 +314,17 @@ def _material(spec: DeviceSpec, p: Process) -> RuleResult:
 
 
 def _min_width(p: Process, feats: list[Feature]) -> RuleResult:
-    bad, ratio = [], []
+    bad, ratio, fixes = [], [], []
     for f in feats:
         mn = _m(p.structural(f.layer).min_width)
         ratio.append((f.width / mn, f))
         if f.width < mn * (1 - _REL):
             bad.append(f"{f.what} {_fmt(f.width)} < {_fmt(mn)} ({f.path})")
+            fixes.append(
+                f"give {f.path} a head whose disc is ≥ {_fmt(mn)} wide (process.min-width)"
+                if f.path.endswith(".head.mass")
+                else f"widen {f.path} to ≥ {_fmt(mn)} (process.min-width)"
+            )
     _, worst = min(ratio, key=lambda x: x[0])
     layers = sorted({f.layer for f in feats})
     mins = ", ".join(f"{n}: {_fmt(_m(p.structural(n).min_width))}" for n in layers)
@@ -311,9 +345,8 @@ def _min_width(p: Process, feats: list[Feature]) -> RuleResult:
         "; ".join(p.cite(f"layers.{n}.min_width") for n in layers),
         fix=""
         if ok
-        else "widen each listed element to at least its layer's minimum width; the process "
-        "cannot define narrower lines (`betv fix FILE --vary FIELD=LO:HI` keeps the design "
-        "passing while you do)",
+        else "; ".join(fixes) + ": the process cannot define narrower lines "
+        "(`betv fix FILE --vary FIELD=LO:HI` keeps the design passing while you do)",
         unit="m",
     )
 
@@ -331,11 +364,15 @@ def _min_spacing(p: Process, gaps: list[Gap]) -> RuleResult:
             p.source,
             unit="m",
         )
-    bad = []
+    bad, fixes = [], []
     for g in gaps:
         mn = _m(p.structural(g.layer).min_spacing)
         if g.gap < mn * (1 - _REL):
             bad.append(f"{g.what} {_fmt(g.gap)} < {_fmt(mn)} ({g.path})")
+            fixes.append(
+                f"widen {g.path} by ≥ {_fmt(mn - g.gap)} ({g.what} to ≥ {_fmt(mn)}; "
+                "process.min-spacing)"
+            )
     worst = min(gaps, key=lambda g: g.gap / _m(p.structural(g.layer).min_spacing))
     layers = sorted({g.layer for g in gaps})
     mins = ", ".join(f"{n}: {_fmt(_m(p.structural(n).min_spacing))}" for n in layers)
@@ -354,10 +391,7 @@ def _min_spacing(p: Process, gaps: list[Gap]) -> RuleResult:
         f"gap >= minimum spacing ({mins})",
         msg,
         "; ".join(p.cite(f"layers.{n}.min_spacing") for n in layers),
-        fix=""
-        if ok
-        else "widen the gap to at least the minimum spacing (actuator.geometry.gap); "
-        "narrower gaps do not open in the process",
+        fix="" if ok else "; ".join(fixes) + ": narrower gaps do not open in the process",
         unit="m",
     )
 

@@ -54,6 +54,10 @@ class Vary:
     lo: float
     hi: float
     unit: str
+    #: The range of the field the device's measured calibration covers [``unit``]
+    #: (``drive.voltage`` with measured points; no extrapolation): a value outside it
+    #: cannot be checked. None: no such range.
+    calibrated: tuple[float, float] | None = None
 
     def quantity(self, x: float) -> Any:
         from betvdesign.spec.units import ureg
@@ -139,10 +143,48 @@ def parse_vary(spec: Any, items: Sequence[str]) -> list[Vary]:
             raise UsageError(
                 f"--vary {item}: need 0 < LO < HI (got {lo:g} to {hi:g} {unit})".rstrip()
             )
-        out.append(Vary(name, x0, lo, hi, unit))
+        cal = calibrated_range(spec, name, unit)
+        if cal is not None and not rng:  # default bounds: only what the points cover
+            lo, hi = max(lo, cal[0]), min(hi, cal[1])
+            if not 0 < lo < hi:
+                continue
+        out.append(Vary(name, x0, lo, hi, unit, cal))
     if len({v.field for v in out}) != len(out):
         raise UsageError("--vary: a field is given twice")
     return out
+
+
+def calibrated_range(spec: Any, name: str, unit: str) -> tuple[float, float] | None:
+    """The drive voltages every set's measured calibration covers [``unit``] (for
+    ``drive.voltage``; the calibration is interpolated, never extrapolated); None for
+    another field or a device without measured points.
+
+    Parameters
+    ----------
+    spec : DeviceSpec
+        The device.
+    name : str
+        The field's dotted path.
+    unit : str
+        The unit of the field's value in the file.
+
+    Returns
+    -------
+    tuple of float or None
+        (lowest, highest) voltage measured, intersected over the sets.
+    """
+    from betvdesign.spec.models import MeasuredCalibration
+
+    if name != "drive.voltage":
+        return None
+    ranges = [
+        tuple(float(v.to(unit).magnitude) for v in s.actuator.calibration.voltage_range)
+        for s in spec.actuator_sets
+        if isinstance(s.actuator.calibration, MeasuredCalibration)
+    ]
+    if not ranges:
+        return None
+    return max(r[0] for r in ranges), min(r[1] for r in ranges)
 
 
 def _magnitude(q: Any, unit: str) -> float:
