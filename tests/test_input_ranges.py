@@ -173,3 +173,22 @@ def test_the_quantity_messages_are_cooked(value, fragment, tmp_path):
     assert res.exit_code == 2
     assert fragment in res.stderr, res.stderr
     assert "{" not in res.stderr and "!r" not in res.stderr
+
+
+@pytest.mark.parametrize(
+    ("command", "bound"),
+    [
+        ("sweep", "drive.frequency=1e-300Hz:1kHz"),
+        ("fix", "drive.frequency=1e-300Hz:1kHz"),
+        ("sweep", "slider.beam_width=1um:1e300um"),
+    ],
+)
+def test_vary_bounds_outside_the_model_are_bad_input(command, bound, tmp_path):
+    """A --vary bound a device file could not give is refused the same way (exit 2), not
+    a ZeroDivisionError in a worker."""
+    f = tmp_path / "dev.yaml"
+    f.write_text(SHIN)
+    res = run(command, f, "--vary", bound)
+    assert res.exit_code == 2, res.output
+    assert "is outside" in res.stderr and "the range of" in res.stderr
+    assert "Traceback" not in res.output

@@ -417,21 +417,9 @@ class QuantitySpec:
                 "must be < {b} {u}, got {q}",
                 {"b": f"{self.lt:g}", "u": u, "q": format_quantity(q)},
             )
-        span = limits.QUANTITY_RANGE.get(u)
-        if span is not None and mag != 0.0 and not span[0] <= abs(mag) <= span[1]:
-            lo, hi, what = span
-            raise PydanticCustomError(
-                "out_of_model_range",
-                "{q} is outside {lo} {u} to {hi} {u}, the range of {what} the model computes "
-                "with (inside it no derived value underflows or overflows)",
-                {
-                    "q": format_quantity(q),
-                    "lo": _exact(lo),
-                    "hi": _exact(hi),
-                    "u": u,
-                    "what": what,
-                },
-            )
+        problem = range_problem(q)
+        if problem is not None:
+            raise PydanticCustomError("out_of_model_range", "{problem}", {"problem": problem})
 
     # --- pydantic hooks -------------------------------------------------------------
     def __get_pydantic_core_schema__(
@@ -465,6 +453,53 @@ class QuantitySpec:
             "description": desc,
             "examples": [self.example],
         }
+
+
+def range_problem(q: pint.Quantity) -> str | None:
+    """Why a quantity lies outside the range the model computes with, or None.
+
+    The range is that of its dimension in :data:`betvdesign.spec.limits.QUANTITY_RANGE`
+    (the one home of these bounds; device files, ``--vary`` bounds); 0 and quantities of
+    a dimension without a range are not refused here.
+
+    Parameters
+    ----------
+    q : pint.Quantity
+        The quantity.
+
+    Returns
+    -------
+    str or None
+        The message ("1e-320 V is outside 1e-06 V to 1e+06 V, ..."), None when inside.
+    """
+    key = _range_unit(q)
+    if key is None:
+        return None
+    mag = float(q.to(key).magnitude)
+    lo, hi, what = limits.QUANTITY_RANGE[key]
+    if mag == 0.0 or lo <= abs(mag) <= hi:
+        return None
+    return (
+        f"{format_quantity(q)} is outside {_exact(lo)} {key} to {_exact(hi)} {key}, the range "
+        f"of {what} the model computes with (inside it no derived value underflows or "
+        "overflows)"
+    )
+
+
+def _range_unit(q: pint.Quantity) -> str | None:
+    """The unit of :data:`~betvdesign.spec.limits.QUANTITY_RANGE` of ``q``'s dimension."""
+    if is_angle(q):
+        return "deg"
+    if q.dimensionless:
+        return None
+    return next(
+        (
+            u
+            for u in limits.QUANTITY_RANGE
+            if u != "deg" and q.dimensionality == ureg.parse_units(u).dimensionality
+        ),
+        None,
+    )
 
 
 def _exact(x: float) -> str:

@@ -149,7 +149,7 @@ def _bound(text: str, field: str, unit: str) -> float:
     alone ("2k" = 2 k of the field's SI unit); a bare number only for a unit-less field."""
     import pint
 
-    from betvdesign.spec.units import parse_quantity, ureg
+    from betvdesign.spec.units import parse_quantity, range_problem, ureg
 
     t = text.strip()
     try:
@@ -175,6 +175,9 @@ def _bound(text: str, field: str, unit: str) -> float:
                     f"write e.g. '{mag:g} {unit}')"
                 )
             return mag
+        problem = range_problem(q)
+        if problem is not None:  # what a device file could not give either
+            raise UsageError(f"--vary {field}: {problem}")
         return float(q.to(unit).magnitude) if unit else float(q.to("dimensionless").magnitude)
     except (ValueError, pint.PintError) as exc:
         raise UsageError(f"--vary {field}={text}: {exc}") from None

@@ -88,7 +88,7 @@ def parse_vary(spec: Any, items: Sequence[str]) -> list[Vary]:
     """``FIELD`` or ``FIELD=LO:HI`` (quantities in any unit of the field, e.g.
     ``drive.frequency=400Hz:3kHz``); without items, every default field the spec has.
     :class:`UsageError` for unknown fields, unreadable or inverted bounds."""
-    from betvdesign.spec.units import parse_quantity
+    from betvdesign.spec.units import parse_quantity, range_problem
 
     out: list[Vary] = []
     names = list(items) or [
@@ -113,9 +113,13 @@ def parse_vary(spec: Any, items: Sequence[str]) -> list[Vary]:
             if not sep:
                 raise UsageError(f"--vary {item}: bounds must be LO:HI, e.g. {name}=1um:8um")
             try:
-                lo, hi = (_magnitude(parse_quantity(t.strip()), unit) for t in (lo_s, hi_s))
+                qs = [parse_quantity(t.strip()) for t in (lo_s, hi_s)]
+                lo, hi = (_magnitude(q, unit) for q in qs)
             except (ValueError, pint.PintError) as exc:
                 raise UsageError(f"--vary {item}: {exc}") from None
+            for q in qs:  # what a device file could not give either
+                if isinstance(q, pint.Quantity) and (problem := range_problem(q)) is not None:
+                    raise UsageError(f"--vary {name}: {problem}")
         else:
             b = bounds(name)
             if len(b) == 3:
