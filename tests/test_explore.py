@@ -405,3 +405,197 @@ def test_drawn_dimensions_are_controls_where_the_drawing_gives_the_springs() -> 
     spec = load_device_text(text, str(DEVICES / "x.yaml"))
     fields = {c.field for c in designer_fields(spec, 0)}
     assert {"actuator.geometry.length", "actuator.geometry.flexure_width"} <= fields
+
+
+# --- values the model cannot take (issue 32, items 1 and 2) --------------------------------
+
+
+def _check_stderr(path: Path) -> tuple[int, str]:
+    proc = subprocess.run([*BETV, "check", str(path)], capture_output=True, text=True, check=False)
+    return proc.returncode, proc.stderr
+
+
+@pytest.mark.parametrize(
+    ("path", "line", "value"),
+    [
+        ("drive.frequency", "frequency: 3 kHz", "1e-300 Hz"),
+        ("drive.voltage", "voltage: 9 V", "5e-324 V"),
+        ("contact.impact_angle", "impact_angle: 20.56 deg", "1e-300 deg"),
+    ],
+)
+def test_a_value_betv_check_refuses_is_refused_by_the_control(
+    path: str, line: str, value: str, tmp_path: Path
+) -> None:
+    """The page refuses what `betv check` refuses in a file, with its message; the last
+    good design stays and is what Save writes."""
+    src = tmp_path / "push_demo.yaml"
+    shutil.copy(DEVICES / "push_demo.yaml", src)
+    d = Design.from_file(src)
+    d.apply({"slider.beam_width": "12 um"})
+    good = d.spec
+    with pytest.raises(SpecError) as exc:
+        d.apply({path: value})
+    assert d.spec == good and path not in d.edits
+    bad = tmp_path / "bad.yaml"
+    assert line in d.text
+    bad.write_text(d.text.replace(line, f"{line.split(':')[0]}: {value}", 1))
+    rc, err = _check_stderr(bad)
+    assert rc == 2 and "Traceback" not in err
+    assert exc.value.issues[0].message in err
+    saved = d.save("saved.yaml")
+    assert saved.written and load_device(saved.path) == good
+
+
+def test_a_value_whose_derivation_fails_is_refused_as_betv_check_refuses_the_file(
+    tmp_path: Path,
+) -> None:
+    """A voltage where the measured calibration gives no stroke loads, but the model
+    cannot take it: `betv check` refuses the file (exit 2), so the control refuses the
+    value with the same message, and the design stays."""
+    base = (Path(__file__).parent / "data" / "specs" / "zero_amplitude.yaml").read_text()
+    good = tmp_path / "good.yaml"
+    good.write_text(base.replace("      voltage: 1 V", "      voltage: 2 V"))
+    d = Design.from_file(good)
+    before = d.spec
+    with pytest.raises(SpecError) as exc:
+        d.apply({"drive.voltage": "1 V"})
+    assert d.spec == before and not d.edits
+    bad = tmp_path / "bad.yaml"
+    bad.write_text(base)
+    rc, err = _check_stderr(bad)
+    assert rc == 2
+    message = exc.value.issues[0].message
+    assert message.startswith("derived parameters outside the model") and message in err
+    with pytest.raises(SpecError, match="derived parameters outside the model"):
+        Design.from_file(bad)  # the server does not start on it either
+
+
+def test_no_mode_before_the_stage_that_decides_it() -> None:
+    """The orbit stage shows "computing" for the verdict, the modes and speeds; the
+    settling stage shows `betv check`'s own (here with a mode the orbit alone got)."""
+    from betvdesign.explore.views import verdict_html
+
+    spec = load_device(DEVICES / "push_demo.yaml")
+    orbit = evaluate(spec, "orbit")
+    assert orbit.out["sets"][0]["mode"] == "push"  # what the orbit alone says
+    html = verdict_html(orbit.out, seq=1, stage="orbit")
+    assert 'data-mode="computing"' in html and 'data-verdict="computing"' in html
+    assert "push" not in html and "PASS" not in html and 'data-speed-m-s=""' in html
+    settled = evaluate(spec, "settling")
+    html = verdict_html(settled.out, seq=1, stage="settling")
+    mode = settled.out["sets"][0]["mode"]
+    assert f'data-mode="{mode}"' in html and f'data-verdict="{settled.out["verdict"]}"' in html
+
+
+# --- signals (issue 32, item 4) --------------------------------------------------------------
+
+
+def test_ctrl_c_while_a_worker_starts_is_no_traceback(capfd: pytest.CaptureFixture[str]) -> None:
+    """A SIGINT that reaches a worker while it starts (the whole process group gets a
+    Ctrl-C) neither kills it nor prints a KeyboardInterrupt traceback: it answers."""
+    import os
+    import signal
+    import threading
+
+    from betvdesign.explore import jobs
+
+    w = jobs.Workers()
+    results: list[object] = []
+    got = threading.Event()
+
+    def done(value: object) -> None:
+        results.append(value)
+        got.set()
+
+    def failed(exc: BaseException) -> None:
+        results.append(exc)
+        got.set()
+
+    lane = w.lanes["check"]
+    try:
+        with lane.lock:
+            lane._ensure()
+        os.kill(lane.proc.pid, signal.SIGINT)  # still starting: importing, before _init
+        gen = w.bump("check", 5)
+        w.submit("check", 5, gen - 1, jobs.check_job, ("", "p.yaml", "orbit", {}), done, failed)
+        assert got.wait(300) and results == [None], results  # a stale job: None, answered
+        got.clear()
+        os.kill(lane.proc.pid, signal.SIGINT)  # started: ignored as well
+        w.submit("check", 5, gen - 1, jobs.check_job, ("", "p.yaml", "orbit", {}), done, failed)
+        assert got.wait(300) and results == [None, None], results
+    finally:
+        w.close()
+    err = capfd.readouterr().err
+    assert "KeyboardInterrupt" not in err and "Traceback" not in err, err
+
+
+def test_a_server_started_in_the_background_stops_on_sigint(tmp_path: Path) -> None:
+    """`betv explore FILE &` from a script inherits SIGINT ignored (a shell without job
+    control does that); `kill -INT` must still stop it cleanly."""
+    import signal
+    import time
+
+    from conftest import require_module
+
+    require_module("bokeh", extra="explore")
+    import socket
+
+    shutil.copy(DEVICES / "push_demo.yaml", tmp_path / "push_demo.yaml")
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        port = str(s.getsockname()[1])
+    proc = subprocess.Popen(
+        [*BETV, "explore", "push_demo.yaml", "--no-browser", "--port", port],
+        cwd=tmp_path,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_IGN),
+    )
+    try:
+        assert proc.stdout is not None
+        line = proc.stdout.readline()  # the URL: the server listens
+        assert "http://127.0.0.1:" in line, line + proc.stderr.read()
+        t0 = time.monotonic()
+        proc.send_signal(signal.SIGINT)
+        out, err = proc.communicate(timeout=60)
+        assert time.monotonic() - t0 < 30
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+            proc.wait()
+    assert proc.returncode == 0, err
+    assert "stopped" in out and "Traceback" not in err, err
+
+
+# --- saving (issue 32, item 5) -----------------------------------------------------------------
+
+
+def test_save_writes_beside_the_device_file_or_says_why_not(tmp_path: Path) -> None:
+    """An empty name, an absolute path, `~`, `..` or a folder are refused with a message
+    naming the device file's folder; nothing is written anywhere; only an existing file
+    offers an overwrite."""
+    import uuid
+
+    folder = tmp_path / "dev"
+    folder.mkdir()
+    src = folder / "push_demo.yaml"
+    shutil.copy(DEVICES / "push_demo.yaml", src)
+    d = Design.from_file(src)
+    d.apply({"slider.beam_width": "12 um"})
+    unique = f"betv-{uuid.uuid4().hex}.yaml"
+    elsewhere = tmp_path / "elsewhere" / unique
+    elsewhere.parent.mkdir()
+    names = ["", "   ", str(elsewhere), f"~/{unique}", f"../{unique}", f"sub/{unique}", ".."]
+    for name in names:
+        res = d.save(name)
+        assert not res.written and not res.exists, name
+        assert str(folder) in res.message, res.message
+    home = Path("~").expanduser() / unique
+    assert not elsewhere.exists() and not home.exists() and not (tmp_path / unique).exists()
+    assert sorted(p.name for p in folder.iterdir()) == ["push_demo.yaml"]
+    res = d.save(unique)
+    assert res.written and res.path == folder / unique
+    again = d.save(unique)
+    assert not again.written and again.exists
+    assert load_device(folder / unique) == d.spec

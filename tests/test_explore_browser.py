@@ -270,6 +270,90 @@ def test_map_click_refused_value_and_the_server_still_answers(browser, push_serv
     page.close()
 
 
+def _verdict_now(page: Page) -> tuple[str, int, str, list[str]]:
+    """Stage, design number, verdict and modes of the verdict block, read at once (one
+    rendering: the block is replaced as a whole)."""
+    stage, seq, verdict, modes = page.p.locator(".betv-verdict").first.evaluate(
+        "el => [el.dataset.stage, el.dataset.seq, el.dataset.verdict,"
+        " [...el.querySelectorAll('tr.betv-set')].map(r => r.dataset.mode)]"
+    )
+    return stage, int(seq), verdict, modes
+
+
+def test_a_value_the_model_cannot_take_is_refused_at_the_control(browser, push_server) -> None:
+    """Issue 32, items 1 and 2: 1e-300 Hz and 5e-324 V, which `betv check` refuses in a
+    file (exit 2), are refused at the control with a message under it; the design shown
+    stays the file's (verdict, modes, speeds), no "internal error" reaches the page, and
+    Save writes the last good design. Before the stage that decides the modes, no mode
+    and no verdict is shown ("computing")."""
+    page = Page(browser, push_server)
+    before = page.shown()
+    for name, value in (("drive-frequency", "1e-300 Hz"), ("drive-voltage", "5e-324 V")):
+        seq = page.seq_now()
+        box = page.p.locator(f".betv-field-{name}.betv-text input")
+        box.fill(value)
+        box.press("Enter")
+        error = page.p.locator(f".betv-message.betv-field-{name} .betv-error").first
+        error.wait_for(timeout=WAIT_MS)
+        assert f"{value} is outside" in error.inner_text()
+        page.full(seq + 1)
+        assert page.shown() == before
+        status = page.p.locator(".betv-status").first.inner_text()
+        assert "internal error" not in status and "failed" not in status, status
+    page.p.locator(".betv-save-name input").fill("kept.yaml")
+    page.p.locator(".betv-save-name input").press("Enter")
+    page.p.locator(".betv-save button").click()
+    page.p.locator(".betv-saved").first.wait_for(state="attached", timeout=WAIT_MS)
+    kept = push_server.workdir / "kept.yaml"
+    assert kept.read_text() == (push_server.workdir / "push_demo.yaml").read_text()
+    dev = _check_json(kept)
+    assert dev["verdict"] == before["verdict"]
+    assert {s["name"]: s["mode"] for s in dev["sets"]} == {
+        k: v[0] for k, v in before["sets"].items()
+    }
+    # an accepted value: every answer shown before the deciding stage shows no mode
+    seq = page.seq_now()
+    friction = page.p.locator(".betv-field-contact-friction.betv-text input")
+    friction.fill("0.35")
+    friction.press("Enter")
+    seen = []
+    deadline = time.monotonic() + WAIT_MS / 1e3
+    while time.monotonic() < deadline:
+        now = _verdict_now(page)
+        if now[1] > seq:
+            seen.append(now)
+            if now[0] == "full":
+                break
+        time.sleep(0.02)
+    assert seen and seen[-1][0] == "full", seen
+    orbit = [x for x in seen if x[0] == "orbit"]
+    assert orbit, seen  # shown for at least SETTLE_MS before the slow stages start
+    assert all(v == "computing" and set(m) == {"computing"} for _, _, v, m in orbit), orbit
+    assert "computing" not in seen[-1][3] and seen[-1][2] in ("pass", "fail")
+    page.close()
+
+
+def test_save_box_refuses_names_that_leave_the_device_folder(browser, push_server) -> None:
+    """Issue 32 item 5: an empty name, an absolute path or `..` are refused with a
+    message naming the folder, no Overwrite button, nothing written."""
+    page = Page(browser, push_server)
+    before = sorted(p.name for p in push_server.workdir.iterdir())
+    box = page.p.locator(".betv-save-name input")
+    for name in ("", "/tmp/betv-abs.yaml", "../up.yaml"):
+        box.fill(name)
+        box.press("Enter")
+        page.p.locator(".betv-save button").click()
+        msg = page.p.locator(".betv-save-message").first
+        deadline = time.monotonic() + WAIT_MS / 1e3
+        while str(push_server.workdir) not in msg.inner_text() and time.monotonic() < deadline:
+            time.sleep(0.1)
+        assert str(push_server.workdir) in msg.inner_text()
+        assert not page.p.locator(".betv-overwrite button").is_visible()
+    assert sorted(p.name for p in push_server.workdir.iterdir()) == before
+    assert not Path("/tmp/betv-abs.yaml").exists()
+    page.close()
+
+
 def test_report_download_is_betv_reports_html(browser, push_server) -> None:
     """ "Build report" gives, byte for byte, the HTML `betv report` writes for the
     design saved under the name in the save box."""

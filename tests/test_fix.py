@@ -114,7 +114,7 @@ def test_no_fix_within_bounds_is_exit_1_and_names_the_blocking_rule(tmp_path):
     out = tmp_path / "never.yaml"
     r = run("fix", SHIN, "--vary", "slider.beam_width=4um:6um", "-o", out)
     assert r.exit_code == 1
-    assert "blocked by frequency-window" in r.stdout
+    assert "blocked most by frequency-window" in r.stdout
     assert not out.exists()
 
 
@@ -304,3 +304,69 @@ def test_designer_fields_rank_before_resonances():
         if ch["field"] == "actuator.vertical_resonance"
     )
     assert "softer" in meaning and "k ∝ w³" in meaning
+
+
+# --- the text output (issue 32, item 9) --------------------------------------------------------
+
+
+def test_each_row_quotes_its_own_numbers_and_none_is_dropped():
+    """A robust search lists several values of one resonance: each row's "means:" line
+    quotes that row's own stiffness factor k ∝ f² (from the row's own from -> to), and
+    "N passing change(s)" stands above N rows."""
+    import re
+
+    r = run(
+        "fix",
+        SHIN,
+        "--vary",
+        "actuator.vertical_resonance",
+        "--spread",
+        "slider.beam_width=normal:5%",
+        "-n",
+        "50",
+        "--p-min",
+        "0.9",
+    )
+    assert r.exit_code == 0, r.output
+    lines = r.stdout.splitlines()
+    n = int(re.search(r"(\d+) passing change\(s\)", lines[0]).group(1))
+    rows = [i for i, ln in enumerate(lines) if re.match(r"\s*\d+ actuator\.vertical_resonance", ln)]
+    assert len(rows) == n >= 2
+    factors = []
+    for i in rows:
+        f0, f1 = map(float, re.search(r": ([\d.]+) kHz -> ([\d.]+) kHz", lines[i]).groups())
+        means = next(ln for ln in lines[i + 1 : i + 4] if "means:" in ln)
+        k = float(re.search(r"k ×([\d.]+)", means).group(1))
+        assert k == pytest.approx((f1 / f0) ** 2, rel=3e-3), (lines[i], means)
+        factors.append(k)
+    assert len(set(factors)) == len(factors)  # not one line copied to every row
+
+
+def test_blocking_names_the_rule_with_its_counts_and_values_outside_the_calibration(tmp_path):
+    """push_demo at 1 kHz (ϖ below the window), drive voltage varied 4.5 V to 18 V: the
+    points above the measured 10 V are named as outside the calibration (not checked),
+    as many as the 5 % scan puts there; the rule named is the one that fails most."""
+    import math
+    import re
+
+    from betvdesign.studies.fix import SCAN_STEP
+
+    text = (DEVICES / "push_demo.yaml").read_text().replace("frequency: 3 kHz", "frequency: 1 kHz")
+    dev = tmp_path / "slow.yaml"
+    dev.write_text(text)
+    r = run("fix", dev, "--vary", "drive.voltage=4.5V:18V")
+    j = run("fix", dev, "--vary", "drive.voltage=4.5V:18V", "--json")
+    default = run("fix", dev, "--vary", "drive.voltage", "--json")
+    assert r.exit_code == 1, r.output
+    # the scan: 9 V·1.05^k up to 18 V (18 V itself last); above 10 V lie k = 3..14 and 18 V
+    k_max = math.floor(math.log(18 / 9) / math.log1p(SCAN_STEP) - 1e-12)
+    above = sum(9 * (1 + SCAN_STEP) ** k > 10 for k in range(1, k_max + 1)) + 1
+    line = next(ln for ln in r.stdout.splitlines() if "drive.voltage: no passing value" in ln)
+    assert f"{above} value(s) outside the measured calibration (0 V to 10 V; not checked)" in line
+    counts = json.loads(j.stdout)["blocking"]["drive.voltage"]["failing_counts"]
+    assert counts["outside-calibration"] == above
+    rules = {k: n for k, n in counts.items() if k != "outside-calibration"}
+    top = max(rules, key=rules.get)
+    assert re.search(rf"blocked most by {top}: fails at {rules[top]} value", line), line
+    # by default the voltage is only searched where the points were measured
+    assert json.loads(default.stdout)["varied"]["drive.voltage"]["hi"] == "10 V"

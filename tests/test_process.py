@@ -130,11 +130,12 @@ def test_unknown_or_broken_process_is_reported_at_the_process_line(tmp_path):
 
 def test_a_beam_below_one_nanometre_is_refused_at_its_line():
     """Issue 23: a 1e-30 µm beam passed `betv check`; it is not a dimension at all."""
-    text = SHIN.replace("beam_width: 5 um", "beam_width: 1e-30 um")
-    (msg,) = issues(text)
-    line = text[: text.index("beam_width:")].count("\n") + 1
-    assert msg.startswith(f"dev.yaml:{line}:15: slider.beam_width: ")
-    assert "below 1 nm" in msg
+    for width, why in (("0.5 nm", "below 1 nm"), ("1e-30 um", "outside 1e-12 m to 1 m")):
+        text = SHIN.replace("beam_width: 5 um", f"beam_width: {width}")
+        (msg,) = issues(text)
+        line = text[: text.index("beam_width:")].count("\n") + 1
+        assert msg.startswith(f"dev.yaml:{line}:15: slider.beam_width: ")
+        assert why in msg
 
 
 def test_layer_names_must_be_structural_layers_of_the_process():
@@ -223,8 +224,10 @@ def test_material_density_is_compared_with_the_layer():
     assert not r.passed and r.severity == "warning" and "2000 kg/m³" in r.message
 
 
-def test_devices_without_a_process_get_no_process_rules():
-    assert process_rules(load_device_text(SHIN, "x.yaml")) == []
+def test_devices_without_a_process_get_only_the_note_that_its_rules_were_not_checked():
+    (r,) = process_rules(load_device_text(SHIN, "x.yaml"))
+    assert (r.id, r.severity, r.passed) == ("process", "warning", False)
+    assert "not checked" in r.message and "process: polymumps" in r.fix
 
 
 def run(*args: str):
@@ -245,7 +248,58 @@ def test_cli_check_fails_a_narrow_beam_with_message(tmp_path):
 
 def test_cli_check_refuses_a_sub_nanometre_beam(tmp_path):
     f = tmp_path / "tiny.yaml"
-    f.write_text(SHIN.replace("beam_width: 5 um", "beam_width: 1e-30 um"))
+    f.write_text(SHIN.replace("beam_width: 5 um", "beam_width: 0.5 nm"))
     res = run("check", str(f))
     assert res.exit_code == 2
     assert "below 1 nm" in res.stderr and "Traceback" not in res.output
+
+
+# --- concrete fixes of the process rules (issue 32, item 10) ----------------------------------
+
+
+def _check_json(path: Path) -> dict:
+    res = run("check", "--json", "--no-adequacy", str(path))
+    assert res.exit_code in (0, 1), res.output
+    doc = json.loads(res.stdout)
+    (dev,) = doc["devices"] if "devices" in doc else [doc]
+    return dev
+
+
+def test_a_narrow_beam_gets_the_geometry_fix_of_the_process(tmp_path):
+    """A 0.5 µm beam in a PolyMUMPs device: 'widen slider.beam_width to ≥ 2 µm', the 2 µm
+    read from the process file itself, not a search of other fields; the same fix in the
+    text output."""
+    import yaml
+
+    poly1 = yaml.safe_load(POLYMUMPS.read_text())["layers"]["poly1"]
+    f = tmp_path / "thin.yaml"
+    f.write_text(SHIN_SHIPPED.replace("beam_width: 5 um", "beam_width: 0.5 um"))
+    rule = {r["id"]: r for r in _check_json(f)["rules"]}["process.min-width"]
+    width = poly1["min_width"].replace(" um", " µm")
+    want = f"widen slider.beam_width to ≥ {width} (process.min-width)"
+    assert rule["fix"].startswith(want), rule["fix"]
+    assert "no single field" not in rule["fix"]
+    text = run("check", "--no-adequacy", str(f)).stdout
+    block = text[text.index("FAIL process.min-width") :]
+    assert "fix: widen slider.beam_width to ≥ 2 µm" in block.split("FAIL", 2)[1]
+
+
+def test_a_wrong_thickness_is_set_to_the_process_film(tmp_path):
+    import yaml
+
+    poly1 = yaml.safe_load(POLYMUMPS.read_text())["layers"]["poly1"]
+    thickness = poly1["thickness"].replace(".0 um", " µm").replace(" um", " µm")
+    f = tmp_path / "thick.yaml"
+    f.write_text(SHIN_SHIPPED.replace("beam_thickness: 2 um", "beam_thickness: 2.5 um"))
+    rule = {r["id"]: r for r in _check_json(f)["rules"]}["process.thickness"]
+    assert rule["fix"].startswith(f"set slider.beam_thickness to {thickness} (poly1)"), rule["fix"]
+
+
+def test_a_device_without_a_process_is_told_its_rules_were_not_checked(tmp_path):
+    f = tmp_path / "free.yaml"
+    f.write_text(SHIN)
+    dev = _check_json(f)
+    rule = {r["id"]: r for r in dev["rules"]}["process"]
+    assert rule["severity"] == "warning" and "not checked" in rule["message"]
+    assert "process" not in dev["failed"]  # a note: the verdict is the rules'
+    assert "process: no process named" in run("check", "--no-adequacy", str(f)).stdout

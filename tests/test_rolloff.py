@@ -410,10 +410,16 @@ BAD = {
         "thermal_cutoff: inf Hz\ncalibration_frequency: 200 Hz",
         [(19, 23, A + "thermal_cutoff", "must be finite")],
     ),
-    # a subnormal cut-off (H(f_act) would underflow to 0): refused at f_cal, no NaN
+    # a subnormal cut-off (H(f_act) would underflow to 0): refused at itself, outside
+    # the load-time range of a frequency (limits.QUANTITY_RANGE), no NaN
     "cutoff_subnormal": (
         "thermal_cutoff: 1e-320 Hz\ncalibration_frequency: 200 Hz",
-        [(20, 30, A + "calibration_frequency", "× the thermal cut-off 1e-320 Hz")],
+        [(19, 23, A + "thermal_cutoff", "1e-320 Hz is outside 0.001 Hz to 1e+12 Hz")],
+    ),
+    # the smallest cut-off the range takes: f_cal/f_c = 2e5, refused at f_cal
+    "cutoff_far_below": (
+        "thermal_cutoff: 1 mHz\ncalibration_frequency: 200 Hz",
+        [(20, 30, A + "calibration_frequency", "is 2e+05× the thermal cut-off 0.001 Hz")],
     ),
 }
 

@@ -21,15 +21,16 @@ process file and a fix; device-level, the message names the element):
   are plates) and actuator arms at least :data:`ARM_ASPECT_MIN` (the stiffness closed
   form is Euler–Bernoulli beam theory, :mod:`betvdesign.model.frame`).
 
-Devices without ``process`` get only the geometry rule, and only with an actuator
-geometry (their rule list is unchanged otherwise).
+Devices without ``process`` get the note ``process`` (a warning: the process's rules were
+not checked) and the geometry rule, only with an actuator geometry.
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from typing import Any
 
 from betvdesign.checks.rule import RuleResult
 from betvdesign.model.frame import head_covers_tip, head_radius_min
@@ -275,11 +276,33 @@ def process_rules(spec: DeviceSpec) -> list[RuleResult]:
         p = spec.process
         out += [_thickness(p, feats), _material(spec, p), _min_width(p, feats)]
         out += [_min_spacing(p, drawn_gaps(spec)), _release(p, feats)]
+    else:
+        out.append(_unchecked())
     if spec.process is not None or has_geometry:
         out.append(_aspect(feats))
     if has_geometry:
         out.append(_head_tip(spec))
     return out
+
+
+def _unchecked() -> RuleResult:
+    """The note of a device that names no process.
+
+    The note of a device that names no process: its design rules were not checked (a
+    warning, so that every output shows it; it never fails the verdict).
+    """
+    return RuleResult(
+        "process",
+        "warning",
+        False,
+        None,
+        "the device names its fabrication process",
+        "no process named: the process's design rules (layer thickness, minimum width and "
+        "spacing, release) were not checked",
+        "device file (process)",
+        fix="name the device's process (process: polymumps, a shipped name, or the path of a "
+        "process file) so that betv check applies its rules",
+    )
 
 
 def rules_from_measurements(
@@ -316,8 +339,20 @@ def rules_from_measurements(
     ]
 
 
+def _thickness_path(f: Feature) -> str:
+    """The field giving a drawn element's thickness.
+
+    The field giving a drawn element's thickness (``slider.beam_thickness``,
+    ``...head.geometry.thickness``, ``...actuator.geometry.thickness``).
+    """
+    if f.path.startswith("slider."):
+        return "slider.beam_thickness"
+    return f"{f.path.rsplit('.', 1)[0]}.thickness"
+
+
 def _thickness(p: Process, feats: list[Feature]) -> RuleResult:
-    bad = []
+    bad: list[str] = []
+    fixes: list[str] = []
     worst = 0.0
     for f in feats:
         if f.thickness is None:
@@ -326,7 +361,8 @@ def _thickness(p: Process, feats: list[Feature]) -> RuleResult:
         d = abs(f.thickness - want)
         worst = max(worst, d)
         if d > _REL * want:
-            bad.append(f"{f.what} {_fmt(f.thickness)} ({f.path.rsplit('.', 1)[0]}.thickness)")
+            bad.append(f"{f.what} {_fmt(f.thickness)} ({_thickness_path(f)})")
+            fixes.append(f"set {_thickness_path(f)} to {_fmt(want)} ({f.layer})")
     want_txt, source = _per_layer(p, feats, "thickness")
     ok = not bad
     msg = (
@@ -344,8 +380,8 @@ def _thickness(p: Process, feats: list[Feature]) -> RuleResult:
         source,
         fix=""
         if ok
-        else "set each thickness to its layer's (a deposited film cannot be thinned), or draw "
-        "the element on the layer whose thickness it has (slider.layer, "
+        else "; ".join(fixes) + " (the process's film: a deposited layer cannot be thinned), "
+        "or draw the element on the layer whose thickness it has (slider.layer, "
         "actuator.geometry.layer)",
         unit="m",
     )
@@ -376,7 +412,9 @@ class _Minimum:
     """A process minimum checked on drawn elements.
 
     A process minimum checked on drawn elements: its rule id, the elements' measure
-    (``width`` of a :class:`Feature`, ``gap`` of a :class:`Gap`) and the rule's words.
+    (``width`` of a :class:`Feature`, ``gap`` of a :class:`Gap`), the rule's words, what
+    to change for one element below it (``advice(element, minimum)``) and the reason
+    that closes the fix.
     """
 
     rule: str
@@ -384,7 +422,20 @@ class _Minimum:
     limit: str
     extreme: str
     below: str
-    fix: str
+    advice: Callable[[Any, float], str]
+    why: str
+
+
+def _widen_line(f: Feature, mn: float) -> str:
+    """What to change for one drawn element narrower than the process allows."""
+    if f.path.endswith(".head.mass"):
+        return f"give {f.path} a head whose disc is ≥ {_fmt(mn)} wide (process.min-width)"
+    return f"widen {f.path} to ≥ {_fmt(mn)} (process.min-width)"
+
+
+def _widen_gap(g: Gap, mn: float) -> str:
+    """What to change for one drawn gap narrower than the process's spacing."""
+    return f"widen {g.path} by ≥ {_fmt(mn - g.gap)} ({g.what} to ≥ {_fmt(mn)}; process.min-spacing)"
 
 
 _MINIMA = {
@@ -394,9 +445,9 @@ _MINIMA = {
         "minimum",
         "narrowest",
         "below the process's minimum width",
-        "widen each listed element to at least its layer's minimum width; the process "
-        "cannot define narrower lines (`betv fix FILE --vary FIELD=LO:HI` keeps the design "
-        "passing while you do)",
+        _widen_line,
+        ": the process cannot define narrower lines (`betv fix FILE --vary FIELD=LO:HI` "
+        "keeps the design passing while you do)",
     ),
     "min_spacing": _Minimum(
         "process.min-spacing",
@@ -404,8 +455,8 @@ _MINIMA = {
         "minimum spacing",
         "smallest",
         "gaps below the process's minimum spacing",
-        "widen the gap to at least the minimum spacing (actuator.geometry.gap); "
-        "narrower gaps do not open in the process",
+        _widen_gap,
+        ": narrower gaps do not open in the process",
     ),
 }
 
@@ -414,15 +465,16 @@ def _at_least_minimum(p: Process, drawn: Sequence[Feature | Gap], field: str) ->
     """The rule of the layer's minimum ``field`` on ``drawn``.
 
     The rule of the layer's minimum ``field`` (a key of :data:`_MINIMA`) on ``drawn``
-    (not empty).
+    (not empty), with what to change for each element below it.
     """
     m = _MINIMA[field]
-    bad, ratio = [], []
+    bad, ratio, fixes = [], [], []
     for d in drawn:
         have, mn = getattr(d, m.measure), _m(getattr(p.structural(d.layer), field))
         ratio.append((have / mn, d))
         if have < mn * (1 - _REL):
             bad.append(f"{d.what} {_fmt(have)} < {_fmt(mn)} ({d.path})")
+            fixes.append(m.advice(d, mn))
     _, worst = min(ratio, key=lambda x: x[0])  # the nearest its minimum (first of equals)
     mins, source = _per_layer(p, drawn, field)
     size = getattr(worst, m.measure)
@@ -441,7 +493,7 @@ def _at_least_minimum(p: Process, drawn: Sequence[Feature | Gap], field: str) ->
         f"{m.measure} >= {m.limit} ({mins})",
         msg,
         source,
-        fix="" if ok else m.fix,
+        fix="" if ok else "; ".join(fixes) + m.why,
         unit="m",
     )
 

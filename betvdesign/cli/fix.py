@@ -183,7 +183,7 @@ def _print(res, file: Path) -> None:
                     typer.echo(f"    fix: {item['fix']}")
         return
     typer.echo(f"{file}: {res.message} ({res.evaluations} exact checks)")
-    rows = [c for c in res.candidates if c.passed][:8]
+    rows = [c for c in res.candidates if c.passed]
     if rows:
         typer.echo(f"{'#':>2} {'change':<58} {'mode':<6} {'speed':>11}")
         for i, c in enumerate(rows, 1):
@@ -193,11 +193,12 @@ def _print(res, file: Path) -> None:
             )
             speed = "—" if c.speed_m_s is None else format_speed(c.speed_m_s)
             typer.echo(f"{i:>2} {change:<58} {c.mode or '—':<6} {speed:>11}")
-            for a in c.answers:
-                if a.boundary is None:
-                    continue
-                typer.echo(f"   passes from {a.text(a.boundary)} (boundary, bisected)")
-                meaning = describe_change(a.field, a.x0, a.value)
+            boundary = {a.field: a.boundary for a in c.answers if a.boundary is not None}
+            for f, x in c.changes.items():  # each row its own numbers
+                v = res.varies[f]
+                if f in boundary:
+                    typer.echo(f"   passes from {v.text(boundary[f])} (boundary, bisected)")
+                meaning = describe_change(f, v.x0, x)
                 if meaning:
                     typer.echo(f"   means: {meaning}")
             typer.echo(
@@ -206,11 +207,8 @@ def _print(res, file: Path) -> None:
         typer.echo(MARGIN_TEXT)
     if res.spread_note:
         typer.echo(res.spread_note)
-    for f, b in res.blocking.items():
-        typer.echo(
-            f"   {f}: no passing value from {b['bounds_tried'][0]} to {b['bounds_tried'][1]} "
-            f"(blocked by {b['rule'] or 'every value tried'})"
-        )
+    for b in res.blocking.values():
+        typer.echo(f"   {b['message']}")
     if res.status == "none":
         print(
             f"{file}: no fix within the bounds; widen them with --vary FIELD=LO:HI", file=sys.stderr

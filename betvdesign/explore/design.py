@@ -2,9 +2,11 @@
 
 A :class:`Design` holds the file's text and spec and an ordered set of edits (dotted
 path -> the value as a device file writes it). Every proposed edit goes through
-:meth:`betvdesign.spec.models.DeviceSpec.replace`, the device file's own validation, so a
-refused value raises the loader's :class:`~betvdesign.errors.SpecError` and leaves the
-design as it was.
+:meth:`betvdesign.spec.models.DeviceSpec.replace`, the device file's own validation, and
+then the derivation ``betv check`` runs on a file
+(:func:`betvdesign.nondim.device.derive_refusing`), so a refused value raises the same
+:class:`~betvdesign.errors.SpecError` ``betv check`` gives the file and leaves the design
+as it was.
 
 :meth:`Design.yaml_text` writes the user's file with only the changed values replaced,
 in place (every other byte kept: comments, layout, flow mappings), a value the file does
@@ -50,12 +52,14 @@ def free_name(path: Path) -> Path:
 
 @dataclass(frozen=True)
 class SaveResult:
-    """What :meth:`Design.save` did: ``written`` (the path) or ``exists`` (nothing written,
-    the caller must ask before overwriting)."""
+    """What :meth:`Design.save` did: ``written`` (the path), or nothing written and
+    ``message`` says why; ``exists``: only because a file is there (the caller may ask
+    before overwriting it)."""
 
     path: Path
     written: bool
     message: str
+    exists: bool = False
 
 
 class Design:
@@ -72,7 +76,7 @@ class Design:
     def __init__(self, text: str, filename: str) -> None:
         self.text = text
         self.filename = filename
-        self.original = load_device_text(text, filename)
+        self.original = _derivable(load_device_text(text, filename), filename)
         self.spec = self.original
         self.edits: dict[str, Any] = {}
 
@@ -99,12 +103,15 @@ class Design:
 
     def propose(self, changes: dict[str, Any]) -> Any:
         """The spec with ``changes`` (path -> value) on top of the current edits,
-        validated like a device file; raises its :class:`SpecError`."""
+        refused exactly as ``betv check`` refuses a file: validated like a device file,
+        then derived (a value the model cannot take, such as a voltage where the
+        calibration gives no stroke); raises that :class:`SpecError`."""
         edits = self._merged(changes)
         if not edits:
             return self.original
         items = list(edits.items())
-        return self.original.replace(items[0][0], items[0][1], *items[1:])
+        spec = self.original.replace(items[0][0], items[0][1], *items[1:])
+        return _derivable(spec, self.filename)
 
     def apply(self, changes: dict[str, Any]) -> Any:
         """Commit ``changes`` (validated first; the design is unchanged when refused)."""
@@ -148,14 +155,29 @@ class Design:
                 out[k] = value
         return list(out.items())
 
-    def save(self, target: str | Path, *, overwrite: bool = False) -> SaveResult:
-        """Write :meth:`yaml_text` to ``target`` (relative: beside the device file);
-        an existing file is only replaced with ``overwrite``."""
+    def save(self, name: str, *, overwrite: bool = False) -> SaveResult:
+        """Write :meth:`yaml_text` to the file ``name`` beside the device file; a name
+        with a folder (absolute, ``~``, ``..``, ``a/b.yaml``) or without one is refused
+        with a message (nothing written); an existing file is only replaced with
+        ``overwrite``."""
         from betvdesign.output.files import check_output_file, write_atomic
 
-        p = Path(target).expanduser()
-        if not p.is_absolute():
-            p = Path(self.filename).resolve().parent / p
+        folder = Path(self.filename).resolve().parent
+        name = str(name).strip()
+        if not name:
+            return SaveResult(
+                folder,
+                False,
+                f"give a file name ending in .yaml (saved beside the device file, in {folder})",
+            )
+        if Path(name).name != name or name.startswith("~") or name in (".", ".."):
+            return SaveResult(
+                folder / Path(name).name,
+                False,
+                f"{name}: give a file name only; the design is saved beside the device file, "
+                f"in {folder}",
+            )
+        p = folder / name
         if p.suffix.lower() not in (".yaml", ".yml"):
             return SaveResult(p, False, f"{p.name}: the file name must end in .yaml")
         try:
@@ -163,12 +185,23 @@ class Design:
         except BetvError as exc:
             return SaveResult(p, False, str(exc))
         if p.exists() and not overwrite:
-            return SaveResult(p, False, f"{p} exists; overwrite it, or give another name")
+            return SaveResult(
+                p, False, f"{p} exists; overwrite it, or give another name", exists=True
+            )
         text = self.yaml_text()
         write_atomic(p, text)
         diff = difflib.unified_diff(self.text.splitlines(), text.splitlines(), n=0, lineterm="")
         n = sum(1 for d in diff if d.startswith("+") and not d.startswith("+++"))
         return SaveResult(p, True, f"wrote {p} ({n} changed line{'s' * (n != 1)})")
+
+
+def _derivable(spec: Any, filename: str) -> Any:
+    """``spec`` when the model can take it, else ``betv check``'s refusal of its file
+    (:func:`betvdesign.nondim.device.derive_refusing`: a :class:`SpecError`)."""
+    from betvdesign.nondim.device import derive_refusing
+
+    derive_refusing(spec, filename)
+    return spec
 
 
 # --- writing values in place -------------------------------------------------------------

@@ -20,6 +20,7 @@ import contextlib
 import functools
 import multiprocessing
 import os
+import signal
 import threading
 from collections.abc import Callable
 from dataclasses import asdict
@@ -41,7 +42,8 @@ def _init(gen: Any) -> None:
 
     global _GEN
     _GEN = gen
-    # Ctrl-C reaches the whole process group: the server stops the workers itself
+    # Ctrl-C reaches the whole process group: the server stops the workers itself (the
+    # worker was started ignoring SIGINT already: _sigint_ignored)
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     with contextlib.suppress(OSError):  # the page's own updates come first
         os.nice(NICE)
@@ -136,6 +138,23 @@ def report_job(slot: int, gen: int, text: str, filename: str, name: str) -> str 
         return render_html(build_report(prepared))
 
 
+@contextlib.contextmanager
+def _sigint_ignored() -> Any:
+    """SIGINT ignored while a worker process is started, so that it starts ignoring it
+    (an ignored signal stays ignored across the exec of a spawned process; a blocked one
+    does not): a Ctrl-C to the process group while the worker imports is then no
+    KeyboardInterrupt traceback. Only the main thread can set a handler; elsewhere the
+    worker starts as it is."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, previous)
+
+
 class _Lane:
     """One worker process and its jobs (started at the first job, again after a crash)."""
 
@@ -155,7 +174,8 @@ class _Lane:
         proc = self.ctx.Process(
             target=_serve, args=(child, self.gen), name=f"betv-explore-{self.name}", daemon=True
         )
-        proc.start()
+        with _sigint_ignored():
+            proc.start()
         child.close()
         self.proc, self.conn = proc, parent
         threading.Thread(

@@ -298,7 +298,7 @@ class ExplorePage:
         except (BetvError, OSError, ValueError) as exc:
             self.save_msg.text = status_html(f"not saved: {exc}", busy=False)
             return
-        self.overwrite_button.visible = not res.written and res.path.exists()
+        self.overwrite_button.visible = res.exists
         self.save_msg.text = status_html(res.message, busy=False)
         if res.written:
             self.save_msg.text += f'<span class="betv-saved" data-path="{res.path}"></span>'

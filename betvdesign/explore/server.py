@@ -94,6 +94,7 @@ def serve(
     belong together (the workers are started and stopped in one place).
     """
     t0 = time.perf_counter()
+    _default_sigint()
     from betvdesign.explore.design import Design
 
     design = Design.from_file(path)  # bad input stops here, before any server
@@ -102,25 +103,25 @@ def serve(
         "select": tuple(select),
         "ignore": tuple(ignore),
     }
-    # the compiled kernels load on the compute thread while Bokeh is imported and the
-    # browser loads the page (the page's first update queues behind); the worker
-    # processes start with the first slow stage, so they do not compete with it
-    from betvdesign.explore.compute import evaluate
-
-    compute = ThreadPoolExecutor(1, thread_name_prefix="betv-explore")
-    compute.submit(evaluate, design.spec, "orbit", with_traces=True, **options)
-    from bokeh.server.server import Server
-
-    from betvdesign.explore import jobs
-    from betvdesign.explore.page import ExploreApp
-
-    for name in ("tornado.access", "bokeh", "tornado.application"):
-        logging.getLogger(name).setLevel(logging.CRITICAL)
-    chosen = _free_port(DEFAULT_PORT if port is None else port, explicit=port is not None)
-    workers = jobs.Workers()
-    app = ExploreApp(design.text, str(path), options, workers, compute=compute)
-    server = None
+    compute = workers = server = None
     try:
+        # the compiled kernels load on the compute thread while Bokeh is imported and the
+        # browser loads the page (the page's first update queues behind); the worker
+        # processes start with the first slow stage, so they do not compete with it
+        from betvdesign.explore.compute import evaluate
+
+        compute = ThreadPoolExecutor(1, thread_name_prefix="betv-explore")
+        compute.submit(evaluate, design.spec, "orbit", with_traces=True, **options)
+        from bokeh.server.server import Server
+
+        from betvdesign.explore import jobs
+        from betvdesign.explore.page import ExploreApp
+
+        for name in ("tornado.access", "bokeh", "tornado.application"):
+            logging.getLogger(name).setLevel(logging.CRITICAL)
+        chosen = _free_port(DEFAULT_PORT if port is None else port, explicit=port is not None)
+        workers = jobs.Workers()
+        app = ExploreApp(design.text, str(path), options, workers, compute=compute)
         server = Server(
             {"/": app},
             address=ADDRESS,
@@ -137,15 +138,28 @@ def serve(
         if open_browser:
             server.io_loop.add_callback(lambda: _open(url))
         server.io_loop.start()
-    except KeyboardInterrupt:
+    except KeyboardInterrupt:  # Ctrl-C or SIGTERM, at any moment of the start too
         pass
     finally:
         with contextlib.suppress(Exception):
             if server is not None:
                 server.stop()
-        workers.close()
-        app.compute.shutdown(wait=False, cancel_futures=True)
+        if workers is not None:
+            workers.close()
+        if compute is not None:
+            compute.shutdown(wait=False, cancel_futures=True)
         say("betv explore: stopped")
+
+
+def _default_sigint() -> None:
+    """Ctrl-C (SIGINT) stops the server even where it was started ignoring SIGINT: a
+    command started in the background (``betv explore FILE &``) by a shell without job
+    control inherits SIGINT ignored, and Python then keeps it ignored."""
+    import signal
+    import threading
+
+    if threading.current_thread() is threading.main_thread():
+        signal.signal(signal.SIGINT, signal.default_int_handler)
 
 
 def _open(url: str) -> None:

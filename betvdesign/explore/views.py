@@ -14,12 +14,26 @@ import math
 from typing import Any
 
 from betvdesign.checks.rule import no_crossing
+from betvdesign.explore.compute import STAGES
 from betvdesign.model.domain import VARPI_WINDOW, in_window
 from betvdesign.output.presentation import MODE_COLORS, PENDING_COLOR, STATUS_COLORS, rule_status
 from betvdesign.output.siformat import format_si
 from betvdesign.studies.fieldmap import MAP_MODES, FieldMap
 
 _CELL = "font-weight:bold;padding-right:6px;vertical-align:top"
+
+#: The first stage whose answer decides the modes (how well Δs is determined and the
+#: travel from rest: an orbit's mode may still become "undetermined" or the crossing's);
+#: before it the page shows no mode, no speed and no verdict, only "computing".
+MODE_STAGE = "settling"
+
+
+def mode_decided(stage: str) -> bool:
+    """Whether the answer of ``stage`` (:data:`betvdesign.explore.compute.STAGES`) decides
+    the modes, speeds and verdict (:data:`MODE_STAGE` or a later stage)."""
+    order = list(STAGES)
+    return order.index(stage) >= order.index(MODE_STAGE)
+
 
 __all__ = [
     "error_html",
@@ -100,22 +114,34 @@ def verdict_html(
     timing: dict[str, float] | None = None,
 ) -> str:
     """The verdict block: overall verdict, one line per set, every rule with its fix;
-    ``timing`` (name -> value) goes into ``data-`` attributes (benchmarks read them)."""
-    verdict = out["verdict"]
-    colour = STATUS_COLORS["pass" if verdict == "pass" else "FAIL"]
+    ``timing`` (name -> value) goes into ``data-`` attributes (benchmarks read them).
+    Before the stage that decides the modes (:func:`mode_decided`) it shows "computing"
+    in place of the verdict, the modes, the speeds and the rules."""
+    decided = mode_decided(stage)
+    verdict = out["verdict"] if decided else "computing"
+    colour = {"pass": STATUS_COLORS["pass"], "fail": STATUS_COLORS["FAIL"]}.get(
+        verdict, STATUS_COLORS["info"]
+    )
     rows = []
     for s in out["sets"]:
-        speed = "" if s.get("speed_m_s") is None else repr(float(s["speed_m_s"]))
+        speed = "" if s.get("speed_m_s") is None or not decided else repr(float(s["speed_m_s"]))
+        mode = s["mode"] if decided else "computing"
+        motion = (
+            _motion(s, (settling or {}).get(s["name"]))
+            if decided
+            else "<b>computing the mode…</b> (decided once Δs is determined and the "
+            "travel from rest is simulated)"
+        )
         rows.append(
-            f'<tr class="betv-set" data-set="{_e(s["name"])}" data-mode="{_e(s["mode"])}" '
+            f'<tr class="betv-set" data-set="{_e(s["name"])}" data-mode="{_e(mode)}" '
             f'data-speed-m-s="{speed}" data-direction="{_e(s.get("travel_direction") or "")}">'
             f'<th style="text-align:left;padding-right:8px">{_e(s["name"])}</th>'
-            f"<td>{_motion(s, (settling or {}).get(s['name']))}</td></tr>"
+            f"<td>{motion}</td></tr>"
         )
     rules = []
-    for s in out["sets"]:
+    for s in out["sets"] if decided else ():
         rules += [(s["name"], r) for r in s["rules"]]
-    rules += [("", r) for r in out.get("rules", [])]
+    rules += [("", r) for r in out.get("rules", [])] if decided else []
     several = len(out["sets"]) > 1
     lines = []
     for set_name, r in rules:
@@ -137,6 +163,11 @@ def verdict_html(
     if pending:
         waiting = f"still computing: {_e(', '.join(pending))}…"
         waiting = f'<div class="betv-pending" style="color:#9a6700">{waiting}</div>'
+    elif not decided:  # the deciding stage failed (the status says why)
+        waiting = (
+            '<div class="betv-pending" style="color:#cf222e">the stage that decides the '
+            "modes did not answer (see the status line)</div>"
+        )
     else:
         waiting = (
             '<div class="betv-pending" style="color:#57606a">every stage of betv check done</div>'

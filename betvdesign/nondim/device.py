@@ -82,6 +82,7 @@ __all__ = [
     "amplitude_at",
     "derive",
     "derive_file",
+    "derive_refusing",
     "derive_samples",
     "derive_set",
 ]
@@ -144,12 +145,39 @@ def derive_file(path: str | Path) -> DeviceDerivation:
         Every problem, naming the file (derived parameters the model cannot take, e.g.
         overflow, included).
     """
-    spec = load_device(path)
+    return derive_refusing(load_device(path), str(path))
+
+
+def derive_refusing(spec: DeviceSpec, filename: str) -> DeviceDerivation:
+    """Derive a device, refusing what the model cannot take as bad input.
+
+    :func:`derive`, refusing a device whose derived parameters the model cannot take
+    as bad input of its file: the one refusal ``betv check`` gives a file and
+    ``betv explore`` a value typed into a control.
+
+    Parameters
+    ----------
+    spec : DeviceSpec
+        A validated device.
+    filename : str
+        Its file, for the message.
+
+    Returns
+    -------
+    DeviceDerivation
+        As :func:`derive`.
+
+    Raises
+    ------
+    SpecError
+        Naming the file: "derived parameters outside the model: ..." (the set and the
+        derived value).
+    """
     try:
         return derive(spec)
     except ParameterError as exc:
         raise SpecError(
-            [SpecIssue(Location(str(path)), "", f"derived parameters outside the model: {exc}")]
+            [SpecIssue(Location(filename), "", f"derived parameters outside the model: {exc}")]
         ) from None
 
 

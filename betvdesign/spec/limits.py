@@ -46,6 +46,30 @@ MAX_UNIT_EXPONENT = 12
 MAX_UNIT_FACTORS = 8
 #: Parallel slider beams (a BETV slider has 2; more than 16 is not a slider).
 MAX_BEAM_COUNT = 16
+#: Range of every quantity a device or process file gives, by the unit its field is
+#: checked in [magnitude in that unit, both ends inclusive]; 0 stays allowed where the
+#: field allows 0 (a calibration point at 0 V). Each range reaches at least six decades
+#: beyond any MEMS device either way, and inside it every value the derivation forms
+#: from the inputs (products and quotients of at most ~10 of them: ρ·L·w·t,
+#: E·w·t³/L³, m·(2π·f)²) stays far inside float64's normal range (1e-308 to 1e308): a
+#: subnormal input (5e-324 V) or an overflowing one (1e300 m) would turn a derived value
+#: into 0, inf or a division by zero, where the model's arithmetic means nothing.
+QUANTITY_RANGE: dict[str, tuple[float, float, str]] = {
+    "m": (1e-12, 1.0, "a length"),
+    "kg": (1e-24, 1.0, "a mass"),
+    "Hz": (1e-3, 1e12, "a frequency"),
+    "s": (1e-12, 1e3, "a duration"),
+    "V": (1e-6, 1e6, "a voltage"),
+    "kg/m**3": (1.0, 1e5, "a density"),
+    "N/m": (1e-9, 1e9, "a stiffness"),
+    "Pa": (1e3, 1e13, "a Young's modulus"),
+    "deg": (1e-6, 90.0 - 1e-6, "an angle"),
+    "m/V": (1e-18, 1.0, "a calibration gain"),
+    "m/V**2": (1e-18, 1.0, "a calibration gain"),
+}
+#: Smallest dry-friction coefficient μ [-] (polysilicon on polysilicon ≈ 0.4): with the
+#: smallest impact angle it keeps κ = μ·tanθ ≥ 1e-14, far from an underflow.
+MIN_FRICTION = 1e-6
 #: Cycles of one transient (``simulate --cycles``) and cycle budget of a periodic solve.
 MAX_CYCLES = 1_000_000
 #: Monte Carlo samples of one tolerance study.
@@ -265,6 +289,11 @@ def describe() -> dict[str, Any]:
             "what": "unit factors of a quantity; one integer power each, no powers of powers",
         },
         "unit_exponent": {"value": MAX_UNIT_EXPONENT, "what": "|power| of one unit factor"},
+        "quantity_range": {
+            "value": {u: [lo, hi] for u, (lo, hi, _) in QUANTITY_RANGE.items()},
+            "what": "magnitude of a quantity, in the unit shown (0 where the field allows 0)",
+        },
+        "friction": {"value": MIN_FRICTION, "what": "smallest contact.friction μ [-]"},
         "beam_count": {"value": MAX_BEAM_COUNT, "what": "slider.beam_count"},
         "cycles": {
             "value": MAX_CYCLES,

@@ -225,7 +225,9 @@ class Contact(StrictModel):
 
     impact_angle: ImpactAngle
     """Impact angle θ between the head's stroke and the slider normal, in (0°, 90°)."""
-    friction: float = Field(description=f"Coulomb friction coefficient μ [-], 0 < μ <= {MU_MAX}")
+    friction: float = Field(
+        description=f"Coulomb friction coefficient μ [-], {limits.MIN_FRICTION:g} <= μ <= {MU_MAX}"
+    )
     restitution: damping.Restitution = damping.restitution_field()
 
     @field_validator("friction")
@@ -235,6 +237,11 @@ class Contact(StrictModel):
             raise ValueError(
                 f"friction coefficient μ = {v:g} outside the physical range (0, {MU_MAX:g}] "
                 "(polysilicon on polysilicon ≈ 0.4; μ = 0 gives κ = 0, outside the model)"
+            )
+        if v < limits.MIN_FRICTION:
+            raise ValueError(
+                f"friction coefficient μ = {v:g} is below {limits.MIN_FRICTION:g}, the smallest "
+                "the model computes with (κ = μ·tanθ would underflow toward 0)"
             )
         return v
 

@@ -359,14 +359,14 @@ class QuantitySpec:
             if _SHAPE.fullmatch(value).group("num") is None:  # parse_quantity matched it
                 raise PydanticCustomError(
                     "missing_number",
-                    "missing number in {text!r}: write e.g. '{example}'",
-                    {"text": value, "example": self.example},
+                    "missing number in {text}: write e.g. '{example}'",
+                    {"text": repr(value), "example": self.example},
                 )
             if q.units == ureg.dimensionless:
                 raise PydanticCustomError(
                     "missing_unit",
-                    "missing unit in {text!r}: write it with units, e.g. '{example}'",
-                    {"text": value, "example": self.example},
+                    "missing unit in {text}: write it with units, e.g. '{example}'",
+                    {"text": repr(value), "example": self.example},
                 )
         else:
             raise PydanticCustomError(
@@ -420,6 +420,9 @@ class QuantitySpec:
                 "must be < {b} {u}, got {q}",
                 {"b": f"{self.lt:g}", "u": u, "q": format_quantity(q)},
             )
+        problem = range_problem(q)
+        if problem is not None:
+            raise PydanticCustomError("out_of_model_range", "{problem}", {"problem": problem})
 
     # --- pydantic hooks -------------------------------------------------------------
     def __get_pydantic_core_schema__(
@@ -455,6 +458,58 @@ class QuantitySpec:
             "description": desc,
             "examples": [self.example],
         }
+
+
+def range_problem(q: pint.Quantity) -> str | None:
+    """Why a quantity lies outside the range the model computes with, or None.
+
+    The range is that of its dimension in :data:`betvdesign.spec.limits.QUANTITY_RANGE`
+    (the one home of these bounds; device files, ``--vary`` bounds); 0 and quantities of
+    a dimension without a range are not refused here.
+
+    Parameters
+    ----------
+    q : pint.Quantity
+        The quantity.
+
+    Returns
+    -------
+    str or None
+        The message ("1e-320 V is outside 1e-06 V to 1e+06 V, ..."), None when inside.
+    """
+    key = _range_unit(q)
+    if key is None:
+        return None
+    mag = float(q.to(key).magnitude)
+    lo, hi, what = limits.QUANTITY_RANGE[key]
+    if mag == 0.0 or lo <= abs(mag) <= hi:
+        return None
+    return (
+        f"{format_quantity(q)} is outside {_exact(lo)} {key} to {_exact(hi)} {key}, the range "
+        f"of {what} the model computes with (inside it no derived value underflows or "
+        "overflows)"
+    )
+
+
+def _range_unit(q: pint.Quantity) -> str | None:
+    """The unit of :data:`~betvdesign.spec.limits.QUANTITY_RANGE` of ``q``'s dimension."""
+    if is_angle(q):
+        return "deg"
+    if q.dimensionless:
+        return None
+    return next(
+        (
+            u
+            for u in limits.QUANTITY_RANGE
+            if u != "deg" and q.dimensionality == ureg.parse_units(u).dimensionality
+        ),
+        None,
+    )
+
+
+def _exact(x: float) -> str:
+    """``x`` short (``1e+06``) where that is exact, else with the digits it needs."""
+    return f"{x:g}" if float(f"{x:g}") == x else repr(x)
 
 
 def _q(dimension: str, unit: str, example: str, **bounds: float) -> Any:

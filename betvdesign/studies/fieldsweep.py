@@ -206,7 +206,7 @@ def _bound(text: str, field: str, unit: str) -> float:
     """
     import pint
 
-    from betvdesign.spec.units import parse_quantity, ureg
+    from betvdesign.spec.units import parse_quantity, range_problem, ureg
 
     t = text.strip()
     try:
@@ -232,6 +232,9 @@ def _bound(text: str, field: str, unit: str) -> float:
                     f"write e.g. '{mag:g} {unit}')"
                 )
             return mag
+        problem = range_problem(q)
+        if problem is not None:  # what a device file could not give either
+            raise UsageError(f"--vary {field}: {problem}")
         return float(q.to(unit).magnitude) if unit else float(q.to("dimensionless").magnitude)
     except (ValueError, pint.PintError) as exc:
         raise UsageError(f"--vary {field}={text}: {exc}") from None

@@ -80,6 +80,10 @@ REQUIRED_WARNINGS = ("mode-margin", "window-margin")
 ADVICE_FIELDS = 3
 ADVICE_FIXES = 2
 
+#: The failure counted for a value outside the device's measured calibration (not a
+#: rule: the value cannot be checked, the calibration is never extrapolated).
+OUTSIDE_CALIBRATION = "outside-calibration"
+
 MARGIN_TEXT = (
     f"margin: the value proposed lies {FIELD_MARGIN:.0%} inside the boundary where the "
     "check starts to pass (bisected to 0.2 %), and the mode also holds at ϖ·(1 ± 5 %) and "
@@ -136,6 +140,10 @@ class Evaluator:
         from betvdesign.nondim.device import derive
         from betvdesign.studies.sampling import check_sample
 
+        for f, x in changes.items():  # not checked: no extrapolation of the points
+            cal = self.varies[f].calibrated
+            if cal is not None and not cal[0] <= x <= cal[1]:
+                return Outcome(False, (OUTSIDE_CALIBRATION,), (), None)
         self.evaluations += 1
         try:
             check_sample({f: (x, self.varies[f].unit) for f, x in changes.items()})
@@ -199,6 +207,11 @@ class FieldAnswer:
         Where the check starts to pass along the field, bisected [``unit``].
     blocking : str
         Without a value: the rule that fails most often over the values tried.
+    blocking_counts : dict of str to int
+        Without a value: per failure, the values tried where it fails (a rule id,
+        :data:`OUTSIDE_CALIBRATION`, or "invalid: ..." for a value the model cannot take).
+    calibrated : tuple of float or None
+        The range the measured calibration covers [``unit``] (:attr:`Vary.calibrated`).
     evaluations : int
         Exact checks spent on the field.
     """
@@ -214,6 +227,7 @@ class FieldAnswer:
     blocking_counts: dict[str, int] = field(default_factory=dict)
     evaluations: int = 0
     outcome: Outcome | None = None
+    calibrated: tuple[float, float] | None = None
 
     @property
     def direction(self) -> int:
@@ -249,10 +263,7 @@ class FieldAnswer:
     def advice(self) -> str:
         """The change in words: direction, amount, boundary and physical meaning."""
         if self.value is None:
-            return (
-                f"{self.field}: no passing value from {self.tried()} "
-                f"(blocked by {self.blocking or 'every value tried'})"
-            )
+            return f"{self.field}: no passing value from {self.tried()} ({self.blocked()})"
         if self.boundary is None:
             return f"keep {self.field} at {self.text(self.x0)} (passes)"
         verb = "raise" if self.direction > 0 else "lower"
@@ -262,6 +273,33 @@ class FieldAnswer:
             f"(passes from {self.text(self.boundary)}; {FIELD_MARGIN:.0%} margin)"
             + (f" [{meaning}]" if meaning else "")
         )
+
+    def blocked(self) -> str:
+        """What blocked the values tried, with the counts.
+
+        What blocked the values tried, with the counts: the rule that failed at the
+        most values first, then the others; values outside the measured calibration
+        (not checked) and values the model cannot take are named as such.
+        """
+        c = self.blocking_counts
+        if not self.blocking:
+            return "blocked at every value tried"
+        ranked = sorted(
+            ((k, n) for k, n in c.items() if _is_rule(k)), key=lambda kv: (-kv[1], kv[0])
+        )
+        parts = [f"blocked most by {self.blocking}: fails at {c.get(self.blocking, 0)} value(s)"]
+        parts += [f"{k} at {n}" for k, n in ranked if k != self.blocking]
+        out = c.get(OUTSIDE_CALIBRATION, 0)
+        if out and self.calibrated is not None:
+            lo, hi = self.calibrated
+            parts.append(
+                f"{out} value(s) outside the measured calibration "
+                f"({self.text(lo)} to {self.text(hi)}; not checked)"
+            )
+        invalid = sum(n for k, n in c.items() if k.startswith("invalid"))
+        if invalid:
+            parts.append(f"{invalid} value(s) the model cannot take")
+        return "; ".join(parts)
 
     def as_dict(self) -> dict[str, Any]:
         """The JSON-ready record."""
@@ -280,6 +318,15 @@ class FieldAnswer:
             "blocking": self.blocking or None,
             "evaluations": self.evaluations,
         }
+
+
+def _is_rule(failure: str) -> bool:
+    """Whether a failure counted by the scan is a rule's.
+
+    A failure counted by the scan is a rule's, not a value that could not be checked
+    (outside the calibration) or that the model cannot take ("invalid: ...").
+    """
+    return failure != OUTSIDE_CALIBRATION and not failure.startswith("invalid")
 
 
 def _bisect(ev: Evaluator, name: str, good: float, bad: float) -> float:
@@ -318,7 +365,7 @@ def _steps(v: Vary) -> list[tuple[float, float]]:
 def nearest(ev: Evaluator, v: Vary) -> FieldAnswer:
     """The nearest passing value of field ``v`` (see the module docstring)."""
     start = ev.evaluations
-    ans = FieldAnswer(v.field, v.x0, v.lo, v.hi, v.unit)
+    ans = FieldAnswer(v.field, v.x0, v.lo, v.hi, v.unit, calibrated=v.calibrated)
     counts: dict[str, int] = {}
     if v.x0 < v.lo or v.x0 > v.hi:  # current value outside the bounds: scan them
         v = replace(v, x0=min(max(v.x0, v.lo), v.hi))
@@ -343,7 +390,8 @@ def nearest(ev: Evaluator, v: Vary) -> FieldAnswer:
             break
     ans.blocking_counts = counts
     if ans.value is None and counts:
-        ans.blocking = max(counts, key=lambda k: (counts[k], k))
+        rules = {k: n for k, n in counts.items() if _is_rule(k)} or counts
+        ans.blocking = max(rules, key=lambda k: (rules[k], k))
     ans.evaluations = ev.evaluations - start
     return ans
 
@@ -749,7 +797,9 @@ def with_advice(check: Any, answers: Sequence[FieldAnswer]) -> Any:
     """A copy of ``check`` with the search's fix texts.
 
     A copy of ``check`` with the fix text of every failing error rule and
-    ``mode-margin`` replaced by the search's answer (:func:`advice_text`).
+    ``mode-margin`` (and ``window-margin``) replaced by the search's answer
+    (:func:`advice_text`), except the process's rules, whose own fix says which drawn
+    dimension to set to what (the process decides it).
 
     Parameters
     ----------
@@ -769,6 +819,8 @@ def with_advice(check: Any, answers: Sequence[FieldAnswer]) -> Any:
 
     def fix(r: Any) -> Any:
         if r.passed or not (r.severity == "error" or r.id in REQUIRED_WARNINGS):
+            return r
+        if r.id.startswith("process."):  # the process dictates it: the rule's own geometry
             return r
         return replace(r, fix=text)
 

@@ -69,6 +69,10 @@ class Vary:
     lo: float
     hi: float
     unit: str
+    #: The range of the field the device's measured calibration covers [``unit``]
+    #: (``drive.voltage`` with measured points; no extrapolation): a value outside it
+    #: cannot be checked. None: no such range.
+    calibrated: tuple[float, float] | None = None
 
     def quantity(self, x: float) -> Any:
         """The magnitude ``x`` in the field's unit (a float for a unit-less field)."""
@@ -136,10 +140,8 @@ def parse_vary(spec: Any, items: Sequence[str]) -> list[Vary]:
     Raises
     ------
     UsageError
-        For unknown fields, unreadable or inverted bounds.
+        For unknown fields, unreadable, inverted or out-of-range bounds.
     """
-    from betvdesign.spec.units import parse_quantity
-
     out: list[Vary] = []
     names = list(items) or [
         f
@@ -158,45 +160,120 @@ def parse_vary(spec: Any, items: Sequence[str]) -> list[Vary]:
         x0, unit = cur
         if x0 <= 0:
             raise UsageError(f"--vary {name}: current value {x0:g} is not positive")
-        if rng:
-            lo_s, sep, hi_s = rng.partition(":")
-            if not sep:
-                raise UsageError(f"--vary {item}: bounds must be LO:HI, e.g. {name}=1um:8um")
-            try:
-                lo, hi = (_magnitude(parse_quantity(t.strip()), unit) for t in (lo_s, hi_s))
-            except (ValueError, pint.PintError) as exc:
-                raise UsageError(f"--vary {item}: {exc}") from None
-        else:
-            b = bounds(name)
-            if len(b) == 3:
-                from betvdesign.spec.units import ureg
-
-                lo, hi = (float(ureg.Quantity(v, b[2]).to(unit).magnitude) for v in b[:2])
-            else:
-                lo, hi = x0 * b[0], x0 * b[1]
-        dom = term_range(name)
-        if dom is not None:  # optional physics: its own range, e = 0 included
-            dlo, dhi, hi_open = dom
-            if not (math.isfinite(lo) and math.isfinite(hi) and 0 < lo < hi and dlo <= lo):
-                raise UsageError(
-                    f"--vary {item}: need 0 < LO < HI (got {lo:g} to {hi:g}; the search is "
-                    "log-spaced: for nearly plastic impacts give e.g. LO = 0.001)"
-                    if dlo == 0
-                    else f"--vary {item}: need {dlo:g} ≤ LO < HI (got {lo:g} to {hi:g})"
-                )
-            if hi > dhi or (hi_open and hi == dhi):
-                raise UsageError(
-                    f"--vary {item}: HI {hi:g} outside what the model takes "
-                    f"({'<' if hi_open else '≤'} {dhi:g})"
-                )
-        elif not (math.isfinite(lo) and math.isfinite(hi) and 0 < lo < hi):
-            raise UsageError(
-                f"--vary {item}: need 0 < LO < HI (got {lo:g} to {hi:g} {unit})".rstrip()
-            )
-        out.append(Vary(name, x0, lo, hi, unit))
+        lo, hi = _vary_bounds(item, name, rng, x0, unit)
+        cal = calibrated_range(spec, name, unit)
+        if cal is not None and not rng:  # default bounds: only what the points cover
+            lo, hi = max(lo, cal[0]), min(hi, cal[1])
+            if not 0 < lo < hi:
+                continue
+        out.append(Vary(name, x0, lo, hi, unit, cal))
     if len({v.field for v in out}) != len(out):
         raise UsageError("--vary: a field is given twice")
     return out
+
+
+def _vary_bounds(item: str, name: str, rng: str, x0: float, unit: str) -> tuple[float, float]:
+    """The bounds of one ``--vary`` item, checked.
+
+    Parameters
+    ----------
+    item : str
+        The item as given (``FIELD`` or ``FIELD=LO:HI``).
+    name : str
+        The field's dotted path.
+    rng : str
+        ``LO:HI`` ("" for the field's default bounds, :func:`bounds`).
+    x0 : float
+        The field's current value [``unit``].
+    unit : str
+        The unit of the field's value in the file.
+
+    Returns
+    -------
+    tuple of float
+        (LO, HI) [``unit``].
+
+    Raises
+    ------
+    UsageError
+        Unreadable or inverted bounds, bounds a device file could not give, or outside
+        what the model takes for an optional term.
+    """
+    from betvdesign.spec.units import parse_quantity, range_problem
+
+    if rng:
+        lo_s, sep, hi_s = rng.partition(":")
+        if not sep:
+            raise UsageError(f"--vary {item}: bounds must be LO:HI, e.g. {name}=1um:8um")
+        try:
+            qs = [parse_quantity(t.strip()) for t in (lo_s, hi_s)]
+            lo, hi = (_magnitude(q, unit) for q in qs)
+        except (ValueError, pint.PintError) as exc:
+            raise UsageError(f"--vary {item}: {exc}") from None
+        for q in qs:  # what a device file could not give either
+            if isinstance(q, pint.Quantity) and (problem := range_problem(q)) is not None:
+                raise UsageError(f"--vary {name}: {problem}")
+    else:
+        b = bounds(name)
+        if len(b) == 3:
+            from betvdesign.spec.units import ureg
+
+            lo, hi = (float(ureg.Quantity(v, b[2]).to(unit).magnitude) for v in b[:2])
+        else:
+            lo, hi = x0 * b[0], x0 * b[1]
+    dom = term_range(name)
+    if dom is not None:  # optional physics: its own range, e = 0 included
+        dlo, dhi, hi_open = dom
+        if not (math.isfinite(lo) and math.isfinite(hi) and 0 < lo < hi and dlo <= lo):
+            raise UsageError(
+                f"--vary {item}: need 0 < LO < HI (got {lo:g} to {hi:g}; the search is "
+                "log-spaced: for nearly plastic impacts give e.g. LO = 0.001)"
+                if dlo == 0
+                else f"--vary {item}: need {dlo:g} ≤ LO < HI (got {lo:g} to {hi:g})"
+            )
+        if hi > dhi or (hi_open and hi == dhi):
+            raise UsageError(
+                f"--vary {item}: HI {hi:g} outside what the model takes "
+                f"({'<' if hi_open else '≤'} {dhi:g})"
+            )
+    elif not (math.isfinite(lo) and math.isfinite(hi) and 0 < lo < hi):
+        raise UsageError(f"--vary {item}: need 0 < LO < HI (got {lo:g} to {hi:g} {unit})".rstrip())
+    return lo, hi
+
+
+def calibrated_range(spec: Any, name: str, unit: str) -> tuple[float, float] | None:
+    """The drive voltages every set's measured calibration covers [``unit``].
+
+    The drive voltages every set's measured calibration covers [``unit``] (for
+    ``drive.voltage``; the calibration is interpolated, never extrapolated); None for
+    another field or a device without measured points.
+
+    Parameters
+    ----------
+    spec : DeviceSpec
+        The device.
+    name : str
+        The field's dotted path.
+    unit : str
+        The unit of the field's value in the file.
+
+    Returns
+    -------
+    tuple of float or None
+        (lowest, highest) voltage measured, intersected over the sets.
+    """
+    from betvdesign.spec.models import MeasuredCalibration
+
+    if name != "drive.voltage":
+        return None
+    ranges = [
+        tuple(float(v.to(unit).magnitude) for v in s.actuator.calibration.voltage_range)
+        for s in spec.actuator_sets
+        if isinstance(s.actuator.calibration, MeasuredCalibration)
+    ]
+    if not ranges:
+        return None
+    return max(r[0] for r in ranges), min(r[1] for r in ranges)
 
 
 def _magnitude(q: Any, unit: str) -> float:
