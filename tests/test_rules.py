@@ -5,6 +5,7 @@ stand-ins with chosen Δs, so every rule's logic is tested apart from the solver
 import dataclasses
 import json
 import math
+from fractions import Fraction
 from pathlib import Path
 from types import SimpleNamespace
 
@@ -252,14 +253,16 @@ def test_check_solves_each_distinct_set_once_and_survives_a_crashing_solver():
     intended=st.sampled_from(["push", "pull"]),
 )
 def test_rule_invariants(varpi, alpha, beta, kappa, ds, intended):
-    """Invariants: window ⇔ 0.5 ≤ ϖ < 2; mode ⇔ the orbit's Δs has the intended sign
+    """Invariants: window ⇔ 0.5 ≤ ϖ < 2 with each edge to 1e-12 relative (the lower
+    inside, the upper outside; rational arithmetic); mode ⇔ the orbit's Δs has the intended sign
     beyond round-off (λ plays no part); verdict fails exactly when one of those fails;
     a failed rule with severity error always says what to change; JSON-safe values."""
     s = _set(varpi, alpha, beta, kappa, intended=intended)
     res = evaluate(s, orbit=None if ds is None else _orbit(ds))
     window = _rule(res, "frequency-window").passed
     mode = _rule(res, "mode").passed
-    assert window == (0.5 <= varpi < 2.0)
+    x, tol = Fraction(varpi), Fraction(1, 10**12)
+    assert window == (Fraction(1, 2) * (1 - tol) <= x < 2 * (1 - tol))
     want = 1 if intended == "push" else -1
     assert mode == (ds is not None and ds * want > DELTA_S_STALL)
     assert (verdict(res) == "pass") == (window and mode)

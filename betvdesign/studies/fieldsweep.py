@@ -371,7 +371,7 @@ def _derive_grid(
                 out.append(str(exc))
                 continue
             rec = {
-                **d.params.as_dict(),
+                **{k: float(getattr(d.params, k)) for k in PARAM_FIELDS},
                 "length_m": d.scales.length_m,
                 "f_act_hz": d.scales.f_act_hz,
                 "travel_s": _travel_s(d),
