@@ -311,12 +311,13 @@ def _edge_general(sig: float, bA: float, ast: float, sj, ys, ns, on: bool) -> tu
     ys, ns : tuple of 4 floats
         ζ's derivatives of orders 2..5 under the stick flow and their round-off scales [-].
     on : bool
-        On this edge: its distance (coefficient 0) is 0 exactly.
+        The motion is on this edge (g_lo or g_hi is 0 exactly at coefficient 0).
 
     Returns
     -------
-    tuple of (tuple of 4 floats, tuple of 4 floats)
-        The coefficients and their floors [-].
+    tuple
+        (d, nz): the 4 coefficients of the edge distance and their round-off floors [-],
+        as :func:`_band_verdict` takes them.
     """
     d = (
         0.0 if on else bA * sj[0] + sig * ast * ys[0],
