@@ -7,7 +7,12 @@ traceback.
 
 from __future__ import annotations
 
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass
+from typing import TypeVar
+
+T = TypeVar("T")
+R = TypeVar("R")
 
 
 class BetvError(Exception):
@@ -50,6 +55,38 @@ class SpecError(BetvError):
     def __init__(self, issues: list[SpecIssue]):
         self.issues = list(issues)
         super().__init__("\n".join(str(i) for i in self.issues))
+
+
+def each_or_issues(fn: Callable[[T], R], items: Iterable[T]) -> list[R]:
+    """``fn`` of every item, or one SpecError with the issues of every item that failed.
+
+    Parameters
+    ----------
+    fn : callable
+        Reads or prepares one item (a device file); raises SpecError.
+    items : iterable
+        The items, in order.
+
+    Returns
+    -------
+    list
+        ``fn``'s results, in order, when no item raised.
+
+    Raises
+    ------
+    SpecError
+        Every failed item's issues, in order, after all were tried.
+    """
+    done: list[R] = []
+    issues: list[SpecIssue] = []
+    for item in items:
+        try:
+            done.append(fn(item))
+        except SpecError as exc:
+            issues.extend(exc.issues)
+    if issues:
+        raise SpecError(issues)
+    return done
 
 
 class ParameterError(BetvError, ValueError):

@@ -227,6 +227,20 @@ def test_bad_file_exit_2_names_file_line_field(tmp_path, no_solver):
     assert missing.exit_code == 2 and "file not found" in missing.stderr
 
 
+def test_several_bad_files_report_every_files_issues_in_order(tmp_path, no_solver):
+    """Two bad files among good ones: one refusal holding the issues each file gives when
+    checked alone, in the files' order, and no report."""
+    a, b = tmp_path / "a.yaml", tmp_path / "b.yaml"
+    a.write_text("name: x\nfoo: 1\n")
+    b.write_text("name: [\n")
+    alone = [run("check", str(f)) for f in (a, b)]
+    both = run("check", str(a), SHIN, str(b))
+    assert [r.exit_code for r in (*alone, both)] == [2, 2, 2]
+    assert alone[0].stderr and alone[1].stderr
+    assert both.stderr == alone[0].stderr + alone[1].stderr
+    assert both.stdout == ""
+
+
 def test_schema_round_trip(tmp_path):
     """The exported schema describes the shipped files; model -> JSON -> model is lossless."""
     r = run("schema")

@@ -38,6 +38,7 @@ from matplotlib.figure import Figure
 
 from betvdesign.checks.checker import answer_over_travel
 from betvdesign.dynamics.periodic import periodic_orbit
+from betvdesign.model.bisection import bisect as bisect_bracket
 from betvdesign.model.params import ModelParams
 from betvdesign.plots.figure import figure_style, new_figure
 
@@ -181,12 +182,10 @@ def scan_family(
             continue
         lo = max((r for r in run if r["label"] == a["label"]), key=lambda r: r["x"])
         hi = min((r for r in run if r["label"] == b["label"]), key=lambda r: r["x"])
-        for _ in range(bisect):
-            mid = row(0.5 * (lo["x"] + hi["x"]))
-            if mid["label"] == lo["label"]:
-                lo = mid
-            else:
-                hi = mid
+        br = bisect_bracket(
+            lambda x: row(x)["label"], lo["x"], hi["x"], lo["label"], hi["label"], steps=bisect
+        )
+        lo, hi = row(br.a), row(br.b)
         lo["edge"] = hi["edge"] = True
     return sorted(memo.values(), key=lambda r: r["x"])
 

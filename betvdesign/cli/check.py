@@ -23,7 +23,7 @@ from betvdesign.api import HORIZON_RANGE
 from betvdesign.cli import app
 from betvdesign.cli.common import EXIT_OK, EXIT_RULE_FAILED, int_option, user_errors
 from betvdesign.cli.config import load_config
-from betvdesign.errors import SpecError, UsageError
+from betvdesign.errors import UsageError, each_or_issues
 from betvdesign.model.domain import TRAVEL_HORIZON
 
 if TYPE_CHECKING:  # the heavy layers load when a check runs, not for `betv --help`
@@ -128,14 +128,7 @@ def check_cmd(
             adequacy=adequacy,
             advice=advice,
         )
-        sources, issues = [], []
-        for f in files:  # collect the issues of every file before giving up
-            try:
-                sources.append(read_source(f))
-            except SpecError as exc:
-                issues.extend(exc.issues)
-        if issues:
-            raise SpecError(issues)
+        sources = each_or_issues(read_source, files)  # every file's issues at once
         results = [run_check(src, options) for src in sources]
     flt = results[0].rule_filter
     for warning in flt.unmatched(results):

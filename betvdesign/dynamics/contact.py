@@ -170,30 +170,85 @@ def decide_phase(
     if c.damped:
         return _decide_band_general(c, z, vs, sp, cp, on)
     A, wf, b = c.a_stick, c.varpi, c.b
-    z2 = (sp - z) / A
-    z3 = (wf * cp - vs) / A
-    s1 = wf * cp
-    s2 = -wf * wf * sp
-    s3 = -(wf * wf * wf) * cp
-    for edge in range(1, 3):
-        sig, q, phase = (1.0, 1.0 - b, SLIP) if edge == 1 else (-1.0, 1.0 + b, REVERSE)
-        for j in range(4):
-            if j == 0:
-                zj, sj = z, sp
-            elif j == 1:
-                zj, sj = vs, s1
-            elif j == 2:
-                zj, sj = z2, s2
-            else:
-                zj, sj = z3, s3
-            qs = q * sj
-            dj = 0.0 if j == 0 and on == edge else sig * (zj - qs)
-            nz = NOISE * (abs(zj) + abs(qs))
-            if dj > nz:
-                break  # leaves the band on the admissible side: not this edge
-            if dj < -nz:
-                return phase
+    zs = (z, vs, (sp - z) / A, (wf * cp - vs) / A)
+    ss = (sp, wf * cp, -wf * wf * sp, -(wf * wf * wf) * cp)
+    d_lo, n_lo = _edge_closed(1.0, 1.0 - b, zs, ss, on == 1)
+    d_hi, n_hi = _edge_closed(-1.0, 1.0 + b, zs, ss, on == 2)
+    return _band_verdict(d_lo, n_lo, d_hi, n_hi)
+
+
+@kernel
+def _edge_closed(sig: float, q: float, zs, ss, on: bool) -> tuple:
+    """Taylor coefficients 0..3 of σ(ζ − q sin ϖτ) and their round-off floors.
+
+    Parameters
+    ----------
+    sig : float
+        +1 for the lower edge q = 1 − b, −1 for the upper edge q = 1 + b.
+    q : float
+        The edge's coefficient [-].
+    zs, ss : tuple of 4 floats
+        Taylor coefficients 0..3 of ζ under the stick flow and of sin ϖτ [-].
+    on : bool
+        On this edge: its distance (coefficient 0) is 0 exactly.
+
+    Returns
+    -------
+    tuple of (tuple of 4 floats, tuple of 4 floats)
+        The coefficients and their floors [-].
+    """
+    q0, q1, q2, q3 = q * ss[0], q * ss[1], q * ss[2], q * ss[3]
+    d = (
+        0.0 if on else sig * (zs[0] - q0),
+        sig * (zs[1] - q1),
+        sig * (zs[2] - q2),
+        sig * (zs[3] - q3),
+    )
+    nz = (
+        NOISE * (abs(zs[0]) + abs(q0)),
+        NOISE * (abs(zs[1]) + abs(q1)),
+        NOISE * (abs(zs[2]) + abs(q2)),
+        NOISE * (abs(zs[3]) + abs(q3)),
+    )
+    return d, nz
+
+
+@kernel
+def _band_verdict(d_lo, n_lo, d_hi, n_hi) -> int:
+    """The stick-band rule: stick inside, slip below, reverse slip above.
+
+    Each band distance (positive inside) is compared lexicographically on its Taylor
+    coefficients 0..3: the first one beyond its round-off floor tells on which side the
+    motion goes; none beyond it, the distance stays (within round-off) on the edge.
+
+    Parameters
+    ----------
+    d_lo, n_lo : tuple of 4 floats
+        Coefficients of the distance to the lower edge and their floors [-].
+    d_hi, n_hi : tuple of 4 floats
+        The same for the upper edge [-].
+
+    Returns
+    -------
+    int
+        ``SLIP`` (leaves below), ``REVERSE`` (leaves above) or ``STICK``.
+    """
+    if _leaves(d_lo, n_lo):
+        return SLIP
+    if _leaves(d_hi, n_hi):
+        return REVERSE
     return STICK
+
+
+@kernel
+def _leaves(d, nz) -> bool:
+    """True when the first coefficient of d beyond its floor nz is negative."""
+    for j in range(4):
+        if d[j] > nz[j]:
+            return False  # leaves the band on the admissible side: not this edge
+        if d[j] < -nz[j]:
+            return True
+    return False
 
 
 @kernel
@@ -234,17 +289,49 @@ def _decide_band_general(c: PhaseTable, z: float, vs: float, sp: float, cp: floa
     y2, y3, y4, y5, n2, n3, n4, n5 = taylor_general(w0, g, wf, F, G, z, vs, sp, cp)
     ys = (y2, y3, y4, y5)
     ns = (n2, n3, n4, n5)
-    for edge in range(1, 3):
-        sig, phase = (-1.0, SLIP) if edge == 1 else (1.0, REVERSE)
-        for j in range(4):
-            yj, nj = ys[j], ns[j]
-            dj = 0.0 if j == 0 and on == edge else bA * sj[j] + sig * ast * yj
-            nz = NOISE * (abs(bA * sj[j]) + ast * nj)
-            if dj > nz:
-                break  # leaves the band on the admissible side: not this edge
-            if dj < -nz:
-                return phase
-    return STICK
+    d_lo, n_lo = _edge_general(-1.0, bA, ast, sj, ys, ns, on == 1)
+    d_hi, n_hi = _edge_general(1.0, bA, ast, sj, ys, ns, on == 2)
+    return _band_verdict(d_lo, n_lo, d_hi, n_hi)
+
+
+@kernel
+def _edge_general(sig: float, bA: float, ast: float, sj, ys, ns, on: bool) -> tuple:
+    """Taylor coefficients 0..3 of bA sin φ + σR and their round-off floors (damped band).
+
+    Parameters
+    ----------
+    sig : float
+        −1 for the lower edge g_lo, +1 for the upper edge g_hi.
+    bA : float
+        Half-width of the band times the normal-force amplitude [-].
+    ast : float
+        Stick inertia α(1 + 1/β) [-].
+    sj : tuple of 4 floats
+        Taylor coefficients 0..3 of sin φ [-].
+    ys, ns : tuple of 4 floats
+        ζ's derivatives of orders 2..5 under the stick flow and their round-off scales [-].
+    on : bool
+        The motion is on this edge (g_lo or g_hi is 0 exactly at coefficient 0).
+
+    Returns
+    -------
+    tuple
+        (d, nz): the 4 coefficients of the edge distance and their round-off floors [-],
+        as :func:`_band_verdict` takes them.
+    """
+    d = (
+        0.0 if on else bA * sj[0] + sig * ast * ys[0],
+        bA * sj[1] + sig * ast * ys[1],
+        bA * sj[2] + sig * ast * ys[2],
+        bA * sj[3] + sig * ast * ys[3],
+    )
+    nz = (
+        NOISE * (abs(bA * sj[0]) + ast * ns[0]),
+        NOISE * (abs(bA * sj[1]) + ast * ns[1]),
+        NOISE * (abs(bA * sj[2]) + ast * ns[2]),
+        NOISE * (abs(bA * sj[3]) + ast * ns[3]),
+    )
+    return d, nz
 
 
 @kernel

@@ -561,8 +561,6 @@ def vertical_flight(
     ----------
     Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773.
     """
-    if zv == 0.0:
-        return oscillator(1.0, wf, -1.0, xi, xid, sp0, cp0, h)
     y, yd = forced(1.0, zv, wf, -A, 0.0, xi, xid, sp0, cp0, h)
     sp, cp = rotate(wf, sp0, cp0, h)
     return y, yd, sp, cp
@@ -573,6 +571,8 @@ def free_flight(
     c: PhaseTable, z: float, zd: float, s: float, sd: float, cp0: float, h: float
 ) -> tuple[float, float, float, float]:
     """No contact, tangential: α ζ'' + ζ = sin ϖτ, s'' = 0, over h.
+
+    :func:`flow`'s free phase started at a forcing phase 0 or π (sin φ0 = 0).
 
     Parameters
     ----------
@@ -595,13 +595,7 @@ def free_flight(
     ----------
     Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773.
     """
-    w0 = c.w_free
-    if c.damped:
-        y, yd = forced(w0, c.g_free, c.varpi, c.F_free, c.G_free, z, zd, 0.0, cp0, h)
-        return y, yd, s + sd * h, sd
-    y0, v0, _, _ = oscillator(w0, c.varpi, c.F_free, 0.0, 0.0, 0.0, cp0, h)
-    c0, s0 = math.cos(w0 * h), math.sin(w0 * h)
-    return z * c0 + zd / w0 * s0 + y0, -z * w0 * s0 + zd * c0 + v0, s + sd * h, sd
+    return flow(c, FREE, z, zd, s, sd, 0.0, cp0, h)
 
 
 @kernel
@@ -643,11 +637,8 @@ def slip_flow(
     Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773.
     """
     ph = c.slip if phase == SLIP else c.reverse
-    if c.damped:
-        zn, zdn = forced(ph.w0, ph.g, c.varpi, ph.F, ph.G, z, zd, sp0, cp0, h)
-        sp, cp = rotate(c.varpi, sp0, cp0, h)
-    else:
-        zn, zdn, sp, cp = oscillator(ph.w0, c.varpi, ph.F, z, zd, sp0, cp0, h)
+    zn, zdn = forced(ph.w0, ph.g, c.varpi, ph.F, ph.G, z, zd, sp0, cp0, h)
+    sp, cp = rotate(c.varpi, sp0, cp0, h)
     sn, sdn = slider(ph.ds, c.varpi, s, sd, sp0, cp0, sp, cp, h)
     return zn, zdn, sn, sdn
 
@@ -681,10 +672,7 @@ def stick_flow(
     Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773.
     """
     st = c.stick
-    if c.damped:
-        zn, zdn = forced(st.w0, st.g, c.varpi, st.F, st.G, z, zd, sp0, cp0, h)
-    else:
-        zn, zdn, _, _ = oscillator(st.w0, c.varpi, st.F, z, zd, sp0, cp0, h)
+    zn, zdn = forced(st.w0, st.g, c.varpi, st.F, st.G, z, zd, sp0, cp0, h)
     return zn, zdn, s + (zn - z), zdn
 
 
@@ -750,9 +738,6 @@ def flow(
     if phase == STICK:
         return stick_flow(c, z, zd, s, sp0, cp0, h)
     if phase == FREE:
-        if c.damped:
-            zn, zdn = forced(c.w_free, c.g_free, c.varpi, c.F_free, c.G_free, z, zd, sp0, cp0, h)
-        else:
-            zn, zdn, _, _ = oscillator(c.w_free, c.varpi, c.F_free, z, zd, sp0, cp0, h)
+        zn, zdn = forced(c.w_free, c.g_free, c.varpi, c.F_free, c.G_free, z, zd, sp0, cp0, h)
         return zn, zdn, s + sd * h, sd
     return slip_flow(c, phase, z, zd, s, sd, sp0, cp0, h)

@@ -266,6 +266,24 @@ def weld(gdstk: Any, polys: list) -> list:
     return out
 
 
+def material(gdstk: Any, polys: list, holes: list) -> list:
+    """The layer's material: its polygons, welded (:func:`weld`), less its release holes.
+
+    Parameters
+    ----------
+    gdstk : module
+        The gdstk module.
+    polys, holes : list
+        The layer's polygons and its release holes.
+
+    Returns
+    -------
+    list
+        gdstk polygons of the material [µm].
+    """
+    return _not(gdstk, weld(gdstk, polys), holes)
+
+
 def width_violations(
     gdstk: Any, polys: list, holes: list, w_min: float, layer: str = "", gds: str = ""
 ) -> list[Violation]:
@@ -287,8 +305,7 @@ def width_violations(
     list of Violation
         The narrow regions.
     """
-    body = _not(gdstk, weld(gdstk, polys), holes)
-    return edge_violations(gdstk, body, w_min, "width", layer, gds)
+    return edge_violations(gdstk, material(gdstk, polys, holes), w_min, "width", layer, gds)
 
 
 def space_violations(
@@ -315,8 +332,7 @@ def space_violations(
     list of Violation
         The narrow gaps.
     """
-    body = _not(gdstk, weld(gdstk, polys), holes)
-    return edge_violations(gdstk, body, s_min, "space", layer, gds)
+    return edge_violations(gdstk, material(gdstk, polys, holes), s_min, "space", layer, gds)
 
 
 def unreleased(
@@ -389,7 +405,7 @@ def findings(gdstk: Any, process: Process, by_layer: dict[tuple[int, int], list]
         anchors = by_layer.get(process.layers[lay.anchor].gds.pair, []) if lay.anchor else []
         um = lambda q: float(q.to("um").magnitude)  # noqa: E731
         g = str(lay.gds)
-        body = _not(gdstk, weld(gdstk, polys), holes)
+        body = material(gdstk, polys, holes)
         e = _edges(gdstk, body)
         width += edge_violations(gdstk, body, um(lay.min_width), "width", name, g, e)
         space += edge_violations(gdstk, body, um(lay.min_spacing), "space", name, g, e)

@@ -28,6 +28,7 @@ import math
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -216,6 +217,32 @@ class FeModes:
     elapsed_s: float
 
 
+def _lump_mass(
+    M: Any,
+    mass: Any,
+    mesh: Any,
+    basis: Any,
+    region: Callable[[np.ndarray, np.ndarray], np.ndarray],
+    lumped_mass: float,
+    density: float,
+    what: str,
+) -> Any:
+    """M with the mass of the cells whose centres lie in ``region`` replaced.
+
+    The consistent mass of those cells (``density`` per unit area or volume of the mesh,
+    kg/µm² or kg/µm³) becomes ``lumped_mass`` [kg] spread uniformly over them; ``what``
+    names the region in the error raised when no cell lies in it.
+    """
+    skfem = _skfem()
+    cc = mesh.p[:, mesh.t].mean(axis=1)
+    cells = np.nonzero(region(cc[0], cc[1]))[0]
+    if cells.size == 0:
+        raise BetvError(f"finite-element model: no mesh cell in {what}")
+    hb = skfem.Basis(mesh, basis.elem, elements=cells, intorder=4)
+    measure = float(np.sum(hb.dx))
+    return M + mass.assemble(hb) * (lumped_mass / measure - density)
+
+
 def plane_stress_modes(
     rects: Sequence[Rect],
     discs: Sequence[tuple[float, float, float]],
@@ -255,13 +282,7 @@ def plane_stress_modes(
 
     M = mass.assemble(basis) * (rho * t)
     if lumped is not None:
-        cc = mesh.p[:, mesh.t].mean(axis=1)
-        cells = np.nonzero(lumped(cc[0], cc[1]))[0]
-        if cells.size == 0:
-            raise BetvError("finite-element model: no mesh cell in the lumped-mass region")
-        hb = skfem.Basis(mesh, basis.elem, elements=cells, intorder=4)
-        area = float(np.sum(hb.dx))
-        M = M + mass.assemble(hb) * (lumped_mass / area - rho * t)
+        M = _lump_mass(M, mass, mesh, basis, lumped, lumped_mass, rho * t, "the lumped-mass region")
     clamped = basis.get_dofs(lambda x: np.isclose(x[0], clamp_x * _UM, atol=1e-6)).all()
     free = np.setdiff1d(np.arange(basis.N), clamped)
     w2 = eigsh(K[free][:, free].tocsc(), k=count, M=M[free][:, free].tocsc(), sigma=0.0,
@@ -382,13 +403,7 @@ def frame_modes_3d(
 
     K = stiffness.assemble(basis)
     M = mass.assemble(basis) * rho
-    cc = mesh.p[:, mesh.t].mean(axis=1)
-    cells = np.nonzero(head(cc[0], cc[1]))[0]
-    if cells.size == 0:
-        raise BetvError("finite-element model: no mesh cell in the head")
-    hb = skfem.Basis(mesh, basis.elem, elements=cells, intorder=4)
-    vol = float(np.sum(hb.dx))
-    M = M + mass.assemble(hb) * (head_mass / vol - rho)
+    M = _lump_mass(M, mass, mesh, basis, head, head_mass, rho, "the head")
     clamped = basis.get_dofs(lambda x: np.isclose(x[0], 0.0, atol=1e-6)).all()
     free = np.setdiff1d(np.arange(basis.N), clamped)
     Mf = M[free][:, free].tocsc()

@@ -60,12 +60,14 @@ __all__ = [
     "ActuatorInputs",
     "actuator_inputs",
     "alpha_given",
+    "contact_stiffness",
     "drawn_alpha_beside",
     "drawn_compliance_ratio",
     "drawn_springs",
     "drawn_vertical_stiffness",
     "frame_geometry",
     "head_springs",
+    "resonance_compliance_ratio",
     "springs_data",
 ]
 
@@ -458,6 +460,54 @@ def drawn_springs(
     return head_springs(rec, spec, aset, m)
 
 
+def contact_stiffness(
+    rec: Recorder, m: pint.Quantity, f_v: pint.Quantity, description: str
+) -> pint.Quantity:
+    """Record k_v = m·(2π·f_v)², the spring that gives the head of mass m its resonance.
+
+    Parameters
+    ----------
+    rec : Recorder
+        The record being built.
+    m : pint.Quantity
+        Head mass [kg].
+    f_v : pint.Quantity
+        Vertical resonance used [Hz].
+    description : str
+        The record's description of k_v.
+
+    Returns
+    -------
+    pint.Quantity
+        k_v [N/m].
+    """
+    return rec.add(
+        "k_v", description, "m·(2π·f_v)²", m * (2 * math.pi * f_v) ** 2, ("m", "f_v"), "N/m"
+    )
+
+
+def resonance_compliance_ratio(
+    rec: Recorder, f_v: pint.Quantity, f_h: pint.Quantity
+) -> pint.Quantity:
+    """Record α = (f_v/f_h)², the relative impact compliance of two resonances.
+
+    Parameters
+    ----------
+    rec : Recorder
+        The record being built.
+    f_v, f_h : pint.Quantity
+        Vertical and tangential resonances [Hz].
+
+    Returns
+    -------
+    pint.Quantity
+        α [-].
+    """
+    return rec.add(
+        "α", "relative impact compliance", "(f_v/f_h)²", (f_v / f_h) ** 2, ("f_v", "f_h"), ""
+    )
+
+
 def drawn_vertical_stiffness(
     rec: Recorder, springs: dict[str, Any], m: pint.Quantity
 ) -> tuple[pint.Quantity, pint.Quantity]:
@@ -489,15 +539,7 @@ def drawn_vertical_stiffness(
         ("f_v,geom",),
         "kHz",
     )
-    k_v = rec.add(
-        "k_v",
-        "vertical contact stiffness on the head's mass",
-        "m·(2π·f_v)²",
-        m * (2 * math.pi * f_v) ** 2,
-        ("m", "f_v"),
-        "N/m",
-    )
-    return f_v, k_v
+    return f_v, contact_stiffness(rec, m, f_v, "vertical contact stiffness on the head's mass")
 
 
 def drawn_compliance_ratio(
@@ -527,9 +569,7 @@ def drawn_compliance_ratio(
         ("f_h,geom",),
         "kHz",
     )
-    return rec.add(
-        "α", "relative impact compliance", "(f_v/f_h)²", (f_v / f_h) ** 2, ("f_v", "f_h"), ""
-    )
+    return resonance_compliance_ratio(rec, f_v, f_h)
 
 
 def drawn_alpha_beside(rec: Recorder, springs: dict[str, Any]) -> None:

@@ -452,15 +452,7 @@ def vertical_stiffness(
         "actuator.vertical_resonance",
         act.vertical_resonance.to(cached_unit("kHz")),
     )
-    k_v = rec.add(
-        "k_v",
-        "vertical contact stiffness",
-        "m·(2π·f_v)²",
-        m * (2 * math.pi * f_v) ** 2,
-        ("m", "f_v"),
-        "N/m",
-    )
-    return f_v, k_v
+    return f_v, actuator.contact_stiffness(rec, m, f_v, "vertical contact stiffness")
 
 
 def compliance_ratio(
@@ -528,9 +520,7 @@ def compliance_ratio(
             "actuator.horizontal_resonance",
             act.horizontal_resonance.to(cached_unit("kHz")),
         )
-        alpha = rec.add(
-            "α", "relative impact compliance", "(f_v/f_h)²", (f_v / f_h) ** 2, ("f_v", "f_h"), ""
-        )
+        alpha = actuator.resonance_compliance_ratio(rec, f_v, f_h)
     if springs is not None:
         actuator.drawn_alpha_beside(rec, springs)
     return alpha

@@ -92,12 +92,17 @@ def check_output_file(
         if not create_parent:
             raise UsageError(f"{p}: directory {directory} does not exist")
         _probe(base, p)
-        try:
-            directory.mkdir(parents=True, exist_ok=True)
-        except OSError as exc:
-            raise UsageError(f"{p}: cannot create directory {directory}: {_why(exc)}") from None
+        _mkdir(directory, f"{p}: cannot create directory {directory}")
     _probe(directory, p)
     return p
+
+
+def _mkdir(directory: Path, refusal: str) -> None:
+    """Make ``directory`` and its parents; an OS error is a UsageError ``refusal: why``."""
+    try:
+        directory.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise UsageError(f"{refusal}: {_why(exc)}") from None
 
 
 def check_output_dir(path: str | os.PathLike[str], *, create: bool = True) -> Path:
@@ -115,10 +120,7 @@ def check_output_dir(path: str | os.PathLike[str], *, create: bool = True) -> Pa
         _probe(base, p)
         if not create:
             return p
-        try:
-            p.mkdir(parents=True, exist_ok=True)
-        except OSError as exc:
-            raise UsageError(f"cannot create output directory {p}: {_why(exc)}") from None
+        _mkdir(p, f"cannot create output directory {p}")
     _probe(p, p)
     return p
 

@@ -12,7 +12,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
-from betvdesign.errors import SpecError, UsageError
+from betvdesign.errors import UsageError, each_or_issues
 from betvdesign.output.files import check_output_dir, write_group
 from betvdesign.report.analysis import ReportOptions
 from betvdesign.report.build import build_report, prepare
@@ -57,14 +57,7 @@ def write_reports(
         if p.stem in stems and stems[p.stem] != p:
             raise UsageError(f"{stems[p.stem]} and {p} would both write {p.stem}.html")
         stems[p.stem] = p
-    prepared, issues = [], []
-    for p in stems.values():  # report the issues of every file before giving up
-        try:
-            prepared.append(prepare(p))
-        except SpecError as exc:
-            issues.extend(exc.issues)
-    if issues:
-        raise SpecError(issues)
+    prepared = each_or_issues(prepare, stems.values())  # every file's issues at once
     out = check_output_dir(outdir)
     generated = _dt.datetime.now(_dt.UTC).replace(microsecond=0).isoformat() if timestamp else None
     written: list[Written] = []
