@@ -132,7 +132,7 @@ def test_report_explorer_and_check_text_name_a_failing_warning_alike() -> None:
     assert row.status == word
     text = view.text()
     assert re.search(rf"^\s+{word} {re.escape(r.id)}\b", text, re.M), text
-    html = verdict_html(view.out.model_dump(mode="json"), seq=1, stage="done")
+    html = verdict_html(view.out.model_dump(mode="json"), seq=1, stage="full")
     m = re.search(
         rf'data-rule="{re.escape(r.id)}"[^>]*>\s*<td style="color:([^;]+);[^>]*>(\w+)<', html
     )

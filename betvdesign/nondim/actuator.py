@@ -239,8 +239,9 @@ def _slider_contact(spec: DeviceSpec, aset: ActuatorSet, head_x_m: Any) -> tuple
     else:
         E, c = aset.actuator.geometry.youngs_modulus, 0.0  # type: ignore[union-attr]
     E_s = _si(E, "Pa") if E is not None else _si(ActuatorInputs(spec, aset).youngs, "Pa")
-    index = [s.impact_direction for s in spec.actuator_sets][: spec.actuator_sets.index(aset)]
-    k = index.count(aset.impact_direction)
+    names = [s.name for s in spec.actuator_sets]  # a what-if copy of the set: by its name
+    before = names.index(aset.name) if aset.name in names else len(names)
+    k = [s.impact_direction for s in spec.actuator_sets][:before].count(aset.impact_direction)
     L = _si(sl.beam_length)
     x_c = contact_offset(L, head_x_m, c, k)
     return L, _si(sl.beam_width), _si(sl.beam_thickness), E_s, np.maximum(L / 2 - x_c, 0.0)
