@@ -243,6 +243,10 @@ def test_missing_solver_is_stated_not_invented(monkeypatch: pytest.MonkeyPatch) 
 
     for name in ("periodic_orbit", "vertical_motion", "simulate"):
         monkeypatch.setattr(dynamics, name, unavailable)
+    # the transient from rest (which decides when there is no orbit) is the same solver
+    from betvdesign.dynamics import settling as settling_module
+
+    monkeypatch.setattr(settling_module, "simulate", unavailable)
     report_analysis._vertical.cache_clear()  # the regime strip caches per ϖ
     report = build_report(prepare(DEVICES / "push_demo.yaml"))
     box = report.sets[0].verdict

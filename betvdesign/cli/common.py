@@ -92,8 +92,19 @@ class Terminated(KeyboardInterrupt):
 
 
 def raise_terminated(signum: int, frame: Any) -> None:
-    """SIGTERM handler: raise :class:`Terminated` where the program is."""
-    raise Terminated()
+    """SIGTERM handler: raise :class:`Terminated` where the program is (after a running
+    solve returns: :func:`betvdesign.dynamics.jit.interrupt`)."""
+    from betvdesign.dynamics.jit import interrupt
+
+    interrupt(Terminated())
+
+
+def raise_interrupted(signum: int, frame: Any) -> None:
+    """Ctrl-C handler: raise ``KeyboardInterrupt`` where the program is (after a running
+    solve returns: :func:`betvdesign.dynamics.jit.interrupt`)."""
+    from betvdesign.dynamics.jit import interrupt
+
+    interrupt(KeyboardInterrupt())
 
 
 @contextlib.contextmanager
@@ -105,9 +116,11 @@ def interruptible(kept: str | Path | None = None, *, resumable: bool = True) -> 
     kept: the output holding the finished work, if any; resumable: whether running
     the same command again continues where it stopped (studies) or starts afresh.
     """
-    previous = None
+    previous = previous_int = None
     if threading.current_thread() is threading.main_thread():
         previous = signal.signal(signal.SIGTERM, raise_terminated)
+        if signal.getsignal(signal.SIGINT) is signal.default_int_handler:
+            previous_int = signal.signal(signal.SIGINT, raise_interrupted)
     try:
         yield
     except KeyboardInterrupt as exc:
@@ -122,6 +135,8 @@ def interruptible(kept: str | Path | None = None, *, resumable: bool = True) -> 
     finally:
         if previous is not None:
             signal.signal(signal.SIGTERM, previous)
+        if previous_int is not None:
+            signal.signal(signal.SIGINT, previous_int)
 
 
 def _bounds_text(lo: float | None, hi: float | None, lo_open: bool, hi_open: bool) -> str:

@@ -109,7 +109,71 @@ _ready: set[str] = set()
 _seen: list[int] = [0]
 
 
+#: Entry-point calls running compiled kernels in the main thread now (nested count), and
+#: the interrupt a signal handler deferred meanwhile (:func:`interrupt`).
+_in_kernels = [0]
+_pending: list[BaseException] = []
+
+
+def interrupt(exc: BaseException) -> None:
+    """Raise ``exc`` now, or when the compiled kernels running in the main thread return.
+
+    A signal handler that raises (Ctrl-C's ``KeyboardInterrupt``, the CLI's SIGTERM) runs
+    in the main thread at the next bytecode, which can be inside numba's boxing of a
+    kernel's named-tuple result (Python code): an exception raised there crashed the
+    process with a segmentation fault (measured: 3 of 5 SIGTERMs during ``simulate``,
+    5 of 5 on a bare njit kernel returning a namedtuple; numba 0.6x). Handlers call this
+    instead of raising: inside an entry point (:func:`compile_note`) the exception is kept
+    and raised as soon as the call returns, at most one solve later.
+
+    Parameters
+    ----------
+    exc : BaseException
+        The exception the handler would raise.
+
+    Raises
+    ------
+    BaseException
+        ``exc``, when no kernel runs in the main thread.
+    """
+    if _in_kernels[0] > 0 and threading.current_thread() is threading.main_thread():
+        if not _pending:
+            _pending.append(exc)
+        return
+    raise exc
+
+
 def compile_note(what: str, run: Callable[[], object]) -> object:
+    """Run ``run()`` (an entry point of the kernels), interrupts deferred to its return.
+
+    The main thread's signal handlers that go through :func:`interrupt` raise only after
+    ``run()`` returns (or fails); :func:`_compile_note` says when it compiles.
+
+    Parameters
+    ----------
+    what : str
+        The entry point, named in the note.
+    run : callable
+        What to run.
+
+    Returns
+    -------
+    object
+        What ``run()`` returns.
+    """
+    main = threading.current_thread() is threading.main_thread()
+    if main:
+        _in_kernels[0] += 1
+    try:
+        return _compile_note(what, run)
+    finally:
+        if main:
+            _in_kernels[0] -= 1
+            if _in_kernels[0] == 0 and _pending:
+                raise _pending.pop()
+
+
+def _compile_note(what: str, run: Callable[[], object]) -> object:
     """Run ``run()``, saying on stderr when it compiles kernels.
 
     Run ``run()``; when it has to compile kernels (no cached machine code for this
