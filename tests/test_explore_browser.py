@@ -343,7 +343,7 @@ def test_save_box_refuses_names_that_leave_the_device_folder(browser, push_serve
         box.fill(name)
         box.press("Enter")
         page.p.locator(".betv-save button").click()
-        msg = page.p.locator(".betv-save-message").first
+        msg = page.p.locator(".betv-save-message .betv-status-text").first  # the Div's content
         deadline = time.monotonic() + WAIT_MS / 1e3
         while str(push_server.workdir) not in msg.inner_text() and time.monotonic() < deadline:
             time.sleep(0.1)

@@ -188,7 +188,7 @@ def verdict_html(
 def status_html(text: str, *, busy: bool) -> str:
     """A one-line status (the map's progress, a save or report message)."""
     colour = "#9a6700" if busy else "#57606a"
-    return f'<span style="color:{colour}">{_e(text)}</span>'
+    return f'<span class="betv-status-text" style="color:{colour}">{_e(text)}</span>'
 
 
 def fixes_html(fixes: list[dict[str, Any]], message: str) -> str:
