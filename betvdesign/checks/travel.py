@@ -165,24 +165,26 @@ def travel_answer(orbit: Any, determination: Any, settling: Any) -> TravelAnswer
         return TravelAnswer("no-crossing", mode, None, ds, None, horizon, why)
 
     if mode == "undetermined" or not solved:  # no periodic answer: the travel decides
+        status = orbit.status if orbit is not None else "not solved"
+        why = determination.reason if determination is not None else "Δs not determined"
         if mode == "undetermined":
-            why = determination.reason if determination is not None else "Δs not determined"
-            told = ("the periodic Δs is not determined", f" ({why})")
+            told, detail = "the periodic Δs is not determined", f" ({why})"
         else:
-            told = (
-                f"no periodic orbit ({orbit.status if orbit is not None else 'not solved'})",
-                "",
-            )
-        if crossed and (mode == "undetermined" or travel_decides(orbit)):
-            return crossing(
-                f"{told[0]}; the transient from rest crosses the travel in {cross} cycles"
-            )
-        if ran and (mode == "undetermined" or travel_decides(orbit)):
-            return not_crossing(
-                f"{told[0]}{told[1]} and the transient from rest does not cross the travel "
-                f"within {horizon} cycles"
-            )
-        return _unanswered(determination, mode, ds, cross, horizon, told[0])
+            told, detail = f"no periodic orbit ({status})", ""
+        if mode == "undetermined" or travel_decides(orbit):
+            if crossed:
+                return crossing(
+                    f"{told}; the transient from rest crosses the travel in {cross} cycles"
+                )
+            if ran:
+                return not_crossing(
+                    f"{told}{detail} and the transient from rest does not cross the travel "
+                    f"within {horizon} cycles"
+                )
+        if mode == "undetermined":
+            fix = determination.fix if determination is not None else ""
+            return TravelAnswer("undetermined", "undetermined", None, ds, cross, horizon, why, fix)
+        return TravelAnswer("no-orbit", None, None, None, cross, horizon, f"no orbit: {status}")
     if not ran:
         return TravelAnswer("periodic", mode, ds, ds, None, None, "periodic orbit")
     if mode not in ("push", "pull"):
@@ -204,47 +206,4 @@ def travel_answer(orbit: Any, determination: Any, settling: Any) -> TravelAnswer
         )
     return crossing(
         f"not settled within {SETTLE_SHARE:.0%} of the {cross} cycles to cross the travel"
-    )
-
-
-def _unanswered(
-    determination: Any,
-    mode: str | None,
-    ds: float | None,
-    cross: int | None,
-    horizon: int | None,
-    told: str,
-) -> TravelAnswer:
-    """The answer when there is no periodic answer and no transient could replace it.
-
-    Parameters
-    ----------
-    determination : Determination or None
-        The determination (its reason and fix for an undetermined Δs).
-    mode : str or None
-        "undetermined", or None without an orbit.
-    ds : float or None
-        The periodic Δs [-], if any.
-    cross, horizon : int or None
-        The transient's crossing and horizon [cycles], when it ran.
-    told : str
-        Why there is no periodic answer.
-
-    Returns
-    -------
-    TravelAnswer
-        Basis "undetermined" (the determination's reason and fix) or "no-orbit".
-    """
-    if mode == "undetermined":
-        why = determination.reason if determination is not None else "Δs not determined"
-        fix = determination.fix if determination is not None else ""
-        return TravelAnswer("undetermined", "undetermined", None, ds, cross, horizon, why, fix)
-    return TravelAnswer(
-        "no-orbit",
-        None,
-        None,
-        None,
-        cross,
-        horizon,
-        told.replace("no periodic orbit (", "no orbit: ").rstrip(")"),
     )
