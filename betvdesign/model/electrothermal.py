@@ -103,8 +103,10 @@ __all__ = [
     "electrothermal",
     "expansion_coefficient",
     "fin_profile",
+    "head_node",
     "segments",
     "stroke_amplitude",
+    "temperature_profile",
     "thermal_gain",
     "thermal_strain",
 ]
@@ -350,6 +352,31 @@ def _head_area_perimeter(g: FrameGeometry) -> tuple[float, float]:
     else:
         area, perim = 4 * hx * hy, 4 * (hx + hy)
     return max(area - H * lt / 2, 0.0), max(perim - H, 0.0)
+
+
+def head_node(g: FrameGeometry, mat: ThermalMaterial) -> tuple[float, float]:
+    """The head's lumped conductance to the substrate [W/K] and heat capacity [J/K].
+
+    Its area outside the tip connector A_h (a disc π·r², a box 4·a·b, less the half of
+    the connector it covers) and its free outline P_h (less the connector's width H):
+    G_h = g_s·(A_h + P_h·(t/2 + t_v)), C_h = ρ_m·c·t·A_h (module doc).
+
+    Parameters
+    ----------
+    g : FrameGeometry
+        The drawn actuator.
+    mat : ThermalMaterial
+        The material.
+
+    Returns
+    -------
+    tuple of float
+        (G_h [W/K], C_h [J/K]).
+    """
+    t = float(g.thickness)
+    area, perim = _head_area_perimeter(g)
+    conductance = mat.substrate_conductance * (area + perim * (t / 2 + mat.air_gap))
+    return conductance, mat.density * mat.heat_capacity * t * area
 
 
 def segments(g: FrameGeometry, mat: ThermalMaterial) -> list[Segment]:
@@ -669,10 +696,7 @@ def electrothermal(g: FrameGeometry, mat: ThermalMaterial, voltage: float) -> El
     t = float(g.thickness)
     T0 = mat.substrate_temperature
     segs = segments(g, mat)
-    area_h, perim_h = _head_area_perimeter(g)
-    gs = mat.substrate_conductance
-    g_head = gs * (area_h + perim_h * (t / 2 + mat.air_gap))
-    c_head = mat.density * mat.heat_capacity * t * area_h
+    g_head, c_head = head_node(g, mat)
     r0 = sum(mat.resistivity * s.length / (t * s.width) for s in segs)
     if voltage == 0:
         current, steps, ok = 0.0, 0, True
@@ -767,6 +791,53 @@ def electrothermal(g: FrameGeometry, mat: ThermalMaterial, voltage: float) -> El
         modes=modes,
         iterations=steps,
     )
+
+
+def temperature_profile(
+    g: FrameGeometry, mat: ThermalMaterial, res: ElectrothermalResult, points: int = 101
+) -> dict[str, np.ndarray]:
+    """The exact temperature along the current's path at the operating point of ``res``.
+
+    Parameters
+    ----------
+    g : FrameGeometry
+        The actuator ``res`` was computed for.
+    mat : ThermalMaterial
+        Its material.
+    res : ElectrothermalResult
+        The operating point (its current).
+    points : int
+        Points per segment (both ends included).
+
+    Returns
+    -------
+    dict
+        ``s`` (distance along the path from the hot anchor [m]), ``x``, ``y`` (position in
+        the actuator's frame [m]), ``t`` (temperature [K]), ``segment`` (index into
+        :func:`segments`), each an array; and ``head`` (the head's temperature rise [K]).
+    """
+    t = float(g.thickness)
+    segs = segments(g, mat)
+    g_head, _ = head_node(g, mat)
+    st = _state(segs, mat, t, res.current, g_head)
+    if st is None:
+        raise ValueError("the operating point lies past the thermal runaway")
+    _, th, ms = st
+    out: dict[str, list] = {"s": [], "x": [], "y": [], "t": [], "segment": []}
+    s0_path = 0.0
+    for i, (sg, (m2, s0)) in enumerate(zip(segs, ms, strict=True)):
+        xs = np.linspace(0.0, sg.length, points)
+        frac = xs / sg.length
+        out["s"].append(s0_path + xs)
+        out["x"].append(sg.start[0] + frac * (sg.end[0] - sg.start[0]))
+        out["y"].append(sg.start[1] + frac * (sg.end[1] - sg.start[1]))
+        out["t"].append(mat.substrate_temperature + fin_profile(xs, sg.length, m2, s0, th[i],
+                                                                th[i + 1]))  # fmt: skip
+        out["segment"].append(np.full(points, i))
+        s0_path += sg.length
+    prof = {k: np.concatenate(v) for k, v in out.items()}
+    prof["head"] = np.array(th[2])
+    return prof
 
 
 def thermal_gain(res: ElectrothermalResult, heating_frequency: float) -> float:

@@ -181,7 +181,7 @@ def electrothermal_fe(
     ok = False
     it = 0
     for it in range(1, max_iterations + 1):  # noqa: B007
-        th_q = sb.interpolate(theta).value
+        th_q = np.asarray(sb.interpolate(theta))
         sigma = 1 / (rho0 * (1 + mat.tcr * th_q))
         if np.any(sigma <= 0):
             break
@@ -209,7 +209,7 @@ def electrothermal_fe(
     def thermal(v, w):
         return tu * Eu / (1 - nu) * w.eps * (v.grad[0][0] + v.grad[1][1])
 
-    Tq = T0 + sb.interpolate(theta).value
+    Tq = T0 + np.asarray(sb.interpolate(theta))
     eps = thermal_strain(Tq, T0, mat.expansion)
     fth = thermal.assemble(vbasis, eps=eps)
     clamped = vbasis.get_dofs(lambda x: np.isclose(x[0], 0.0, atol=1e-6)).all()
