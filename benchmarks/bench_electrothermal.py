@@ -72,8 +72,12 @@ def _voltage_for(g, mat, t_peak: float) -> float:
 
 
 def _values(r, T0: float) -> dict:
-    return {"current": r.current, "power": r.power, "u_static": r.u_static,
-            "t_rise_k": r.t_max - T0}  # fmt: skip
+    return {
+        "current": r.current,
+        "power": r.power,
+        "u_static": r.u_static,
+        "t_rise_k": r.t_max - T0,
+    }
 
 
 def fe(n: int, t_peak: float, steps: int) -> dict:
@@ -85,7 +89,8 @@ def fe(n: int, t_peak: float, steps: int) -> dict:
 
     poly = load_process(shipped_process_path("polymumps")).thermal_material()
     cases = _shipped() + [
-        (f"random {i}", g, dataclasses.replace(poly)) for i, (g, _) in enumerate(random_geometries(n))
+        (f"random {i}", g, dataclasses.replace(poly))
+        for i, (g, _) in enumerate(random_geometries(n))
     ]
     rows = []
     for name, g, mat in cases:
@@ -109,21 +114,31 @@ def fe(n: int, t_peak: float, steps: int) -> dict:
             "voltage": volts,
             "ref": ref,
             "closed_form": {"time_s": t_cf, "err": err(_values(cf, T0))},
-            "fe1": {"time_s": f1.elapsed_s, "dofs": f1.dofs, "err": err(v1),
-                    "iterations": f1.iterations},  # fmt: skip
+            "fe1": {
+                "time_s": f1.elapsed_s,
+                "dofs": f1.dofs,
+                "err": err(v1),
+                "iterations": f1.iterations,
+            },
             "fe2": {"time_s": f2.elapsed_s, "dofs": f2.dofs, "err": err(v2)},
-            "tau": {"closed_form": cf.tau_thermal, "fe": f1.tau_first,
-                    "err": abs(cf.tau_thermal / f1.tau_first - 1)},  # fmt: skip
-            "t_rise": {"closed_form": cf.t_rise, "fe": f1.t_rise,
-                       "err": abs(cf.t_rise / f1.t_rise - 1)},  # fmt: skip
+            "tau": {
+                "closed_form": cf.tau_thermal,
+                "fe": f1.tau_first,
+                "err": abs(cf.tau_thermal / f1.tau_first - 1),
+            },
+            "t_rise": {
+                "closed_form": cf.t_rise,
+                "fe": f1.t_rise,
+                "err": abs(cf.t_rise / f1.t_rise - 1),
+            },
             "f_cutoff_hz": cf.f_cutoff,
             "t_max_segment": cf.t_max_segment,
         }
         rows.append(row)
         e = row["closed_form"]["err"]
         print(
-            f"{name:26s} {volts:6.2f} V  P {ref['power'] * 1e3:6.2f} mW  u {ref['u_static'] * 1e6:6.2f}"
-            f" um | cf err I {e['current']:.2%} P {e['power']:.2%} u {e['u_static']:.2%} "
+            f"{name:26s} {volts:6.2f} V  P {ref['power'] * 1e3:6.2f} mW  "
+            f"u {ref['u_static'] * 1e6:6.2f} um | cf err I {e['current']:.2%} P {e['power']:.2%} u {e['u_static']:.2%} "
             f"ΔT {e['t_rise_k']:.2%} τ1 {row['tau']['err']:.2%} t63 {row['t_rise']['err']:.2%}"
             f" | fe1 {f1.elapsed_s:.1f} s fe2 {f2.elapsed_s:.1f} s",
             flush=True,
@@ -175,8 +190,13 @@ VALIDATION = [
         ),
         # stated in the abstract: hot arm 240 um long, 2 um thick, 3 um wide; cold arm
         # 180 um long, 12 um wide; 12 um tip deflection at 5 V
-        "geometry_um": {"length": 240, "hot_width": 3, "cold_width": 12,
-                        "flexure_length": 60, "thickness": 2},  # fmt: skip
+        "geometry_um": {
+            "length": 240,
+            "hot_width": 3,
+            "cold_width": 12,
+            "flexure_length": 60,
+            "thickness": 2,
+        },
         # NOT stated in the abstract (assumed here): flexure as wide as the hot arm, the
         # 2 um minimum gap of a polysilicon surface process, a 10 um tip connector, no head
         "assumed_um": {"flexure_width": 3, "gap": 2, "tip_length": 10},
@@ -200,12 +220,19 @@ def validation() -> dict:
         um = 1e-6
         height = (gm["hot_width"] + gm["gap"] + gm["cold_width"]) * um
         g = FrameGeometry(
-            length=gm["length"] * um, hot_width=gm["hot_width"] * um,
-            cold_width=gm["cold_width"] * um, flexure_length=gm["flexure_length"] * um,
-            flexure_width=gm["flexure_width"] * um, gap=gm["gap"] * um,
-            tip_length=gm["tip_length"] * um, thickness=gm["thickness"] * um,
-            youngs_modulus=169e9, head_x=0.0, head_y=height / 2, head_shape="box",
-        )  # fmt: skip
+            length=gm["length"] * um,
+            hot_width=gm["hot_width"] * um,
+            cold_width=gm["cold_width"] * um,
+            flexure_length=gm["flexure_length"] * um,
+            flexure_width=gm["flexure_width"] * um,
+            gap=gm["gap"] * um,
+            tip_length=gm["tip_length"] * um,
+            thickness=gm["thickness"] * um,
+            youngs_modulus=169e9,
+            head_x=0.0,
+            head_y=height / 2,
+            head_shape="box",
+        )
         r = electrothermal(g, mat, case["voltage"])
         sens = {}
         for key, factor in (("flexure_width", 2 / 3), ("gap", 1.5)):
@@ -227,8 +254,8 @@ def validation() -> dict:
             f"{case['name']}: {case['voltage']} V  measured {case['measured_um']} um, model "
             f"{row['model_um']:.2f} um ({row['model_um'] / case['measured_um'] - 1:+.0%}), "
             f"P {row['power_mw']:.1f} mW, T_max {row['t_max_k']:.0f} K, R {r.resistance:.0f} ohm, "
-            f"f_c {r.f_cutoff:.0f} Hz; " + ", ".join(f"{k}: {v:.2f} um" for k, v in
-                                                   row["sensitivity_um"].items()),  # fmt: skip
+            f"f_c {r.f_cutoff:.0f} Hz; "
+            + ", ".join(f"{k}: {v:.2f} um" for k, v in row["sensitivity_um"].items()),
             flush=True,
         )
     return {"rows": rows}
