@@ -138,7 +138,8 @@ def fe(n: int, t_peak: float, steps: int) -> dict:
         e = row["closed_form"]["err"]
         print(
             f"{name:26s} {volts:6.2f} V  P {ref['power'] * 1e3:6.2f} mW  "
-            f"u {ref['u_static'] * 1e6:6.2f} um | cf err I {e['current']:.2%} P {e['power']:.2%} u {e['u_static']:.2%} "
+            f"u {ref['u_static'] * 1e6:6.2f} um | cf err I {e['current']:.2%} "
+            f"P {e['power']:.2%} u {e['u_static']:.2%} "
             f"ΔT {e['t_rise_k']:.2%} τ1 {row['tau']['err']:.2%} t63 {row['t_rise']['err']:.2%}"
             f" | fe1 {f1.elapsed_s:.1f} s fe2 {f2.elapsed_s:.1f} s",
             flush=True,
