@@ -20,12 +20,11 @@ from __future__ import annotations
 import os
 import re
 from pathlib import Path
-from typing import Annotated, Any, Literal
+from typing import TYPE_CHECKING, Annotated, Any, Literal
 
 import pint
 from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
 
-from betvdesign.model.electrothermal import ThermalMaterial
 from betvdesign.spec import limits
 from betvdesign.spec.units import (
     Density,
@@ -35,6 +34,9 @@ from betvdesign.spec.units import (
     format_quantity,
     ureg,
 )
+
+if TYPE_CHECKING:
+    from betvdesign.model.electrothermal import ThermalMaterial
 
 __all__ = [
     "MIN_DRAWN",
@@ -397,6 +399,8 @@ class Process(StrictModel):
             Naming the missing section (``layers.NAME.electrothermal``) when the process
             has no electrothermal data for that layer.
         """
+        from betvdesign.model.electrothermal import ThermalMaterial
+
         key = self.structural_name(name)
         lay = self.structural(key)
         et = lay.electrothermal
