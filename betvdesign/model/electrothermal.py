@@ -85,6 +85,7 @@ Non-physical results are reported by :attr:`ElectrothermalResult.status`, never 
 from __future__ import annotations
 
 import cmath
+import functools
 import math
 from dataclasses import dataclass
 from typing import Any, Literal
@@ -609,6 +610,12 @@ def _bisect_current(
     return root, steps, ok
 
 
+@functools.cache
+def _gauss64() -> tuple[np.ndarray, np.ndarray]:
+    """64-point Gauss–Legendre nodes and weights on [−1, 1]."""
+    return np.polynomial.legendre.leggauss(64)
+
+
 def _modal(
     segs: list[Segment],
     mat: ThermalMaterial,
@@ -621,51 +628,51 @@ def _modal(
     """The chain's thermal modes by linear elements (module doc): (τ_1, modes of H)."""
     from scipy.linalg import eigh_tridiagonal, solve_banded
 
-    xs_list = []
-    nodes_of: list[np.ndarray] = []
-    n = 0
-    for s in segs:
-        ne = ELEMENTS if s.name != "tip" else max(ELEMENTS // 4, 4)
-        nodes_of.append(np.arange(n, n + ne + 1))
-        xs_list.append(np.linspace(0.0, s.length, ne + 1))
-        n += ne
-    N = n + 1
-    K = np.zeros((N, N))
-    Cd = np.zeros(N)
-    q = np.zeros(N)
-    w = np.zeros(N)
     rc = mat.density * mat.heat_capacity
-    for s, idx, xs in zip(segs, nodes_of, xs_list, strict=True):
+    cond, lossh, cap, qe, we = [], [], [], [], []
+    head = 0  # the node after the first tip half: the head's
+    for k, s in enumerate(segs):
+        ne = ELEMENTS if s.name != "tip" else max(ELEMENTS // 4, 4)
         area = t * s.width
+        xs = np.linspace(0.0, s.length, ne + 1)
         h = np.diff(xs)
-        for e in range(h.size):
-            i, j = idx[e], idx[e + 1]
-            ke = mat.conductivity * area / h[e] * np.array([[1, -1], [-1, 1]])
-            ke = ke + s.loss * h[e] / 6 * np.array([[2, 1], [1, 2]])
-            K[np.ix_([i, j], [i, j])] += ke
-            Cd[[i, j]] += rc * area * h[e] / 2
         xm = (xs[:-1] + xs[1:]) / 2
-        qe = q_of(s, xm) * h  # source per element [W]
-        we = w_of(s, xm) * h  # stroke per kelvin of each element [m/K]
-        np.add.at(q, idx[:-1], qe / 2)
-        np.add.at(q, idx[1:], qe / 2)
-        np.add.at(w, idx[:-1], we / 2)
-        np.add.at(w, idx[1:], we / 2)
-    head = nodes_of[1][-1]
-    K[head, head] += g_head
+        cond.append(mat.conductivity * area / h)  # element conductance [W/K]
+        lossh.append(s.loss * h / 6)  # consistent substrate loss, off-diagonal [W/K]
+        cap.append(rc * area * h / 2)  # lumped heat capacity per end [J/K]
+        qe.append(q_of(s, xm) * h / 2)  # source per end [W]
+        we.append(w_of(s, xm) * h / 2)  # stroke per kelvin per end [m/K]
+        if k <= 1:
+            head += ne
+    c, lo, cp, qh, wh = (np.concatenate(v) for v in (cond, lossh, cap, qe, we))
+    N = c.size + 1
+    dg = np.zeros(N)
+    dg[:-1] += c + 2 * lo
+    dg[1:] += c + 2 * lo
+    off = -c + lo  # K[i, i+1] of the chain (tridiagonal in path order)
+    Cd = np.zeros(N)
+    Cd[:-1] += cp
+    Cd[1:] += cp
+    q = np.zeros(N)
+    q[:-1] += qh
+    q[1:] += qh
+    w = np.zeros(N)
+    w[:-1] += wh
+    w[1:] += wh
+    dg[head] += g_head
     Cd[head] += c_head
-    free = np.arange(1, N - 1)
-    Kf, Cf = K[np.ix_(free, free)], Cd[free]
-    # a chain: K is tridiagonal, C diagonal; C^(-1/2)·K·C^(-1/2) is symmetric tridiagonal
+    # the anchors (first and last node) are held at T_0
+    kd, ko, Cf, qf, wf = dg[1:-1], off[1:-1], Cd[1:-1], q[1:-1], w[1:-1]
+    # C diagonal: C^(-1/2)·K·C^(-1/2) is symmetric tridiagonal
     r = 1 / np.sqrt(Cf)
-    dg, off = np.diag(Kf) * r * r, np.diag(Kf, 1) * r[:-1] * r[1:]
-    count = min(MODES_KEPT + 1, free.size)
-    lam, psi = eigh_tridiagonal(dg, off, select="i", select_range=(0, count - 1))
+    sd, so = kd * r * r, ko * r[:-1] * r[1:]
+    count = min(MODES_KEPT + 1, Cf.size)
+    lam, psi = eigh_tridiagonal(sd, so, select="i", select_range=(0, count - 1))
     phi = psi * r[:, None]  # C-orthonormal modes
-    share = (w[free] @ phi) * (phi.T @ q[free]) / lam
-    ab = np.zeros((3, free.size))
-    ab[0, 1:], ab[1], ab[2, :-1] = np.diag(Kf, 1), np.diag(Kf), np.diag(Kf, -1)
-    total = float(w[free] @ solve_banded((1, 1), ab, q[free]))  # wᵀK⁻¹q: every mode
+    share = (wf @ phi) * (phi.T @ qf) / lam
+    ab = np.zeros((3, kd.size))
+    ab[0, 1:], ab[1], ab[2, :-1] = ko, kd, ko
+    total = float(wf @ solve_banded((1, 1), ab, qf))  # wᵀK⁻¹q: every mode
     tau = 1 / lam
     if not (total != 0 and np.isfinite(total)):
         return float(tau[0]), ((float(tau[0]), 1.0),)
@@ -734,7 +741,7 @@ def electrothermal(g: FrameGeometry, mat: ThermalMaterial, voltage: float) -> El
     pos = (s.start[0] + frac * (s.end[0] - s.start[0]), s.start[1] + frac * (s.end[1] - s.start[1]))
     path = sum(x.length for x in segs[:iseg]) + xpos
     # elongations: Gauss–Legendre on the exact profile
-    gx, gw = np.polynomial.legendre.leggauss(64)
+    gx, gw = _gauss64()
     elong = {"hot": 0.0, "cold": 0.0}
     for i, (sg, (m2, s0)) in enumerate(zip(segs, ms, strict=True)):
         if sg.arm is None:
