@@ -256,3 +256,14 @@ def test_closed_form_within_ten_percent_of_fe():
     assert res.t_max - 300 == pytest.approx(fe.t_max - 300, rel=0.10)
     assert res.tau_thermal == pytest.approx(fe.tau_first, rel=0.15)
     assert res.t_rise == pytest.approx(fe.t_rise, rel=0.15)
+
+
+def test_inverse_units_read_back():
+    """A temperature coefficient written by format_quantity reads back (what-if copies of a
+    device rewrite its process's quantities as text)."""
+    from betvdesign.spec.units import format_quantity, parse_quantity
+
+    for text in ("1.25e-3 K^-1", "2 m^-1*K^-1"):
+        q = parse_quantity(text)
+        back = parse_quantity(format_quantity(q))
+        assert back.to(q.units).magnitude == pytest.approx(q.magnitude, rel=1e-15)

@@ -16,12 +16,12 @@ Ananthasuresh 2001) with temperature rise θ = T − T_0 above the substrate T_0
 k the film's thermal conductivity, A = t·w the cross-section, ρ(T) = ρ_0·(1 + ξ·θ) the
 resistivity with its linear temperature coefficient ξ, and G' the conductance to the
 substrate per unit length through the air gap t_v and the nitride t_n in series, with the
-shape factor S of Lin & Chiao (Sens. Actuators A 55 (1996) 35–41, eq. 9), S·w = w + t +
+shape factor S of Lin & Chiao (Sens. Actuators A 55 (1996) 35–41), S·w = w + t +
 2·t_v for a line of width w and thickness t:
 
     G' = S·w·g_s,    S = (t/w)·(2·t_v/t + 1) + 1,    g_s = 1/(t_v/k_air + t_n/k_n)  [W/(m²K)]
 
-(Huang & Lee, J. Micromech. Microeng. 9 (1999) 64–70, eq. 5, with the nitride in
+(Huang & Lee, J. Micromech. Microeng. 9 (1999) 64–70, with the nitride in
 series). The same loss is, per unit area, g_s under the film plus g_s·(t/2 + t_v) per unit
 length of each free edge: the form the FE check (:mod:`betvdesign.model.electrothermal_fe`)
 uses on the drawn outline. The tip connector (whose edges are mostly joints) loses heat

@@ -332,9 +332,9 @@ def thermal_displacement(
         K_P·q = Σ_arms Tᵀ·K_arm·(δ, 0, 0)ᵀ,
 
     the frame's own 3×3 stiffness K_P loaded by the thermal strain (the flexibility
-    method's thermal load; Przemieniecki 1968, ch. 9). The hot arm is at y = 0, the cold
-    side (flexure and cold arm in series, their elongations added) at y = d: a longer hot
-    arm turns the tip toward the cold arm, +y.
+    method's thermal load; Przemieniecki, Theory of Matrix Structural Analysis, 1968).
+    The hot arm is at y = 0, the cold side (flexure and cold arm in series, their
+    elongations added) at y = d: a longer hot arm turns the tip toward the cold arm, +y.
 
     Parameters
     ----------
