@@ -59,11 +59,14 @@ Legendre on the exact profile) loads the frame of :mod:`betvdesign.model.frame`
 ρ·c·A per unit length lumped at the nodes, the head's at its node; conduction and
 substrate loss consistent) gives C·θ' + K·θ = q; its generalized eigenproblem
 K·φ = λ·C·φ gives the thermal modes τ_i = 1/λ_i, the first one the thermal time
-constant. The small-signal stroke response to a heating at frequency f is
-H(f) = Σ a_i/(1 + j·2πf·τ_i), a_i the modes' shares of the static stroke (their
+constant τ_1 (of the whole chain: often the wide cold arm's and the head's, which carry
+little of the stroke; the stroke's own measures are its rise time
+:attr:`ElectrothermalResult.t_rise` and its −3 dB heating frequency
+:attr:`ElectrothermalResult.f_cutoff`). The small-signal stroke response to a heating at
+frequency f is H(f) = Σ a_i/(1 + j·2πf·τ_i), a_i the modes' shares of the static stroke (their
 participation in wᵀK⁻¹q, w the stroke per node temperature, Σ a_i = 1 over all modes);
 the first :data:`MODES_KEPT` modes are kept and the rest lumped into one with the next
-mode's time constant (the largest of theirs: it errs toward less stroke). The
+mode's time constant (the largest of theirs). The
 electrical feedback of ξ on the transient is left out (the passive thermal operator).
 At zero current the source is a uniform heating per unit volume.
 
@@ -77,7 +80,11 @@ sinusoid swinging 0..V at f: (u_static(V)/2)·|H(f)|.
 
 **Limits.** Constant k, c and air conductivity (their rise or fall with temperature is not
 modelled); no radiation or convection; the tip connector and the head are rigid in the
-frame; transverse expansion of the arms and the tip is left out (the FE check has them).
+frame; transverse expansion of the arms and the tip is left out (the FE check has them);
+small displacements (linear elasticity); V is across the actuator's anchors (no pad or
+wiring resistance). The peak temperature is the DC one at V: for an AC drive of
+amplitude V it is the slow-drive peak, an upper bound (well above the cut-off the
+temperature settles near its mean, that of V/√2).
 Non-physical results are reported by :attr:`ElectrothermalResult.status`, never NaN:
 ``melts`` above the melting point, ``not_converged`` if the search for the current fails.
 """
