@@ -82,7 +82,7 @@ def _values(r, T0: float) -> dict:
 
 def fe(n: int, t_peak: float, steps: int) -> dict:
     from betvdesign.model.electrothermal import electrothermal
-    from betvdesign.model.electrothermal_fe import electrothermal_fe
+    from betvdesign.model.electrothermal_fe import converged
     from betvdesign.model.frame import random_geometries
     from betvdesign.spec.loader import load_process
     from betvdesign.spec.process import shipped_process_path
@@ -101,10 +101,9 @@ def fe(n: int, t_peak: float, steps: int) -> dict:
         for _ in range(reps):
             cf = electrothermal(g, mat, volts)
         t_cf = (time.perf_counter() - t0) / reps
-        f1 = electrothermal_fe(g, mat, volts, level=1, transient=True, steps=steps)
-        f2 = electrothermal_fe(g, mat, volts, level=2)
+        conv, f1, f2 = converged(g, mat, volts, transient=True, steps=steps)
         v1, v2 = _values(f1, T0), _values(f2, T0)
-        ref = {k: v2[k] + (v2[k] - v1[k]) / 3 for k in KEYS}
+        ref = {**conv, "t_rise_k": conv["t_max"] - T0}
 
         def err(v, ref=ref):
             return {k: abs(v[k] / ref[k] - 1) for k in KEYS}

@@ -281,6 +281,8 @@ def converged(
     *,
     poisson_ratio: float = 0.22,
     levels: tuple[int, int] = (1, 2),
+    transient: bool = False,
+    steps: int = 800,
 ) -> tuple[dict[str, float], ElectrothermalFe, ElectrothermalFe]:
     """Richardson extrapolation (p = 2, as :func:`betvdesign.model.frame_fe.converged`) of
     current, power, stroke and peak temperature over two mesh levels.
@@ -291,13 +293,16 @@ def converged(
         As :func:`electrothermal_fe`.
     levels : tuple of int
         The coarse and the fine level.
+    transient, steps
+        The coarse level's transient (:func:`electrothermal_fe`).
 
     Returns
     -------
     tuple
         ({'current', 'power', 'u_static', 't_max'}: extrapolated values, coarse, fine).
     """
-    a = electrothermal_fe(g, mat, voltage, poisson_ratio=poisson_ratio, level=levels[0])
+    a = electrothermal_fe(g, mat, voltage, poisson_ratio=poisson_ratio, level=levels[0],
+                          transient=transient, steps=steps)  # fmt: skip
     b = electrothermal_fe(g, mat, voltage, poisson_ratio=poisson_ratio, level=levels[1])
     f = 1.0 / 3.0
     out = {
