@@ -111,6 +111,8 @@ LAYERS: tuple[Layer, ...] = (
         "study), maps (`pushpull`, `regime`, `lambda_scan`), device studies (`sampling`, "
         "`tolerance`, `calibration`, `measurements`, `fix` (the one search of advice: "
         "`betv fix` and the fix text of `betv check`), `fixfields`, `fixfile`, "
+        "`drawnchange` (a change of the springs said in drawn dimensions, through the "
+        "frame, within the process rules), "
         "`fieldsweep` (a device's own fields in physical units)), `fieldmap` (the "
         "exact-mode map of two device fields), `terms` (the optional terms of a study)",
     ),
