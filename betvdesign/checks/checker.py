@@ -36,6 +36,7 @@ from betvdesign.checks.adequacy import DeviceAdequacy, SetAdequacy, assess
 from betvdesign.checks.process_rules import process_rules
 from betvdesign.checks.rule import RuleResult, orbit_mode, verdict
 from betvdesign.checks.rules import MARGIN_CORNERS, evaluate_device, time_to_cross_s
+from betvdesign.checks.thermal_rules import thermal_rules
 from betvdesign.checks.travel import TravelAnswer, travel_answer, travel_decides
 from betvdesign.checks.view import DeviceView, RuleFilter
 from betvdesign.dynamics import periodic_orbit, vertical_motion
@@ -398,6 +399,8 @@ def check_derivation(
         travel=got.answers,
     )
     rules += [r for s in derivation.sets for r in actuator_rules(s)]
+    proc = derivation.spec.process
+    rules += [r for s in derivation.sets for r in thermal_rules(s, proc)]
     rules += process_rules(derivation.spec) if layout_rules is None else layout_rules
     return CheckResult(derivation, got.set_checks(derivation, rules, adq), rules, got.notes)
 
