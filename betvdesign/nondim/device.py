@@ -628,7 +628,7 @@ def amplitude(
         if samples:
             raise ParameterError("a drawn stroke is derived one sample at a time")
         u, data = stroke.drawn_stroke(rec, spec, aset)
-        return u, {}, data
+        return u, {"thermal_modes": data.modes, "waveform": aset.drive.waveform}, data
     rolled = act.thermal_cutoff is not None or act.thermal_time_constant is not None
     sym, at_cal = ("u_cal", " at the calibration frequency") if rolled else ("u", "")
     if act.amplitude is not None:

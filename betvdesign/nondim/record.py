@@ -138,6 +138,11 @@ class Scales:
     theta_rad: float
     cutoff_hz: float = math.inf
     calibration_hz: float | None = None
+    #: A stroke predicted from the drawing: its thermal modes ((τ_i [s], a_i [-]), the
+    #: roll-off u(f) ∝ gain(f) of :func:`betvdesign.model.electrothermal.modal_gain`) and
+    #: the drive's waveform; () for a stroke the file gives.
+    thermal_modes: tuple[tuple[float, float], ...] = ()
+    waveform: str = "ac"
 
     @property
     def has_rolloff(self) -> bool:
@@ -156,8 +161,14 @@ class Scales:
         -------
         float or numpy.ndarray
             Stroke [m]; u itself without a cut-off (MODEL.md, "Thermal roll-off of the
-            actuator").
+            actuator"); for a stroke predicted from the drawing, its thermal modes' gain
+            (the heating frequency is f_act for every waveform).
         """
+        if self.thermal_modes:  # the drawing's own roll-off (heating at f_act)
+            from betvdesign.model.electrothermal import modal_gain
+
+            g = modal_gain(self.thermal_modes, f_act_hz, self.waveform)
+            return self.u_m * g / modal_gain(self.thermal_modes, self.f_act_hz, self.waveform)
         return self.u_m * rolloff.ratio(f_act_hz, self.f_act_hz, self.cutoff_hz)
 
     @property
@@ -292,6 +303,8 @@ class DrawnStroke:
         The drive's heating frequency [Hz].
     gain : float
         |H(f_heat)| [-].
+    modes : tuple of (float, float)
+        The thermal modes (τ_i [s], a_i [-]) of the roll-off.
     """
 
     status: str
@@ -309,6 +322,7 @@ class DrawnStroke:
     f_cutoff_hz: float
     f_heat_hz: float
     gain: float
+    modes: tuple[tuple[float, float], ...] = ()
 
 
 @dataclass(frozen=True)

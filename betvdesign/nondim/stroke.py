@@ -149,5 +149,6 @@ def drawn_stroke(
         f_cutoff_hz=res.f_cutoff,
         f_heat_hz=f_heat,
         gain=gain,
+        modes=tuple(res.modes),
     )
     return u, data
