@@ -54,6 +54,10 @@ LOOKAHEAD = 1e-6
 MASK = 1e-9
 #: phase switches in one cycle before it is declared chattering (a failure)
 MAX_SWITCHES = 2000
+#: restarts of Newton after ``transient`` iterations of the map, when no step helps
+MAX_RESTARTS = 3
+#: integrations of one piece again to a skipped crossing (:func:`_missed`) at most
+MAX_RERUNS = 20
 
 
 @dataclass(frozen=True)
@@ -205,21 +209,35 @@ class _Model:
         return f
 
     def events(self, mode: str) -> list:
-        """The terminal events of a phase (value, direction)."""
+        """The terminal events of a phase.
+
+        Each crosses 0 in its ``direction`` and carries ``slope(t, y, f)``, its derivative
+        along the flow f = y' (the grazing watch, :func:`_missed`).
+        """
+        w, a, cn, ct, b = self.w, self.a, self.cn, self.ct, self.b
+
+        def n_slope(t: float, y: np.ndarray, f: list) -> float:
+            pd = w * math.cos(w * t)
+            return a * ((1.0 - cn) * pd + cn * y[3])
+
+        def r_slope(t: float, y: np.ndarray, f: list) -> float:
+            pd = w * math.cos(w * t)
+            return a * ((ct - 1.0) * pd + y[3])
+
         if mode == FREE:
 
             def gap(t: float, y: np.ndarray) -> float:
                 return y[0]
 
             gap.direction, gap.kind = -1, "impact"
+            gap.slope = lambda t, y, f: y[1]
             return [gap]
 
         def sep(t: float, y: np.ndarray) -> float:
             return self.n(t, y[2])
 
-        sep.direction, sep.kind = -1, "separation"
+        sep.direction, sep.kind, sep.slope = -1, "separation", n_slope
         if mode == STICK:
-            b = self.b
 
             def lo(t: float, y: np.ndarray) -> float:
                 return self.r_contact(t, y[2]) + b * self.n(t, y[2])
@@ -229,12 +247,15 @@ class _Model:
 
             lo.direction, lo.kind = -1, "band-exit"
             hi.direction, hi.kind = -1, "band-exit"
+            lo.slope = lambda t, y, f: r_slope(t, y, f) + b * n_slope(t, y, f)
+            hi.slope = lambda t, y, f: b * n_slope(t, y, f) - r_slope(t, y, f)
             return [sep, lo, hi]
 
         def vel(t: float, y: np.ndarray) -> float:
             return y[3] - y[5]
 
         vel.direction, vel.kind = (-1 if mode == SLIP else 1), "velocity-match"
+        vel.slope = lambda t, y, f: f[3] - f[5]
         return [sep, vel]
 
     # the automaton's rules -------------------------------------------------------------
@@ -274,8 +295,38 @@ def _mask(ev, t0: float, mask: float):
             return -ev.direction * 1.0
         return ev(t, y)
 
-    g.terminal, g.direction, g.kind = True, ev.direction, ev.kind
+    g.terminal, g.direction, g.kind, g.slope = True, ev.direction, ev.kind, ev.slope
     return g
+
+
+def _slope(ev, rhs):
+    """Non-terminal companion of ``ev``: its slope along the flow (0 at an extremum)."""
+
+    def h(t: float, y: np.ndarray) -> float:
+        return ev.slope(t, y, rhs(t, y))
+
+    h.terminal, h.direction = False, 0
+    return h
+
+
+def _missed(evs: list, watch: list, sol) -> float | None:
+    """Where to stop again when ``sol`` skipped a crossing; None if it did not.
+
+    A crossing is skipped when an event function crosses twice within one step (seen at
+    an extremum of it, before where ``sol`` stopped, that lies past its crossing), or when
+    the step that a terminal event cut short went on past another event's crossing
+    (that event lies past its crossing where ``sol`` stopped). The earliest such time.
+    """
+    t_stop, y_stop = sol.t[-1], sol.y[:, -1]
+    fired = [i for i in range(len(evs)) if sol.t_events[i].size]
+    first = None
+    for i, ev in enumerate(evs):
+        if sol.status == 1 and i not in fired and ev.direction * ev(t_stop, y_stop) > 0.0:
+            first = t_stop
+        for t, y in zip(sol.t_events[len(evs) + i], sol.y_events[len(evs) + i], strict=True):
+            if t < t_stop and ev.direction * ev(t, y) > 0.0 and (first is None or t < first):
+                first = float(t)
+    return first
 
 
 class _Runner:
@@ -320,37 +371,44 @@ class _Runner:
         """Integrate from τ0 to τ1 through every event; (state, phase, error message)."""
         mdl = self.m
         t, switches = t0, 0
-        mask_scale = MASK * mdl.T
-        just = True  # events at 0 where a piece starts are masked
+        mask_scale = MASK * mdl.T  # events at 0 where a piece starts are masked
         while t < t1:
             evs = []
             for ev in mdl.events(mode):
                 g0 = ev(t, y)
                 zero = abs(g0) <= 1e-12 * (1.0 + mdl.a * (1.0 + abs(y[2])) + abs(y[3]) + abs(y[5]))
-                e = _mask(ev, t, mask_scale) if (just and zero) else ev
+                e = _mask(ev, t, mask_scale) if zero else ev
                 e.terminal, e.direction = True, ev.direction
-                if not hasattr(e, "kind"):
-                    e.kind = ev.kind
                 evs.append(e)
-            sol = solve_ivp(
-                mdl.rhs(mode), (t, t1), y, method="DOP853", rtol=self.rtol, atol=self.atol,
-                events=evs,
-            )  # fmt: skip
-            self.nfev += sol.nfev
-            if sol.status == -1:
-                return y, mode, f"solve_ivp failed at τ = {t:.6g}: {sol.message}"
-            if sol.status == 0:
+            rhs = mdl.rhs(mode)
+            watch = [_slope(ev, rhs) for ev in evs]
+            t_end = t1
+            for _ in range(MAX_RERUNS):
+                sol = solve_ivp(
+                    rhs, (t, t_end), y, method="DOP853", rtol=self.rtol, atol=self.atol,
+                    events=evs + watch,
+                )  # fmt: skip
+                self.nfev += sol.nfev
+                if sol.status == -1:
+                    return y, mode, f"solve_ivp failed at τ = {t:.6g}: {sol.message}"
+                missed = _missed(evs, watch, sol)
+                if missed is None:
+                    break
+                t_end = missed  # a skipped crossing: integrate again, stopping there
+            else:
+                return y, mode, f"an event crossing could not be bracketed near τ = {t_end:.6g}"
+            hits = [i for i in range(len(evs)) if sol.t_events[i].size]
+            if not hits:
+                if sol.t[-1] < t1:  # reached a missed crossing's extremum: impossible
+                    return y, mode, f"event bracket lost near τ = {sol.t[-1]:.6g}"
                 return sol.y[:, -1].copy(), mode, ""
-            k = min(
-                (i for i in range(len(evs)) if sol.t_events[i].size),
-                key=lambda i: sol.t_events[i][0],
-            )
+            k = min(hits, key=lambda i: sol.t_events[i][0])
             t = float(sol.t_events[k][0])
             y = sol.y_events[k][0].copy()
-            kind = evs[k].kind
             switches += 1
             if switches > MAX_SWITCHES:
                 return y, mode, f"more than {MAX_SWITCHES} switches in a cycle near τ = {t:.6g}"
+            kind = evs[k].kind
             if kind == "impact":
                 mode = self.hit(t, y)
             elif kind == "separation":
@@ -365,7 +423,6 @@ class _Runner:
                 mode = self.decide(t, y, matched=True)
             if mode != FREE:
                 y[0], y[1] = 0.0, 0.0
-            just = True
         return y, mode, ""
 
 
@@ -447,7 +504,7 @@ def simulate_coupled(
 def _map(
     mdl: _Model, x: np.ndarray, period: int, rtol: float, atol: float
 ) -> tuple[np.ndarray, float, int, str]:
-    """The section map over ``period`` cycles of x = (ξ, ξ', ζ, ζ', s'): (map(x), Δs, nfev, error)."""
+    """Section map over ``period`` cycles of x = (ξ, ξ', ζ, ζ', s'): (map(x), Δs, nfev, error)."""
     y = np.array([x[0], x[1], x[2], x[3], 0.0, x[4]])
     run = _Runner(mdl, rtol, atol)
     mode = run.start_mode(0.0, y)
@@ -474,8 +531,10 @@ def coupled_periodic_orbit(
 
     The unknown is x = (ξ, ξ', ζ, ζ', s') at τ = 0 (the slider position drifts); the
     residual map(x) − x over ``period`` cycles, its Jacobian by forward differences
-    (steps 1e-7·max(1, |x_i|), ξ stepped upward), steps halved while the residual
-    grows. Accepted when ‖map(x) − x‖∞ ≤ tol.
+    (steps 1e-7·max(1, |x_i|), ξ stepped upward), the step by least squares (the plastic
+    impact can make the map flat in a direction), halved while the residual grows; when
+    no step helps, ``transient`` iterations of the map and Newton again (at most
+    :data:`MAX_RESTARTS` times). Accepted when ‖map(x) − x‖∞ ≤ tol.
 
     Parameters
     ----------
@@ -529,7 +588,7 @@ def coupled_periodic_orbit(
         return fail("failed", err, math.inf, 0)
     r = fx - x
     res = float(np.max(np.abs(r)))
-    best = res
+    best, restarts = res, 0
     for it in range(1, max_newton + 1):
         if res <= tol:
             st = np.array([x[0], x[1], x[2], x[3], 0.0, x[4]])
@@ -547,10 +606,8 @@ def coupled_periodic_orbit(
             if err:
                 return fail("failed", err, best, it)
             J[:, i] = ((fi - xi) - r) / h
-        try:
-            dx = np.linalg.solve(J, -r)
-        except np.linalg.LinAlgError:
-            return fail("not_converged", "singular Newton matrix", best, it)
+        # least squares: the plastic impact can make the map flat in ξ' (rank-deficient J)
+        dx = np.linalg.lstsq(J, -r, rcond=1e-12)[0]
         lam = 1.0
         for _ in range(12):
             xn = x + lam * dx
@@ -564,8 +621,24 @@ def coupled_periodic_orbit(
                 if resn < res or resn <= tol:
                     break
             lam *= 0.5
-        else:
-            return fail("not_converged", f"no Newton step lowers the residual {res:.2e}", best, it)
+        else:  # no step lowers the residual: iterate the map (a stable orbit attracts)
+            if restarts == MAX_RESTARTS:
+                return fail(
+                    "not_converged", f"no Newton step lowers the residual {res:.2e}", best, it
+                )
+            restarts += 1
+            for _ in range(transient):
+                xn, dsn, k, err = _map(mdl, x, period, rtol, atol)
+                nfev += k
+                if err:
+                    return fail("failed", err, best, it)
+                rn, x = xn - x, xn
+            xn, resn = x, float(np.max(np.abs(rn)))
+            fx, dsn, k, err = _map(mdl, xn, period, rtol, atol)
+            nfev += k
+            if err:
+                return fail("failed", err, best, it)
+            rn, resn = fx - xn, float(np.max(np.abs(fx - xn)))
         x, r, res, ds = xn, rn, resn, dsn
         best = min(best, res)
     return fail(
