@@ -69,6 +69,10 @@ class Answer:
         :func:`betvdesign.model.domain.mode_of` (with ``error``).
     speed_m_s : float or None
         Δs·u·cosθ·f_act [m/s], signed along the impacts.
+    state : numpy.ndarray or None
+        (ξ, ξ', ζ, ζ', s, s') [-] at τ = 0 on the orbit (None without one).
+    period : int
+        The orbit's period [cycles].
     """
 
     status: str
@@ -76,6 +80,8 @@ class Answer:
     error: float
     mode: str | None
     speed_m_s: float | None
+    state: np.ndarray | None = None
+    period: int = 1
 
     @property
     def text(self) -> str:
@@ -193,14 +199,19 @@ def coupled_rung(sd: SetDerivation) -> CoupledRung | None:
     p: ModelParams = replace(sd.params, zeta_v=0.0, zeta_h=0.0, restitution=0.0)
     ex = periodic_orbit(p)
     ok = ex.status == "success"
-    dec = Answer(ex.status, ex.delta_s, 0.0, ex.mode if ok else None, _speed(sd, ex.delta_s))
+    dec = Answer(
+        ex.status, ex.delta_s, 0.0, ex.mode if ok else None, _speed(sd, ex.delta_s), ex.state,
+        ex.period_cycles or 1,
+    )  # fmt: skip
     guess = ex.state if ok else None
     period = ex.period_cycles if ok else 1
     orb = coupled_periodic_orbit(
         p, cpl, guess=guess, period=period, rtol=RTOL, atol=ATOL, tol=NEWTON_TOL
     )
     if orb.status == "success":
-        cou = Answer("success", orb.delta_s, 0.0, orb.mode, _speed(sd, orb.delta_s))
+        cou = Answer(
+            "success", orb.delta_s, 0.0, orb.mode, _speed(sd, orb.delta_s), orb.state, period
+        )
     else:
         run = simulate_coupled(p, cpl, 2 * MEAN_CYCLES, rtol=RTOL, atol=ATOL)
         tail = run.delta_s[MEAN_CYCLES:]
