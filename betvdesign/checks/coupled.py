@@ -8,9 +8,10 @@ solves the periodic orbit of
    (:func:`betvdesign.dynamics.periodic_orbit`);
 2. the coupled model with the drawn ρ and χ = √α·tanθ: the independent reference
    (:func:`betvdesign.dynamics.coupled_reference.coupled_periodic_orbit`, Newton
-   shooting started from the decoupled orbit). Where it finds no periodic orbit, the mean
-   Δs of :data:`MEAN_CYCLES` cycles after :data:`MEAN_CYCLES` cycles from rest, with its
-   spread as the error (the sign then decides the mode only when it exceeds the spread).
+   shooting started from the decoupled orbit, else from the state :data:`MEAN_CYCLES`·2
+   cycles from rest). Where it finds no periodic orbit, the mean Δs of the last
+   :data:`MEAN_CYCLES` of those cycles, with its half-spread as the error (the sign then
+   decides the mode only when it exceeds the spread).
 
 Both for the paper's idealised terms (no damping, plastic impacts: the coupled reference
 has no others) and the set's ϖ, α, β, κ as used (the file's measured resonances where
@@ -215,7 +216,17 @@ def coupled_rung(sd: SetDerivation) -> CoupledRung | None:
     else:
         run = simulate_coupled(p, cpl, 2 * MEAN_CYCLES, rtol=RTOL, atol=ATOL)
         tail = run.delta_s[MEAN_CYCLES:]
-        if run.status != "success" or tail.size == 0:
+        again = None
+        if run.status == "success":  # Newton again from where the transient went
+            again = coupled_periodic_orbit(
+                p, cpl, guess=run.section[-1], period=period, rtol=RTOL, atol=ATOL, tol=NEWTON_TOL
+            )
+        if again is not None and again.status == "success":
+            cou = Answer(
+                "success", again.delta_s, 0.0, again.mode, _speed(sd, again.delta_s),
+                again.state, period,
+            )  # fmt: skip
+        elif run.status != "success" or tail.size == 0:
             cou = Answer(f"failed: {run.message}", None, math.inf, None, None)
         else:
             mean = float(np.mean(tail))
