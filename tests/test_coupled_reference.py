@@ -262,3 +262,77 @@ def test_bad_inputs():
         simulate_coupled(ModelParams(1.0, 1.0, 1.0, 0.3), c, 2, state0=[-1, 0, 0, 0, 0, 0])
     with pytest.raises(ParameterError, match="angle"):
         HeadCoupling.from_angle(0.2, 1.0, 2.0)
+
+
+# -- the dimensionless equations against the dimensional ones -------------------------------
+
+
+def _dimensional(rho: float, alpha: float, theta: float):
+    """A head in SI-like units (frame.py's convention: n toward the slider, t along it in the
+    impact direction, stroke u·sin ωt·(sinθ, cosθ)); compliance C from ρ, C_nn, C_tt."""
+    m, c_nn = 2.0e-12, 1.0 / 30.0  # kg, m/N
+    c_tt = alpha * c_nn  # α = k_v/k_h = C_tt/C_nn
+    c_nt = rho * math.sqrt(c_nn * c_tt)
+    K = np.linalg.inv(np.array([[c_nn, c_nt], [c_nt, c_tt]]))
+    return m, K, 1.0 / c_nn
+
+
+@pytest.mark.parametrize(
+    ("rho", "alpha", "deg"), [(0.95, 1.3, 45.0), (-0.7, 0.4, 30.0), (0.3, 2.2, 60.0)]
+)
+def test_contact_force_and_spring_forces_match_the_dimensional_head(rho, alpha, deg):
+    """n and R of MODEL.md are the dimensional K·(c − x) scaled by k_v u sinθ and k_h u cosθ."""
+    th = math.radians(deg)
+    _, K, kv = _dimensional(rho, alpha, th)
+    kh = kv / alpha
+    c = HeadCoupling.from_angle(rho, alpha, th)
+    a, cn, ct = c.a, c.rho / c.chi, c.rho * c.chi
+    u = 1.7e-7
+    rng = np.random.default_rng(1)
+    for _ in range(20):
+        p, xi, z = rng.uniform(-1, 1, 3)
+        x = np.array([-xi * u * math.sin(th), z * u * math.cos(th)])  # (x_n, x_t)
+        cart = u * p * np.array([math.sin(th), math.cos(th)])
+        f = K @ (cart - x)  # spring force on the head, (n, t)
+        # along the gap (−n) the force is −f_n = −F_n·k_v u sinθ (MODEL.md: ξ'' = −F_n);
+        # along t it is f_t = −R·k_h u cosθ (α ζ'' = −R)
+        fn = f[0] / (kv * u * math.sin(th))
+        r = -f[1] / (kh * u * math.cos(th))
+        assert fn == pytest.approx(a * ((xi + p) + cn * (z - p)), rel=1e-10, abs=1e-12)
+        assert r == pytest.approx(a * (ct * (xi + p) + (z - p)), rel=1e-10, abs=1e-12)
+
+
+@pytest.mark.parametrize(
+    ("rho", "alpha", "deg"), [(0.95, 1.3, 45.0), (-0.999, 0.4, 30.0), (0.6, 2.2, 60.0)]
+)
+def test_free_flight_matches_the_dimensional_head(rho, alpha, deg):
+    """Free flight (no hit): the reference's state after a cycle is the dimensional
+    m x'' = K(c(t) − x) advanced exactly (matrix exponential), scaled back."""
+    th = math.radians(deg)
+    m, K, kv = _dimensional(rho, alpha, th)
+    u, tscale = 1.0e-7, math.sqrt(m / kv)
+    p = ModelParams(5.0, alpha, 1.0, 0.3)  # a cycle shorter than half the soft mode
+    w = p.varpi / tscale  # rad/s
+    c = HeadCoupling.from_angle(rho, alpha, th)
+    # start far out along the soft mode (its eigenvector), at rest: ξ stays > 0 for a cycle
+    stiff = c.a * np.array([[1.0, c.rho / c.chi], [c.rho * c.chi / alpha, 1.0 / alpha]])
+    lam, vec = np.linalg.eig(stiff)
+    soft = vec[:, int(np.argmin(lam.real))].real
+    soft = 1e3 * soft / soft[0]
+    y0 = np.array([soft[0], 0.0, soft[1], 0.0, 0.0, 0.05])
+    ref = simulate_coupled(p, c, 1, state0=y0)
+    assert ref.status == "success"
+    assert not ref.events  # free flight throughout
+    # dimensional augmented state (x_n, x_t, v_n, v_t, sin ωt, cos ωt)
+    S = np.array([u * math.sin(th), u * math.cos(th)])
+    A = np.zeros((6, 6))
+    A[0:2, 2:4] = np.eye(2)
+    A[2:4, 0:2] = -K / m
+    A[2:4, 4] = K @ S / m
+    A[4, 5], A[5, 4] = w, -w
+    sc = np.array([-u * math.sin(th), u * math.cos(th)])  # x = sc·(ξ, ζ)
+    z0 = np.concatenate([sc * y0[[0, 2]], sc * y0[[1, 3]] / tscale, [0.0, 1.0]])
+    z1 = expm(A * 2 * math.pi / w) @ z0
+    got = np.array([z1[0] / sc[0], z1[2] * tscale / sc[0], z1[1] / sc[1], z1[3] * tscale / sc[1]])
+    want = ref.section[1][[0, 1, 2, 3]]
+    assert np.allclose(got, want, rtol=1e-8, atol=1e-8 * max(1.0, np.max(np.abs(want))))
