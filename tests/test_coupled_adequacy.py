@@ -92,3 +92,22 @@ def test_status_rules(dec, cou, status):
 def test_bad_input():
     with pytest.raises(ParameterError, match="SetDerivation"):
         coupled_rung("devices/pull_demo.yaml")
+
+
+def test_check_says_it_when_asked():
+    """``check_derivation(coupled=True)``: rule coupled-head per drawn set (bidir_demo's
+    two mirrored sets: two rules); a warning where the rung differs; absent by default."""
+    from betvdesign.checks.checker import check_derivation
+
+    d = derive_file(DEVICES / "bidir_demo.yaml")
+    quick = dict(margin=False, settle=False, determine=False, adequacy=False)
+    plain = check_derivation(d, **quick)
+    assert not [r for r in plain.rules if r.id == "coupled-head"]
+    res = check_derivation(d, coupled=True, **quick)
+    rules = [r for r in res.rules if r.id == "coupled-head"]
+    assert [r.set_name for r in rules] == [s.name for s in d.sets]
+    assert all(r.severity == "warning" and not r.passed for r in rules)
+    assert all("coupled-differs" in r.message and r.fix for r in rules)
+    # the verdict's own rules are those of the plain check
+    others = [r.as_dict() for r in res.rules if r.id != "coupled-head"]
+    assert others == [r.as_dict() for r in plain.rules]

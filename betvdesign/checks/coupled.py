@@ -25,8 +25,10 @@ a mean whose sign its spread does not decide), "failed" (no decoupled answer).
 ``uses`` says which answer a verdict should take: "coupled" when the file gives no
 measured resonances (the set's k_v and α come from the drawing: the drawn head is the
 only model of it), "decoupled" when the file's measured resonances win (the coupled
-answer is then a finding). Not yet wired into ``betv check`` (it costs seconds per set:
-benchmarks/README.md, "Coupled head").
+answer is then a finding). The rule ``coupled-head`` (:func:`coupled_rule`) says it in a
+check when asked (``CheckOptions(coupled=True)``, ``check_derivation(coupled=True)``; off
+by default: it costs 10–30 s per set, benchmarks/README.md "Coupled head"). The verdict's
+other rules still quote the decoupled exact answer.
 """
 
 from __future__ import annotations
@@ -38,6 +40,7 @@ from typing import Literal
 import numpy as np
 
 from betvdesign.checks.adequacy import SPEED_RTOL
+from betvdesign.checks.rule import RuleResult
 from betvdesign.errors import ParameterError
 from betvdesign.model.domain import mode_of
 from betvdesign.model.params import HeadCoupling, ModelParams
@@ -282,3 +285,71 @@ def _message(r: CoupledRung) -> str:
         else "the file's measured resonances win; the coupled answer is a finding"
     )
     return f"{head}; {verdict}; {use}"
+
+
+#: Where the rule ``coupled-head`` comes from.
+SRC_COUPLED = "MODEL.md, Coupled head (K_nt ≠ 0) (betvdesign.dynamics.coupled_reference)"
+
+
+def coupled_rule(r: CoupledRung) -> RuleResult:
+    """The rule ``coupled-head`` of one set's coupled rung (opt-in: ``CheckOptions.coupled``).
+
+    Parameters
+    ----------
+    r : CoupledRung
+        The set's rung (:func:`coupled_rung`).
+
+    Returns
+    -------
+    RuleResult
+        Info when the decoupled springs give the coupled head's mode and speed within
+        :data:`SPEED_RTOL`; warning otherwise (another mode, a speed off by more, or no
+        coupled mode). Value: (v_coupled − v_decoupled)/v_decoupled [-], None without both
+        speeds.
+    """
+    ok = r.status == "coupled-agrees"
+    change = r.speed_change
+    fix = (
+        ""
+        if ok
+        else "the drawn head is one elastic body, not two independent springs: measure the "
+        "device's speed, or align the actuator's principal axes with the slider; "
+        "`betvdesign.checks.coupled.coupled_rung` gives both answers"
+    )
+    return RuleResult(
+        "coupled-head",
+        "info" if ok else "warning",
+        ok,
+        None if change is None else float(change),
+        f"the decoupled springs give the drawn (coupled) head's mode and its speed within "
+        f"{SPEED_RTOL:.0%}",
+        f"{r.status}: {r.message}",
+        SRC_COUPLED,
+        set_name=r.name,
+        fix=fix,
+    )
+
+
+def coupled_rules(sets: list[SetDerivation]) -> list[RuleResult]:
+    """The rule ``coupled-head`` of every drawn set (sets with one model solved once).
+
+    Parameters
+    ----------
+    sets : list of SetDerivation
+        The device's sets; those without a drawing give no rule.
+
+    Returns
+    -------
+    list of RuleResult
+        One per drawn set, in the device's order.
+    """
+    done: dict[tuple, CoupledRung] = {}
+    out = []
+    for sd in sets:
+        if sd.springs is None:
+            continue
+        key = (sd.params, sd.springs.rho, sd.scales, sd.springs.used.get("k_v"))
+        if key not in done:
+            done[key] = coupled_rung(sd)
+        out.append(coupled_rule(replace(done[key], name=sd.name)))
+    return out
