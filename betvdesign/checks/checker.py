@@ -33,6 +33,7 @@ from typing import Any, Literal
 
 from betvdesign.checks.actuator_rules import actuator_rules
 from betvdesign.checks.adequacy import DeviceAdequacy, SetAdequacy, assess
+from betvdesign.checks.coupled import coupled_rules
 from betvdesign.checks.process_rules import process_rules
 from betvdesign.checks.rule import RuleResult, orbit_mode, verdict
 from betvdesign.checks.rules import MARGIN_CORNERS, evaluate_device, time_to_cross_s
@@ -322,6 +323,7 @@ def check_derivation(
     determine: bool | None = None,
     horizon: int = TRAVEL_HORIZON,
     layout_rules: list[RuleResult] | None = None,
+    coupled: bool = False,
 ) -> CheckResult:
     """Check every actuator set with its exact orbit (see the module docstring).
 
@@ -358,6 +360,9 @@ def check_derivation(
         The process rules measured on a drawn layout (:mod:`betvdesign.layout.drc`),
         used instead of those of the device file
         (:func:`betvdesign.checks.process_rules.process_rules`).
+    coupled : bool
+        Add the rule ``coupled-head`` for every drawn set: the decoupled springs against
+        the drawn head's coupled model (:mod:`betvdesign.checks.coupled`; seconds per set).
 
     Returns
     -------
@@ -402,6 +407,8 @@ def check_derivation(
     proc = derivation.spec.process
     rules += [r for s in derivation.sets for r in thermal_rules(s, proc)]
     rules += process_rules(derivation.spec) if layout_rules is None else layout_rules
+    if coupled:
+        rules += coupled_rules(derivation.sets)
     return CheckResult(derivation, got.set_checks(derivation, rules, adq), rules, got.notes)
 
 

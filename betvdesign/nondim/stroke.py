@@ -23,6 +23,7 @@ docs/MODEL.md, "From the drawn actuator to the head's springs"; issue 31.
 
 from __future__ import annotations
 
+import functools
 import math
 from typing import Any
 
@@ -36,6 +37,17 @@ from betvdesign.spec.models import ActuatorSet, DeviceSpec
 from betvdesign.spec.units import ureg
 
 __all__ = ["DrawnStroke", "drawn_stroke"]
+
+
+@functools.lru_cache(maxsize=256)
+def _electrothermal(g: Any, mat: Any, volts: float) -> Any:
+    """Solve :func:`electrothermal` once per drawing, material and voltage.
+
+    A study that changes no drawn dimension, layer or voltage (``betv fix``'s drive
+    frequency, slider or contact candidates) solves the actuator once: the inputs are
+    frozen dataclasses of floats.
+    """
+    return electrothermal(g, mat, volts)
 
 
 def thermal_material(spec: DeviceSpec, aset: ActuatorSet) -> Any:
@@ -104,7 +116,7 @@ def drawn_stroke(
     volts = float(v.to("V").magnitude)
     f_drive = float(drive.frequency.to("Hz").magnitude)
     rec.spec("V", "drive voltage (amplitude)", "drive.voltage", v)
-    res = electrothermal(g, mat, volts)
+    res = _electrothermal(g, mat, volts)
     if not (math.isfinite(res.u_static) and math.isfinite(res.t_max)):
         raise ParameterError(f"the electrothermal model gave no finite answer: {res.message}")
     src = "electrothermal model of the drawing (MODEL.md; Huang & Lee 1999, Lin & Chiao 1996)"
