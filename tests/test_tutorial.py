@@ -93,3 +93,6 @@ def test_tutorial_runs(tmp_path):
         varpi = [round(float(r["varpi"]), 3) for r in csv.DictReader(fh)]
     assert varpi == [0.05, 0.1, 0.168, 0.253, 0.354, 0.471, 0.604]
     assert "drawn900.yaml: FAIL mode" in text
+    # section 8: nothing measured: the stroke predicted from the drawing
+    assert re.search(r"T_max .* 1518 K", text) and re.search(r"u_static .* 13\.3 µm", text)
+    assert "38.4% of the static stroke is left" in " ".join(text.split())
