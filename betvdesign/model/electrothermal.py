@@ -866,6 +866,35 @@ def temperature_profile(
     return prof
 
 
+def modal_gain(modes: Any, frequency: Any, waveform: str = "ac") -> Any:
+    """The stroke's gain at a heating frequency from the thermal modes (module doc).
+
+    Parameters
+    ----------
+    modes : sequence of (float, float)
+        (τ_i [s], a_i [-]) of :attr:`ElectrothermalResult.modes`.
+    frequency : float or numpy.ndarray
+        f [Hz]: the heating power's oscillation (sinusoidal waveforms) or the square
+        wave's repetition (``unipolar``).
+    waveform : str
+        'ac' or 'dc-biased' (a sinusoidal power: |H(f)| = |Σ a_i/(1 + j·2πf·τ_i)|), or
+        'unipolar' (a 0/1 square wave of 50 % duty: half swing over the static one,
+        Σ a_i·tanh(1/(4f·τ_i))).
+
+    Returns
+    -------
+    float or numpy.ndarray
+        The gain [-] (1 at f → 0).
+    """
+    f = np.asarray(frequency, dtype=float)
+    if waveform == "unipolar":
+        out = sum(a * np.tanh(1 / (4 * f * tau)) if tau > 0 else a + 0 * f for tau, a in modes)
+    else:
+        w = 2 * math.pi * f
+        out = np.abs(sum(a / (1.0 + 1j * w * tau) for tau, a in modes))
+    return float(out) if np.ndim(out) == 0 else out
+
+
 def thermal_gain(res: ElectrothermalResult, heating_frequency: float) -> float:
     """|H(f)| = |Σ a_i/(1 + j·2πf·τ_i)| [-] at the heating frequency f [Hz] (module doc).
 
@@ -881,16 +910,13 @@ def thermal_gain(res: ElectrothermalResult, heating_frequency: float) -> float:
     float
         The stroke's small-signal gain relative to DC.
     """
-    w = 2 * math.pi * heating_frequency
-    h = sum(a / complex(1.0, w * tau) for tau, a in res.modes)
-    return float(abs(h))
+    return float(modal_gain(res.modes, heating_frequency, "ac"))
 
 
 def _square_gain(res: ElectrothermalResult, frequency: float) -> float:
     """Half swing / half the static swing of the modal response to a 0/1 square wave of
     50 % duty at ``frequency``: Σ a_i·tanh(1/(4fτ_i))."""
-    return float(sum(a * math.tanh(1 / (4 * frequency * tau)) if tau > 0 else a
-                     for tau, a in res.modes))  # fmt: skip
+    return float(modal_gain(res.modes, frequency, "unipolar"))
 
 
 def stroke_amplitude(
