@@ -62,7 +62,12 @@ def test_a_drawn_only_device_gets_a_verdict_from_the_exact_solver(tmp_path):
     assert drawn["power_w"] == pytest.approx(9.0**2 / drawn["resistance_ohm"], rel=1e-9)
     assert drawn["current_a"] == pytest.approx(9.0 / drawn["resistance_ohm"], rel=1e-9)
     assert drawn["f_heat_hz"] == pytest.approx(6000.0)  # AC: 2·f
-    assert 10 < drawn["f_thermal_hz"] < 1e5
+    assert 10 < drawn["f_thermal_hz"] < 1e5  # the stroke's cut-off
+    # the cut-off: the stroke's gain is 1/√2 when the drive heats there (AC: 2f)
+    spec = load_device(drawn_only(tmp_path))
+    f_drive = drawn["f_thermal_hz"] / 2 * ureg.Hz
+    at = derive(with_values(spec, {"drive.frequency": f_drive})).sets[0].stroke
+    assert at.gain == pytest.approx(2**-0.5, rel=1e-6)
     assert s["derived"]["amplitude_m"] == pytest.approx(drawn["stroke_m"], rel=1e-12)
     ids = {x["id"] for x in s["rules"]}
     assert {"thermal.peak-temperature", "thermal.bandwidth", "thermal.power"} <= ids

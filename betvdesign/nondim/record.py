@@ -397,7 +397,8 @@ class SetDerivation:
         f_1_hz and f_oop_hz (the actuator's first in-plane and out-of-plane modes); and
         where the stroke is predicted from the drawing (:class:`DrawnStroke`): stroke_m
         (the half swing at the drive), u_static_m, t_max_k, power_w, current_a,
-        resistance_ohm (at a DC voltage V), f_thermal_hz, f_heat_hz and stroke_status.
+        resistance_ohm (at a DC voltage V), f_thermal_hz (the stroke's thermal cut-off,
+        |H| = 1/√2), f_heat_hz and stroke_status.
         """
         sp = self.springs
         keys = ("f_v_hz", "f_h_hz", "k_v_n_m", "k_h_n_m", "m_eff_kg", "coupling", "f_1_hz",
@@ -414,6 +415,7 @@ class SetDerivation:
         out["stroke_status"] = None
         if st is not None:
             out.update({k: float(getattr(st, k)) for k in heat})
+            out["f_thermal_hz"] = float(st.f_cutoff_hz)  # the stroke's cut-off, not τ₁'s
             out["stroke_status"] = st.status
         return out
 

@@ -30,7 +30,7 @@ from typing import Any
 import pint
 
 from betvdesign.errors import ParameterError
-from betvdesign.model.electrothermal import electrothermal, stroke_amplitude, thermal_gain
+from betvdesign.model.electrothermal import electrothermal, modal_gain, stroke_amplitude
 from betvdesign.nondim.actuator import frame_geometry
 from betvdesign.nondim.record import DrawnStroke, Recorder
 from betvdesign.spec.models import ActuatorSet, DeviceSpec
@@ -134,13 +134,17 @@ def drawn_stroke(
             ureg.Quantity(res.u_static, "m"), ("T_max",), "um")  # fmt: skip
     rec.add("f_th", "thermal corner of the actuator's first thermal mode", "1/(2π·τ_th)",
             ureg.Quantity(res.f_thermal, "Hz"), (), "Hz")  # fmt: skip
+    rec.add("f_c,th", "thermal cut-off of the stroke (|H| = 1/√2)",
+            "|Σ a_i/(1 + j·2π·f·τ_i)| = 1/√2", ureg.Quantity(res.f_cutoff, "Hz"), ("f_th",),
+            "Hz")  # fmt: skip
     u_m, f_heat = stroke_amplitude(res, f_drive, drive.waveform)
-    gain = thermal_gain(res, f_heat)
+    gain = float(modal_gain(res.modes, f_heat, drive.waveform))
     heat = {"ac": "2·f_drive (AC, zero DC)", "unipolar": "f_drive (unipolar)",
             "dc-biased": "f_drive (DC-biased)"}[drive.waveform]  # fmt: skip
     rec.add("f_heat", "heating frequency of the drive", heat, ureg.Quantity(f_heat, "Hz"), (), "Hz")
-    rec.add("|H|", "thermal roll-off of the stroke at f_heat", "|Σ a_i/(1 + j·2π·f_heat·τ_i)|",
-            gain, ("f_heat", "f_th"))  # fmt: skip
+    form = ("Σ a_i·tanh(1/(4·f_heat·τ_i)) (square wave)" if drive.waveform == "unipolar"
+            else "|Σ a_i/(1 + j·2π·f_heat·τ_i)|")  # fmt: skip
+    rec.add("|H|", "thermal roll-off of the stroke at f_heat", form, gain, ("f_heat", "f_th"))
     half = {"ac": "u_static/2·|H|", "dc-biased": "u_static/2·|H|",
             "unipolar": "u_static/2·Σ a_i·tanh(1/(4f·τ_i))"}[drive.waveform]  # fmt: skip
     u = rec.add("u", "actuator amplitude at the drive (predicted from the drawing)", half,
