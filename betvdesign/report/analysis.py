@@ -410,6 +410,11 @@ class SetAnalysis:
     mode_map: Piece[Any] = field(
         default_factory=lambda: Piece(reason="not computed (a set with the same parameters)")
     )
+    #: The predicted stroke's u(V) and u(f) (:mod:`betvdesign.report.thermal`; sets whose
+    #: stroke is predicted from the drawing).
+    stroke: Piece[Any] = field(
+        default_factory=lambda: Piece(reason="the stroke is not predicted from the drawing")
+    )
 
 
 def transient_cycles(
