@@ -171,3 +171,33 @@ def test_speed_frequency_curves_of_a_drawn_stroke_differ_by_the_modal_gain(devic
     for fk, d, v, v0 in zip(f, ds, rolled, constant, strict=True):
         assert v0 == pytest.approx(d * st.stroke_m * cos * fk, rel=1e-12)
         assert v / v0 == pytest.approx(modal_gain(st.modes, fk, "ac") / g_act, rel=1e-12)
+
+
+def test_the_plots_draw_the_data_they_are_given() -> None:
+    """u(V): the two stroke curves and T_max (twin axis) are the data given, the melting
+    voltage a vertical line there; u(f): the curve, the cut-off line and the window band
+    0.5·f_v..2·f_v (object-oriented matplotlib, no pyplot)."""
+    from matplotlib.figure import Figure
+
+    from betvdesign.plots import stroke_vs_frequency, stroke_vs_voltage
+
+    v = np.linspace(0.0, 4.0, 5)
+    u, us, t = 1e-7 * v**2, 4e-7 * v**2, 300.0 + 80.0 * v**2
+    ax = Figure().subplots()
+    stroke_vs_voltage(v, u, us, t, device_v=2.0, device_stroke_m=4e-7, melting_v=4.0,
+                      melting_k=1580.0, ax=ax)  # fmt: skip
+    ys = [line.get_ydata() for line in ax.lines]
+    np.testing.assert_allclose(ys[0], us * 1e6)  # [µm]
+    np.testing.assert_allclose(ys[1], u * 1e6)
+    assert any(list(line.get_xdata()) == [4.0, 4.0] for line in ax.lines)
+    (twin,) = [a for a in ax.figure.axes if a is not ax]
+    np.testing.assert_allclose(twin.lines[0].get_ydata(), t)
+    f = np.geomspace(10.0, 1e6, 9)
+    ax = Figure().subplots()
+    stroke_vs_frequency(f, 1e-6 / (1 + f / 1e3), f_v_hz=1e4, cutoff_hz=1e3,
+                        operating=(2e3, 1e-6 / 3), ax=ax)  # fmt: skip
+    np.testing.assert_allclose(ax.lines[0].get_xdata(), f)
+    assert any(list(line.get_xdata()) == [1e3, 1e3] for line in ax.lines)
+    (band,) = [p for p in ax.patches if p.get_label().startswith("design window")]
+    x0, x1 = band.get_x(), band.get_x() + band.get_width()
+    assert (x0, x1) == pytest.approx((5e3, 2e4))

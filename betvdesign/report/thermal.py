@@ -245,10 +245,12 @@ def stroke_voltage(
     aset = sd.actuator_set
     heat = {"ac": "2·f_drive (AC, zero DC)", "unipolar": "f_drive (unipolar square)",
             "dc-biased": "f_drive (DC-biased)"}[aset.drive.waveform]  # fmt: skip
+    half = ("u = u_static/2·Σ a_i·tanh(1/(4f·τ_i))" if aset.drive.waveform == "unipolar"
+            else "u = u_static/2·|H|")  # fmt: skip
     caption = (
         "The stroke predicted from the drawing against the drive voltage amplitude V: solid, "
         f"the head's half swing u at the drive ({format_si(st.f_heat_hz, 'Hz')} heating, "
-        f"{heat}: u = u_static/2·|H|, the roll-off of the drawing's thermal modes at V); "
+        f"{heat}: {half}, the roll-off of the drawing's thermal modes at V); "
         "dashed, the static stroke u_static at a DC voltage V; right axis, the actuator's "
         f"peak temperature T_max at a DC voltage V (the AC crest's). Data: the drawn "
         f"actuator and the electrothermal data of {_process_text(spec, sd)} (sheet "
