@@ -73,6 +73,7 @@ def test_the_report_shows_u_of_v_and_u_of_f(html: str) -> None:
     assert "the drawing's thermal roll-off" in text
     assert "Mean speed against actuation frequency, with thermal roll-off" in text
     assert "not a calibration u(V)" not in text
+    assert "Speeds with the stroke predicted from the drawing at f_act" in text
 
 
 def test_the_stroke_at_the_device_voltage_is_the_checks(
