@@ -60,6 +60,7 @@ def speed_vs_frequency(
     rolloff: bool = True,
     operating: tuple[float, float] | None = None,
     ax: Axes | None = None,
+    constant_label: str = "calibrated stroke at every frequency (no roll-off)",
 ) -> Axes:
     """Mean slider speed [m/s, SI prefix by magnitude] against actuation frequency
     [Hz, drawn with its prefix], with the stroke's thermal roll-off (solid) and with the
@@ -67,7 +68,8 @@ def speed_vs_frequency(
     there (crosses on zero). Top axis ϖ = f_act/f_v; the design window 0.5 ≤ ϖ < 2 is
     shaded, the cut-off f_c drawn where it falls inside the plot; ``operating``:
     (f_act [Hz], speed [m/s]) of the device. ``rolloff`` False: the device gives no
-    cut-off, one solid curve (the stroke constant).
+    cut-off, one solid curve (the stroke constant). ``constant_label``: the dashed curve's
+    legend (a stroke predicted from the drawing holds its f_act value, not a calibrated one).
 
     Over 80 lines on purpose: one figure, its curves, bands, the design window, the roll-off
     and the device's marker drawn on one axes; splitting it would pass the axes' state
@@ -88,7 +90,7 @@ def speed_vs_frequency(
             ls="--",
             marker="o",
             ms=2.5,
-            label="calibrated stroke at every frequency (no roll-off)",
+            label=constant_label,
         )
     ax.plot(
         f[ok] * kf,

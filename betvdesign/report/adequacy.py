@@ -30,7 +30,7 @@ from betvdesign.checks.adequacy import (
 )
 from betvdesign.nondim.record import DeviceDerivation, SetDerivation
 from betvdesign.output.siformat import format_dimensionless as fmt_x
-from betvdesign.output.siformat import scale_for
+from betvdesign.output.siformat import format_si, scale_for
 from betvdesign.report.analysis import Piece, attempt
 from betvdesign.report.figures import figure_block, ladder
 from betvdesign.report.model import AdequacyBlock, FigureBlock, KeyValue
@@ -152,6 +152,12 @@ def figure(key: str, sd: SetDerivation, piece: Piece[SetAdequacy], tol: float) -
             caption += (
                 f" Speeds with the thermally rolled-off stroke at f_act "
                 f"({sd.scales.rolloff_factor:.3g} × u_cal)."
+            )
+        elif sd.stroke is not None:
+            caption += (
+                f" Speeds with the stroke predicted from the drawing at f_act "
+                f"(u = {format_si(sd.scales.u_m, 'm')}, {sd.stroke.gain:.3g} of u_static/2: "
+                "the drawing's thermal roll-off)."
             )
 
     def draw(axes: Any) -> None:

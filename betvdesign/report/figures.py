@@ -352,6 +352,8 @@ def speed_voltage(
     cal = aset.actuator.calibration
     per = an.periodic
     piece: Piece[Any] = per
+    if sd.stroke is not None:
+        return _speed_voltage_drawn(key, sd, an, tol)
     if per.ok and cal is None:
         piece = Piece(
             reason="the device gives the amplitude u directly, not a calibration u(V); "
@@ -381,6 +383,51 @@ def speed_voltage(
         speed = ds * np.asarray(u_m) * math.cos(sc.theta_rad) * sc.f_act_hz  # [m/s]
         plots.speed_vs_voltage(
             volts, speed, operating_v=v0, operating_speed_m_s=sc.speed_m_s(ds), ax=ax
+        )
+
+    model = (
+        "one periodic orbit of the exact model; Δs does not depend on u, so speed scales with u(V)"
+    )
+    rung = ladder(sd.params, "delta_s", "periodic", tol=tol)
+    return figure_block(key, "Mean speed against drive voltage", caption, model, rung, piece, draw)
+
+
+def _speed_voltage_drawn(key: str, sd: SetDerivation, an: SetAnalysis, tol: float) -> FigureBlock:
+    """The speed-voltage figure of a set whose stroke is predicted from the drawing.
+
+    Parameters
+    ----------
+    key : str
+        Figure key.
+    sd : SetDerivation
+        The set (its predicted stroke).
+    an : SetAnalysis
+        Its periodic orbit and its u(V) (:mod:`betvdesign.report.thermal`).
+    tol : float
+        The periodic orbit's residual [-] (the ladder's reason).
+
+    Returns
+    -------
+    FigureBlock
+        Δs·u(V)·cosθ·f_act with u(V) the stroke at the drive, to the melting voltage.
+    """
+    sc = sd.scales
+    per, sweep = an.periodic, an.stroke
+    piece: Piece[Any] = per if not per.ok or sweep.ok else sweep
+    caption = (
+        "Mean slider speed Δs·u(V)·cosθ·f_act along the impact direction (negative: against "
+        "it) with u(V) the stroke at the drive predicted from the drawing (the electrothermal "
+        "model, nothing fitted; the figure of the predicted stroke against voltage), up to "
+        "the voltage where the actuator's peak temperature reaches the melting point; "
+        "operating point marked."
+    )
+
+    def draw(ax: Any) -> None:
+        s = sweep.value
+        ds = float(per.value.delta_s)
+        speed = ds * s.stroke_m * math.cos(sc.theta_rad) * sc.f_act_hz  # [m/s]
+        plots.speed_vs_voltage(
+            s.volts, speed, operating_v=s.device_v, operating_speed_m_s=sc.speed_m_s(ds), ax=ax
         )
 
     model = (
