@@ -1,9 +1,12 @@
 """Figures of a device's own fields (``betv sweep FILE --vary ...``), in physical units.
 
-1-D: the speed against the field, the exact mode as coloured bands with every flip
-located by bisection, the device's value marked. 2-D: the exact-mode map in the two
-fields' units, the device marked, the paper's λ = 1 curve drawn over it (a fit, for
-comparison only).
+1-D: the speed (a magnitude) against the field, the exact mode as coloured bands with
+every flip located by bisection, the device's value marked. 2-D: the exact-mode map in
+the two fields' units, the device marked, the paper's λ = 1 curve drawn over it (a fit,
+for comparison only). Both hatch what lies outside the design window 0.5 ≤ ϖ < 2, draw
+the sub-resonances α·ϖ² = 1/n² (f_act = f_h/n: the mode flips cluster just below them)
+and, for an undamped head, cross-hatch the tangential resonance |α·ϖ² − 1| < 0.1 where
+the idealised speed is not the device's.
 """
 
 from __future__ import annotations
@@ -16,8 +19,15 @@ from typing import Any
 import numpy as np
 from matplotlib.colors import ListedColormap
 from matplotlib.figure import Figure
+from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 
+from betvdesign.model.domain import (
+    SUBRESONANCE_ORDERS,
+    TANGENTIAL_DETUNING,
+    VARPI_WINDOW,
+    subresonance_level,
+)
 from betvdesign.output.presentation import MODE_COLORS
 from betvdesign.plots.figure import DEVICE_COLOR, new_figure
 from betvdesign.plots.studies import save_figure
@@ -35,6 +45,35 @@ def _label(ax_info: Mapping[str, Any]) -> str:
     return f"{ax_info['field']} [{unit}]" if unit else ax_info["field"]
 
 
+def _column(ax_info: Mapping[str, Any]) -> str:
+    """The rows' column of a field (``drive.frequency [kHz]``; older rows: the field)."""
+    return str(ax_info.get("column", ax_info["field"]))
+
+
+def _num(x: Any) -> float:
+    return float("nan") if x is None or x == "" else float(x)
+
+
+#: Hatching of what lies outside the design window 0.5 ≤ ϖ < 2, and its legend text.
+OUTSIDE_HATCH = "///"
+OUTSIDE_LABEL = "outside the design window 0.5 ≤ ϖ < 2"
+#: Colour of the sub-resonance lines α·ϖ² = 1/n² (f_act = f_h/n).
+SUBRES_COLOR = "#404040"
+SUBRES_LABEL = "sub-resonance α·ϖ² = 1/n² (f_act = f_h/n)"
+#: Hatching of an undamped head's tangential resonance band, and its legend text.
+RESONANCE_HATCH = "xx"
+RESONANCE_LABEL = (
+    f"undamped head at |α·ϖ² − 1| < {TANGENTIAL_DETUNING:g}: speed (grey) not physical"
+)
+#: Legend below the axes, in columns (beside them it squeezed the plot; over it, the data).
+LEGEND = {"loc": "upper center", "bbox_to_anchor": (0.5, -0.16), "ncol": 2, "frameon": False}
+#: Least distance [axes fraction] between two sub-resonance labels (the deep ones crowd).
+LABEL_GAP = 0.05
+#: The speed axis turns symmetric-logarithmic when its largest speed exceeds this many
+#: times the operating region's (the upper quartile of the speeds shown) [-].
+SYMLOG_RATIO = 10.0
+
+
 def fieldsweep_figure(rows: Sequence[Mapping[str, Any]], summary: Mapping[str, Any]) -> Figure:
     """The figure of a field sweep.
 
@@ -43,18 +82,20 @@ def fieldsweep_figure(rows: Sequence[Mapping[str, Any]], summary: Mapping[str, A
     rows : sequence of mapping
         The sweep's rows in grid order (:mod:`betvdesign.studies.fieldsweep`).
     summary : mapping
-        Its summary (``fields``: field, unit, device value, points; ``flips`` for 1-D).
+        Its summary (``fields``: field, unit, device value, points; ``flips`` and
+        ``marks`` for 1-D).
 
     Returns
     -------
     Figure
-        1-D: speed [µm/s] against the field with mode bands; 2-D: the exact-mode map.
+        1-D: the speed [µm/s] against the field with mode bands; 2-D: the exact-mode map;
+        both with the design window, the sub-resonances and the legend below the axes.
     """
     if len(summary["fields"]) == 1:
-        fig, ax = new_figure(6.4, 3.4)
+        fig, ax = new_figure(6.8, 4.6)
         speed_with_modes(rows, summary, ax=ax)
     else:
-        fig, ax = new_figure(6.4, 4.4)
+        fig, ax = new_figure(6.8, 5.6)
         mode_map(rows, summary, ax=ax)
     return fig
 
@@ -62,36 +103,134 @@ def fieldsweep_figure(rows: Sequence[Mapping[str, Any]], summary: Mapping[str, A
 def speed_with_modes(
     rows: Sequence[Mapping[str, Any]], summary: Mapping[str, Any], *, ax: Any
 ) -> None:
-    """1-D: the periodic speed [µm/s] against the field on ``ax``, the exact mode as
-    coloured bands between the bisected flips, the device's value dashed."""
+    """1-D: the speed [µm/s] against the field on ``ax``.
+
+    The travel answer's speed (a magnitude; the mode's band says which way) against the
+    field, the exact mode as coloured bands between the bisected flips, the device's value
+    dashed; from ``summary["marks"]`` (:func:`betvdesign.studies.fieldsweep.sweep_marks`)
+    the range outside the design window hatched, the sub-resonances α·ϖ² = 1/n² as lines
+    labelled f_h/n, and an undamped head's tangential-resonance band hatched with its
+    speeds grey and left out of the axis range. The speed axis is symmetric-logarithmic
+    when resonance spikes would flatten the operating region (:data:`SYMLOG_RATIO`).
+
+    Over 80 lines on purpose: one axes, its bands, marks and curve drawn in order (the
+    bands under the curve, the limits from the curve); splitting it would pass the axes'
+    state between pieces.
+    """
     (f,) = summary["fields"]
-    x = np.array([float(r[f["field"]]) for r in rows])
-    v = np.array([np.nan if r["speed_m_s"] is None else 1e6 * r["speed_m_s"] for r in rows])
+    marks = summary.get("marks") or {}
+    x = np.array([float(r[_column(f)]) for r in rows])
+    v = np.array([np.nan if r["speed_m_s"] is None else 1e6 * abs(r["speed_m_s"]) for r in rows])
     edges = [x[0], *[fl["at"] for fl in summary.get("flips", [])], x[-1]]
     modes = [rows[0]["exact_mode"], *[fl["above"] for fl in summary.get("flips", [])]]
     for (a, b), m in zip(itertools.pairwise(edges), modes, strict=True):
         ax.axvspan(a, b, color=MODE_COLORS.get(m, "#ffffff"), alpha=0.18, lw=0)
     for fl in summary.get("flips", []):
         ax.axvline(fl["at"], color="0.3", lw=0.6, ls=":")
-    ax.plot(x, v, color="k", marker=".", ms=3)
-    ax.axhline(0.0, color="0.5", lw=0.5)
+    handles: list[Any] = []
+    inside = marks.get("window")
+    if inside is not None:
+        outside = _complement(float(x[0]), float(x[-1]), inside)
+        for a, b in outside:
+            ax.axvspan(a, b, facecolor="none", edgecolor="0.55", hatch=OUTSIDE_HATCH, lw=0)
+        if outside:
+            handles.append(Patch(facecolor="none", edgecolor="0.55", hatch=OUTSIDE_HATCH))
+            handles[-1].set_label(OUTSIDE_LABEL)
+    grey = np.zeros(len(x), dtype=bool)
+    for a, b in marks.get("undamped_resonance", []):
+        ax.axvspan(a, b, facecolor="0.92", edgecolor="0.45", hatch=RESONANCE_HATCH, lw=0)
+        grey |= (x >= a) & (x <= b)
+    if marks.get("undamped_resonance"):
+        handles.append(Patch(facecolor="0.92", edgecolor="0.45", hatch=RESONANCE_HATCH))
+        handles[-1].set_label(RESONANCE_LABEL + " (grey)")
+    shown = np.where(grey, np.nan, v)
+    ax.plot(x, shown, color="k", marker=".", ms=3)
+    if grey.any():
+        ax.plot(x[grey], v[grey], color="0.6", marker=".", ms=3, lw=0.8)
+    _speed_scale(ax, shown)
+    labelled = -np.inf
+    span = float(x[-1] - x[0]) or 1.0
+    for sr in sorted(marks.get("subresonances", []), key=lambda m: -m["at"]):
+        ax.axvline(sr["at"], color=SUBRES_COLOR, lw=0.7, ls="-.")
+        if abs(labelled - sr["at"]) < LABEL_GAP * span:
+            continue  # the deeper orders crowd toward low frequency: lines only
+        labelled = sr["at"]
+        ax.annotate(
+            "f_h" if sr["n"] == 1 else f"f_h/{sr['n']}",
+            (sr["at"], 1.0),
+            xycoords=("data", "axes fraction"),
+            xytext=(2, -2),
+            textcoords="offset points",
+            ha="left",
+            va="top",
+            fontsize=6.5,
+            color=SUBRES_COLOR,
+        )
+    if marks.get("subresonances"):
+        handles.append(Line2D([], [], color=SUBRES_COLOR, lw=0.7, ls="-.", label=SUBRES_LABEL))
     ax.axvline(f["device_value"], color=DEVICE_COLOR, lw=1.0, ls="--")
+    ax.set_xlim(float(x[0]), float(x[-1]))
     ax.set_xlabel(_label(f))
-    ax.set_ylabel("speed (periodic orbit) [µm/s]")
+    ax.set_ylabel("speed |v| (travel answer) [µm/s]")
     ax.set_title(f"{summary.get('name', '')} speed and exact mode against {f['field']}")
     seen = dict.fromkeys(modes)
-    handles = [Patch(color=MODE_COLORS.get(m, "#fff"), alpha=0.4, label=m) for m in seen]
-    handles.append(Patch(color=DEVICE_COLOR, label=f"device ({f['device_value']:g} {f['unit']})"))
-    ax.legend(handles=handles, loc="best")
+    mode_handles = [
+        Patch(color=MODE_COLORS.get(m, "#fff"), alpha=0.4, label=f"{m} ({_DIRECTION.get(m, '')})")
+        if m in _DIRECTION
+        else Patch(color=MODE_COLORS.get(m, "#fff"), alpha=0.4, label=m)
+        for m in seen
+    ]
+    device = Patch(color=DEVICE_COLOR, label=f"device ({f['device_value']:g} {f['unit']})")
+    ax.legend(handles=[*mode_handles, *handles, device], fontsize=6.5, **LEGEND)
+
+
+#: What each moving mode's speed means for the direction (speeds are magnitudes).
+_DIRECTION = {"push": "along the impacts", "pull": "against the impacts"}
+
+
+def _complement(
+    lo: float, hi: float, parts: Sequence[Sequence[float]]
+) -> list[tuple[float, float]]:
+    """The parts of [lo, hi] outside the sorted, disjoint intervals ``parts``."""
+    out, at = [], lo
+    for a, b in parts:
+        if a > at:
+            out.append((at, float(a)))
+        at = max(at, float(b))
+    if at < hi:
+        out.append((at, hi))
+    return out
+
+
+def _speed_scale(ax: Any, v: np.ndarray) -> None:
+    """Linear speed axis from 0, or symmetric-logarithmic when the largest speed is more
+    than :data:`SYMLOG_RATIO` times the upper quartile (linear below that quartile)."""
+    known = v[np.isfinite(v)]
+    if known.size == 0:
+        return
+    top, q = float(known.max()), float(np.percentile(known, 75))
+    if q > 0.0 and top > SYMLOG_RATIO * q:
+        ax.set_yscale("symlog", linthresh=q)
+        ax.set_ylim(0.0, top * 1.5)
+    else:
+        ax.set_ylim(0.0, top * 1.08 if top > 0 else 1.0)
 
 
 def mode_map(rows: Sequence[Mapping[str, Any]], summary: Mapping[str, Any], *, ax: Any) -> None:
-    """2-D: the exact-mode map on ``ax`` in the two fields' units, the device starred,
-    the paper's λ = 1 curve dashed over it (or where λ lies if it does not cross)."""
+    """2-D: the exact-mode map on ``ax`` in the two fields' units.
+
+    The device starred, the paper's λ = 1 curve dashed over it (or where λ lies if it
+    does not cross), and, where the rows carry ϖ and α, the design window's edges with the
+    outside hatched, the sub-resonances α·ϖ² = 1/n² as dash-dotted lines labelled f_h/n,
+    and an undamped head's tangential-resonance band |α·ϖ² − 1| < 0.1 cross-hatched.
+
+    Over 80 lines on purpose: one axes and its layers drawn in order; splitting it would
+    pass the axes' state between pieces.
+    """
     fa, fb = summary["fields"]
     na, nb = fa["points"], fb["points"]
-    xa = np.array([float(r[fa["field"]]) for r in rows]).reshape(na, nb)[:, 0]
-    xb = np.array([float(r[fb["field"]]) for r in rows]).reshape(na, nb)[0, :]
+    xa = np.array([float(r[_column(fa)]) for r in rows]).reshape(na, nb)[:, 0]
+    xb = np.array([float(r[_column(fb)]) for r in rows]).reshape(na, nb)[0, :]
     names = list(MODE_COLORS)
     code = np.array([names.index(r["exact_mode"]) for r in rows]).reshape(na, nb)
     lam = np.array([np.nan if r.get("lam") is None else r["lam"] for r in rows]).reshape(na, nb)
@@ -106,6 +245,11 @@ def mode_map(rows: Sequence[Mapping[str, Any]], summary: Mapping[str, Any], *, a
         else f"λ {'>' if np.nanmin(lam) > 1 else '<'} 1 everywhere (fit: "
         f"{'pull' if np.nanmin(lam) > 1 else 'push'})"
     )
+    varpi = np.array([_num(r.get("varpi")) for r in rows]).reshape(na, nb).T
+    q = varpi**2 * np.array([_num(r.get("alpha")) for r in rows]).reshape(na, nb).T
+    marks: list[Any] = []
+    if min(na, nb) >= 2 and np.isfinite(varpi).sum() >= 4:
+        marks = _map_marks(ax, xa, xb, varpi, q, rows)
     ax.plot(
         fa["device_value"],
         fb["device_value"],
@@ -121,9 +265,58 @@ def mode_map(rows: Sequence[Mapping[str, Any]], summary: Mapping[str, Any], *, a
     present = [n for n in names if (code == names.index(n)).any()]
     handles = [Patch(color=MODE_COLORS[n], label=n) for n in present]
     handles.append(Patch(facecolor="none", edgecolor="k", ls="--", label=lam_label))
+    handles += marks
     handles.append(Patch(color=DEVICE_COLOR, label="device"))
-    ax.legend(handles=handles, loc="best", framealpha=0.85)
-    ax.set_title(f"{summary.get('name', '')} exact mode (periodic orbit)")
+    ax.legend(handles=handles, fontsize=6.5, **LEGEND)
+    ax.set_title(f"{summary.get('name', '')} exact mode (travel answer)")
+
+
+def _map_marks(
+    ax: Any,
+    xa: np.ndarray,
+    xb: np.ndarray,
+    varpi: np.ndarray,
+    q: np.ndarray,
+    rows: Sequence[Mapping[str, Any]],
+) -> list[Any]:
+    """The design window, the sub-resonances and an undamped head's resonance band on a
+    map (``varpi``, ``q`` = α·ϖ² on the grid, transposed as drawn); their legend handles."""
+    handles: list[Any] = []
+    lo, hi = VARPI_WINDOW
+    w = np.where(np.isfinite(varpi), varpi, np.nan)
+    if np.nanmin(w) < lo or np.nanmax(w) >= hi:
+        ax.contourf(
+            xa,
+            xb,
+            w,
+            levels=[-np.inf, lo, hi, np.inf],
+            colors="none",
+            hatches=[OUTSIDE_HATCH, None, OUTSIDE_HATCH],
+        )
+        ax.contour(xa, xb, w, levels=[lo, hi], colors="0.35", linewidths=0.8)
+        handles.append(
+            Patch(facecolor="none", edgecolor="0.35", hatch=OUTSIDE_HATCH, label=OUTSIDE_LABEL)
+        )
+    levels = [subresonance_level(n) for n in range(SUBRESONANCE_ORDERS, 0, -1)]
+    inside = [lv for lv in levels if np.nanmin(q) < lv < np.nanmax(q)]
+    if inside:
+        cs = ax.contour(
+            xa, xb, q, levels=inside, colors=SUBRES_COLOR, linewidths=0.7, linestyles="-."
+        )
+        names = {
+            lv: ("f_h" if n == 1 else f"f_h/{n}")
+            for n, lv in ((round(lv**-0.5), lv) for lv in inside)
+        }
+        ax.clabel(cs, fmt=names, fontsize=6.5, inline=True)
+        handles.append(Line2D([], [], color=SUBRES_COLOR, lw=0.7, ls="-.", label=SUBRES_LABEL))
+    undamped = any(not r.get("zeta_h") for r in rows if r.get("varpi") is not None)
+    d = TANGENTIAL_DETUNING
+    if undamped and np.nanmin(q) < 1.0 + d and np.nanmax(q) > 1.0 - d:
+        ax.contourf(xa, xb, q, levels=[1.0 - d, 1.0 + d], colors="none", hatches=[RESONANCE_HATCH])
+        handles.append(
+            Patch(facecolor="none", edgecolor="0.45", hatch=RESONANCE_HATCH, label=RESONANCE_LABEL)
+        )
+    return handles
 
 
 def save_fieldsweep_figure(
