@@ -124,6 +124,7 @@ def corner_label(f_varpi: float, f_alpha: float) -> str:
     """The label of a margin corner (``ϖ×0.95``, ``α×1.1``) from its factors [-]."""
     return f"ϖ×{f_varpi:g}" if f_alpha == 1.0 else f"α×{f_alpha:g}"
 
+
 SRC_LAMBDA = "MODEL.md, Push/pull criterion (empirical fit, Shin et al. 2004, eq. 9)"
 SRC_TANG = "MODEL.md, What the model shows: tangential vibration undamped off contact"
 SRC_SPEED = "MODEL.md, Displacement per cycle: speed = Δs·u·cosθ·f_act"
