@@ -168,12 +168,17 @@ def test_robustness_rings_fit_misses_and_prefixes_the_speed() -> None:
     change = [-20.0, -10.0, 0.0, 10.0, 20.0]
     speed = [1.2e-3, 1.0e-3, 0.8e-3, -0.1e-3, None]
     miss = [False, True, False, True, False]
-    ax = plots.speed_vs_field_change([("drive.frequency", change, speed, miss)])
+    ax = plots.speed_vs_field_change([("drive.frequency", change, speed, miss)], wrong_mode="pull")
     rings = [ln for ln in ax.get_lines() if ln.get_marker() == "o" and ln.get_markersize() == 9]
     assert len(rings) == 2  # the rings and their legend entry
     np.testing.assert_allclose(sorted(rings[0].get_xdata()), [-10.0, 10.0])
-    np.testing.assert_allclose(rings[0].get_ydata(), [1.0, -0.1])
-    assert "[mm/s]" in ax.get_ylabel()
+    np.testing.assert_allclose(rings[0].get_ydata(), [1.0, 0.1])  # magnitudes
+    # the wrong-way point (+10 %: −0.1 mm/s against the intended direction) is squared
+    squares = [ln for ln in ax.get_lines() if ln.get_marker() == "s" and len(ln.get_xdata())]
+    (sq,) = squares
+    np.testing.assert_allclose(sq.get_xdata(), [10.0])
+    np.testing.assert_allclose(sq.get_ydata(), [0.1])
+    assert "[mm/s]" in ax.get_ylabel() and ax.get_ylim()[0] == 0.0
 
 
 def test_pushpull_frequency_map_boundary_is_lambda_one() -> None:
@@ -251,3 +256,19 @@ def test_speed_vs_voltage_takes_si_and_prefixes() -> None:
     assert ax.get_ylabel() == "mean slider speed  [µm/s]"
     np.testing.assert_allclose(ax.get_lines()[0].get_ydata(), [100.0, 300.0])
     assert any("200 µm/s" in ln.get_label() for ln in ax.get_lines())
+
+
+def test_speed_vs_frequency_draws_magnitudes_in_the_modes_colours() -> None:
+    """Issue 32 item 13: one convention: a speed is a magnitude, its mode's colour says
+    the way. Velocities +0.2 and −0.3 mm/s along the impacts are drawn at 200 and
+    300 µm/s, the first in push's colour, the second in pull's."""
+    from betvdesign.output.presentation import MODE_COLORS
+
+    ax = plots.speed_vs_frequency(
+        [1e3, 2e3], [2e-4, -3e-4], [2e-4, -3e-4], f_v_hz=2e3, rolloff=False, operating=(2e3, -3e-4)
+    )
+    by_colour = {ln.get_color(): ln for ln in ax.get_lines() if ln.get_linestyle() == "None"}
+    np.testing.assert_allclose(by_colour[MODE_COLORS["push"]].get_ydata(), [200.0])
+    np.testing.assert_allclose(by_colour[MODE_COLORS["pull"]].get_ydata(), [300.0])
+    assert any("300 µm/s" in ln.get_label() for ln in ax.get_lines())
+    assert "-300" not in " ".join(ln.get_label() for ln in ax.get_lines())

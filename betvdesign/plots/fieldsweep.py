@@ -28,7 +28,7 @@ from betvdesign.model.domain import (
     VARPI_WINDOW,
     subresonance_level,
 )
-from betvdesign.output.presentation import MODE_COLORS
+from betvdesign.output.presentation import MODE_COLORS, MODE_DIRECTION
 from betvdesign.plots.figure import DEVICE_COLOR, new_figure
 from betvdesign.plots.studies import save_figure
 
@@ -175,17 +175,15 @@ def speed_with_modes(
     ax.set_title(f"{summary.get('name', '')} speed and exact mode against {f['field']}")
     seen = dict.fromkeys(modes)
     mode_handles = [
-        Patch(color=MODE_COLORS.get(m, "#fff"), alpha=0.4, label=f"{m} ({_DIRECTION.get(m, '')})")
-        if m in _DIRECTION
-        else Patch(color=MODE_COLORS.get(m, "#fff"), alpha=0.4, label=m)
+        Patch(
+            color=MODE_COLORS.get(m, "#fff"),
+            alpha=0.4,
+            label=f"{m} ({MODE_DIRECTION[m]})" if m in MODE_DIRECTION else m,
+        )
         for m in seen
     ]
     device = Patch(color=DEVICE_COLOR, label=f"device ({f['device_value']:g} {f['unit']})")
     ax.legend(handles=[*mode_handles, *handles, device], fontsize=6.5, **LEGEND)
-
-
-#: What each moving mode's speed means for the direction (speeds are magnitudes).
-_DIRECTION = {"push": "along the impacts", "pull": "against the impacts"}
 
 
 def _complement(

@@ -9,7 +9,7 @@ import numpy as np
 from matplotlib.axes import Axes
 
 from betvdesign.model.domain import VARPI_WINDOW
-from betvdesign.output.presentation import MODE_COLORS
+from betvdesign.output.presentation import MODE_COLORS, MODE_DIRECTION
 from betvdesign.output.siformat import format_si, scale_for
 from betvdesign.plots.figure import (
     DEVICE_COLOR,
@@ -25,14 +25,19 @@ def speed_vs_voltage(
     *,
     operating_v: float | None = None,
     operating_speed_m_s: float | None = None,
+    mode: str | None = None,
     ax: Axes | None = None,
 ) -> Axes:
-    """Mean slider speed [m/s, drawn with the SI prefix its magnitude calls for] against
-    drive voltage [V], operating point marked."""
+    """Mean slider speed [m/s, a magnitude, drawn with the SI prefix it calls for] against
+    drive voltage [V], operating point marked; ``mode`` (push or pull) says which way
+    the slider moves (in the legend)."""
     ax = axes_or_new(ax)
     v = np.asarray(speed_m_s, float)
     k, unit = scale_for(float(np.abs(v).max()) if v.size else 0.0, "m/s")
-    ax.plot(np.asarray(volts, float), v * k, color="black", label="mean speed")
+    label = (
+        f"mean speed ({mode}: {MODE_DIRECTION[mode]})" if mode in MODE_DIRECTION else "mean speed"
+    )
+    ax.plot(np.asarray(volts, float), v * k, color="black", label=label)
     if operating_v is not None and operating_speed_m_s is not None:
         ax.plot(
             [operating_v],
@@ -52,7 +57,7 @@ def speed_vs_voltage(
 
 def speed_vs_frequency(
     f_act_hz: Sequence[float],
-    speed_m_s: Sequence[float | None],
+    velocity_m_s: Sequence[float | None],
     constant_stroke_m_s: Sequence[float | None],
     *,
     f_v_hz: float,
@@ -61,13 +66,16 @@ def speed_vs_frequency(
     operating: tuple[float, float] | None = None,
     ax: Axes | None = None,
 ) -> Axes:
-    """Mean slider speed [m/s, SI prefix by magnitude] against actuation frequency
-    [Hz, drawn with its prefix], with the stroke's thermal roll-off (solid) and with the
-    calibrated stroke held constant (dashed, the idealised model); None: no periodic orbit
-    there (crosses on zero). Top axis ϖ = f_act/f_v; the design window 0.5 ≤ ϖ < 2 is
-    shaded, the cut-off f_c drawn where it falls inside the plot; ``operating``:
-    (f_act [Hz], speed [m/s]) of the device. ``rolloff`` False: the device gives no
-    cut-off, one solid curve (the stroke constant).
+    """Mean slider speed [m/s, SI prefix by magnitude] against actuation frequency.
+
+    The speed (a magnitude; each point's marker in its mode's colour says which way)
+    against actuation frequency [Hz, drawn with its prefix], with the stroke's thermal
+    roll-off (solid) and with the calibrated stroke held constant (dashed, the idealised
+    model). ``velocity_m_s`` and ``constant_stroke_m_s`` are signed along the impacts
+    (+ push, − pull); None: no periodic orbit there (crosses on zero). Top axis
+    ϖ = f_act/f_v; the design window 0.5 ≤ ϖ < 2 is shaded, the cut-off f_c drawn where it
+    falls inside the plot; ``operating``: (f_act [Hz], velocity [m/s]) of the device.
+    ``rolloff`` False: the device gives no cut-off, one solid curve (the stroke constant).
 
     Over 80 lines on purpose: one figure, its curves, bands, the design window, the roll-off
     and the device's marker drawn on one axes; splitting it would pass the axes' state
@@ -75,8 +83,9 @@ def speed_vs_frequency(
     """
     ax = axes_or_new(ax)
     f = np.asarray(f_act_hz, float)
-    ok, v = known_values(speed_m_s)
-    v0 = np.array([x if x is not None else np.nan for x in constant_stroke_m_s], float)
+    ok, signed = known_values(velocity_m_s)
+    v = np.abs(signed)
+    v0 = np.abs(np.array([x if x is not None else np.nan for x in constant_stroke_m_s], float))
     kf, f_unit = scale_for(float(f.max()) if f.size else 0.0, "Hz")
     top = max(float(np.abs(v[ok]).max(initial=0.0)), float(np.nanmax(np.abs(v0), initial=0.0)))
     kv, v_unit = scale_for(top, "m/s")
@@ -94,10 +103,19 @@ def speed_vs_frequency(
         f[ok] * kf,
         v[ok] * kv,
         color="black",
-        marker="o",
-        ms=3,
         label="with the thermal roll-off of the stroke" if rolloff else "stroke u constant",
     )
+    for mode, side in (("push", signed > 0), ("pull", signed < 0)):
+        if (ok & side).any():
+            ax.plot(
+                f[ok & side] * kf,
+                v[ok & side] * kv,
+                ls="none",
+                marker="o",
+                ms=3.5,
+                color=MODE_COLORS[mode],
+                label=f"{mode} ({MODE_DIRECTION[mode]})",
+            )
     if (~ok).any():
         ax.plot(
             f[~ok] * kf,
@@ -111,12 +129,13 @@ def speed_vs_frequency(
     if operating is not None:
         ax.plot(
             [operating[0] * kf],
-            [operating[1] * kv],
+            [abs(operating[1]) * kv],
             marker="o",
             ms=7,
             ls="none",
             color=DEVICE_COLOR,
-            label=f"the device: {format_si(operating[0], 'Hz')}, {format_si(operating[1], 'm/s')}",
+            label=f"the device: {format_si(operating[0], 'Hz')}, "
+            f"{format_si(abs(operating[1]), 'm/s')}",
         )
     lo, hi = ax.get_xlim()
     ax.axvspan(
@@ -148,33 +167,42 @@ def speed_vs_field_change(
     *,
     unit: str = "m/s",
     flips: Sequence[tuple[str, float]] = (),
+    wrong_mode: str = "",
     ax: Axes | None = None,
 ) -> Axes:
     """Mean slider speed against the relative change [%] of each designer field.
 
-    series: per field (label, change [%], speed [``unit``, positive: the intended
+    series: per field (label, change [%], velocity [``unit``, positive: the intended
     direction of travel] or None where no periodic orbit exists, λ-fit miss flags). The
-    speed axis takes an SI prefix by magnitude; None points are crosses on zero; points
-    where the λ fit predicts the other mode are ringed. ``flips``: (label, change [%])
-    where a field's exact mode changes (bisected), drawn as a bar across zero in the
-    field's colour.
+    speed is drawn as a magnitude (the package's convention) on an axis with the SI prefix
+    it calls for; points where the slider runs the wrong way (the other mode) get a square
+    in that mode's colour; None points are crosses on zero; points where the λ fit
+    predicts the other mode are ringed. ``flips``: (label, change [%]) where a field's
+    exact mode changes (bisected), drawn as a bar on zero in the field's colour.
+    ``wrong_mode``: the mode of a wrong-way point (its square's colour and legend).
     """
     ax = axes_or_new(ax)
     vals = [abs(v) for _, _, ys, _ in series for v in ys if v is not None]
     factor, label_unit = scale_for(max(vals, default=0.0), unit)
     markers = "osD^v<>"
     missed = False
+    wrong_way = False
+    wrong_color = MODE_COLORS.get(wrong_mode, "#555555")
     colors: dict[str, str] = {}
     for k, (label, xs, ys, misses) in enumerate(series):
         x = np.asarray(xs, dtype=float)
         ok, y = known_values(ys)
-        y = y * factor
+        wrong = ok & (y < 0.0)
+        y = np.abs(y) * factor
         (line,) = ax.plot(
             x[ok], y[ok], marker=markers[k % len(markers)], ms=3.5, lw=1.1, label=label
         )
         colors[label] = line.get_color()
         if (~ok).any():
             ax.plot(x[~ok], y[~ok], ls="none", marker="x", ms=6, color=line.get_color())
+        if wrong.any():
+            wrong_way = True
+            ax.plot(x[wrong], y[wrong], ls="none", marker="s", ms=7, mfc="none", color=wrong_color)
         miss = ok & np.asarray(misses, dtype=bool)
         if miss.any():
             missed = True
@@ -190,6 +218,17 @@ def speed_vs_field_change(
             color=DEVICE_COLOR,
             label="λ fit predicts the other mode",
         )
+    if wrong_way:
+        ax.plot(
+            [],
+            [],
+            ls="none",
+            marker="s",
+            ms=7,
+            mfc="none",
+            color=wrong_color,
+            label=f"wrong way ({wrong_mode}: {MODE_DIRECTION.get(wrong_mode, 'the other mode')})",
+        )
     for k, (label, at) in enumerate(flips):
         ax.plot(
             [at],
@@ -203,11 +242,9 @@ def speed_vs_field_change(
         )
     ax.axhline(0.0, color="#7f7f7f", lw=0.8)
     ax.axvline(0.0, color=DEVICE_COLOR, lw=1.0, ls=":", label="the device as specified")
-    lo, hi = ax.get_ylim()
-    ax.axhspan(min(lo, 0.0), 0.0, color=MODE_COLORS["pull"], alpha=0.07, lw=0)
-    ax.set_ylim(lo, hi)
+    ax.set_ylim(bottom=0.0)
     ax.set_xlabel("change of the field from its specified value  [%]")
-    ax.set_ylabel(f"mean slider speed  [{label_unit}]\n(< 0: wrong way)")
+    ax.set_ylabel(f"mean slider speed  [{label_unit}]")
     ax.legend(loc="best", framealpha=0.9, fontsize=7)
     return ax
 

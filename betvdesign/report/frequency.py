@@ -100,8 +100,9 @@ def _missing_text(sweep: FrequencySweep) -> str:
 
 
 def speeds(sd: SetDerivation, sweep: FrequencySweep) -> tuple[list[float | None], ...]:
-    """(speed with the roll-off, speed with the calibrated stroke held constant) [m/s]
-    along the impact direction at each swept frequency (None where Δs is missing)."""
+    """(velocity with the roll-off, with the calibrated stroke held constant) [m/s]
+    signed along the impact direction (+ push) at each swept frequency (None where Δs is
+    missing); the figure draws their magnitudes, coloured by mode."""
     sc = sd.scales
     cos = math.cos(sc.theta_rad)
     u_f = sc.amplitude_m(sweep.f_act_hz)
@@ -120,7 +121,8 @@ def speed_frequency(
     sc, p = sd.scales, sd.params
     f_v = sc.f_act_hz / p.varpi
     head = (
-        "Mean slider speed along the impact direction against the actuation frequency "
+        "Mean slider speed (a magnitude; each point in its mode's colour: push moves the "
+        "slider along the impacts, pull against them) against the actuation frequency "
         f"f_act (top axis ϖ = f_act/f_v, f_v = {format_si(f_v, 'Hz')}; design window "
         "shaded). "
     )
