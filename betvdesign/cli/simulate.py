@@ -281,8 +281,7 @@ def _print_text(out: dict[str, Any], periodic: bool) -> None:
             toward = ph["travel_direction"]
             if toward is not None:
                 line += (
-                    f"; mean speed {format_si(ph['speed_m_s'], 'm/s', digits=4)} "
-                    f"toward {toward}"
+                    f"; mean speed {format_si(ph['speed_m_s'], 'm/s', digits=4)} toward {toward}"
                 )
         if out["mode"] == "not driven":
             line += (
