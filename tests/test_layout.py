@@ -484,4 +484,3 @@ def test_extract_to_stdout(shin_gds, tmp_path):
     assert res.stdout == out.read_text("utf-8")
     assert "wrote" not in res.output and not (tmp_path / "-").exists()
     assert load_device_text(res.stdout).name == load_device(out).name
-
