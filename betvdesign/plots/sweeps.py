@@ -16,6 +16,7 @@ from betvdesign.plots.figure import (
     axes_or_new,
     dimensionless_twin,
     known_values,
+    legend_below,
 )
 
 
@@ -245,7 +246,7 @@ def speed_vs_field_change(
     ax.set_ylim(bottom=0.0)
     ax.set_xlabel("change of the field from its specified value  [%]")
     ax.set_ylabel(f"mean slider speed  [{label_unit}]")
-    ax.legend(loc="best", framealpha=0.9, fontsize=7)
+    legend_below(ax, ncol=3)
     return ax
 
 

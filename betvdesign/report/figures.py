@@ -300,7 +300,7 @@ def settling(key: str, sd: SetDerivation, an: SetAnalysis) -> FigureBlock:
         ),
         both,
         draw,
-        size=(7.0, 3.3),
+        size=(7.0, 3.8),  # the legends below the panels
         ncols=2,
     )
 
@@ -453,7 +453,7 @@ def robustness(key: str, sd: SetDerivation, an: SetAnalysis) -> FigureBlock:
         rung,
         an.robustness,
         draw,
-        size=(6.4, 3.8),
+        size=(6.4, 4.6),  # the legend below the axes
     )
 
 
