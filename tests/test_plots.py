@@ -272,3 +272,71 @@ def test_speed_vs_frequency_draws_magnitudes_in_the_modes_colours() -> None:
     np.testing.assert_allclose(by_colour[MODE_COLORS["pull"]].get_ydata(), [300.0])
     assert any("300 µm/s" in ln.get_label() for ln in ax.get_lines())
     assert "-300" not in " ".join(ln.get_label() for ln in ax.get_lines())
+
+
+def _extents(fig):
+    """The rendered extents [px] of the axes, their legends and every non-tick text."""
+    from matplotlib.axis import Tick
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.text import Text
+
+    FigureCanvasAgg(fig).draw()
+    r = fig.canvas.get_renderer()
+    ticks = {id(x) for tk in fig.findobj(Tick) for x in (tk.label1, tk.label2)}
+    texts = [
+        t.get_window_extent(r)
+        for t in fig.findobj(Text)
+        if id(t) not in ticks and t.get_visible() and t.get_text().strip()
+    ]
+    return r, texts
+
+
+@pytest.mark.parametrize(
+    "draw",
+    [
+        lambda ax: plots.speed_vs_field_change(
+            [(f"field {k}", [-10, 0, 10], [1e-3, 2e-3, -1e-3], [False] * 3) for k in range(7)],
+            flips=[("field 0", 5.0)],
+            wrong_mode="pull",
+            ax=ax,
+        ),
+        lambda ax: plots.slider_velocity(
+            np.linspace(0, 30, 300),
+            np.sin(np.linspace(0, 30, 300)),
+            cycle_mean=([0, 10, 20], [0.1, 0.2, 0.15]),
+            periodic_mean=0.15,
+            ax=ax,
+        ),
+        lambda ax: plots.orbit_plane(
+            np.sin(np.arange(12.0)), np.cos(np.arange(12.0)), ["slip", "stick"] * 6, ax=ax
+        ),
+        lambda ax: plots.slider_displacement(
+            np.linspace(0, 5, 50), -(np.linspace(0, 5, 50) ** 1.1), travel_um=-4.0, ax=ax
+        ),
+    ],
+)
+def test_legends_and_labels_stay_off_the_data_and_inside_the_figure(draw) -> None:
+    """Issue 32 item 13: no legend over the curves (the legend lies outside the axes, or,
+    for a small one kept inside, covers none of the drawn points) and no text clipped
+    by the figure's edge, measured on the rendered figure."""
+    fig, ax = plots.new_figure(6.4, 4.4)
+    draw(ax)
+    r, texts = _extents(fig)
+    page = fig.bbox
+    for e in texts:
+        assert page.x0 - 1 <= e.x0 and e.x1 <= page.x1 + 1 and page.y0 - 1 <= e.y0, e
+        assert e.y1 <= page.y1 + 1, e
+    legend = ax.get_legend().get_window_extent(r)
+    for line in ax.get_lines():
+        xy = line.get_xydata()
+        if not len(xy):
+            continue
+        px = ax.transData.transform(np.asarray(xy, float))
+        px = px[np.all(np.isfinite(px), axis=1)]
+        inside = (
+            (px[:, 0] > legend.x0)
+            & (px[:, 0] < legend.x1)
+            & (px[:, 1] > legend.y0)
+            & (px[:, 1] < legend.y1)
+        )
+        assert not inside.any(), line.get_label()
