@@ -29,7 +29,19 @@ from betvdesign.model.domain import (
     subresonance_level,
 )
 from betvdesign.output.presentation import MODE_COLORS, MODE_DIRECTION
-from betvdesign.plots.figure import DEVICE_COLOR, new_figure
+from betvdesign.plots.figure import DEVICE_COLOR, legend_below, new_figure
+from betvdesign.plots.marks import (
+    OUTSIDE_HATCH,
+    OUTSIDE_LABEL,
+    RESONANCE_HATCH,
+    RESONANCE_LABEL,
+    SUBRES_COLOR,
+    SUBRES_LABEL,
+    mark_resonance,
+    mark_subresonances,
+    mark_window,
+    speed_scale,
+)
 from betvdesign.plots.studies import save_figure
 
 __all__ = [
@@ -52,26 +64,6 @@ def _column(ax_info: Mapping[str, Any]) -> str:
 
 def _num(x: Any) -> float:
     return float("nan") if x is None or x == "" else float(x)
-
-
-#: Hatching of what lies outside the design window 0.5 ≤ ϖ < 2, and its legend text.
-OUTSIDE_HATCH = "///"
-OUTSIDE_LABEL = "outside the design window 0.5 ≤ ϖ < 2"
-#: Colour of the sub-resonance lines α·ϖ² = 1/n² (f_act = f_h/n).
-SUBRES_COLOR = "#404040"
-SUBRES_LABEL = "sub-resonance α·ϖ² = 1/n² (f_act = f_h/n)"
-#: Hatching of an undamped head's tangential resonance band, and its legend text.
-RESONANCE_HATCH = "xx"
-RESONANCE_LABEL = (
-    f"undamped head at |α·ϖ² − 1| < {TANGENTIAL_DETUNING:g}: speed (grey) not physical"
-)
-#: Legend below the axes, in columns (beside them it squeezed the plot; over it, the data).
-LEGEND = {"loc": "upper center", "bbox_to_anchor": (0.5, -0.16), "ncol": 2, "frameon": False}
-#: Least distance [axes fraction] between two sub-resonance labels (the deep ones crowd).
-LABEL_GAP = 0.05
-#: The speed axis turns symmetric-logarithmic when its largest speed exceeds this many
-#: times the operating region's (the upper quartile of the speeds shown) [-].
-SYMLOG_RATIO = 10.0
 
 
 def fieldsweep_figure(rows: Sequence[Mapping[str, Any]], summary: Mapping[str, Any]) -> Figure:
@@ -111,7 +103,8 @@ def speed_with_modes(
     the range outside the design window hatched, the sub-resonances α·ϖ² = 1/n² as lines
     labelled f_h/n, and an undamped head's tangential-resonance band hatched with its
     speeds grey and left out of the axis range. The speed axis is symmetric-logarithmic
-    when resonance spikes would flatten the operating region (:data:`SYMLOG_RATIO`).
+    when resonance spikes would flatten the operating region
+    (:func:`betvdesign.plots.marks.speed_scale`).
 
     Over 80 lines on purpose: one axes, its bands, marks and curve drawn in order (the
     bands under the curve, the limits from the curve); splitting it would pass the axes'
@@ -128,46 +121,17 @@ def speed_with_modes(
     for fl in summary.get("flips", []):
         ax.axvline(fl["at"], color="0.3", lw=0.6, ls=":")
     handles: list[Any] = []
-    inside = marks.get("window")
-    if inside is not None:
-        outside = _complement(float(x[0]), float(x[-1]), inside)
-        for a, b in outside:
-            ax.axvspan(a, b, facecolor="none", edgecolor="0.55", hatch=OUTSIDE_HATCH, lw=0)
-        if outside:
-            handles.append(Patch(facecolor="none", edgecolor="0.55", hatch=OUTSIDE_HATCH))
-            handles[-1].set_label(OUTSIDE_LABEL)
-    grey = np.zeros(len(x), dtype=bool)
-    for a, b in marks.get("undamped_resonance", []):
-        ax.axvspan(a, b, facecolor="0.92", edgecolor="0.45", hatch=RESONANCE_HATCH, lw=0)
-        grey |= (x >= a) & (x <= b)
-    if marks.get("undamped_resonance"):
-        handles.append(Patch(facecolor="0.92", edgecolor="0.45", hatch=RESONANCE_HATCH))
-        handles[-1].set_label(RESONANCE_LABEL + " (grey)")
+    if marks.get("window") is not None:
+        handles += mark_window(ax, float(x[0]), float(x[-1]), marks["window"])
+    grey, more = mark_resonance(ax, marks.get("undamped_resonance", []), x)
+    handles += more
     shown = np.where(grey, np.nan, v)
     ax.plot(x, shown, color="k", marker=".", ms=3)
     if grey.any():
         ax.plot(x[grey], v[grey], color="0.6", marker=".", ms=3, lw=0.8)
-    _speed_scale(ax, shown)
-    labelled = -np.inf
-    span = float(x[-1] - x[0]) or 1.0
-    for sr in sorted(marks.get("subresonances", []), key=lambda m: -m["at"]):
-        ax.axvline(sr["at"], color=SUBRES_COLOR, lw=0.7, ls="-.")
-        if abs(labelled - sr["at"]) < LABEL_GAP * span:
-            continue  # the deeper orders crowd toward low frequency: lines only
-        labelled = sr["at"]
-        ax.annotate(
-            "f_h" if sr["n"] == 1 else f"f_h/{sr['n']}",
-            (sr["at"], 1.0),
-            xycoords=("data", "axes fraction"),
-            xytext=(2, -2),
-            textcoords="offset points",
-            ha="left",
-            va="top",
-            fontsize=6.5,
-            color=SUBRES_COLOR,
-        )
-    if marks.get("subresonances"):
-        handles.append(Line2D([], [], color=SUBRES_COLOR, lw=0.7, ls="-.", label=SUBRES_LABEL))
+    speed_scale(ax, shown)
+    at = [(m["n"], m["at"]) for m in marks.get("subresonances", [])]
+    handles += mark_subresonances(ax, at, float(x[-1] - x[0]))
     ax.axvline(f["device_value"], color=DEVICE_COLOR, lw=1.0, ls="--")
     ax.set_xlim(float(x[0]), float(x[-1]))
     ax.set_xlabel(_label(f))
@@ -183,35 +147,7 @@ def speed_with_modes(
         for m in seen
     ]
     device = Patch(color=DEVICE_COLOR, label=f"device ({f['device_value']:g} {f['unit']})")
-    ax.legend(handles=[*mode_handles, *handles, device], fontsize=6.5, **LEGEND)
-
-
-def _complement(
-    lo: float, hi: float, parts: Sequence[Sequence[float]]
-) -> list[tuple[float, float]]:
-    """The parts of [lo, hi] outside the sorted, disjoint intervals ``parts``."""
-    out, at = [], lo
-    for a, b in parts:
-        if a > at:
-            out.append((at, float(a)))
-        at = max(at, float(b))
-    if at < hi:
-        out.append((at, hi))
-    return out
-
-
-def _speed_scale(ax: Any, v: np.ndarray) -> None:
-    """Linear speed axis from 0, or symmetric-logarithmic when the largest speed is more
-    than :data:`SYMLOG_RATIO` times the upper quartile (linear below that quartile)."""
-    known = v[np.isfinite(v)]
-    if known.size == 0:
-        return
-    top, q = float(known.max()), float(np.percentile(known, 75))
-    if q > 0.0 and top > SYMLOG_RATIO * q:
-        ax.set_yscale("symlog", linthresh=q)
-        ax.set_ylim(0.0, top * 1.5)
-    else:
-        ax.set_ylim(0.0, top * 1.08 if top > 0 else 1.0)
+    legend_below(ax, handles=[*mode_handles, *handles, device], fontsize=6.5)
 
 
 def mode_map(rows: Sequence[Mapping[str, Any]], summary: Mapping[str, Any], *, ax: Any) -> None:
@@ -265,7 +201,7 @@ def mode_map(rows: Sequence[Mapping[str, Any]], summary: Mapping[str, Any], *, a
     handles.append(Patch(facecolor="none", edgecolor="k", ls="--", label=lam_label))
     handles += marks
     handles.append(Patch(color=DEVICE_COLOR, label="device"))
-    ax.legend(handles=handles, fontsize=6.5, **LEGEND)
+    legend_below(ax, handles=handles, fontsize=6.5)
     ax.set_title(f"{summary.get('name', '')} exact mode (travel answer)")
 
 

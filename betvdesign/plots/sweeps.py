@@ -3,12 +3,14 @@ actuator's thermal roll-off), and against changes of the designer's fields (robu
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
+from typing import Any
 
 import numpy as np
 from matplotlib.axes import Axes
 
-from betvdesign.model.domain import VARPI_WINDOW
+from betvdesign.model.domain import SUBRESONANCE_ORDERS, TANGENTIAL_DETUNING, VARPI_WINDOW
 from betvdesign.output.presentation import MODE_COLORS, MODE_DIRECTION
 from betvdesign.output.siformat import format_si, scale_for
 from betvdesign.plots.figure import (
@@ -18,6 +20,7 @@ from betvdesign.plots.figure import (
     known_values,
     legend_below,
 )
+from betvdesign.plots.marks import mark_resonance, mark_subresonances, mark_window, speed_scale
 
 
 def speed_vs_voltage(
@@ -65,6 +68,8 @@ def speed_vs_frequency(
     cutoff_hz: float | None = None,
     rolloff: bool = True,
     operating: tuple[float, float] | None = None,
+    alpha: float | None = None,
+    undamped: bool = False,
     ax: Axes | None = None,
 ) -> Axes:
     """Mean slider speed [m/s, SI prefix by magnitude] against actuation frequency.
@@ -74,9 +79,14 @@ def speed_vs_frequency(
     roll-off (solid) and with the calibrated stroke held constant (dashed, the idealised
     model). ``velocity_m_s`` and ``constant_stroke_m_s`` are signed along the impacts
     (+ push, − pull); None: no periodic orbit there (crosses on zero). Top axis
-    ϖ = f_act/f_v; the design window 0.5 ≤ ϖ < 2 is shaded, the cut-off f_c drawn where it
-    falls inside the plot; ``operating``: (f_act [Hz], velocity [m/s]) of the device.
-    ``rolloff`` False: the device gives no cut-off, one solid curve (the stroke constant).
+    ϖ = f_act/f_v; outside the design window 0.5 ≤ ϖ < 2 hatched, the cut-off f_c drawn
+    where it falls inside the plot; ``operating``: (f_act [Hz], velocity [m/s]) of the
+    device. ``rolloff`` False: the device gives no cut-off, one solid curve (the stroke
+    constant). ``alpha`` (α = k_v/k_h [-], fixed along the sweep): the sub-resonances
+    f_act = f_h/n (f_h = f_v/√α) marked, and with ``undamped`` (ζ_h = 0) the band
+    |α·ϖ² − 1| < 0.1 cross-hatched, its speeds grey and left out of the speed axis
+    (:mod:`betvdesign.plots.marks`), which turns symmetric-logarithmic when spikes would
+    flatten the operating region.
 
     Over 80 lines on purpose: one figure, its curves, bands, the design window, the roll-off
     and the device's marker drawn on one axes; splitting it would pass the axes' state
@@ -88,8 +98,19 @@ def speed_vs_frequency(
     v = np.abs(signed)
     v0 = np.abs(np.array([x if x is not None else np.nan for x in constant_stroke_m_s], float))
     kf, f_unit = scale_for(float(f.max()) if f.size else 0.0, "Hz")
-    top = max(float(np.abs(v[ok]).max(initial=0.0)), float(np.nanmax(np.abs(v0), initial=0.0)))
+    f_h = f_v_hz / math.sqrt(alpha) if alpha else None
+    grey = np.zeros(len(f), dtype=bool)
+    extra: list[Any] = []  # legend handles of the marks
+    if f_h is not None and undamped:
+        d = TANGENTIAL_DETUNING
+        a, b = max(f_h * math.sqrt(1.0 - d), f.min()), min(f_h * math.sqrt(1.0 + d), f.max())
+        grey, extra = mark_resonance(ax, [(a * kf, b * kf)] if a < b else [], f * kf)
+    spikes = np.where(grey & ok, v, np.nan)
+    v, v0 = np.where(grey, np.nan, v), np.where(grey, np.nan, v0)
+    top = max(float(np.nanmax(v[ok], initial=0.0)), float(np.nanmax(v0, initial=0.0)))
     kv, v_unit = scale_for(top, "m/s")
+    if grey.any():
+        ax.plot(f * kf, spikes * kv, ls="none", marker="o", ms=3, color="0.6")
     if rolloff:
         ax.plot(
             f[ok] * kf,
@@ -107,10 +128,10 @@ def speed_vs_frequency(
         label="with the thermal roll-off of the stroke" if rolloff else "stroke u constant",
     )
     for mode, side in (("push", signed > 0), ("pull", signed < 0)):
-        if (ok & side).any():
+        if (ok & side & ~grey).any():
             ax.plot(
-                f[ok & side] * kf,
-                v[ok & side] * kv,
+                f[ok & side & ~grey] * kf,
+                v[ok & side & ~grey] * kv,
                 ls="none",
                 marker="o",
                 ms=3.5,
@@ -139,13 +160,13 @@ def speed_vs_frequency(
             f"{format_si(abs(operating[1]), 'm/s')}",
         )
     lo, hi = ax.get_xlim()
-    ax.axvspan(
-        max(lo, VARPI_WINDOW[0] * f_v_hz * kf),
-        min(hi, VARPI_WINDOW[1] * f_v_hz * kf),
-        color=MODE_COLORS["push"],
-        alpha=0.06,
-        lw=0,
-    )
+    window = [(VARPI_WINDOW[0] * f_v_hz * kf, VARPI_WINDOW[1] * f_v_hz * kf)]
+    extra += mark_window(ax, lo, hi, window)
+    if f_h is not None:
+        order = range(1, SUBRESONANCE_ORDERS + 1)
+        at = [(n, f_h / n * kf) for n in order if lo <= f_h / n * kf <= hi]
+        extra += mark_subresonances(ax, at, hi - lo)
+    speed_scale(ax, np.concatenate([v[ok], v0[ok]]) * kv)
     if cutoff_hz is not None and lo <= cutoff_hz * kf <= hi:
         ax.axvline(
             cutoff_hz * kf,
@@ -155,11 +176,10 @@ def speed_vs_frequency(
             label=f"thermal cut-off f_c = {format_si(cutoff_hz, 'Hz')}",
         )
     ax.set_xlim(lo, hi)
-    ax.axhline(0.0, color="#7f7f7f", lw=0.5)
     ax.set_xlabel(f"actuation frequency f_act  [{f_unit}]")
     ax.set_ylabel(f"mean slider speed  [{v_unit}]")
     dimensionless_twin(ax, "x", f_v_hz * kf, "ϖ = f_act/f_v  [-]")
-    ax.legend(loc="best", framealpha=0.9, fontsize=7)
+    legend_below(ax, handles=ax.get_legend_handles_labels()[0] + extra)
     return ax
 
 

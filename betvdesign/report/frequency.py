@@ -123,8 +123,15 @@ def speed_frequency(
     head = (
         "Mean slider speed (a magnitude; each point in its mode's colour: push moves the "
         "slider along the impacts, pull against them) against the actuation frequency "
-        f"f_act (top axis ϖ = f_act/f_v, f_v = {format_si(f_v, 'Hz')}; design window "
-        "shaded). "
+        f"f_act (top axis ϖ = f_act/f_v, f_v = {format_si(f_v, 'Hz')}; outside the design "
+        "window hatched; dash-dotted: the sub-resonances α·ϖ² = 1/n², f_act = f_h/n with "
+        f"f_h = f_v/√α = {format_si(f_v / math.sqrt(p.alpha), 'Hz')}"
+        + (
+            "; cross-hatched, speeds grey: the undamped head's tangential resonance "
+            "|α·ϖ² − 1| < 0.1, where the idealised speed is not the device's). "
+            if p.zeta_h == 0.0
+            else "). "
+        )
     )
     if sc.has_rolloff:
         caption = head + (
@@ -177,6 +184,8 @@ def speed_frequency(
             cutoff_hz=sc.cutoff_hz if sc.has_rolloff else None,
             rolloff=sc.has_rolloff,
             operating=(sc.f_act_hz, sc.speed_m_s(_device_ds(piece.value, p.varpi, f_v))),
+            alpha=p.alpha,
+            undamped=p.zeta_h == 0.0,
             ax=ax,
         )
 
