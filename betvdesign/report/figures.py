@@ -122,8 +122,9 @@ def pushpull(key: str, sd: SetDerivation) -> FigureBlock:
         f"κ = {p.kappa:.3g}, β = {p.beta:.3g}: f_h² = f_act² + κ·c·f_v² with "
         "c = (1/β − β)/(22(κ+1)) (MODEL.md, eq. 9 rewritten in frequencies). "
         f"λ = {p.lam:.4g} predicts {p.lambda_mode} mode. Below the curve λ < 1 (push), "
-        "above λ > 1 (pull); the dash-dotted lines bound the vertical design window "
-        "0.5 ≤ ϖ < 2 (top axis: ϖ = f_act/f_v)."
+        "above λ > 1 (pull); hatched: outside the vertical design window 0.5 ≤ ϖ < 2 (top "
+        "axis: ϖ = f_act/f_v); dash-dotted: the sub-resonances α·ϖ² = 1/n², the lines "
+        "f_h = n·f_act (n = 1 to 4), where the exact mode can flip against the fit."
     )
 
     def draw(ax: Any) -> None:
@@ -139,6 +140,7 @@ def pushpull(key: str, sd: SetDerivation) -> FigureBlock:
         ("lambda", "the figure places the device against the λ fit's own boundary"),
         Piece(value=True),
         draw,
+        size=(6.4, 4.0),  # the legend below the axes
     )
 
 
