@@ -220,3 +220,42 @@ def test_nearest_subresonance_by_hand():
     assert nearest_subresonance([0.5]) is None
     assert nearest_subresonance([0.105, 0.095]) == 3
     assert nearest_subresonance([0.7, 0.95]) == 1
+
+
+def test_sweep_figures_keep_every_text_inside_and_the_legend_off_the_axes():
+    """Issue 32 item 13: the title, labels and legend of both sweep figures lie inside the
+    figure and the legend outside the axes (a legend beside the axes clipped the title),
+    measured on the rendered figure."""
+    from matplotlib.axis import Tick
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.text import Text
+
+    from betvdesign.plots.fieldsweep import fieldsweep_figure
+
+    xs = np.linspace(1.0, 3.0, 9)
+    one = [
+        {"f [kHz]": x, "speed_m_s": 1e-3, "exact_mode": "pull", "varpi": x / 4, "alpha": 0.3}
+        for x in xs
+    ]
+    f = {"field": "f", "column": "f [kHz]", "unit": "kHz", "device_value": 2.0, "points": 9}
+    marks = {"window": [[2.0, 3.0]], "subresonances": [{"n": 3, "at": 2.4}]}
+    g = {"field": "g", "column": "g", "unit": "", "device_value": 0.3, "points": 3}
+    two = [{**r, "g": a, "alpha": a, "lam": 2.0} for r in one for a in (0.2, 0.3, 0.4)]
+    for rows, summary in (
+        (one, {"name": "a_long_device_name", "fields": [f], "flips": [], "marks": marks}),
+        (two, {"name": "a_long_device_name", "fields": [f, g]}),
+    ):
+        fig = fieldsweep_figure(rows, summary)
+        FigureCanvasAgg(fig).draw()
+        r = fig.canvas.get_renderer()
+        ticks = {id(x) for tk in fig.findobj(Tick) for x in (tk.label1, tk.label2)}
+        page = fig.bbox
+        for t in fig.findobj(Text):
+            if id(t) in ticks or not t.get_visible() or not t.get_text().strip():
+                continue
+            e = t.get_window_extent(r)
+            assert page.x0 - 1 <= e.x0 and e.x1 <= page.x1 + 1, t.get_text()
+            assert page.y0 - 1 <= e.y0 and e.y1 <= page.y1 + 1, t.get_text()
+        (ax,) = fig.axes
+        legend, box = ax.get_legend().get_window_extent(r), ax.get_window_extent(r)
+        assert legend.y1 <= box.y0 or legend.x0 >= box.x1, (legend, box)
