@@ -70,20 +70,21 @@ def test_the_map_names_the_nearest_flip_and_agrees_with_the_check(pull_sweep):
     m = compute(spec, 0, sd.params.varpi, Piece(value=sweep), opts)
     assert m.summary["points"] == 25 == len(m.rows)
     fa, fb = (a["field"] for a in m.summary["fields"])
+    cols = [a["column"] for a in m.summary["fields"]]  # "field [unit]"
     units = [a["unit"] for a in m.summary["fields"]]
     seen = set()
     for row in m.rows[::3]:
         if row["exact_mode"] not in ("push", "pull"):
             continue
         changed = spec
-        for f, u in zip((fa, fb), units, strict=True):
-            changed = changed.replace(in_set(f, 0), _quantity(row[f], u))
+        for f, c, u in zip((fa, fb), cols, units, strict=True):
+            changed = changed.replace(in_set(f, 0), _quantity(row[c], u))
         (s,) = check(changed, advice=False).out.sets
         # the map is the periodic orbit's; the check quotes the travel's answer when
         # the slider settles slowly (basis "crossing"), compare where it quotes the orbit
         if s.basis != "periodic":
             continue
-        assert s.mode == row["exact_mode"], (row[fa], row[fb])
+        assert s.mode == row["exact_mode"], (row[cols[0]], row[cols[1]])
         seen.add(row["exact_mode"])
     assert seen
 
