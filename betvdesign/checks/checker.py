@@ -36,7 +36,12 @@ from betvdesign.checks.adequacy import DeviceAdequacy, SetAdequacy, assess
 from betvdesign.checks.coupled import coupled_rules
 from betvdesign.checks.process_rules import process_rules
 from betvdesign.checks.rule import RuleResult, orbit_mode, verdict
-from betvdesign.checks.rules import MARGIN_CORNERS, evaluate_device, time_to_cross_s
+from betvdesign.checks.rules import (
+    MARGIN_CORNERS,
+    corner_label,
+    evaluate_device,
+    time_to_cross_s,
+)
 from betvdesign.checks.thermal_rules import thermal_rules
 from betvdesign.checks.travel import TravelAnswer, travel_answer, travel_decides
 from betvdesign.checks.view import DeviceView, RuleFilter
@@ -260,8 +265,7 @@ def corner_params(p: ModelParams) -> dict[str, ModelParams]:
     """
     out = {}
     for fw, fa in MARGIN_CORNERS:
-        label = f"ϖ×{fw:g}" if fa == 1.0 else f"α×{fa:g}"
-        out[label] = replace(p, varpi=p.varpi * fw, alpha=p.alpha * fa)
+        out[corner_label(fw, fa)] = replace(p, varpi=p.varpi * fw, alpha=p.alpha * fa)
     return out
 
 

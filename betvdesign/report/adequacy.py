@@ -129,9 +129,10 @@ def figure(key: str, sd: SetDerivation, piece: Piece[SetAdequacy], tol: float) -
     """Mode and mean speed against Q (left) and e (right) around the device."""
     a = piece.value
     caption = (
-        "Mean slider speed (signed along the impact direction, > 0 push) of the exact "
-        "periodic orbit against the head's quality factor Q (left; one Q for the normal and "
-        "the tangential direction, log scale) and against the coefficient of restitution e "
+        "Mean slider speed (a magnitude; the colour gives the mode: push along the impacts, "
+        "pull against them) of the exact periodic orbit against the head's quality factor "
+        "Q (left; one Q for the normal and the tangential direction, log scale) and "
+        "against the coefficient of restitution e "
         "(right); each point coloured by its mode (grey: none, the slider is not driven "
         "because no contact recurs; crosses: no periodic orbit). Dashed: the idealised "
         "model (Q = ∞, e = 0); star: the device; dotted: where the mode flips (bisected)."
@@ -202,6 +203,6 @@ def figure(key: str, sd: SetDerivation, piece: Piece[SetAdequacy], tol: float) -
         ladder(sd.params, "delta_s", "periodic", tol=tol),
         piece,
         draw,
-        size=(7.0, 3.3),
+        size=(7.0, 3.8),  # the legends below the panels
         ncols=2,
     )

@@ -301,7 +301,8 @@ def design_check(
 ) -> CheckResult:
     """The design check of ``betv check``, fed the report's periodic orbits and vertical
     motions instead of solving them again (the mode-margin corners are solved here), and
-    the report's model-adequacy study (``adequacy_result``: a DeviceAdequacy, or False)."""
+    the report's model-adequacy study (``adequacy_result``: a DeviceAdequacy, or False),
+    with the check's advice (the fix texts of ``betv check``)."""
     orbits = {sd.params: an.periodic for sd, an, _ in per_set}
     verticals = {
         (sd.params.varpi, sd.params.zeta_v, sd.params.restitution): an.vertical
@@ -318,7 +319,9 @@ def design_check(
         piece = verticals[(varpi, zeta_v, restitution)]
         return piece.value if piece.ok else None
 
-    options = CheckOptions(advice=False, adequacy=adequacy_result is not False)
+    # The advice of ``betv check`` (studies.fix.advise): the report's fix texts are the
+    # check's, a concrete change ("raise drive.frequency 2 kHz -> 2.149 kHz").
+    options = CheckOptions(advice=True, adequacy=adequacy_result is not False)
     return run_check(
         der,
         options,

@@ -102,8 +102,9 @@ def _missing_text(sweep: FrequencySweep) -> str:
 
 
 def speeds(sd: SetDerivation, sweep: FrequencySweep) -> tuple[list[float | None], ...]:
-    """(speed with the roll-off, speed with the calibrated stroke held constant) [m/s]
-    along the impact direction at each swept frequency (None where Δs is missing)."""
+    """(velocity with the roll-off, with the calibrated stroke held constant) [m/s]
+    signed along the impact direction (+ push) at each swept frequency (None where Δs is
+    missing); the figure draws their magnitudes, coloured by mode."""
     sc = sd.scales
     cos = math.cos(sc.theta_rad)
     u_f = sc.amplitude_m(sweep.f_act_hz)
@@ -122,9 +123,17 @@ def speed_frequency(
     sc, p = sd.scales, sd.params
     f_v = sc.f_act_hz / p.varpi
     head = (
-        "Mean slider speed along the impact direction against the actuation frequency "
-        f"f_act (top axis ϖ = f_act/f_v, f_v = {format_si(f_v, 'Hz')}; design window "
-        "shaded). "
+        "Mean slider speed (a magnitude; each point in its mode's colour: push moves the "
+        "slider along the impacts, pull against them) against the actuation frequency "
+        f"f_act (top axis ϖ = f_act/f_v, f_v = {format_si(f_v, 'Hz')}; outside the design "
+        "window hatched; dash-dotted: the sub-resonances α·ϖ² = 1/n², f_act = f_h/n with "
+        f"f_h = f_v/√α = {format_si(f_v / math.sqrt(p.alpha), 'Hz')}"
+        + (
+            "; cross-hatched, speeds grey: the undamped head's tangential resonance "
+            "|α·ϖ² − 1| < 0.1, where the idealised speed is not the device's). "
+            if p.zeta_h == 0.0
+            else "). "
+        )
     )
     drawn = sd.stroke is not None and bool(sc.thermal_modes)
     rolls = sc.has_rolloff or drawn
@@ -178,6 +187,8 @@ def speed_frequency(
             cutoff_hz=cutoff if rolls else None,
             rolloff=rolls,
             operating=(sc.f_act_hz, sc.speed_m_s(_device_ds(piece.value, p.varpi, f_v))),
+            alpha=p.alpha,
+            undamped=p.zeta_h == 0.0,
             ax=ax,
             **({"constant_label": "stroke held at its f_act value (no roll-off)"} if drawn else {}),
         )

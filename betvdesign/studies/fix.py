@@ -873,8 +873,6 @@ def with_advice(check: Any, answers: Sequence[FieldAnswer]) -> Any:
 
 # --- robustness under fabrication spread -------------------------------------------------
 
-SPREAD_RULES = "frequency window, tangential resonance, exact mode and target speed"
-
 
 def robust_probability(
     spec: Any,
@@ -889,8 +887,10 @@ def robust_probability(
     P(pass) under the spreads ``items`` (``betv tolerance`` syntax): the share of a
     seeded Monte Carlo of ``n`` samples in which every set passes every error rule —
     the frequency window 0.5 ≤ ϖ < 2, the tangential resonance |a·ϖ² − 1| ≥ 0.1, the
-    exact mode (the intended one) and the target speed when given. Validates the
-    spreads against ``spec`` now (:class:`UsageError`).
+    exact mode (the intended one) and the target speed when given
+    (:func:`~betvdesign.studies.sampling.passes_spread_rules`, the count ``betv
+    tolerance`` prints too). Validates the spreads against ``spec`` now
+    (:class:`UsageError`).
     """
     from betvdesign.studies.sampling import draw, nominal_values
     from betvdesign.studies.tolerance import parse_tolerance
@@ -900,13 +900,7 @@ def robust_probability(
 
     def probability(candidate: Any) -> float:
         from betvdesign.dynamics import periodic_orbit as solver
-        from betvdesign.model.domain import (
-            TANGENTIAL_DETUNING,
-            in_window,
-            mode_of,
-            resonance_detuning,
-        )
-        from betvdesign.studies.sampling import check_sample, derive_all
+        from betvdesign.studies.sampling import check_sample, derive_all, passes_spread_rules
 
         nominal = nominal_values(candidate, tols)
         x = draw(tols, nominal, n, seed)
@@ -924,16 +918,13 @@ def robust_probability(
                 continue  # an unphysical draw counts as a failure
             solved: dict[Any, Any] = {}  # mirrored sets: one orbit
             for (p, length_m, f_act), aset in zip(derived, sets, strict=True):
-                if not in_window(p.varpi) or resonance_detuning(p)[1] < TANGENTIAL_DETUNING:
-                    break
                 if p not in solved:
                     solved[p] = solver(p)
                 po = solved[p]
-                if not po.success or mode_of(po.delta_s) != aset.intended_mode:
+                ds = po.delta_s if po.success else None
+                v = None if ds is None else ds * length_m * f_act
+                if not passes_spread_rules(p, ds, aset.intended_mode, v, target_speed_m_s):
                     break
-                if target_speed_m_s is not None:
-                    if abs(po.delta_s * length_m * f_act) < target_speed_m_s:
-                        break
             else:
                 good += 1
         return good / n

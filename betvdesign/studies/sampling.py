@@ -221,3 +221,64 @@ def params_of(derived: Mapping[str, Any], j: int | None = None) -> ModelParams:
     """
     pick = (lambda v: v) if j is None else (lambda v: v[j])
     return ModelParams(**{k: float(pick(derived[k])) for k in PARAM_FIELDS})
+
+
+def spread_rules(target: bool = True) -> str:
+    """The error rules a sample's set must pass to count in P(pass), in words.
+
+    ``betv tolerance`` and ``betv fix --spread`` count it alike
+    (:func:`passes_spread_rules`); ``target``: with the target speed (``betv fix
+    --target-speed``; ``betv tolerance`` takes none).
+    """
+    names = ["frequency window", "tangential resonance", "exact mode"]
+    names += ["target speed"] if target else []
+    return ", ".join(names[:-1]) + " and " + names[-1]
+
+
+#: :func:`spread_rules` with the target speed.
+SPREAD_RULES = spread_rules()
+
+
+def passes_spread_rules(
+    p: ModelParams,
+    delta_s: float | None,
+    intended: str,
+    speed_m_s: float | None = None,
+    target_speed_m_s: float | None = None,
+) -> bool:
+    """Whether one set of one Monte Carlo sample passes: the one count of P(pass).
+
+    Parameters
+    ----------
+    p : ModelParams
+        The sample's parameters [-].
+    delta_s : float or None
+        Δs of its exact periodic orbit [-] (None: no orbit).
+    intended : str
+        The set's intended mode.
+    speed_m_s : float, optional
+        Its speed [m/s] (needed with a target).
+    target_speed_m_s : float, optional
+        The target speed [m/s].
+
+    Returns
+    -------
+    bool
+        The frequency window 0.5 ≤ ϖ < 2 and the tangential resonance
+        |a·ϖ² − 1| ≥ 0.1 hold, the exact mode is the intended one and, with a target,
+        the speed reaches it (:data:`SPREAD_RULES`).
+    """
+    from betvdesign.model.domain import (
+        TANGENTIAL_DETUNING,
+        in_window,
+        mode_of,
+        resonance_detuning,
+    )
+
+    if not in_window(p.varpi) or resonance_detuning(p)[1] < TANGENTIAL_DETUNING:
+        return False
+    if delta_s is None or mode_of(delta_s) != intended:
+        return False
+    return target_speed_m_s is None or (
+        speed_m_s is not None and abs(speed_m_s) >= target_speed_m_s
+    )
