@@ -26,9 +26,10 @@ from betvdesign.cli import app
 from betvdesign.errors import SpecError
 from betvdesign.explore.compute import evaluate
 from betvdesign.explore.design import Design, free_name, set_path
-from betvdesign.explore.fields import current_value, designer_fields
-from betvdesign.nondim.device import derive
+from betvdesign.explore.fields import SLIDER_STEPS, current_value, designer_fields
+from betvdesign.nondim.device import derive, derive_refusing
 from betvdesign.output.presentation import MODE_COLORS
+from betvdesign.spec.limits import MAX_BEAM_COUNT
 from betvdesign.spec.loader import load_device, load_device_text
 from betvdesign.studies.fieldmap import MAP_MODES, FieldAxis, map_rows, mode_map
 
@@ -205,7 +206,13 @@ def test_controls_cover_the_designers_fields_with_ranges_the_spec_accepts() -> N
         for x in (c.lo, c.hi):
             value = c.file_value(c.text(x))
             spec.replace(c.field, value)  # raises when the spec refuses the slider's end
-    assert fields["drive.voltage"].hi <= 10.0  # the measured calibration ends at 10 V
+    # the voltage slider spans the measured calibration, 0 V to 10 V (the file's points),
+    # from its first position above 0 V (the spec takes only V > 0)
+    volt = fields["drive.voltage"]
+    assert volt.hi == 10.0 and not volt.log
+    assert 0.0 < volt.lo <= (volt.hi - 0.0) / SLIDER_STEPS * (1 + 1e-12)
+    derive_refusing(spec.replace("drive.voltage", volt.file_value(volt.text(volt.lo))), "x")
+    assert fields["slider.beam_count"].hi == MAX_BEAM_COUNT  # the spec's own limit
     assert fields["drive.frequency"].log and not fields["contact.impact_angle"].log
 
 
