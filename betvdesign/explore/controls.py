@@ -48,9 +48,7 @@ from betvdesign.explore.views import error_html
 
 #: The class of a text box whose value was refused, and how it looks.
 REFUSED = "betv-refused"
-REFUSED_CSS = InlineStyleSheet(
-    css=f":host(.{REFUSED}) input {{border: 2px solid #cf222e; background-color: #fff0f0}}"
-)
+REFUSED_CSS = f":host(.{REFUSED}) input {{border: 2px solid #cf222e; background-color: #fff0f0}}"
 
 #: A slider position as people read it: ``%.4g`` of the value (10**position on a log
 #: slider) and the unit, as :meth:`FieldControl.shown` writes it in Python.
@@ -219,7 +217,7 @@ class ControlPanel:
             value=c.text(c.value),
             width=115,
             css_classes=[*css, "betv-text"],
-            stylesheets=[REFUSED_CSS],
+            stylesheets=[InlineStyleSheet(css=REFUSED_CSS)],  # a model of this page's own
         )
         widget.on_change("value", self.guard(partial(self._on_slider, c)))
         text.on_change("value", self.guard(partial(self._on_text, c)))

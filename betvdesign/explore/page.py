@@ -236,6 +236,7 @@ class ExplorePage:
             "height": 300,
             "toolbar_location": None,
             "visible": False,
+            "css_classes": ["betv-orbit-plot"],
         }
         self.phase_fig = figure(
             title="Head gap and its rate (one period)",
@@ -561,10 +562,11 @@ class ExplorePage:
             return  # no plots: the note says why
         basis = s.get("basis") if mode_decided(ev.stage) else None
         self.orbit_note.text = basis_html(basis, s.get("mode"))
-        crossing = basis == "crossing"
-        tail = " (not the verdict's basis)" if crossing else ""
-        self.phase_fig.title.text = f"Head gap and its rate (one period of the orbit){tail}"
-        self.disp_fig.title.text = f"Slider position on the periodic orbit{tail}"
+        self.disp_fig.title.text = (
+            "Periodic orbit (verdict: crossing from rest)"
+            if basis == "crossing"
+            else "Slider position on the periodic orbit"
+        )
 
     def _status(self) -> None:
         waiting = list(self.pending.values()) + (["map"] if self.map.busy else [])

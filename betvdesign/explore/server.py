@@ -76,13 +76,15 @@ def _foreign_host_handler() -> Any:
     class ForeignHost(RequestHandler):
         """403 for every method and path: the Host header names no local host."""
 
+        def initialize(self, port: int) -> None:
+            self.port = port
+
         def prepare(self) -> None:
             self.set_status(403)
             self.set_header("Content-Type", "text/plain; charset=utf-8")
             self.finish(
                 f"betv explore: Host {self.request.host!r} refused; open the page at "
-                f"http://{ADDRESS}:{self.request.host.rsplit(':', 1)[-1]}/ "
-                f"(hosts served: {', '.join(LOCAL_HOSTS)})\n"
+                f"http://{ADDRESS}:{self.port}/ (hosts served: {', '.join(LOCAL_HOSTS)})\n"
             )
 
     return ForeignHost
@@ -93,6 +95,8 @@ def _bokeh_server(app: Any, port: int, extra_patterns: list[Any]) -> Any:
     the module docstring): Bokeh's own parts (its Tornado application, HTTP server and
     :class:`bokeh.server.server.BaseServer`) assembled as Bokeh documents it, with the
     host rule ahead of every route."""
+    from bokeh.application import Application
+    from bokeh.application.handlers.function import FunctionHandler
     from bokeh.server.server import BaseServer
     from bokeh.server.tornado import BokehTornado
     from bokeh.server.util import bind_sockets, create_hosts_allowlist
@@ -104,12 +108,12 @@ def _bokeh_server(app: Any, port: int, extra_patterns: list[Any]) -> Any:
     # 127.0.0.1 (the only address bound: a page at [::1] cannot reach it)
     origins = [f"{h}:{port}" for h in LOCAL_HOSTS if not h.startswith("[")]
     tornado_app = BokehTornado(
-        {"/": app},
+        {"/": Application(FunctionHandler(app))},
         extra_websocket_origins=create_hosts_allowlist(origins, port),
         absolute_url=f"http://{ADDRESS}:{port}",
         extra_patterns=extra_patterns,
     )
-    tornado_app.add_handlers(FOREIGN_HOST, [(r".*", _foreign_host_handler())])
+    tornado_app.add_handlers(FOREIGN_HOST, [(r".*", _foreign_host_handler(), {"port": port})])
     http = HTTPServer(tornado_app, xheaders=False)
     http.add_sockets(sockets)
     return BaseServer(IOLoop.current(), tornado_app, http)
