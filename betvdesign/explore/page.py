@@ -409,7 +409,10 @@ class ExplorePage:
                 for step in steps:
                     if isinstance(step, str):  # undo / reset: every control shows the design
                         with self.dlock:
-                            self.design.undo() if step == "undo" else self.design.reset()
+                            if step == "undo":
+                                self.design.undo()
+                            else:
+                                self.design.reset()
                         self.last_edit = (frozenset(), -math.inf)
                         ok, errors, failed = {EVERY_FIELD}, {}, {}
                         continue
