@@ -49,7 +49,7 @@ def test_shin2004_fails_the_window_and_shows_fit_mismatch(no_solver):
 
 def _device(stdout: str) -> dict:
     d = json.loads(stdout)
-    assert (d["schema"], d["version"]) == ("betv-check", 3)
+    assert (d["schema"], d["version"]) == ("betv-check", 4)
     assert len(d["devices"]) == 1
     return d["devices"][0]
 
@@ -104,7 +104,7 @@ def test_json_conforms_to_its_published_schema(no_solver):
     """Every device's --json output validates against `betv schema check` (a generic
     draft-2020-12 walk of the schema, written below, not pydantic itself)."""
     schema = json.loads(run("schema", "check").stdout)
-    assert schema["properties"]["version"]["const"] == 3
+    assert schema["properties"]["version"]["const"] == 4
     r = run("check", "--json", *(str(p) for p in sorted(DEVICES.glob("*.yaml"))))
     doc = json.loads(r.stdout)
     assert [x["device"] for x in doc["devices"]] == [
@@ -124,7 +124,7 @@ def test_json_v3_fields_and_types_and_verbose_only_adds(no_solver):
     types and no untyped 'details'; the --verbose document validates against it, and
     with the verbose fields taken out it is the plain document: -v adds, never repeats."""
     schema = json.loads(run("schema", "check").stdout)
-    assert schema["properties"]["version"]["const"] == 3 and "3" in schema["x-betv-changes"]
+    assert schema["properties"]["version"]["const"] == 4 and "4" in schema["x-betv-changes"]
     defs = schema["$defs"]
     assert "details" not in defs["DeviceOut"]["properties"]
     props = defs["SetOut"]["properties"]

@@ -8,7 +8,7 @@ Quantities are written by :func:`betvdesign.output.siformat.format_si`
 (text) or as SI floats under unit-named keys (JSON).
 
 The JSON shape (``betv check --json``, :data:`JSON_SCHEMA_VERSION`) is the same for
-one or many files: ``{"schema": "betv-check", "version": 3, "verdict": ...,
+one or many files: ``{"schema": "betv-check", "version": 4, "verdict": ...,
 "devices": [...]}``; its JSON schema is :func:`check_json_schema` (``betv schema
 check``). ``--verbose`` adds fields to each set (:data:`VERBOSE_SET_FIELDS`) and repeats
 none. Fields may be added in a minor change; removing or renaming one bumps the version.
@@ -37,7 +37,7 @@ from betvdesign.output.presentation import STATUS_COLORS, STATUS_STYLES, rule_st
 from betvdesign.output.siformat import format_dimensionless as fmt_x
 from betvdesign.output.siformat import format_si, si_key
 
-JSON_SCHEMA_VERSION = 3
+JSON_SCHEMA_VERSION = 4
 #: What each version changed (``betv schema check``, ``x-betv-changes``; README).
 VERSION_CHANGES = {
     2: "non-finite numbers are null (a rule value of inf was the string 'inf'); per set "
@@ -48,6 +48,11 @@ VERSION_CHANGES = {
     "the typed fields); --verbose adds to each set mode_source (worded from basis, no "
     "longer always 'exact periodic orbit'), simulation, vertical, settling, "
     "determination, travel, published_fit and record",
+    4: "a speed is a magnitude beside its mode everywhere: adequacy ideal/richer speed_m_s "
+    "(were signed along the impacts); derived.drawn adds the stroke predicted from the "
+    "drawing (stroke_m, u_static_m, t_max_k, power_w, current_a, resistance_ohm, "
+    "f_thermal_hz, f_heat_hz, stroke_status; null when the file gives the stroke); rules "
+    "thermal.peak-temperature, thermal.bandwidth, thermal.power, thermal.sources",
 }
 
 #: The set fields that only ``--verbose`` writes (:func:`output_json`).
@@ -287,7 +292,7 @@ class CheckOutput(_Out):
     """``betv check --json``: one object for one or many files."""
 
     schema_: Literal["betv-check"] = Field("betv-check", alias="schema")
-    version: Literal[3] = JSON_SCHEMA_VERSION
+    version: Literal[4] = JSON_SCHEMA_VERSION
     betvdesign: str = Field(description="betvdesign version that wrote this")
     verdict: Literal["pass", "fail"] = Field(description="fail when any device fails")
     devices: list[DeviceOut]
