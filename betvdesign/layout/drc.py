@@ -120,6 +120,69 @@ def _seg_dist(a: np.ndarray, b: np.ndarray, p: np.ndarray) -> np.ndarray:
     return np.hypot(*(p - q).transpose(-1, *range(p.ndim - 1)))
 
 
+#: Direction sectors of the edge-pair search [-]: edges closer than 45° in direction are
+#: never a pair (:data:`IGNORE_ANGLE_DEG`), so only sectors two or more apart are matched.
+_SECTORS = 8
+
+
+def _cells(xy: np.ndarray, h: float) -> np.ndarray:
+    """Grid cells (…, 2) of side ``h`` [µm] holding the points ``xy`` [µm]."""
+    return np.floor(xy / h).astype(np.int64)
+
+
+def _grid_pairs(
+    ca: np.ndarray, cb: np.ndarray, sa: np.ndarray, sb: np.ndarray, shifts: list[int]
+) -> tuple[np.ndarray, np.ndarray]:
+    """Index pairs (i, j) of items in neighbouring grid cells.
+
+    Item i of A (cell ``ca[i]``, sector ``sa[i]``) and item j of B pair when their cells
+    differ by at most one in x and in y and ``sb[j] - sa[i]`` is one of ``shifts``
+    (mod :data:`_SECTORS`). Work and memory are linear in the items plus the pairs: the
+    items of B are sorted by (sector, cell) once, and each occupied cell of A looks up
+    its nine neighbours by bisection.
+    """
+    if len(ca) == 0 or len(cb) == 0:
+        return np.zeros(0, np.int64), np.zeros(0, np.int64)
+    lo = np.minimum(ca.min(axis=0), cb.min(axis=0)) - 1
+    span = np.maximum(ca.max(axis=0), cb.max(axis=0)) + 2 - lo
+
+    def key(c: np.ndarray, s: np.ndarray) -> np.ndarray:
+        return (s * span[0] + (c[:, 0] - lo[0])) * span[1] + (c[:, 1] - lo[1])
+
+    kb = key(cb, sb)
+    order = np.argsort(kb, kind="stable")
+    kb_sorted = kb[order]
+    ka = key(ca, sa)
+    _, first, inverse = np.unique(ka, return_index=True, return_inverse=True)
+    members = np.argsort(inverse, kind="stable")  # A's items grouped by cell
+    start_a = np.concatenate([[0], np.cumsum(np.bincount(inverse))])
+    ia_out, jb_out = [], []
+    c0, s0 = ca[first], sa[first]
+    for shift in shifts:
+        s1 = (s0 + shift) % _SECTORS
+        for dx in (-1, 0, 1):
+            for dy in (-1, 0, 1):
+                want = key(c0 + np.array([dx, dy]), s1)
+                b0 = np.searchsorted(kb_sorted, want, "left")
+                b1 = np.searchsorted(kb_sorted, want, "right")
+                nb = b1 - b0
+                na = start_a[1:] - start_a[:-1]
+                rep = na * nb
+                hit = np.nonzero(rep)[0]
+                if hit.size == 0:
+                    continue
+                rep = rep[hit]
+                total = int(rep.sum())
+                k = np.repeat(np.arange(hit.size), rep)
+                local = np.arange(total) - np.repeat(np.cumsum(rep) - rep, rep)
+                nbk = nb[hit][k]
+                ia_out.append(members[start_a[hit][k] + local // nbk])
+                jb_out.append(order[b0[hit][k] + local % nbk])
+    if not ia_out:
+        return np.zeros(0, np.int64), np.zeros(0, np.int64)
+    return np.concatenate(ia_out), np.concatenate(jb_out)
+
+
 def edge_violations(
     gdstk: Any, polys: list, d: float, kind: str, layer: str = "", gds: str = "",
     edges: np.ndarray | None = None,
@@ -130,6 +193,13 @@ def edge_violations(
     other's material (or empty) side, they meet at less than :data:`IGNORE_ANGLE_DEG`,
     and their Euclidean distance is below d (KLayout's width/space check with its
     Euclidean metric).
+
+    Only pairs that can be close are compared, in O(n log n) for n edges: every edge
+    is cut into pieces no longer than d, and pieces in neighbouring grid cells of side
+    2·d whose directions lie two or more of :data:`_SECTORS` sectors apart are the
+    candidates (two points closer than d lie on pieces whose midpoints are closer than
+    2·d; edges within 45° of each other in direction never meet at less than
+    :data:`IGNORE_ANGLE_DEG`). The candidates then get the exact test.
 
     Parameters
     ----------
@@ -152,14 +222,65 @@ def edge_violations(
         One per region of close edges.
     """
     e = _edges(gdstk, polys) if edges is None else edges
-    n = len(e)
-    if n < 2:
+    if len(e) < 2 or not d > 0:
         return []
+    i, j = _candidates(e, d)
+    return pair_violations(e, i, j, d, kind, layer, gds)
+
+
+def _candidates(e: np.ndarray, d: float) -> tuple[np.ndarray, np.ndarray]:
+    """Edge pairs (i < j, unique) that may lie closer than ``d`` [µm] and face each other.
+
+    See :func:`edge_violations`: pieces of length at most d, grid cells of side 2·d,
+    direction sectors two or more apart.
+    """
+    a, b = e[:, :2], e[:, 2:]
+    length = np.hypot(*(b - a).T)
+    pieces = np.maximum(np.ceil(length / d).astype(np.int64), 1)
+    parent = np.repeat(np.arange(len(e)), pieces)
+    k = np.arange(len(parent)) - np.repeat(np.cumsum(pieces) - pieces, pieces)
+    t = (k + 0.5) / pieces[parent]
+    mid = a[parent] + t[:, None] * (b - a)[parent]
+    ang = np.arctan2(b[:, 1] - a[:, 1], b[:, 0] - a[:, 0])
+    sector = (np.floor(ang / (2 * np.pi / _SECTORS)).astype(np.int64) % _SECTORS)[parent]
+    cell = _cells(mid, 2 * d)
+    p, q = _grid_pairs(cell, cell, sector, sector, [2, 3, 4, 5, 6])
+    i, j = parent[p], parent[q]
+    keep = i < j
+    pair = np.unique(i[keep] * len(e) + j[keep])
+    return pair // len(e), pair % len(e)
+
+
+def pair_violations(
+    e: np.ndarray, i: np.ndarray, j: np.ndarray, d: float, kind: str, layer: str = "",
+    gds: str = "",
+) -> list[Violation]:  # fmt: skip
+    """The violations among the edge pairs (``i``, ``j``) of the boundary ``e``.
+
+    The exact test of :func:`edge_violations` on the pairs given (i < j).
+
+    Parameters
+    ----------
+    e : numpy.ndarray
+        Boundary edges (n, 4) [µm], material on each edge's left (:func:`_edges`).
+    i, j : numpy.ndarray
+        The pairs to test (int, i < j).
+    d : float
+        The distance checked [µm].
+    kind : {"width", "space"}
+        Across material or across space.
+    layer, gds : str
+        The layer's name and GDS pair, for the findings.
+
+    Returns
+    -------
+    list of Violation
+        One per region of close edges.
+    """
     a, b = e[:, :2], e[:, 2:]
     u = (b - a) / np.hypot(*(b - a).T)[:, None]
     left = np.column_stack([-u[:, 1], u[:, 0]])  # toward the material
     side = left if kind == "width" else -left
-    i, j = np.triu_indices(n, 1)
     # the angle between e_i and the reversed e_j
     cos = -np.sum(u[i] * u[j], axis=1)
     ok = cos > np.cos(np.radians(IGNORE_ANGLE_DEG))
@@ -196,21 +317,25 @@ def edge_violations(
 
 
 def _clusters(boxes: list[tuple], layer: str, gds: str) -> list[Violation]:
-    """Overlapping edge-pair boxes as one violation each (the narrowest distance kept)."""
+    """Overlapping edge-pair boxes as one violation each (the narrowest distance kept).
+
+    Boxes in sorted order join the first group (in the order the groups were made) that
+    they overlap. The boxes come by increasing left edge, so a group whose right edge
+    lies more than a grid step left of the current box's can never be joined again and
+    leaves the scan (a sweep line: the same groups as scanning them all).
+    """
     groups: list[list[float]] = []
+    active: list[list[float]] = []
     for x0, y0, x1, y1, dd in sorted(boxes):
-        for g in groups:
-            if (
-                x0 <= g[2] + _GRID
-                and x1 >= g[0] - _GRID
-                and y0 <= g[3] + _GRID
-                and y1 >= g[1] - _GRID
-            ):
+        active = [g for g in active if x0 <= g[2] + _GRID]
+        for g in active:
+            if x1 >= g[0] - _GRID and y0 <= g[3] + _GRID and y1 >= g[1] - _GRID:
                 g[0], g[1], g[2], g[3] = min(g[0], x0), min(g[1], y0), max(g[2], x1), max(g[3], y1)
                 g[4] = min(g[4], dd)
                 break
         else:
             groups.append([x0, y0, x1, y1, dd])
+            active.append(groups[-1])
     return [Violation(layer, gds, (g[0], g[1], g[2], g[3]), g[4]) for g in groups]
 
 
@@ -238,29 +363,43 @@ def weld(gdstk: Any, polys: list) -> list:
     if len(polys) < 2:
         return list(polys)
     pts = [np.asarray(p.points, dtype=float) for p in polys]
-    lo = np.array([q.min(axis=0) for q in pts]) - 1e-6
-    hi = np.array([q.max(axis=0) for q in pts]) + 1e-6
+    n = np.array([len(q) for q in pts])
+    owner = np.repeat(np.arange(len(pts)), n)
+    v = np.concatenate(pts)  # every vertex, by polygon
+    a = v
+    b = np.concatenate([np.roll(q, -1, axis=0) for q in pts])  # edge k: v[k] -> b[k]
+    # candidates: pieces of the edges no longer than h, and vertices in neighbouring cells
+    length = np.hypot(*(b - a).T)
+    h = max(float(length.sum()) / len(v), 1e-5)
+    pieces = np.maximum(np.ceil(length / h).astype(np.int64), 1)
+    edge = np.repeat(np.arange(len(v)), pieces)
+    k = np.arange(len(edge)) - np.repeat(np.cumsum(pieces) - pieces, pieces)
+    mid = a[edge] + ((k + 0.5) / pieces[edge])[:, None] * (b - a)[edge]
+    zero = np.zeros(len(edge), np.int64)
+    pe, pv = _grid_pairs(_cells(mid, h), _cells(v, h), zero, zero[: len(v)], [0])
+    other = owner[edge[pe]] != owner[pv]
+    # an edge's pieces may share a vertex: each (edge, vertex) once, by edge then vertex
+    pair = np.unique(edge[pe][other] * len(v) + pv[other])
+    e_idx, p_idx = pair // len(v), pair % len(v)
+    ab = (b - a)[e_idx]
+    n2 = np.maximum(np.sum(ab * ab, axis=1), 1e-300)
+    rel = v[p_idx] - a[e_idx]
+    t = np.sum(rel * ab, axis=1) / n2
+    cross = rel[:, 0] * ab[:, 1] - rel[:, 1] * ab[:, 0]
+    on = (t > 1e-9) & (t < 1 - 1e-9) & (np.abs(cross) < 1e-6 * np.sqrt(n2))
+    e_idx, p_idx, t = e_idx[on], p_idx[on], t[on]
+    first = np.concatenate([[0], np.cumsum(n)])
+    bounds = np.searchsorted(owner[e_idx], np.arange(len(polys) + 1))  # hits by polygon
     out = []
-    for k, (p, q) in enumerate(zip(polys, pts, strict=True)):
-        near = np.nonzero(np.all((lo <= hi[k]) & (hi >= lo[k]), axis=1))[0]
-        others = [pts[m] for m in near if m != k]
-        if not others:
+    for m, (p, q) in enumerate(zip(polys, pts, strict=True)):
+        sel = slice(bounds[m], bounds[m + 1])
+        if bounds[m] == bounds[m + 1]:
             out.append(p)
             continue
-        cand = np.concatenate(others)
-        a, b = q, np.roll(q, -1, axis=0)
-        ab = b - a
-        n2 = np.maximum(np.sum(ab * ab, axis=1), 1e-300)
-        rel = cand[None, :, :] - a[:, None, :]  # (edges, points, 2)
-        t = np.einsum("epk,ek->ep", rel, ab) / n2[:, None]
-        cross = rel[:, :, 0] * ab[:, None, 1] - rel[:, :, 1] * ab[:, None, 0]
-        on = (t > 1e-9) & (t < 1 - 1e-9) & (np.abs(cross) < 1e-6 * np.sqrt(n2)[:, None])
-        if not on.any():
-            out.append(p)
-            continue
-        e_idx, p_idx = np.nonzero(on)
-        key = np.concatenate([np.arange(len(q), dtype=float), e_idx + t[e_idx, p_idx]])
-        pts_all = np.concatenate([q, a[e_idx] + t[e_idx, p_idx][:, None] * ab[e_idx]])
+        el, tl = e_idx[sel] - first[m], t[sel]
+        qa, qab = q[el], (np.roll(q, -1, axis=0) - q)[el]
+        key = np.concatenate([np.arange(len(q), dtype=float), el + tl])
+        pts_all = np.concatenate([q, qa + tl[:, None] * qab])
         order = np.argsort(key, kind="stable")
         out.append(gdstk.Polygon(pts_all[order], layer=p.layer, datatype=p.datatype))
     return out
