@@ -187,3 +187,59 @@ def test_a_many_sided_disc_is_checked_without_comparing_every_pair() -> None:
     space = drc.edge_violations(gdstk, body, 2.0, "space")
     assert len(space) == 1 and space[0].extent == pytest.approx(1.0, abs=1e-6)
     assert drc.edge_violations(gdstk, body, 2.0, "width") == []
+
+
+# --- the hull's measures: rotating calipers against every pair and every edge ---------------
+
+
+def _all_pairs_extent(h: np.ndarray) -> float:
+    d = h[:, None, :] - h[None, :, :]
+    return float(np.sqrt(np.max(np.sum(d * d, axis=-1))))
+
+
+def _all_edges_box(h: np.ndarray) -> tuple:
+    best = None
+    for i in range(len(h)):
+        e = h[(i + 1) % len(h)] - h[i]
+        n = math.hypot(*e)
+        if n == 0:
+            continue
+        u = e / n
+        v = np.array([-u[1], u[0]])
+        a, b = h @ u, h @ v
+        ar = (a.max() - a.min()) * (b.max() - b.min())
+        if best is None or ar < best[0] - 1e-12:
+            best = (ar, u, v, a, b)
+    assert best is not None
+    return best[1], (best[3].max() - best[3].min()) * (best[4].max() - best[4].min())
+
+
+@pytest.mark.parametrize("seed", range(40))
+def test_large_hulls_extent_and_box_are_every_pairs(seed: int) -> None:
+    """Hulls of 513 to 3000 vertices (ellipses, regular polygons on the grid, point
+    discs): the diameter and the smallest box are bit for bit those of all pairs."""
+    from betvdesign.layout import shapes
+
+    rng = np.random.default_rng(seed)
+    n = int(rng.integers(600, 3000))
+    if seed % 3 == 0:
+        t = np.sort(rng.uniform(0, 2 * math.pi, n))
+        r = rng.uniform(1, 50)
+        p = np.c_[r * np.cos(t), rng.uniform(0.05, 1) * r * np.sin(t)]
+    elif seed % 3 == 1:
+        a = 2 * math.pi * np.arange(n) / n
+        r = rng.uniform(10, 30)
+        p = np.round(np.c_[r * np.cos(a), r * np.sin(a)], 3)
+    else:
+        t = rng.uniform(0, 2 * math.pi, 2 * n)
+        r = rng.uniform(1, 100) * (1 - 1e-5 * rng.uniform(size=2 * n))
+        p = np.c_[r * np.cos(t), r * np.sin(t)] + rng.uniform(-100, 100, 2)
+    th = rng.uniform(0, math.pi)
+    p = p @ np.array([[math.cos(th), -math.sin(th)], [math.sin(th), math.cos(th)]]).T
+    h = shapes._hull(p)
+    assert len(h) > shapes._SMALL_HULL
+    assert shapes.extent(p) == _all_pairs_extent(h)
+    box = shapes.min_box(p)
+    u, ar = _all_edges_box(h)
+    assert box.length * box.width == pytest.approx(ar, rel=1e-15, abs=0)
+    assert abs(abs(float(np.dot(box.axis, u))) - 1) < 1e-15 or abs(np.dot(box.axis, u)) < 1e-15

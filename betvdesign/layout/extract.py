@@ -58,6 +58,10 @@ GDS_BYTES_ENV = "BETV_MAX_GDS_BYTES"
 MAX_GDS_BYTES = 50_000_000
 #: Most polygons read from the flattened top cell.
 MAX_POLYGONS = 200_000
+#: Most vertices of one polygon read (GDSII itself allows 8 190; gdstk writes more).
+MAX_POLYGON_VERTICES = 100_000
+#: Most vertices read from the flattened top cell, all layers together.
+MAX_LAYOUT_VERTICES = 1_000_000
 _REQUIRED = ("hot_arm", "cold_arm", "flexure", "tip", "head")
 _TOL = 2.5e-3  # µm: lengths that must agree, agree to a few grid steps
 
@@ -194,6 +198,7 @@ def _elements(
     by_layer: dict[tuple[int, int], list] = defaultdict(list)
     for p in polys:
         by_layer[(p.layer, p.datatype)].append(p)
+    _vertex_caps(by_layer, proc, probs)
     struct = [(structural[k], k, p) for k, ps in by_layer.items() if k in structural for p in ps]
     elements, data = [], []
     ann_txt = f"{ann[0]}/{ann[1]}"
@@ -251,6 +256,43 @@ def _elements(
     if free:
         data.append(DataLabel(None, "_unlabelled", str(free)))
     return elements, data, by_layer
+
+
+def _vertex_caps(by_layer: dict[tuple[int, int], list], proc: Process, probs: _Problems) -> None:
+    """Refuse a polygon or a layout with too many vertices, before any geometry runs.
+
+    A polygon over :data:`MAX_POLYGON_VERTICES` or a layout over
+    :data:`MAX_LAYOUT_VERTICES` vertices is refused, naming its layer (and the polygon's
+    place): the checks are O(n log n), but the layer's boolean operations and the
+    extraction's measures still grow with it.
+    """
+    names = {lay.gds.pair: name for name, lay in proc.layers.items()}
+
+    def layer(k: tuple[int, int]) -> str:
+        return f"{names[k]} ({k[0]}/{k[1]})" if k in names else f"layer {k[0]}/{k[1]}"
+
+    per_layer = {}
+    for k, ps in sorted(by_layer.items()):
+        sizes = [len(p.points) for p in ps]
+        per_layer[k] = sum(sizes)
+        worst = max(range(len(ps)), key=lambda i: sizes[i])
+        if sizes[worst] > MAX_POLYGON_VERTICES:
+            (x0, y0), (x1, y1) = ps[worst].bounding_box()
+            probs.add(
+                "",
+                f"a polygon on {layer(k)} at ({(x0 + x1) / 2:.3f}, {(y0 + y1) / 2:.3f}) µm has "
+                f"{sizes[worst]:,} vertices; at most {MAX_POLYGON_VERTICES:,} are read per "
+                "polygon (GDSII itself allows 8,190): split it or draw it with fewer vertices",
+            )
+    total = sum(per_layer.values())
+    if total > MAX_LAYOUT_VERTICES:
+        most = max(per_layer, key=lambda k: per_layer[k])
+        probs.add(
+            "",
+            f"{total:,} vertices in the layout ({per_layer[most]:,} on {layer(most)}); at most "
+            f"{MAX_LAYOUT_VERTICES:,} are read",
+        )
+    probs.raise_if_any()
 
 
 def _overlaps(elements: list[_Element], probs: _Problems, gdstk: Any) -> None:

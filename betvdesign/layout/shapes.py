@@ -114,7 +114,7 @@ def min_box(p: np.ndarray) -> Box:
     """
     h = _hull(p)
     best = None
-    for i in range(len(h)):
+    for i in _caliper_edges(h):
         e = h[(i + 1) % len(h)] - h[i]
         n = math.hypot(*e)
         if n == 0:
@@ -152,8 +152,73 @@ def extent(p: np.ndarray) -> float:
         The distance [µm].
     """
     h = _hull(p)
-    d = h[:, None, :] - h[None, :, :]
-    return float(np.sqrt(np.max(np.sum(d * d, axis=-1))))
+    if len(h) <= _SMALL_HULL:
+        d = h[:, None, :] - h[None, :, :]
+        return float(np.sqrt(np.max(np.sum(d * d, axis=-1))))
+    # rotating calipers: the farthest pair is antipodal, a vertex of an edge and a
+    # vertex of the support opposite it (the supports between those of the edge's
+    # neighbours, a window of _WINDOW more either side against round-off)
+    j = _support(h, _edge_angles(h) + np.pi / 2)
+    n = len(h)
+    lo = np.roll(j, 1)  # the support of the previous edge
+    lo = np.where(lo > j, lo - n, lo) - _WINDOW
+    cnt = j + _WINDOW - lo + 1
+    i = np.repeat(np.arange(n), cnt)
+    k = (np.repeat(lo, cnt) + np.arange(cnt.sum()) - np.repeat(np.cumsum(cnt) - cnt, cnt)) % n
+    best = 0.0
+    for end in (i, (i + 1) % n):
+        d = h[end] - h[k]
+        best = max(best, float(np.max(np.sum(d * d, axis=-1))))
+    return float(np.sqrt(best))
+
+
+#: Hulls of at most this many vertices are measured over every pair or edge directly.
+_SMALL_HULL = 512
+#: Vertices either side of a caliper's support also compared (round-off near ties).
+_WINDOW = 3
+
+
+def _edge_angles(h: np.ndarray) -> np.ndarray:
+    """Direction angles [rad] of the hull's edges, unwrapped (increasing, counter-clockwise)."""
+    e = np.roll(h, -1, axis=0) - h
+    return np.unwrap(np.arctan2(e[:, 1], e[:, 0]))
+
+
+def _support(h: np.ndarray, phi: np.ndarray) -> np.ndarray:
+    """Index of the hull vertex farthest along each direction ``phi`` [rad].
+
+    Vertex k is the support of a direction whose angle + 90° lies between the angles
+    of the edges k − 1 and k (a counter-clockwise hull).
+    """
+    th = _edge_angles(h)
+    psi = th[0] + np.mod(phi + np.pi / 2 - th[0], 2 * np.pi)
+    return np.searchsorted(th, psi, "left") % len(h)
+
+
+def _caliper_edges(h: np.ndarray) -> list[int]:
+    """The hull edges whose bounding box may be the smallest (rotating calipers).
+
+    Every edge of a small hull; of a large one, the edges whose box, from the supports
+    (:func:`_support`, with :data:`_WINDOW` neighbours), is within round-off of the
+    smallest: the exact areas of :func:`min_box` then choose among them in order.
+    """
+    n = len(h)
+    if n <= _SMALL_HULL:
+        return list(range(n))
+    th = _edge_angles(h)
+    u = np.column_stack([np.cos(th), np.sin(th)])
+    v = np.column_stack([-u[:, 1], u[:, 0]])
+    w = np.arange(-_WINDOW, _WINDOW + 1)
+
+    def reach(direction: np.ndarray, phi: np.ndarray) -> np.ndarray:
+        idx = (_support(h, phi)[:, None] + w) % n
+        return np.max(np.einsum("ewk,ek->ew", h[idx], direction), axis=1)
+
+    la = reach(u, th) + reach(-u, th + np.pi)
+    lb = reach(v, th + np.pi / 2) + reach(-v, th - np.pi / 2)
+    ar = la * lb
+    tol = 1e-12 + 64 * np.finfo(float).eps * float(ar.max())  # the estimate's round-off
+    return [int(i) for i in np.nonzero(ar <= ar.min() + 2 * tol)[0]]
 
 
 def radius_about(p: np.ndarray, c: np.ndarray) -> float:
