@@ -55,6 +55,10 @@ from betvdesign.model.domain import TRAVEL_HORIZON
 from betvdesign.model.params import ModelParams
 from betvdesign.nondim.record import DeviceDerivation, SetDerivation
 
+#: Whether transients from rest run: always, never, or "undecided" (only where the orbit
+#: gives no periodic answer; :func:`check_derivation`).
+Settle = bool | Literal["undecided"]
+
 
 @dataclass(frozen=True)
 class SetCheck:
@@ -275,7 +279,7 @@ def corner_modes(
     travel_s: float,
     *,
     solver: Callable[[ModelParams], Any],
-    settle: bool = True,
+    settle: Settle = True,
     horizon: int = TRAVEL_HORIZON,
 ) -> dict[str, str | None]:
     """The mode at each margin corner, read on the basis of the design's own answer.
@@ -321,7 +325,7 @@ def check_derivation(
     solver: Callable[[ModelParams], Any] | None = None,
     vertical: Callable[..., Any] | None = None,
     margin: bool = True,
-    settle: bool = True,
+    settle: Settle = True,
     target_speed_m_s: float | None = None,
     adequacy: DeviceAdequacy | bool | None = None,
     determine: bool | None = None,
@@ -342,8 +346,12 @@ def check_derivation(
         Stand-in for :func:`betvdesign.dynamics.vertical_motion`; may return None.
     margin : bool
         Run the mode-margin corners (:func:`corner_params`).
-    settle : bool
-        Run the transient from rest (:func:`betvdesign.dynamics.settling.settling`).
+    settle : bool or "undecided"
+        Run the transient from rest (:func:`betvdesign.dynamics.settling.settling`);
+        "undecided": only where the orbit gives no periodic answer (Δs not determined,
+        no orbit found), the fix search's screen (:mod:`betvdesign.studies.fix`): a
+        moving orbit is then quoted as the transient from rest would quote it whenever
+        it settles early in the travel.
     target_speed_m_s : float, optional
         A required speed [m/s] (adds the error rule ``target-speed``).
     adequacy : DeviceAdequacy or bool, optional
@@ -487,7 +495,7 @@ def _solve_sets(
     vertical: Callable[..., Any],
     *,
     margin: bool,
-    settle: bool,
+    settle: Settle,
     determine: bool,
     horizon: int,
 ) -> _Solved:
@@ -505,8 +513,10 @@ def _solve_sets(
         The check's cached exact orbit of a design.
     vertical : callable
         The exact vertical motion (or a stand-in).
-    margin, settle, determine : bool
-        Run the margin corners, the transient from rest, the determination.
+    margin, determine : bool
+        Run the margin corners, the determination.
+    settle : bool or "undecided"
+        Run the transient from rest (:func:`check_derivation`).
     horizon : int
         Cycles the transient may take to cross the travel [-].
 
@@ -567,7 +577,7 @@ def answer_over_travel(
     *,
     solver: Callable[[ModelParams], Any] | None = None,
     determine: bool = True,
-    settle: bool = True,
+    settle: Settle = True,
     horizon: int = TRAVEL_HORIZON,
 ) -> tuple[Determination | None, Settling | None, TravelAnswer]:
     """What the check says one design does over its travel (unit-free).
@@ -588,8 +598,11 @@ def answer_over_travel(
         Travel range in units of u·cosθ [-].
     solver : callable, optional
         ``solver(params) -> PeriodicResult`` for the re-solves (default: the exact one).
-    determine, settle : bool
-        Run the determination / the transient from rest.
+    determine : bool
+        Run the determination.
+    settle : bool or "undecided"
+        Run the transient from rest; "undecided": only where the orbit gives no periodic
+        answer (not for a determined moving orbit).
     horizon : int
         Cycles the transient may take to cross the travel [-].
 
@@ -603,7 +616,8 @@ def answer_over_travel(
     det = determine_delta_s(p, po, solver=solver) if determine else None
     unsure = det is not None and det.status in ("undetermined", "degenerate")
     st = None
-    if settle and (orbit_mode(po) in ("push", "pull") or unsure or travel_decides(po)):
+    moving = settle is True and orbit_mode(po) in ("push", "pull")
+    if settle and (moving or unsure or travel_decides(po)):
         st = _settling(p, po, travel_s, horizon)
     return det, st, travel_answer(po, det, st)
 

@@ -14,6 +14,17 @@ check (slow settling, tangential resonance, model adequacy) do not block a fix; 
 listed with the fix. Every candidate goes through
 :func:`betvdesign.checks.checker.check_derivation`, the same path as ``betv check``.
 
+**Screen, then verify.** The search judges candidates by the check without the
+transient from rest where a determined orbit answers (``settle="undecided"``,
+:meth:`Evaluator.screen`): the same outcome as the full check wherever that quotes the
+periodic orbit, for a fraction of the cost (the transient runs up to the horizon of
+2·10⁵ cycles, for the design and its four margin corners). Every value proposed is
+verified by the full check; the boundary and the scan are the screen's. When the
+screen passes the current design that the full check fails (a slider that does not
+cross its travel, or crosses it in another mode than its orbit's), the screen cannot see
+the failure: the field's first proposal is verified and the field says so
+(:attr:`FieldAnswer.unseen`), and the pairs stop at their first failing verification.
+
 **Search, one field at a time.** From the current value x0 the field is stepped outward
 in both directions (interleaved, nearest first) in log steps of :data:`SCAN_STEP`
 within its bounds; at the first passing step the boundary is bisected to
@@ -109,7 +120,13 @@ class Outcome:
 
 
 class Evaluator:
-    """Checks candidate specs through the same path as ``betv check`` (cached)."""
+    """Checks candidate specs through the same path as ``betv check`` (cached).
+
+    Calling it runs the full check (:func:`~betvdesign.checks.checker.check_derivation`,
+    adequacy aside); :meth:`screen` runs the search's screen, the same check with the
+    transient from rest only where the orbit gives no periodic answer
+    (``settle="undecided"``).
+    """
 
     def __init__(
         self,
@@ -123,6 +140,7 @@ class Evaluator:
         self.target = target_speed_m_s
         self.horizon = horizon
         self.cache: dict[tuple[tuple[str, float], ...], Outcome] = {}
+        self.screened: dict[tuple[tuple[str, float], ...], Outcome] = {}
         self.evaluations = 0
 
     def spec_at(self, changes: dict[str, float]) -> Any:
@@ -131,10 +149,25 @@ class Evaluator:
     def __call__(self, changes: dict[str, float]) -> Outcome:
         key = tuple(sorted(changes.items()))
         if key not in self.cache:
-            self.cache[key] = self._run(changes)
+            self.cache[key] = self._run(changes, True)
         return self.cache[key]
 
-    def _run(self, changes: dict[str, float]) -> Outcome:
+    def screen(self, changes: dict[str, float], known: bool = True) -> Outcome:
+        """The search's screen of a candidate (with ``known``, the full check's if known).
+
+        The check without the transient from rest where a determined orbit answers:
+        the same outcome as the full check whenever that quotes the periodic orbit (the
+        transient settles early in the travel); a slider slower to cross its travel than
+        to settle, or one that does not cross it, is seen only by the full check.
+        """
+        key = tuple(sorted(changes.items()))
+        if known and key in self.cache:
+            return self.cache[key]
+        if key not in self.screened:
+            self.screened[key] = self._run(changes, "undecided")
+        return self.screened[key]
+
+    def _run(self, changes: dict[str, float], settle: bool | str) -> Outcome:
         from betvdesign.checks.checker import check_derivation
         from betvdesign.model.domain import in_window
         from betvdesign.nondim.device import derive
@@ -151,7 +184,9 @@ class Evaluator:
             if not all(in_window(s.params.varpi) for s in d.sets):  # no orbit needed
                 return Outcome(False, ("frequency-window",), (), None)
             kw = {} if self.horizon is None else {"horizon": self.horizon}
-            res = check_derivation(d, target_speed_m_s=self.target, adequacy=False, **kw)
+            res = check_derivation(
+                d, target_speed_m_s=self.target, adequacy=False, settle=settle, **kw
+            )
         except (ParameterError, BetvError, ValueError) as exc:
             return Outcome(False, (f"invalid: {exc}",), (), None)
         return outcome_of(res)
@@ -231,6 +266,11 @@ class FieldAnswer:
     #: What the proposed change means physically, in drawn dimensions where the device
     #: has a drawing (:func:`change_meaning`); set with ``value``.
     meaning: str = ""
+    #: Without a value: the rules the full check fails at the value the search proposed
+    #: (``proposed``) while the search's screen passes there and at the current value
+    #: alike (the transient from rest decides them); the search then stops.
+    unseen: tuple[str, ...] = ()
+    proposed: float | None = None
 
     @property
     def direction(self) -> int:
@@ -265,6 +305,13 @@ class FieldAnswer:
 
     def advice(self) -> str:
         """The change in words: direction, amount, boundary and physical meaning."""
+        if self.value is None and self.unseen and self.proposed is not None:
+            return (
+                f"{self.field}: no passing value found from {self.tried()} (the search, "
+                f"which judges a moving orbit without its transient from rest, passes "
+                f"{self.text(self.x0)} and proposes {self.text(self.proposed)}; the check "
+                f"fails it: {', '.join(self.unseen)})"
+            )
         if self.value is None:
             return f"{self.field}: no passing value from {self.tried()} ({self.blocked()})"
         if self.boundary is None:
@@ -317,6 +364,7 @@ class FieldAnswer:
             "meaning": None if self.value is None else self.meaning,
             "bounds_tried": [self.text(self.lo), self.text(self.hi)],
             "blocking": self.blocking or None,
+            "unseen": list(self.unseen) or None,
             "evaluations": self.evaluations,
         }
 
@@ -330,14 +378,17 @@ def _is_rule(failure: str) -> bool:
     return failure != OUTSIDE_CALIBRATION and not failure.startswith("invalid")
 
 
-def _bisect(ev: Evaluator, name: str, good: float, bad: float) -> float:
+def _bisect(
+    judge: Callable[[dict[str, float]], Outcome], name: str, good: float, bad: float
+) -> float:
     """The last passing value between ``good`` and ``bad``.
 
-    The last passing value between a passing ``good`` and a failing ``bad`` one,
-    bisected in ratio to :data:`BISECT_RTOL` (:func:`betvdesign.model.bisection.bisect`).
+    The last value ``judge`` passes between a passing ``good`` and a failing ``bad``
+    one, bisected in ratio to :data:`BISECT_RTOL`
+    (:func:`betvdesign.model.bisection.bisect`).
     """
     return bisect(
-        lambda x: ev({name: x}).passed, good, bad, True, False, rtol=BISECT_RTOL, geometric=True
+        lambda x: judge({name: x}).passed, good, bad, True, False, rtol=BISECT_RTOL, geometric=True
     ).a
 
 
@@ -402,21 +453,27 @@ def nearest(ev: Evaluator, v: Vary) -> FieldAnswer:
     if base.passed:  # already passing: the current value (a robust search goes on)
         ans.value, ans.outcome, ans.evaluations = v.x0, base, ev.evaluations - start
         return ans
+    blind = ev.screen({}, known=False).passed  # the screen passes what the check fails
     for prev, x in _steps(v):
-        out = ev({v.field: x})
+        out = ev.screen({v.field: x})
         if not out.passed:
             for rid in out.failing:
                 counts[rid] = counts.get(rid, 0) + 1
             continue
-        prev_ok = ev({v.field: prev}).passed if prev != v.x0 else ev({}).passed
-        b = x if prev_ok else _bisect(ev, v.field, x, prev)
+        prev_ok = ev.screen({v.field: prev}).passed if prev != v.x0 else blind
+        b = x if prev_ok else _bisect(ev.screen, v.field, x, prev)
         sign = 1 if x > v.x0 else -1
         y = b * (1 + FIELD_MARGIN) ** sign
         y = min(max(y, v.lo), v.hi)
-        oy = ev({v.field: y})
+        oy = ev({v.field: y})  # the full check verifies the value proposed
         if oy.passed:
             ans.value, ans.boundary, ans.outcome = y, b, oy
             ans.meaning = change_meaning(ev.spec, v.field, v.x0, y)
+            break
+        if blind:  # the screen cannot see what fails: no search along this field
+            ans.unseen, ans.proposed = oy.failing, y
+            for rid in oy.failing:
+                counts[rid] = counts.get(rid, 0) + 1
             break
     ans.blocking_counts = counts
     if ans.value is None and counts:
@@ -711,14 +768,24 @@ def _closeness(a: FieldAnswer) -> float:
 
 
 def _pairs(ev: Evaluator, varies: Sequence[Vary], base: Outcome) -> list[Candidate]:
-    """Coarse 2-D grids over every pair of fields: passing points, smallest change."""
+    """Coarse 2-D grids over every pair of fields: passing points, smallest change.
+
+    Screened (:meth:`Evaluator.screen`), every point the screen passes verified by the
+    full check; when the screen passes the current design the check fails, the first
+    point it fails ends the search (the screen cannot see that failure).
+    """
     out = []
+    blind = ev.screen({}, known=False).passed and not base.passed
     for a, b in itertools.combinations(varies, 2):
         xa = np.geomspace(a.lo, a.hi, PAIR_POINTS)
         xb = np.geomspace(b.lo, b.hi, PAIR_POINTS)
         for x, y in itertools.product(xa, xb):
             ch = {a.field: float(x), b.field: float(y)}
-            o = ev(ch)
+            o = ev.screen(ch)
+            if o.passed:  # the full check verifies what the screen passes
+                o = ev(ch)
+                if not o.passed and blind:  # the screen cannot see what fails
+                    return out
             if o.passed:
                 size = math.hypot(math.log(x / a.x0), math.log(y / b.x0))
                 out.append(_candidate(ch, size, o, base, []))
