@@ -484,3 +484,37 @@ def test_extract_to_stdout(shin_gds, tmp_path):
     assert res.stdout == out.read_text("utf-8")
     assert "wrote" not in res.output and not (tmp_path / "-").exists()
     assert load_device_text(res.stdout).name == load_device(out).name
+
+
+def test_a_polygon_over_the_vertex_cap_is_refused_naming_file_and_layer(shin_gds):
+    """A 10⁶-vertex disc on the structural layer: exit 2 before any geometry, the file,
+    the layer and the polygon's place named (no traceback, no quadratic work)."""
+    from betvdesign.layout.extract import MAX_POLYGON_VERTICES
+
+    def big(top, lib):
+        t = np.linspace(0, 2 * math.pi, 1_000_000, endpoint=False)
+        top.add(gdstk.Polygon(np.c_[2000 + 100 * np.cos(t), 100 * np.sin(t)], layer=45))
+
+    lib_path = shin_gds.with_name("big.gds")
+    lib = gdstk.read_gds(shin_gds)
+    big(lib.top_level()[0], lib)
+    lib.write_gds(lib_path, max_points=0)
+    err = _check_fails(
+        lib_path, r"poly1 \(45/0\) at \(2000\.000, 0\.000\) µm has 1,000,000 vertices",
+        f"at most {MAX_POLYGON_VERTICES:,} are read per polygon",
+    )  # fmt: skip
+    assert str(lib_path) in err
+
+
+def test_a_layout_over_the_vertex_cap_is_refused(shin_gds):
+    """Polygons each within the per-polygon cap but over the layout's together."""
+    from betvdesign.layout.extract import MAX_LAYOUT_VERTICES, MAX_POLYGON_VERTICES
+
+    def many(top, lib):
+        t = np.linspace(0, 2 * math.pi, MAX_POLYGON_VERTICES, endpoint=False)
+        for k in range(MAX_LAYOUT_VERTICES // MAX_POLYGON_VERTICES + 1):
+            top.add(gdstk.Polygon(np.c_[3000 + 30 * k + 10 * np.cos(t), 10 * np.sin(t)],
+                                  layer=61))  # fmt: skip
+
+    err = _check_fails(_edit(shin_gds, many), r"vertices in the layout \(\d[\d,]* on layer 61/0\)")
+    assert f"at most {MAX_LAYOUT_VERTICES:,} are read" in err
