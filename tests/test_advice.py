@@ -78,3 +78,25 @@ def test_seeded_random_failing_designs_advice_passes():
         if b:
             bad[i] = b
     assert bad == {}
+
+
+def test_a_failure_only_the_transient_sees_is_said_not_searched():
+    """Impact angle 1e-6° (κ ≈ 7e-9): the orbit pushes as intended and its margins hold
+    (the check without transients passes), but the slider does not cross its travel
+    from rest. The search, which screens without that transient, cannot see it: each
+    field's first proposal is verified, fails the full check (the independent truth,
+    re-run here) for the rule the check fails, and the advice says so."""
+    spec = load_device(ROOT / "devices/push_demo.yaml").replace("contact.impact_angle", "1e-6 deg")
+    d = derive(spec)
+    res = check_derivation(d, adequacy=False)
+    failing = {r.id for r in res.rules if not r.passed and r.severity == "error"}
+    assert res.verdict == "fail" and "mode" in failing
+    assert check_derivation(d, adequacy=False, settle=False).verdict == "pass"
+    answers = advise(res)
+    assert answers and all(a.value is None and a.unseen and a.proposed for a in answers)
+    for a in answers:
+        v = parse_vary(spec, [a.field])[0]
+        moved = check_derivation(derive(spec.replace(a.field, v.quantity(a.proposed))))
+        assert {r.id for r in moved.rules if not r.passed} >= set(a.unseen)
+        assert "no passing value found" in a.advice()
+    assert with_advice(res, answers).rules != res.rules

@@ -51,6 +51,7 @@ Every function takes floats or numpy arrays (broadcast), SI units.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 from typing import Any
@@ -373,9 +374,13 @@ def slider_springs(k: FrameStiffness, theta_rad: Any) -> tuple[Any, Any, Any]:
     return k_nn, k_tt, k_nt
 
 
+@functools.lru_cache(maxsize=8)
 def _gauss(n: int = 24) -> tuple[np.ndarray, np.ndarray]:
+    """Gauss–Legendre nodes and weights on [0, 1] (cached, read-only)."""
     x, w = np.polynomial.legendre.leggauss(n)
-    return (x + 1) / 2, w / 2
+    x, w = (x + 1) / 2, w / 2
+    x.flags.writeable = w.flags.writeable = False
+    return x, w
 
 
 def head_compliance(k: FrameStiffness, theta_rad: Any) -> tuple[Any, Any, Any]:
