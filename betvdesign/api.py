@@ -188,7 +188,16 @@ def run_check(
     if opts.advice:
         from betvdesign.studies.fix import advise, with_advice
 
-        res = with_advice(res, advise(res, target_speed_m_s=target, horizon=opts.horizon))
+        full = (
+            solver is None
+            and vertical is None
+            and opts.margin
+            and opts.settle is True
+            and opts.determine in (None, True)
+            and layout is None
+        )  # the search's own full check: its outcome is the search's current design
+        answers = advise(res, target_speed_m_s=target, horizon=opts.horizon, full=full)
+        res = with_advice(res, answers)
     return res
 
 

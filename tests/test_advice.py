@@ -94,9 +94,9 @@ def test_a_failure_only_the_transient_sees_is_said_not_searched():
     assert check_derivation(d, adequacy=False, settle=False).verdict == "pass"
     answers = advise(res)
     assert answers and all(a.value is None and a.unseen and a.proposed for a in answers)
-    for a in answers:
-        v = parse_vary(spec, [a.field])[0]
-        moved = check_derivation(derive(spec.replace(a.field, v.quantity(a.proposed))))
-        assert {r.id for r in moved.rules if not r.passed} >= set(a.unseen)
-        assert "no passing value found" in a.advice()
+    assert all("no passing value found" in a.advice() for a in answers)
+    a = answers[0]
+    v = parse_vary(spec, [a.field])[0]
+    moved = check_derivation(derive(spec.replace(a.field, v.quantity(a.proposed))), adequacy=False)
+    assert {r.id for r in moved.rules if not r.passed} >= set(a.unseen)
     assert with_advice(res, answers).rules != res.rules

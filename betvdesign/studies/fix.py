@@ -841,6 +841,7 @@ def advise(
     target_speed_m_s: float | None = None,
     fields: Sequence[str] | None = None,
     horizon: int | None = None,
+    full: bool = False,
 ) -> list[FieldAnswer]:
     """The advice of a failing check: the nearest passing value of its fields.
 
@@ -857,6 +858,10 @@ def advise(
         The fields to search (default :func:`advice_fields`).
     horizon : int, optional
         ``betv check --horizon``.
+    full : bool
+        ``check`` was run as the search's full check runs a candidate (the exact
+        solvers, margin corners, transients and determination, the device file's process
+        rules; adequacy aside): its outcome is the search's current design, not re-run.
 
     Returns
     -------
@@ -872,6 +877,8 @@ def advise(
     except BetvError:
         return []
     ev = Evaluator(spec, varies, target_speed_m_s, horizon)
+    if full:
+        ev.cache[()] = outcome_of(check)
     out: list[FieldAnswer] = []
     for v in varies:
         out.append(nearest(ev, v))
