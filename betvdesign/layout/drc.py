@@ -368,18 +368,25 @@ def weld(gdstk: Any, polys: list) -> list:
     v = np.concatenate(pts)  # every vertex, by polygon
     a = v
     b = np.concatenate([np.roll(q, -1, axis=0) for q in pts])  # edge k: v[k] -> b[k]
-    # candidates: pieces of the edges no longer than h, and vertices in neighbouring cells
+    # candidates: each edge against the vertices in the grid cells next to its midpoint's,
+    # the cell side the power of two at or above the edge's length (a grid per length
+    # class: a long edge meets every vertex near it, a short one only its neighbours)
     length = np.hypot(*(b - a).T)
-    h = max(float(length.sum()) / len(v), 1e-5)
-    pieces = np.maximum(np.ceil(length / h).astype(np.int64), 1)
-    edge = np.repeat(np.arange(len(v)), pieces)
-    k = np.arange(len(edge)) - np.repeat(np.cumsum(pieces) - pieces, pieces)
-    mid = a[edge] + ((k + 0.5) / pieces[edge])[:, None] * (b - a)[edge]
-    zero = np.zeros(len(edge), np.int64)
-    pe, pv = _grid_pairs(_cells(mid, h), _cells(v, h), zero, zero[: len(v)], [0])
-    other = owner[edge[pe]] != owner[pv]
-    # an edge's pieces may share a vertex: each (edge, vertex) once, by edge then vertex
-    pair = np.unique(edge[pe][other] * len(v) + pv[other])
+    level = np.ceil(np.log2(np.maximum(length, 1e-5))).astype(np.int64)
+    mid = (a + b) / 2
+    zero = np.zeros(len(v), np.int64)
+    pe_all, pv_all = [], []
+    for lv in np.unique(level):
+        edges = np.nonzero(level == lv)[0]
+        h = 2.0 ** float(lv)
+        pe, pv = _grid_pairs(_cells(mid[edges], h), _cells(v, h), zero[edges], zero, [0])
+        pe_all.append(edges[pe])
+        pv_all.append(pv)
+    edge = np.concatenate(pe_all)
+    pv = np.concatenate(pv_all)
+    other = owner[edge] != owner[pv]
+    # each (edge, vertex) once, by edge then vertex
+    pair = np.unique(edge[other] * len(v) + pv[other])
     e_idx, p_idx = pair // len(v), pair % len(v)
     ab = (b - a)[e_idx]
     n2 = np.maximum(np.sum(ab * ab, axis=1), 1e-300)
