@@ -376,10 +376,15 @@ def weld(gdstk: Any, polys: list) -> list:
     mid = (a + b) / 2
     zero = np.zeros(len(v), np.int64)
     pe_all, pv_all = [], []
+    lo, hi = np.minimum(a, b) - 1e-6, np.maximum(a, b) + 1e-6
     for lv in np.unique(level):
         edges = np.nonzero(level == lv)[0]
-        h = 2.0 ** float(lv)
-        pe, pv = _grid_pairs(_cells(mid[edges], h), _cells(v, h), zero[edges], zero, [0])
+        if len(edges) * len(v) <= 1 << 22:  # a few edges: their boxes against every vertex
+            inside = np.all((v[None] >= lo[edges, None]) & (v[None] <= hi[edges, None]), axis=2)
+            pe, pv = np.nonzero(inside)
+        else:
+            h = 2.0 ** float(lv)
+            pe, pv = _grid_pairs(_cells(mid[edges], h), _cells(v, h), zero[edges], zero, [0])
         pe_all.append(edges[pe])
         pv_all.append(pv)
     edge = np.concatenate(pe_all)
