@@ -173,3 +173,27 @@ def test_pull_device_percentiles_signed_and_along_the_intended_travel():
     assert along["p5"] == pytest.approx(np.percentile(-speeds, 5), rel=1e-12)
     assert 0 < along["p5"] <= along["p50"] <= along["p95"]
     assert along["p5"] == pytest.approx(-signed["p95"], rel=1e-12)  # the slowest pull
+
+
+def test_spearman_against_closed_form_and_scipy():
+    """Without ties ρ = 1 − 6Σd²/(n(n²−1)) (closed form); with ties it equals scipy's
+    spearmanr (average ranks, a second implementation); non-finite pairs are dropped."""
+    from scipy.stats import rankdata, spearmanr
+
+    from betvdesign.studies.tolerance import ranks, spearman
+
+    rng = np.random.default_rng(11)
+    x, y = rng.normal(size=200), rng.normal(size=200) + np.linspace(0, 3, 200)
+    rx = np.argsort(np.argsort(x)) + 1
+    ry = np.argsort(np.argsort(y)) + 1
+    n = x.size
+    closed = 1 - 6 * np.sum((rx - ry) ** 2.0) / (n * (n**2 - 1))
+    assert spearman(x, y) == pytest.approx(closed, abs=1e-12)
+    xt, yt = np.round(x, 0), np.round(y * 2, 0) / 2  # many ties
+    np.testing.assert_array_equal(ranks(xt), rankdata(xt))
+    assert spearman(xt, yt) == pytest.approx(spearmanr(xt, yt).statistic, abs=1e-12)
+    xn = np.r_[x, np.nan, 1.0]
+    yn = np.r_[y, 0.0, np.inf]
+    assert spearman(xn, yn) == spearman(x, y)
+    assert spearman(np.ones(5), np.arange(5.0)) is None
+    assert spearman(np.arange(2.0), np.arange(2.0)) is None
