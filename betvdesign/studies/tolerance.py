@@ -604,7 +604,8 @@ def spearman(x: np.ndarray, y: np.ndarray) -> float | None:
     ok = np.isfinite(x) & np.isfinite(y)
     if ok.sum() < 3 or np.ptp(x[ok]) == 0 or np.ptp(y[ok]) == 0:
         return None
-    return float(np.corrcoef(ranks(x[ok]), ranks(y[ok]))[0, 1])
+    # [1, 0] as scipy.stats.spearmanr reads it (the two divide in another order)
+    return float(np.corrcoef(ranks(x[ok]), ranks(y[ok]))[1, 0])
 
 
 def intended_sign(intended: str | None) -> float:
