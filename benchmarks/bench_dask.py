@@ -2,7 +2,7 @@
 
     .venv/bin/python benchmarks/bench_dask.py --workers 1 2 4 8 16 --samples 200000
     .venv/bin/python benchmarks/bench_dask.py --workers 1 2 --samples 5000 20000
-    options: --dask-chunksize N (e.g. 32: the chunking before issue 33),
+    options: --dask-chunksize N (e.g. 32: the chunking before issue 33), --repeat R,
              --budget S (skip what would start after S seconds), --device FILE
 
 For each sample count and each worker count n it times, on this machine:
@@ -14,7 +14,10 @@ For each sample count and each worker count n it times, on this machine:
 each running the same tolerance study of ``devices/push_demo.yaml`` (seven fields spread,
 periodic rung). The time is the study's own (``run_study``), after one small warm-up
 run on the same pool or cluster (fork server and kernels loaded, cluster started and
-its kernels warmed); cluster start-up is printed apart. Target: dask ≥ 80 % of the
+its kernels warmed); cluster start-up is printed apart. With ``--repeat R`` the two
+alternate R times (pool, dask, pool, ...) and the best of each is kept (a loaded
+machine's load changes between runs; the idle cluster's scheduler and nanny stay up
+while the pool runs). Target: dask ≥ 80 % of the
 pool's throughput (the ``dask/pool`` column, throughput ratio = pool s / dask s). The
 rows of both are compared (identical floats). One line per measurement is printed as
 soon as it is known, and ``benchmarks/out/bench_dask.json`` is rewritten after each.
@@ -80,6 +83,9 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--workers", type=int, nargs="+", default=[1, 2])
     ap.add_argument("--samples", type=int, nargs="+", default=[20_000])
     ap.add_argument("--dask-chunksize", type=int, default=None)
+    ap.add_argument(
+        "--repeat", type=int, default=1, help="timed runs per backend, alternated; best kept"
+    )
     ap.add_argument("--budget", type=float, default=230.0, help="seconds (default 230)")
     ap.add_argument("--device", type=Path, default=DEVICE)
     args = ap.parse_args(argv)
@@ -127,7 +133,6 @@ def main(argv: list[str] | None = None) -> int:
                 continue
             pool = ProcessExecutor(workers=w)
             _timed(warm_study, pool)  # fork server and kernels (once per process)
-            t_pool, rows_pool = _timed(studies[n], pool)
             t0 = time.perf_counter()
             with (
                 distributed.LocalCluster(
@@ -141,13 +146,22 @@ def main(argv: list[str] | None = None) -> int:
                 t_cluster = time.perf_counter() - t0
                 dask = DaskExecutor(client=client, chunksize=args.dask_chunksize)
                 _timed(warm_study, dask)  # the workers' kernels (the warm-up plugin)
-                t_dask, rows_dask = _timed(studies[n], dask)
+                # alternated, so that a change of the machine's load hits both alike
+                pool_times, dask_times = [], []
+                for _ in range(max(1, args.repeat)):
+                    t, rows_pool = _timed(studies[n], pool)
+                    pool_times.append(t)
+                    t, rows_dask = _timed(studies[n], dask)
+                    dask_times.append(t)
+            t_pool, t_dask = min(pool_times), min(dask_times)
             same = rows_pool == rows_dask
             run = {
                 "samples": n,
                 "workers": w,
                 "pool_s": round(t_pool, 3),
                 "dask_s": round(t_dask, 3),
+                "pool_runs_s": [round(t, 3) for t in pool_times],
+                "dask_runs_s": [round(t, 3) for t in dask_times],
                 "dask_throughput_vs_pool": round(t_pool / t_dask, 3),
                 "cluster_start_s": round(t_cluster, 2),
                 "rows_identical": same,

@@ -31,6 +31,7 @@ import itertools
 import math
 import multiprocessing
 import os
+import pickle
 import select
 import signal
 import threading
@@ -135,6 +136,29 @@ def apply_chunk(fn: Worker, chunk: Sequence[Task]) -> list[Row]:
         One row per task, in the chunk's order.
     """
     return [fn(task) for task in chunk]
+
+
+def apply_pickled_chunk(fn: Worker, blob: bytes) -> list[Row]:
+    """Run ``fn`` over one chunk of tasks sent as one pickle (the dask path).
+
+    ``client.submit`` walks every list, tuple and dict among a task's arguments (looking
+    for futures and building graph nodes): for a chunk of 2048 tolerance tasks that took
+    0.13-0.25 s on the client, against 0.014-0.033 s for the same chunk as bytes (2 cores,
+    load 5-9), and the client submits every chunk of the study, one after another.
+
+    Parameters
+    ----------
+    fn : callable
+        The study's worker ``fn(task) -> row``.
+    blob : bytes
+        The chunk's tasks, pickled.
+
+    Returns
+    -------
+    list of dict
+        One row per task, in the chunk's order.
+    """
+    return apply_chunk(fn, pickle.loads(blob))  # our own chunk, pickled by the client
 
 
 def chunked(tasks: Sequence[Task], size: int) -> list[list[Task]]:
@@ -419,9 +443,9 @@ class DaskExecutor:
         The kernels are warmed once per worker (:class:`~betvdesign.studies.engine.
         daskplugin.WarmKernels`), ``fn`` is sent to every worker once (scattered, then
         named by its future in each chunk), the chunks are large (:func:`default_chunksize`
-        of ``"dask"``), and finished chunks are collected by ``distributed.as_completed``,
-        which fetches results on the client's event loop instead of a blocking round trip
-        per chunk.
+        of ``"dask"``) and travel as one pickle each (:func:`apply_pickled_chunk`), and
+        finished chunks are collected by ``distributed.as_completed``, which fetches
+        results on the client's event loop instead of a blocking round trip per chunk.
         """
         if not tasks:
             return
@@ -440,7 +464,8 @@ class DaskExecutor:
             todo = iter(chunked(tasks, size))
 
             def submit(chunk: list[Task]) -> Any:
-                fut = client.submit(apply_chunk, fn_remote, chunk, pure=False)
+                blob = pickle.dumps(chunk, protocol=pickle.HIGHEST_PROTOCOL)
+                fut = client.submit(apply_pickled_chunk, fn_remote, blob, pure=False)
                 pending.add(fut)
                 return fut
 
