@@ -115,6 +115,22 @@ def _pid_row(task):
     return {"key": task["key"], "pid": os.getpid()}
 
 
+def _kernels_row(task):
+    """A worker that says how many solver kernels its process holds compiled or loaded."""
+    from betvdesign.dynamics.jit import KERNELS
+
+    return {"key": task["key"], "loaded": sum(len(d.signatures) for d in KERNELS)}
+
+
+def test_pool_workers_start_with_the_kernels_loaded():
+    """The fork server loads the kernels once (studies.engine.preload): the first task of
+    every worker finds them in its process, though no task there has solved anything."""
+    tasks = [{"key": i} for i in range(8)]
+    rows = [r for c in ProcessExecutor(2, chunksize=1).run(_kernels_row, tasks) for r in c]
+    assert len(rows) == 8
+    assert min(r["loaded"] for r in rows) > 0
+
+
 def test_chunk_size_per_backend():
     """Dask gets few large chunks (a chunk is a scheduler task), the pool many small ones."""
     # 2e5 tasks, 16 workers: 8 chunks per worker of ceil(2e5 / 128) tasks
