@@ -283,7 +283,7 @@ def _drain(
     result: Callable[[Any], list[Row]],
     cancel: Callable[[Any], Any],
 ) -> Iterator[list[Row]]:
-    """Bounded-window submit/yield loop shared by the pool backends."""
+    """Bounded-window submit/yield loop of the process pool (dask: ``as_completed``)."""
     pending: set[Any] = set()
     todo = iter(chunks)
     try:
@@ -440,12 +440,13 @@ class DaskExecutor:
     def run(self, fn: Worker, tasks: Sequence[Task]) -> Iterator[list[Row]]:
         """Run ``fn`` over ``tasks`` on the dask cluster (:meth:`Executor.run`).
 
-        The kernels are warmed once per worker (:class:`~betvdesign.studies.engine.
-        daskplugin.WarmKernels`), ``fn`` is sent to every worker once (scattered, then
-        named by its future in each chunk), the chunks are large (:func:`default_chunksize`
-        of ``"dask"``) and travel as one pickle each (:func:`apply_pickled_chunk`), and
-        finished chunks are collected by ``distributed.as_completed``, which fetches
-        results on the client's event loop instead of a blocking round trip per chunk.
+        The kernels are warmed once per worker (the worker plugin
+        :class:`~betvdesign.studies.engine.daskplugin.WarmKernels`), ``fn`` is sent to
+        every worker once (scattered, then named by its future in each chunk), the
+        chunks are large (:func:`default_chunksize` of ``"dask"``) and travel as one
+        pickle each (:func:`apply_pickled_chunk`), and finished chunks are collected by
+        ``distributed.as_completed``, which fetches results on the client's event loop
+        instead of a blocking round trip per chunk.
         """
         if not tasks:
             return
