@@ -20,7 +20,9 @@ machine's load changes between runs; the idle cluster's scheduler and nanny stay
 while the pool runs). Target: dask ≥ 80 % of the
 pool's throughput (the ``dask/pool`` column, throughput ratio = pool s / dask s). The
 rows of both are compared (identical floats). One line per measurement is printed as
-soon as it is known, and ``benchmarks/out/bench_dask.json`` is rewritten after each.
+soon as it is known, and ``benchmarks/out/bench_dask.json`` is rewritten after each;
+the most workers run first, so that a run cut short by ``--budget`` (or Ctrl-C) has
+the largest counts.
 
 Needs only the repository and its virtual environment (dask is the ``dask`` extra).
 """
@@ -127,7 +129,7 @@ def main(argv: list[str] | None = None) -> int:
         print(f"# study of {n} samples built in {time.perf_counter() - t0:.2f} s", flush=True)
     skipped = []
     for n in args.samples:
-        for w in args.workers:
+        for w in sorted(set(args.workers), reverse=True):  # the most workers first
             if time.perf_counter() - t_start > args.budget:
                 skipped.append((n, w))
                 continue
