@@ -106,3 +106,109 @@ def test_cli_runs_on_a_dask_scheduler(cluster, tmp_path):
     )
     assert r3.exit_code == 0, r3.stderr
     assert json.loads(r3.stdout)["workers"] == 2
+
+
+def _pid_row(task):
+    """A worker that says which process ran it (module level: it pickles by name)."""
+    import os
+
+    return {"key": task["key"], "pid": os.getpid()}
+
+
+def _kernels_row(task):
+    """A worker that says how many solver kernels its process holds compiled or loaded."""
+    from betvdesign.dynamics.jit import KERNELS
+
+    return {"key": task["key"], "loaded": sum(len(d.signatures) for d in KERNELS)}
+
+
+def test_pool_workers_start_with_the_kernels_loaded():
+    """The fork server loads the kernels once (studies.engine.preload): the first task of
+    every worker finds them in its process, though no task there has solved anything."""
+    tasks = [{"key": i} for i in range(8)]
+    rows = [r for c in ProcessExecutor(2, chunksize=1).run(_kernels_row, tasks) for r in c]
+    assert len(rows) == 8
+    assert min(r["loaded"] for r in rows) > 0
+
+
+def test_chunk_size_per_backend():
+    """Dask gets few large chunks (a chunk is a scheduler task), the pool many small ones."""
+    # 2e5 tasks, 16 workers: 8 chunks per worker of ceil(2e5 / 128) tasks
+    assert default_chunksize(200_000, 16, "dask") == 1563
+    assert default_chunksize(10**7, 16, "dask") == 2048  # bounded
+    assert default_chunksize(10, 4, "dask") == 1
+    assert default_chunksize(200_000, 16, "process") == 32
+    assert default_chunksize(200_000, 16) == default_chunksize(200_000, 16, "process")
+
+
+def test_small_study_runs_in_this_process_large_on_the_pool():
+    import os
+
+    from betvdesign.studies.engine.executors import SMALL_STUDY
+
+    small = [{"key": i} for i in range(SMALL_STUDY)]
+    rows = [r for chunk in ProcessExecutor(workers=2).run(_pid_row, small) for r in chunk]
+    assert sorted(r["key"] for r in rows) == list(range(SMALL_STUDY))
+    assert {r["pid"] for r in rows} == {os.getpid()}
+    large = [{"key": i} for i in range(SMALL_STUDY + 1)]
+    rows = [r for chunk in ProcessExecutor(workers=2).run(_pid_row, large) for r in chunk]
+    assert sorted(r["key"] for r in rows) == list(range(SMALL_STUDY + 1))
+    assert os.getpid() not in {r["pid"] for r in rows}
+    # an explicit chunk size always uses the pool
+    rows = [r for chunk in ProcessExecutor(2, chunksize=2).run(_pid_row, small[:4]) for r in chunk]
+    assert os.getpid() not in {r["pid"] for r in rows}
+
+
+def test_tolerance_study_identical_on_dask_with_default_chunks(cluster):
+    """A small tolerance study of push_demo (periodic rung): the dask run with its own
+    default chunking (large chunks, scattered worker, warmed kernels) gives the serial
+    run's rows, floats bit for bit; the workers then hold the warm-up plugin."""
+    from betvdesign.studies.engine.daskplugin import NAME
+    from betvdesign.studies.tolerance import parse_tolerance, tolerance_study
+
+    tols = [
+        parse_tolerance("slider.beam_width=normal:0.3 um"),
+        parse_tolerance("contact.friction=uniform:25%"),
+        parse_tolerance("drive.frequency=normal:1%"),
+    ]
+    study = tolerance_study("devices/push_demo.yaml", tols, samples=60, seed=5)
+    ref = run_study(study, SerialExecutor()).rows
+    executor = DaskExecutor(cluster.scheduler_address)
+    dask = run_study(study, executor).rows
+    assert sum(r["converged"] for r in ref) > 50
+    for a, b in zip(ref, dask, strict=True):
+        assert a == b
+        if a["delta_s"] is not None:
+            assert a["delta_s"].hex() == b["delta_s"].hex()
+    assert executor.workers == 2
+
+    from distributed import Client
+
+    with Client(cluster.scheduler_address) as client:
+        has = client.run(lambda dask_worker: NAME in dask_worker.plugins)
+    assert list(has.values()) == [True, True]
+
+
+def test_dask_warm_plugin_loads_kernels_before_any_task():
+    """On a fresh worker the plugin alone loads the solver kernels (numba dispatchers
+    with a compiled signature), before any study task has run there."""
+    distributed = require_module("distributed")
+    from betvdesign.studies.engine.daskplugin import WarmKernels
+
+    def loaded() -> int:
+        from betvdesign.dynamics.jit import KERNELS
+
+        return sum(len(d.signatures) for d in KERNELS)
+
+    with (
+        distributed.LocalCluster(
+            n_workers=1, threads_per_worker=1, processes=True, dashboard_address=":0"
+        ) as cl,
+        distributed.Client(cl) as client,
+    ):
+        before = client.run(loaded)
+        client.register_plugin(WarmKernels())
+        after = client.run(loaded)
+    assert list(before.values()) == [0]
+    [n_after] = after.values()
+    assert n_after > 0

@@ -209,3 +209,29 @@ def test_tolerance_prints_p_pass_as_fix_counts_it(tmp_path):
     assert doc["p_pass"] == pytest.approx(1.0 - s["p_wrong_mode"], abs=1e-12)
     text = CliRunner().invoke(app, args).stdout
     assert f"P(pass) {fix_p:.3f}: every set studied passes" in text
+
+
+def test_spearman_against_closed_form_and_scipy():
+    """Without ties ρ = 1 − 6Σd²/(n(n²−1)) (closed form); with ties it equals scipy's
+    spearmanr (average ranks, a second implementation); non-finite pairs are dropped."""
+    from scipy.stats import rankdata, spearmanr
+
+    from betvdesign.studies.tolerance import ranks, spearman
+
+    rng = np.random.default_rng(11)
+    x, y = rng.normal(size=200), rng.normal(size=200) + np.linspace(0, 3, 200)
+    rx = np.argsort(np.argsort(x)) + 1
+    ry = np.argsort(np.argsort(y)) + 1
+    n = x.size
+    closed = 1 - 6 * np.sum((rx - ry) ** 2.0) / (n * (n**2 - 1))
+    assert spearman(x, y) == pytest.approx(closed, abs=1e-12)
+    xt, yt = np.round(x, 0), np.round(y * 2, 0) / 2  # many ties
+    np.testing.assert_array_equal(ranks(xt), rankdata(xt))
+    # the same floats as scipy's (numbers in summaries do not move)
+    assert spearman(xt, yt) == float(spearmanr(xt, yt).statistic)
+    assert spearman(x, y) == float(spearmanr(x, y).statistic)
+    xn = np.r_[x, np.nan, 1.0]
+    yn = np.r_[y, 0.0, np.inf]
+    assert spearman(xn, yn) == spearman(x, y)
+    assert spearman(np.ones(5), np.arange(5.0)) is None
+    assert spearman(np.arange(2.0), np.arange(2.0)) is None
