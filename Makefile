@@ -1,6 +1,6 @@
 # betvdesign: two commands do all set-up (see README).
 #   make demo  -> .venv, install (with the layout and explore extras), byte-compiled modules (.pyc), compiled solver kernels (cached), design reports (HTML + PDF) of shin2004 and push_demo, and shin2004's mask layout (GDS + SVG) under reports/; then `betv explore devices/push_demo.yaml`
-#   make test  -> .venv with test extras, system packages (when root), whole suite
+#   make test  -> .venv with test extras, system packages (when root), whole suite on every core (pytest-xdist; each test file on one worker)
 PYTHON ?= python3
 VENV   := .venv
 BIN    := $(VENV)/bin
@@ -31,7 +31,7 @@ demo: sysdeps-runtime $(VENV)/.stamp-run
 
 test: sysdeps $(VENV)/.stamp-test
 	$(BIN)/ruff check betvdesign tests benchmarks
-	$(BIN)/python -m pytest
+	$(BIN)/python -m pytest -n auto --dist loadfile
 
 lint: $(VENV)/.stamp-test
 	$(BIN)/ruff check betvdesign tests benchmarks
