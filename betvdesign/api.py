@@ -71,6 +71,10 @@ class CheckOptions:
         Run the transient from rest / judge how well Δs is determined in float64 (with
         both off, the verdict quotes the periodic orbit alone: the explorer's first
         stage).
+    coupled : bool
+        Add the rule ``coupled-head`` for every drawn set: the paper's decoupled springs
+        against the drawn head's coupled model (:mod:`betvdesign.checks.coupled`; off by
+        default, 10–30 s per set).
 
     Raises
     ------
@@ -88,6 +92,7 @@ class CheckOptions:
     margin: bool = True
     settle: bool = True
     determine: bool = True
+    coupled: bool = False
 
     def __post_init__(self) -> None:
         """Freeze the selectors as tuples and refuse bad values before any solve."""
@@ -171,6 +176,7 @@ def run_check(
         determine=opts.determine,
         horizon=opts.horizon,
         layout_rules=None if layout is None else layout.rules,
+        coupled=opts.coupled,
     )
     notes = res.notes + ([] if layout is None else list(layout.notes))
     res = replace(

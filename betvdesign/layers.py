@@ -82,7 +82,9 @@ LAYERS: tuple[Layer, ...] = (
         "nondim",
         "spec → ModelParams + scales + derivation record: `device` (the paper's relations "
         "as named steps), `terms` (the optional terms), `actuator` (the drawn actuator's "
-        "springs, every step recorded), `record` (what a derivation produces); the only "
+        "springs, every step recorded), `stroke` (a stroke predicted from the drawing: the "
+        "electrothermal model at the drive, recorded), `record` (what a derivation "
+        "produces); the only "
         "package that strips units",
     ),
     Layer(
@@ -93,15 +95,18 @@ LAYERS: tuple[Layer, ...] = (
         "`schedule`, `shooting`, `jit`), its answers (`result`: one contract), `solver` "
         "(`simulate`), `periodic` (`periodic_orbit`), `vertical` (`vertical_motion`), "
         "`settling` (transient from rest), `determination` (is Δs determined in float64), "
-        "`reference` + `reference_terms` (solve_ivp, independent), `rigid` (α → 0)",
+        "`reference` + `reference_terms` (solve_ivp, independent), `rigid` (α → 0), "
+        "`coupled_reference` (the coupled head, solve_ivp)",
     ),
     Layer(
         "checks",
         "the verdict: `rule` (RuleResult: rules as data), `rules` (the design rules), "
         "`window` (the design window's rules: its edges, its margin), "
         "`travel` (which answer a verdict quotes: orbit or crossing of the travel), "
-        "`adequacy` (is the idealised model enough: study, rule, JSON), `fidelity` (the "
-        "ladder of models), `actuator_rules` (drawn actuator against the file's "
+        "`adequacy` (is the idealised model enough: study, rule, JSON), `coupled` (its "
+        "coupled rung: decoupled springs vs the drawn head), `fidelity` (the "
+        "ladder of models), `thermal_rules` (a predicted stroke: peak temperature, "
+        "bandwidth, power, sources), `actuator_rules` (drawn actuator against the file's "
         "resonances), `process_rules` (the process's design rules on a device file), "
         "`checker` (the check of a device), `view` (text, versioned JSON, HTML)",
     ),
@@ -111,6 +116,8 @@ LAYERS: tuple[Layer, ...] = (
         "study), maps (`pushpull`, `regime`, `lambda_scan`), device studies (`sampling`, "
         "`tolerance`, `calibration`, `measurements`, `fix` (the one search of advice: "
         "`betv fix` and the fix text of `betv check`), `fixfields`, `fixfile`, "
+        "`drawnchange` (a change of the springs said in drawn dimensions, through the "
+        "frame, within the process rules), "
         "`fieldsweep` (a device's own fields in physical units)), `fieldmap` (the "
         "exact-mode map of two device fields), `terms` (the optional terms of a study)",
     ),

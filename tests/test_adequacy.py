@@ -361,3 +361,16 @@ def test_check_can_skip_the_adequacy_study():
     ids = [{r["id"] for r in d["sets"][0]["rules"]} for d in (full, lean)]
     assert ids[0] - ids[1] == {"model-adequacy"}
     assert full["verdict"] == lean["verdict"]
+
+
+def test_json_speeds_are_magnitudes_with_the_mode_beside_them():
+    """Issue 32 item 13: one convention in the JSON: a speed is a magnitude, the mode
+    says the way. pull_demo's idealised orbit (Δs < 0, pull) is quoted at
+    |Δs|·u·cosθ·f_act, recomputed here from the derivation, as the set's own speed is."""
+    der = derive(load_device(DEVICES / "pull_demo.yaml"))
+    out = betvdesign.check(der.spec, advice=False).out.sets[0]
+    ideal = out.adequacy.ideal
+    assert ideal.mode == "pull" and ideal.delta_s < 0
+    assert ideal.speed_m_s == pytest.approx(abs(der.sets[0].scales.speed_m_s(ideal.delta_s)))
+    assert ideal.speed_m_s > 0 and out.speed_m_s > 0 and out.mode == "pull"
+    assert out.adequacy.richer.speed_m_s >= 0

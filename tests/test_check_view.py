@@ -84,7 +84,8 @@ def test_push_demo_fits_one_screen_and_names_mode_speed_margin():
     v = periodic_orbit(p).delta_s * 0.14e-6 * math.cos(math.radians(20.56)) * 6000.0
     assert v > 0
     assert f"push as intended, {format_si(v, 'm/s')} toward +x, 50 µm in" in r.stdout
-    assert "mode holds at ϖ ±5 %, α ±10 %" in r.stdout  # the margin (rule mode-margin)
+    # the margin (rule mode-margin), its spread joined by no-break spaces
+    assert "mode holds at ϖ\u00a0±5\u00a0%, α\u00a0±10\u00a0%" in r.stdout
     assert re.search(r"λ 0\.334 → push agrees", r.stdout)
     assert "f_act 6 kHz, u 140 nm" in r.stdout
     assert "ug" not in r.stdout and "um/s" not in r.stdout
@@ -219,3 +220,22 @@ def test_python_view_repr_and_html():
     html = view._repr_html_()
     assert "<table>" in html and "frequency-window" in html and "FAIL" in html
     assert view.verdict == "fail" and view.failed == ["frequency-window"]
+
+
+def test_margin_names_the_subresonance_and_its_spread_never_wraps(tmp_path):
+    """Issue 32 items 12-13: designer_pull (pull at 2 kHz, AC drive: f_act = 4 kHz) flips
+    to push at the margin corners; its file gives f_h = 12 kHz, so by hand the flip sits
+    at the sub-resonance f_act = f_h/3 = 4 kHz, α·ϖ² = (4/12)² = 1/9, and the rule names
+    it. The headline's "ϖ ±5 %, α ±10 %" is never split by the wrap, at any width."""
+    from betvdesign.api import check
+    from betvdesign.checks.view import compact_lines
+
+    designer = Path(__file__).resolve().parent / "data" / "designer_pull.yaml"
+    view = check(designer, advice=False, adequacy=False)
+    (rule,) = [r for r in view.out.sets[0].rules if r.id == "mode-margin"]
+    assert not rule.passed
+    assert rule.message.endswith("near the sub-resonance α·ϖ² = 1/9 (f_act = f_h/3 = 4 kHz)")
+    spread = "ϖ\u00a0±5\u00a0%, α\u00a0±10\u00a0%"
+    for width in range(60, 101):
+        text = "\n".join(compact_lines(view.view, width=width, markup=False))
+        assert spread in text, width

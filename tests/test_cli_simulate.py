@@ -111,12 +111,15 @@ def test_solver_failure_exit_1_with_message():
 
 
 def test_pull_device_states_travel_direction_beside_the_magnitude():
-    """One sign convention with ``betv check``: the speed signed along the impact
-    direction (− pull) in JSON, and in the text its magnitude and the travel direction."""
+    """One convention with ``betv check`` (issue 32 item 13): the speed is a magnitude
+    beside the travel direction, in JSON and text; Δs keeps its sign (− pull)."""
     path = DEVICES / "pull_demo.yaml"
     out = json.loads(_run([str(path), "--periodic", "--json"]).stdout)
     ph = out["physical"]
-    assert out["mode"] == "pull" and ph["speed_m_s"] < 0
+    assert out["mode"] == "pull" and out["delta_s"] < 0 and ph["delta_s_m"] < 0
+    assert ph["speed_m_s"] == pytest.approx(-ph["delta_s_m"] * ph["f_act_hz"], rel=1e-12)
+    check_json = json.loads(CliRunner().invoke(app, ["check", str(path), "--json"]).stdout)
+    assert check_json["devices"][0]["sets"][0]["speed_m_s"] > 0  # the check's: a magnitude
     d = derive_file(path).sets[0]
     assert out["impact_direction"] == ("+x" if d.impact_sign > 0 else "-x")
     assert ph["travel_direction"] == ("-x" if d.impact_sign > 0 else "+x")

@@ -26,9 +26,10 @@ from betvdesign.cli import app
 from betvdesign.errors import SpecError
 from betvdesign.explore.compute import evaluate
 from betvdesign.explore.design import Design, free_name, set_path
-from betvdesign.explore.fields import current_value, designer_fields
-from betvdesign.nondim.device import derive
+from betvdesign.explore.fields import SLIDER_STEPS, current_value, designer_fields
+from betvdesign.nondim.device import derive, derive_refusing
 from betvdesign.output.presentation import MODE_COLORS
+from betvdesign.spec.limits import MAX_BEAM_COUNT
 from betvdesign.spec.loader import load_device, load_device_text
 from betvdesign.studies.fieldmap import MAP_MODES, FieldAxis, map_rows, mode_map
 
@@ -206,7 +207,13 @@ def test_controls_cover_the_designers_fields_with_ranges_the_spec_accepts() -> N
         for x in (c.lo, c.hi):
             value = c.file_value(c.text(x))
             spec.replace(c.field, value)  # raises when the spec refuses the slider's end
-    assert fields["drive.voltage"].hi <= 10.0  # the measured calibration ends at 10 V
+    # the voltage slider spans the measured calibration, 0 V to 10 V (the file's points),
+    # from its first position above 0 V (the spec takes only V > 0)
+    volt = fields["drive.voltage"]
+    assert volt.hi == 10.0 and not volt.log
+    assert 0.0 < volt.lo <= (volt.hi - 0.0) / SLIDER_STEPS * (1 + 1e-12)
+    derive_refusing(spec.replace("drive.voltage", volt.file_value(volt.text(volt.lo))), "x")
+    assert fields["slider.beam_count"].hi == MAX_BEAM_COUNT  # the spec's own limit
     assert fields["drive.frequency"].log and not fields["contact.impact_angle"].log
 
 
@@ -603,3 +610,54 @@ def test_save_writes_beside_the_device_file_or_says_why_not(tmp_path: Path) -> N
     again = d.save(unique)
     assert not again.written and again.exists
     assert load_device(folder / unique) == d.spec
+
+
+def test_undo_goes_back_step_by_step_and_reset_is_a_step() -> None:
+    """Each applied change is one undo step (the design read from the file with the
+    changes before it, an independent path); ``merge`` joins a change to the step before
+    it; a refused change is no step; reset goes back to the file and can be undone."""
+    path = DEVICES / "push_demo.yaml"
+    d = Design.from_file(path)
+    file_spec = load_device(path)
+    d.apply({"drive.frequency": "3.2 kHz"})
+    d.apply({"slider.beam_width": "12 um"})
+    with pytest.raises(SpecError):
+        d.apply({"contact.friction": 7.0})
+    assert d.undo()
+    assert d.spec == file_spec.replace("drive.frequency", "3.2 kHz")
+    assert d.edits == {"drive.frequency": "3.2 kHz"}
+    assert d.undo() and d.spec == file_spec and not d.edits
+    assert not d.undo() and d.spec == file_spec
+    d.apply({"contact.friction": 0.3})
+    d.apply({"contact.friction": 0.31}, merge=True)  # one drag
+    d.apply({"contact.friction": 0.32}, merge=True)
+    assert d.spec == file_spec.replace("contact.friction", 0.32)
+    d.reset()
+    assert d.spec == file_spec and d.yaml_text() == path.read_text()
+    assert d.undo() and d.spec == file_spec.replace("contact.friction", 0.32)
+    assert d.undo() and d.spec == file_spec and not d.undo()
+
+
+def test_host_rule_refuses_every_name_but_the_local_ones() -> None:
+    """The server's host pattern (Tornado adds the end anchor and matches the Host
+    header's name): only 127.0.0.1, localhost and [::1] pass."""
+    import re
+
+    from betvdesign.explore.server import FOREIGN_HOST
+
+    foreign = re.compile(FOREIGN_HOST + "$")
+    for host in ("127.0.0.1", "localhost", "[::1]"):
+        assert not foreign.match(host), host
+    for host in ("evil.example", "127.0.0.1.evil.example", "localhost.evil", "127.0.0.2", ""):
+        assert foreign.match(host), host
+
+
+def test_slider_values_read_in_the_fields_units() -> None:
+    """What the slider's tooltip and a screen reader say: the file's value and unit,
+    µ written as such (push_demo: 3 kHz, 10 um)."""
+    fields = {c.field: c for c in designer_fields(load_device(DEVICES / "push_demo.yaml"), 0)}
+    freq, width = fields["drive.frequency"], fields["slider.beam_width"]
+    assert freq.shown(freq.value) == "3 kHz" and freq.log
+    assert width.shown(width.value) == "10 µm" and width.text(width.value) == "10 um"
+    assert fields["contact.friction"].shown(0.4) == "0.4"
+    assert fields["slider.beam_count"].shown(2) == "2"

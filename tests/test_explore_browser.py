@@ -3,8 +3,8 @@
 Source: ``betv check --json`` of the design the page saved (run as the user runs it)
 and the device file's own validation. The server is the real command
 (``betv explore FILE --no-browser --port P``) on a copy of a shipped device; the page is
-driven by keyboard and mouse. Any console error, page error or request to anything but
-the local server fails a test. Skips only outside CI when chromium, playwright or the
+driven by keyboard and mouse. Any console error or warning, page error or request to
+anything but the local server fails a test. Skips only outside CI when chromium, playwright or the
 ``explore`` extra (Bokeh) is missing; under CI=1 each of those fails, as in
 ``tests/test_browser.py``.
 """
@@ -28,6 +28,8 @@ from pathlib import Path
 import pytest
 from conftest import DEVICES, require_module, require_program
 from test_browser import CHROMIUM_ARGS
+
+from betvdesign.spec.loader import load_device
 
 pytestmark = pytest.mark.browser
 
@@ -139,7 +141,14 @@ class Page:
         self.errors: list[str] = []
         self.foreign: list[str] = []
         local = server.url.rstrip("/")
-        self.p.on("console", lambda m: self.errors.append(m.text) if m.type == "error" else None)
+        self.p.on(
+            "console",
+            lambda m: (
+                self.errors.append(f"{m.type}: {m.text}")
+                if m.type in ("error", "warning")
+                else None
+            ),
+        )
         self.p.on("pageerror", lambda e: self.errors.append(str(e)))
         self.p.on(
             "request",
@@ -418,6 +427,239 @@ def test_one_set_of_a_bidirectional_device(browser, shin_server) -> None:
     line = changed[0]
     assert saved[line].strip() == "friction: 0.3"
     assert original.index("  - name: left") < line
+    page.close()
+
+
+def _settled(page: Page, seq: int) -> int:
+    """Wait for the full check of the first design after ``seq`` and for no later one to
+    follow for a second; its design number."""
+    deadline = time.monotonic() + WAIT_MS / 1e3
+    while time.monotonic() < deadline:
+        s = page.seq_now()
+        if s > seq and page.p.locator(f"[data-seq='{s}'][data-stage='full']").count():
+            time.sleep(1.0)
+            if page.seq_now() == s:
+                return s
+        time.sleep(0.1)
+    pytest.fail(f"no full check after design #{seq}")
+
+
+def _type(page: Page, field: str, value: str) -> None:
+    box = page.p.locator(f".betv-field-{field}.betv-text input")
+    box.fill(value)
+    box.press("Enter")
+
+
+def _agrees(shown: dict, dev: dict) -> None:
+    """The page's verdict, modes and speeds are `betv check --json`'s (``dev``)."""
+    assert dev["verdict"] == shown["verdict"]
+    assert {s["name"]: s["mode"] for s in dev["sets"]} == {
+        k: v[0] for k, v in shown["sets"].items()
+    }
+    for s in dev["sets"]:
+        speed = shown["sets"][s["name"]][1]
+        assert (speed is None) == (s["speed_m_s"] is None)
+        if speed is not None:
+            assert speed == pytest.approx(s["speed_m_s"], rel=1e-12)
+
+
+def test_undo_and_reset_to_the_file(browser, push_server) -> None:
+    """Issue 32 item 6: Undo takes the last change back (the text box shows the file's
+    value again and the verdict is `betv check --json` of the file); Reset goes back to
+    the file from two changes (Save then writes the file's bytes); Undo after Reset
+    brings the changes back."""
+    page = Page(browser, push_server)
+    original = push_server.workdir / "push_demo.yaml"
+    file_dev = _check_json(original)
+    undo = page.p.locator(".betv-undo button")
+    reset = page.p.locator(".betv-reset button")
+    assert undo.is_disabled() and reset.is_disabled()  # nothing changed yet
+    friction = page.text("contact-friction")
+    width = page.text("slider-beam-width")
+    seq = page.seq_now()
+    _type(page, "contact-friction", "0.05")
+    seq = _settled(page, seq)
+    assert page.text("contact-friction") == "0.05"
+    assert not undo.is_disabled()
+    undo.click()
+    seq = _settled(page, seq)
+    assert page.text("contact-friction") == friction
+    _agrees(page.shown(), file_dev)
+    assert undo.is_disabled() and reset.is_disabled()
+    # two changes, then back to the file
+    _type(page, "contact-friction", "0.3")
+    seq = _settled(page, seq)
+    _type(page, "slider-beam-width", "12 um")
+    seq = _settled(page, seq)
+    reset.click()
+    seq = _settled(page, seq)
+    assert (page.text("contact-friction"), page.text("slider-beam-width")) == (friction, width)
+    _agrees(page.shown(), file_dev)
+    page.p.locator(".betv-save-name input").fill("reset.yaml")
+    page.p.locator(".betv-save-name input").press("Enter")
+    page.p.locator(".betv-save button").click()
+    page.p.locator(".betv-saved").first.wait_for(state="attached", timeout=WAIT_MS)
+    assert (push_server.workdir / "reset.yaml").read_bytes() == original.read_bytes()
+    undo.click()  # the reset is one step: both changes come back
+    _settled(page, seq)
+    assert (page.text("contact-friction"), page.text("slider-beam-width")) == ("0.3", "12 um")
+    page.close()
+
+
+def test_sliders_speak_the_fields_units(browser, push_server) -> None:
+    """Issue 32 item 6: a screen reader hears the slider's value in the field's unit
+    (aria-valuetext "3 kHz", the file's value, not the log10 position 0.48) and the
+    field's name; a keyboard move says the new value as the text box writes it. The
+    voltage slider spans the measured calibration: End is its last point (10 V), Home
+    its first position above the first point (0 V: the spec takes V > 0)."""
+    page = Page(browser, push_server)
+    handle = page.p.locator(".betv-field-drive-frequency.betv-slider .noUi-handle").first
+    assert handle.get_attribute("aria-valuetext") == "3 kHz"  # push_demo: frequency: 3 kHz
+    assert handle.get_attribute("aria-label") == "drive frequency"
+    width = page.p.locator(".betv-field-slider-beam-width.betv-slider .noUi-handle").first
+    assert width.get_attribute("aria-valuetext") == "10 µm"  # beam_width: 10 um
+    seq = page.seq_now()
+    handle.focus()
+    page.p.keyboard.press("ArrowRight")
+    page.wait_seq(seq + 1)
+    said = handle.get_attribute("aria-valuetext")
+    assert said.endswith(" kHz") and said != "3 kHz"
+    deadline = time.monotonic() + WAIT_MS / 1e3
+    while page.text("drive-frequency") != said and time.monotonic() < deadline:
+        time.sleep(0.1)
+    assert page.text("drive-frequency") == said
+    points = load_device(push_server.workdir / "push_demo.yaml").actuator_sets[0]
+    first, last = (float(v.to("V").magnitude) for v in points.actuator.calibration.voltage_range)
+    volt = page.p.locator(".betv-field-drive-voltage.betv-slider .noUi-handle").first
+    for key, expect in (("End", last), ("Home", first)):
+        seq = page.seq_now()
+        volt.focus()
+        page.p.keyboard.press(key)
+        page.wait_seq(seq + 1)
+        deadline = time.monotonic() + WAIT_MS / 1e3
+        while not volt.get_attribute("aria-valuetext").endswith(" V"):
+            assert time.monotonic() < deadline
+            time.sleep(0.1)
+        shown = float(volt.get_attribute("aria-valuetext").removesuffix(" V"))
+        assert shown == pytest.approx(expect, abs=(last - first) / 200 * 1.001)
+    assert page.p.locator(".betv-error").count() == 0  # both ends are taken
+    page.close()
+
+
+def test_a_refused_text_is_marked_in_its_box(browser, push_server) -> None:
+    """Issue 32 item 6: a refused value stays in its box, marked red, until a value
+    the file's validation takes replaces it."""
+    page = Page(browser, push_server)
+    seq = page.seq_now()
+    _type(page, "contact-friction", "7")
+    page.p.locator(".betv-message.betv-field-contact-friction .betv-error").first.wait_for(
+        timeout=WAIT_MS
+    )
+    marked = page.p.locator(".betv-field-contact-friction.betv-text.betv-refused")
+    marked.wait_for(timeout=WAIT_MS)
+    box = page.p.locator(".betv-field-contact-friction.betv-text input")
+    assert box.input_value() == "7"
+    assert box.evaluate("e => getComputedStyle(e).borderTopColor") == "rgb(207, 34, 46)"
+    _type(page, "contact-friction", "0.35")
+    page.wait_seq(seq + 2)
+    deadline = time.monotonic() + WAIT_MS / 1e3
+    while marked.count() and time.monotonic() < deadline:
+        time.sleep(0.1)
+    assert marked.count() == 0
+    assert box.evaluate("e => getComputedStyle(e).borderTopColor") != "rgb(207, 34, 46)"
+    page.close()
+
+
+def _get(url: str, host: str, path: str = "/") -> tuple[int, str]:
+    import http.client
+    from urllib.parse import urlsplit
+
+    u = urlsplit(url)
+    conn = http.client.HTTPConnection(u.hostname, u.port, timeout=60)
+    try:
+        conn.request("GET", path, headers={"Host": host})
+        r = conn.getresponse()
+        return r.status, r.read().decode("utf-8", "replace")
+    finally:
+        conn.close()
+
+
+def test_foreign_host_headers_are_refused(push_server) -> None:
+    """Issue 32 item 6 (DNS rebinding): a request naming another host gets 403 and no
+    page, on every route; the local names are served (the browser tests open the page
+    at 127.0.0.1; here a file of Bokeh's, so that no page session is left open)."""
+    port = push_server.url.rstrip("/").rsplit(":", 1)[-1]
+    static = "/static/js/bokeh.min.js"
+    for host in ("evil.example", f"evil.example:{port}", f"127.0.0.1.evil.example:{port}"):
+        for path in ("/", static, "/ws"):
+            status, body = _get(push_server.url, host, path)
+            assert status == 403, (host, path)
+            assert "Bokeh" not in body and "refused" in body
+    for host in (f"127.0.0.1:{port}", f"localhost:{port}", f"[::1]:{port}"):
+        status, body = _get(push_server.url, host, static)
+        assert status == 200, host
+        assert "Bokeh" in body
+
+
+def test_no_orbit_shows_why_in_place_of_the_plots(browser, push_server) -> None:
+    """Issue 32 item 6: at 20 kHz push_demo has no periodic orbit (`betv check`: not
+    driven): the page draws no plot and says "no periodic orbit: <reason>", with no
+    console warning (Page.close); back at 3 kHz the plots return; the map legend's
+    items each sit on one line and its last line is inside its box."""
+    page = Page(browser, push_server)
+    plots = page.p.locator(".betv-orbit-plot")
+    assert plots.count() == 2 and all(plots.nth(k).is_visible() for k in range(2))
+    seq = page.seq_now()
+    _type(page, "drive-frequency", "20 kHz")
+    seq = _settled(page, seq)
+    note = page.p.locator(".betv-no-orbit").first
+    assert note.inner_text().startswith("no periodic orbit: ")
+    assert len(note.inner_text()) > len("no periodic orbit: ") + 10  # a reason
+    assert not any(plots.nth(k).is_visible() for k in range(2))
+    page.p.locator(".betv-save-name input").fill("fast.yaml")
+    page.p.locator(".betv-save-name input").press("Enter")
+    page.p.locator(".betv-save button").click()
+    page.p.locator(".betv-saved").first.wait_for(state="attached", timeout=WAIT_MS)
+    dev = _check_json(push_server.workdir / "fast.yaml")
+    assert dev["sets"][0]["mode"] == "not driven" and dev["sets"][0]["speed_m_s"] is None
+    _agrees(page.shown(), dev)
+    _type(page, "drive-frequency", "3 kHz")
+    _settled(page, seq)
+    assert all(plots.nth(k).is_visible() for k in range(2))
+    assert page.p.locator(".betv-no-orbit").count() == 0
+    items = page.p.locator(".betv-legend-item")
+    assert items.count() >= 6
+    heights = [items.nth(k).bounding_box()["height"] for k in range(items.count())]
+    assert max(heights) < 1.6 * min(heights), heights  # no item broken over two lines
+    inside = page.p.locator(".betv-legend").first.evaluate(
+        "el => { const h = el.getRootNode().host.getBoundingClientRect();"
+        " const e = el.getBoundingClientRect(); return e.bottom <= h.bottom + 1; }"
+    )
+    assert inside
+    page.close()
+
+
+def test_the_orbit_plots_say_the_verdicts_basis(browser, push_server) -> None:
+    """Issue 32 item 3: with friction 0.05 push_demo's verdict quotes the crossing of
+    the travel from rest (`betv check --json`: basis "crossing"); the line over the orbit
+    plots says so, as the map says its basis; at the file's friction (periodic basis)
+    it says the plots are the verdict's answer."""
+    page = Page(browser, push_server)
+    basis = page.p.locator(".betv-orbit-basis").first
+    file_dev = _check_json(push_server.workdir / "push_demo.yaml")
+    assert basis.get_attribute("data-basis") == file_dev["sets"][0]["basis"] == "periodic"
+    seq = page.seq_now()
+    _type(page, "contact-friction", "0.05")
+    _settled(page, seq)
+    page.p.locator(".betv-save-name input").fill("slippery.yaml")
+    page.p.locator(".betv-save-name input").press("Enter")
+    page.p.locator(".betv-save button").click()
+    page.p.locator(".betv-saved").first.wait_for(state="attached", timeout=WAIT_MS)
+    dev = _check_json(push_server.workdir / "slippery.yaml")
+    _agrees(page.shown(), dev)
+    assert basis.get_attribute("data-basis") == dev["sets"][0]["basis"] == "crossing"
+    assert "crossing of the travel from rest" in basis.inner_text()
+    assert "not this periodic orbit" in basis.inner_text()
     page.close()
 
 

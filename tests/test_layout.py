@@ -473,3 +473,15 @@ def test_api_check_of_a_gds_is_betv_check_of_it(tmp_path):
     window = next(r for r in res.rules if r.id == "frequency-window")
     assert "drive.frequency" in window.fix  # the advice's text, not the rule's own
     assert "cell BETV_shin2004" in next(r for r in res.rules if r.id == "process.min-width").message
+
+
+def test_extract_to_stdout(shin_gds, tmp_path):
+    """Issue 32 item 13: `betv extract FILE.gds -o -` writes the device file to standard
+    output (the notes to standard error), the same text `-o FILE` writes."""
+    out = tmp_path / "back.yaml"
+    assert run("extract", str(shin_gds), "-o", str(out)).exit_code == 0
+    res = run("extract", str(shin_gds), "-o", "-")
+    assert res.exit_code == 0, res.output
+    assert res.stdout == out.read_text("utf-8")
+    assert "wrote" not in res.output and not (tmp_path / "-").exists()
+    assert load_device_text(res.stdout).name == load_device(out).name

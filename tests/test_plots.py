@@ -168,12 +168,17 @@ def test_robustness_rings_fit_misses_and_prefixes_the_speed() -> None:
     change = [-20.0, -10.0, 0.0, 10.0, 20.0]
     speed = [1.2e-3, 1.0e-3, 0.8e-3, -0.1e-3, None]
     miss = [False, True, False, True, False]
-    ax = plots.speed_vs_field_change([("drive.frequency", change, speed, miss)])
+    ax = plots.speed_vs_field_change([("drive.frequency", change, speed, miss)], wrong_mode="pull")
     rings = [ln for ln in ax.get_lines() if ln.get_marker() == "o" and ln.get_markersize() == 9]
     assert len(rings) == 2  # the rings and their legend entry
     np.testing.assert_allclose(sorted(rings[0].get_xdata()), [-10.0, 10.0])
-    np.testing.assert_allclose(rings[0].get_ydata(), [1.0, -0.1])
-    assert "[mm/s]" in ax.get_ylabel()
+    np.testing.assert_allclose(rings[0].get_ydata(), [1.0, 0.1])  # magnitudes
+    # the wrong-way point (+10 %: −0.1 mm/s against the intended direction) is squared
+    squares = [ln for ln in ax.get_lines() if ln.get_marker() == "s" and len(ln.get_xdata())]
+    (sq,) = squares
+    np.testing.assert_allclose(sq.get_xdata(), [10.0])
+    np.testing.assert_allclose(sq.get_ydata(), [0.1])
+    assert "[mm/s]" in ax.get_ylabel() and ax.get_ylim()[0] == 0.0
 
 
 def test_pushpull_frequency_map_boundary_is_lambda_one() -> None:
@@ -202,7 +207,8 @@ def test_displacement_stops_at_the_end_stop() -> None:
     sim = next(ln for ln in ax.get_lines() if ln.get_label().startswith("simulated"))
     assert sim.get_xdata()[-1] == pytest.approx(4.0) and max(sim.get_ydata()) == 4.0
     assert not any(ln.get_label().startswith("continued") for ln in ax.get_lines())
-    assert any("end stop at 4 ms" in t.get_text() for t in ax.texts)
+    # named in the legend (a label beside the marker crossed the curve)
+    assert any("end stop at 4 ms" in ln.get_label() for ln in ax.get_lines())
     ax = plots.slider_displacement(t, -t / 2, travel_um=-4.0, extrapolated=None)
     sim = next(ln for ln in ax.get_lines() if ln.get_label().startswith("simulated"))
     assert sim.get_xdata()[-1] == pytest.approx(8.0) and min(sim.get_ydata()) == -4.0
@@ -251,3 +257,87 @@ def test_speed_vs_voltage_takes_si_and_prefixes() -> None:
     assert ax.get_ylabel() == "mean slider speed  [µm/s]"
     np.testing.assert_allclose(ax.get_lines()[0].get_ydata(), [100.0, 300.0])
     assert any("200 µm/s" in ln.get_label() for ln in ax.get_lines())
+
+
+def test_speed_vs_frequency_draws_magnitudes_in_the_modes_colours() -> None:
+    """Issue 32 item 13: one convention: a speed is a magnitude, its mode's colour says
+    the way. Velocities +0.2 and −0.3 mm/s along the impacts are drawn at 200 and
+    300 µm/s, the first in push's colour, the second in pull's."""
+    from betvdesign.output.presentation import MODE_COLORS
+
+    ax = plots.speed_vs_frequency(
+        [1e3, 2e3], [2e-4, -3e-4], [2e-4, -3e-4], f_v_hz=2e3, rolloff=False, operating=(2e3, -3e-4)
+    )
+    by_colour = {ln.get_color(): ln for ln in ax.get_lines() if ln.get_linestyle() == "None"}
+    np.testing.assert_allclose(by_colour[MODE_COLORS["push"]].get_ydata(), [200.0])
+    np.testing.assert_allclose(by_colour[MODE_COLORS["pull"]].get_ydata(), [300.0])
+    assert any("300 µm/s" in ln.get_label() for ln in ax.get_lines())
+    assert "-300" not in " ".join(ln.get_label() for ln in ax.get_lines())
+
+
+def _extents(fig):
+    """The rendered extents [px] of the axes, their legends and every non-tick text."""
+    from matplotlib.axis import Tick
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.text import Text
+
+    FigureCanvasAgg(fig).draw()
+    r = fig.canvas.get_renderer()
+    ticks = {id(x) for tk in fig.findobj(Tick) for x in (tk.label1, tk.label2)}
+    texts = [
+        t.get_window_extent(r)
+        for t in fig.findobj(Text)
+        if id(t) not in ticks and t.get_visible() and t.get_text().strip()
+    ]
+    return r, texts
+
+
+@pytest.mark.parametrize(
+    "draw",
+    [
+        lambda ax: plots.speed_vs_field_change(
+            [(f"field {k}", [-10, 0, 10], [1e-3, 2e-3, -1e-3], [False] * 3) for k in range(7)],
+            flips=[("field 0", 5.0)],
+            wrong_mode="pull",
+            ax=ax,
+        ),
+        lambda ax: plots.slider_velocity(
+            np.linspace(0, 30, 300),
+            np.sin(np.linspace(0, 30, 300)),
+            cycle_mean=([0, 10, 20], [0.1, 0.2, 0.15]),
+            periodic_mean=0.15,
+            ax=ax,
+        ),
+        lambda ax: plots.orbit_plane(
+            np.sin(np.arange(12.0)), np.cos(np.arange(12.0)), ["slip", "stick"] * 6, ax=ax
+        ),
+        lambda ax: plots.slider_displacement(
+            np.linspace(0, 5, 50), -(np.linspace(0, 5, 50) ** 1.1), travel_um=-4.0, ax=ax
+        ),
+    ],
+)
+def test_legends_and_labels_stay_off_the_data_and_inside_the_figure(draw) -> None:
+    """Issue 32 item 13: no legend over the curves (the legend lies outside the axes, or,
+    for a small one kept inside, covers none of the drawn points) and no text clipped
+    by the figure's edge, measured on the rendered figure."""
+    fig, ax = plots.new_figure(6.4, 4.4)
+    draw(ax)
+    r, texts = _extents(fig)
+    page = fig.bbox
+    for e in texts:
+        assert page.x0 - 1 <= e.x0 and e.x1 <= page.x1 + 1 and page.y0 - 1 <= e.y0, e
+        assert e.y1 <= page.y1 + 1, e
+    legend = ax.get_legend().get_window_extent(r)
+    for line in ax.get_lines():
+        xy = line.get_xydata()
+        if not len(xy):
+            continue
+        px = ax.transData.transform(np.asarray(xy, float))
+        px = px[np.all(np.isfinite(px), axis=1)]
+        inside = (
+            (px[:, 0] > legend.x0)
+            & (px[:, 0] < legend.x1)
+            & (px[:, 1] > legend.y0)
+            & (px[:, 1] < legend.y1)
+        )
+        assert not inside.any(), line.get_label()

@@ -80,8 +80,11 @@ def distinct_sets(path: Path) -> int:
 
 def expected_figures(path: Path) -> int:
     """FIGURES_PER_SET per distinct set (every device has a speed-frequency figure, with
-    or without a thermal cut-off)."""
-    return FIGURES_PER_SET * distinct_sets(path)
+    or without a thermal cut-off), and u(V), u(f) per distinct set whose stroke is
+    predicted from the drawing (:mod:`betvdesign.report.thermal`)."""
+    der = derive(load_device(path))
+    drawn = {(tuple(s.params.as_dict().values()), s.scales) for s in der.sets if s.stroke}
+    return FIGURES_PER_SET * distinct_sets(path) + 2 * len(drawn)
 
 
 @pytest.mark.slow

@@ -70,20 +70,21 @@ def test_the_map_names_the_nearest_flip_and_agrees_with_the_check(pull_sweep):
     m = compute(spec, 0, sd.params.varpi, Piece(value=sweep), opts)
     assert m.summary["points"] == 25 == len(m.rows)
     fa, fb = (a["field"] for a in m.summary["fields"])
+    cols = [a["column"] for a in m.summary["fields"]]  # "field [unit]"
     units = [a["unit"] for a in m.summary["fields"]]
     seen = set()
     for row in m.rows[::3]:
         if row["exact_mode"] not in ("push", "pull"):
             continue
         changed = spec
-        for f, u in zip((fa, fb), units, strict=True):
-            changed = changed.replace(in_set(f, 0), _quantity(row[f], u))
+        for f, c, u in zip((fa, fb), cols, units, strict=True):
+            changed = changed.replace(in_set(f, 0), _quantity(row[c], u))
         (s,) = check(changed, advice=False).out.sets
         # the map is the periodic orbit's; the check quotes the travel's answer when
         # the slider settles slowly (basis "crossing"), compare where it quotes the orbit
         if s.basis != "periodic":
             continue
-        assert s.mode == row["exact_mode"], (row[fa], row[fb])
+        assert s.mode == row["exact_mode"], (row[cols[0]], row[cols[1]])
         seen.add(row["exact_mode"])
     assert seen
 
@@ -131,3 +132,25 @@ def test_frequency_sweep_speed_is_the_checks_speed_at_that_drive_frequency():
         assert cs.mode == ("push" if v > 0 else "pull"), f_act
         compared += 1
     assert compared >= 3
+
+
+def test_report_quotes_the_checks_concrete_advice(tmp_path: Path) -> None:
+    """Issue 32 item 11: a margin warning's fix in the report is the one ``betv check``
+    gives (a concrete change of a field), not a generic pointer to ``betv fix``.
+
+    pull_demo driven at 2 kHz: ϖ = f_act/f_v = 2/4 = 0.5 sits on the window's lower edge;
+    a 5 % spread of ϖ needs ϖ·0.95 ≥ 0.5, i.e. f_act ≥ 4 kHz·0.5/0.95 = 2.105 kHz (by
+    hand), so the quoted frequency must lie above that.
+    """
+    text = PULL.read_text("utf-8").replace("frequency: 3.2 kHz", "frequency: 2 kHz")
+    dev = tmp_path / "pull2k.yaml"
+    dev.write_text(text, "utf-8")
+    small = ReportOptions(regime_points=5, robustness_points=5, map_points=5, frequency_points=5)
+    report = build_report(prepare(dev), options=small)
+    shown = {r.id: r.fix for r in report.sets[0].rules if r.fix}
+    checked = {r.id: r.fix for r in check(dev).out.sets[0].rules if r.fix and not r.passed}
+    assert shown == checked
+    fix = shown["window-margin"]
+    assert "raise drive.frequency 2 kHz -> " in fix, fix
+    quoted = float(fix.split("-> ")[1].split(" kHz")[0])
+    assert quoted >= 4.0 * 0.5 / 0.95

@@ -173,3 +173,39 @@ def test_pull_device_percentiles_signed_and_along_the_intended_travel():
     assert along["p5"] == pytest.approx(np.percentile(-speeds, 5), rel=1e-12)
     assert 0 < along["p5"] <= along["p50"] <= along["p95"]
     assert along["p5"] == pytest.approx(-signed["p95"], rel=1e-12)  # the slowest pull
+
+
+def test_tolerance_prints_p_pass_as_fix_counts_it(tmp_path):
+    """Issue 32 item 13: `betv tolerance` prints P(pass) as `betv fix --spread` counts it.
+    pull_demo driven at 3.4 kHz sits below the push band under f_h/2: a 4 % spread of the
+    drive frequency and 5 % of k_h sends some samples into push. Truths: the fix's own
+    Monte Carlo (studies.fix.robust_probability, same spreads, seed and count), and for
+    this one-set device whose samples all stay in the window and converge, 1 − P(wrong
+    mode) counted from the set's own summary."""
+    import json
+    from pathlib import Path
+
+    from typer.testing import CliRunner
+
+    from betvdesign.cli import app
+    from betvdesign.studies.fix import robust_probability
+
+    pull = Path(__file__).resolve().parents[1] / "devices" / "pull_demo.yaml"
+    dev = tmp_path / "pull34.yaml"
+    dev.write_text(
+        pull.read_text("utf-8").replace("frequency: 3.2 kHz", "frequency: 3.4 kHz"), "utf-8"
+    )
+    items = ["drive.frequency=normal:4%", "actuator.horizontal_stiffness=normal:5%"]
+    args = ["tolerance", str(dev), "-n", "120", "--seed", "3", "-x", "serial", "-q"]
+    for it in items:
+        args += ["--spread", it]
+    doc = json.loads(CliRunner().invoke(app, [*args, "--json"]).stdout)
+    spec = load_device(dev)
+    fix_p = robust_probability(spec, items, n=120, seed=3)(spec)
+    s = doc["sets"]["main"]
+    assert 0.0 < doc["p_pass"] < 1.0
+    assert doc["p_pass"] == fix_p
+    assert s["p_outside_window"] == 0 and s["p_not_converged"] == 0
+    assert doc["p_pass"] == pytest.approx(1.0 - s["p_wrong_mode"], abs=1e-12)
+    text = CliRunner().invoke(app, args).stdout
+    assert f"P(pass) {fix_p:.3f}: every set studied passes" in text

@@ -4,6 +4,7 @@ may say `exit=N` (expected exit status, default 0) and `requires=fix` (skipped, 
 said so, while `betv fix` does not exist yet). Key results of the session are checked
 against what the tutorial's text claims (the failing rule, the fixed verdict, P(push))."""
 
+import csv
 import os
 import re
 import subprocess
@@ -83,3 +84,15 @@ def test_tutorial_runs(tmp_path):
     assert "wrote my_motor_back.yaml" in text and "my_motor_edited.gds): PASS" in text
     assert re.search(r"w_flex .* 4 µm", text)
     assert "my_motor_edited.gds: already passes `betv check` with its mode margin" in text
+    # section 8: the springs from the drawing; a drawn change moves the verdict
+    assert re.search(r"f_v,geom .* 121\.2 kHz", text)
+    assert "length 240 µm -> 867.4 µm brings ϖ 0.0495 to the window's edge 0.5" in " ".join(
+        text.split()
+    )
+    with (tmp_path / "drawn_sweep.csv").open() as fh:
+        varpi = [round(float(r["varpi"]), 3) for r in csv.DictReader(fh)]
+    assert varpi == [0.05, 0.1, 0.168, 0.253, 0.354, 0.471, 0.604]
+    assert "drawn900.yaml: FAIL mode" in text
+    # section 8: nothing measured: the stroke predicted from the drawing
+    assert re.search(r"T_max .* 1518 K", text) and re.search(r"u_static .* 13\.3 µm", text)
+    assert "38.4% of the static stroke is left" in " ".join(text.split())

@@ -438,6 +438,6 @@ def test_one_basis_for_every_line(tmp_path: Path) -> None:
     axis = parse_axis(spec, "drive.frequency=1.842kHz:1.9kHz", points=2)
     rows, _ = field_map(spec, [axis])
     cell = rows[0]
-    assert cell["drive.frequency"] == pytest.approx(1.842)
+    assert cell["drive.frequency [kHz]"] == pytest.approx(1.842)
     assert cell["basis"] == "crossing" and cell["exact_mode"] == st["mode"]
     assert cell["speed_m_s"] == pytest.approx(st["speed_m_s"], rel=1e-9)

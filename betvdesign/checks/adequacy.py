@@ -450,7 +450,10 @@ class AdequacyPointOut(BaseModel):
     status: str = Field(description="periodic solver status")
     mode: str | None = Field(description="push, pull, stalled, none (not driven) or null")
     delta_s: float | None = Field(description="periodic slider increment per cycle [-]")
-    speed_m_s: float | None = Field(description="signed mean speed along the impacts [m/s]")
+    speed_m_s: float | None = Field(
+        description="mean slider speed magnitude [m/s] (the mode says which way, as the "
+        "set's speed_m_s)"
+    )
 
     @classmethod
     def of(cls, p: Point) -> AdequacyPointOut:
@@ -464,7 +467,8 @@ class AdequacyPointOut(BaseModel):
         Returns
         -------
         AdequacyPointOut
-            Its fields; an infinite Q [-] (undamped) as None.
+            Its fields; an infinite Q [-] (undamped) as None; the speed a magnitude
+            [m/s] (Δs keeps the sign: + along the impacts).
         """
         return cls(
             quality_normal=json_float(p.quality),
@@ -473,7 +477,7 @@ class AdequacyPointOut(BaseModel):
             status=p.status,
             mode=p.mode,
             delta_s=p.delta_s,
-            speed_m_s=p.speed_m_s,
+            speed_m_s=None if p.speed_m_s is None else abs(p.speed_m_s),
         )
 
 
@@ -492,7 +496,10 @@ class AdequacyOut(BaseModel):
     reference_mode: str | None
     ideal: AdequacyPointOut
     richer: AdequacyPointOut
-    speed_change: float | None = Field(description="(v_richer − v_ideal)/v_ideal [-]")
+    speed_change: float | None = Field(
+        description="(v_richer − v_ideal)/v_ideal [-] of the velocities along the impacts "
+        "(below −1: they move opposite ways)"
+    )
     flip_quality: float | None = Field(description="Q at which the mode first flips [-]")
     flip_restitution: float | None = Field(description="e at which the mode first flips [-]")
     crossings: list[dict[str, Any]] = Field(description="every change of mode found")

@@ -33,9 +33,16 @@ from typing import Any, Literal
 
 from betvdesign.checks.actuator_rules import actuator_rules
 from betvdesign.checks.adequacy import DeviceAdequacy, SetAdequacy, assess
+from betvdesign.checks.coupled import coupled_rules
 from betvdesign.checks.process_rules import process_rules
 from betvdesign.checks.rule import RuleResult, orbit_mode, verdict
-from betvdesign.checks.rules import MARGIN_CORNERS, evaluate_device, time_to_cross_s
+from betvdesign.checks.rules import (
+    MARGIN_CORNERS,
+    corner_label,
+    evaluate_device,
+    time_to_cross_s,
+)
+from betvdesign.checks.thermal_rules import thermal_rules
 from betvdesign.checks.travel import TravelAnswer, travel_answer, travel_decides
 from betvdesign.checks.view import DeviceView, RuleFilter
 from betvdesign.dynamics import periodic_orbit, vertical_motion
@@ -258,8 +265,7 @@ def corner_params(p: ModelParams) -> dict[str, ModelParams]:
     """
     out = {}
     for fw, fa in MARGIN_CORNERS:
-        label = f"ϖ×{fw:g}" if fa == 1.0 else f"α×{fa:g}"
-        out[label] = replace(p, varpi=p.varpi * fw, alpha=p.alpha * fa)
+        out[corner_label(fw, fa)] = replace(p, varpi=p.varpi * fw, alpha=p.alpha * fa)
     return out
 
 
@@ -321,6 +327,7 @@ def check_derivation(
     determine: bool | None = None,
     horizon: int = TRAVEL_HORIZON,
     layout_rules: list[RuleResult] | None = None,
+    coupled: bool = False,
 ) -> CheckResult:
     """Check every actuator set with its exact orbit (see the module docstring).
 
@@ -357,6 +364,9 @@ def check_derivation(
         The process rules measured on a drawn layout (:mod:`betvdesign.layout.drc`),
         used instead of those of the device file
         (:func:`betvdesign.checks.process_rules.process_rules`).
+    coupled : bool
+        Add the rule ``coupled-head`` for every drawn set: the decoupled springs against
+        the drawn head's coupled model (:mod:`betvdesign.checks.coupled`; seconds per set).
 
     Returns
     -------
@@ -398,7 +408,11 @@ def check_derivation(
         travel=got.answers,
     )
     rules += [r for s in derivation.sets for r in actuator_rules(s)]
+    proc = derivation.spec.process
+    rules += [r for s in derivation.sets for r in thermal_rules(s, proc)]
     rules += process_rules(derivation.spec) if layout_rules is None else layout_rules
+    if coupled:
+        rules += coupled_rules(derivation.sets)
     return CheckResult(derivation, got.set_checks(derivation, rules, adq), rules, got.notes)
 
 

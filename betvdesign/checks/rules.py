@@ -20,7 +20,8 @@ Thresholds (one home: :mod:`betvdesign.model.domain`, except the ones defined he
 - mode margin: the quoted mode holds at ϖ·(1 ± 5 %) and α·(1 ± 10 %)
   (:data:`MARGIN_CORNERS`: ±5 % on the resonance frequency or ±10 % on the tangential
   compliance is a typical fabrication spread), each corner read on the same basis as
-  the headline (its orbit, or its crossing from rest);
+  the headline (its orbit, or its crossing from rest); a flip near a sub-resonance
+  α·ϖ² = 1/n² (f_act = f_h/n) names it;
 - tangential resonance |a·ϖ² − 1| ≥ 0.1 for a = α and a = α(1 + 1/β);
 - speed Δs·u·cosθ·f_act from the exact orbit (MODEL.md, "Displacement per cycle"), or
   the mean over the crossing of the travel range from rest when the slider has not
@@ -46,6 +47,7 @@ References
 
 from __future__ import annotations
 
+import math
 from typing import TYPE_CHECKING
 
 from betvdesign.checks.adequacy import LIKELY_QUALITY, LIKELY_RESTITUTION, SetAdequacy
@@ -72,6 +74,7 @@ from betvdesign.model.domain import (
     FIT_RANGE,
     TANGENTIAL_DETUNING,
     mode_of,
+    nearest_subresonance,
     outside_fit_range,
     resonance_detuning,
 )
@@ -115,6 +118,12 @@ MARGIN_CORNERS: tuple[tuple[float, float], ...] = (
     (1.0, 0.9),
     (1.0, 1.1),
 )
+
+
+def corner_label(f_varpi: float, f_alpha: float) -> str:
+    """The label of a margin corner (``ϖ×0.95``, ``α×1.1``) from its factors [-]."""
+    return f"ϖ×{f_varpi:g}" if f_alpha == 1.0 else f"α×{f_alpha:g}"
+
 
 SRC_LAMBDA = "MODEL.md, Push/pull criterion (empirical fit, Shin et al. 2004, eq. 9)"
 SRC_TANG = "MODEL.md, What the model shows: tangential vibration undamped off contact"
@@ -211,6 +220,25 @@ def _with_set(r: RuleResult, name: str) -> RuleResult:
     return RuleResult(
         r.id, r.severity, r.passed, r.value, r.threshold, r.message, r.source, name, r.fix, r.unit
     )
+
+
+def _near_subresonance(s: SetDerivation, flips: dict[str, str | None]) -> str:
+    """The sub-resonance a margin flip sits near, as a clause of the rule's message.
+
+    ``; near the sub-resonance α·ϖ² = 1/4 (f_act = f_h/2 = 3.65 kHz)`` when the design
+    and its flipping corners lie near one (:func:`~betvdesign.model.domain.
+    nearest_subresonance`), else "".
+    """
+    p = s.params
+    q0 = p.alpha * p.varpi**2
+    at = {corner_label(fw, fa): fa * fw * fw for fw, fa in MARGIN_CORNERS}
+    n = nearest_subresonance([q0, *(q0 * at[k] for k in flips if k in at)])
+    if n is None:
+        return ""
+    f = s.scales.f_act_hz / (n * math.sqrt(q0))
+    if n == 1:
+        return f"; near the tangential resonance α·ϖ² = 1 (f_act = f_h = {format_si(f, 'Hz')})"
+    return f"; near the sub-resonance α·ϖ² = 1/{n * n} (f_act = f_h/{n} = {format_si(f, 'Hz')})"
 
 
 def _margin_cause(flips: dict[str, str | None]) -> str:
@@ -392,6 +420,8 @@ def _margin(
         if ok
         else f"the mode changes within fabrication spread ({listing}){basis}"
     )
+    if flips:
+        msg += _near_subresonance(s, flips)
     fix = "" if ok else f"move away from the flip ({_margin_cause(flips)}); {SEARCH_HINT}"
     return RuleResult(
         "mode-margin", "warning", ok, float(len(flips)), thr, msg, SRC_MARGIN, fix=fix

@@ -537,16 +537,21 @@ def _error(sc: Any) -> float | None:
     return float(d.delta_s_error)
 
 
+#: The margin's spread as the headline says it, with no-break spaces (U+00A0) so that a
+#: wrapped line never splits "ϖ ±5 %" (textwrap and HTML break only at ordinary spaces).
+MARGIN_SPREAD = "ϖ\u00a0±5\u00a0%, α\u00a0±10\u00a0%"
+
+
 def _margin(sc: Any) -> tuple[bool | None, str]:
     """(holds, short text) of the set's mode-margin rule."""
     r = next((r for r in sc.rules if r.id == "mode-margin"), None)
     if r is None:
         return None, "margin not computed"
     if r.passed:
-        return True, "mode holds at ϖ ±5 %, α ±10 %"
+        return True, f"mode holds at {MARGIN_SPREAD}"
     flips = r.value if r.value is not None and math.isfinite(r.value) else None
     n = f"{flips:g} of 4 corners" if flips is not None else "some corners"
-    return False, f"mode flips at {n} of ϖ ±5 %, α ±10 %!"
+    return False, f"mode flips at {n} of {MARGIN_SPREAD}!"
 
 
 def _set_out(sc: Any, flt: RuleFilter, verbose: bool = False) -> SetOut:

@@ -1,4 +1,5 @@
-"""``betv extract FILE.gds -o FILE.yaml``: a GDS layout read back into a device file.
+"""``betv extract FILE.gds -o FILE.yaml``: a GDS layout read back into a device file
+(``-o -``: written to standard output, the notes to standard error).
 
 Thin layer over :func:`betvdesign.layout.extract.extract` (what is measured and how the
 layout must be labelled: :mod:`betvdesign.layout.convention`, docs/layout.md). Exit 0
@@ -21,7 +22,10 @@ from betvdesign.output.files import check_output_file, write_atomic
 @app.command("extract")
 def extract_cmd(
     file: Annotated[Path, typer.Argument(help="GDS layout labelled as `betv layout` does.")],
-    output: Annotated[Path, typer.Option("-o", "--output", help="The device file to write.")],
+    output: Annotated[
+        Path,
+        typer.Option("-o", "--output", help="The device file to write ('-': standard output)."),
+    ],
     process: Annotated[
         str | None,
         typer.Option("--process", help="Process name or file, if the layout has no label."),
@@ -31,10 +35,18 @@ def extract_cmd(
     write the device file they make, with the data the layout's labels carry."""
     from betvdesign.layout.extract import extract
 
+    to_stdout = str(output) == "-"
     with user_errors():
-        check_output_file(output, suffixes=(".yaml", ".yml"))
+        if not to_stdout:
+            check_output_file(output, suffixes=(".yaml", ".yml"))
         ex = extract(file, process=process)
-        text = retarget(ex.text, ex.process_ref, file, output)
+        # on standard output the process path is relative to the working directory
+        text = retarget(ex.text, ex.process_ref, file, Path("stdout.yaml") if to_stdout else output)
+    if to_stdout:  # the device file alone on stdout (to pipe it), the notes on stderr
+        typer.echo(text, nl=False)
+        for note in ex.notes:
+            typer.echo(f"note: {note}", err=True)
+        return
     write_atomic(output, text)
     for note in ex.notes:
         typer.echo(f"note: {note}")

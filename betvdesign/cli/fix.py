@@ -19,7 +19,6 @@ from betvdesign.cli import app
 from betvdesign.cli.common import EXIT_OK, EXIT_RULE_FAILED, seed_option, user_errors
 from betvdesign.errors import UsageError
 from betvdesign.output.files import check_output_file, write_atomic
-from betvdesign.spec.fields import describe_change
 from betvdesign.studies.fixrules import SPREAD_RULES
 
 _FIX_HELP = (
@@ -198,7 +197,7 @@ def _print(res, file: Path) -> None:
                 v = res.varies[f]
                 if f in boundary:
                     typer.echo(f"   passes from {v.text(boundary[f])} (boundary, bisected)")
-                meaning = describe_change(f, v.x0, x)
+                meaning = c.meaning_of(f, x, res.varies)
                 if meaning:
                     typer.echo(f"   means: {meaning}")
             typer.echo(

@@ -106,11 +106,14 @@ def _params_from_options(
 def _physical(
     scales: Any, s: float, delta_s: float | None, cycles: int, impact_direction: str
 ) -> dict[str, Any]:
-    """Dimensional values as SI floats under unit-named keys, from the device scales
-    (MODEL.md "Displacement per cycle": length u·cosθ, speed Δs·u·cosθ·f_act), signed
-    along the impact direction (README "Versioned outputs": + push, − pull), and the
+    """Dimensional values as SI floats under unit-named keys, from the device scales.
+
+    MODEL.md "Displacement per cycle": length u·cosθ, speed |Δs|·u·cosθ·f_act. As in
+    every output (README "Versioned outputs"), displacements keep the sign of Δs (along
+    the impact direction: + push, − pull) while the speed is a magnitude beside the
     device direction the slider travels (``travel_direction``: "+x", "-x", or None when
-    it does not move); ``impact_direction`` is the device direction of +Δs."""
+    it does not move); ``impact_direction`` is the device direction of +Δs.
+    """
     out: dict[str, Any] = {
         "length_scale_m": scales.length_m,
         "f_act_hz": scales.f_act_hz,
@@ -123,7 +126,7 @@ def _physical(
     }
     if delta_s is not None:
         out["delta_s_m"] = delta_s * scales.length_m
-        out["speed_m_s"] = delta_s * scales.length_m * scales.f_act_hz
+        out["speed_m_s"] = abs(delta_s) * scales.length_m * scales.f_act_hz
         if delta_s != 0.0:
             flip = {"+x": "-x", "-x": "+x"}
             out["travel_direction"] = impact_direction if delta_s > 0 else flip[impact_direction]
@@ -278,10 +281,7 @@ def _print_text(out: dict[str, Any], periodic: bool) -> None:
             toward = ph["travel_direction"]
             if toward is not None:
                 line += (
-                    f"; mean speed {format_si(abs(ph['speed_m_s']), 'm/s', digits=4)} "
-                    f"toward {toward} "
-                    f"({format_si(ph['speed_m_s'], 'm/s', digits=4)} signed along the "
-                    "impact direction, + push, − pull)"
+                    f"; mean speed {format_si(ph['speed_m_s'], 'm/s', digits=4)} toward {toward}"
                 )
         if out["mode"] == "not driven":
             line += (

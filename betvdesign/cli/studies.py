@@ -66,6 +66,8 @@ def _print_tolerance(
             if e[s["ranked_by"]] is not None
         )
         typer.echo(f"    most sensitive ({s['ranked_by']}): {ranked}")
+    if summary.get("p_pass") is not None:
+        typer.echo(f"  P(pass) {summary['p_pass']:.3f}: {summary['p_pass_rules']}")
 
 
 @app.command("tolerance")

@@ -393,6 +393,11 @@ def device_cmd(
         emit(data, as_json, lambda: _print_fieldsweep(spec.name, summary, run))
 
 
+def _fh(n: int) -> str:
+    """``f_h`` or ``f_h/n``: where the sub-resonance of order ``n`` lies."""
+    return "f_h" if n == 1 else f"f_h/{n}"
+
+
 def _print_fieldsweep(name: str, summary: dict[str, Any], run: Any) -> None:
     """The text of ``betv sweep FILE``: the fields, the modes' counts, the flips."""
     fields = " × ".join(
@@ -400,10 +405,27 @@ def _print_fieldsweep(name: str, summary: dict[str, Any], run: Any) -> None:
     )
     typer.echo(f"{name} [{summary['set']}]: {fields}, {summary['points']} points")
     typer.echo("exact modes: " + ", ".join(f"{k} {v}" for k, v in summary["modes"].items()))
+    f0 = summary["fields"][0]
+    marks = summary.get("marks") or {}
+    where = {m["n"]: m["at"] for m in marks.get("subresonances", [])}
     for fl in summary.get("flips", []):
-        f0 = summary["fields"][0]
+        n = fl.get("subresonance")
+        near = f" (near f_act = {_fh(n)}, at {where[n]:.5g})" if n in where else ""
         typer.echo(
             f"  mode flips at {f0['field']} = {fl['at']:.5g} {f0['unit']}: "
-            f"{fl['below']} below, {fl['above']} above"
+            f"{fl['below']} below, {fl['above']} above{near}"
+        )
+    if "window" in marks:
+        parts = ", ".join(f"{a:.5g}–{b:.5g}" for a, b in marks["window"]) or "nowhere"
+        typer.echo(f"design window 0.5 ≤ ϖ < 2 at {f0['field']}: {parts} {f0['unit']}")
+    if where:
+        at = ", ".join(f"{_fh(n)} {x:.5g}" for n, x in sorted(where.items()))
+        typer.echo(
+            f"sub-resonances α·ϖ² = 1/n² (f_act = f_h/n) at {f0['field']}: {at} {f0['unit']}"
+        )
+    for a, b in marks.get("undamped_resonance", []):
+        typer.echo(
+            f"undamped head near the tangential resonance ({a:.5g}–{b:.5g} {f0['unit']}): "
+            "the idealised speed there is not physical (give actuator.quality_factor_*)"
         )
     typer.echo(f"{run.computed} computed, {run.resumed} resumed in {run.elapsed_s:.2f} s")

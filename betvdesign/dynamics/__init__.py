@@ -5,6 +5,9 @@
 - :func:`vertical_motion`: vertical-only fast path (:mod:`vertical`).
 - :mod:`reference`: the same model with scipy ``solve_ivp`` and its own switching rules
   (cross-checks, studies); it shares no code with the exact solver.
+- :mod:`coupled_reference`: the coupled head (symmetric 2×2 stiffness, MODEL.md "Coupled
+  head") with scipy ``solve_ivp``; the only solver of that model (the exact loop is
+  decoupled, ρ = 0, where the two are compared).
 - :mod:`result`: what every answer carries (:class:`SolverResult`: ``status`` from a
   documented vocabulary per kind of answer, ``success``, ``message``, counters,
   ``elapsed_s``); a cycle that cannot be advanced raises :class:`solver.CycleFailure`

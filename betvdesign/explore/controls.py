@@ -3,8 +3,17 @@
 A slider moves over the range of :func:`betvdesign.explore.fields.designer_fields`
 (in log10 of the value where that range spans decades); the text box beside it shows the
 value as the device file writes it and takes any typed value, which the device file's
-validation then judges (its message appears under the control). Every change is handed
-to ``on_change(changes, fields)`` with ``changes`` = {edit path: file value}.
+validation then judges (its message appears under the control, and the refused text
+stays in its box marked in red, class ``betv-refused``, until a value applies). Every
+change is handed to ``on_change(changes, fields)`` with ``changes`` = {edit path: file
+value}.
+
+A slider speaks the field's unit, never its log10 position: the tooltip over the handle
+while it moves and the handle's ``aria-valuetext`` (what a screen reader says) read
+"3 kHz", through one formatter (:func:`slider_format`, the JavaScript twin of
+:meth:`~betvdesign.explore.fields.FieldControl.shown`); the handle's ``aria-label`` is the
+field's label (:data:`ARIA_JS`, run when the page is ready and whenever the controls are
+rebuilt).
 """
 
 from __future__ import annotations
@@ -18,16 +27,90 @@ from functools import partial
 from typing import Any
 
 from bokeh.layouts import column, row
-from bokeh.models import Div, Select, Slider, TextInput
+from bokeh.models import (
+    CustomJS,
+    CustomJSTickFormatter,
+    Div,
+    InlineStyleSheet,
+    Select,
+    Slider,
+    TextInput,
+)
 
 from betvdesign.explore.design import set_path
-from betvdesign.explore.fields import FieldControl, current_value, designer_fields
+from betvdesign.explore.fields import (
+    SLIDER_STEPS,
+    FieldControl,
+    current_value,
+    designer_fields,
+)
 from betvdesign.explore.views import error_html
 
-#: Slider positions per control.
-SLIDER_STEPS = 200
+#: The class of a text box whose value was refused, and how it looks.
+REFUSED = "betv-refused"
+REFUSED_CSS = f":host(.{REFUSED}) input {{border: 2px solid #cf222e; background-color: #fff0f0}}"
 
-__all__ = ["SLIDER_STEPS", "Control", "ControlPanel", "css_name"]
+#: A slider position as people read it: ``%.4g`` of the value (10**position on a log
+#: slider) and the unit, as :meth:`FieldControl.shown` writes it in Python.
+FORMAT_JS = """
+const x = log ? Math.pow(10, tick) : tick;
+if (integer) { return String(Math.round(x)); }
+function g4(v) {
+  if (v === 0 || !isFinite(v)) { return String(v); }
+  const strip = (t) => t.includes(".") ? t.replace(/0+$/, "").replace(/[.]$/, "") : t;
+  const [m, e] = v.toExponential(3).split("e");
+  const k = Number(e);
+  if (k < -4 || k >= 4) {
+    return strip(m) + "e" + (k < 0 ? "-" : "+") + String(Math.abs(k)).padStart(2, "0");
+  }
+  return strip(v.toFixed(3 - k));
+}
+return unit ? g4(x) + " " + unit : g4(x);
+"""
+
+#: Gives every slider handle of the page its ``aria-valuetext`` in the field's unit (the
+#: slider's own formatter) and its ``aria-label``, now and after each move; retried
+#: until the sliders' views exist (they are built after a rebuild's change arrives).
+ARIA_JS = """
+function install(tries) {
+  for (const view of Bokeh.index.all_views()) {
+    const s = view._noUiSlider;
+    const tags = view.model.tags || [];
+    if (s == null || view._betv_aria || !tags.includes("betv-slider")) { continue; }
+    const handle = view.slider_el && view.slider_el.querySelector(".noUi-handle");
+    if (handle == null) { continue; }
+    view._betv_aria = true;
+    const label = tags.find((t) => t.startsWith("label:"));
+    if (label) { handle.setAttribute("aria-label", label.slice(6)); }
+    const say = () => handle.setAttribute("aria-valuetext", view.pretty(view.model.value));
+    // after noUiSlider's own listener, which writes the raw position
+    s.on("update.betvaria", () => queueMicrotask(say));
+    say();
+  }
+  if (tries > 0) { setTimeout(() => install(tries - 1), 200); }
+}
+install(15);
+"""
+
+__all__ = [
+    "ARIA_JS",
+    "FORMAT_JS",
+    "REFUSED",
+    "SLIDER_STEPS",
+    "Control",
+    "ControlPanel",
+    "css_name",
+    "slider_format",
+]
+
+
+def slider_format(c: FieldControl) -> CustomJSTickFormatter:
+    """The formatter of ``c``'s slider (tooltip and screen reader): see :data:`FORMAT_JS`."""
+    return CustomJSTickFormatter(
+        args={"log": c.log, "integer": c.kind == "integer", "unit": c.shown_unit},
+        code=FORMAT_JS,
+    )
+
 
 OnChange = Callable[[dict[str, Any], frozenset[str]], None]
 
@@ -76,6 +159,7 @@ class ControlPanel:
         self.set_name = set_name
         self.controls: dict[str, Control] = {}
         self.box = column()
+        self.box.js_on_change("children", CustomJS(code=ARIA_JS))
         self.quiet = False
 
     @contextlib.contextmanager
@@ -124,10 +208,17 @@ class ControlPanel:
             value=_slider_value(c, c.value if c.value is not None else c.lo),
             step=1.0 if c.kind == "integer" else (hi - lo) / SLIDER_STEPS,
             show_value=False,
+            format=slider_format(c),
+            tags=["betv-slider", f"label:{c.label}"],
             width=215,
             css_classes=[*css, "betv-slider"],
         )
-        text = TextInput(value=c.text(c.value), width=115, css_classes=[*css, "betv-text"])
+        text = TextInput(
+            value=c.text(c.value),
+            width=115,
+            css_classes=[*css, "betv-text"],
+            stylesheets=[InlineStyleSheet(css=REFUSED_CSS)],  # a model of this page's own
+        )
         widget.on_change("value", self.guard(partial(self._on_slider, c)))
         text.on_change("value", self.guard(partial(self._on_text, c)))
         self.controls[c.field] = Control(c, widget, text, message)
@@ -158,13 +249,16 @@ class ControlPanel:
     # --- showing the design -------------------------------------------------------------
 
     def show_messages(self, errors: dict[str, str], ok: set[str]) -> None:
-        """The loader's message under each refused field; cleared where a value applied."""
+        """The loader's message under each refused field, its text box marked
+        (:data:`REFUSED`); both cleared where a value applied."""
         for f, msg in errors.items():
             if f in self.controls:
                 self.controls[f].message.text = error_html(msg)
+                _mark(self.controls[f].text, True)
         for f in ok:
             if f in self.controls and f not in errors:
                 self.controls[f].message.text = ""
+                _mark(self.controls[f].text, False)
 
     def sync(self, spec: Any, set_index: int, only: set[str] | None = None) -> None:
         """Controls (all, or those in ``only``) show ``spec``'s values (after a map click,
@@ -190,3 +284,14 @@ class ControlPanel:
                     sv = min(max(sv, ctl.widget.start), ctl.widget.end)
                     if abs(ctl.widget.value - sv) > 0.5 * ctl.widget.step:
                         ctl.widget.value = sv
+
+
+def _mark(box: TextInput | None, refused: bool) -> None:
+    """Mark a text box as holding a refused value (or clear the mark)."""
+    if box is None:
+        return
+    classes = [c for c in box.css_classes if c != REFUSED]
+    if refused:
+        classes.append(REFUSED)
+    if classes != list(box.css_classes):
+        box.css_classes = classes

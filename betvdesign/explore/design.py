@@ -6,7 +6,8 @@ path -> the value as a device file writes it). Every proposed edit goes through
 then the derivation ``betv check`` runs on a file
 (:func:`betvdesign.nondim.device.derive_refusing`), so a refused value raises the same
 :class:`~betvdesign.errors.SpecError` ``betv check`` gives the file and leaves the design
-as it was.
+as it was. Every applied change can be undone (:meth:`Design.undo`, last first), and
+:meth:`Design.reset` goes back to the file (itself undoable).
 
 :meth:`Design.yaml_text` writes the user's file with only the changed values replaced,
 in place (every other byte kept: comments, layout, flow mappings), a value the file does
@@ -79,6 +80,8 @@ class Design:
         self.original = _derivable(load_device_text(text, filename), filename)
         self.spec = self.original
         self.edits: dict[str, Any] = {}
+        #: (edits, spec) before each undoable step, the latest last.
+        self.history: list[tuple[dict[str, Any], Any]] = []
 
     @classmethod
     def from_file(cls, path: str | Path) -> Design:
@@ -113,15 +116,29 @@ class Design:
         spec = self.original.replace(items[0][0], items[0][1], *items[1:])
         return _derivable(spec, self.filename)
 
-    def apply(self, changes: dict[str, Any]) -> Any:
-        """Commit ``changes`` (validated first; the design is unchanged when refused)."""
+    def apply(self, changes: dict[str, Any], *, merge: bool = False) -> Any:
+        """Commit ``changes`` (validated first; the design is unchanged when refused).
+
+        One undo step each, unless ``merge``: then :meth:`undo` goes back past this
+        change and the one before it together (the positions of one slider drag)."""
         spec = self.propose(changes)
+        if not merge or not self.history:
+            self.history.append((self.edits, self.spec))
         self.edits = self._merged(changes)
         self.spec = spec
         return spec
 
+    def undo(self) -> bool:
+        """Back to the design before the last step (False: nothing to undo)."""
+        if not self.history:
+            return False
+        self.edits, self.spec = self.history.pop()
+        return True
+
     def reset(self) -> None:
-        """Back to the file as read."""
+        """Back to the file as read (one undo step, unless the design is the file)."""
+        if self.edits:
+            self.history.append((self.edits, self.spec))
         self.edits = {}
         self.spec = self.original
 

@@ -10,9 +10,12 @@ over the field's :attr:`~betvdesign.spec.fields.DesignField.bounds` as ``betv fi
 resolves them (:func:`betvdesign.studies.fixfields.parse_vary`). The page adds the
 controls that list leaves out (:data:`EXTRA`): the waveform, the beam count, and the
 optional physics (damping as Q or ζ, restitution e) where the spec allows it, over the
-range the model takes (:func:`betvdesign.model.damping.term_range`). A typed value is
-judged by the device file's validation, never by these ranges (they only bound the
-sliders).
+range the model takes (:func:`betvdesign.model.damping.term_range`). Where the spec
+itself bounds a field, the slider spans that: the drive voltage spans the set's measured
+calibration (from its first point, 0 V included, to its last), the beam count the
+spec's 1 to :data:`betvdesign.spec.limits.MAX_BEAM_COUNT`, the friction stops at
+:data:`betvdesign.spec.models.MU_MAX`. A typed value is judged by the device file's
+validation, never by these ranges (they only bound the sliders).
 """
 
 from __future__ import annotations
@@ -23,6 +26,7 @@ from typing import Any, Literal, get_args
 
 from betvdesign.errors import BetvError
 from betvdesign.model.damping import term_range
+from betvdesign.spec import limits
 from betvdesign.spec.fields import FIELDS, DesignField
 from betvdesign.spec.fields import Kind as FieldKind
 from betvdesign.spec.models import MU_MAX, Drive, MeasuredCalibration
@@ -64,8 +68,10 @@ EXTRA: tuple[Extra, ...] = (
     Extra("actuator.damping_ratio_tangential", "ζ tangential", None),
     Extra("contact.restitution", "restitution e (empty: plastic, e = 0)", None),
 )
-#: Slider range of the beam count (absolute).
-BEAM_COUNT_RANGE = (1.0, 8.0)
+#: Slider positions per control.
+SLIDER_STEPS = 200
+#: Slider range of the beam count: what the spec takes (``slider.beam_count``).
+BEAM_COUNT_RANGE = (1.0, float(limits.MAX_BEAM_COUNT))
 #: Upper ends of the slider the spec sets (its limits): friction μ ≤ :data:`MU_MAX`.
 SPEC_MAX: dict[str, float] = {"contact.friction": MU_MAX}
 #: Restitution slider: the model takes e in [0, 1); the slider stops short of 1.
@@ -95,6 +101,19 @@ class FieldControl:
     log: bool = False
     choices: tuple[str, ...] = ()
     optional: bool = False
+
+    @property
+    def shown_unit(self) -> str:
+        """The unit as the page shows it to people (``µm`` for the file's ``um``)."""
+        return "µ" + self.unit[1:] if self.unit.startswith("u") else self.unit
+
+    def shown(self, value: float | str | None) -> str:
+        """``value`` for people (slider tooltips, screen readers): 4 significant digits
+        and the unit, ``µ`` written as such ("3 kHz", "10 µm")."""
+        if value is None or self.kind == "choice":
+            return self.text(value)
+        text = self.text(value)
+        return text[: len(text) - len(self.unit)] + self.shown_unit if self.unit else text
 
     @property
     def in_set(self) -> bool:
@@ -156,11 +175,15 @@ def _designer_control(spec: Any, set_index: int, f: DesignField) -> FieldControl
     except BetvError:
         return None
     unit, x0, lo, hi = _ascii_unit(v.unit), v.x0, v.lo, v.hi
+    linear = unit == "deg"
     hi = min(hi, SPEC_MAX.get(f.path, math.inf))
     calibration = spec.actuator_sets[set_index].actuator.calibration
     if f.path == "drive.voltage" and isinstance(calibration, MeasuredCalibration):
-        vlo, vhi = (float(q.to(unit).magnitude) for q in calibration.voltage_range)
-        lo, hi = max(lo, vlo, 1e-3 * x0), min(hi, vhi)
+        # the whole measured range, from its first point on (a linear slider from 0 V:
+        # its first position above 0 V, the spec takes only a voltage > 0)
+        lo, hi = (float(q.to(unit).magnitude) for q in calibration.voltage_range)
+        if lo <= 0.0:
+            lo, linear = hi / SLIDER_STEPS, True
     lo, hi = min(lo, x0), max(hi, x0)
     return FieldControl(
         f.path,
@@ -171,7 +194,7 @@ def _designer_control(spec: Any, set_index: int, f: DesignField) -> FieldControl
         x0,
         lo,
         hi,
-        log=unit != "deg" and lo > 0 and hi / lo > 3.0,
+        log=not linear and lo > 0 and hi / lo > 3.0,
     )
 
 

@@ -300,12 +300,13 @@ class MapView:
             result["speed_m_s"],
             result["varpi"],
             {(j, i): r for j, i, r in result["reasons"]},
+            result.get("basis") or [],
         )
         fmap.fill(part)
         nx = len(fmap.x.values)
         cells = map_cells(fmap)
         if len(self.cells.data["color"]) == len(cells["color"]):
-            names = ("color", "mode", "speed", "window", "varpi")
+            names = ("color", "mode", "speed", "window", "varpi", "basis")
             ks = [j * nx + i for j in part.rows for i in range(nx)]
             self.cells.patch({n: [(k, cells[n][k]) for k in ks] for n in names})
         else:

@@ -8,7 +8,10 @@ Flow of a change (the latest value wins, stale work is dropped):
    through the device file's validation (:meth:`Design.apply`; a refused value gives its
    control the loader's message and leaves the design as it was), then the "orbit"
    stage is computed (:func:`betvdesign.explore.compute.evaluate`) and handed back to the
-   loop, which redraws the verdict and the orbit;
+   loop, which redraws the verdict and the orbit; "undo" and "reset to the file" are
+   steps of the same queue, in the order they were asked
+   (:meth:`~betvdesign.explore.design.Design.undo`, one undo step per change, the
+   positions of one slider drag together);
 3. once the design has been still for :data:`SETTLE_MS`, the slow stages (how well Δs
    is determined and the settling from rest, model adequacy, then the fix search when
    the verdict fails) and, when a field off the map's axes changed, the map go to the
@@ -35,16 +38,23 @@ from pathlib import Path
 from typing import Any
 
 from bokeh.layouts import column, row
-from bokeh.models import Button, ColumnDataSource, Div, Select, TextInput
+from bokeh.models import Button, ColumnDataSource, CustomJS, Div, Select, TextInput
 from bokeh.plotting import figure
 
 from betvdesign.errors import BetvError, SpecError
 from betvdesign.explore import jobs
 from betvdesign.explore.compute import STAGES, Evaluation, evaluate
-from betvdesign.explore.controls import ControlPanel
+from betvdesign.explore.controls import ARIA_JS, ControlPanel
 from betvdesign.explore.design import Design, free_name
 from betvdesign.explore.mapview import MapView
-from betvdesign.explore.views import fixes_html, status_html, verdict_html
+from betvdesign.explore.views import (
+    basis_html,
+    fixes_html,
+    mode_decided,
+    no_orbit_html,
+    status_html,
+    verdict_html,
+)
 
 #: Quiet time after the last change before the slow stages start [ms].
 SETTLE_MS = 250
@@ -56,6 +66,13 @@ ALL_SETS = "all sets"
 COLUMNS = (370, 730, 470)
 #: Height of the verdict box [px] (it scrolls when a device has many rules).
 VERDICT_HEIGHT = 470
+#: Changes of the same fields closer than this are one undo step (a slider drag) [s].
+UNDO_MERGE_S = 0.6
+#: In the set of fields a step applied: every control (after an undo or a reset).
+EVERY_FIELD = "*"
+
+#: A step of the queue: changes (edit path -> (file value, fields)) or "undo" / "reset".
+Step = dict[str, tuple[Any, frozenset[str]]] | str
 
 __all__ = ["ALL_SETS", "MAX_FIXES", "SETTLE_MS", "ExploreApp", "ExplorePage"]
 
@@ -119,7 +136,8 @@ class ExplorePage:
         self.design = Design(app.text, app.filename)
         self.dlock = threading.RLock()  # the design (compute thread and loop)
         self.qlock = threading.Lock()  # the queue of changes
-        self.queue: dict[str, tuple[Any, frozenset[str]]] = {}
+        self.queue: list[Step] = []
+        self.last_edit: tuple[frozenset[str], float] = (frozenset(), -math.inf)
         self.running = False
         self.again = False  # recompute without changes
         self.since = math.inf  # when the oldest queued change arrived [perf_counter s]
@@ -156,6 +174,7 @@ class ExplorePage:
             self._safe,
         )
         self._build_views()
+        self._build_history()
         self._build_actions()
         doc.title = f"betv explore: {self.design.original.name}"
         header = Div(
@@ -165,10 +184,10 @@ class ExplorePage:
         )
         roots = {
             "header": header,
-            "controls": column(self.set_select, self.panel.box, width=COLUMNS[0]),
+            "controls": column(self.set_select, self.history_box, self.panel.box, width=COLUMNS[0]),
             "verdict": self.verdict,
             "status": self.status,
-            "plots": row(self.phase_fig, self.disp_fig),
+            "plots": column(self.orbit_note, row(self.phase_fig, self.disp_fig)),
             "map": self.map.box,
             "map_status": self.map.status,
             "actions": column(self.fix_box, self.save_box, self.report_box, width=COLUMNS[2]),
@@ -179,6 +198,7 @@ class ExplorePage:
         doc.template = _template()
         doc.template_variables["widths"] = COLUMNS
         doc.on_session_destroyed(self._destroyed)
+        doc.js_on_event("document_ready", CustomJS(code=ARIA_JS))
         self._request({}, frozenset())
 
     @property
@@ -207,7 +227,17 @@ class ExplorePage:
         self.status = Div(text="", width=COLUMNS[1] - 10, height=20, css_classes=["betv-status"])
         self.phase_src = ColumnDataSource(data={"x": [], "y": []})
         self.disp_src = ColumnDataSource(data={"x": [], "y": []})
-        common = {"width": COLUMNS[1] // 2 - 5, "height": 300, "toolbar_location": None}
+        # what the plots show (or why there are none): no plot is drawn without an orbit
+        self.orbit_note = Div(
+            text=no_orbit_html("", computing=True), width=COLUMNS[1] - 10, min_height=20
+        )
+        common = {
+            "width": COLUMNS[1] // 2 - 5,
+            "height": 300,
+            "toolbar_location": None,
+            "visible": False,
+            "css_classes": ["betv-orbit-plot"],
+        }
         self.phase_fig = figure(
             title="Head gap and its rate (one period)",
             x_axis_label="head gap [µm]",
@@ -222,6 +252,15 @@ class ExplorePage:
             **common,
         )
         self.disp_fig.line("x", "y", source=self.disp_src, line_width=2, color="#1b9e77")
+
+    def _build_history(self) -> None:
+        self.undo_button = Button(label="Undo", width=110, disabled=True, css_classes=["betv-undo"])
+        self.reset_button = Button(
+            label="Reset to the file", width=150, disabled=True, css_classes=["betv-reset"]
+        )
+        self.undo_button.on_click(self._safe(partial(self._request_op, "undo")))
+        self.reset_button.on_click(self._safe(partial(self._request_op, "reset")))
+        self.history_box = row(self.undo_button, self.reset_button)
 
     def _build_actions(self) -> None:
         self.fix_div = Div(text="", width=460, css_classes=["betv-fixes"])
@@ -328,9 +367,24 @@ class ExplorePage:
         changes: compute the design again (another set shown)."""
         with self.qlock:
             self.again = self.again or not changes
-            for path, value in changes.items():
-                self.queue.pop(path, None)
-                self.queue[path] = (value, fields)
+            if changes:
+                if not self.queue or isinstance(self.queue[-1], str):
+                    self.queue.append({})
+                step = self.queue[-1]
+                assert isinstance(step, dict)
+                for path, value in changes.items():
+                    step.pop(path, None)
+                    step[path] = (value, fields)
+        self._kick()
+
+    def _request_op(self, op: str) -> None:
+        """Queue "undo" or "reset" (after the changes queued before it)."""
+        with self.qlock:
+            self.queue.append(op)
+        self._kick()
+
+    def _kick(self) -> None:
+        with self.qlock:
             self.since = min(self.since, time.perf_counter())
             if self.running:
                 return
@@ -338,23 +392,35 @@ class ExplorePage:
         self.app.compute.submit(self._drain)
 
     def _drain(self) -> None:
-        """The compute thread: apply every queued change, then the orbit stage."""
+        """The compute thread: apply every queued step, then the orbit stage."""
         ok: set[str] = set()
         errors: dict[str, str] = {}
         try:
             while not self.closed:
                 with self.qlock:
-                    batch, self.queue = self.queue, {}
+                    steps, self.queue = self.queue, []
                     since, self.since = self.since, math.inf
-                    if not batch and self.seq > 0 and not self.again:
+                    if not steps and self.seq > 0 and not self.again:
                         self.running = False
                         return
                     self.again = False
                 t0, c0 = time.perf_counter(), time.thread_time()
-                failed = self._apply(batch)
-                done = {f for _, fs in batch.values() for f in fs} - set(failed)
-                errors = {f: m for f, m in errors.items() if f not in done} | failed
-                ok = (ok | done) - set(failed)
+                failed: dict[str, str] = {}
+                for step in steps:
+                    if isinstance(step, str):  # undo / reset: every control shows the design
+                        with self.dlock:
+                            if step == "undo":
+                                self.design.undo()
+                            else:
+                                self.design.reset()
+                        self.last_edit = (frozenset(), -math.inf)
+                        ok, errors, failed = {EVERY_FIELD}, {}, {}
+                        continue
+                    bad = self._apply(step)
+                    done = {f for _, fs in step.values() for f in fs} - set(bad)
+                    errors = {f: m for f, m in errors.items() if f not in done} | bad
+                    ok = (ok | done) - set(bad)
+                    failed |= bad
                 with self.qlock:
                     if self.queue and not failed:  # the latest value wins: skip a stale point
                         self.since = min(self.since, since)
@@ -379,21 +445,28 @@ class ExplorePage:
                 self.running = False
 
     def _apply(self, batch: dict[str, tuple[Any, frozenset[str]]]) -> dict[str, str]:
-        """Apply a batch of changes (all at once, else one by one to find the refused)."""
+        """Apply a batch of changes (all at once, else one by one to find the refused):
+        one undo step, merged with the step before when it moved the same fields less
+        than :data:`UNDO_MERGE_S` ago (a slider drag)."""
         if not batch:
             return {}
+        fields = frozenset(f for _, fs in batch.values() for f in fs)
+        now = time.monotonic()
+        merge = fields == self.last_edit[0] and now - self.last_edit[1] < UNDO_MERGE_S
+        self.last_edit = (fields, now)
         with self.dlock:
             try:
-                self.design.apply({p: v for p, (v, _) in batch.items()})
+                self.design.apply({p: v for p, (v, _) in batch.items()}, merge=merge)
                 return {}
             except SpecError:
                 pass
             errors: dict[str, str] = {}
-            for path, (value, fields) in batch.items():
+            for path, (value, fs) in batch.items():
                 try:
-                    self.design.apply({path: value})
+                    self.design.apply({path: value}, merge=merge)
+                    merge = True  # the rest of the batch: the same step
                 except SpecError as exc:
-                    errors.update(dict.fromkeys(fields, _spec_message(exc)))
+                    errors.update(dict.fromkeys(fs, _spec_message(exc)))
             return errors
 
     def _safe(self, fn: Callable[..., None]) -> Callable[..., None]:
@@ -446,9 +519,13 @@ class ExplorePage:
         ok: set[str],
         timing: tuple[float, float, float],
     ) -> None:
+        if EVERY_FIELD in ok:
+            ok = set(self.panel.controls) - set(errors)
         self.panel.show_messages(errors, ok)
         with self.dlock:
             spec = self.design.spec
+            self.undo_button.disabled = not self.design.history
+            self.reset_button.disabled = not self.design.edits
         self.panel.sync(spec, self.set_index, only=ok)
         if seq < self.seq:
             return
@@ -475,7 +552,24 @@ class ExplorePage:
                 "compute-cpu-ms": 1e3 * self.timing[2],
             },
         )
+        self._show_basis(ev)
         self._status()
+
+    def _show_basis(self, ev: Evaluation) -> None:
+        """Say which answer the orbit plots are, beside the verdict's basis (the orbit,
+        or the crossing of the travel from rest: :mod:`betvdesign.checks.travel`)."""
+        name = self.set_names[self.set_index]
+        s = next((s for s in ev.out["sets"] if s["name"] == name), None)
+        tr = ev.traces.get(name)
+        if s is None or tr is None or tr.reason:
+            return  # no plots: the note says why
+        basis = s.get("basis") if mode_decided(ev.stage) else None
+        self.orbit_note.text = basis_html(basis, s.get("mode"))
+        self.disp_fig.title.text = (
+            "Periodic orbit (verdict: crossing from rest)"
+            if basis == "crossing"
+            else "Slider position on the periodic orbit"
+        )
 
     def _status(self) -> None:
         waiting = list(self.pending.values()) + (["map"] if self.map.busy else [])
@@ -483,13 +577,17 @@ class ExplorePage:
         self.status.text = status_html(text, busy=bool(waiting))
 
     def _show_traces(self, ev: Evaluation) -> None:
+        """The orbit's plots, or in their place why there is no periodic orbit."""
         tr = ev.traces.get(self.set_names[self.set_index])
         if tr is None:
             return
-        self.phase_src.data = {"x": tr.gap_um, "y": tr.gap_rate_mm_s}
-        self.disp_src.data = {"x": tr.t_ms, "y": tr.x_um}
-        why = f": {tr.reason}" if tr.reason else ""
-        self.phase_fig.title.text = f"Head gap and its rate (one period){why}"
+        shown = not tr.reason and bool(tr.t_ms)
+        if shown:
+            self.phase_src.data = {"x": tr.gap_um, "y": tr.gap_rate_mm_s}
+            self.disp_src.data = {"x": tr.t_ms, "y": tr.x_um}
+        else:
+            self.orbit_note.text = no_orbit_html(tr.reason or "no samples")
+        self.phase_fig.visible = self.disp_fig.visible = shown
 
     # --- slow stages, map, fixes -----------------------------------------------------------
 

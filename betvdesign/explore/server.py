@@ -3,15 +3,19 @@
 The numba solver stays in this process (the orbit stage of every change) and in the
 worker processes of :class:`betvdesign.explore.jobs.Workers`; the page gets its
 updates over Bokeh's websocket. Only 127.0.0.1 is bound and only pages served from it
-may open the websocket. Besides the page, one route serves finished reports
-(``/report/TOKEN``, as a download). Ctrl-C or SIGTERM stops the server, the workers and
-the browser connection cleanly.
+may open the websocket. Every request must name a local host in its ``Host`` header
+(:data:`LOCAL_HOSTS`: 127.0.0.1, localhost or [::1]); any other gets 403 before any
+handler runs: a page of another site whose name was made to resolve to 127.0.0.1 (DNS
+rebinding) reads nothing and opens no session. Besides the page, one route serves
+finished reports (``/report/TOKEN``, as a download). Ctrl-C or SIGTERM stops the server,
+the workers and the browser connection cleanly.
 """
 
 from __future__ import annotations
 
 import contextlib
 import logging
+import re
 import socket
 import sys
 import time
@@ -22,12 +26,16 @@ from typing import Any
 
 from betvdesign.errors import UsageError
 
-__all__ = ["ADDRESS", "DEFAULT_PORT", "serve"]
+__all__ = ["ADDRESS", "DEFAULT_PORT", "LOCAL_HOSTS", "serve"]
 
 #: Where the server listens (never another interface).
 ADDRESS = "127.0.0.1"
 #: The port tried first; a busy default falls back to a free one.
 DEFAULT_PORT = 5006
+#: The host names a request may give (its ``Host`` header without the port).
+LOCAL_HOSTS = ("127.0.0.1", "localhost", "[::1]")
+#: Tornado host pattern of every other host (matched against the Host header's name).
+FOREIGN_HOST = r"(?!(?:" + "|".join(re.escape(h) for h in LOCAL_HOSTS) + r")$).*"
 
 
 def _free_port(port: int, explicit: bool) -> int:
@@ -60,6 +68,55 @@ def _report_handler(reports: dict[str, tuple[str, str]]) -> Any:
             self.write(html)
 
     return ReportHandler
+
+
+def _foreign_host_handler() -> Any:
+    from tornado.web import RequestHandler
+
+    class ForeignHost(RequestHandler):
+        """403 for every method and path: the Host header names no local host."""
+
+        def initialize(self, port: int) -> None:
+            self.port = port
+
+        def prepare(self) -> None:
+            self.set_status(403)
+            self.set_header("Content-Type", "text/plain; charset=utf-8")
+            self.finish(
+                f"betv explore: Host {self.request.host!r} refused; open the page at "
+                f"http://{ADDRESS}:{self.port}/ (hosts served: {', '.join(LOCAL_HOSTS)})\n"
+            )
+
+    return ForeignHost
+
+
+def _bokeh_server(app: Any, port: int, extra_patterns: list[Any]) -> Any:
+    """A Bokeh server of ``app`` on 127.0.0.1:``port`` that refuses foreign hosts (see
+    the module docstring): Bokeh's own parts (its Tornado application, HTTP server and
+    :class:`bokeh.server.server.BaseServer`) assembled as Bokeh documents it, with the
+    host rule ahead of every route."""
+    from bokeh.application import Application
+    from bokeh.application.handlers.function import FunctionHandler
+    from bokeh.server.server import BaseServer
+    from bokeh.server.tornado import BokehTornado
+    from bokeh.server.util import bind_sockets, create_hosts_allowlist
+    from tornado.httpserver import HTTPServer
+    from tornado.ioloop import IOLoop
+
+    sockets, port = bind_sockets(ADDRESS, port)
+    # pages that may open the websocket: those served by this server under a name of
+    # 127.0.0.1 (the only address bound: a page at [::1] cannot reach it)
+    origins = [f"{h}:{port}" for h in LOCAL_HOSTS if not h.startswith("[")]
+    tornado_app = BokehTornado(
+        {"/": Application(FunctionHandler(app))},
+        extra_websocket_origins=create_hosts_allowlist(origins, port),
+        absolute_url=f"http://{ADDRESS}:{port}",
+        extra_patterns=extra_patterns,
+    )
+    tornado_app.add_handlers(FOREIGN_HOST, [(r".*", _foreign_host_handler(), {"port": port})])
+    http = HTTPServer(tornado_app, xheaders=False)
+    http.add_sockets(sockets)
+    return BaseServer(IOLoop.current(), tornado_app, http)
 
 
 def serve(
@@ -112,8 +169,6 @@ def serve(
 
         compute = ThreadPoolExecutor(1, thread_name_prefix="betv-explore")
         compute.submit(evaluate, design.spec, "orbit", with_traces=True, **options)
-        from bokeh.server.server import Server
-
         from betvdesign.explore import jobs
         from betvdesign.explore.page import ExploreApp
 
@@ -122,13 +177,8 @@ def serve(
         chosen = _free_port(DEFAULT_PORT if port is None else port, explicit=port is not None)
         workers = jobs.Workers()
         app = ExploreApp(design.text, str(path), options, workers, compute=compute)
-        server = Server(
-            {"/": app},
-            address=ADDRESS,
-            port=chosen,
-            allow_websocket_origin=[f"{ADDRESS}:{chosen}", f"localhost:{chosen}"],
-            extra_patterns=[(r"/report/([0-9a-f]+)", _report_handler(app.reports))],
-            num_procs=1,
+        server = _bokeh_server(
+            app, chosen, [(r"/report/([0-9a-f]+)", _report_handler(app.reports))]
         )
         server.start()
         url = f"http://{ADDRESS}:{chosen}/"

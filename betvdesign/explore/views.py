@@ -36,10 +36,13 @@ def mode_decided(stage: str) -> bool:
 
 
 __all__ = [
+    "basis_html",
     "error_html",
     "fixes_html",
     "legend_html",
     "map_cells",
+    "mode_decided",
+    "no_orbit_html",
     "status_html",
     "verdict_html",
 ]
@@ -206,6 +209,44 @@ def fixes_html(fixes: list[dict[str, Any]], message: str) -> str:
     )
 
 
+#: What the orbit plots are beside the verdict, by the verdict's basis
+#: (:mod:`betvdesign.checks.travel`); None: not decided yet.
+PLOT_BASIS = {
+    None: "The plots show the periodic orbit; which answer the verdict quotes is decided "
+    "with the settling from rest.",
+    "periodic": "The plots show the periodic orbit, the answer the verdict quotes.",
+    "crossing": "Basis: the verdict quotes the crossing of the travel from rest (the "
+    "slider has not settled by then), not this periodic orbit; its speed is the "
+    "crossing's.",
+    "no-crossing": "Basis: the verdict quotes the travel from rest, which does not cross "
+    "the travel range; the plots show the periodic orbit it would settle to.",
+    "undetermined": "Basis: Δs is not determined in float64; the plots show the orbit "
+    "the solver found, which decides nothing.",
+}
+
+
+def basis_html(basis: str | None, mode: str | None = None) -> str:
+    """The line over the orbit plots saying which answer they show beside the verdict's
+    basis (``data-basis``: that basis, "" before it is decided)."""
+    text = PLOT_BASIS.get(basis, PLOT_BASIS[None] if basis is None else f"Basis: {basis}.")
+    colour = "#9a6700" if basis in ("crossing", "no-crossing", "undetermined") else "#57606a"
+    return (
+        f'<div class="betv-orbit-basis" data-basis="{_e(basis or "")}" '
+        f'style="color:{colour};font-size:12px">{_e(text)}</div>'
+    )
+
+
+def no_orbit_html(reason: str, *, computing: bool = False) -> str:
+    """What stands in place of the orbit plots when there are none: "no periodic orbit:
+    REASON" (or that the orbit is being computed)."""
+    if computing:
+        return '<div class="betv-no-orbit" data-computing="true"><i>computing the orbit…</i></div>'
+    return (
+        '<div class="betv-no-orbit" style="color:#cf222e;font-size:14px;padding:8px 0">'
+        f"<b>no periodic orbit</b>: {_e(reason)}</div>"
+    )
+
+
 def error_html(text: str) -> str:
     """A refused value's message, beside its control."""
     return f'<span class="betv-error" style="color:#cf222e">{_e(text)}</span>'
@@ -271,16 +312,23 @@ BASIS_WORDS = {
 
 
 def legend_html() -> str:
-    """The map's colour legend."""
+    """The map's colour legend: each swatch with its word on one line (never split
+    between lines), then what pale cells and the cells' basis mean."""
     items = [
-        f'<span style="display:inline-block;width:10px;height:10px;background:{MODE_COLORS[m]};'
-        f'border:1px solid #888;margin:0 3px 0 8px"></span>{_e(m)}'
+        '<span class="betv-legend-item" style="white-space:nowrap;display:inline-block;'
+        'margin:0 8px 2px 0"><span style="display:inline-block;width:10px;height:10px;'
+        f'background:{MODE_COLORS[m]};border:1px solid #888;margin-right:3px"></span>'
+        f"{_e(m)}</span>"
         for m in MAP_MODES
     ]
     lo, hi = VARPI_WINDOW
-    items.append(f" · pale: outside the design window {lo:g} ≤ ϖ < {hi:g}")
-    items.append(
-        " · each cell is betv check's answer over the travel: the periodic orbit, or the "
-        "crossing from rest where the slider has not settled (hover: basis)"
+    notes = [
+        f"pale: outside the design window {lo:g} ≤ ϖ < {hi:g}",
+        "each cell is betv check's answer over the travel: the periodic orbit, or the "
+        "crossing from rest where the slider has not settled (hover: basis)",
+    ]
+    return (
+        f'<div class="betv-legend" style="font-size:12px;line-height:1.4">{"".join(items)}'
+        + "".join(f"<div>{_e(n)}</div>" for n in notes)
+        + "</div>"
     )
-    return f'<div style="font-size:12px">{"".join(items)}</div>'

@@ -8,7 +8,8 @@ Unit-free, below every solver and rule (imports only :mod:`betvdesign.model.para
 - the round-off scale below which a force or a contact of the model is not resolved
   (:data:`ROUND_OFF_SCALE`: a contact that short does not drive the slider);
 - the parameter range the λ fit was made on (docs/MODEL.md, "Push/pull criterion");
-- the tangential-resonance detuning the rules ask for;
+- the tangential-resonance detuning the rules ask for, and the sub-resonances
+  α·ϖ² = 1/n² (f_act = f_h/n) that sweeps mark and the margin rule names;
 - :func:`mode_of`, the *only* place that turns a periodic increment Δs into a mode
   ("push", "pull", or "stalled" when |Δs| is at the solver's round-off: a slider that
   does not move is neither).
@@ -17,6 +18,7 @@ Unit-free, below every solver and rule (imports only :mod:`betvdesign.model.para
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from typing import Literal
 
 from betvdesign.model.params import ModelParams
@@ -49,6 +51,14 @@ FIT_RANGE: dict[str, tuple[float, float]] = {
 FIT_EDGE_RTOL = 1e-9
 #: Minimum |a·ϖ² − 1| for a = α and a = α(1 + 1/β) (tangential resonance) [-].
 TANGENTIAL_DETUNING = 0.1
+#: Orders n of the sub-resonances α·ϖ² = 1/n² marked and named (n = 1 … this) [-]: the
+#: contact force is a rectified sine, so its n-th harmonic n·ϖ meets the head's free
+#: tangential frequency 1/√α there, i.e. f_act = f_h/n (n = 1: the tangential resonance).
+SUBRESONANCE_ORDERS = 8
+#: A value of α·ϖ² counts as near the sub-resonance 1/n² within this ratio [-] (1.25 in
+#: α·ϖ² is 12 % in f_act; below the ratio 1.306 of the levels n = 7, 8, so at most two
+#: orders can be near and the nearer is named).
+SUBRESONANCE_NEAR = 1.25
 #: |Δs| per cycle [-] at or below which the slider counts as stalled. The periodic
 #: orbit is accepted at a section residual ≤ 1e-10, so a Δs within 10× of that is
 #: not distinguishable from zero; in length it is < 1e-9·u·cosθ per cycle.
@@ -188,6 +198,37 @@ def outside_fit_range(p: ModelParams) -> list[str]:
         for k, (lo, hi) in FIT_RANGE.items()
         if not lo * (1 - FIT_EDGE_RTOL) <= getattr(p, k) <= hi * (1 + FIT_EDGE_RTOL)
     ]
+
+
+def subresonance_level(n: int) -> float:
+    """α·ϖ² [-] of the sub-resonance of order ``n`` ≥ 1: 1/n² (f_act = f_h/n)."""
+    return 1.0 / (n * n)
+
+
+def nearest_subresonance(a_varpi2: Sequence[float]) -> int | None:
+    """The sub-resonance a span of α·ϖ² values lies near.
+
+    Parameters
+    ----------
+    a_varpi2 : sequence of float
+        Values of α·ϖ² [-] (positive): the first is the design's, the others where its
+        mode changes (e.g. the margin corners that flip).
+
+    Returns
+    -------
+    int or None
+        The order n ≤ :data:`SUBRESONANCE_ORDERS` whose level 1/n² lies within the span
+        of the values widened by the ratio :data:`SUBRESONANCE_NEAR`, the nearest to the
+        first value in ratio; None when no level does.
+    """
+    vals = [float(v) for v in a_varpi2 if v > 0.0 and math.isfinite(v)]
+    if not vals:
+        return None
+    lo, hi = min(vals) / SUBRESONANCE_NEAR, max(vals) * SUBRESONANCE_NEAR
+    near = [n for n in range(1, SUBRESONANCE_ORDERS + 1) if lo <= subresonance_level(n) <= hi]
+    if not near:
+        return None
+    return min(near, key=lambda n: abs(math.log(vals[0] / subresonance_level(n))))
 
 
 def resonance_detuning(p: ModelParams) -> tuple[str, float]:

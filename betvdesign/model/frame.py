@@ -83,6 +83,7 @@ __all__ = [
     "shape",
     "slider_point_compliance",
     "slider_springs",
+    "thermal_displacement",
     "torsion_constant",
 ]
 
@@ -316,6 +317,51 @@ def frame_stiffness(g: FrameGeometry) -> FrameStiffness:
     C2 = np.linalg.inv(K)[..., :2, :2]
     K2 = np.linalg.inv(C2)
     return FrameStiffness(K2[..., 0, 0], K2[..., 1, 1], K2[..., 0, 1])
+
+
+def thermal_displacement(
+    g: FrameGeometry, hot_elongation: Any, cold_elongation: Any
+) -> tuple[Any, Any, Any]:
+    """The head's displacement under the arms' free thermal elongations, no external load.
+
+    Each arm's end moves by its elastic part plus its free elongation δ along x, so the
+    force it puts on the rigid tip is K_arm·(T·q − (δ, 0, 0)) with q = (u, v, φ) at the
+    head centre P and T the transfer of :func:`frame_stiffness`. Equilibrium of the tip
+    and head (no load on either) gives
+
+        K_P·q = Σ_arms Tᵀ·K_arm·(δ, 0, 0)ᵀ,
+
+    the frame's own 3×3 stiffness K_P loaded by the thermal strain (the flexibility
+    method's thermal load; Przemieniecki, Theory of Matrix Structural Analysis, 1968).
+    The hot arm is at y = 0, the cold side (flexure and cold arm in series, their
+    elongations added) at y = d: a longer hot arm turns the tip toward the cold arm, +y.
+
+    Parameters
+    ----------
+    g : FrameGeometry
+        The drawn actuator.
+    hot_elongation : float or array
+        Free thermal elongation of the hot arm, ∫ε_th dx [m].
+    cold_elongation : float or array
+        Free thermal elongation of the flexure plus the cold arm [m].
+
+    Returns
+    -------
+    tuple
+        (u_x, u_y, φ): the head centre's displacement along the arms and along the
+        stroke [m] and the tip's rotation [rad].
+    """
+    hot, cold = _arms(g)
+    xp, yp = g.head_centre
+    K = _frame_matrix(g)
+    f = 0.0
+    for C, yb, delta in ((hot, 0.0, hot_elongation), (cold, g.d, cold_elongation)):
+        T = _transfer(g.length, yb, xp, yp)
+        d = np.zeros((*np.shape(delta), 3))
+        d[..., 0] = delta
+        f = f + (np.swapaxes(T, -1, -2) @ np.linalg.solve(C, d[..., None]))[..., 0]
+    q = np.linalg.solve(K, np.asarray(f)[..., None])[..., 0]
+    return q[..., 0], q[..., 1], q[..., 2]
 
 
 def slider_springs(k: FrameStiffness, theta_rad: Any) -> tuple[Any, Any, Any]:

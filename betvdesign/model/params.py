@@ -142,3 +142,55 @@ def lambda_criterion(varpi: float, alpha: float, beta: float, kappa: float) -> f
 def fit_offset(kappa: float, beta: float) -> float:
     """D = (1/β − β)/(22(κ + 1)) [-], the mass term of the λ fit (λ = (κ/ϖ²)(1/(ακ) − D))."""
     return (1.0 / beta - beta) / (LAMBDA_FIT_CONSTANT * (kappa + 1.0))
+
+
+@dataclass(frozen=True, slots=True)
+class HeadCoupling:
+    """The coupled head's two extra parameters (docs/MODEL.md, "Coupled head") [-].
+
+    rho: the coupling ρ = C_nt/√(C_nn·C_tt) of the head's compliance in the slider's frame
+        (n toward the slider, t along it in the impact direction; ``model/frame.py``),
+        −1 < ρ < 1; 0 is the paper's decoupled head.
+    chi: χ = √α·tanθ > 0, the ratio of the head's compliance lengths √(C_tt/C_nn) to the
+        stroke's cotθ (α = k_v/k_h = C_tt/C_nn).
+
+    With them the dimensionless spring forces are F_n = a(y_n + (ρ/χ) y_t) and
+    R = a(ρχ y_n + y_t), a = 1/(1 − ρ²). Raises :class:`ParameterError` out of range.
+    """
+
+    rho: float
+    chi: float
+
+    def __post_init__(self) -> None:
+        for name in ("rho", "chi"):
+            value = getattr(self, name)
+            try:
+                v = float(value)
+            except (TypeError, ValueError):
+                raise ParameterError(f"{name} must be a number, got {value!r}") from None
+            if not math.isfinite(v):
+                raise ParameterError(f"{name} must be finite, got {v!r}")
+            object.__setattr__(self, name, v)
+        if not -1.0 < self.rho < 1.0:
+            raise ParameterError(
+                f"rho must be in (−1, 1) (a positive definite head), got {self.rho!r}"
+            )
+        if self.chi <= 0.0:
+            raise ParameterError(f"chi = √α·tanθ must be > 0, got {self.chi!r}")
+
+    @classmethod
+    def from_angle(cls, rho: float, alpha: float, theta_rad: float) -> HeadCoupling:
+        """The coupling of a head with ρ, the model's α and the impact angle θ [rad]."""
+        if not 0.0 < theta_rad < 0.5 * math.pi:
+            raise ParameterError(f"impact angle must be in (0, π/2) rad, got {theta_rad!r}")
+        return cls(rho, math.sqrt(alpha) * math.tan(theta_rad))
+
+    @property
+    def decoupled(self) -> bool:
+        """ρ = 0: the paper's head."""
+        return self.rho == 0.0
+
+    @property
+    def a(self) -> float:
+        """a = 1/(1 − ρ²) = K_nn/k_v = K_tt/k_h [-]."""
+        return 1.0 / ((1.0 - self.rho) * (1.0 + self.rho))

@@ -44,11 +44,12 @@ import pint
 from betvdesign.errors import Location, ParameterError, SpecError, SpecIssue
 from betvdesign.model.domain import WINDOW_EDGE_RTOL, snap_to_window_edge
 from betvdesign.model.params import ModelParams
-from betvdesign.nondim import actuator, terms
+from betvdesign.nondim import actuator, stroke, terms
 from betvdesign.nondim.record import (
     DERIVED_KEYS,
     DerivationStep,
     DeviceDerivation,
+    DrawnStroke,
     FitComparison,
     Recorder,
     SampleDerivation,
@@ -258,7 +259,7 @@ def _derive_set(
     f_v, k_v = vertical_stiffness(rec, act, m, springs)
     alpha = compliance_ratio(rec, act, f_v, k_v, springs)
     f_act, omega = actuation_frequency(rec, aset.drive)
-    u, roll = amplitude(rec, aset, f_act, samples)
+    u, roll, stroke = amplitude(rec, spec, aset, f_act, samples)
     theta, mu = impact_contact(rec, aset.contact)
     t_s, l_s = model_scales(rec, m, k_v, u, theta)
     varpi = normalised_frequency(rec, omega, t_s)
@@ -306,6 +307,7 @@ def _derive_set(
         actuator_set=aset,
         travel_range_m=mag(spec.slider.travel_range, "m"),
         published=published,
+        stroke=stroke,
     )
 
 
@@ -581,19 +583,23 @@ def actuation_frequency(rec: Recorder, drive: Drive) -> tuple[pint.Quantity, pin
 
 
 def amplitude(
-    rec: Recorder, aset: ActuatorSet, f_act: pint.Quantity, samples: bool
-) -> tuple[pint.Quantity, dict[str, float]]:
+    rec: Recorder, spec: DeviceSpec, aset: ActuatorSet, f_act: pint.Quantity, samples: bool
+) -> tuple[pint.Quantity, dict[str, float], DrawnStroke | None]:
     """The actuator amplitude u at the actuation frequency.
 
     u is given, or follows from the drive voltage V through the calibration (gain·V,
     gain·V² or interpolated measured points). With a thermal cut-off that value is u_cal,
     at the calibration frequency, and u = u_cal·H(f_act)/H(f_cal)
-    (:func:`betvdesign.nondim.terms.rolloff`). Records the inputs and u (u_cal).
+    (:func:`betvdesign.nondim.terms.rolloff`). Records the inputs and u (u_cal). Without
+    either, u is predicted from the drawing at the drive
+    (:func:`betvdesign.nondim.stroke.drawn_stroke`).
 
     Parameters
     ----------
     rec : Recorder
         The record being built.
+    spec : DeviceSpec
+        The device (its process, for a drawn stroke).
     aset : ActuatorSet
         The actuator set (its actuator and drive voltage V [V]).
     f_act : pint.Quantity
@@ -604,14 +610,25 @@ def amplitude(
     Returns
     -------
     tuple
-        u [um], and the thermal cut-off and calibration frequency [Hz] for
-        :class:`Scales` (empty without a cut-off).
+        u [um]; the thermal cut-off and calibration frequency [Hz] for :class:`Scales`
+        (empty without a cut-off); the drawn stroke's data (None unless predicted).
+
+    Raises
+    ------
+    ParameterError
+        A drawn stroke for arrays of samples (each sample is then derived on its own), or
+        without the process's electrothermal data.
 
     References
     ----------
     MODEL.md, "Device-to-parameter relations" and "Thermal roll-off of the actuator".
     """
     act = aset.actuator
+    if act.drawn_stroke:
+        if samples:
+            raise ParameterError("a drawn stroke is derived one sample at a time")
+        u, data = stroke.drawn_stroke(rec, spec, aset)
+        return u, {"thermal_modes": data.modes, "waveform": aset.drive.waveform}, data
     rolled = act.thermal_cutoff is not None or act.thermal_time_constant is not None
     sym, at_cal = ("u_cal", " at the calibration frequency") if rolled else ("u", "")
     if act.amplitude is not None:
@@ -638,8 +655,8 @@ def amplitude(
             "um",
         )
     if not rolled:
-        return u, {}
-    return terms.rolloff(rec, act, f_act, u, samples)
+        return u, {}, None
+    return (*terms.rolloff(rec, act, f_act, u, samples), None)
 
 
 def impact_contact(rec: Recorder, contact: Contact) -> tuple[pint.Quantity, pint.Quantity]:

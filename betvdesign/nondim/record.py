@@ -138,6 +138,11 @@ class Scales:
     theta_rad: float
     cutoff_hz: float = math.inf
     calibration_hz: float | None = None
+    #: A stroke predicted from the drawing: its thermal modes ((τ_i [s], a_i [-]), the
+    #: roll-off u(f) ∝ gain(f) of :func:`betvdesign.model.electrothermal.modal_gain`) and
+    #: the drive's waveform; () for a stroke the file gives.
+    thermal_modes: tuple[tuple[float, float], ...] = ()
+    waveform: str = "ac"
 
     @property
     def has_rolloff(self) -> bool:
@@ -156,8 +161,14 @@ class Scales:
         -------
         float or numpy.ndarray
             Stroke [m]; u itself without a cut-off (MODEL.md, "Thermal roll-off of the
-            actuator").
+            actuator"); for a stroke predicted from the drawing, its thermal modes' gain
+            (the heating frequency is f_act for every waveform).
         """
+        if self.thermal_modes:  # the drawing's own roll-off (heating at f_act)
+            from betvdesign.model.electrothermal import modal_gain
+
+            g = modal_gain(self.thermal_modes, f_act_hz, self.waveform)
+            return self.u_m * g / modal_gain(self.thermal_modes, self.f_act_hz, self.waveform)
         return self.u_m * rolloff.ratio(f_act_hz, self.f_act_hz, self.cutoff_hz)
 
     @property
@@ -261,6 +272,60 @@ class HeadSprings:
 
 
 @dataclass(frozen=True)
+class DrawnStroke:
+    """The drawn actuator at the drive, float SI (``betv check --json``: ``derived.drawn``).
+
+    Attributes
+    ----------
+    status : str
+        'ok', 'melts' (peak temperature above the melting point) or 'not_converged'.
+    message : str
+        Why, in words ('' when ok).
+    voltage_v : float
+        Drive voltage amplitude V [V].
+    stroke_m : float
+        The head's half swing u at the drive [m] (the model's amplitude).
+    u_static_m : float
+        Steady stroke at a DC voltage V [m].
+    t_max_k : float
+        Peak temperature at a DC voltage V [K] (the AC peak's, at its crest).
+    t_max_where : str
+        The segment where it lies.
+    melting_k : float
+        The layer's melting point [K] (process file).
+    power_w, current_a, resistance_ohm : float
+        At a DC voltage V: electrical power [W], current [A], resistance [Ω].
+    f_thermal_hz : float
+        The first thermal mode's corner 1/(2π τ_th) [Hz].
+    f_cutoff_hz : float
+        Heating frequency where |H| = 1/√2 (all kept modes) [Hz].
+    f_heat_hz : float
+        The drive's heating frequency [Hz].
+    gain : float
+        |H(f_heat)| [-].
+    modes : tuple of (float, float)
+        The thermal modes (τ_i [s], a_i [-]) of the roll-off.
+    """
+
+    status: str
+    message: str
+    voltage_v: float
+    stroke_m: float
+    u_static_m: float
+    t_max_k: float
+    t_max_where: str
+    melting_k: float
+    power_w: float
+    current_a: float
+    resistance_ohm: float
+    f_thermal_hz: float
+    f_cutoff_hz: float
+    f_heat_hz: float
+    gain: float
+    modes: tuple[tuple[float, float], ...] = ()
+
+
+@dataclass(frozen=True)
 class SetDerivation:
     """Model parameters and scales of one actuator set, with their derivation."""
 
@@ -274,6 +339,8 @@ class SetDerivation:
     travel_range_m: float
     published: list[FitComparison] = field(default_factory=list)
     springs: HeadSprings | None = None
+    #: The stroke predicted from the drawing (None when the file gives u or a calibration).
+    stroke: DrawnStroke | None = None
 
     def step(self, symbol: str) -> DerivationStep:
         """The record entry of a symbol.
@@ -320,23 +387,37 @@ class SetDerivation:
         by_key = {s.key: s for s in self.record}
         return {k: by_key[k].value_str for k in DERIVED_KEYS if k in by_key}
 
-    def drawn(self) -> dict[str, float | None]:
+    def drawn(self) -> dict[str, Any]:
         """The drawn actuator's mechanics for ``betv check --json``.
 
         The drawn actuator's mechanics for ``betv check --json`` (``derived.drawn``),
         float SI, each None without a drawing: f_v_hz, f_h_hz (the drawn resonances),
         k_v_n_m, k_h_n_m (the head's springs, each direction with the other free, slider
         in series), m_eff_kg (the normal spring's Rayleigh effective mass), coupling (ρ),
-        f_1_hz and f_oop_hz (the actuator's first in-plane and out-of-plane modes).
+        f_1_hz and f_oop_hz (the actuator's first in-plane and out-of-plane modes); and
+        where the stroke is predicted from the drawing (:class:`DrawnStroke`): stroke_m
+        (the half swing at the drive), u_static_m, t_max_k, power_w, current_a,
+        resistance_ohm (at a DC voltage V), f_thermal_hz (the stroke's thermal cut-off,
+        |H| = 1/√2), f_heat_hz and stroke_status.
         """
         sp = self.springs
         keys = ("f_v_hz", "f_h_hz", "k_v_n_m", "k_h_n_m", "m_eff_kg", "coupling", "f_1_hz",
                 "f_oop_hz")  # fmt: skip
-        if sp is None:
-            return dict.fromkeys(keys)
-        vals = (sp.f_v_hz, sp.f_h_hz, sp.k_v, sp.k_h, sp.m_v_kg, sp.rho, sp.f_1_hz,
-                sp.f_oop_hz)  # fmt: skip
-        return {k: float(v) for k, v in zip(keys, vals, strict=True)}
+        out: dict[str, Any] = dict.fromkeys(keys)
+        if sp is not None:
+            vals = (sp.f_v_hz, sp.f_h_hz, sp.k_v, sp.k_h, sp.m_v_kg, sp.rho, sp.f_1_hz,
+                    sp.f_oop_hz)  # fmt: skip
+            out = {k: float(v) for k, v in zip(keys, vals, strict=True)}
+        st = self.stroke
+        heat = ("stroke_m", "u_static_m", "t_max_k", "power_w", "current_a", "resistance_ohm",
+                "f_thermal_hz", "f_heat_hz")  # fmt: skip
+        out.update(dict.fromkeys(heat))
+        out["stroke_status"] = None
+        if st is not None:
+            out.update({k: float(getattr(st, k)) for k in heat})
+            out["f_thermal_hz"] = float(st.f_cutoff_hz)  # the stroke's cut-off, not τ₁'s
+            out["stroke_status"] = st.status
+        return out
 
 
 @dataclass(frozen=True)

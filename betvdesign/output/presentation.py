@@ -20,12 +20,18 @@ from typing import Literal
 
 __all__ = [
     "MODE_COLORS",
+    "MODE_DIRECTION",
     "PENDING_COLOR",
     "STATUS_COLORS",
     "STATUS_STYLES",
     "Status",
     "rule_status",
 ]
+
+#: Which way each moving mode drives the slider. A speed is a magnitude everywhere the
+#: package shows one (``speed_m_s`` in JSON, CSV and figures); its mode says the way, in
+#: these words (Δs per cycle keeps its sign: + along the impacts, push).
+MODE_DIRECTION: dict[str, str] = {"push": "along the impacts", "pull": "against the impacts"}
 
 #: Colour of every exact mode (:data:`betvdesign.studies.fieldmap.MAP_MODES`), Okabe–Ito
 #: (module doc): push and pull first (in this order: figures that colour only the two

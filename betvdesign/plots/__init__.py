@@ -23,6 +23,7 @@ from betvdesign.plots.sweeps import (
     speed_vs_frequency,
     speed_vs_voltage,
 )
+from betvdesign.plots.thermal import stroke_vs_frequency, stroke_vs_voltage
 from betvdesign.plots.timeseries import slider_displacement, slider_velocity
 
 __all__ = [
@@ -44,5 +45,7 @@ __all__ = [
     "speed_vs_field_change",
     "speed_vs_frequency",
     "speed_vs_voltage",
+    "stroke_vs_frequency",
+    "stroke_vs_voltage",
     "vertical_phase_portrait",
 ]

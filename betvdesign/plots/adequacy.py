@@ -12,7 +12,7 @@ from matplotlib.axes import Axes
 
 from betvdesign.output.presentation import MODE_COLORS
 from betvdesign.output.siformat import scale_for
-from betvdesign.plots.figure import DEVICE_COLOR, axes_or_new, known_values
+from betvdesign.plots.figure import DEVICE_COLOR, axes_or_new, known_values, legend_below
 
 
 def mode_speed_scan(
@@ -28,9 +28,11 @@ def mode_speed_scan(
     speed_scale: tuple[float, str] | None = None,
     ax: Axes | None = None,
 ) -> Axes:
-    """Mean slider speed [m/s, SI prefix by magnitude; signed along the impact direction]
-    against ``x`` (Q [-] or e [-]), each point coloured by its mode ("push", "pull",
-    "stalled", "none" = not driven, None = no periodic orbit: crosses on zero).
+    """Mean slider speed [m/s, a magnitude, SI prefix by magnitude] against ``x``.
+
+    ``x`` is Q [-] or e [-]; each point is coloured by its mode ("push", "pull",
+    "stalled", "none" = not driven, None = no periodic orbit: crosses on zero), which
+    says the way (the speeds may be given signed along the impacts: drawn as |v|).
 
     device: (x, speed [m/s]) of the device with its (or the default) damping and
     restitution; ideal_m_s: the idealised model's speed [m/s] (dashed line); flips:
@@ -42,6 +44,7 @@ def mode_speed_scan(
         ax.set_xscale("log")
     xs = np.asarray(x, float)
     _, v = known_values(speed_m_s)
+    v = np.abs(v)  # a speed is a magnitude; the colour gives the mode
     top = max(float(np.abs(v).max(initial=0.0)), abs(ideal_m_s or 0.0))
     k, unit = speed_scale or scale_for(top, "m/s")
     moving = np.array([m in ("push", "pull", "stalled") for m in modes], bool)
@@ -68,7 +71,7 @@ def mode_speed_scan(
         )
     if ideal_m_s is not None and math.isfinite(ideal_m_s):
         ax.axhline(
-            ideal_m_s * k,
+            abs(ideal_m_s) * k,
             color="black",
             ls="--",
             lw=1.0,
@@ -79,7 +82,7 @@ def mode_speed_scan(
     if device is not None and device[1] is not None and math.isfinite(device[0]):
         ax.plot(
             [device[0]],
-            [device[1] * k],
+            [abs(device[1]) * k],
             marker="*",
             ms=10,
             ls="none",
@@ -90,5 +93,5 @@ def mode_speed_scan(
     ax.axhline(0.0, color="#7f7f7f", lw=0.5)
     ax.set_xlabel(xlabel)
     ax.set_ylabel(f"mean slider speed  [{unit}]")
-    ax.legend(loc="best", framealpha=0.9, fontsize=7)
+    legend_below(ax)
     return ax

@@ -96,6 +96,22 @@ def axes_or_new(ax: Axes | None, width_in: float = 6.4, height_in: float = 3.4) 
 Scale = tuple[float, str]
 
 
+def legend_below(ax: Axes, *, ncol: int = 2, **kw: Any) -> Any:
+    """The axes' legend below them, in ``ncol`` columns, without a frame.
+
+    Inside the axes a legend covers data whatever its place (issue 32: labels over the
+    curves); below them the constrained layout makes room for it and for the x label.
+    """
+    return ax.legend(
+        loc="upper center",
+        bbox_to_anchor=(0.5, -0.16),
+        ncol=ncol,
+        frameon=False,
+        fontsize=kw.pop("fontsize", 7),
+        **kw,
+    )
+
+
 def known_values(values: Sequence[float | None]) -> tuple[np.ndarray, np.ndarray]:
     """Where a series with gaps is known, and its values.
 

@@ -11,7 +11,13 @@ from collections.abc import Sequence
 import numpy as np
 from matplotlib.axes import Axes
 
-from betvdesign.plots.figure import PHASE_COLORS, Scale, axes_or_new, dimensionless_twin
+from betvdesign.plots.figure import (
+    PHASE_COLORS,
+    Scale,
+    axes_or_new,
+    dimensionless_twin,
+    legend_below,
+)
 
 #: Legend text per contact phase.
 PHASE_LABELS: dict[str, str] = {
@@ -122,5 +128,5 @@ def orbit_plane(
     if velocity_scale is not None:
         dimensionless_twin(ax, "x", k, "ζ'  [-]")
         dimensionless_twin(ax, "y", k, "s'  [-]")
-    ax.legend(loc="best", framealpha=0.9)
+    legend_below(ax)
     return ax

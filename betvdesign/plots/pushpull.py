@@ -13,6 +13,7 @@ from typing import Any
 
 import numpy as np
 from matplotlib.axes import Axes
+from matplotlib.lines import Line2D
 
 from betvdesign.model.domain import VARPI_WINDOW
 from betvdesign.model.params import fit_offset
@@ -21,7 +22,9 @@ from betvdesign.plots.figure import (
     DEVICE_COLOR,
     axes_or_new,
     dimensionless_twin,
+    legend_below,
 )
+from betvdesign.plots.marks import SUBRES_COLOR, SUBRES_LABEL, mark_window
 
 
 def lambda_one_curve(inv_varpi2: np.ndarray, kappa: float, beta: float) -> np.ndarray:
@@ -71,6 +74,10 @@ def pushpull_map(
     return ax
 
 
+#: Sub-resonance orders drawn on the frequency map (the lines f_h = n·f_act) [-].
+MAP_ORDERS = 4
+
+
 def pushpull_map_frequencies(
     *,
     f_v_hz: float,
@@ -86,7 +93,9 @@ def pushpull_map_frequencies(
     X = 1/ϖ² = (f_v/f_act)² and Y = 1/(ακ) = f_h²/(κ f_v²), λ < 1 (push) reads
     f_h² < f_act² + κ·c·f_v² (c: :func:`betvdesign.model.params.fit_offset`): push lies below
     the curve f_h = sqrt(f_act² + κ c f_v²). Secondary axes: ϖ = f_act/f_v (top) and α
-    (right). points: (label, f_act [Hz], f_h [Hz]).
+    (right). points: (label, f_act [Hz], f_h [Hz]). Outside the design window hatched; the
+    sub-resonances α·ϖ² = 1/n² are the lines f_h = n·f_act (dash-dotted; n ≤
+    :data:`MAP_ORDERS`, the steeper ones crowd at the origin).
     """
     ax = axes_or_new(ax)
     c = fit_offset(kappa, beta)
@@ -119,17 +128,28 @@ def pushpull_map_frequencies(
             fontsize=8,
             fontweight="bold",
         )
-    for k, (edge, label) in enumerate(
-        ((VARPI_WINDOW[0] * fv, "design window 0.5 ≤ ϖ < 2"), (VARPI_WINDOW[1] * fv, None))
-    ):
-        ax.axvline(edge, color="#b8860b", lw=1.0, ls="-.", label=label if k == 0 else None)
+    marks = mark_window(ax, 0.0, x_max, [(VARPI_WINDOW[0] * fv, VARPI_WINDOW[1] * fv)])
+    for n in range(1, MAP_ORDERS + 1):  # α·ϖ² = 1/n²: the lines f_h = n·f_act
+        ax.plot([0.0, x_max], [0.0, n * x_max], color=SUBRES_COLOR, lw=0.7, ls="-.")
+        if y_max / n < x_max:
+            ax.annotate(
+                "f_h" if n == 1 else f"f_h/{n}",
+                (y_max / n, y_max),
+                xytext=(2, -2),
+                textcoords="offset points",
+                ha="left",
+                va="top",
+                fontsize=6.5,
+                color=SUBRES_COLOR,
+            )
+    marks.append(Line2D([], [], color=SUBRES_COLOR, lw=0.7, ls="-.", label=SUBRES_LABEL))
     _devices_and_sides(ax, points, xs, ys, 0.98)
     ax.set_xlim(0.0, x_max)
     ax.set_ylim(0.0, y_max)
     ax.set_xlabel("actuation frequency f_act  [kHz]")
     ax.set_ylabel("tangential resonance f_h = f_v/√α  [kHz]")
     dimensionless_twin(ax, "x", fv, "ϖ = f_act/f_v  [-]")
-    ax.legend(loc="upper left", framealpha=0.9)
+    legend_below(ax, handles=ax.get_legend_handles_labels()[0] + marks)
     return ax
 
 

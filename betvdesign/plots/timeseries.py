@@ -7,7 +7,13 @@ from collections.abc import Sequence
 import numpy as np
 from matplotlib.axes import Axes
 
-from betvdesign.plots.figure import DEVICE_COLOR, Scale, axes_or_new, dimensionless_twin
+from betvdesign.plots.figure import (
+    DEVICE_COLOR,
+    Scale,
+    axes_or_new,
+    dimensionless_twin,
+    legend_below,
+)
 
 
 def slider_velocity(
@@ -70,7 +76,7 @@ def slider_velocity(
         dimensionless_twin(ax, "x", kt, "t / T_act  [cycles]")
     if velocity_scale is not None:
         dimensionless_twin(ax, "y", kv, "s'  [-]")
-    ax.legend(loc="best", framealpha=0.9)
+    legend_below(ax)
     return ax
 
 
@@ -100,15 +106,16 @@ def slider_displacement(
         if travel_um is not None:
             te, xe, stop = _until_end_stop(te, xe, travel_um)
         ax.plot(te, xe, color="#7f7f7f", lw=1.2, ls="--", label="continued at periodic speed")
-    if stop is not None:
-        ax.plot([stop], [travel_um], marker="o", ms=6, color=DEVICE_COLOR, zorder=5)
-        ax.annotate(
-            f"end stop at {stop:.3g} ms",
-            (stop, travel_um),
-            xytext=(-8, -14 if travel_um > 0 else 8),
-            textcoords="offset points",
-            ha="right",
-            fontsize=7.5,
+    if stop is not None:  # named in the legend: a label beside it crossed the curve
+        ax.plot(
+            [stop],
+            [travel_um],
+            marker="o",
+            ms=6,
+            ls="none",
+            color=DEVICE_COLOR,
+            zorder=5,
+            label=f"end stop at {stop:.3g} ms",
         )
     if travel_um is not None:
         ax.axhline(

@@ -30,7 +30,7 @@ from betvdesign.checks.adequacy import (
 )
 from betvdesign.nondim.record import DeviceDerivation, SetDerivation
 from betvdesign.output.siformat import format_dimensionless as fmt_x
-from betvdesign.output.siformat import scale_for
+from betvdesign.output.siformat import format_si, scale_for
 from betvdesign.report.analysis import Piece, attempt
 from betvdesign.report.figures import figure_block, ladder
 from betvdesign.report.model import AdequacyBlock, FigureBlock, KeyValue
@@ -129,9 +129,10 @@ def figure(key: str, sd: SetDerivation, piece: Piece[SetAdequacy], tol: float) -
     """Mode and mean speed against Q (left) and e (right) around the device."""
     a = piece.value
     caption = (
-        "Mean slider speed (signed along the impact direction, > 0 push) of the exact "
-        "periodic orbit against the head's quality factor Q (left; one Q for the normal and "
-        "the tangential direction, log scale) and against the coefficient of restitution e "
+        "Mean slider speed (a magnitude; the colour gives the mode: push along the impacts, "
+        "pull against them) of the exact periodic orbit against the head's quality factor "
+        "Q (left; one Q for the normal and the tangential direction, log scale) and "
+        "against the coefficient of restitution e "
         "(right); each point coloured by its mode (grey: none, the slider is not driven "
         "because no contact recurs; crosses: no periodic orbit). Dashed: the idealised "
         "model (Q = ∞, e = 0); star: the device; dotted: where the mode flips (bisected)."
@@ -152,6 +153,12 @@ def figure(key: str, sd: SetDerivation, piece: Piece[SetAdequacy], tol: float) -
             caption += (
                 f" Speeds with the thermally rolled-off stroke at f_act "
                 f"({sd.scales.rolloff_factor:.3g} × u_cal)."
+            )
+        elif sd.stroke is not None:
+            caption += (
+                f" Speeds with the stroke predicted from the drawing at f_act "
+                f"(u = {format_si(sd.scales.u_m, 'm')}, {sd.stroke.gain:.3g} of u_static/2: "
+                "the drawing's thermal roll-off)."
             )
 
     def draw(axes: Any) -> None:
@@ -196,6 +203,6 @@ def figure(key: str, sd: SetDerivation, piece: Piece[SetAdequacy], tol: float) -
         ladder(sd.params, "delta_s", "periodic", tol=tol),
         piece,
         draw,
-        size=(7.0, 3.3),
+        size=(7.0, 3.8),  # the legends below the panels
         ncols=2,
     )

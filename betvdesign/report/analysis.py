@@ -15,7 +15,9 @@ Model rungs, cheapest that answers each question (the captions say which):
   and speed(V) = Δs·u(V)·cosθ·f_act with u(V) from the amplitude calibration
   (times the thermal roll-off at f_act when the device gives a cut-off);
 - speed against actuation frequency (devices with a thermal cut-off): one periodic
-  orbit per frequency (:mod:`betvdesign.report.frequency`).
+  orbit per frequency (:mod:`betvdesign.report.frequency`);
+- a stroke predicted from the drawing: u(V) to the melting voltage and u(f), electrothermal
+  solutions only, no orbit (:mod:`betvdesign.report.thermal`).
 
 Each piece is a :class:`Piece`: its value, or the reason it is missing (upstream
 API not available, solver failure with its message). Nothing is invented.
@@ -409,6 +411,11 @@ class SetAnalysis:
     )
     mode_map: Piece[Any] = field(
         default_factory=lambda: Piece(reason="not computed (a set with the same parameters)")
+    )
+    #: The predicted stroke's u(V) and u(f) (:mod:`betvdesign.report.thermal`; sets whose
+    #: stroke is predicted from the drawing).
+    stroke: Piece[Any] = field(
+        default_factory=lambda: Piece(reason="the stroke is not predicted from the drawing")
     )
 
 

@@ -28,7 +28,7 @@ from betvdesign.dynamics.result import PeriodicResult
 from betvdesign.nondim.device import derive_file
 from betvdesign.nondim.record import DeviceDerivation, SetDerivation
 from betvdesign.output.siformat import format_q, format_si
-from betvdesign.report import adequacy, figures, frequency, modemap
+from betvdesign.report import adequacy, figures, frequency, modemap, thermal
 from betvdesign.report.analysis import Piece, ReportOptions, SetAnalysis, analyse_set, attempt
 from betvdesign.report.inputs import device_inputs
 from betvdesign.report.model import (
@@ -242,6 +242,16 @@ def provenance(an: SetAnalysis, opts: ReportOptions, timings: bool) -> tuple[Key
                 f"{format_si(fs.f_act_hz[-1], 'Hz')} (thermal roll-off of the stroke)",
             )
         )
+    if an.stroke.ok:
+        st = an.stroke.value
+        rows.append(
+            KeyValue(
+                "Predicted stroke",
+                f"{st.solves} electrothermal solutions (u(V) over {len(st.volts)} voltages, "
+                f"0 to {st.volts[-1]:.4g} V; melting voltage bisected to a relative "
+                f"{thermal.MELTING_RTOL:g}); u(f) from the device's thermal modes",
+            )
+        )
     if timings:
         pieces: dict[str, Piece[Any]] = {
             "periodic": an.periodic,
@@ -253,6 +263,8 @@ def provenance(an: SetAnalysis, opts: ReportOptions, timings: bool) -> tuple[Key
         }
         if an.frequency.ok:
             pieces["frequency"] = an.frequency
+        if an.stroke.ok:
+            pieces["predicted stroke"] = an.stroke
         for name, piece in pieces.items():
             rows.append(KeyValue(f"Run time: {name}", f"{piece.elapsed_s:.3g} s"))
     else:
@@ -289,7 +301,8 @@ def design_check(
 ) -> CheckResult:
     """The design check of ``betv check``, fed the report's periodic orbits and vertical
     motions instead of solving them again (the mode-margin corners are solved here), and
-    the report's model-adequacy study (``adequacy_result``: a DeviceAdequacy, or False)."""
+    the report's model-adequacy study (``adequacy_result``: a DeviceAdequacy, or False),
+    with the check's advice (the fix texts of ``betv check``)."""
     orbits = {sd.params: an.periodic for sd, an, _ in per_set}
     verticals = {
         (sd.params.varpi, sd.params.zeta_v, sd.params.restitution): an.vertical
@@ -306,7 +319,9 @@ def design_check(
         piece = verticals[(varpi, zeta_v, restitution)]
         return piece.value if piece.ok else None
 
-    options = CheckOptions(advice=False, adequacy=adequacy_result is not False)
+    # The advice of ``betv check`` (studies.fix.advise): the report's fix texts are the
+    # check's, a concrete change ("raise drive.frequency 2 kHz -> 2.149 kHz").
+    options = CheckOptions(advice=True, adequacy=adequacy_result is not False)
     return run_check(
         der,
         options,
@@ -359,6 +374,8 @@ def _analyse_sets(
                 sd.params, sd.scales.f_act_hz, an.periodic, opts
             )
         )
+        if sd.stroke is not None:
+            an.stroke = attempt(lambda sd=sd: thermal.stroke_sweep(der.spec, sd))
         analyses[key] = (sd.name, an)
         per_set.append((sd, an, None))
     return per_set
@@ -391,6 +408,7 @@ def build_report(
             else [
                 modemap.figure(f"s{i}-modemap", sd, an.mode_map),
                 *figures.set_figures(f"s{i}", sd, an, opts.voltage_points, opts.periodic_tol),
+                *thermal.figures(f"s{i}-stroke", der.spec, sd, an.stroke),
             ]
         )
         adequate = (

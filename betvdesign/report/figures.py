@@ -20,6 +20,7 @@ from betvdesign import plots
 from betvdesign.checks import fidelity
 from betvdesign.model.domain import VARPI_WINDOW
 from betvdesign.nondim.record import SetDerivation
+from betvdesign.output.presentation import MODE_DIRECTION
 from betvdesign.output.siformat import format_si, scale_for
 from betvdesign.report.analysis import REGIME_LONG_HORIZON, Piece, SetAnalysis
 from betvdesign.report.model import FigureBlock
@@ -121,8 +122,9 @@ def pushpull(key: str, sd: SetDerivation) -> FigureBlock:
         f"κ = {p.kappa:.3g}, β = {p.beta:.3g}: f_h² = f_act² + κ·c·f_v² with "
         "c = (1/β − β)/(22(κ+1)) (MODEL.md, eq. 9 rewritten in frequencies). "
         f"λ = {p.lam:.4g} predicts {p.lambda_mode} mode. Below the curve λ < 1 (push), "
-        "above λ > 1 (pull); the dash-dotted lines bound the vertical design window "
-        "0.5 ≤ ϖ < 2 (top axis: ϖ = f_act/f_v)."
+        "above λ > 1 (pull); hatched: outside the vertical design window 0.5 ≤ ϖ < 2 (top "
+        "axis: ϖ = f_act/f_v); dash-dotted: the sub-resonances α·ϖ² = 1/n², the lines "
+        "f_h = n·f_act (n = 1 to 4), where the exact mode can flip against the fit."
     )
 
     def draw(ax: Any) -> None:
@@ -138,6 +140,7 @@ def pushpull(key: str, sd: SetDerivation) -> FigureBlock:
         ("lambda", "the figure places the device against the λ fit's own boundary"),
         Piece(value=True),
         draw,
+        size=(6.4, 4.0),  # the legend below the axes
     )
 
 
@@ -246,10 +249,11 @@ def settling(key: str, sd: SetDerivation, an: SetAnalysis) -> FigureBlock:
         f"{format_si(sd.scales.length_m / sd.scales.time_s, 'm/s')})."
     )
     if per is not None:
-        v = sd.scales.speed_m_s(float(per.delta_s))
+        v = abs(sd.scales.speed_m_s(float(per.delta_s)))
+        way = MODE_DIRECTION.get(str(per.mode), "")
         caption += (
-            f" Periodic mean speed {format_si(v, 'm/s')} along the impact direction "
-            f"(Δs = {float(per.delta_s):.4g} per cycle, {per.mode} mode)."
+            f" Periodic mean speed {format_si(v, 'm/s')} ({per.mode} mode"
+            f"{': ' + way if way else ''}; Δs = {float(per.delta_s):.4g} per cycle)."
         )
         if tr is not None and len(tr.delta_s) and float(per.delta_s) != 0.0:
             k = int(per.period_cycles or 1)
@@ -298,7 +302,7 @@ def settling(key: str, sd: SetDerivation, an: SetAnalysis) -> FigureBlock:
         ),
         both,
         draw,
-        size=(7.0, 3.3),
+        size=(7.0, 3.8),  # the legends below the panels
         ncols=2,
     )
 
@@ -352,6 +356,8 @@ def speed_voltage(
     cal = aset.actuator.calibration
     per = an.periodic
     piece: Piece[Any] = per
+    if sd.stroke is not None:
+        return _speed_voltage_drawn(key, sd, an, tol)
     if per.ok and cal is None:
         piece = Piece(
             reason="the device gives the amplitude u directly, not a calibration u(V); "
@@ -359,9 +365,11 @@ def speed_voltage(
         )
     v0 = aset.drive.voltage.to("V").magnitude if aset.drive.voltage is not None else None
     law = cal.law if cal is not None else "none"
+    mode = str(per.value.mode) if per.ok else ""
+    way = f" ({mode} mode: {MODE_DIRECTION[mode]})" if mode in MODE_DIRECTION else ""
     caption = (
-        f"Mean slider speed Δs·u(V)·cosθ·f_act along the impact direction (negative: against "
-        f"it) with u(V) from the {law} amplitude calibration; operating point marked."
+        f"Mean slider speed |Δs|·u(V)·cosθ·f_act{way} with u(V) from the {law} amplitude "
+        "calibration; operating point marked."
     )
     if sc.has_rolloff:
         caption += (
@@ -377,10 +385,55 @@ def speed_voltage(
         volts = np.linspace(lo, hi, points)
         u_m = amplitude_at(aset, ureg.Quantity(volts, "V")).to("m").magnitude
         u_m = np.asarray(u_m) * sc.rolloff_factor  # H(f_act)/H(f_cal): 1 without a cut-off
-        ds = float(per.value.delta_s)
+        ds = abs(float(per.value.delta_s))  # a speed is a magnitude; the mode says the way
         speed = ds * np.asarray(u_m) * math.cos(sc.theta_rad) * sc.f_act_hz  # [m/s]
         plots.speed_vs_voltage(
-            volts, speed, operating_v=v0, operating_speed_m_s=sc.speed_m_s(ds), ax=ax
+            volts, speed, operating_v=v0, operating_speed_m_s=sc.speed_m_s(ds), mode=mode, ax=ax
+        )
+
+    model = (
+        "one periodic orbit of the exact model; Δs does not depend on u, so speed scales with u(V)"
+    )
+    rung = ladder(sd.params, "delta_s", "periodic", tol=tol)
+    return figure_block(key, "Mean speed against drive voltage", caption, model, rung, piece, draw)
+
+
+def _speed_voltage_drawn(key: str, sd: SetDerivation, an: SetAnalysis, tol: float) -> FigureBlock:
+    """The speed-voltage figure of a set whose stroke is predicted from the drawing.
+
+    Parameters
+    ----------
+    key : str
+        Figure key.
+    sd : SetDerivation
+        The set (its predicted stroke).
+    an : SetAnalysis
+        Its periodic orbit and its u(V) (:mod:`betvdesign.report.thermal`).
+    tol : float
+        The periodic orbit's residual [-] (the ladder's reason).
+
+    Returns
+    -------
+    FigureBlock
+        Δs·u(V)·cosθ·f_act with u(V) the stroke at the drive, to the melting voltage.
+    """
+    sc = sd.scales
+    per, sweep = an.periodic, an.stroke
+    piece: Piece[Any] = per if not per.ok or sweep.ok else sweep
+    caption = (
+        "Mean slider speed Δs·u(V)·cosθ·f_act along the impact direction (negative: against "
+        "it) with u(V) the stroke at the drive predicted from the drawing (the electrothermal "
+        "model, nothing fitted; the figure of the predicted stroke against voltage), up to "
+        "the voltage where the actuator's peak temperature reaches the melting point; "
+        "operating point marked."
+    )
+
+    def draw(ax: Any) -> None:
+        s = sweep.value
+        ds = float(per.value.delta_s)
+        speed = ds * s.stroke_m * math.cos(sc.theta_rad) * sc.f_act_hz  # [m/s]
+        plots.speed_vs_voltage(
+            s.volts, speed, operating_v=s.device_v, operating_speed_m_s=sc.speed_m_s(ds), ax=ax
         )
 
     model = (
@@ -393,12 +446,14 @@ def speed_voltage(
 def robustness(key: str, sd: SetDerivation, an: SetAnalysis) -> FigureBlock:
     data = an.robustness.value
     toward = "+x" if sd.actuator_set.travel_sign > 0 else "−x"
+    other = "pull" if sd.intended_mode == "push" else "push"
     caption = (
-        "Mean slider speed (periodic orbit of the exact model) when one designer field "
-        "changes and every other stays as specified; positive: the intended direction "
-        f"({sd.intended_mode} mode, toward {toward}), negative: the slider runs the wrong "
-        "way. A line crossing zero near 0 % means a fabrication or drive error of that size "
-        "flips the mode. Ringed points: the λ fit predicts the other mode there."
+        "Mean slider speed (a magnitude; periodic orbit of the exact model) when one "
+        "designer field changes and every other stays as specified. The intended direction "
+        f"is the {sd.intended_mode} mode's, toward {toward}; squares in the {other} colour: "
+        f"the slider runs the wrong way ({other} mode). A line dipping to zero near 0 % "
+        "means a fabrication or drive error of that size flips the mode. Ringed points: "
+        "the λ fit predicts the other mode there."
     )
     if data is not None:
         nominal = "; ".join(
@@ -431,7 +486,7 @@ def robustness(key: str, sd: SetDerivation, an: SetAnalysis) -> FigureBlock:
             ]
             series.append((f, [100.0 * p.change for p in pts], speeds, misses))
         flips = [(fl.field, 100.0 * fl.at) for fl in data.flips]
-        plots.speed_vs_field_change(series, flips=flips, ax=ax)
+        plots.speed_vs_field_change(series, flips=flips, wrong_mode=other, ax=ax)
 
     model = f"periodic orbits of the {EXACT}, one per changed device (spec -> nondim -> orbit)"
     rung = (
@@ -447,7 +502,7 @@ def robustness(key: str, sd: SetDerivation, an: SetAnalysis) -> FigureBlock:
         rung,
         an.robustness,
         draw,
-        size=(6.4, 3.8),
+        size=(6.4, 4.6),  # the legend below the axes
     )
 
 

@@ -1,5 +1,7 @@
 """Speed against actuation frequency (report figure of every device), with the
-actuator's thermal roll-off for a device that gives a thermal cut-off.
+actuator's thermal roll-off for a device that gives a thermal cut-off or whose stroke is
+predicted from the drawing (its own thermal modes' roll-off,
+:func:`betvdesign.model.electrothermal.modal_gain`).
 
 Only ϖ = f_act/f_v depends on the actuation frequency; α, β and κ do not, and every
 displacement scales with the stroke u (MODEL.md, "Displacement per cycle"). So one
@@ -100,8 +102,9 @@ def _missing_text(sweep: FrequencySweep) -> str:
 
 
 def speeds(sd: SetDerivation, sweep: FrequencySweep) -> tuple[list[float | None], ...]:
-    """(speed with the roll-off, speed with the calibrated stroke held constant) [m/s]
-    along the impact direction at each swept frequency (None where Δs is missing)."""
+    """(velocity with the roll-off, with the calibrated stroke held constant) [m/s]
+    signed along the impact direction (+ push) at each swept frequency (None where Δs is
+    missing); the figure draws their magnitudes, coloured by mode."""
     sc = sd.scales
     cos = math.cos(sc.theta_rad)
     u_f = sc.amplitude_m(sweep.f_act_hz)
@@ -120,11 +123,24 @@ def speed_frequency(
     sc, p = sd.scales, sd.params
     f_v = sc.f_act_hz / p.varpi
     head = (
-        "Mean slider speed along the impact direction against the actuation frequency "
-        f"f_act (top axis ϖ = f_act/f_v, f_v = {format_si(f_v, 'Hz')}; design window "
-        "shaded). "
+        "Mean slider speed (a magnitude; each point in its mode's colour: push moves the "
+        "slider along the impacts, pull against them) against the actuation frequency "
+        f"f_act (top axis ϖ = f_act/f_v, f_v = {format_si(f_v, 'Hz')}; outside the design "
+        "window hatched; dash-dotted: the sub-resonances α·ϖ² = 1/n², f_act = f_h/n with "
+        f"f_h = f_v/√α = {format_si(f_v / math.sqrt(p.alpha), 'Hz')}"
+        + (
+            "; cross-hatched, speeds grey: the undamped head's tangential resonance "
+            "|α·ϖ² − 1| < 0.1, where the idealised speed is not the device's). "
+            if p.zeta_h == 0.0
+            else "). "
+        )
     )
-    if sc.has_rolloff:
+    drawn = sd.stroke is not None and bool(sc.thermal_modes)
+    rolls = sc.has_rolloff or drawn
+    cutoff = sd.stroke.f_cutoff_hz if drawn and sd.stroke is not None else sc.cutoff_hz
+    if drawn:
+        caption = head + _drawn_caption(sd)
+    elif sc.has_rolloff:
         caption = head + (
             "Solid: with the stroke's first-order thermal roll-off "
             f"u(f) = u_cal·H(f)/H(f_cal), H(f) = 1/sqrt(1 + (f/f_c)²), f_c = "
@@ -148,11 +164,7 @@ def speed_frequency(
         rolled, constant = speeds(sd, sweep)
         caption += f" {len(sweep.f_act_hz)} frequencies, one periodic orbit each (α, β, κ fixed)."
         sign = 1.0 if sd.intended_mode == "push" else -1.0
-        curves = (
-            (("with roll-off", rolled), ("without", constant))
-            if sc.has_rolloff
-            else (("", rolled),)
-        )
+        curves = (("with roll-off", rolled), ("without", constant)) if rolls else (("", rolled),)
         for label, vals in curves:
             best = max(
                 ((sign * v, f) for v, f in zip(vals, sweep.f_act_hz, strict=True) if v is not None),
@@ -172,10 +184,13 @@ def speed_frequency(
             rolled,
             constant,
             f_v_hz=f_v,
-            cutoff_hz=sc.cutoff_hz if sc.has_rolloff else None,
-            rolloff=sc.has_rolloff,
+            cutoff_hz=cutoff if rolls else None,
+            rolloff=rolls,
             operating=(sc.f_act_hz, sc.speed_m_s(_device_ds(piece.value, p.varpi, f_v))),
+            alpha=p.alpha,
+            undamped=p.zeta_h == 0.0,
             ax=ax,
+            **({"constant_label": "stroke held at its f_act value (no roll-off)"} if drawn else {}),
         )
 
     model = (
@@ -185,13 +200,40 @@ def speed_frequency(
     rung = ladder(p, "delta_s", "periodic", tol=tol)
     return figure_block(
         key,
-        "Mean speed against actuation frequency"
-        + (", with thermal roll-off" if sc.has_rolloff else ""),
+        "Mean speed against actuation frequency" + (", with thermal roll-off" if rolls else ""),
         caption,
         model,
         rung,
         piece,
         draw,
+    )
+
+
+def _drawn_caption(sd: SetDerivation) -> str:
+    """The caption's roll-off sentences for a stroke predicted from the drawing.
+
+    Parameters
+    ----------
+    sd : SetDerivation
+        A set whose stroke is predicted (its :attr:`~SetDerivation.stroke` and the
+        thermal modes in its scales).
+
+    Returns
+    -------
+    str
+        What the solid and the dashed curves hold.
+    """
+    sc, st = sd.scales, sd.stroke
+    assert st is not None
+    return (
+        "Solid: with the drawing's thermal roll-off u(f) = u·G(f)/G(f_act), G the gain of "
+        "the drawn actuator's thermal modes at the heating frequency f (f_act for every "
+        f"waveform; the electrothermal model at the device's {st.voltage_v:.4g} V, nothing "
+        f"fitted), thermal cut-off f_c = {format_si(st.f_cutoff_hz, 'Hz')}, first thermal "
+        f"mode {format_si(st.f_thermal_hz, 'Hz')}; dashed: the stroke held at its f_act "
+        f"value u = {format_si(sc.u_m, 'm')} at every frequency (no roll-off; the device's "
+        "damping and restitution in both curves). The drive frequency is half of f_act "
+        "with AC doubling."
     )
 
 
@@ -206,5 +248,5 @@ def figures(
     key: str, sd: SetDerivation, piece: Piece[FrequencySweep], tol: float
 ) -> list[FigureBlock]:
     """The speed-against-frequency figure of a set (with the roll-off when it gives a
-    thermal cut-off)."""
+    thermal cut-off or its stroke is predicted from the drawing)."""
     return [speed_frequency(key, sd, piece, tol)]

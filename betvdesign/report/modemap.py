@@ -135,7 +135,10 @@ def figure(key: str, sd: SetDerivation, piece: Piece[ModeMap]) -> FigureBlock:
         f"< {VARPI_WINDOW[1]:g}, the second field over ±{100 * MAP_SPAN:.0f} %); the star "
         f"is the device ({sd.intended_mode} intended). Dashed: "
         "where the paper's λ fit puts the push/pull boundary (λ = 1), for comparison only: "
-        "the verdict reads the exact orbit."
+        "the verdict reads the exact orbit. Dash-dotted: the sub-resonances α·ϖ² = 1/n² "
+        "(f_act = f_h/n), where the exact mode's flips cluster; hatched: outside the design "
+        "window; cross-hatched: an undamped head's tangential resonance |α·ϖ² − 1| < 0.1, "
+        "where the idealised model is not the device."
     )
     if piece.ok:
         m = piece.value

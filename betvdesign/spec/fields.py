@@ -160,10 +160,12 @@ def bounds(path: str) -> Bounds:
 
 
 def describe_change(path: str, old: float, new: float) -> str:
-    """What a change of a field means physically.
+    """What a change of a file's resonance or stiffness means for the head's suspension.
 
-    What a change of a field means physically (resonances and stiffnesses in the
-    suspension a designer draws); "" for fields that are drawn or set directly.
+    What a change of a field means physically (the suspension's stiffness, the head's
+    mass kept); "" for fields that are drawn or set directly. The drawn dimensions that
+    give it come from the frame model, where the device has a drawing
+    (:func:`betvdesign.studies.drawnchange.in_drawing`), never from a power law.
 
     Parameters
     ----------
@@ -175,8 +177,8 @@ def describe_change(path: str, old: float, new: float) -> str:
     Returns
     -------
     str
-        E.g. for a resonance f → r·f: the suspension stiffness k ∝ f² (head mass kept)
-        ×r², i.e. its flexure beams ×r^(2/3) wide (k ∝ w³) or ×r^(−2/3) long (k ∝ 1/L³).
+        E.g. for a resonance f → r·f: "the head's vertical suspension 62% softer
+        (k ×0.378, head mass kept)" (k ∝ f² at a fixed mass).
     """
     if old <= 0 or new <= 0:
         return ""
@@ -191,8 +193,4 @@ def describe_change(path: str, old: float, new: float) -> str:
     else:
         return ""
     soft = "stiffer" if k > 1 else "softer"
-    return (
-        f"the head's {which} suspension {abs(k - 1):.0%} {soft} (k ×{k:.3g}, head mass kept): "
-        f"its flexure beams ×{k ** (1 / 3):.3g} wide (k ∝ w³) or ×{k ** (-1 / 3):.3g} long "
-        "(k ∝ 1/L³)"
-    )
+    return f"the head's {which} suspension {abs(k - 1):.0%} {soft} (k ×{k:.3g}, head mass kept)"

@@ -377,7 +377,9 @@ class Actuator(StrictModel):
     (:mod:`betvdesign.nondim.actuator`) where the file gives no resonance, stiffness or α:
     each given one is used (and compared with the geometry's), each missing one is the
     geometry's.
-    Amplitude u: exactly one of ``amplitude`` or ``calibration`` (law of the drive voltage).
+    Amplitude u: exactly one of ``amplitude`` or ``calibration`` (law of the drive voltage),
+    or neither with a drawn ``geometry``: the stroke is then predicted from the drawing and
+    the process's electrothermal data at the drive (:attr:`drawn_stroke`).
     Thermal roll-off (optional, MODEL.md "Thermal roll-off of the actuator"): at most one of
     ``thermal_cutoff`` f_c or ``thermal_time_constant`` τ_th (f_c = 1/(2π τ_th)), then
     ``calibration_frequency`` f_cal is required and u(f) = u·H(f)/H(f_cal) with
@@ -415,6 +417,16 @@ class Actuator(StrictModel):
 
     _law = field_validator("calibration", mode="before")(_lower_tag("law"))
 
+    @property
+    def drawn_stroke(self) -> bool:
+        """True when the stroke is predicted from the drawing (no amplitude, no calibration).
+
+        The drawn actuator's electrothermal model then gives u at the drive
+        (:mod:`betvdesign.model.electrothermal`; the process must carry the layer's
+        electrothermal data).
+        """
+        return self.amplitude is None and self.calibration is None
+
     @model_validator(mode="after")
     def _exactly_one(self) -> Actuator:
         sources = (
@@ -435,8 +447,24 @@ class Actuator(StrictModel):
             )
         if self.vertical_resonance is None and self.geometry is None:
             raise ValueError("give 'vertical_resonance' (or a drawn 'geometry')")
-        if (self.amplitude is None) == (self.calibration is None):
-            raise ValueError("give exactly one of 'amplitude' or 'calibration'")
+        if self.amplitude is not None and self.calibration is not None:
+            raise ValueError("give exactly one of 'amplitude' or 'calibration', not both")
+        if self.drawn_stroke:
+            if self.geometry is None:
+                raise ValueError(
+                    "give exactly one of 'amplitude' or 'calibration' (or a drawn 'geometry' "
+                    "whose process has electrothermal data: the stroke is then predicted)"
+                )
+            if self.thermal_cutoff is not None or self.thermal_time_constant is not None:
+                which = (
+                    "thermal_cutoff" if self.thermal_cutoff is not None else "thermal_time_constant"
+                )
+                raise at(
+                    which,
+                    "a drawn stroke (no 'amplitude' or 'calibration') derives its own thermal "
+                    "roll-off from the drawing; give a measured amplitude or calibration with "
+                    "a measured cut-off instead",
+                )
         if self.amplitude is not None and self.amplitude.to("m").magnitude <= 0:
             raise at("amplitude", "amplitude must be > 0")
         if self.thermal_cutoff is not None and self.thermal_time_constant is not None:
@@ -516,6 +544,12 @@ class ActuatorSet(StrictModel):
         cal = self.actuator.calibration
         if cal is not None and self.drive.voltage is None:
             raise at("drive.voltage", "required when the actuator gives a calibration")
+        if self.actuator.drawn_stroke and self.drive.voltage is None:
+            raise at(
+                "drive.voltage",
+                "required when the stroke is predicted from the drawing (no amplitude or "
+                "calibration)",
+            )
         if isinstance(cal, MeasuredCalibration) and self.drive.voltage is not None:
             lo, hi = cal.voltage_range
             v = self.drive.voltage

@@ -20,17 +20,28 @@ from __future__ import annotations
 import os
 import re
 from pathlib import Path
-from typing import Annotated, Any, Literal
+from typing import TYPE_CHECKING, Annotated, Any, Literal
 
 import pint
 from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
 
 from betvdesign.spec import limits
-from betvdesign.spec.units import Density, Length, QuantitySpec, format_quantity, ureg
+from betvdesign.spec.units import (
+    Density,
+    Length,
+    NonNegativeLength,
+    QuantitySpec,
+    format_quantity,
+    ureg,
+)
+
+if TYPE_CHECKING:
+    from betvdesign.model.electrothermal import ThermalMaterial
 
 __all__ = [
     "MIN_DRAWN",
     "SHIPPED_DIR",
+    "Electrothermal",
     "GdsLayer",
     "Modulus",
     "Process",
@@ -45,6 +56,19 @@ __all__ = [
 
 #: Young's modulus (pressure) [Pa], e.g. '160 GPa'.
 Modulus = Annotated[pint.Quantity, QuantitySpec("[pressure]", "Pa", "160 GPa", gt=0.0)]
+
+#: Sheet resistance of a film [Ω per square], e.g. '10 ohm'.
+SheetResistance = Annotated[pint.Quantity, QuantitySpec("[resistance]", "ohm", "10 ohm", gt=0.0)]
+#: A coefficient per kelvin [1/K] (resistance's or expansion's), e.g. '1.25e-3 K^-1'.
+PerKelvin = Annotated[pint.Quantity, QuantitySpec("1/[temperature]", "1/K", "1.25e-3 K^-1")]
+#: Thermal conductivity [W/(m·K)], e.g. '32 W/m/K'.
+Conductivity = Annotated[pint.Quantity, QuantitySpec("[power]/[length]/[temperature]", "W/m/K",
+                                                     "32 W/m/K", gt=0.0)]  # fmt: skip
+#: Specific heat [J/(kg·K)], e.g. '712 J/kg/K'.
+SpecificHeat = Annotated[pint.Quantity, QuantitySpec("[energy]/[mass]/[temperature]", "J/kg/K",
+                                                     "712 J/kg/K", gt=0.0)]  # fmt: skip
+#: An absolute temperature [K], e.g. '1687 K'.
+Temperature = Annotated[pint.Quantity, QuantitySpec("[temperature]", "K", "1687 K", gt=0.0)]
 
 #: The smallest drawn length any layout can hold: 1 nm, the database unit of the GDS
 #: files ``betv layout`` writes. A drawn dimension below it cannot be drawn at all.
@@ -116,6 +140,51 @@ class ReleaseHoles(StrictModel):
     """Largest centre-to-centre distance of neighbouring holes."""
 
 
+class Electrothermal(StrictModel):
+    """A structural film's electrical and thermal data and its gap to the substrate.
+
+    What the electrothermal stroke (:mod:`betvdesign.model.electrothermal`) needs: the
+    film's sheet resistance and its temperature coefficient, thermal conductivity,
+    specific heat, expansion (a named α(T) law or a constant), melting point; the air gap
+    under the film, the air's conductivity and the insulating layer on the substrate.
+    ``source`` names where the values come from; a value no source was found for is
+    listed in the process's ``unsourced``.
+    """
+
+    sheet_resistance: SheetResistance
+    """Sheet resistance R_s at the substrate temperature (resistivity ρ_0 = R_s·t)."""
+    tcr: PerKelvin
+    """Linear temperature coefficient ξ of the resistivity: ρ = ρ_0·(1 + ξ·(T − T_0))."""
+    thermal_conductivity: Conductivity
+    """Thermal conductivity k of the film."""
+    specific_heat: SpecificHeat
+    """Specific heat c of the film."""
+    expansion_law: Literal["okada-tokumaru-1984"] | None = None  # = OKADA_TOKUMARU
+    """α(T) by name: 'okada-tokumaru-1984' (silicon, 120–1500 K)."""
+    expansion_coefficient: PerKelvin | None = None
+    """A constant α instead of ``expansion_law``."""
+    melting_point: Temperature
+    """Melting point of the film: a peak temperature above it melts the arm."""
+    substrate_temperature: Temperature = Field(default_factory=lambda: ureg.Quantity(300.0, "K"))
+    """Substrate (and anchor) temperature T_0 (default 300 K)."""
+    air_gap: Length
+    """Height of the released film above the substrate's top layer (t_v)."""
+    air_conductivity: Conductivity
+    """Thermal conductivity of the air in the gap."""
+    nitride_thickness: NonNegativeLength
+    """Insulating layer on the substrate (t_n; 0 um for none)."""
+    nitride_conductivity: Conductivity
+    """Its thermal conductivity."""
+    source: str = Field(min_length=1, max_length=limits.MAX_STRING_CHARS)
+    """Where these values come from."""
+
+    @model_validator(mode="after")
+    def _one_expansion(self) -> Electrothermal:
+        if (self.expansion_law is None) == (self.expansion_coefficient is None):
+            raise ValueError("give 'expansion_law' or 'expansion_coefficient' (one of them)")
+        return self
+
+
 class ProcessLayer(StrictModel):
     """One mask layer of the process."""
 
@@ -145,6 +214,8 @@ class ProcessLayer(StrictModel):
     """Etch holes for wider features (structural layers)."""
     anchor: str | None = Field(default=None, max_length=limits.MAX_NAME_CHARS)
     """Name of the layer that anchors this structural layer to the substrate."""
+    electrothermal: Electrothermal | None = None
+    """Electrical and thermal data (structural layers; the drawn actuator's stroke)."""
     source: str | None = Field(default=None, max_length=limits.MAX_STRING_CHARS)
     """Where the values of this layer come from."""
 
@@ -309,6 +380,61 @@ class Process(StrictModel):
                 return name
         return None
 
+    def thermal_material(self, name: str | None = None) -> ThermalMaterial:
+        """The electrothermal data of the structural layer ``name`` in SI floats.
+
+        Parameters
+        ----------
+        name : str, optional
+            The structural layer (the default one when None).
+
+        Returns
+        -------
+        ThermalMaterial
+            Its film's and gap's data (resistivity ρ_0 = R_s·t, the layer's density).
+
+        Raises
+        ------
+        ValueError
+            Naming the missing section (``layers.NAME.electrothermal``) when the process
+            has no electrothermal data for that layer.
+        """
+        from betvdesign.model.electrothermal import ThermalMaterial
+
+        key = self.structural_name(name)
+        lay = self.structural(key)
+        et = lay.electrothermal
+        if et is None:
+            raise ValueError(
+                f"process {self.name!r}: layers.{key}.electrothermal is missing (sheet "
+                "resistance, its temperature coefficient, thermal conductivity, specific heat, "
+                "expansion, melting point and the gap to the substrate): the drawn actuator's "
+                "stroke needs it"
+            )
+        assert lay.thickness is not None and lay.density is not None
+
+        def si(q: pint.Quantity, unit: str) -> float:
+            return float(q.to(unit).magnitude)
+
+        expansion: str | float = (
+            et.expansion_law if et.expansion_law is not None
+            else si(et.expansion_coefficient, "1/K")  # type: ignore[arg-type]
+        )  # fmt: skip
+        return ThermalMaterial(
+            resistivity=si(et.sheet_resistance, "ohm") * si(lay.thickness, "m"),
+            tcr=si(et.tcr, "1/K"),
+            conductivity=si(et.thermal_conductivity, "W/m/K"),
+            density=si(lay.density, "kg/m**3"),
+            heat_capacity=si(et.specific_heat, "J/kg/K"),
+            expansion=expansion,
+            air_conductivity=si(et.air_conductivity, "W/m/K"),
+            air_gap=si(et.air_gap, "m"),
+            nitride_thickness=si(et.nitride_thickness, "m"),
+            nitride_conductivity=si(et.nitride_conductivity, "W/m/K"),
+            substrate_temperature=si(et.substrate_temperature, "K"),
+            melting_temperature=si(et.melting_point, "K"),
+        )
+
     def cite(self, path: str) -> str:
         """Where the value at ``path`` comes from.
 
@@ -329,7 +455,10 @@ class Process(StrictModel):
             return f"process {self.name}: {path} (value NOT sourced; replace it by your foundry's)"
         parts = path.split(".")
         if len(parts) >= 2 and parts[0] == "layers" and parts[1] in self.layers:
-            src = self.layers[parts[1]].source
+            lay = self.layers[parts[1]]
+            src = lay.source
+            if len(parts) >= 3 and parts[2] == "electrothermal" and lay.electrothermal:
+                src = lay.electrothermal.source
             if src:
                 return f"process {self.name}: {path} ({src})"
         return f"process {self.name}: {path} ({self.source})"

@@ -314,6 +314,15 @@ def format_quantity(q: pint.Quantity, fmt: str = "") -> str:
     else:
         mag_s = format(mag, fmt) if fmt else str(mag)
     unit_s = format(q.units, "~C").replace("µ", "u").replace("μ", "u")
+    if unit_s.startswith("1/"):  # no numerator: '1/K' does not read back, 'K^-1' does
+        unit_s = (
+            "*".join(
+                ureg.get_symbol(name) + ("" if p == 1 else f"^{p:g}")
+                for name, p in q.units._units.items()
+            )
+            .replace("µ", "u")
+            .replace("μ", "u")
+        )
     return f"{mag_s} {unit_s}".strip() if unit_s else mag_s
 
 

@@ -13,9 +13,11 @@ API (fields in physical units in, rows out; shared with other front ends):
 * :func:`parse_axis` -> :class:`FieldAxis` (``"drive.frequency=1kHz:4kHz"``);
 * :func:`fieldsweep_study` -> a resumable, parallel :class:`~betvdesign.studies.engine.
   runner.Study`; :func:`run_fieldsweep` runs it;
-* rows: the fields' values [their units], ϖ, α, β, κ, λ [-], the ``exact_mode``
-  (push, pull, stalled, not driven, unbounded, not converged, no crossing), Δs [-],
-  ``speed_m_s`` (Δs·u·cosθ·f_act [m/s], signed along the impacts) and its ``basis``:
+* rows: the fields' values [their units] (columns ``field [unit]``), ϖ, α, β, κ,
+  λ [-], the ``exact_mode`` (push, pull, stalled, not driven, unbounded, not
+  converged, no crossing), Δs [-],
+  ``speed_m_s`` (|Δs|·u·cosθ·f_act [m/s], a magnitude: the mode says which way) and
+  its ``basis``:
   each point's answer is ``betv check``'s travel answer
   (:func:`betvdesign.checks.checker.answer_over_travel`: the periodic orbit when it
   settles early in the travel, the crossing mean from rest when it does not or when no
@@ -23,7 +25,14 @@ API (fields in physical units in, rows out; shared with other front ends):
   check's determination re-solves (which matter only at round-off edges: the map names
   its basis, so a cell and ``betv check`` of the same design say the same);
 * :func:`locate_flips` (1-D): every change of the exact mode between neighbouring
-  points, bisected in the field to :data:`FLIP_RTOL`.
+  points, bisected in the field to :data:`FLIP_RTOL`;
+* :func:`sweep_marks` (1-D): where along the field the design window 0.5 ≤ ϖ < 2 lies,
+  where the sub-resonances α·ϖ² = 1/n² (f_act = f_h/n) fall, and, for an undamped head,
+  the band |α·ϖ² − 1| < 0.1 around the tangential resonance where the idealised speed is
+  not physical.
+
+Speeds are magnitudes [m/s] with the mode beside them (``exact_mode``), as everywhere in
+the package's outputs (:mod:`betvdesign.output.siformat`); Δs stays signed (+ push).
 
 The mode and the speed are the travel answer's, never λ's (λ = 1 is drawn beside it
 as the paper's fit).
@@ -44,7 +53,14 @@ import pint
 
 from betvdesign.errors import BetvError, ParameterError, UsageError
 from betvdesign.model.bisection import bisect
-from betvdesign.model.domain import mode_of
+from betvdesign.model.domain import (
+    SUBRESONANCE_ORDERS,
+    TANGENTIAL_DETUNING,
+    VARPI_WINDOW,
+    mode_of,
+    nearest_subresonance,
+    subresonance_level,
+)
 from betvdesign.spec.paths import with_values
 from betvdesign.studies.engine.runner import Study, StudyRun, run_study, split_run_args
 from betvdesign.studies.fixfields import current_value
@@ -63,6 +79,7 @@ __all__ = [
     "parse_axis",
     "run_fieldsweep",
     "summarise",
+    "sweep_marks",
 ]
 
 #: The exact modes a point can have (the map's categories).
@@ -401,7 +418,7 @@ def fieldsweep_point(task: Mapping[str, Any]) -> dict[str, Any]:
     dict
         One row of :func:`columns`: the values, the point's row of
         :data:`betvdesign.studies.points.COLUMNS`, ``exact_mode`` (:data:`MODES`),
-        ``speed_m_s`` [m/s] and ``basis`` ("periodic").
+        ``speed_m_s`` [m/s, a magnitude] and ``basis``.
     """
     values = dict(task["values"])
     if task.get("invalid"):
@@ -421,7 +438,7 @@ def fieldsweep_point(task: Mapping[str, Any]) -> dict[str, Any]:
     row["exact_mode"] = exact_mode(row)
     ds = row.get("quoted_delta_s")
     ok = row["exact_mode"] in ("push", "pull", "stalled") and ds is not None
-    row["speed_m_s"] = float(ds) * task["length_m"] * task["f_act_hz"] if ok else None
+    row["speed_m_s"] = abs(float(ds)) * task["length_m"] * task["f_act_hz"] if ok else None
     return {c: row.get(c) for c in task["columns"]}
 
 
@@ -469,9 +486,13 @@ def travel_point(task: Mapping[str, Any]) -> dict[str, Any]:
 
 
 def columns(axes: Sequence[FieldAxis]) -> dict[str, type]:
-    """The result columns: the fields, the point's columns, exact mode, speed, basis."""
+    """The result columns: the fields, the point's columns, exact mode, speed, basis.
+
+    A field's column is named with its unit, ``drive.frequency [kHz]``
+    (:attr:`FieldAxis.label`): the CSV and JSON say what its numbers are in.
+    """
     out: dict[str, type] = {"key": int}
-    out |= {a.field: float for a in axes}
+    out |= {a.label: float for a in axes}
     out |= {k: t for k, t in COLUMNS.items() if k != "key"}
     out |= {"zeta_v": float, "zeta_h": float, "restitution": float}
     out |= {"exact_mode": str, "speed_m_s": float, "basis": str, "cycles_to_cross": int}
@@ -520,7 +541,7 @@ def field_tasks(
     cols = columns(axes)
     tasks = []
     for j, (pt, rec) in enumerate(zip(x, derived, strict=True)):
-        values = {a.field: float(v) for a, v in zip(axes, pt, strict=True)}
+        values = {a.label: float(v) for a, v in zip(axes, pt, strict=True)}
         task: dict[str, Any] = {"key": j, "values": values, "tol": tol, "columns": list(cols)}
         if isinstance(rec, str):
             task["invalid"] = rec
@@ -560,7 +581,8 @@ def field_map(
     summary = summarise(spec.actuator_sets[set_index].name, axes, rows)
     if len(axes) == 1:
         flips = locate_flips(spec, axes[0], rows, set_name=summary["set"], tol=tol)
-        summary["flips"] = [f.as_dict() for f in flips]
+        summary["flips"] = _with_subresonance(spec, axes[0], set_index, flips)
+        summary["marks"] = sweep_marks(spec, axes[0], set_index, rows)
     return rows, summary
 
 
@@ -688,8 +710,8 @@ def locate_flips(
     out = []
     width = FLIP_RTOL * span
     for a, b in itertools.pairwise(rows):
-        lo, ma = float(a[axis.field]), a["exact_mode"]
-        hi, mb = float(b[axis.field]), b["exact_mode"]
+        lo, ma = float(a[axis.label]), a["exact_mode"]
+        hi, mb = float(b[axis.label]), b["exact_mode"]
         # a third mode met in between ends a bracket: go on from it until ``b``'s mode
         # (e.g. push -> no crossing -> pull: the speed passes through zero), each change
         # located; at most a few modes lie between two grid points
@@ -732,6 +754,7 @@ def summarise(
         "fields": [
             {
                 "field": a.field,
+                "column": a.label,
                 "unit": a.unit,
                 "device_value": a.x0,
                 "lo": a.values[0],
@@ -742,7 +765,8 @@ def summarise(
         ],
         "points": len(rows),
         "modes": {k: v for k, v in counts.items() if v},
-        "speed": "periodic orbit: Δs·u·cosθ·f_act [m/s], signed along the impacts",
+        "speed": "the travel answer's |Δs|·u·cosθ·f_act [m/s]: a magnitude, the mode (push: "
+        "along the impacts, pull: against them) says which way",
     }
 
 
@@ -769,7 +793,7 @@ def run_fieldsweep(
     -------
     tuple of (StudyRun, dict)
         The run and its summary: counts per exact mode, the device's own point, and for
-        one axis the flips (:func:`locate_flips`).
+        one axis the flips (:func:`locate_flips`) and the marks (:func:`sweep_marks`).
     """
     study_kw, run_kw = split_run_args(kwargs)
     study = fieldsweep_study(device, axes, **study_kw)
@@ -785,5 +809,156 @@ def run_fieldsweep(
             run.rows,
             **{k: v for k, v in study_kw.items() if k in ("set_name", "tol")},
         )
-        summary["flips"] = [f.as_dict() for f in flips]
+        spec = _spec_of(device)
+        index, _ = _set_index(spec, study.parameters["set"])
+        summary["flips"] = _with_subresonance(spec, axes[0], index, flips)
+        summary["marks"] = sweep_marks(spec, axes[0], index, run.rows)
     return run, summary
+
+
+def _spec_of(device: Any) -> Any:
+    from betvdesign.spec.loader import load_device
+
+    return load_device(device) if isinstance(device, str | Path) else device
+
+
+#: Points per bracket and rounds of the vectorised refinement of a level crossing
+#: (:func:`_crossings`): a grid cell shrinks 32³ times, then linear interpolation.
+_REFINE_POINTS = 33
+_REFINE_ROUNDS = 3
+
+
+def _a_varpi(spec: Any, axis: FieldAxis, index: int, xs: np.ndarray) -> np.ndarray:
+    """ϖ and α·ϖ² [-] of the device at the field values ``xs`` [unit].
+
+    Shape (n, 2); nan where the point cannot be derived (the derivation of the sweep's
+    grid, :func:`_derive_grid`).
+    """
+    from dataclasses import replace
+
+    _, recs = _derive_grid(spec, [replace(axis, values=tuple(float(x) for x in xs))], index)
+    out = np.full((len(recs), 2), np.nan)
+    for j, rec in enumerate(recs):
+        if not isinstance(rec, str):
+            out[j] = rec["varpi"], rec["alpha"] * rec["varpi"] ** 2
+    return out
+
+
+def _crossings(
+    spec: Any, axis: FieldAxis, index: int, column: int, levels: Sequence[float]
+) -> list[tuple[int, float]]:
+    """Where ϖ (``column`` 0) or α·ϖ² (1) crosses each of ``levels`` along the axis.
+
+    Every grid cell whose ends lie on both sides of a level (one end below it, the other
+    at or above it) is refined at once for all
+    cells: :data:`_REFINE_ROUNDS` rounds of :data:`_REFINE_POINTS` points (one vectorised
+    derivation each), then linear interpolation in the last sub-cell.
+
+    Returns
+    -------
+    list of (int, float)
+        (index of the level, the field's value there [unit]), ascending in the field.
+    """
+    xs = np.asarray(axis.values, dtype=float)
+    ys = _a_varpi(spec, axis, index, xs)[:, column]
+    cells = [
+        (k, float(xs[i]), float(xs[i + 1]))
+        for k, lv in enumerate(levels)
+        for i in range(len(xs) - 1)
+        if np.isfinite(ys[i]) and np.isfinite(ys[i + 1]) and (ys[i] >= lv) != (ys[i + 1] >= lv)
+    ]
+    if not cells:
+        return []
+    t = np.linspace(0.0, 1.0, _REFINE_POINTS)
+    for _ in range(_REFINE_ROUNDS + 1):
+        pts = np.concatenate([a + (b - a) * t for _, a, b in cells])
+        vals = _a_varpi(spec, axis, index, pts)[:, column].reshape(len(cells), -1)
+        nxt = []
+        for (k, a, b), v in zip(cells, vals, strict=True):
+            d = v - levels[k]
+            i = int(np.flatnonzero((d[:-1] >= 0) != (d[1:] >= 0))[0])
+            xa, xb = a + (b - a) * t[i], a + (b - a) * t[i + 1]
+            nxt.append((k, xa, xb, d[i], d[i + 1]))
+        cells = [(k, xa, xb) for k, xa, xb, _, _ in nxt]
+    out = [(k, float(xa + (xb - xa) * da / (da - db))) for k, xa, xb, da, db in nxt]
+    out = [(k, x) for k, x in out if math.isfinite(x)]  # a sub-cell the model cannot take
+    return sorted(out, key=lambda kx: kx[1])
+
+
+def _with_subresonance(
+    spec: Any, axis: FieldAxis, index: int, flips: Sequence[Flip]
+) -> list[dict[str, Any]]:
+    """The flips as data, each with the sub-resonance it sits near.
+
+    ``subresonance``: the order n of the sub-resonance α·ϖ² = 1/n² a flip sits near
+    (:func:`~betvdesign.model.domain.nearest_subresonance`), or None.
+    """
+    out = [f.as_dict() for f in flips]
+    if out:
+        q = _a_varpi(spec, axis, index, np.array([f.at for f in flips]))[:, 1]
+        for d, qi in zip(out, q, strict=True):
+            d["subresonance"] = nearest_subresonance([float(qi)]) if np.isfinite(qi) else None
+    return out
+
+
+def _intervals(
+    lo: float, hi: float, inside_at_lo: bool, edges: Sequence[float]
+) -> list[list[float]]:
+    """The parts of [lo, hi] inside a region entered or left at each of ``edges``."""
+    out: list[list[float]] = []
+    start, inside = float(lo), inside_at_lo
+    for e in edges:
+        if inside:
+            out.append([start, float(e)])
+        else:
+            start = float(e)
+        inside = not inside
+    if inside:
+        out.append([start, float(hi)])
+    return out
+
+
+def sweep_marks(
+    spec: Any, axis: FieldAxis, index: int, rows: Sequence[Mapping[str, Any]]
+) -> dict[str, Any]:
+    """What a 1-D sweep's figure marks along its field, located in the field.
+
+    Parameters
+    ----------
+    spec : DeviceSpec
+        The device swept.
+    axis : FieldAxis
+        The swept field.
+    index : int
+        The actuator set's index.
+    rows : sequence of mapping
+        The sweep's rows (their ``zeta_h`` says whether the head is undamped).
+
+    Returns
+    -------
+    dict
+        ``window``: the parts of the range inside the design window 0.5 ≤ ϖ < 2, as
+        [lo, hi] [unit]; ``subresonances``: ``{"n", "at"}`` where α·ϖ² = 1/n²
+        (f_act = f_h/n; n ≤ :data:`~betvdesign.model.domain.SUBRESONANCE_ORDERS`);
+        ``undamped_resonance``: for an undamped head (ζ_h = 0), the parts of the range
+        where |α·ϖ² − 1| < :data:`~betvdesign.model.domain.TANGENTIAL_DETUNING` (there the
+        idealised model's tangential motion barely stays bounded: its speed is not the
+        device's), else [].
+    """
+    lo, hi = axis.values[0], axis.values[-1]
+    first = _a_varpi(spec, axis, index, np.array([lo]))[0]
+    edges = [x for _, x in _crossings(spec, axis, index, 0, VARPI_WINDOW)]
+    in_window = bool(VARPI_WINDOW[0] <= first[0] < VARPI_WINDOW[1])
+    levels = [subresonance_level(n) for n in range(1, SUBRESONANCE_ORDERS + 1)]
+    subres = [{"n": k + 1, "at": x} for k, x in _crossings(spec, axis, index, 1, levels)]
+    undamped = any(not r.get("zeta_h") for r in rows if r.get("status") != "invalid")
+    band: list[list[float]] = []
+    if undamped:
+        d = TANGENTIAL_DETUNING
+        near = [x for _, x in _crossings(spec, axis, index, 1, (1.0 - d, 1.0 + d))]
+        band = _intervals(lo, hi, bool(abs(first[1] - 1.0) < d), near)
+    return {
+        "window": _intervals(lo, hi, in_window, edges),
+        "subresonances": subres,
+        "undamped_resonance": band,
+    }

@@ -228,6 +228,9 @@ class FieldAnswer:
     evaluations: int = 0
     outcome: Outcome | None = None
     calibrated: tuple[float, float] | None = None
+    #: What the proposed change means physically, in drawn dimensions where the device
+    #: has a drawing (:func:`change_meaning`); set with ``value``.
+    meaning: str = ""
 
     @property
     def direction(self) -> int:
@@ -267,7 +270,7 @@ class FieldAnswer:
         if self.boundary is None:
             return f"keep {self.field} at {self.text(self.x0)} (passes)"
         verb = "raise" if self.direction > 0 else "lower"
-        meaning = describe_change(self.field, self.x0, self.value)
+        meaning = self.meaning
         return (
             f"{verb} {self.field} {self.text(self.x0)} -> {self.text(self.value)} "
             f"(passes from {self.text(self.boundary)}; {FIELD_MARGIN:.0%} margin)"
@@ -311,9 +314,7 @@ class FieldAnswer:
             "boundary": None if self.boundary is None else self.text(self.boundary),
             "direction": {1: "raise", -1: "lower", 0: None}[self.direction],
             "relative_change": None if self.value is None else self.value / self.x0 - 1.0,
-            "meaning": None
-            if self.value is None
-            else describe_change(self.field, self.x0, self.value),
+            "meaning": None if self.value is None else self.meaning,
             "bounds_tried": [self.text(self.lo), self.text(self.hi)],
             "blocking": self.blocking or None,
             "evaluations": self.evaluations,
@@ -362,6 +363,34 @@ def _steps(v: Vary) -> list[tuple[float, float]]:
     return out
 
 
+def change_meaning(spec: Any, field: str, old: float, new: float) -> str:
+    """What a proposed change means physically, in drawn dimensions where there are some.
+
+    The suspension's stiffness (:func:`betvdesign.spec.fields.describe_change`) and,
+    where the device has a drawn actuator, the drawn dimensions that give the same
+    relative change through the frame model
+    (:func:`betvdesign.studies.drawnchange.in_drawing`, within the process's rules).
+
+    Parameters
+    ----------
+    spec : DeviceSpec
+        The device.
+    field : str
+        The field changed.
+    old, new : float
+        Its value before and after, in the field's unit.
+
+    Returns
+    -------
+    str
+        The meaning ("" for a field set directly).
+    """
+    from betvdesign.studies.drawnchange import in_drawing
+
+    parts = [describe_change(field, old, new), in_drawing(spec, field, old, new)]
+    return "; ".join(p for p in parts if p)
+
+
 def nearest(ev: Evaluator, v: Vary) -> FieldAnswer:
     """The nearest passing value of field ``v`` (see the module docstring)."""
     start = ev.evaluations
@@ -387,6 +416,7 @@ def nearest(ev: Evaluator, v: Vary) -> FieldAnswer:
         oy = ev({v.field: y})
         if oy.passed:
             ans.value, ans.boundary, ans.outcome = y, b, oy
+            ans.meaning = change_meaning(ev.spec, v.field, v.x0, y)
             break
     ans.blocking_counts = counts
     if ans.value is None and counts:
@@ -414,6 +444,13 @@ class Candidate:
     blocking: list[str] = field(default_factory=list)
     answers: list[FieldAnswer] = field(default_factory=list)
 
+    def meaning_of(self, f: str, x: float, varies: dict[str, Vary]) -> str:
+        """What the change of field ``f`` to ``x`` means (its answer's, else the stiffness)."""
+        for a in self.answers:
+            if a.field == f and a.value == x and a.meaning:
+                return a.meaning
+        return describe_change(f, varies[f].x0, x)
+
     def as_dict(self, varies: dict[str, Vary]) -> dict[str, Any]:
         return {
             "changes": [
@@ -423,7 +460,7 @@ class Candidate:
                     "from": varies[f].text(varies[f].x0),
                     "to": varies[f].text(x),
                     "relative_change": x / varies[f].x0 - 1.0,
-                    "meaning": describe_change(f, varies[f].x0, x),
+                    "meaning": self.meaning_of(f, x, varies),
                 }
                 for f, x in self.changes.items()
             ],
@@ -815,13 +852,19 @@ def with_advice(check: Any, answers: Sequence[FieldAnswer]) -> Any:
     """
     if not answers:
         return check
+    from betvdesign.studies.drawnchange import drawn_reach
+
     text = advice_text(answers)
+    window_rule = next((r for r in check.rules if r.id == "frequency-window"), None)
+    reach = drawn_reach(check) if window_rule is not None and not window_rule.passed else ""
 
     def fix(r: Any) -> Any:
         if r.passed or not (r.severity == "error" or r.id in REQUIRED_WARNINGS):
             return r
         if r.id.startswith("process."):  # the process dictates it: the rule's own geometry
             return r
+        if r.id == "frequency-window" and reach:  # a drawn device: what its drawing reaches
+            return replace(r, fix=f"{text}; {reach}")
         return replace(r, fix=text)
 
     sets = [replace(sc, rules=[fix(r) for r in sc.rules]) for sc in check.sets]
@@ -845,8 +888,10 @@ def robust_probability(
     seeded Monte Carlo of ``n`` samples in which every set passes every error rule
     (:data:`betvdesign.studies.fixrules.SPREAD_RULES` names them) —
     the frequency window 0.5 ≤ ϖ < 2, the tangential resonance |a·ϖ² − 1| ≥ 0.1, the
-    exact mode (the intended one) and the target speed when given. Validates the
-    spreads against ``spec`` now (:class:`UsageError`).
+    exact mode (the intended one) and the target speed when given
+    (:func:`~betvdesign.studies.sampling.passes_spread_rules`, the count ``betv
+    tolerance`` prints too). Validates the spreads against ``spec`` now
+    (:class:`UsageError`).
     """
     from betvdesign.studies.sampling import draw, nominal_values
     from betvdesign.studies.tolerance import parse_tolerance
@@ -856,13 +901,7 @@ def robust_probability(
 
     def probability(candidate: Any) -> float:
         from betvdesign.dynamics import periodic_orbit as solver
-        from betvdesign.model.domain import (
-            TANGENTIAL_DETUNING,
-            in_window,
-            mode_of,
-            resonance_detuning,
-        )
-        from betvdesign.studies.sampling import check_sample, derive_all
+        from betvdesign.studies.sampling import check_sample, derive_all, passes_spread_rules
 
         nominal = nominal_values(candidate, tols)
         x = draw(tols, nominal, n, seed)
@@ -880,16 +919,13 @@ def robust_probability(
                 continue  # an unphysical draw counts as a failure
             solved: dict[Any, Any] = {}  # mirrored sets: one orbit
             for (p, length_m, f_act), aset in zip(derived, sets, strict=True):
-                if not in_window(p.varpi) or resonance_detuning(p)[1] < TANGENTIAL_DETUNING:
-                    break
                 if p not in solved:
                     solved[p] = solver(p)
                 po = solved[p]
-                if not po.success or mode_of(po.delta_s) != aset.intended_mode:
+                ds = po.delta_s if po.success else None
+                v = None if ds is None else ds * length_m * f_act
+                if not passes_spread_rules(p, ds, aset.intended_mode, v, target_speed_m_s):
                     break
-                if target_speed_m_s is not None:
-                    if abs(po.delta_s * length_m * f_act) < target_speed_m_s:
-                        break
             else:
                 good += 1
         return good / n

@@ -161,6 +161,10 @@ def parse_vary(spec: Any, items: Sequence[str]) -> list[Vary]:
         if x0 <= 0:
             raise UsageError(f"--vary {name}: current value {x0:g} is not positive")
         lo, hi = _vary_bounds(item, name, rng, x0, unit)
+        if not rng:  # default bounds: never below the process's minimum width or spacing
+            lo = max(lo, _process_floor(spec, name, unit))
+            if lo >= hi:
+                continue
         cal = calibrated_range(spec, name, unit)
         if cal is not None and not rng:  # default bounds: only what the points cover
             lo, hi = max(lo, cal[0]), min(hi, cal[1])
@@ -170,6 +174,17 @@ def parse_vary(spec: Any, items: Sequence[str]) -> list[Vary]:
     if len({v.field for v in out}) != len(out):
         raise UsageError("--vary: a field is given twice")
     return out
+
+
+def _process_floor(spec: Any, name: str, unit: str) -> float:
+    """The process's minimum of a drawn width or gap in ``unit`` (0 when none applies)."""
+    from betvdesign.spec.units import ureg
+    from betvdesign.studies.drawnchange import floor
+
+    if not name.startswith("actuator.geometry."):
+        return 0.0
+    fl = floor(spec, name)
+    return 0.0 if fl is None else float((fl[0] * ureg.um).to(unit).magnitude)
 
 
 def _vary_bounds(item: str, name: str, rng: str, x0: float, unit: str) -> tuple[float, float]:

@@ -221,3 +221,48 @@ def params_of(derived: Mapping[str, Any], j: int | None = None) -> ModelParams:
     """
     pick = (lambda v: v) if j is None else (lambda v: v[j])
     return ModelParams(**{k: float(pick(derived[k])) for k in PARAM_FIELDS})
+
+
+def passes_spread_rules(
+    p: ModelParams,
+    delta_s: float | None,
+    intended: str,
+    speed_m_s: float | None = None,
+    target_speed_m_s: float | None = None,
+) -> bool:
+    """Whether one set of one Monte Carlo sample passes: the one count of P(pass).
+
+    Parameters
+    ----------
+    p : ModelParams
+        The sample's parameters [-].
+    delta_s : float or None
+        Δs of its exact periodic orbit [-] (None: no orbit).
+    intended : str
+        The set's intended mode.
+    speed_m_s : float, optional
+        Its speed [m/s] (needed with a target).
+    target_speed_m_s : float, optional
+        The target speed [m/s].
+
+    Returns
+    -------
+    bool
+        The frequency window 0.5 ≤ ϖ < 2 and the tangential resonance
+        |a·ϖ² − 1| ≥ 0.1 hold, the exact mode is the intended one and, with a target,
+        the speed reaches it (:data:`betvdesign.studies.fixrules.SPREAD_RULES`).
+    """
+    from betvdesign.model.domain import (
+        TANGENTIAL_DETUNING,
+        in_window,
+        mode_of,
+        resonance_detuning,
+    )
+
+    if not in_window(p.varpi) or resonance_detuning(p)[1] < TANGENTIAL_DETUNING:
+        return False
+    if delta_s is None or mode_of(delta_s) != intended:
+        return False
+    return target_speed_m_s is None or (
+        speed_m_s is not None and abs(speed_m_s) >= target_speed_m_s
+    )

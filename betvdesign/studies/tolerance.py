@@ -51,6 +51,7 @@ from betvdesign.model.domain import in_window
 from betvdesign.spec import limits
 from betvdesign.spec.paths import with_values
 from betvdesign.studies.engine.runner import Study, StudyRun, run_study, split_run_args
+from betvdesign.studies.fixrules import spread_rules
 from betvdesign.studies.points import (
     MODEL_STATEMENT,
     Fidelity,
@@ -58,7 +59,14 @@ from betvdesign.studies.points import (
     rung_reason,
     solver_error,
 )
-from betvdesign.studies.sampling import check_sample, derive_all, draw, nominal_values, params_of
+from betvdesign.studies.sampling import (
+    check_sample,
+    derive_all,
+    draw,
+    nominal_values,
+    params_of,
+    passes_spread_rules,
+)
 
 Dist = Literal["normal", "uniform"]
 #: Distributions a tolerance may name (lower case; names are case-insensitive).
@@ -305,9 +313,11 @@ def tolerance_point(task: Mapping[str, Any]) -> dict[str, Any]:
         row.update(status="error", converged=False, message=solver_error(exc))
         return row
     row.update(status=str(res.status), converged=bool(res.success), message=str(res.message))
+    ds = None
     if res.success and res.delta_s is not None and math.isfinite(res.delta_s):
         ds = float(res.delta_s)
         row.update(mode=res.mode, delta_s=ds, speed_um_s=ds * length_m * f_act * 1e6)
+    row["passes"] = passes_spread_rules(p, ds, intended)
     return row
 
 
@@ -328,6 +338,7 @@ BASE_COLUMNS: dict[str, type] = {
     "mode": str,
     "delta_s": float,
     "speed_um_s": float,
+    "passes": bool,
     "message": str,
 }
 
@@ -701,7 +712,9 @@ def summarise(
         Rung, model statement and why, and per set: P(push), P(pull), P(not converged),
         P(not driven), P(outside the window), P(wrong mode) [-], speed percentiles
         [um/s] signed along the impact direction and along the intended travel, Spearman
-        rank correlations [-] of each input with λ and speed, and the first 50 failures.
+        rank correlations [-] of each input with λ and speed, and the first 50 failures;
+        on the periodic rung ``p_pass``, the share of samples in which every set studied
+        passes as ``betv fix --spread`` counts it (:func:`_p_pass`).
     """
     out: dict[str, Any] = {
         "fidelity": fidelity,
@@ -721,7 +734,25 @@ def summarise(
             if r["status"] == "invalid-sample" or (fidelity == "periodic" and not r["converged"])
         ][:50]
         out["sets"][name] = s
+    if fidelity == "periodic":
+        out |= _p_pass(rows)
     return out
+
+
+def _p_pass(rows: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
+    """P(pass) as ``betv fix --spread`` counts it, and the rules it counts.
+
+    The share of samples in which every set studied passes
+    (:func:`~betvdesign.studies.sampling.passes_spread_rules`; an invalid sample fails).
+    """
+    ok: dict[int, bool] = {}
+    for r in rows:
+        ok[r["sample"]] = ok.get(r["sample"], True) and bool(r.get("passes"))
+    return {
+        "p_pass": sum(ok.values()) / len(ok) if ok else None,
+        "p_pass_rules": f"every set studied passes {spread_rules(target=False)} "
+        "(as betv fix --spread counts it; no target speed)",
+    }
 
 
 def run_tolerance(

@@ -1,0 +1,355 @@
+"""The model-adequacy study's coupled rung: the paper's decoupled springs against the drawn head.
+
+docs/MODEL.md, "Coupled head (K_nt ≠ 0)". A drawn head (``SetDerivation.springs``) has a
+coupling ρ = C_nt/√(C_nn·C_tt) that the paper's model leaves out. For such a set this rung
+solves the periodic orbit of
+
+1. the decoupled model (the paper's, ρ = 0): the exact solver
+   (:func:`betvdesign.dynamics.periodic_orbit`);
+2. the coupled model with the drawn ρ and χ = √α·tanθ: the independent reference
+   (:func:`betvdesign.dynamics.coupled_reference.coupled_periodic_orbit`, Newton
+   shooting started from the decoupled orbit, else from the state :data:`MEAN_CYCLES`·2
+   cycles from rest). Where it finds no periodic orbit, the mean Δs of the last
+   :data:`MEAN_CYCLES` of those cycles, with its half-spread as the error (the sign then
+   decides the mode only when it exceeds the spread).
+
+Both for the paper's idealised terms (no damping, plastic impacts: the coupled reference
+has no others) and the set's ϖ, α, β, κ as used (the file's measured resonances where
+given, the drawn ones otherwise).
+
+Statuses: "coupled-agrees" (same mode, speeds within :data:`SPEED_RTOL`),
+"coupled-differs" (the decoupled springs give another mode, or a speed off by more than
+:data:`SPEED_RTOL`), "coupled-undetermined" (the coupled model gives no mode: no orbit and
+a mean whose sign its spread does not decide), "failed" (no decoupled answer).
+
+``uses`` says which answer a verdict should take: "coupled" when the file gives no
+measured resonances (the set's k_v and α come from the drawing: the drawn head is the
+only model of it), "decoupled" when the file's measured resonances win (the coupled
+answer is then a finding). The rule ``coupled-head`` (:func:`coupled_rule`) says it in a
+check when asked (``CheckOptions(coupled=True)``, ``check_derivation(coupled=True)``; off
+by default: it costs 10–30 s per set, benchmarks/README.md "Coupled head"). The verdict's
+other rules still quote the decoupled exact answer.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+from typing import Literal
+
+import numpy as np
+
+from betvdesign.checks.adequacy import SPEED_RTOL
+from betvdesign.checks.rule import RuleResult
+from betvdesign.errors import ParameterError
+from betvdesign.model.domain import mode_of
+from betvdesign.model.params import HeadCoupling, ModelParams
+from betvdesign.nondim.record import SetDerivation
+from betvdesign.output.siformat import format_si
+
+CoupledStatus = Literal["coupled-agrees", "coupled-differs", "coupled-undetermined", "failed"]
+#: cycles from rest before, and over which, the coupled Δs is averaged without an orbit
+MEAN_CYCLES = 100
+#: the coupled reference's tolerances in this rung (solve_ivp rtol, atol; Newton's
+#: accepted residual): Δs to about 1e-8 relative, far below the 10 % that is decided
+RTOL, ATOL, NEWTON_TOL = 1e-10, 1e-12, 1e-8
+#: a transient whose Δs spread is below this fraction of its mean has settled
+SETTLED = 1e-6
+
+
+@dataclass(frozen=True)
+class Answer:
+    """One model's answer at the set.
+
+    Parameters
+    ----------
+    status : str
+        The solver's status ("success", "mean" for the coupled transient mean, or why not).
+    delta_s : float or None
+        Δs per cycle [-] (units of u·cosθ).
+    error : float
+        Its error [-]: 0 on an orbit, the half-spread of the cycles averaged otherwise.
+    mode : str or None
+        :func:`betvdesign.model.domain.mode_of` (with ``error``).
+    speed_m_s : float or None
+        Δs·u·cosθ·f_act [m/s], signed along the impacts.
+    state : numpy.ndarray or None
+        (ξ, ξ', ζ, ζ', s, s') [-] at τ = 0 on the orbit (None without one).
+    period : int
+        The orbit's period [cycles].
+    """
+
+    status: str
+    delta_s: float | None
+    error: float
+    mode: str | None
+    speed_m_s: float | None
+    state: np.ndarray | None = None
+    period: int = 1
+
+    @property
+    def text(self) -> str:
+        """``push at 2.3 mm/s`` or why there is no mode."""
+        if self.mode in ("push", "pull"):
+            how = ""
+            if self.status == "mean" and self.error <= SETTLED * abs(self.delta_s or 0.0):
+                how = " (a transient settled to it; Newton did not converge)"
+            elif self.status == "mean":
+                how = f" (mean of cycles ± {self.error:.2g} in Δs: no periodic orbit found)"
+            return f"{self.mode} at {format_si(abs(self.speed_m_s or 0.0), 'm/s')}{how}"
+        if self.mode is not None:
+            return str(self.mode)
+        return f"no answer ({self.status})"
+
+
+@dataclass(frozen=True)
+class CoupledRung:
+    """The coupled rung of one actuator set (module docstring).
+
+    Parameters
+    ----------
+    name : str
+        The actuator set.
+    status : CoupledStatus
+        The verdict.
+    rho, chi : float
+        The drawn coupling ρ and χ = √α·tanθ [-].
+    stiffness : float
+        a = 1/(1 − ρ²) = K_nn/k_v [-]: how much stiffer the clamped directions are.
+    decoupled, coupled : Answer
+        The two answers.
+    uses : {"coupled", "decoupled"}
+        Which answer a verdict takes (module docstring).
+    message : str
+        The verdict in words.
+    """
+
+    name: str
+    status: CoupledStatus
+    rho: float
+    chi: float
+    stiffness: float
+    decoupled: Answer
+    coupled: Answer
+    uses: Literal["coupled", "decoupled"]
+    message: str
+
+    @property
+    def speed_change(self) -> float | None:
+        """Relative change of the signed speed from the decoupled to the coupled head.
+
+        (v_coupled − v_decoupled)/v_decoupled [-] (below −1 when they move opposite ways,
+        as :func:`betvdesign.checks.adequacy.speed_change`); None without both speeds.
+        """
+        a, b = self.decoupled.speed_m_s, self.coupled.speed_m_s
+        if a is None or b is None or a == 0.0:
+            return None
+        return (b - a) / a
+
+    @property
+    def answer(self) -> Answer:
+        """The answer a verdict takes (``uses``)."""
+        return self.coupled if self.uses == "coupled" else self.decoupled
+
+
+def coupling_of(sd: SetDerivation) -> HeadCoupling | None:
+    """The drawn head's coupling (ρ, χ = √α·tanθ) of a set; None without a drawing.
+
+    Parameters
+    ----------
+    sd : SetDerivation
+        The derived set.
+
+    Returns
+    -------
+    HeadCoupling or None
+        From ``sd.springs.rho``, the set's α and its impact angle.
+    """
+    if sd.springs is None:
+        return None
+    return HeadCoupling.from_angle(float(sd.springs.rho), sd.params.alpha, sd.scales.theta_rad)
+
+
+def _speed(sd: SetDerivation, ds: float | None) -> float | None:
+    return None if ds is None else ds * sd.scales.length_m * sd.scales.f_act_hz
+
+
+def coupled_rung(sd: SetDerivation) -> CoupledRung | None:
+    """The coupled rung of one set (module docstring); None when the set has no drawing.
+
+    Parameters
+    ----------
+    sd : SetDerivation
+        The derived set.
+
+    Returns
+    -------
+    CoupledRung or None
+        Both answers, the verdict and which answer to use.
+
+    Raises
+    ------
+    ParameterError
+        When ``sd`` is not a SetDerivation.
+    """
+    from betvdesign.dynamics import periodic_orbit
+    from betvdesign.dynamics.coupled_reference import coupled_periodic_orbit, simulate_coupled
+
+    if not isinstance(sd, SetDerivation):
+        raise ParameterError(f"expected a SetDerivation, got {type(sd).__name__}")
+    cpl = coupling_of(sd)
+    if cpl is None:
+        return None
+    p: ModelParams = replace(sd.params, zeta_v=0.0, zeta_h=0.0, restitution=0.0)
+    ex = periodic_orbit(p)
+    ok = ex.status == "success"
+    dec = Answer(
+        ex.status, ex.delta_s, 0.0, ex.mode if ok else None, _speed(sd, ex.delta_s), ex.state,
+        ex.period_cycles or 1,
+    )  # fmt: skip
+    guess = ex.state if ok else None
+    period = ex.period_cycles if ok else 1
+    orb = coupled_periodic_orbit(
+        p, cpl, guess=guess, period=period, rtol=RTOL, atol=ATOL, tol=NEWTON_TOL
+    )
+    if orb.status == "success":
+        cou = Answer(
+            "success", orb.delta_s, 0.0, orb.mode, _speed(sd, orb.delta_s), orb.state, period
+        )
+    else:
+        run = simulate_coupled(p, cpl, 2 * MEAN_CYCLES, rtol=RTOL, atol=ATOL)
+        tail = run.delta_s[MEAN_CYCLES:]
+        again = None
+        if run.status == "success":  # Newton again from where the transient went
+            again = coupled_periodic_orbit(
+                p, cpl, guess=run.section[-1], period=period, rtol=RTOL, atol=ATOL, tol=NEWTON_TOL
+            )
+        if again is not None and again.status == "success":
+            cou = Answer(
+                "success", again.delta_s, 0.0, again.mode, _speed(sd, again.delta_s),
+                again.state, period,
+            )  # fmt: skip
+        elif run.status != "success" or tail.size == 0:
+            cou = Answer(f"failed: {run.message}", None, math.inf, None, None)
+        else:
+            mean = float(np.mean(tail))
+            err = 0.5 * float(np.max(tail) - np.min(tail))
+            cou = Answer("mean", mean, err, mode_of(mean, error=err), _speed(sd, mean))
+    uses = "coupled" if sd.springs.used.get("k_v") == "geometry" else "decoupled"
+    rung = CoupledRung(
+        name=sd.name,
+        status=_status(dec, cou),
+        rho=cpl.rho,
+        chi=cpl.chi,
+        stiffness=cpl.a,
+        decoupled=dec,
+        coupled=cou,
+        uses=uses,
+        message="",
+    )
+    return replace(rung, message=_message(rung))
+
+
+def _status(dec: Answer, cou: Answer) -> CoupledStatus:
+    if dec.mode is None:
+        return "failed"
+    if cou.mode not in ("push", "pull", "stalled", "none"):
+        return "coupled-undetermined"
+    if cou.mode != dec.mode:
+        return "coupled-differs"
+    a, b = dec.speed_m_s, cou.speed_m_s
+    if a and b is not None and abs(b - a) > SPEED_RTOL * abs(a):
+        return "coupled-differs"
+    return "coupled-agrees"
+
+
+def _message(r: CoupledRung) -> str:
+    change = r.speed_change
+    pct = f" ({change:+.0%})" if change is not None and change > -1.0 else ""
+    head = (
+        f"decoupled springs (the paper's): {r.decoupled.text}; drawn head coupled "
+        f"(ρ = {r.rho:.4g}, χ = {r.chi:.4g}, clamped stiffness ×{r.stiffness:.3g}): "
+        f"{r.coupled.text}{pct}"
+    )
+    verdict = {
+        "coupled-agrees": "the decoupled springs are adequate here",
+        "coupled-differs": (
+            f"the decoupled springs give another mode or a speed off by more than {SPEED_RTOL:.0%}"
+        ),
+        "coupled-undetermined": "the coupled model gives no mode (no periodic orbit)",
+        "failed": "the decoupled model gives no periodic orbit",
+    }[r.status]
+    use = (
+        "the verdict uses the coupled answer (the file gives no measured resonances)"
+        if r.uses == "coupled"
+        else "the file's measured resonances win; the coupled answer is a finding"
+    )
+    return f"{head}; {verdict}; {use}"
+
+
+#: Where the rule ``coupled-head`` comes from.
+SRC_COUPLED = "MODEL.md, Coupled head (K_nt ≠ 0) (betvdesign.dynamics.coupled_reference)"
+
+
+def coupled_rule(r: CoupledRung) -> RuleResult:
+    """The rule ``coupled-head`` of one set's coupled rung (opt-in: ``CheckOptions.coupled``).
+
+    Parameters
+    ----------
+    r : CoupledRung
+        The set's rung (:func:`coupled_rung`).
+
+    Returns
+    -------
+    RuleResult
+        Info when the decoupled springs give the coupled head's mode and speed within
+        :data:`SPEED_RTOL`; warning otherwise (another mode, a speed off by more, or no
+        coupled mode). Value: (v_coupled − v_decoupled)/v_decoupled [-], None without both
+        speeds.
+    """
+    ok = r.status == "coupled-agrees"
+    change = r.speed_change
+    fix = (
+        ""
+        if ok
+        else "the drawn head is one elastic body, not two independent springs: measure the "
+        "device's speed, or align the actuator's principal axes with the slider; "
+        "`betvdesign.checks.coupled.coupled_rung` gives both answers"
+    )
+    return RuleResult(
+        "coupled-head",
+        "info" if ok else "warning",
+        ok,
+        None if change is None else float(change),
+        f"the decoupled springs give the drawn (coupled) head's mode and its speed within "
+        f"{SPEED_RTOL:.0%}",
+        f"{r.status}: {r.message}",
+        SRC_COUPLED,
+        set_name=r.name,
+        fix=fix,
+    )
+
+
+def coupled_rules(sets: list[SetDerivation]) -> list[RuleResult]:
+    """The rule ``coupled-head`` of every drawn set (sets with one model solved once).
+
+    Parameters
+    ----------
+    sets : list of SetDerivation
+        The device's sets; those without a drawing give no rule.
+
+    Returns
+    -------
+    list of RuleResult
+        One per drawn set, in the device's order.
+    """
+    done: dict[tuple, CoupledRung] = {}
+    out = []
+    for sd in sets:
+        if sd.springs is None:
+            continue
+        key = (sd.params, sd.springs.rho, sd.scales, sd.springs.used.get("k_v"))
+        if key not in done:
+            done[key] = coupled_rung(sd)
+        out.append(coupled_rule(replace(done[key], name=sd.name)))
+    return out
