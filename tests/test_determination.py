@@ -46,6 +46,7 @@ def test_mode_of_reads_the_error() -> None:
     assert mode_of(1.0, error=math.nan) == "undetermined"
 
 
+@pytest.mark.slow
 def test_a_typical_design_is_determined_and_its_delta_s_is_what_the_transient_shows() -> None:
     po = periodic_orbit(PUSH)
     d = determine(PUSH, po)

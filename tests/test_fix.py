@@ -44,6 +44,7 @@ def _check_passes(path: Path) -> dict:
     return dev
 
 
+@pytest.mark.slow
 def test_shin2004_fix_writes_a_file_that_passes(tmp_path):
     out = tmp_path / "shin_fixed.yaml"
     r = run("fix", SHIN, "--vary", "drive.frequency", "-o", out)
