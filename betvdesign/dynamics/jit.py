@@ -105,10 +105,11 @@ def _lock_cache_file(disp: object) -> None:
     under ``pytest -n 2``). Saves here hold an exclusive lock, loads a shared one.
     """
     files = getattr(getattr(disp, "_cache", None), "_cache_file", None)
-    if files is None or fcntl is None:  # no cache (NUMBA_DISABLE_JIT), or no flock
+    index = getattr(files, "_index_path", None)
+    if index is None or fcntl is None:  # no cache (NUMBA_DISABLE_JIT), another numba, no flock
         return
     save, load = files.save, files.load
-    lock = files._index_path + ".lock"
+    lock = index + ".lock"
 
     def locked_save(key: object, data: object) -> None:
         with _flocked(lock, fcntl.LOCK_EX):
