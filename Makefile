@@ -1,6 +1,6 @@
 # betvdesign: two commands do all set-up (see README).
-#   make demo  -> .venv, install (with the layout and explore extras), compiled solver kernels (cached), design reports (HTML + PDF) of shin2004 and push_demo, and shin2004's mask layout (GDS + SVG) under reports/; then `betv explore devices/push_demo.yaml`
-#   make test  -> .venv with test extras, system packages (when root), whole suite
+#   make demo  -> .venv, install (with the layout and explore extras), byte-compiled modules (.pyc), compiled solver kernels (cached), design reports (HTML + PDF) of shin2004 and push_demo, and shin2004's mask layout (GDS + SVG) under reports/; then `betv explore devices/push_demo.yaml`
+#   make test  -> .venv with test extras, system packages (when root), whole suite on every core (pytest-xdist; each test file on one worker)
 PYTHON ?= python3
 VENV   := .venv
 BIN    := $(VENV)/bin
@@ -24,13 +24,14 @@ sysdeps:
 	@bash scripts/sysdeps.sh test
 
 demo: sysdeps-runtime $(VENV)/.stamp-run
+	$(BIN)/python -m compileall -q betvdesign
 	$(BIN)/python -m betvdesign.dynamics.warm
 	$(BIN)/betv report devices/shin2004.yaml devices/push_demo.yaml -o reports/
 	$(BIN)/betv layout devices/shin2004.yaml -o reports/shin2004.gds --svg reports/shin2004.svg
 
 test: sysdeps $(VENV)/.stamp-test
 	$(BIN)/ruff check betvdesign tests benchmarks
-	$(BIN)/python -m pytest
+	$(BIN)/python -m pytest -n auto --dist loadfile
 
 lint: $(VENV)/.stamp-test
 	$(BIN)/ruff check betvdesign tests benchmarks

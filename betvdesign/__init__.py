@@ -25,13 +25,19 @@ The names below are imported on first use, so ``import betvdesign`` stays cheap.
 from __future__ import annotations
 
 import importlib
-from importlib.metadata import PackageNotFoundError, version
 from typing import Any
 
-try:
-    __version__ = version("betvdesign")
-except PackageNotFoundError:  # pragma: no cover - running from a source tree
-    __version__ = "0.0.0+unknown"
+
+def _version() -> str:
+    """The installed distribution's version (read on first use of ``__version__``:
+    ``importlib.metadata`` costs more than ``betv --help`` itself)."""
+    from importlib.metadata import PackageNotFoundError, version
+
+    try:
+        return version("betvdesign")
+    except PackageNotFoundError:  # pragma: no cover - running from a source tree
+        return "0.0.0+unknown"
+
 
 #: Public names and the module each lives in (imported lazily by ``__getattr__``).
 _LAZY = {
@@ -53,10 +59,13 @@ __all__ = ["__version__", *_LAZY]
 def __dir__() -> list[str]:
     """The module's names with the lazily imported public ones (``load_device``,
     ``check``, ...), so ``dir(betvdesign)`` and tab completion show them."""
-    return sorted(set(globals()) | set(_LAZY))
+    return sorted(set(globals()) | set(_LAZY) | {"__version__"})
 
 
 def __getattr__(name: str) -> Any:
+    if name == "__version__":
+        globals()[name] = value = _version()
+        return value
     if name in _LAZY:
         value = getattr(importlib.import_module(_LAZY[name]), name)
         globals()[name] = value

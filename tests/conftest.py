@@ -8,9 +8,12 @@ same holds for optional test modules (:func:`require_module`, e.g. dask.distribu
 
 from __future__ import annotations
 
+import contextlib
+import fcntl
 import importlib
 import os
 import shutil
+from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
@@ -121,11 +124,32 @@ def devices() -> list[Path]:
     return files
 
 
+@contextlib.contextmanager
+def _locked(path: Path) -> Iterator[None]:
+    """Hold an exclusive lock on ``path`` (created) for the block; others wait for it."""
+    with open(path, "a") as fh:
+        fcntl.flock(fh, fcntl.LOCK_EX)
+        try:
+            yield
+        finally:
+            fcntl.flock(fh, fcntl.LOCK_UN)
+
+
 @pytest.fixture(scope="session")
 def reports_dir(tmp_path_factory: pytest.TempPathFactory, devices: list[Path]) -> Path:
-    """Reports (HTML + PDF) of every shipped device, written once per session."""
+    """Reports (HTML + PDF) of every shipped device, written once per run: under
+    pytest-xdist (``-n``) the first worker that needs them writes them in the run's
+    temporary folder, under a lock, and the others read them (the tests only read)."""
     from betvdesign.report import write_reports
 
-    out = tmp_path_factory.mktemp("reports")
-    write_reports(devices, out)
+    base = tmp_path_factory.getbasetemp()
+    if os.environ.get("PYTEST_XDIST_WORKER"):
+        base = base.parent  # the run's folder, above each worker's own
+    out, done = base / "shared-reports", base / "shared-reports.done"
+    with _locked(base / "shared-reports.lock"):
+        if not done.exists():
+            shutil.rmtree(out, ignore_errors=True)
+            out.mkdir()
+            write_reports(devices, out)
+            done.write_text("")
     return out

@@ -16,7 +16,7 @@ from pathlib import Path
 import pytest
 from conftest import require_program
 
-pytestmark = pytest.mark.browser
+pytestmark = [pytest.mark.browser, pytest.mark.slow]  # chromium and every report
 
 CHROMIUM_ARGS = [
     "--headless",

@@ -1,5 +1,6 @@
 """CLI smoke test: the console script is wired (source: typer CliRunner)."""
 
+import pytest
 from typer.testing import CliRunner
 
 from betvdesign import __version__
@@ -31,3 +32,43 @@ def test_cli_starts_without_the_test_extras():
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     assert r.returncode == 0, r.stderr
     assert "sweep" in r.stdout
+
+
+@pytest.mark.parametrize(
+    "args",
+    [
+        ["--version"],
+        ["--help"],
+        ["check", "--help"],
+        ["sweep", "--help"],
+        ["fix", "--help"],
+        ["tolerance", "--help"],
+        ["check"],  # a missing argument
+        ["check", "--bogus", "x.yaml"],  # an unknown option
+        ["sweep", "pushpull", "--varpi"],  # an option without its value
+        ["simulate", "--restitution", "1.5"],  # a value out of range (a click callback)
+    ],
+    ids=" ".join,
+)
+def test_help_version_and_usage_errors_import_no_solver_stack(args):
+    """`betv --version`, `--help` and argument errors are answered before any command
+    runs: neither numba, scipy, pint nor numpy is imported (each command imports what it
+    needs when it runs)."""
+    import subprocess
+    import sys
+
+    code = (
+        "import sys\n"
+        "from betvdesign.cli import main\n"
+        f"sys.argv = ['betv', *{args!r}]\n"
+        "try:\n"
+        "    main()\n"
+        "except SystemExit:\n"
+        "    pass\n"
+        "heavy = [m for m in ('numba', 'scipy', 'pint', 'numpy') if m in sys.modules]\n"
+        "print('imported:', *heavy, file=sys.stderr)\n"
+    )
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert r.stderr.splitlines()[-1] == "imported:", r.stderr[-2000:]
+    if args[-1] != "--help" and args != ["--version"]:
+        assert "Usage" in r.stderr or "Error" in r.stderr or "Invalid" in r.stderr, r.stderr

@@ -36,6 +36,7 @@ def run(*args):
     return CliRunner().invoke(app, list(args))
 
 
+@pytest.mark.slow
 def test_shin2004_fails_the_window_and_shows_fit_mismatch(no_solver):
     r = run("check", SHIN)
     assert r.exit_code == 1, r.output
@@ -54,6 +55,7 @@ def _device(stdout: str) -> dict:
     return d["devices"][0]
 
 
+@pytest.mark.slow
 def test_shin2004_json_contract(no_solver):
     """Version 2: SI floats under unit-named keys; hand-computed shin2004 parameters."""
     r = run("check", SHIN, "--json")
@@ -100,6 +102,7 @@ def test_shin2004_json_contract(no_solver):
     )
 
 
+@pytest.mark.slow
 def test_json_conforms_to_its_published_schema(no_solver):
     """Every device's --json output validates against `betv schema check` (a generic
     draft-2020-12 walk of the schema, written below, not pydantic itself)."""
@@ -119,6 +122,7 @@ def test_json_conforms_to_its_published_schema(no_solver):
     _assert_conforms(doc, schema, schema)
 
 
+@pytest.mark.slow
 def test_json_v3_fields_and_types_and_verbose_only_adds(no_solver):
     """Version 3: one typed shape. The schema declares the verbose set fields with their
     types and no untyped 'details'; the --verbose document validates against it, and
@@ -190,6 +194,7 @@ def test_own_designs_pass(name):
         assert s["margin"]["holds"] and set(s["margin"]["corners"].values()) == {s["mode"]}
 
 
+@pytest.mark.slow
 def test_several_files_give_one_shape_and_worst_exit(no_solver):
     r = run("check", "--json", str(DEVICES / "push_demo.yaml"), SHIN)
     assert r.exit_code == 1
@@ -335,6 +340,7 @@ def test_check_reports_orbit_speed_and_json(monkeypatch):
 # --- with the exact solver (betvdesign.dynamics) ------------------------------------------
 
 
+@pytest.mark.slow
 def test_shin2004_orbit_and_speed_from_the_exact_solver():
     """shin2004: the speed is Δs·u·cosθ·f_act with Δs from periodic_orbit (u = 0.11 um,
     θ = 45°, f_act = 1 kHz) unless settling takes a large share of the crossing, in
@@ -372,6 +378,7 @@ def test_shin2004_orbit_and_speed_from_the_exact_solver():
     assert top["sets"][1]["simulation"] == s["simulation"]  # the mirrored set reuses it
 
 
+@pytest.mark.slow
 def test_check_quotes_vertical_motion_consistently():
     """The window rule quotes dynamics.vertical_motion(ϖ) for the set's own ϖ."""
     from betvdesign.dynamics import vertical_motion

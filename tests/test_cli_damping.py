@@ -129,6 +129,7 @@ def test_regime_and_lambda_sweeps_take_the_terms():
     assert json.loads(r.stdout)["terms"]["zeta_h"] == 0.025
 
 
+@pytest.mark.slow
 def test_not_driven_by_restitution_is_said_so_with_the_right_fix(tmp_path):
     """damped_demo with e = 0.2 (above its flip at e ≈ 0.166): `betv check` calls the set
     "not driven" (not "unknown") and its fix names restitution and a lower ϖ, not the

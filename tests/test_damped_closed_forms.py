@@ -135,6 +135,7 @@ def test_forced_matches_the_general_solution(case):
             assert abs(v - vm) <= 1e-13 * w0 * (scale + abs(vm) / w0), (h, v, float(vm))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("case", [CASES[0], CASES[2], CASES[6]], ids=["under", "critical", "over"])
 def test_forced_matches_mpmath_odefun(case):
     """A second truth sharing only the equation: mpmath's Taylor ODE integrator."""

@@ -80,6 +80,7 @@ def _contacts(tr) -> list[tuple[str, str, str]]:
     return [(e.kind, e.phase_before, e.phase_after) for e in tr.events if e.kind != "impulsive"]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("p", list(_cases()))
 def test_exact_agrees_with_reference_after_100_cycles(p):
     """Every section state (ξ, ξ', ζ, ζ', s, s') of 100 cycles within 1e-8 (relative to
@@ -168,6 +169,7 @@ def test_periodic_orbit_is_a_fixed_point_of_the_reference(p):
     assert np.max(np.abs(d)) <= 1e-10 * max(1.0, float(np.max(np.abs(po.state))))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     "p,what",
     [

@@ -46,6 +46,7 @@ def test_mode_of_reads_the_error() -> None:
     assert mode_of(1.0, error=math.nan) == "undetermined"
 
 
+@pytest.mark.slow
 def test_a_typical_design_is_determined_and_its_delta_s_is_what_the_transient_shows() -> None:
     po = periodic_orbit(PUSH)
     d = determine(PUSH, po)
@@ -207,6 +208,7 @@ def test_edge_families_the_verdict_is_what_the_transient_shows(p: ModelParams) -
     _assert_transient_agrees(p)
 
 
+@pytest.mark.slow
 def test_no_random_design_passes_with_a_mode_its_transient_contradicts() -> None:
     """Designs drawn log-uniformly over many decades (seeded): every push/pull answer is
     borne out by the plain transient from rest."""
@@ -226,6 +228,7 @@ def test_no_random_design_passes_with_a_mode_its_transient_contradicts() -> None
 DEVICES = __import__("pathlib").Path(__file__).resolve().parents[1] / "devices"
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     "angle, verdict",
     # the smallest angle a file may give is 1e-6 deg (spec.limits: below it derived values

@@ -118,6 +118,7 @@ def test_save_never_overwrites_unasked(tmp_path: Path) -> None:
     assert free_name(tmp_path / "mine.yaml") == tmp_path / "mine-2.yaml"
 
 
+@pytest.mark.slow
 def test_saved_file_rechecks_to_the_page_verdict(tmp_path: Path) -> None:
     """`betv check --json` of the saved YAML gives the verdict, modes and speeds of
     the page's full stage."""
@@ -314,6 +315,7 @@ def test_map_draws_the_design_and_on_axis_fixes_inside_its_axes() -> None:
 # --- worker jobs (run here, in-process) ---------------------------------------------------
 
 
+@pytest.mark.slow
 def test_jobs_in_process_and_stale_jobs_dropped(monkeypatch: pytest.MonkeyPatch) -> None:
     from betvdesign.explore import jobs
 
@@ -357,6 +359,7 @@ def test_cli_bad_file_and_missing_extra(tmp_path: Path, monkeypatch: pytest.Monk
     assert "Traceback" not in r.output
 
 
+@pytest.mark.slow
 def test_worker_lanes_drop_stale_jobs_survive_a_dead_worker_and_close() -> None:
     """Jobs run on a worker process; a job queued for an older generation returns None
     at once; a killed worker fails its job (never hangs the page) and the next job
@@ -497,6 +500,7 @@ def test_no_mode_before_the_stage_that_decides_it() -> None:
 # --- signals (issue 32, item 4) --------------------------------------------------------------
 
 
+@pytest.mark.slow
 def test_ctrl_c_while_a_worker_starts_is_no_traceback(capfd: pytest.CaptureFixture[str]) -> None:
     """A SIGINT that reaches a worker while it starts (the whole process group gets a
     Ctrl-C) neither kills it nor prints a KeyboardInterrupt traceback: it answers."""

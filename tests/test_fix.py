@@ -44,6 +44,7 @@ def _check_passes(path: Path) -> dict:
     return dev
 
 
+@pytest.mark.slow
 def test_shin2004_fix_writes_a_file_that_passes(tmp_path):
     out = tmp_path / "shin_fixed.yaml"
     r = run("fix", SHIN, "--vary", "drive.frequency", "-o", out)
@@ -70,6 +71,7 @@ def test_default_fields_rank_operating_changes_first():
     assert sizes == sorted(sizes)
 
 
+@pytest.mark.slow
 def test_wrong_mode_device_is_fixed_by_the_exact_orbit(tmp_path):
     """push_demo marked intended pull fails its mode rule; the fix found makes the
     exact orbit pull, confirmed by `betv check` on the written file."""
@@ -162,6 +164,7 @@ def test_robust_fix_meets_the_pass_probability():
     assert "frequency window, tangential resonance, exact mode and target speed" in doc["spread"]
 
 
+@pytest.mark.slow
 def test_unbounded_resonant_device_is_fixed(tmp_path):
     """α·ϖ² = 1 exactly (α = 1 given, f_act = f_v = 5 kHz with a DC-biased drive): no
     periodic orbit exists (the mode rule fails, status unbounded); the fix detunes it,
@@ -184,6 +187,7 @@ def test_unbounded_resonant_device_is_fixed(tmp_path):
     _check_passes(out)
 
 
+@pytest.mark.slow
 def test_damped_rolled_off_device_is_fixed_end_to_end(tmp_path):
     """damped_demo (Q = 30 both ways, e = 0.1, thermal cut-off) marked intended pull: the
     fix found changes the drive frequency; the written file keeps damping, restitution

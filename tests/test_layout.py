@@ -453,6 +453,7 @@ def test_extract_error_is_a_spec_error(shin_gds):
         extract(_edit(shin_gds, strip))
 
 
+@pytest.mark.slow
 def test_api_check_of_a_gds_is_betv_check_of_it(tmp_path):
     """`betvdesign.check(FILE.gds)` is `betv check FILE.gds`: the same JSON (the layout's
     measured process rules, the extraction's notes, the advice's fix texts), the same

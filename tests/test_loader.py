@@ -47,3 +47,71 @@ def test_yaml_12_semantics_yes_is_a_string():
     with pytest.raises(SpecError) as exc:
         load_device_text(text, "x.yaml")
     assert "'push' or 'pull'" in str(exc.value)
+
+
+def _positions(data, out):
+    """Every mapping's and sequence's line, column and item positions, in order."""
+    if hasattr(data, "lc"):
+        out.append((type(data).__name__, data.lc.line, data.lc.col, dict(data.lc.data or {})))
+    items = data.values() if isinstance(data, dict) else data if isinstance(data, list) else ()
+    for v in items:
+        _positions(v, out)
+    return out
+
+
+ROOT = DEVICES.parent
+#: Every YAML file of the repository that decodes (not_utf8.yaml is refused before parsing).
+YAML_FILES = sorted(
+    p.relative_to(ROOT)
+    for folder in ("devices", "betvdesign/data", "tests/data")
+    for p in (ROOT / folder).rglob("*.yaml")
+    if p.name != "not_utf8.yaml"
+)
+
+
+@pytest.mark.parametrize("path", YAML_FILES, ids=str)
+def test_one_parse_gives_ruamels_load(path):
+    """safeyaml.load (one parse, events checked as composed) gives ruamel's own round-trip
+    load: the same data and the same positions, or the same error."""
+    import warnings
+
+    from ruamel.yaml import YAML
+    from ruamel.yaml.error import YAMLError, YAMLWarning
+
+    from betvdesign.spec import safeyaml
+    from betvdesign.spec.loader import _plain
+
+    text = safeyaml.read_text(ROOT / path)
+    yaml = YAML(typ="rt")
+    yaml.allow_duplicate_keys = True
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", YAMLWarning)
+            want = yaml.load(text)
+    except YAMLError as exc:
+        with pytest.raises(type(exc)):
+            safeyaml.load(text, str(path), allow_duplicate_keys=True)
+        return
+    _, got = safeyaml.load(text, str(path), allow_duplicate_keys=True)
+    assert _plain(got) == _plain(want)
+    assert _positions(got, []) == _positions(want, [])
+
+
+def test_a_device_and_its_process_are_parsed_once_each(monkeypatch):
+    """load_device reads the device file and the process file it names: two parses."""
+    from ruamel.yaml.main import YAML
+
+    from betvdesign.spec import loader
+
+    parses = []
+    original = YAML.get_constructor_parser
+
+    def counting(self, stream):
+        parses.append(stream[:40])
+        return original(self, stream)
+
+    monkeypatch.setattr(YAML, "get_constructor_parser", counting)
+    loader._PROCESSES.clear()  # the process file is read afresh
+    spec = loader.load_device(DEVICES / "push_demo.yaml")
+    assert spec.process is not None
+    assert len(parses) == 2

@@ -19,7 +19,7 @@ from betvdesign.nondim.device import derive
 from betvdesign.report.build import fmt_num
 from betvdesign.spec.loader import load_device
 
-pytestmark = pytest.mark.pdf
+pytestmark = [pytest.mark.pdf, pytest.mark.slow]  # the reports of every device: ~1 min
 
 
 def run(*args: str) -> str:

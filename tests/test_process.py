@@ -234,6 +234,7 @@ def run(*args: str):
     return CliRunner().invoke(app, list(args))
 
 
+@pytest.mark.slow
 def test_cli_check_fails_a_narrow_beam_with_message(tmp_path):
     f = tmp_path / "narrow.yaml"
     f.write_text(sub("beam_width: 5 um", "beam_width: 1 um"))
@@ -265,6 +266,7 @@ def _check_json(path: Path) -> dict:
     return dev
 
 
+@pytest.mark.slow
 def test_a_narrow_beam_gets_the_geometry_fix_of_the_process(tmp_path):
     """A 0.5 µm beam in a PolyMUMPs device: 'widen slider.beam_width to ≥ 2 µm', the 2 µm
     read from the process file itself, not a search of other fields; the same fix in the
@@ -284,6 +286,7 @@ def test_a_narrow_beam_gets_the_geometry_fix_of_the_process(tmp_path):
     assert "fix: widen slider.beam_width to ≥ 2 µm" in block.split("FAIL", 2)[1]
 
 
+@pytest.mark.slow
 def test_a_wrong_thickness_is_set_to_the_process_film(tmp_path):
     import yaml
 

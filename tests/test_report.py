@@ -87,6 +87,7 @@ def expected_figures(path: Path) -> int:
     return FIGURES_PER_SET * distinct_sets(path) + 2 * len(drawn)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("device", device_files(), ids=lambda p: p.stem)
 def test_report_content(reports_dir: Path, device: Path) -> None:
     """Verdict box, derived parameters (from nondim.derive), rules, every figure
@@ -136,6 +137,7 @@ def test_report_content(reports_dir: Path, device: Path) -> None:
     assert "slider.travel_range" in text
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("device", device_files(), ids=lambda p: p.stem)
 def test_verdict_and_rules_agree_with_betv_check(reports_dir: Path, device: Path) -> None:
     """Second path: ``betv check`` (checker.check_derivation, which runs the solver
@@ -155,6 +157,7 @@ def test_verdict_and_rules_agree_with_betv_check(reports_dir: Path, device: Path
     assert shown == expected
 
 
+@pytest.mark.slow
 def test_shin2004_fails_with_reasons(reports_dir: Path) -> None:
     """MODEL.md: shin2004's data give ϖ ≈ 0.34 < 0.5, so the verdict is fail and the
     window rule is the first finding; the derivation shows where ϖ comes from."""
@@ -165,6 +168,7 @@ def test_shin2004_fails_with_reasons(reports_dir: Path) -> None:
     assert "2·f_drive" in text  # AC doubling shown
 
 
+@pytest.mark.slow
 def test_push_demo_predicts_push(reports_dir: Path) -> None:
     """push_demo: the exact solver's transient settles to Δs > 0 (push); the report's
     predicted mode says push."""
@@ -177,6 +181,7 @@ def test_push_demo_predicts_push(reports_dir: Path) -> None:
     assert re.search(r"Predicted mode push", text)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("device", device_files(), ids=lambda p: p.stem)
 def test_html_is_self_contained(reports_dir: Path, device: Path) -> None:
     """No script, no external resource, unique ids, every #reference resolves."""
@@ -197,6 +202,7 @@ def test_html_is_self_contained(reports_dir: Path, device: Path) -> None:
     assert "https://" not in html
 
 
+@pytest.mark.slow
 def test_reports_are_byte_reproducible(reports_dir: Path, tmp_path: Path) -> None:
     """A second, independent run writes byte-identical HTML and PDF (shin2004: the
     device with the most content: failing rules, two sets, every figure)."""
@@ -208,6 +214,7 @@ def test_reports_are_byte_reproducible(reports_dir: Path, tmp_path: Path) -> Non
             assert first == second, f"{w.source.stem}{suffix} differs between runs"
 
 
+@pytest.mark.slow
 def test_template_autoescapes_device_text(tmp_path: Path) -> None:
     """Text from the device file is escaped, never interpreted as HTML, in the page and
     in the figures' SVG text (the set name labels the push/pull map)."""
@@ -267,6 +274,7 @@ def test_missing_solver_is_stated_not_invented(monkeypatch: pytest.MonkeyPatch) 
     report_analysis._vertical.cache_clear()  # drop the failures cached for ϖ
 
 
+@pytest.mark.slow
 def test_amplitude_without_calibration_says_why_no_voltage_curve(tmp_path: Path) -> None:
     """u given directly: the speed-voltage figure is not drawn and says it needs u(V);
     the other figures are drawn."""
@@ -328,6 +336,7 @@ def test_robustness_varies_designer_fields_through_the_spec() -> None:
     assert vs[("drive.frequency", 0.0)].nominal == "3 kHz"
 
 
+@pytest.mark.slow
 def test_robustness_figure_speaks_designer_units(monkeypatch: pytest.MonkeyPatch) -> None:
     """Speed at 0 % equals the device's periodic speed; the figure's axes are the field
     change in % and the speed with an SI prefix, never α or λ.
@@ -387,6 +396,7 @@ def test_robustness_figure_speaks_designer_units(monkeypatch: pytest.MonkeyPatch
 runner = CliRunner()
 
 
+@pytest.mark.slow
 def test_cli_writes_reports_and_exit_codes(tmp_path: Path) -> None:
     """Exit 0 when written (even for a failing device); --strict turns a fail into 1."""
     shin = str(DEVICES / "shin2004.yaml")

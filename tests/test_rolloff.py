@@ -247,6 +247,7 @@ def test_speed_frequency_curves_differ_by_the_closed_form_ratio():
     assert rolled[i] == pytest.approx(sd.scales.speed_m_s(ds[i]), rel=1e-13)
 
 
+@pytest.mark.slow
 def test_report_of_the_demo_has_the_roll_off_figure():
     from betvdesign.report import ReportOptions, build_report, prepare
 

@@ -109,3 +109,26 @@ def test_travel_sign():
     )
     assert pull_minus.travel_sign == 1
     assert ActuatorSet.model_validate({**SET, "intended_mode": "pull"}).travel_sign == -1
+
+
+def test_field_descriptions_on_demand_match_pydantics_attribute_docstrings():
+    """describe_fields (docstrings attached when a schema is asked for) gives the schema
+    pydantic's own use_attribute_docstrings gives, built in a fresh process with it on."""
+    import json
+    import subprocess
+    import sys
+
+    from betvdesign.spec.fielddocs import describe_fields
+
+    code = (
+        "import json, pydantic._internal._config as c\n"
+        "c.config_defaults['use_attribute_docstrings'] = True\n"
+        "from betvdesign.spec.models import DeviceSpec\n"
+        "print(json.dumps(DeviceSpec.model_json_schema(mode='validation')))\n"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    want = json.loads(out.stdout)
+    describe_fields(DeviceSpec)
+    got = DeviceSpec.model_json_schema(mode="validation")
+    assert json.dumps(want).count('"description"') > 100
+    assert got == want

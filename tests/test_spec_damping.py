@@ -457,6 +457,7 @@ def test_schema_documents_the_fields():
 # --- betv check shows the terms -------------------------------------------------------
 
 
+@pytest.mark.slow
 def test_check_shows_damping_and_restitution(monkeypatch, tmp_path):
     """With a stand-in solver (the damped kernel is not this test's subject): the JSON
     params carry ζ_v = ζ_h = 1/(2·30) and e, the text line Q and e; ζ_h = 0 reads Q_h ∞;

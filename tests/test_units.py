@@ -109,3 +109,49 @@ def test_format_parse_round_trip(x, unit):
     back = parse_quantity(format_quantity(q))
     assert back.units == q.units
     assert back.magnitude == x
+
+
+# --- the registry's disk cache (spec.units.unit_registry) ----------------------------------
+
+
+def _registry_facts(reg, names):
+    """Each unit's root units (factor and unit) and dimensionality, and a few parses."""
+    facts = {}
+    for name in names:
+        try:
+            factor, root = reg.get_root_units(name)
+            facts[name] = (factor, str(root), str(reg.get_dimensionality(name)))
+        except Exception as exc:  # "%", "‰", "R_∞": names pint's parser does not take alone
+            facts[name] = type(exc).__name__
+    for text in ("5 um", "2.94 kHz", "0.036 ug", "2330 kg/m^3", "45 deg", "12 N/m", "1 mm/s"):
+        q = reg.Quantity(text).to_base_units()
+        facts[text] = (q.magnitude, str(q.units))
+    return facts
+
+
+def test_unit_registry_cache_gives_the_uncached_registry(tmp_path):
+    """Cold cache (written), warm cache (read) and no cache: the same units, to the bit."""
+    from betvdesign.spec.units import unit_registry
+
+    plain = unit_registry(None)
+    # every unit the plain build holds (a cached build adds prefixed ones on first use)
+    names = sorted(plain._units)
+    truth = _registry_facts(plain, names)
+    cold = unit_registry(str(tmp_path))
+    assert list(tmp_path.glob("*.pickle")), "the cold build wrote no cache"
+    warm = unit_registry(str(tmp_path))
+    assert len(names) > 1000
+    assert _registry_facts(cold, names) == truth
+    assert _registry_facts(warm, names) == truth
+
+
+def test_unit_registry_survives_a_damaged_cache(tmp_path):
+    """A cache file cut short (another process still writing it) is skipped, not fatal."""
+    from betvdesign.spec.units import unit_registry
+
+    unit_registry(str(tmp_path))
+    for f in tmp_path.glob("*.pickle"):
+        f.write_bytes(f.read_bytes()[: f.stat().st_size // 2])
+    plain = unit_registry(None)
+    names = sorted(plain._units)
+    assert _registry_facts(unit_registry(str(tmp_path)), names) == _registry_facts(plain, names)

@@ -169,6 +169,7 @@ def test_device_values_from_the_listed_numbers(slider):
 
 
 # ----------------------------------------------------------------- page and CLI
+@pytest.mark.slow
 def test_page_end_to_end(tmp_path, monkeypatch, maps, slider):
     """A coarse run written as a page: every comparison row in the HTML and Markdown,
     every figure inline and as a file, no external reference, no PDF when not asked."""

@@ -124,6 +124,7 @@ def test_window_near_edges_follows_exact_arithmetic(tmp_path: Path, rel: float) 
         assert in_window(s.params.varpi) is (want == "inside")
 
 
+@pytest.mark.slow
 def test_window_message_agrees_with_its_vertical_motion(tmp_path: Path) -> None:
     """At f_act = f_v/2 the rule passes, says so, and quotes one hit per cycle (it said
     "below the window: several hits" beside "1 hit(s) per cycle"); at f_act = 2·f_v it
@@ -228,6 +229,7 @@ def test_coasting_slider_is_not_driven() -> None:
 # --- 4. no orbit, but the slider crosses: the travel decides ------------------------------
 
 
+@pytest.mark.slow
 def test_no_orbit_design_that_crosses_gets_the_crossing(tmp_path: Path) -> None:
     """push_demo at ϖ = 1.9999 has no periodic orbit (not converged); the independent
     integrator moves the slider with a clear sign across its travel, so the check quotes

@@ -24,15 +24,16 @@ import threading
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Annotated, Any, TypeVar
+from typing import TYPE_CHECKING, Annotated, Any, TypeVar
 
 import typer
 
 from betvdesign.errors import BetvError
 from betvdesign.output.files import check_output_dir, check_output_file
 from betvdesign.spec import limits
-from betvdesign.studies.engine.executors import make_executor
-from betvdesign.studies.engine.runner import StudyRun
+
+if TYPE_CHECKING:  # the study engine loads when a study runs, not for `betv --help`
+    from betvdesign.studies.engine.runner import StudyRun
 
 EXIT_OK = 0
 EXIT_RULE_FAILED = 1
@@ -299,6 +300,8 @@ class Execution:
 
     def run(self, label: str, fn: Callable[..., T], /, *args: Any, **kwargs: Any) -> T:
         """``fn(*args, **kwargs)`` with the executor, output and a progress bar."""
+        from betvdesign.studies.engine.executors import make_executor
+
         if self.out is not None:
             output_file(self.out, create_parent=True)
         ex = make_executor(

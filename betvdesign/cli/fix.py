@@ -19,7 +19,7 @@ from betvdesign.cli import app
 from betvdesign.cli.common import EXIT_OK, EXIT_RULE_FAILED, seed_option, user_errors
 from betvdesign.errors import UsageError
 from betvdesign.output.files import check_output_file, write_atomic
-from betvdesign.studies.sampling import SPREAD_RULES
+from betvdesign.studies.fixrules import SPREAD_RULES
 
 _FIX_HELP = (
     "Find the nearest passing value of each field: stepped outward from the current "

@@ -18,8 +18,10 @@ from betvdesign.spec import limits
 
 def device_schema() -> dict:
     """JSON schema of a device file (quantities are strings with units)."""
+    from betvdesign.spec.fielddocs import describe_fields
     from betvdesign.spec.models import DeviceSpec  # loaded on use: `betv --help` stays light
 
+    describe_fields(DeviceSpec)
     schema = DeviceSpec.model_json_schema(mode="validation")
     schema["$schema"] = "https://json-schema.org/draft/2020-12/schema"
     schema["title"] = "BETV device file (betvdesign)"

@@ -55,7 +55,6 @@ from betvdesign.cli.physics import (
 from betvdesign.errors import UsageError
 from betvdesign.output.files import atomic_path
 from betvdesign.spec import limits
-from betvdesign.studies.engine.grid import parse_range
 from betvdesign.studies.terms import SYMBOLS
 
 #: Disagreements/failures printed in the human summary (--json lists all).
@@ -83,6 +82,8 @@ app.add_typer(sweep_app, name="sweep")
 
 
 def axis(text: str, name: str) -> list[float]:
+    from betvdesign.studies.engine.grid import parse_range
+
     values = parse_range(text, name)
     return [float(v) for v in values]
 

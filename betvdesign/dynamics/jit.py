@@ -15,16 +15,22 @@ long it took.
 
 from __future__ import annotations
 
+import contextlib
 import hashlib
 import os
 import sys
 import threading
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import TypeVar
 
 import numba
+
+try:
+    import fcntl
+except ImportError:  # pragma: no cover - not on POSIX
+    fcntl = None  # type: ignore[assignment]
 
 F = TypeVar("F", bound=Callable)
 
@@ -84,7 +90,48 @@ def kernel(fn: F | None = None, *, inline: bool = False):
         numba.config.CACHE_DIR = saved
     if hasattr(disp, "stats"):
         KERNELS.append(disp)
+        _lock_cache_file(disp)
     return disp
+
+
+def _lock_cache_file(disp: object) -> None:
+    """Serialise the kernel's cache index between processes (a lock file beside it).
+
+    numba saves an entry by reading the index, numbering a new data file after the
+    entries it holds and writing both back, without a lock: two processes compiling
+    two signatures of one kernel at once (the workers of a pool or of the test suite,
+    starting cold) can leave the index naming, for one signature, the machine code of
+    the other, and a later load of it crashes the process (a segmentation fault, seen
+    under ``pytest -n 2``). Saves here hold an exclusive lock, loads a shared one.
+    """
+    files = getattr(getattr(disp, "_cache", None), "_cache_file", None)
+    index = getattr(files, "_index_path", None)
+    if index is None or fcntl is None:  # no cache (NUMBA_DISABLE_JIT), another numba, no flock
+        return
+    save, load = files.save, files.load
+    lock = index + ".lock"
+
+    def locked_save(key: object, data: object) -> None:
+        with _flocked(lock, fcntl.LOCK_EX):
+            save(key, data)
+
+    def locked_load(key: object) -> object:
+        with _flocked(lock, fcntl.LOCK_SH):
+            return load(key)
+
+    files.save, files.load = locked_save, locked_load
+
+
+@contextlib.contextmanager
+def _flocked(path: str, how: int) -> Iterator[None]:
+    """Hold ``flock(how)`` on ``path`` (created) for the block."""
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    with open(path, "a") as fh:
+        fcntl.flock(fh, how)
+        try:
+            yield
+        finally:
+            fcntl.flock(fh, fcntl.LOCK_UN)
 
 
 def jit_enabled() -> bool:

@@ -22,8 +22,6 @@ import math
 from collections.abc import Callable
 from typing import Annotated, Any
 
-from pydantic import AfterValidator, Field
-
 from betvdesign.model.params import ZETA_MAX, ZETA_MIN
 
 #: Quality factors Q = 1/(2ζ) of the supported damping ratios [-].
@@ -129,14 +127,31 @@ def _optional(check: Callable[[Any], float]) -> Callable[[Any], float | None]:
     return lambda v: None if v is None else check(v)
 
 
-#: Optional dimensionless fields (plain numbers), checked as above.
-DampingRatio = Annotated[float | None, AfterValidator(_optional(check_damping_ratio))]
-QualityFactor = Annotated[float | None, AfterValidator(_optional(check_quality_factor))]
-Restitution = Annotated[float | None, AfterValidator(_optional(check_restitution))]
+#: Optional dimensionless fields (plain numbers), checked as above: ``DampingRatio``,
+#: ``QualityFactor`` and ``Restitution``, built on first use (:func:`__getattr__`) so the
+#: checks above import without pydantic (the CLI's options use them).
+_FIELD_CHECKS = {
+    "DampingRatio": check_damping_ratio,
+    "QualityFactor": check_quality_factor,
+    "Restitution": check_restitution,
+}
+
+
+def __getattr__(name: str) -> Any:
+    """The pydantic field types of :data:`_FIELD_CHECKS`, built once on first use."""
+    if name not in _FIELD_CHECKS:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    from pydantic import AfterValidator
+
+    value = Annotated[float | None, AfterValidator(_optional(_FIELD_CHECKS[name]))]
+    globals()[name] = value
+    return value
 
 
 def ratio_field(symbol: str, direction: str) -> Any:
     """The ``Field`` (default None: undamped; schema description) of a damping ratio."""
+    from pydantic import Field
+
     return Field(
         default=None,
         description=(
@@ -149,6 +164,8 @@ def ratio_field(symbol: str, direction: str) -> Any:
 
 def quality_field(symbol: str, direction: str) -> Any:
     """The ``Field`` (default None: undamped; schema description) of a quality factor."""
+    from pydantic import Field
+
     return Field(
         default=None,
         description=(
@@ -161,6 +178,8 @@ def quality_field(symbol: str, direction: str) -> Any:
 
 def restitution_field() -> Any:
     """The ``Field`` (default None: plastic impacts; schema description) of e."""
+    from pydantic import Field
+
     return Field(
         default=None,
         description=(

@@ -11,14 +11,12 @@ loader: ``yes``/``no`` stay strings, ``0.4`` is a float); duplicate keys are err
 
 from __future__ import annotations
 
-import warnings
 from pathlib import Path
 from typing import Any
 
 from pydantic import ValidationError
-from ruamel.yaml import YAML
 from ruamel.yaml.comments import CommentedMap, CommentedSeq
-from ruamel.yaml.error import MarkedYAMLError, YAMLError, YAMLWarning
+from ruamel.yaml.error import MarkedYAMLError, YAMLError
 from ruamel.yaml.nodes import MappingNode, Node, SequenceNode
 from ruamel.yaml.reader import ReaderError
 
@@ -183,19 +181,13 @@ def _parse_yaml(text: str, filename: str) -> tuple[Any, list[SpecIssue]]:
     Raises
     ------
     SpecError
-        At a crossed limit (:func:`safeyaml.check_events`) or malformed YAML, with its
+        At a crossed limit (:func:`safeyaml.load`) or malformed YAML, with its
         ``file:line:col`` where known.
     """
     issues: list[SpecIssue] = []
-    yaml = YAML(typ="rt")
-    yaml.allow_duplicate_keys = True  # duplicates are found on the node tree, all at once
-    try:
-        with warnings.catch_warnings():  # a re-defined anchor is legal YAML: the last wins
-            warnings.simplefilter("ignore", YAMLWarning)
-            safeyaml.check_events(text, filename)  # bounded: before composing anything
-            root_node = yaml.compose(text)
-            issues.extend(_duplicate_keys(root_node, filename))
-            data = yaml.load(text)
+    try:  # one parse, bounded: each event is checked before the composer takes it
+        root_node, data = safeyaml.load(text, filename, allow_duplicate_keys=True)
+        issues.extend(_duplicate_keys(root_node, filename))  # all of them, on the tree
     except MarkedYAMLError as exc:
         mark = exc.problem_mark or exc.context_mark
         loc = Location(filename, mark.line + 1, mark.column + 1) if mark else Location(filename)

@@ -86,7 +86,8 @@ class StrictModel(BaseModel):
     """The base of every model read from a file.
 
     The base of every model read from a file (device and process files): unknown keys
-    refused, frozen, strict types, each field's docstring its description.
+    refused, frozen, strict types, each field's docstring its description (attached when
+    a JSON schema is asked for: :func:`betvdesign.spec.fielddocs.describe_fields`).
     """
 
     model_config = ConfigDict(
@@ -94,7 +95,6 @@ class StrictModel(BaseModel):
         frozen=True,
         strict=True,
         arbitrary_types_allowed=True,
-        use_attribute_docstrings=True,
     )
 
 

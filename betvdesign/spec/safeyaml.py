@@ -4,7 +4,8 @@
 file costs a bounded read) and decodes UTF-8 (with or without BOM) or BOM-marked
 UTF-16. :func:`check_events` walks the YAML *event* stream (ruamel's parser is
 iterative, unlike its composer, and stops at the first limit crossed, so a deeply
-nested or alias-bomb file is refused after a bounded amount of work) and raises a
+nested or alias-bomb file is refused after a bounded amount of work; :func:`load` walks
+each event as its composer takes it, so a file is parsed once) and raises a
 :class:`~betvdesign.errors.SpecError` at ``file:line:col`` naming the field and the
 limit; a number of more digits than the limit is refused there too, before Python's
 ``int()`` would raise on it (:func:`number_digits`). The limits live in
@@ -15,11 +16,13 @@ from __future__ import annotations
 
 import codecs
 import os
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 from ruamel.yaml import YAML
+from ruamel.yaml.error import YAMLWarning
 from ruamel.yaml.events import (
     AliasEvent,
     CollectionEndEvent,
@@ -27,7 +30,8 @@ from ruamel.yaml.events import (
     MappingStartEvent,
     ScalarEvent,
 )
-from ruamel.yaml.nodes import ScalarNode
+from ruamel.yaml.nodes import Node, ScalarNode
+from ruamel.yaml.parser import RoundTripParser
 from ruamel.yaml.resolver import VersionedResolver
 
 from betvdesign.errors import Location, SpecError, SpecIssue
@@ -244,6 +248,17 @@ class _Walk:
         if len(stack) + depth > limits.MAX_YAML_DEPTH:
             self.fail(event, path, f"YAML nested deeper than {limits.MAX_YAML_DEPTH} levels")
 
+    def feed(self, event: Any) -> None:
+        """Take the next event of the stream (those that are no node are passed over)."""
+        if isinstance(event, ScalarEvent):
+            self.scalar(event)
+        elif isinstance(event, AliasEvent):
+            self.alias(event)
+        elif isinstance(event, CollectionStartEvent):
+            self.start(event)
+        elif isinstance(event, CollectionEndEvent):
+            self.end(event)
+
     def scalar(self, event: ScalarEvent) -> None:
         """A scalar: its length and digits, then count it."""
         stack = self.stack
@@ -302,6 +317,66 @@ class _Walk:
         self.add(frame.nodes, frame.depth, event, frame.path)
 
 
+class _CheckedParser(RoundTripParser):
+    """ruamel's round-trip parser; every event it hands out is first walked by ``walk``."""
+
+    walk: _Walk | None = None
+
+    def get_event(self) -> Any:
+        """The next event, checked against the limits (:meth:`_Walk.feed`)."""
+        event = super().get_event()
+        if self.walk is not None:
+            self.walk.feed(event)
+        return event
+
+
+def load(
+    text: str, filename: str, *, allow_duplicate_keys: bool = False
+) -> tuple[Node | None, Any]:
+    """Compose and construct YAML text in one parse, within the limits.
+
+    The composer takes each event from a parser that walks it first, as
+    :func:`check_events` does, so a limit crossed stops the parse at that event (the
+    composer has then built at most the nodes and depth the limits allow); the data is
+    constructed from the composed tree, not from a second parse. A re-defined anchor is
+    legal YAML (the last wins).
+
+    Parameters
+    ----------
+    text : str
+        The YAML text.
+    filename : str
+        The file, for messages.
+    allow_duplicate_keys : bool
+        True: a repeated key is no error here (the caller finds them all on the tree;
+        the last wins in the data); False: ruamel's ``DuplicateKeyError`` at the first.
+
+    Returns
+    -------
+    node : Node or None
+        The composed tree (None for an empty text).
+    data : Any
+        The round-trip data (``CommentedMap`` ... with positions), as ``YAML(typ="rt")
+        .load`` gives it; None for an empty text.
+
+    Raises
+    ------
+    SpecError
+        At the first limit crossed (:func:`check_events`).
+    ruamel.yaml.YAMLError
+        Malformed YAML (the loader reports it at its position).
+    """
+    yaml = YAML(typ="rt")
+    yaml.allow_duplicate_keys = allow_duplicate_keys
+    yaml.Parser = _CheckedParser
+    yaml.parser.walk = _Walk(filename)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", YAMLWarning)
+        node = yaml.compose(text)
+        data = None if node is None else yaml.constructor.construct_document(node)
+    return node, data
+
+
 def check_events(text: str, filename: str) -> None:
     """Walk the YAML events of a text; raise at the first limit crossed.
 
@@ -327,11 +402,4 @@ def check_events(text: str, filename: str) -> None:
     """
     walk = _Walk(filename)
     for event in YAML(typ="rt").parse(text):
-        if isinstance(event, ScalarEvent):
-            walk.scalar(event)
-        elif isinstance(event, AliasEvent):
-            walk.alias(event)
-        elif isinstance(event, CollectionStartEvent):
-            walk.start(event)
-        elif isinstance(event, CollectionEndEvent):
-            walk.end(event)
+        walk.feed(event)

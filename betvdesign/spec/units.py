@@ -23,8 +23,39 @@ from pydantic_core import PydanticCustomError, core_schema
 
 from betvdesign.spec import limits
 
+
+def unit_registry(cache_folder: str | None = ":auto:") -> pint.UnitRegistry:
+    """The default pint registry, its parsed definitions cached on disk.
+
+    Building the registry parses pint's definition file (about 0.2 s); pint keeps the
+    parsed form in ``cache_folder`` (``":auto:"``: the user's cache folder, e.g.
+    ``~/.cache/pint``; the entries are keyed by pint's and Python's versions and the
+    definitions' content), and a later start loads it (about 0.04 s). The registry is the
+    same either way (``tests/test_units.py`` compares every unit's root units and
+    dimensionality with an uncached build). A cache that cannot be written or read (a
+    read-only home, a file half-written by a process starting at the same time) is
+    skipped: the registry is then built from the definitions.
+
+    Parameters
+    ----------
+    cache_folder : str or None
+        Where pint caches the parsed definitions; None: no cache.
+
+    Returns
+    -------
+    pint.UnitRegistry
+        A new registry.
+    """
+    if cache_folder is not None:
+        try:
+            return pint.UnitRegistry(cache_folder=cache_folder)
+        except Exception:  # any failure of the cache (OSError, a truncated pickle, ...)
+            pass
+    return pint.UnitRegistry()
+
+
 #: The one unit registry of the package. Quantities from another registry cannot mix.
-ureg = pint.UnitRegistry()
+ureg = unit_registry()
 Quantity = ureg.Quantity
 
 #: Dimension labels accepted by :class:`QuantitySpec` (pint dimensionality strings).

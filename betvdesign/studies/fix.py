@@ -959,7 +959,8 @@ def robust_probability(
     """P(pass) under the spreads ``items``.
 
     P(pass) under the spreads ``items`` (``betv tolerance`` syntax): the share of a
-    seeded Monte Carlo of ``n`` samples in which every set passes every error rule —
+    seeded Monte Carlo of ``n`` samples in which every set passes every error rule
+    (:data:`betvdesign.studies.fixrules.SPREAD_RULES` names them) —
     the frequency window 0.5 ≤ ϖ < 2, the tangential resonance |a·ϖ² − 1| ≥ 0.1, the
     exact mode (the intended one) and the target speed when given
     (:func:`~betvdesign.studies.sampling.passes_spread_rules`, the count ``betv

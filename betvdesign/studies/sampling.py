@@ -223,22 +223,6 @@ def params_of(derived: Mapping[str, Any], j: int | None = None) -> ModelParams:
     return ModelParams(**{k: float(pick(derived[k])) for k in PARAM_FIELDS})
 
 
-def spread_rules(target: bool = True) -> str:
-    """The error rules a sample's set must pass to count in P(pass), in words.
-
-    ``betv tolerance`` and ``betv fix --spread`` count it alike
-    (:func:`passes_spread_rules`); ``target``: with the target speed (``betv fix
-    --target-speed``; ``betv tolerance`` takes none).
-    """
-    names = ["frequency window", "tangential resonance", "exact mode"]
-    names += ["target speed"] if target else []
-    return ", ".join(names[:-1]) + " and " + names[-1]
-
-
-#: :func:`spread_rules` with the target speed.
-SPREAD_RULES = spread_rules()
-
-
 def passes_spread_rules(
     p: ModelParams,
     delta_s: float | None,
@@ -266,7 +250,7 @@ def passes_spread_rules(
     bool
         The frequency window 0.5 ≤ ϖ < 2 and the tangential resonance
         |a·ϖ² − 1| ≥ 0.1 hold, the exact mode is the intended one and, with a target,
-        the speed reaches it (:data:`SPREAD_RULES`).
+        the speed reaches it (:data:`betvdesign.studies.fixrules.SPREAD_RULES`).
     """
     from betvdesign.model.domain import (
         TANGENTIAL_DETUNING,

@@ -51,6 +51,7 @@ from betvdesign.model.domain import in_window
 from betvdesign.spec import limits
 from betvdesign.spec.paths import with_values
 from betvdesign.studies.engine.runner import Study, StudyRun, run_study, split_run_args
+from betvdesign.studies.fixrules import spread_rules
 from betvdesign.studies.points import (
     MODEL_STATEMENT,
     Fidelity,
@@ -65,7 +66,6 @@ from betvdesign.studies.sampling import (
     nominal_values,
     params_of,
     passes_spread_rules,
-    spread_rules,
 )
 
 Dist = Literal["normal", "uniform"]
@@ -191,7 +191,7 @@ def load_tolerances(path: str | os.PathLike[str]) -> list[Tolerance]:
         Not valid or not safe YAML, another top-level key, an unknown distribution or a
         bad amount (the message names file and line).
     """
-    from ruamel.yaml import YAML, YAMLError
+    from ruamel.yaml import YAMLError
 
     from betvdesign.errors import SpecError
     from betvdesign.spec import safeyaml
@@ -199,8 +199,7 @@ def load_tolerances(path: str | os.PathLike[str]) -> list[Tolerance]:
     p = Path(path)
     try:
         text = safeyaml.read_text(p)  # size, encoding, nesting and alias limits
-        safeyaml.check_events(text, str(p))
-        data = YAML(typ="rt").load(text)
+        _, data = safeyaml.load(text, str(p))
     except SpecError as exc:
         raise UsageError(str(exc)) from None
     except YAMLError as exc:
