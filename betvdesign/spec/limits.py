@@ -66,6 +66,12 @@ QUANTITY_RANGE: dict[str, tuple[float, float, str]] = {
     "deg": (1e-6, 90.0 - 1e-6, "an angle"),
     "m/V": (1e-18, 1.0, "a calibration gain"),
     "m/V**2": (1e-18, 1.0, "a calibration gain"),
+    # the process's electrothermal data (a drawn stroke, issue 31)
+    "K": (1.0, 1e4, "an absolute temperature"),
+    "1/K": (1e-9, 1.0, "a coefficient per kelvin (its magnitude)"),
+    "W/m/K": (1e-4, 1e4, "a thermal conductivity"),
+    "J/kg/K": (1.0, 1e5, "a specific heat"),
+    "ohm": (1e-6, 1e9, "a (sheet) resistance"),
 }
 #: Smallest dry-friction coefficient μ [-] (polysilicon on polysilicon ≈ 0.4): with the
 #: smallest impact angle it keeps κ = μ·tanθ ≥ 1e-14, far from an underflow.
