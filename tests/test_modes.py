@@ -234,3 +234,22 @@ def test_out_of_plane_mode_against_3d_fe():
     assert abs(float(out_of_plane_first_mode(g, RHO, m)) / oop - 1) <= MODAL_RTOL
     plane = fe.frame_modes(g, density=RHO, head_mass=m).frequencies_hz[0]
     assert inp == pytest.approx(plane, rel=5e-3)
+
+
+def test_a_spread_head_diameter_derives_as_samples_like_one_by_one():
+    """The out-of-plane body mass broadcasts per sample (a spread head diameter used to
+    stop the vectorised derivation: shapes (n, 3) and (n,)); each sample equals its own
+    scalar derivation."""
+    from betvdesign.nondim.device import derive_samples
+    from betvdesign.spec.loader import load_device
+    from betvdesign.spec.paths import with_values
+    from betvdesign.spec.units import ureg
+
+    spec = load_device(DEVICES / "push_demo.yaml")
+    ds = np.array([34.0, 35.0, 36.0, 37.0, 38.0])
+    arrays = with_values(spec, {"head.geometry.diameter": ureg.Quantity(ds, "um")})
+    got = derive_samples(arrays, arrays.actuator_sets[0])
+    for j, x in enumerate(ds):
+        one = derive(with_values(spec, {"head.geometry.diameter": x * ureg.um})).sets[0]
+        assert got.beta[j] == pytest.approx(one.params.beta, rel=1e-12)
+        assert got.varpi[j] == pytest.approx(one.params.varpi, rel=1e-12)

@@ -703,11 +703,17 @@ def _oop_body_mass(M: Any, C: Any, g: FrameGeometry, arm_density: Any, head_mass
         (m_tip, m_tip * H**2 / 12, m_tip * g.tip_length**2 / 12, tip_c),
         (head_mass, jx, jy, (xp, yp)),
     )
+    def vec(x: Any) -> Any:  # a per-sample scalar against a (..., 3) row
+        return np.asarray(x, dtype=float)[..., None]
+
+    def mat(x: Any) -> Any:  # a per-sample scalar against a (..., 3, 3) matrix
+        return np.asarray(x, dtype=float)[..., None, None]
+
     for m_b, j_x, j_y, (cx, cy) in bodies:
-        w_c = C[..., 0, :] + C[..., 1, :] * (cy - yp) - C[..., 2, :] * (cx - xp)
-        M = M + m_b * w_c[..., :, None] * w_c[..., None, :]
-        M = M + j_x * C[..., 1, :, None] * C[..., 1, None, :]
-        M = M + j_y * C[..., 2, :, None] * C[..., 2, None, :]
+        w_c = C[..., 0, :] + C[..., 1, :] * vec(cy - yp) - C[..., 2, :] * vec(cx - xp)
+        M = M + mat(m_b) * w_c[..., :, None] * w_c[..., None, :]
+        M = M + mat(j_x) * C[..., 1, :, None] * C[..., 1, None, :]
+        M = M + mat(j_y) * C[..., 2, :, None] * C[..., 2, None, :]
     return M
 
 
