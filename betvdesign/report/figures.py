@@ -15,6 +15,7 @@ import dataclasses
 import math
 import multiprocessing
 import os
+import threading
 from collections.abc import Callable, Iterator
 from typing import Any, TypeVar
 
@@ -54,8 +55,9 @@ def _render(
 _Task = tuple[str, Callable[[Any], None], dict[str, Any]]
 _M = TypeVar("_M")
 
-#: The figures recorded while a :func:`batch` is open (None: each is drawn at once).
-_BATCH: list[_Task] | None = None
+#: Per thread, ``tasks``: the figures recorded while a :func:`batch` is open (absent or
+#: None: each figure is drawn at once).
+_LOCAL = threading.local()
 #: The batch being drawn, read by the forked workers (:func:`_draw_task`).
 _DRAWING: list[_Task] = []
 
@@ -77,8 +79,14 @@ MAX_WORKERS = 8
 def _workers(n_tasks: int, workers: int | None) -> int:
     """Processes to draw ``n_tasks`` figures with: ``workers``, else one per usable
     processor (at most :data:`MAX_WORKERS`) where there are at least
-    :data:`MIN_PARALLEL_CPUS`; 1 (in this process) where fork is not available."""
-    if "fork" not in multiprocessing.get_all_start_methods():
+    :data:`MIN_PARALLEL_CPUS`; 1 (in this process) where fork is not available, in a
+    daemonic worker process (which may have no children: the explorer's jobs) or off the
+    main thread (forking a process whose other threads hold locks)."""
+    if (
+        "fork" not in multiprocessing.get_all_start_methods()
+        or multiprocessing.current_process().daemon
+        or threading.current_thread() is not threading.main_thread()
+    ):
         return 1
     if workers is None:
         try:
@@ -136,9 +144,9 @@ def batch(workers: int | None = None) -> Iterator[Callable[[_M], _M]]:
     The figures are byte-identical to those drawn one by one (each is drawn from the
     same data by the same code, in a process forked from this one).
     """
-    global _BATCH
-    outer, tasks = _BATCH, []
-    _BATCH = tasks
+    outer = getattr(_LOCAL, "tasks", None)
+    tasks: list[_Task] = []
+    _LOCAL.tasks = tasks
 
     def fill(model: _M) -> _M:
         keys = [key for key, _, _ in tasks]
@@ -151,7 +159,7 @@ def batch(workers: int | None = None) -> Iterator[Callable[[_M], _M]]:
     try:
         yield fill
     finally:
-        _BATCH = outer
+        _LOCAL.tasks = outer
 
 
 def _scale(max_abs: float, unit: str, per_unit: float, what: str) -> tuple[float, str]:
@@ -212,8 +220,9 @@ def figure_block(
         return FigureBlock(
             key, title, caption, model, unavailable=piece.reason, rung=rung[0], rung_reason=rung[1]
         )
-    if _BATCH is not None:  # drawn later with the whole batch (:func:`batch`)
-        _BATCH.append((key, draw, layout))
+    pending = getattr(_LOCAL, "tasks", None)
+    if pending is not None:  # drawn later with the whole batch (:func:`batch`)
+        pending.append((key, draw, layout))
         return FigureBlock(key, title, caption, model, rung=rung[0], rung_reason=rung[1])
     svg, png = _render(key, draw, **layout)
     return FigureBlock(
