@@ -453,3 +453,46 @@ def test_regime_strip_periods_follow_the_paper() -> None:
         assert report_analysis._vertical(w)[0] == 1.0, w
     assert report_analysis._vertical(2.9)[0] == 2.0
     assert report_analysis._vertical(4.8)[0] is None
+
+
+def test_figures_drawn_in_parallel_are_the_serial_bytes() -> None:
+    """Figures drawn by forked worker processes (figures.batch) are byte-identical to
+    the same figures drawn one by one in this process, HTML and PDF alike."""
+    import multiprocessing
+
+    from betvdesign.report.render import report_pdf
+
+    if "fork" not in multiprocessing.get_all_start_methods():  # pragma: no cover
+        pytest.skip("no fork on this system: figures are always drawn in-process")
+    dev = prepare(DEVICES / "push_demo.yaml")
+    serial = build_report(dev, options=SMALL, figure_workers=1)
+    parallel = build_report(dev, options=SMALL, figure_workers=3)
+    assert len(serial.figures()) == len(parallel.figures()) >= 8
+    assert all(f.svg and f.png for f in serial.figures() if f.unavailable is None)
+    assert render_html(parallel) == render_html(serial)
+    assert report_pdf(parallel) == report_pdf(serial)
+
+
+def test_weasyprint_import_runs_no_program(tmp_path: Path) -> None:
+    """WeasyPrint is imported without ctypes' find_library running ldconfig/gcc (a
+    fresh interpreter counts the programs started) and still renders a PDF."""
+    import subprocess
+    import sys
+
+    script = (
+        "import subprocess, sys\n"
+        "runs = []\n"
+        "real = subprocess.Popen.__init__\n"
+        "def count(self, *a, **k):\n"
+        "    runs.append(a[0] if a else k.get('args'))\n"
+        "    real(self, *a, **k)\n"
+        "subprocess.Popen.__init__ = count\n"
+        "from betvdesign.report.render import render_pdf\n"
+        "pdf = render_pdf('<p>x</p>')\n"
+        "assert 'weasyprint' in sys.modules and pdf.startswith(b'%PDF'), pdf[:8]\n"
+        "print(len(runs))\n"
+    )
+    out = subprocess.run(
+        [sys.executable, "-c", script], capture_output=True, text=True, check=True, cwd=tmp_path
+    )
+    assert out.stdout.strip() == "0", out.stdout + out.stderr

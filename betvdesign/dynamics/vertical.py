@@ -77,7 +77,12 @@ class VerticalSchedule:
         self.A = normal_force_phase(self.zeta_v, varpi)[1]
         self.T = 2.0 * math.pi / varpi
         self.te = math.pi / varpi
-        n_cyc, n_imp = 16, 64
+        # Tables sized for the whole run at once (at most 2·horizon + 1 cycles: the
+        # horizon, then a period's search after the first contact end), up to 4096 rows;
+        # past that, or with more hits than 4 per cycle, they double and the run restarts
+        # (from 16 rows, a run took 3 starts on average).
+        n_cyc = min(2 * int(horizon) + 2, 4096)
+        n_imp = 4 * n_cyc
         while True:
             cyc = np.empty(n_cyc, schedule.CYCLE_DTYPE)
             imp = np.empty(n_imp)

@@ -387,12 +387,29 @@ def build_report(
     options: ReportOptions | None = None,
     generated: str | None = None,
     reproduce: str | None = None,
+    figure_workers: int | None = None,
 ) -> Report:
     """The full report model of one prepared device.
 
     generated: an ISO timestamp to print (None: no date anywhere, byte-reproducible;
-    then run times are also left out).
+    then run times are also left out). figure_workers: processes drawing the figures
+    (:func:`betvdesign.report.figures.batch`; None: one per usable processor, 1: in
+    this process); the figures are the same bytes either way.
     """
+    with figures.batch(figure_workers) as draw_figures:
+        return draw_figures(
+            _build_report(prepared, options=options, generated=generated, reproduce=reproduce)
+        )
+
+
+def _build_report(
+    prepared: PreparedDevice,
+    *,
+    options: ReportOptions | None,
+    generated: str | None,
+    reproduce: str | None,
+) -> Report:
+    """:func:`build_report` with its figures recorded, not yet drawn."""
     opts = options or ReportOptions()
     der = prepared.derivation
     per_set = _analyse_sets(der, opts)

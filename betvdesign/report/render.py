@@ -10,9 +10,13 @@ WeasyPrint's PDF is deterministic for the same HTML and fonts.
 
 from __future__ import annotations
 
+import contextlib
+import io
 import logging
 import os
+import sys
 from importlib import resources
+from types import ModuleType
 
 import jinja2
 from markupsafe import Markup
@@ -89,13 +93,57 @@ def report_pdf(report: Report) -> bytes:
     return render_pdf(render_html(report, raster=True))
 
 
+def _no_search(name: str) -> None:
+    """A ``ctypes.util.find_library`` that finds nothing, without running a program."""
+    return None
+
+
+def _import_weasyprint() -> ModuleType:
+    """Import WeasyPrint without its search for libraries by running programs.
+
+    WeasyPrint opens pango, gobject, harfbuzz... through cffi, trying several names for
+    each; cffi sends a name it cannot open directly to ``ctypes.util.find_library``, which
+    runs ``ldconfig``, ``gcc`` and ``ld`` (about 50 programs, 0.2 s). Every list also
+    holds the file name that the dynamic loader opens directly (``libpango-1.0.so.0``,
+    ``libpango-1.0.dylib``), so the import is tried first with a ``find_library`` that
+    finds nothing; where that fails (a system that needs the search) WeasyPrint is
+    imported again as it ships.
+
+    Returns
+    -------
+    ModuleType
+        The ``weasyprint`` module.
+    """
+    if "weasyprint" in sys.modules:
+        return sys.modules["weasyprint"]
+    import ctypes.util
+
+    find = ctypes.util.find_library
+    ctypes.util.find_library = _no_search
+    try:
+        # a failed first try prints WeasyPrint's installation advice: not shown, the
+        # second import prints it again if the libraries are really missing
+        with contextlib.redirect_stdout(io.StringIO()):
+            import weasyprint
+    except OSError:
+        for name in [m for m in sys.modules if m.split(".")[0] == "weasyprint"]:
+            del sys.modules[name]
+    else:
+        return weasyprint
+    finally:
+        ctypes.util.find_library = find
+    import weasyprint
+
+    return weasyprint
+
+
 def render_pdf(html: str) -> bytes:
     """PDF bytes of ``html`` rendered by WeasyPrint (A4, fonts embedded).
 
     Nothing outside the document is fetched: the HTML is self-contained (its images
     are ``data:`` URIs) and the URL fetcher refuses every other scheme.
     """
-    import weasyprint  # heavy import, only when a PDF is wanted
+    weasyprint = _import_weasyprint()  # heavy import, only when a PDF is wanted
 
     fetcher: object
     if hasattr(weasyprint.urls, "URLFetcher"):  # newer WeasyPrint: a fetcher object

@@ -97,16 +97,22 @@ def impulsive_period(vs: VerticalSchedule) -> tuple[int | None, float]:
     .. [1] K. Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773
     """
     T = 2.0 * math.pi / vs.varpi
-    hits = [
-        (m, t) for m, cyc in enumerate(vs.prefix) if m >= len(vs.prefix) // 2 for t in cyc.impulsive
-    ]
-    n_cyc = max(1, len(vs.prefix) - len(vs.prefix) // 2)
-    rate = len(hits) / n_cyc
-    if len(hits) < 4:
+    # the hits of the second half of the prefix cycles, in order, read from the
+    # schedule's arrays (no per-cycle Python objects)
+    n = vs.n_prefix
+    half = n // 2
+    rows = vs.table[half:n]
+    counts = rows["imp_count"].astype(np.intp)
+    n_hits = int(counts.sum())
+    n_cyc = max(1, n - half)
+    rate = n_hits / n_cyc
+    if n_hits < 4:
         return None, rate
-    phase = np.array([t for _, t in hits]) / T
-    cycle = np.array([m for m, _ in hits])
-    for p in range(1, min(MAX_HIT_PERIOD, len(hits) // 2) + 1):
+    first = np.cumsum(counts) - counts  # each cycle's first hit among the selected
+    index = np.repeat(rows["imp_start"].astype(np.intp) - first, counts) + np.arange(n_hits)
+    phase = vs.impulsive[index] / T
+    cycle = np.repeat(np.arange(half, n), counts)
+    for p in range(1, min(MAX_HIT_PERIOD, n_hits // 2) + 1):
         d = np.abs(phase[p:] - phase[:-p])
         d = np.minimum(d, 1.0 - d)
         if np.all(d <= PHASE_RTOL):
@@ -123,10 +129,10 @@ def _state_recurs(vs: VerticalSchedule, k: int) -> bool:
     schedule recurs k cycles later (to :data:`STATE_RTOL`): with rebounds (e > 0) the
     state after a hit is not fixed by its phase, so the phases alone prove no period.
     """
-    cyc = vs.prefix[len(vs.prefix) // 2 :]
-    if len(cyc) <= k:
+    rows = vs.table[vs.n_prefix // 2 : vs.n_prefix]
+    if len(rows) <= k:
         return False
-    state = np.array([(c.xi0, c.xid0) for c in cyc])
+    state = np.column_stack((rows["xi0"], rows["xid0"])).astype(float)
     return bool(np.all(np.abs(state[k:] - state[:-k]) <= STATE_RTOL * (1.0 + np.abs(state[:-k]))))
 
 
