@@ -162,21 +162,21 @@ def serve(
     }
     compute = workers = server = None
     try:
-        # the compiled kernels load on the compute thread while Bokeh is imported and the
-        # browser loads the page (the page's first update queues behind); the worker
-        # processes start with the first slow stage, so they do not compete with it
+        # the first verdict before anything else competes with it: the compiled kernels
+        # load here, alone, before Bokeh is imported; the page is served with it, and the
+        # worker processes start once the browser has drawn it (ExplorePage)
+        chosen = _free_port(DEFAULT_PORT if port is None else port, explicit=port is not None)
         from betvdesign.explore.compute import evaluate
 
-        compute = ThreadPoolExecutor(1, thread_name_prefix="betv-explore")
-        compute.submit(evaluate, design.spec, "orbit", with_traces=True, **options)
+        first = evaluate(design.spec, "orbit", source_file=str(path), with_traces=True, **options)
         from betvdesign.explore import jobs
         from betvdesign.explore.page import ExploreApp
 
         for name in ("tornado.access", "bokeh", "tornado.application"):
             logging.getLogger(name).setLevel(logging.CRITICAL)
-        chosen = _free_port(DEFAULT_PORT if port is None else port, explicit=port is not None)
         workers = jobs.Workers()
-        app = ExploreApp(design.text, str(path), options, workers, compute=compute)
+        compute = ThreadPoolExecutor(1, thread_name_prefix="betv-explore")
+        app = ExploreApp(design.text, str(path), options, workers, compute=compute, first=first)
         server = _bokeh_server(
             app, chosen, [(r"/report/([0-9a-f]+)", _report_handler(app.reports))]
         )
