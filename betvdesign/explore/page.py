@@ -90,7 +90,9 @@ class ExploreApp:
     computes the orbit stage; first: the "orbit" stage of the file's design as the
     compute thread computes it (with every set's traces), computed before the server
     starts: a new page is served with its verdict (None: the page asks the compute
-    thread, as for every change).
+    thread, as for every change); warmed: the compute thread has computed (the first
+    page drawn with ``first`` has it compute its orbit once, which loads the compiled
+    kernels before the first change needs them).
     """
 
     text: str
@@ -102,6 +104,7 @@ class ExploreApp:
         default_factory=lambda: ThreadPoolExecutor(1, thread_name_prefix="betv-explore")
     )
     first: Evaluation | None = None
+    warmed: bool = False
 
     def __call__(self, doc: Any) -> None:
         """Bokeh's application hook: a new page."""
@@ -619,6 +622,18 @@ class ExplorePage:
         slow stages may start their worker processes now."""
         if not self.painted:
             self.painted = True
+            if not self.app.warmed:  # the first verdict came from elsewhere (the server)
+                self.app.warmed = True
+                with self.dlock:
+                    spec = self.design.spec
+                self.app.compute.submit(  # the compiled kernels load now, not at a change
+                    evaluate,
+                    spec,
+                    "orbit",
+                    source_file=self.app.filename,
+                    with_traces=True,
+                    **self.app.options,
+                )
             self._schedule_slow(1)
 
     def _schedule_slow(self, delay_ms: int = SETTLE_MS) -> None:
