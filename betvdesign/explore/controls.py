@@ -161,6 +161,10 @@ class ControlPanel:
         self.box = column()
         self.box.js_on_change("children", CustomJS(code=ARIA_JS))
         self.quiet = False
+        # one stylesheet for every text box and one formatter per kind of slider: fewer
+        # models for the page to build, send and lay out (models of this page's own)
+        self.sheet = InlineStyleSheet(css=REFUSED_CSS)
+        self.formats: dict[tuple[bool, bool, str], CustomJSTickFormatter] = {}
 
     @contextlib.contextmanager
     def quietly(self) -> Iterator[None]:
@@ -182,6 +186,13 @@ class ControlPanel:
                 boxes.append(Div(text=f"<b>{group}</b>", margin=(8, 5, 0, 5)))
             boxes.append(self._control(c))
         self.box.children = boxes
+
+    def _format(self, c: FieldControl) -> CustomJSTickFormatter:
+        """:func:`slider_format` of ``c``, shared by the sliders that format alike."""
+        key = (c.log, c.kind == "integer", c.shown_unit)
+        if key not in self.formats:
+            self.formats[key] = slider_format(c)
+        return self.formats[key]
 
     def _control(self, c: FieldControl) -> Any:
         css = ["betv-control", css_name(c.field)]
@@ -208,7 +219,7 @@ class ControlPanel:
             value=_slider_value(c, c.value if c.value is not None else c.lo),
             step=1.0 if c.kind == "integer" else (hi - lo) / SLIDER_STEPS,
             show_value=False,
-            format=slider_format(c),
+            format=self._format(c),
             tags=["betv-slider", f"label:{c.label}"],
             width=215,
             css_classes=[*css, "betv-slider"],
@@ -217,7 +228,7 @@ class ControlPanel:
             value=c.text(c.value),
             width=115,
             css_classes=[*css, "betv-text"],
-            stylesheets=[InlineStyleSheet(css=REFUSED_CSS)],  # a model of this page's own
+            stylesheets=[self.sheet],
         )
         widget.on_change("value", self.guard(partial(self._on_slider, c)))
         text.on_change("value", self.guard(partial(self._on_text, c)))

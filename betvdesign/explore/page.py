@@ -58,6 +58,9 @@ from betvdesign.explore.views import (
 
 #: Quiet time after the last change before the slow stages start [ms].
 SETTLE_MS = 250
+#: Longest wait for the browser to draw a page served with its verdict before the slow
+#: stages start their worker processes anyway [ms] (they would compete with the drawing).
+PAINT_WAIT_MS = 3000
 #: Fix candidates listed (each with an "apply" button).
 MAX_FIXES = 4
 ALL_SETS = "all sets"
@@ -84,7 +87,12 @@ class ExploreApp:
     text, filename: the device file; options: ``target_speed_m_s``, ``select``,
     ``ignore`` (as ``betv check``); workers: the job lanes; reports: finished report
     HTML by token (served by the server's report route); compute: the thread that
-    computes the orbit stage.
+    computes the orbit stage; first: the "orbit" stage of the file's design as the
+    compute thread computes it (with every set's traces), computed before the server
+    starts: a new page is served with its verdict (None: the page asks the compute
+    thread, as for every change); warmed: the compute thread has computed (the first
+    page drawn with ``first`` has it compute its orbit once, which loads the compiled
+    kernels before the first change needs them).
     """
 
     text: str
@@ -95,6 +103,8 @@ class ExploreApp:
     compute: ThreadPoolExecutor = field(
         default_factory=lambda: ThreadPoolExecutor(1, thread_name_prefix="betv-explore")
     )
+    first: Evaluation | None = None
+    warmed: bool = False
 
     def __call__(self, doc: Any) -> None:
         """Bokeh's application hook: a new page."""
@@ -144,6 +154,7 @@ class ExplorePage:
         # (change received -> redraw sent, compute wall, compute CPU) [s] of the last update
         self.timing: tuple[float, float, float] = (math.nan, math.nan, math.nan)
         self.closed = False
+        self.painted = True  # False until the browser draws a page served with its verdict
         self.seq = 0
         self.slot = app.workers.slot()
         self.slow_timer: Any = None
@@ -199,7 +210,17 @@ class ExplorePage:
         doc.template_variables["widths"] = COLUMNS
         doc.on_session_destroyed(self._destroyed)
         doc.js_on_event("document_ready", CustomJS(code=ARIA_JS))
-        self._request({}, frozenset())
+        if app.first is None:
+            self._request({}, frozenset())
+        else:  # served with the verdict; the slow stages once the browser has drawn it
+            self.painted = False
+            doc.on_event("document_ready", self._safe(self._on_document_ready))
+            self.paint_timer = doc.add_timeout_callback(self._on_painted, PAINT_WAIT_MS)
+            self.seq = 1
+            now = time.perf_counter()
+            self._show_orbit(
+                1, app.first, {}, set(), (now, app.first.elapsed_s, app.first.elapsed_s)
+            )
 
     @property
     def set_index(self) -> int:
@@ -591,7 +612,33 @@ class ExplorePage:
 
     # --- slow stages, map, fixes -----------------------------------------------------------
 
+    def _on_document_ready(self, event: Any) -> None:
+        with contextlib.suppress(ValueError):
+            self.doc.remove_timeout_callback(self.paint_timer)
+        self._on_painted()
+
+    def _on_painted(self) -> None:
+        """The browser has drawn the first page (or :data:`PAINT_WAIT_MS` passed): the
+        slow stages may start their worker processes now."""
+        if not self.painted:
+            self.painted = True
+            if not self.app.warmed:  # the first verdict came from elsewhere (the server)
+                self.app.warmed = True
+                with self.dlock:
+                    spec = self.design.spec
+                self.app.compute.submit(  # the compiled kernels load now, not at a change
+                    evaluate,
+                    spec,
+                    "orbit",
+                    source_file=self.app.filename,
+                    with_traces=True,
+                    **self.app.options,
+                )
+            self._schedule_slow(1)
+
     def _schedule_slow(self, delay_ms: int = SETTLE_MS) -> None:
+        if not self.painted:  # the first paint comes first (_on_painted schedules them)
+            return
         if self.slow_timer is not None:
             with contextlib.suppress(ValueError):
                 self.doc.remove_timeout_callback(self.slow_timer)

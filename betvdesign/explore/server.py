@@ -160,23 +160,31 @@ def serve(
         "select": tuple(select),
         "ignore": tuple(ignore),
     }
-    compute = workers = server = None
+    compute = workers = server = first = None
     try:
-        # the compiled kernels load on the compute thread while Bokeh is imported and the
-        # browser loads the page (the page's first update queues behind); the worker
-        # processes start with the first slow stage, so they do not compete with it
+        # the first verdict is computed in a forked child (its compiled kernels load there)
+        # while this process imports Bokeh and what the page's build needs; the page is
+        # served with it, "ready" is said when it can be, the worker processes start and
+        # the kernels load on the compute thread once the browser has drawn it
+        # (ExplorePage), so nothing competes with the first verdict
+        chosen = _free_port(DEFAULT_PORT if port is None else port, explicit=port is not None)
         from betvdesign.explore.compute import evaluate
 
-        compute = ThreadPoolExecutor(1, thread_name_prefix="betv-explore")
-        compute.submit(evaluate, design.spec, "orbit", with_traces=True, **options)
+        first = _Forked(
+            evaluate, design.spec, "orbit", source_file=str(path), with_traces=True, **options
+        )
         from betvdesign.explore import jobs
+        from betvdesign.explore.fields import designer_fields
         from betvdesign.explore.page import ExploreApp
 
+        designer_fields(design.original, 0)  # its lazy imports, before the first page
         for name in ("tornado.access", "bokeh", "tornado.application"):
             logging.getLogger(name).setLevel(logging.CRITICAL)
-        chosen = _free_port(DEFAULT_PORT if port is None else port, explicit=port is not None)
         workers = jobs.Workers()
-        app = ExploreApp(design.text, str(path), options, workers, compute=compute)
+        compute = ThreadPoolExecutor(1, thread_name_prefix="betv-explore")
+        app = ExploreApp(
+            design.text, str(path), options, workers, compute=compute, first=first.result()
+        )
         server = _bokeh_server(
             app, chosen, [(r"/report/([0-9a-f]+)", _report_handler(app.reports))]
         )
@@ -191,6 +199,8 @@ def serve(
     except KeyboardInterrupt:  # Ctrl-C or SIGTERM, at any moment of the start too
         pass
     finally:
+        if first is not None:
+            first.close()
         with contextlib.suppress(Exception):
             if server is not None:
                 server.stop()
@@ -199,6 +209,82 @@ def serve(
         if compute is not None:
             compute.shutdown(wait=False, cancel_futures=True)
         say("betv explore: stopped")
+
+
+class _Forked:
+    """``fn(*args, **kwargs)`` computed in a forked child process while this one goes
+    on; :meth:`result` waits for it (pickled through a pipe). Computed here instead where
+    there is no ``fork`` or this process runs threads (a fork copies only the calling
+    thread), and here again when the child fails (its error is then raised here)."""
+
+    def __init__(self, fn: Callable[..., Any], *args: Any, **kwargs: Any) -> None:
+        import os
+        import threading
+
+        self.call = (fn, args, kwargs)
+        self.pid = 0
+        self.value: Any = None
+        self.done = False
+        if not hasattr(os, "fork") or threading.active_count() > 1:
+            self.value, self.done = fn(*args, **kwargs), True
+            return
+        sys.stdout.flush()
+        sys.stderr.flush()
+        r, w = os.pipe()
+        pid = os.fork()
+        if pid == 0:  # the child: answer, then leave without any of the parent's exits
+            try:
+                _child(w, fn, args, kwargs)
+            finally:
+                os._exit(0)
+        os.close(w)
+        self.pid, self.fd = pid, r
+
+    def result(self) -> Any:
+        import os
+        import pickle
+
+        if not self.done:
+            with os.fdopen(self.fd, "rb") as f:
+                data = f.read()
+            self.close()
+            self.done = True
+            try:
+                ok, self.value = pickle.loads(data)
+            except Exception:
+                ok = False
+            if not ok:
+                fn, args, kwargs = self.call
+                self.value = fn(*args, **kwargs)
+        return self.value
+
+    def close(self) -> None:
+        """Stop and reap the child (nothing when it has answered)."""
+        import os
+        import signal
+
+        if self.pid:
+            pid, self.pid = self.pid, 0
+            with contextlib.suppress(OSError):
+                os.kill(pid, signal.SIGKILL)
+            with contextlib.suppress(OSError):
+                os.waitpid(pid, 0)
+
+
+def _child(fd: int, fn: Callable[..., Any], args: Any, kwargs: Any) -> None:
+    """In the forked child of :class:`_Forked`: write ``(True, value)`` or ``(False,
+    message)`` pickled to ``fd``; Ctrl-C is the parent's to handle (it kills the child)."""
+    import os
+    import pickle
+    import signal
+
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    try:
+        data = pickle.dumps((True, fn(*args, **kwargs)))
+    except BaseException as exc:  # the parent computes it again and raises it there
+        data = pickle.dumps((False, f"{type(exc).__name__}: {exc}"))
+    with contextlib.suppress(OSError), os.fdopen(fd, "wb") as f:
+        f.write(data)
 
 
 def _default_sigint() -> None:

@@ -32,8 +32,6 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
-from scipy.optimize import brentq
-
 from betvdesign.errors import BetvError, ParameterError
 from betvdesign.model.domain import VARPI_WINDOW
 from betvdesign.spec.paths import with_values
@@ -209,6 +207,8 @@ def _solve(
     def g(lx: float) -> float:
         q = q_of(math.exp(lx))
         return math.nan if q is None else math.log(q / target)
+
+    from scipy.optimize import brentq  # here: the module's floors need no scipy (explore)
 
     lx = brentq(g, math.log(best[1]), math.log(best[2]), xtol=XTOL)
     return math.exp(lx), (math.exp(lx), target)
