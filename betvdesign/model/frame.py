@@ -703,6 +703,7 @@ def _oop_body_mass(M: Any, C: Any, g: FrameGeometry, arm_density: Any, head_mass
         (m_tip, m_tip * H**2 / 12, m_tip * g.tip_length**2 / 12, tip_c),
         (head_mass, jx, jy, (xp, yp)),
     )
+
     def vec(x: Any) -> Any:  # a per-sample scalar against a (..., 3) row
         return np.asarray(x, dtype=float)[..., None]
 
