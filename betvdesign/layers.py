@@ -59,7 +59,9 @@ LAYERS: tuple[Layer, ...] = (
         "round-off scale, the one `mode_of`, the travel horizon), `damping` (Q ↔ ζ, "
         "normal-force phase), `rolloff` (H(f)), `frame` (the drawn actuator's springs at "
         "the head: Euler–Bernoulli frame closed form), `frame_fe` (its plane-stress FE "
-        "check, scikit-fem), `bisection` (the one bisection: where a classified quantity "
+        "check, scikit-fem), `electrothermal` (the drawn actuator's stroke, power, peak "
+        "temperature and thermal modes: 1-D fins, closed form), `electrothermal_fe` (its "
+        "plane FE check), `bisection` (the one bisection: where a classified quantity "
         "changes class)",
     ),
     Layer(
@@ -112,7 +114,8 @@ LAYERS: tuple[Layer, ...] = (
     ),
     Layer(
         "studies",
-        "`engine/` (executors, runner, store, grid), `points` (one design point of a "
+        "`engine/` (executors, runner, store, grid, `preload` and `daskplugin`: kernels "
+        "loaded once per worker), `points` (one design point of a "
         "study), maps (`pushpull`, `regime`, `lambda_scan`), device studies (`sampling`, "
         "`tolerance`, `calibration`, `measurements`, `fix` (the one search of advice: "
         "`betv fix` and the fix text of `betv check`), `fixfields`, `fixfile`, "
