@@ -153,3 +153,25 @@ def reports_dir(tmp_path_factory: pytest.TempPathFactory, devices: list[Path]) -
             write_reports(devices, out)
             done.write_text("")
     return out
+
+
+@pytest.fixture(scope="session", autouse=True)
+def _kernels_compiled(tmp_path_factory: pytest.TempPathFactory) -> None:
+    """Compile (or load) every solver kernel a check uses before any test runs.
+
+    On a fresh clone numba compiles the kernels on first use (about a minute on two
+    cores); without this the test that happens to come first pays for it, and a test
+    with a wall-clock guard (the hostile corpus' 30 s) fails on compile time, not on its
+    own work. Under pytest-xdist one worker compiles, under a lock, and the others then
+    load the cached machine code. A check of the damped demo device runs every entry
+    point (orbit, vertical motion, settling, determination, adequacy's damped rungs).
+    """
+    from betvdesign import check
+    from betvdesign.dynamics.warm import warm
+
+    base = tmp_path_factory.getbasetemp()
+    if os.environ.get("PYTEST_XDIST_WORKER"):
+        base = base.parent
+    with _locked(base / "kernels.lock"):
+        warm()
+        check(DEVICES / "damped_demo.yaml", advice=False)
