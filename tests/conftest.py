@@ -155,23 +155,31 @@ def reports_dir(tmp_path_factory: pytest.TempPathFactory, devices: list[Path]) -
     return out
 
 
-@pytest.fixture(scope="session", autouse=True)
-def _kernels_compiled(tmp_path_factory: pytest.TempPathFactory) -> None:
+def pytest_sessionstart(session: pytest.Session) -> None:
     """Compile (or load) every solver kernel a check uses before any test runs.
 
     On a fresh clone numba compiles the kernels on first use (about a minute on two
     cores); without this the test that happens to come first pays for it, and a test
     with a wall-clock guard (the hostile corpus' 30 s) fails on compile time, not on its
-    own work. Under pytest-xdist one worker compiles, under a lock, and the others then
-    load the cached machine code. A check of the damped demo device runs every entry
-    point (orbit, vertical motion, settling, determination, adequacy's damped rungs).
+    own work. A hook, not a fixture: no test's timeout counts it. Under pytest-xdist the
+    controller skips it and each worker runs it under a lock beside numba's cache, so one
+    compiles and the others load the machine code. A check of the damped demo device runs
+    every entry point (orbit, vertical motion, settling, determination, adequacy's damped
+    rungs).
     """
+    xdist_controller = getattr(session.config.option, "numprocesses", None) and not os.environ.get(
+        "PYTEST_XDIST_WORKER"
+    )
+    if xdist_controller or session.config.option.collectonly:
+        return
     from betvdesign import check
+    from betvdesign.dynamics.jit import cache_dir, jit_enabled
     from betvdesign.dynamics.warm import warm
 
-    base = tmp_path_factory.getbasetemp()
-    if os.environ.get("PYTEST_XDIST_WORKER"):
-        base = base.parent
-    with _locked(base / "kernels.lock"):
+    if not jit_enabled():
+        return
+    lock = Path(cache_dir())
+    lock.mkdir(parents=True, exist_ok=True)
+    with _locked(lock / "tests-warm.lock"):
         warm()
         check(DEVICES / "damped_demo.yaml", advice=False)
