@@ -214,12 +214,11 @@ def _solve(
     return math.exp(lx), (math.exp(lx), target)
 
 
-def _lever(spec: Any, lever: str, which: str, target_ratio: float) -> LeverAnswer | None:
+def _lever(spec: Any, lever: str, which: str, q0: float, target_ratio: float) -> LeverAnswer | None:
+    """Search ``lever`` for the drawn quantity ``which`` at ``target_ratio``·``q0``."""
     x0 = _current_um(spec, lever)
-    base = _sets_at(spec, None, None)
-    if x0 is None or not base or base[0].springs is None:
+    if x0 is None:
         return None
-    q0 = _quantity(base[0], which)
     lo, hi = x0 / REACH, x0 * REACH
     limit = ""
     fl = floor(spec, lever)
@@ -265,10 +264,10 @@ def in_drawing(spec: Any, field: str, old: float, new: float) -> str:
         return ""
     which, words = QUANTITY[field]
     r = new / old
-    answers = [a for lv in LEVERS if (a := _lever(spec, lv, which, r)) is not None]
+    q0 = _quantity(base[0], which)
+    answers = [a for lv in LEVERS if (a := _lever(spec, lv, which, q0, r)) is not None]
     if not answers:
         return ""
-    q0 = _quantity(base[0], which)
     shown = {"f_v": f"{q0 / 1e3:.3g} kHz", "f_h": f"{q0 / 1e3:.3g} kHz", "k_h": f"{q0:.3g} N/m"}
     head = f"in the drawing (frame model; {words} {shown.get(which, f'{q0:.3g}')} ×{r:.3g})"
     can = [a.text() for a in answers if a.x is not None]
@@ -313,7 +312,7 @@ def drawn_reach(check: Any) -> str:
     spec = check.derivation.spec
     nearest: tuple[float, LeverAnswer] | None = None
     for lv in LEVERS:
-        a = _lever(spec, lv, "varpi", edge / varpi)
+        a = _lever(spec, lv, "varpi", varpi, edge / varpi)
         if a is None:
             continue
         if a.x is not None:
