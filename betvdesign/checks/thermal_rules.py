@@ -1,11 +1,14 @@
 """Rules on a stroke predicted from the drawing (sets without amplitude or calibration).
 
 - ``thermal.peak-temperature`` (error): the actuator's peak temperature at the drive
-  voltage below the layer's melting point (process file, sourced); a warning within
-  :data:`TEMPERATURE_MARGIN` of it. A model that reports melting or no convergence fails
-  here with its own words. Polysilicon deforms plastically ("back-bending") below its
-  melting point; the process files give no sourced onset temperature for it, so the check
-  names that limit as NOT sourced and does not invent one.
+  voltage below the layer's onset of plastic deformation (process file:
+  ``electrothermal.deformation_onset``, with its source; polysilicon creeps and the hot
+  arm bends back, "back-bending", well below its melting point: PolyMUMPs' 1063 K is
+  63 % of the melting point, Tuck et al., J. Eng. Mater. Technol. 127 (2005) 90); a
+  warning within :data:`TEMPERATURE_MARGIN` of it. A peak at or above the melting point
+  fails as melting, with the temperature; a model that reports no convergence fails with
+  its own words. A process without the onset is checked against the melting point alone,
+  and the check says the onset is NOT sourced (it invents none).
 - ``thermal.bandwidth`` (warning): the drive heats at f_heat (2f for AC with zero DC); the
   stroke left there, |H(f_heat)|, at least :data:`BANDWIDTH_GAIN_MIN`. Far above the
   thermal cut-off most of the static stroke is lost and the electrical power goes into
@@ -55,7 +58,7 @@ def thermal_rules(s: SetDerivation, process: Any = None) -> list[RuleResult]:
     st = s.stroke
     if st is None:
         return []
-    return [_peak(s), _bandwidth(s), _power(s), _sources(s, process)]
+    return [_peak(s, process), _bandwidth(s), _power(s), _sources(s, process)]
 
 
 def _sources(s: SetDerivation, process: Any) -> RuleResult:
@@ -79,43 +82,72 @@ def _sources(s: SetDerivation, process: Any) -> RuleResult:
                       "file", "")  # fmt: skip
 
 
-def _peak(s: SetDerivation) -> RuleResult:
+def _onset_basis(s: SetDerivation, process: Any) -> str:
+    """Where the onset of plastic deformation comes from, in words."""
+    geo = s.actuator_set.actuator.geometry
+    if process is None or geo is None:
+        return "process file"
+    path = f"layers.{process.structural_name(geo.layer)}.electrothermal.deformation_onset"
+    if path in process.unsourced:
+        return f"process {process.name}: {path}, NOT sourced"
+    return f"process {process.name}: {path}, with its source"
+
+
+def _peak(s: SetDerivation, process: Any = None) -> RuleResult:
     st = s.stroke
     assert st is not None
-    limit = st.melting_k
-    warn_at = limit - TEMPERATURE_MARGIN * limit
+    melt = st.melting_k
+    onset = st.deformation_k
     t = st.t_max_k
-    where = f"in the {st.t_max_where}" if st.t_max_where else ""
-    note = (
-        " (the melting point, process file; the onset of plastic deformation of polysilicon "
-        "lies lower and is NOT sourced in the process file: not checked)"
-    )
-    if st.status == "not_converged":
-        return RuleResult("thermal.peak-temperature", "error", False, None,
-                          f"T_max < {limit:.0f} K{note}",
-                          f"the electrothermal model did not converge: {st.message}", SRC,
-                          s.name, "lower drive.voltage", "K")  # fmt: skip
-    passed = st.status == "ok" and t < limit
-    severity = "error"
-    if not passed:
-        msg = (
-            f"peak temperature {t:.0f} K {where} at {st.voltage_v:.3g} V reaches the melting "
-            f"point {limit:.0f} K: the actuator burns out"
+    where = f"in the {st.t_max_where} " if st.t_max_where else ""
+    at = f"{where}at {st.voltage_v:.3g} V"
+    if onset is not None:
+        limit = onset
+        threshold = (
+            f"T_max < {onset:.0f} K, the onset of plastic deformation (back-bending) of the "
+            f"film ({_onset_basis(s, process)}); a warning above "
+            f"{onset * (1 - TEMPERATURE_MARGIN):.0f} K; melting at {melt:.0f} K"
         )
-        fix = "lower drive.voltage, or widen the hot arm (a wider arm runs cooler at the same V)"
+    else:
+        limit = melt
+        threshold = (
+            f"T_max < {melt:.0f} K, the melting point (process file); a warning above "
+            f"{melt * (1 - TEMPERATURE_MARGIN):.0f} K; the onset of plastic deformation of "
+            "polysilicon lies lower and is NOT sourced in the process file: not checked"
+        )
+    warn_at = limit * (1 - TEMPERATURE_MARGIN)
+    source = SRC + "; limits: process file"
+    cooler = "lower drive.voltage, or widen the hot arm (a wider arm runs cooler at the same V)"
+    if st.status == "not_converged":
+        return RuleResult("thermal.peak-temperature", "error", False, None, threshold,
+                          f"the electrothermal model did not converge: {st.message}",
+                          source, s.name, "lower drive.voltage", "K")  # fmt: skip
+    severity = "error"
+    if st.status == "melts" or t >= melt:
+        passed = False
+        msg = f"peak temperature {t:.0f} K {at} reaches the melting point {melt:.0f} K: the "
+        msg += "actuator burns out"
+        fix = cooler
+    elif t >= limit:
+        passed = False
+        msg = (
+            f"peak temperature {t:.0f} K {at} is above the onset of plastic deformation "
+            f"{limit:.0f} K (melting point {melt:.0f} K): the hot arm creeps and bends back, "
+            "and the stroke drifts"
+        )
+        fix = cooler
     elif t >= warn_at:
         passed, severity = False, "warning"
-        msg = (
-            f"peak temperature {t:.0f} K {where} at {st.voltage_v:.3g} V is within "
-            f"{TEMPERATURE_MARGIN:.0%} of the melting point {limit:.0f} K"
-        )
+        what = "onset of plastic deformation" if onset is not None else "melting point"
+        msg = f"peak temperature {t:.0f} K {at} is within {TEMPERATURE_MARGIN:.0%} of the "
+        msg += f"{what} {limit:.0f} K"
         fix = "lower drive.voltage"
     else:
-        msg = f"peak temperature {t:.0f} K {where} at {st.voltage_v:.3g} V"
+        passed = True
+        msg = f"peak temperature {t:.0f} K {at}"
         fix = ""
-    return RuleResult("thermal.peak-temperature", severity, passed, t,
-                      f"T_max < {limit:.0f} K; a warning above {warn_at:.0f} K{note}", msg,
-                      SRC + "; melting point: process file", s.name, fix, "K")  # fmt: skip
+    return RuleResult("thermal.peak-temperature", severity, passed, t, threshold, msg.strip(),
+                      source, s.name, fix, "K")  # fmt: skip
 
 
 def _bandwidth(s: SetDerivation) -> RuleResult:

@@ -162,6 +162,10 @@ class ThermalMaterial:
         T_0 [K].
     melting_temperature : float
         T_melt [K]: a peak above it is reported as ``melts``.
+    deformation_temperature : float or None
+        The onset of plastic deformation (creep, back-bending) [K], below T_melt, or None
+        when not known. The model does not use it: it is the limit of the check's
+        ``thermal.peak-temperature`` (:mod:`betvdesign.checks.thermal_rules`).
     """
 
     resistivity: float
@@ -176,6 +180,7 @@ class ThermalMaterial:
     nitride_conductivity: float
     substrate_temperature: float = 300.0
     melting_temperature: float = 1687.0
+    deformation_temperature: float | None = None
 
     @property
     def substrate_conductance(self) -> float:

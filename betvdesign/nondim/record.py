@@ -305,6 +305,9 @@ class DrawnStroke:
         |H(f_heat)| [-].
     modes : tuple of (float, float)
         The thermal modes (τ_i [s], a_i [-]) of the roll-off.
+    deformation_k : float or None
+        The layer's onset of plastic deformation [K] (process file), None when the
+        process gives none.
     """
 
     status: str
@@ -323,6 +326,7 @@ class DrawnStroke:
     f_heat_hz: float
     gain: float
     modes: tuple[tuple[float, float], ...] = ()
+    deformation_k: float | None = None
 
 
 @dataclass(frozen=True)

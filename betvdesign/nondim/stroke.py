@@ -166,5 +166,6 @@ def drawn_stroke(
         f_heat_hz=f_heat,
         gain=gain,
         modes=tuple(res.modes),
+        deformation_k=mat.deformation_temperature,
     )
     return u, data

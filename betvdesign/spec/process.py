@@ -165,6 +165,11 @@ class Electrothermal(StrictModel):
     """A constant α instead of ``expansion_law``."""
     melting_point: Temperature
     """Melting point of the film: a peak temperature above it melts the arm."""
+    deformation_onset: Temperature | None = None
+    """Onset of plastic deformation (creep, back-bending) of the film, below the melting
+    point: ``thermal.peak-temperature`` fails above it and warns within 10 % of it.
+    Without it the rule checks the melting point alone and says the onset is NOT
+    sourced."""
     substrate_temperature: Temperature = Field(default_factory=lambda: ureg.Quantity(300.0, "K"))
     """Substrate (and anchor) temperature T_0 (default 300 K)."""
     air_gap: Length
@@ -182,6 +187,13 @@ class Electrothermal(StrictModel):
     def _one_expansion(self) -> Electrothermal:
         if (self.expansion_law is None) == (self.expansion_coefficient is None):
             raise ValueError("give 'expansion_law' or 'expansion_coefficient' (one of them)")
+        if self.deformation_onset is not None and not (
+            self.deformation_onset.to("K").magnitude < self.melting_point.to("K").magnitude
+        ):
+            raise ValueError(
+                f"deformation_onset ({self.deformation_onset:~P}) must lie below "
+                f"melting_point ({self.melting_point:~P})"
+            )
         return self
 
 
@@ -433,6 +445,9 @@ class Process(StrictModel):
             nitride_conductivity=si(et.nitride_conductivity, "W/m/K"),
             substrate_temperature=si(et.substrate_temperature, "K"),
             melting_temperature=si(et.melting_point, "K"),
+            deformation_temperature=(
+                None if et.deformation_onset is None else si(et.deformation_onset, "K")
+            ),
         )
 
     def cite(self, path: str) -> str:

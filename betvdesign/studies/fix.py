@@ -805,6 +805,19 @@ _RULE_MOVES = {
 }
 
 
+#: Failing error rules on what no model parameter carries (the drawn actuator's
+#: temperature): the fields that move it, searched in this order when the device gives
+#: them (the drive voltage heats it as V²; a longer arm loses more heat to the substrate;
+#: a wider hot arm takes a smaller share of the voltage). The search decides which pass.
+_RULE_FIELDS = {
+    "thermal.peak-temperature": (
+        "drive.voltage",
+        "actuator.geometry.length",
+        "actuator.geometry.hot_arm_width",
+    ),
+}
+
+
 def advice_fields(check: Any) -> list[str]:
     """The designer fields a failing check's advice searches, in ranking order.
 
@@ -817,19 +830,24 @@ def advice_fields(check: Any) -> list[str]:
     -------
     list of str
         Fields of :data:`DEFAULT_BOUNDS` the device gives that move what a failing rule
-        needs (:data:`_RULE_MOVES`), designer's fields (drive, drawing) first.
+        needs (:data:`_RULE_FIELDS` for the drawn actuator's temperature, then
+        :data:`_RULE_MOVES`), designer's fields (drive, drawing) first.
     """
     from betvdesign.studies.fixfields import current_value
 
     need: set[str] = set()
+    direct: list[str] = []
     for r in check.rules:
         if not r.passed and r.id in _RULE_MOVES:
             need.update(_RULE_MOVES[r.id])
+        if not r.passed and r.severity == "error" and r.id in _RULE_FIELDS:
+            direct += [f for f in _RULE_FIELDS[r.id] if f not in direct]
     spec = check.derivation.spec
-    out = [
+    out = [f for f in direct if f in DEFAULT_BOUNDS and current_value(spec, f) is not None]
+    out += [
         f
         for f in DEFAULT_BOUNDS
-        if set(BY_PATH[f].moves) & need and current_value(spec, f) is not None
+        if f not in out and set(BY_PATH[f].moves) & need and current_value(spec, f) is not None
     ]
     out.sort(key=lambda f: BY_PATH[f].kind not in ("drive setting", "drawn dimension"))
     return out
