@@ -168,3 +168,30 @@ def test_the_check_advises_the_voltage_for_a_too_hot_actuator(tmp_path):
     rule = next(x for x in d["sets"][0]["rules"] if x["id"] == "thermal.peak-temperature")
     assert rule["fix"].startswith("lower drive.voltage 24 V -> ")
     assert "betv fix" in rule["fix"]
+
+
+def test_fix_moves_the_drawing_and_the_drive_into_the_thermal_bandwidth(tmp_path):
+    """Only ``thermal.bandwidth`` fails (the drive heats at 3× the cut-off): no single field
+    clears it with ϖ in the window, a pair does; its |H(f_heat)| recomputed here from the
+    model's own thermal modes of the changed drawing."""
+    dev = hot_pull(tmp_path, voltage="9 V")
+    spec = load_device(dev)
+    s0 = derive(spec).sets[0]
+    assert s0.stroke.gain < 0.5  # the current design is far above its cut-off
+    r = runner.invoke(
+        app,
+        ["fix", str(dev), "--vary", "actuator.geometry.length", "--vary", "drive.frequency",
+         "--json"],
+    )  # fmt: skip
+    assert r.exit_code == 0, r.output
+    d = json.loads(r.stdout)
+    assert d["status"] == "fixed"
+    best = d["candidates"][0]
+    assert best["why"].startswith("fixes thermal.bandwidth")
+    changes = {c["field"]: ureg.Quantity(c["to"]) for c in best["changes"]}
+    fixed = with_values(spec, changes)
+    aset = fixed.actuator_sets[0]
+    res = electrothermal(frame_geometry(fixed, aset), thermal_material(fixed, aset), 9.0)
+    f_heat = 2 * changes["drive.frequency"].to("Hz").magnitude  # AC: heats at 2f
+    gain = abs(sum(a / (1 + 2j * math.pi * f_heat * tau) for tau, a in res.modes))
+    assert gain >= 0.5

@@ -8,8 +8,9 @@ another way.
 **Passing** is what ``betv check`` calls PASS (every error rule: frequency window,
 mode, target speed when given) with the mode also held at the margin corners
 ϖ·(1 ± 5 %) and α·(1 ± 10 %) (the rule ``mode-margin``) and the design window at
-ϖ·(1 ± 5 %) (the rule ``window-margin``): "nothing to fix" only when both margins
-hold. Warnings that do not fail the
+ϖ·(1 ± 5 %) (the rule ``window-margin``), and a stroke predicted from the drawing kept
+within the actuator's thermal bandwidth (the rule ``thermal.bandwidth``): "nothing to
+fix" only when these hold. Warnings that do not fail the
 check (slow settling, tangential resonance, model adequacy) do not block a fix; they are
 listed with the fix. Every candidate goes through
 :func:`betvdesign.checks.checker.check_derivation`, the same path as ``betv check``.
@@ -84,8 +85,10 @@ BISECT_RTOL = 0.002
 PAIR_POINTS = 9
 #: Pairs are searched among this many fields, those that came closest on their own.
 PAIR_FIELDS = 4
-#: The rules a fix must pass besides the error rules (the mode at the margin corners).
-REQUIRED_WARNINGS = ("mode-margin", "window-margin")
+#: The rules a fix must pass besides the error rules: the mode at the margin corners, the
+#: window at ϖ·(1 ± 5 %), and, for a stroke predicted from the drawing, the drive within
+#: the actuator's thermal bandwidth (a drive far above it spends its power on heat).
+REQUIRED_WARNINGS = ("mode-margin", "window-margin", "thermal.bandwidth")
 #: At most this many fields are searched for the advice of ``betv check``, and the
 #: search stops after this many fixes (:func:`advise`).
 ADVICE_FIELDS = 3
@@ -561,8 +564,8 @@ class FixResult:
             "status": self.status,
             "message": self.message,
             "passing": "betv check PASS (every error rule) with the mode held at "
-            "ϖ·(1 ± 5 %) and α·(1 ± 10 %) and the window at ϖ·(1 ± 5 %); other warnings "
-            "do not block",
+            "ϖ·(1 ± 5 %) and α·(1 ± 10 %), the window at ϖ·(1 ± 5 %) and a drawn "
+            "stroke within its thermal bandwidth; other warnings do not block",
             "margin": {"relative": FIELD_MARGIN, "meaning": MARGIN_TEXT},
             "evaluations": self.evaluations,
             "varied": {
@@ -805,13 +808,20 @@ _RULE_MOVES = {
 }
 
 
-#: Failing error rules on what no model parameter carries (the drawn actuator's
-#: temperature): the fields that move it, searched in this order when the device gives
-#: them (the drive voltage heats it as V²; a longer arm loses more heat to the substrate;
-#: a wider hot arm takes a smaller share of the voltage). The search decides which pass.
+#: Failing rules on what no model parameter carries (the drawn actuator's temperature
+#: and thermal bandwidth): the fields that move it, searched in this order when the
+#: device gives them (the drive voltage heats it as V²; a longer arm loses more heat to
+#: the substrate; a wider hot arm takes a smaller share of the voltage; the drive
+#: frequency sets the heating frequency). The search decides which pass.
 _RULE_FIELDS = {
     "thermal.peak-temperature": (
         "drive.voltage",
+        "actuator.geometry.length",
+        "actuator.geometry.hot_arm_width",
+    ),
+    # the heating frequency against the cut-off: the drive frequency, the arms' heat path
+    "thermal.bandwidth": (
+        "drive.frequency",
         "actuator.geometry.length",
         "actuator.geometry.hot_arm_width",
     ),
@@ -840,7 +850,8 @@ def advice_fields(check: Any) -> list[str]:
     for r in check.rules:
         if not r.passed and r.id in _RULE_MOVES:
             need.update(_RULE_MOVES[r.id])
-        if not r.passed and r.severity == "error" and r.id in _RULE_FIELDS:
+        required = r.severity == "error" or r.id in REQUIRED_WARNINGS
+        if not r.passed and required and r.id in _RULE_FIELDS:
             direct += [f for f in _RULE_FIELDS[r.id] if f not in direct]
     spec = check.derivation.spec
     out = [f for f in direct if f in DEFAULT_BOUNDS and current_value(spec, f) is not None]
