@@ -32,16 +32,22 @@ ROOT = Path(__file__).resolve().parents[1]
 runner = CliRunner()
 
 
-def hot_pull(tmp_path: Path, voltage: str = "24 V") -> Path:
-    """A drawn-only device that passes but for its temperature: 900 µm arms (ϖ in the
-    window), pull intended (what the drawing's α ≈ 1 gives), a 1 mm travel (the crossing
-    from rest does not depend on the stroke)."""
-    p = drawn_only(tmp_path, voltage=voltage)
-    text = p.read_text().replace("length: 240 um", "length: 900 um")
+def drawn_pull(tmp_path: Path, voltage: str, length: str, frequency: str) -> Path:
+    """A drawn-only device with long arms (ϖ in the window), pull intended (what the
+    drawing's α ≈ 1 gives), a 1 mm travel (the crossing from rest does not depend on the
+    stroke)."""
+    p = drawn_only(tmp_path, voltage=voltage, frequency=frequency)
+    text = p.read_text().replace("length: 240 um", f"length: {length}")
     text = text.replace("intended_mode: push", "intended_mode: pull")
     text = text.replace("travel_range: 50 um", "travel_range: 1000 um")
     p.write_text(text)
     return p
+
+
+def hot_pull(tmp_path: Path) -> Path:
+    """Passes but for its temperature: 1.5 mm arms driven at 1.3 kHz (heating at 2.6 kHz,
+    within the thermal bandwidth), 42 V (the peak above the onset)."""
+    return drawn_pull(tmp_path, "42 V", "1500 um", "1.3 kHz")
 
 
 def peak_voltage(spec, target_k: float) -> float:
@@ -135,7 +141,7 @@ def test_fix_lowers_the_voltage_to_just_under_the_onset(tmp_path):
     spec = load_device(dev)
     onset = spec.process.thermal_material().deformation_temperature
     v_star = peak_voltage(spec, onset)  # the model's peak reaches the onset here
-    assert 1 < v_star < 24
+    assert 1 < v_star < 42
     r = runner.invoke(app, ["fix", str(dev), "--vary", "drive.voltage", "--json"])
     assert r.exit_code == 0, r.output
     d = json.loads(r.stdout)
@@ -166,7 +172,7 @@ def test_the_check_advises_the_voltage_for_a_too_hot_actuator(tmp_path):
     d = json.loads(r.stdout)["devices"][0]
     assert d["failed"] == ["thermal.peak-temperature"]
     rule = next(x for x in d["sets"][0]["rules"] if x["id"] == "thermal.peak-temperature")
-    assert rule["fix"].startswith("lower drive.voltage 24 V -> ")
+    assert "lower drive.voltage 42 V -> " in rule["fix"]  # with the longer arms
     assert "betv fix" in rule["fix"]
 
 
@@ -174,7 +180,7 @@ def test_fix_moves_the_drawing_and_the_drive_into_the_thermal_bandwidth(tmp_path
     """Only ``thermal.bandwidth`` fails (the drive heats at 3× the cut-off): no single field
     clears it with ϖ in the window, a pair does; its |H(f_heat)| recomputed here from the
     model's own thermal modes of the changed drawing."""
-    dev = hot_pull(tmp_path, voltage="9 V")
+    dev = drawn_pull(tmp_path, "9 V", "900 um", "3 kHz")
     spec = load_device(dev)
     s0 = derive(spec).sets[0]
     assert s0.stroke.gain < 0.5  # the current design is far above its cut-off

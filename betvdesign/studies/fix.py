@@ -880,7 +880,7 @@ def advise(
     Parameters
     ----------
     check : CheckResult
-        A check whose verdict fails or whose ``mode-margin`` fails.
+        A check whose verdict fails or one of whose :data:`REQUIRED_WARNINGS` fails.
     target_speed_m_s : float, optional
         The target speed the check was given [m/s].
     fields : sequence of str, optional
@@ -937,9 +937,9 @@ def with_advice(check: Any, answers: Sequence[FieldAnswer]) -> Any:
     """A copy of ``check`` with the search's fix texts.
 
     A copy of ``check`` with the fix text of every failing error rule and
-    ``mode-margin`` (and ``window-margin``) replaced by the search's answer
-    (:func:`advice_text`), except the process's rules, whose own fix says which drawn
-    dimension to set to what (the process decides it).
+    :data:`REQUIRED_WARNINGS` rule (the margins, the thermal bandwidth) replaced by the
+    search's answer (:func:`advice_text`), except the process's rules, whose own fix says
+    which drawn dimension to set to what (the process decides it).
 
     Parameters
     ----------
