@@ -201,3 +201,13 @@ def test_fix_moves_the_drawing_and_the_drive_into_the_thermal_bandwidth(tmp_path
     f_heat = 2 * changes["drive.frequency"].to("Hz").magnitude  # AC: heats at 2f
     gain = abs(sum(a / (1 + 2j * math.pi * f_heat * tau) for tau, a in res.modes))
     assert gain >= 0.5
+
+
+def test_a_process_missing_one_electrothermal_value_names_it_with_exit_2(tmp_path):
+    text = (ROOT / "betvdesign" / "data" / "processes" / "polymumps.yaml").read_text()
+    text = text.replace("      thermal_conductivity: 32 W/m/K\n", "")
+    (tmp_path / "nok.yaml").write_text(text)
+    r = runner.invoke(app, ["check", str(drawn_only(tmp_path, process="nok.yaml"))])
+    assert r.exit_code == 2, r.output
+    assert "layers.poly1.electrothermal.thermal_conductivity: missing required field" in r.output
+    assert "nok.yaml:" in r.output and "Traceback" not in r.output
