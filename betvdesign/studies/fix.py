@@ -809,8 +809,9 @@ _RULE_MOVES = {
 
 
 #: Failing rules on what no model parameter carries (the drawn actuator's temperature
-#: and thermal bandwidth): the fields that move it, searched in this order when the
-#: device gives them (the drive voltage heats it as V²; a longer arm loses more heat to
+#: and thermal bandwidth): the fields that move it, searched in the fields' ranking order
+#: (:data:`DEFAULT_BOUNDS`) with those the other failing rules need, when the device gives
+#: them (the drive voltage heats it as V²; a longer arm loses more heat to
 #: the substrate; a wider hot arm takes a smaller share of the voltage; the drive
 #: frequency sets the heating frequency). The search decides which pass.
 _RULE_FIELDS = {
@@ -854,11 +855,10 @@ def advice_fields(check: Any) -> list[str]:
         if not r.passed and required and r.id in _RULE_FIELDS:
             direct += [f for f in _RULE_FIELDS[r.id] if f not in direct]
     spec = check.derivation.spec
-    out = [f for f in direct if f in DEFAULT_BOUNDS and current_value(spec, f) is not None]
-    out += [
+    out = [
         f
         for f in DEFAULT_BOUNDS
-        if f not in out and set(BY_PATH[f].moves) & need and current_value(spec, f) is not None
+        if (set(BY_PATH[f].moves) & need or f in direct) and current_value(spec, f) is not None
     ]
     out.sort(key=lambda f: BY_PATH[f].kind not in ("drive setting", "drawn dimension"))
     return out
