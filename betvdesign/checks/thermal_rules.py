@@ -117,7 +117,10 @@ def _peak(s: SetDerivation, process: Any = None) -> RuleResult:
         )
     warn_at = limit * (1 - TEMPERATURE_MARGIN)
     source = SRC + "; limits: process file"
-    cooler = "lower drive.voltage, or widen the hot arm (a wider arm runs cooler at the same V)"
+    cooler = (
+        "lower drive.voltage, or lengthen the arms (more of the heat goes to the substrate); "
+        "`betv fix FILE` finds the values"
+    )
     if st.status == "not_converged":
         return RuleResult("thermal.peak-temperature", "error", False, None, threshold,
                           f"the electrothermal model did not converge: {st.message}",
