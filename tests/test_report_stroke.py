@@ -110,6 +110,25 @@ def test_the_melting_voltage_is_where_t_max_crosses_the_melting_point(
     assert sweep.t_max_k[-1] >= mat.melting_temperature
 
 
+def test_the_onset_voltage_is_where_t_max_crosses_the_deformation_onset(
+    device: Path, sweep: report_thermal.StrokeSweep, html: str
+) -> None:
+    """The process's onset of plastic deformation (1063 K) is crossed between the bisected
+    voltage's two sides on the electrothermal model, below the melting voltage, and the
+    caption names it."""
+    spec = load_device(device)
+    aset = spec.actuator_sets[0]
+    g, mat = frame_geometry(spec, aset), thermal_material(spec, aset)
+    assert sweep.onset_k == 1063.0
+    v = sweep.onset_v
+    assert v is not None and v < sweep.melting_v
+    assert electrothermal(g, mat, v * (1 - 1e-6)).t_max < 1063.0
+    assert electrothermal(g, mat, v * (1 + 1e-6)).t_max > 1063.0
+    assert v in sweep.volts
+    cap = text_of(html).split("Predicted stroke against drive voltage", 1)[1]
+    assert f"onset of plastic deformation 1063 K at {v:.4g} V" in cap
+
+
 def test_u_of_f_is_the_modal_roll_off(device: Path, sweep: report_thermal.StrokeSweep) -> None:
     """u(f) = u_static/2·G(f) with G = modal_gain of the device's modes (heating at f_act),
     the device's own point on it."""
@@ -193,6 +212,12 @@ def test_the_plots_draw_the_data_they_are_given() -> None:
     assert any(list(line.get_xdata()) == [4.0, 4.0] for line in ax.lines)
     (twin,) = [a for a in ax.figure.axes if a is not ax]
     np.testing.assert_allclose(twin.lines[0].get_ydata(), t)
+    ax = Figure().subplots()
+    stroke_vs_voltage(v, u, us, t, device_v=2.0, device_stroke_m=4e-7, melting_v=4.0,
+                      melting_k=1580.0, onset_v=3.5, onset_k=1063.0, ax=ax)  # fmt: skip
+    assert any(list(line.get_xdata()) == [3.5, 3.5] for line in ax.lines)
+    (twin,) = [a for a in ax.figure.axes if a is not ax]
+    assert any(list(line.get_ydata()) == [1063.0, 1063.0] for line in twin.lines)
     f = np.geomspace(10.0, 1e6, 9)
     ax = Figure().subplots()
     stroke_vs_frequency(f, 1e-6 / (1 + f / 1e3), f_v_hz=1e4, cutoff_hz=1e3,

@@ -31,6 +31,8 @@ def stroke_vs_voltage(
     device_stroke_m: float,
     melting_v: float,
     melting_k: float,
+    onset_v: float | None = None,
+    onset_k: float | None = None,
     ax: Axes | None = None,
 ) -> Axes:
     """The stroke at the drive and the static stroke against the drive voltage, T_max twinned.
@@ -51,6 +53,9 @@ def stroke_vs_voltage(
         The voltage where the peak temperature reaches the melting point [V] (marked).
     melting_k : float
         The melting point [K] (drawn on the temperature axis).
+    onset_v, onset_k : float, optional
+        The voltage where the peak temperature reaches the onset of plastic deformation
+        [V] and that onset [K] (marked dash-dotted when given).
     ax : matplotlib.axes.Axes, optional
         Axes to draw on (a new figure when None).
 
@@ -82,6 +87,15 @@ def stroke_vs_voltage(
         lw=1.2,
         label=f"T_max reaches the melting point: {melting_v:.4g} V",
     )
+    if onset_v is not None and onset_k is not None:
+        ax.axvline(
+            onset_v,
+            color=TEMPERATURE_COLOR,
+            ls="-.",
+            lw=1.0,
+            label=f"T_max reaches the onset of plastic deformation ({onset_k:.4g} K): "
+            f"{onset_v:.4g} V",
+        )
     hi = float(v.max()) if v.size else melting_v
     if hi > melting_v:
         ax.axvspan(melting_v, hi, color=TEMPERATURE_COLOR, alpha=0.08, lw=0)
@@ -92,6 +106,8 @@ def stroke_vs_voltage(
     tw = ax.twinx()
     tw.plot(v, np.asarray(t_max_k, float), color=TEMPERATURE_COLOR, lw=1.0)
     tw.axhline(melting_k, color=TEMPERATURE_COLOR, ls=":", lw=0.8)
+    if onset_v is not None and onset_k is not None:
+        tw.axhline(onset_k, color=TEMPERATURE_COLOR, ls="-.", lw=0.8)
     tw.set_ylabel("peak temperature T_max  [K]", color=TEMPERATURE_COLOR)
     tw.tick_params(axis="y", colors=TEMPERATURE_COLOR)
     lines, labels = ax.get_legend_handles_labels()

@@ -73,6 +73,9 @@ class StrokeSweep:
     device_v, melting_v, melting_k : float
         The device's voltage [V], where T_max reaches the melting point [V], and that
         melting point [K].
+    onset_v, onset_k : float or None
+        Where T_max reaches the layer's onset of plastic deformation [V] (bisected like
+        the melting voltage), and that onset [K]; None when the process gives no onset.
     f_act_hz, stroke_f_m : numpy.ndarray
         Actuation frequencies [Hz] and the stroke there [m] (the drawing's roll-off).
     solves : int
@@ -89,6 +92,8 @@ class StrokeSweep:
     f_act_hz: np.ndarray
     stroke_f_m: np.ndarray
     solves: int
+    onset_v: float | None = None
+    onset_k: float | None = None
 
     @property
     def device_index(self) -> int:
@@ -99,7 +104,7 @@ class StrokeSweep:
 def melting_voltage(
     t_max_at: Any, melting_k: float, start_v: float, *, rtol: float = MELTING_RTOL
 ) -> tuple[float, int]:
-    """The voltage where the peak temperature reaches the melting point, bisected.
+    """The voltage where the peak temperature reaches a temperature (the melting point), bisected.
 
     Parameters
     ----------
@@ -184,9 +189,15 @@ def stroke_sweep(spec: DeviceSpec, sd: SetDerivation) -> StrokeSweep:
         return res
 
     melt_v, n = melting_voltage(lambda v: solve(v).t_max, st.melting_k, st.voltage_v)
+    onset_v = None
+    if st.deformation_k is not None:
+        onset_v, n_onset = melting_voltage(
+            lambda v: solve(v).t_max, st.deformation_k, st.voltage_v
+        )
+        n += n_onset
     top = max(melt_v, st.voltage_v)
-    volts = np.unique(np.concatenate([np.linspace(0.0, top, VOLTAGE_POINTS),
-                                      [st.voltage_v, melt_v]]))  # fmt: skip
+    extra = [st.voltage_v, melt_v] + ([] if onset_v is None else [onset_v])
+    volts = np.unique(np.concatenate([np.linspace(0.0, top, VOLTAGE_POINTS), extra]))
     rows = [solve(float(v)) for v in volts]
     n += len(rows)
     stroke = np.array([stroke_amplitude(r, drive_hz, waveform)[0] for r in rows])
@@ -207,6 +218,8 @@ def stroke_sweep(spec: DeviceSpec, sd: SetDerivation) -> StrokeSweep:
         f_act_hz=f,
         stroke_f_m=np.asarray(sc.amplitude_m(f), dtype=float),
         solves=n,
+        onset_v=onset_v,
+        onset_k=st.deformation_k,
     )
 
 
@@ -270,6 +283,13 @@ def stroke_voltage(
                 if s.device_v > s.melting_v
                 else f", {s.melting_v / s.device_v:.3g}× the device's."
             )
+            + (
+                ""
+                if s.onset_v is None
+                else f" It reaches the onset of plastic deformation {s.onset_k:.4g} K at "
+                f"{s.onset_v:.4g} V (dash-dotted; the rule thermal.peak-temperature's error "
+                "threshold)."
+            )
             + f" {len(s.volts)} voltages."
         )
 
@@ -284,6 +304,8 @@ def stroke_voltage(
             device_stroke_m=float(s.stroke_m[i]),
             melting_v=s.melting_v,
             melting_k=s.melting_k,
+            onset_v=s.onset_v,
+            onset_k=s.onset_k,
             ax=ax,
         )
 
