@@ -191,9 +191,7 @@ def stroke_sweep(spec: DeviceSpec, sd: SetDerivation) -> StrokeSweep:
     melt_v, n = melting_voltage(lambda v: solve(v).t_max, st.melting_k, st.voltage_v)
     onset_v = None
     if st.deformation_k is not None:
-        onset_v, n_onset = melting_voltage(
-            lambda v: solve(v).t_max, st.deformation_k, st.voltage_v
-        )
+        onset_v, n_onset = melting_voltage(lambda v: solve(v).t_max, st.deformation_k, st.voltage_v)
         n += n_onset
     top = max(melt_v, st.voltage_v)
     extra = [st.voltage_v, melt_v] + ([] if onset_v is None else [onset_v])

@@ -93,8 +93,8 @@ class DesignField:
 # fmt: off
 FIELDS: tuple[DesignField, ...] = (
     DesignField("drive.frequency", "drive frequency", "ω", ("ϖ",), "drive setting", (0.25, 4.0)),
-    DesignField("drive.voltage", "drive voltage (through the calibration u(V), or the drawing's electrothermal model)", "u", ("ℓ",),
-                "drive setting"),
+    DesignField("drive.voltage", "drive voltage (through u(V): calibration or drawn model)", "u",
+                ("ℓ",), "drive setting"),
     DesignField("actuator.amplitude", "actuator amplitude", "u", ("ℓ",), "drive setting"),
     DesignField("slider.beam_width", "slider beam width", "M", ("β",), "drawn dimension",
                 (0.5, 4.0)),
