@@ -515,3 +515,31 @@ def gap_at(wf, zv, A, cyc_row_tc, pieces, start, count, t):
     p = pieces[best]
     y, yd, _, _ = vertical_flight(wf, zv, A, p["xi"], p["xid"], p["sp"], p["cp"], t - p["t"])
     return y, yd
+
+
+@kernel
+def cycle_rows(m, n_prefix, period):
+    """Rows of the vertical table (:data:`CYCLE_DTYPE`) of cycles m.
+
+    The table holds the prefix (cycles 0..n_prefix−1) and one period after it: a cycle
+    past the prefix maps into that period.
+
+    Parameters
+    ----------
+    m : numpy.ndarray
+        Cycles (int, 0-based, ≥ 0).
+    n_prefix : int
+        Rows of the prefix.
+    period : int
+        The period [cycles] (> 0 when any m ≥ n_prefix).
+
+    Returns
+    -------
+    numpy.ndarray
+        int64 rows, one per cycle.
+    """
+    idx = np.empty(m.size, np.int64)
+    for j in range(m.size):
+        k = m[j]
+        idx[j] = k if k < n_prefix else n_prefix + (k - n_prefix) % period
+    return idx

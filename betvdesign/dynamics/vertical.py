@@ -164,7 +164,7 @@ class VerticalSchedule:
         if m.size and m[-1] >= k:
             if self.period is None:
                 raise IndexError(f"cycle {int(m[-1])} beyond the computed vertical horizon")
-            m = np.where(m < k, m, k + (m - k) % self.period)
+            m = schedule.cycle_rows(m, k, self.period)
         return m
 
     def cycle(self, m: int) -> VerticalCycle:
