@@ -3,9 +3,10 @@
 docs/MODEL.md, "Slider"; the algorithm is described in :mod:`periodic`. The section map
 Φⁿ: x = (ζ, ζ', s') at the first periodic cycle → n cycles later is the contact loop
 (:func:`contact.run_cycles`); here, compiled with it, are its residual
-‖Φⁿ(x) − x‖∞, its finite-difference Jacobian and the damped Newton iteration, so that a
-periodic solve crosses from Python into compiled code a handful of times instead of once
-per map evaluation. Every function takes the map's arguments :data:`SHOT` first.
+‖Φⁿ(x) − x‖∞, its finite-difference Jacobian, the damped Newton iteration, the
+Anderson-accelerated start, the Floquet multipliers and the whole search from rest
+(:func:`orbit`), so that a periodic solve crosses from Python into compiled code once.
+The map's functions take its arguments :data:`SHOT` first.
 """
 
 from __future__ import annotations
@@ -30,7 +31,7 @@ TRUST = 2.0
 
 
 #: The map's arguments, in this order (one design, one period n, built by
-#: :class:`periodic._Map`): ``table`` (:func:`flows.phase_table`); the vertical schedule's
+#: :func:`orbit`): ``table`` (:func:`flows.phase_table`); the vertical schedule's
 #: ``tab`` and ``imp`` and the rows ``idx`` of the n cycles from cycle ``m0``; empty
 #: ``rows``, ``log`` and ``segs`` buffers; ``count`` = [cycles, events, evaluations]
 #: (accumulated). Plain arrays: handing them to compiled code costs little.
