@@ -351,7 +351,7 @@ def _orbit(
     """
     r_final, s, s_total, xi, xid = f[:5]
     n, n_newton, brute = i[:3]
-    if mu[1].any():
+    if any(mu[1].tolist()):  # as numpy's eigvals: real unless an imaginary part is not 0
         floquet = np.empty(3, complex)
         floquet.real, floquet.imag = mu[0], mu[1]
     else:
