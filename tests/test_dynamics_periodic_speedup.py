@@ -133,3 +133,31 @@ def test_unbounded_detection_and_not_driven_unchanged():
     "not_driven" (the acceleration runs after both checks)."""
     assert periodic_orbit(ModelParams(1.0, 1.0, 0.5, 0.4)).status == "unbounded"
     assert periodic_orbit(ModelParams(2.3, 1.0, 1.0, 0.4)).status == "not_driven"
+
+
+def test_the_compiled_search_runs_as_python():
+    """NUMBA_DISABLE_JIT=1 runs the one compiled entry point (shooting.orbit: Anderson, the
+    slider bracket, Newton, the Floquet multipliers by LAPACK dgeev) as plain Python: the
+    same orbits, multipliers and counters as the compiled code, here bit for bit (numpy's
+    and numba's dgeev, lstsq and gemv are the same LAPACK/BLAS calls)."""
+    import json
+    import os
+    import subprocess
+    import sys
+
+    names = ["w13", "w12"]  # Anderson and the bracket run for both
+    code = (
+        "import json; from betvdesign.dynamics import periodic_orbit; "
+        "from betvdesign.model.params import ModelParams as M; "
+        f"ps = [M(*a) for a in {[list(HARD[n].as_dict().values())[:4] for n in names]!r}]; "
+        "rs = [periodic_orbit(p) for p in ps]; "
+        "print(json.dumps([[r.delta_s, r.state.tolist(), [[m.real, m.imag] for m in "
+        "r.floquet.astype(complex)], r.n_cycles, r.n_events, r.n_newton] for r in rs]))"
+    )
+    env = dict(os.environ, NUMBA_DISABLE_JIT="1")
+    res = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True)
+    assert res.returncode == 0, res.stderr
+    for name, got in zip(names, json.loads(res.stdout), strict=True):
+        po = periodic_orbit(HARD[name])
+        mu = [[m.real, m.imag] for m in po.floquet.astype(complex)]
+        assert got == [po.delta_s, po.state.tolist(), mu, po.n_cycles, po.n_events, po.n_newton]
