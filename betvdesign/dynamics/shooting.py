@@ -270,6 +270,7 @@ def _real_eigvals_compiled(J):
     """
     ensure_lapack()
     rgeev = _LAPACK().numba_ez_rgeev(types.float64)
+    kind, no = ord("d"), ord("N")  # constants here: no string handling compiled
 
     def impl(J):
         n = J.shape[0]
@@ -282,10 +283,7 @@ def _real_eigvals_compiled(J):
                 a[i, j] = v
         wr, wi = np.empty(n), np.empty(n)
         vl, vr = np.empty(1), np.empty(1)  # not referenced (no eigenvectors)
-        info = rgeev(
-            ord("d"), ord("N"), ord("N"), n, a.ctypes, n, wr.ctypes, wi.ctypes, vl.ctypes, 1,
-            vr.ctypes, 1,
-        )  # fmt: skip
+        info = rgeev(kind, no, no, n, a.ctypes, n, wr.ctypes, wi.ctypes, vl.ctypes, 1, vr.ctypes, 1)
         if info != 0:
             raise np.linalg.LinAlgError("Eigenvalues did not converge")
         return wr, wi
@@ -335,7 +333,7 @@ def _max_abs(a, b):
     return far
 
 
-@kernel
+@kernel(inline=True)
 def anderson(table, tab, idx, imp, m0, rows, log, segs, count, x, budget):
     """A start for Newton from iterate ``x``: Anderson-accelerated iteration of Φⁿ.
 
@@ -413,7 +411,7 @@ def anderson(table, tab, idx, imp, m0, rows, log, segs, count, x, budget):
     return bracket_slider(table, tab, idx, imp, m0, rows, log, segs, count, best, radius)
 
 
-@kernel
+@kernel(inline=True)
 def bracket_slider(table, tab, idx, imp, m0, rows, log, segs, count, x, radius):
     """Move s' alone to where its increment over n cycles changes sign (bisection).
 
@@ -476,7 +474,7 @@ def bracket_slider(table, tab, idx, imp, m0, rows, log, segs, count, x, radius):
     return True, x
 
 
-@kernel
+@kernel(inline=True)
 def measure_growth(table, tab, imp, m0, kv, rows, log, segs, count, x, bound, window):
     """Check a proven per-cycle fall of ζ by iterating the map.
 
@@ -524,7 +522,7 @@ def measure_growth(table, tab, imp, m0, kv, rows, log, segs, count, x, bound, wi
     return True, (z0 - x[0]) / n, n, math.hypot(x[0], x[1] / varpi), s_total
 
 
-@kernel
+@kernel(inline=True)
 def newton_period(table, tab, idx, imp, m0, rows, log, segs, count, x, tol, accelerate, budget):
     """Newton for a fixed point of Φⁿ from ``x``, restarted from Anderson when asked.
 
