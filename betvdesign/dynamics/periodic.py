@@ -275,13 +275,13 @@ def _periodic_orbit(
         vs.impulsive,
         m0,
         kv,
-        tol,
-        max_cycles,
-        max_period,
-        transient,
+        float(tol),  # one compiled signature, whatever number types the caller passed
+        int(max_cycles),
+        int(max_period),
+        int(transient),
         math.nan if bound is None else bound,
-        min(GROWTH_WINDOW, max_cycles - m0),
-        shooting.ANDERSON_BUDGET,
+        int(min(GROWTH_WINDOW, max_cycles - m0)),
+        int(shooting.ANDERSON_BUDGET),
     )
     if code == shooting.FOUND:
         return _orbit(p, vs, t0, x, mu, fo.tolist(), io.tolist(), count, tol)
