@@ -10,6 +10,10 @@
     .venv/bin/python benchmarks/bench_solver.py targets [--baseline DIR]
                                                              # issue 10 targets, this tree
                                                              # and DIR side by side
+    .venv/bin/python benchmarks/bench_solver.py orbit [--baseline DIR]
+                                                             # warm periodic orbit per design
+                                                             # (shipped devices' sets and the
+                                                             # 26 designs), DIR side by side
 
 Targets: ≥ 100× faster per simulated cycle than the project's own solve_ivp
 reference (``betvdesign.dynamics.reference``, DOP853, rtol 1e-10, atol 1e-12)
@@ -275,6 +279,82 @@ def _inner_targets() -> dict:
     }
 
 
+def orbit_designs() -> dict[str, ModelParams]:
+    """Every set of the shipped devices (``devices/*.yaml``, damped ones included) and the
+    26 designs of this file."""
+    from betvdesign.nondim.device import derive_file
+
+    out = {}
+    for f in sorted((ROOT / "devices").glob("*.yaml")):
+        for i, s in enumerate(derive_file(f).sets):
+            out[f"{f.stem}-{i}"] = s.params
+    return out | NAMED | window_sets()
+
+
+def _inner_orbit(solves: int) -> dict:
+    """Warm periodic orbit of every :func:`orbit_designs` design in this process: median
+    CPU time [ms] of ``solves`` solves, with the orbit's cycles and status."""
+    out = {}
+    for name, p in orbit_designs().items():
+        res = periodic_orbit(p)  # warm: kernels loaded, caches filled
+        ts = []
+        for _ in range(solves):
+            c0 = time.process_time()
+            periodic_orbit(p)
+            ts.append(time.process_time() - c0)
+        out[name] = {
+            "ms": statistics.median(ts) * 1e3,
+            "status": res.status,
+            "cycles": res.n_cycles,
+            "delta_s": res.delta_s,
+        }
+    return out
+
+
+def bench_orbit(trees: dict[str, Path], rounds: int = 3, solves: int = 41) -> dict:
+    """The warm periodic orbit per design, each source tree (name -> repository root whose
+    ``betvdesign`` is imported) in its own process, the trees alternating round by round so
+    that the machine's load falls on both; per design the best of the rounds' medians."""
+    envs = {name: dict(os.environ, PYTHONPATH=str(root)) for name, root in trees.items()}
+    best: dict[str, dict] = {name: {} for name in trees}
+    for _ in range(rounds):
+        for name, env in envs.items():
+            res = subprocess.run(
+                [sys.executable, str(Path(__file__).resolve()), "_orbit", str(solves)],
+                env=env,
+                capture_output=True,
+                text=True,
+                cwd=ROOT,
+                check=True,
+            )
+            got = json.loads(res.stdout.strip().splitlines()[-1])
+            for d, row in got.items():
+                if d not in best[name] or row["ms"] < best[name][d]["ms"]:
+                    best[name][d] = row
+    names = list(trees)
+    print("  " + f"{'design':18s}" + "".join(f"{n:>12s}" for n in names) + "  status, cycles")
+    for d in best[names[0]]:
+        ms = "".join(f"{best[n][d]['ms']:12.3f}" for n in names)
+        row = best[names[0]][d]
+        print(f"  {d:18s}{ms}  {row['status']}, {row['cycles']}")
+    devices = [d for d in best[names[0]] if d not in NAMED and not d.startswith("w")]
+    summary = {}
+    for n in names:
+        ms = {d: r["ms"] for d, r in best[n].items()}
+        summary[n] = {
+            "devices_median_ms": statistics.median(ms[d] for d in devices),
+            "devices_max_ms": max(ms[d] for d in devices),
+            "designs26_median_ms": statistics.median(ms[d] for d in ms if d not in devices),
+            "designs26_max_ms": max(ms[d] for d in ms if d not in devices),
+        }
+        print(
+            f"  {n}: shipped devices' sets median {summary[n]['devices_median_ms']:.3f} ms "
+            f"(max {summary[n]['devices_max_ms']:.3f}); 26 designs median "
+            f"{summary[n]['designs26_median_ms']:.3f} ms (max {summary[n]['designs26_max_ms']:.3f})"
+        )
+    return {"per_design": best, "summary": summary}
+
+
 _CLI = "from betvdesign.cli import main; main()"
 
 
@@ -335,11 +415,14 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument(
         "--baseline",
         type=Path,
-        help="targets: also measure this source tree (e.g. `git archive <commit>` unpacked)",
+        help="targets, orbit: also measure this source tree (e.g. `git archive <commit>` unpacked)",
     )
     args = ap.parse_args(argv)
     if args.what == ["_inner"]:
         print(json.dumps(_inner_targets()))
+        return 0
+    if args.what[:1] == ["_orbit"]:
+        print(json.dumps(_inner_orbit(int(args.what[1]))))
         return 0
     designs = {**NAMED, **window_sets()}
     out: dict = {"python": sys.version.split()[0]}
@@ -356,6 +439,10 @@ def main(argv: list[str] | None = None) -> int:
         print("issue 10 targets (per cycle, periodic, report, check, --help), side by side:")
         trees = {"this": ROOT} | ({"baseline": args.baseline} if args.baseline else {})
         out["targets"] = bench_targets(trees)
+    if "orbit" in args.what:
+        print("periodic orbit, warm, CPU ms per solve (best of 3 rounds' medians of 41):")
+        trees = {"this": ROOT} | ({"baseline": args.baseline} if args.baseline else {})
+        out["orbit"] = bench_orbit(trees)
     if "accuracy" in args.what:
         print("accuracy (reference: DOP853 rtol 1e-13, atol 1e-14):")
         out["accuracy"] = bench_accuracy(window_sets())

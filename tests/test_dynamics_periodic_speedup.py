@@ -16,7 +16,7 @@ import math
 import numpy as np
 import pytest
 
-from betvdesign.dynamics import periodic, periodic_orbit, simulate
+from betvdesign.dynamics import contact, periodic_orbit, shooting, simulate
 from betvdesign.dynamics.flows import phase_table
 from betvdesign.dynamics.vertical import VerticalSchedule
 from betvdesign.model.params import ModelParams
@@ -41,7 +41,7 @@ HARD = {
 
 def _unaccelerated(p: ModelParams, monkeypatch: pytest.MonkeyPatch):
     with monkeypatch.context() as m:
-        m.setattr(periodic, "ANDERSON_BUDGET", 0)
+        m.setattr(shooting, "ANDERSON_BUDGET", 0)
         return periodic_orbit(p)
 
 
@@ -74,10 +74,28 @@ def test_same_orbit_as_the_fallback_in_fewer_cycles(name, monkeypatch):
     assert fast.transient_cycles < slow.transient_cycles
 
 
-def _map(p: ModelParams) -> periodic._Map:
+def _shot(p: ModelParams) -> tuple:
+    """The one-cycle section map's arguments (:data:`shooting.SHOT`) of a period-1 design."""
     vs = VerticalSchedule(p.varpi, horizon=1000)
     assert vs.period == 1 and vs.first_end is not None
-    return periodic._Map(phase_table(p), vs, vs.first_end + 1)
+    m0 = vs.first_end + 1
+    return (
+        phase_table(p),
+        vs.table,
+        vs.row(np.arange(m0, m0 + 1)),
+        vs.impulsive,
+        m0,
+        np.empty((0, 4)),
+        np.empty(0, contact.LOG_DTYPE),
+        np.empty(0, contact.SEG_DTYPE),
+        np.zeros(3, np.int64),
+    )
+
+
+def _phi(shot: tuple, x: np.ndarray) -> np.ndarray:
+    ok, y, _ = shooting.section_map(*shot, np.asarray(x, dtype=float))
+    assert ok
+    return y
 
 
 @pytest.mark.parametrize("name", ["w14", "w12"])
@@ -87,21 +105,22 @@ def test_round_off_fixed_points_exist_and_are_never_returned(name):
     orbit is there. The acceleration's start and the accepted orbit stay clear of it:
     ζ' − s' changes sign or sticks within the contact of the accepted orbit."""
     p = HARD[name]
-    phi = _map(p)
+    shot = _shot(p)
     po = periodic_orbit(p)
     x = po.state[[2, 3, 5]].copy()
     x[2] = 1e15
     for _ in range(3):  # (ζ, ζ') of the one-way-slip piece: Newton on them, s' held
-        y, _ = phi(x, 1)
+        y = _phi(shot, x)
         J = np.empty((2, 2))
         for i in range(2):
             xp = x.copy()
             xp[i] += 1e-6
-            J[:, i] = (phi(xp, 1)[0][:2] - y[:2]) / 1e-6
+            J[:, i] = (_phi(shot, xp)[:2] - y[:2]) / 1e-6
         x[:2] += np.linalg.solve(J - np.eye(2), x[:2] - y[:2])
-    assert np.max(np.abs(phi(x, 1)[0] - x)) <= 1e-10  # the trap is real
-    start = periodic._anderson(_map(p), po.state[[2, 3, 5]] + [0.5, 0.5, 0.5], 1)
-    assert start is not None and abs(start[2]) < 100.0
+    assert np.max(np.abs(_phi(shot, x) - x)) <= 1e-10  # the trap is real
+    start = po.state[[2, 3, 5]] + [0.5, 0.5, 0.5]
+    found, start = shooting.anderson(*shot, start, shooting.ANDERSON_BUDGET)
+    assert found and abs(start[2]) < 100.0
     # the accepted orbit: friction changes sign (or sticks) within its contact
     tr = simulate(p, 1, state0=po.state)
     kinds = {e.kind for e in tr.events} - {"impact", "separation", "impulsive"}
@@ -114,3 +133,31 @@ def test_unbounded_detection_and_not_driven_unchanged():
     "not_driven" (the acceleration runs after both checks)."""
     assert periodic_orbit(ModelParams(1.0, 1.0, 0.5, 0.4)).status == "unbounded"
     assert periodic_orbit(ModelParams(2.3, 1.0, 1.0, 0.4)).status == "not_driven"
+
+
+def test_the_compiled_search_runs_as_python():
+    """NUMBA_DISABLE_JIT=1 runs the one compiled entry point (shooting.orbit: Anderson, the
+    slider bracket, Newton, the Floquet multipliers by LAPACK dgeev) as plain Python: the
+    same orbits, multipliers and counters as the compiled code, here bit for bit (numpy's
+    and numba's dgeev, lstsq and gemv are the same LAPACK/BLAS calls)."""
+    import json
+    import os
+    import subprocess
+    import sys
+
+    names = ["w13", "w12"]  # Anderson and the bracket run for both
+    code = (
+        "import json; from betvdesign.dynamics import periodic_orbit; "
+        "from betvdesign.model.params import ModelParams as M; "
+        f"ps = [M(*a) for a in {[list(HARD[n].as_dict().values())[:4] for n in names]!r}]; "
+        "rs = [periodic_orbit(p) for p in ps]; "
+        "print(json.dumps([[r.delta_s, r.state.tolist(), [[m.real, m.imag] for m in "
+        "r.floquet.astype(complex)], r.n_cycles, r.n_events, r.n_newton] for r in rs]))"
+    )
+    env = dict(os.environ, NUMBA_DISABLE_JIT="1")
+    res = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True)
+    assert res.returncode == 0, res.stderr
+    for name, got in zip(names, json.loads(res.stdout), strict=True):
+        po = periodic_orbit(HARD[name])
+        mu = [[m.real, m.imag] for m in po.floquet.astype(complex)]
+        assert got == [po.delta_s, po.state.tolist(), mu, po.n_cycles, po.n_events, po.n_newton]

@@ -140,6 +140,17 @@ def test_degenerate_band_fails_loudly():
     assert np.all(np.isfinite(tr.section))
 
 
+def test_degenerate_band_fails_the_periodic_orbit_with_the_transients_reason():
+    """The compiled periodic search only knows that a contact could not be advanced; the
+    answer still says why, in the words of the transient from rest (simulate) of the same
+    cycles: status "failed", nothing counted as the periodic map's."""
+    p = ModelParams(1.5, 0.5, 1.0, 0.9999999999999999)
+    po = periodic_orbit(p)
+    why = simulate(p, 4).message.split("; results up to")[0]
+    assert po.status == "failed" and po.message == f"transient from rest failed: {why}"
+    assert po.n_cycles == 0 and po.delta_s is None
+
+
 def test_same_source_runs_as_python():
     """NUMBA_DISABLE_JIT=1 runs the kernels' source as plain Python (debugging, coverage):
     same numbers as the compiled code, to round-off."""

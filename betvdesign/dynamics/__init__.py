@@ -34,7 +34,7 @@ event functions (hit, ζ' = s', band exits)       :mod:`evaluators` (values: :mo
 first event of a phase, certified                :func:`search.first_root`
 cycles of contact and free flight; Δs_m          :func:`contact.run_cycles`
 periodic orbit, Floquet multipliers              :func:`periodic.periodic_orbit`
-                                                 (Newton: :func:`shooting.newton`)
+                                                 (compiled: :func:`shooting.orbit`)
 unbounded growth at α·ϖ² = 1                     :func:`periodic.resonance_growth_bound`
 *Beyond the paper* (docs/damping.md)
 kernel time: N ∝ A sin ϖτ, δ = atan(2ζ_v ϖ)        :func:`flows.normal_force_phase`

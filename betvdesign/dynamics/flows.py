@@ -39,7 +39,6 @@ so w0 = 1/sqrt(a) and F = c/a for a ζ'' + ζ = c sin ϖτ.
 from __future__ import annotations
 
 import math
-from typing import Any
 
 import numpy as np
 
@@ -125,48 +124,122 @@ TABLE_DTYPE = np.dtype(
 PhaseTable = np.void
 
 
+@kernel
 def _forced_amplitude(w0: float, F: float, wf: float) -> float:
     """P = F/(w0² − ϖ²) of the forced response P sin φ; NaN at exact resonance."""
     den = w0 * w0 - wf * wf
     return math.nan if den == 0.0 else F / den
 
 
+@kernel
 def _split_ok(P: float, w0: float, F: float) -> bool:
     """The split "P sin φ + free oscillation" is free of cancellation: |1 − aϖ²| ≥ 0.1."""
     return P == P and abs(P) * w0 * w0 <= 10.0 * abs(F)
 
 
-def _record(dtype: np.dtype, fields: dict[str, Any]) -> tuple:
-    """The tuple numpy builds one record of ``dtype`` from.
-
-    The tuple numpy builds one record of ``dtype`` from, taken from ``fields`` by name
-    (a nested record from a nested dict); a missing or unknown name is a KeyError.
-    """
-    names = dtype.names or ()
-    unknown = set(fields) - set(names)
-    if unknown:
-        raise KeyError(f"not fields of the record: {sorted(unknown)}")
-    return tuple(_record(dtype[n], fields[n]) if dtype[n].names else fields[n] for n in names)
-
-
-def _slip_phase(sig: float, b: float, w0: float, F: float, wf: float, ds: float) -> dict[str, Any]:
-    """The fields of :data:`SLIP_DTYPE` of the undamped slip (σ = +1) or reverse slip."""
-    q = 1.0 - sig * b
+@kernel
+def _slip_fields(r, sig: float, b: float, w0: float, F: float, wf: float, ds: float) -> None:
+    """Write the fields of :data:`SLIP_DTYPE` of the undamped slip (σ = +1) or reverse slip."""
     P = _forced_amplitude(w0, F, wf)
     fast = _split_ok(P, w0, F)
-    apq = 0.0 if P != P else abs(P - q) * wf
-    K = sig * (P * wf + ds / wf) if fast else 0.0
-    return dict(sig=sig, q=q, w0=w0, F=F, ds=ds, P=P, apq=apq, K=K, fast=fast, g=0.0, G=0.0)
+    r["sig"], r["q"], r["w0"], r["F"], r["ds"], r["P"] = sig, 1.0 - sig * b, w0, F, ds, P
+    r["apq"] = 0.0 if P != P else abs(P - (1.0 - sig * b)) * wf
+    r["K"] = sig * (P * wf + ds / wf) if fast else 0.0
+    r["fast"], r["g"], r["G"] = fast, 0.0, 0.0
+
+
+@kernel
+def _damped_slip_fields(r, sig: float, b: float, al: float, be: float, ka: float, zh: float,
+                        A: float, Fs: float, Gc: float) -> None:  # fmt: skip
+    """Write the fields of :data:`SLIP_DTYPE` of a damped slip (σ = +1) or reverse slip."""
+    r["sig"], r["q"], r["w0"] = sig, 1.0 - sig * b, 1.0 / math.sqrt(al)
+    r["F"], r["ds"] = (Fs - sig * al * ka * A) / al, sig * be * ka * A
+    r["P"], r["apq"], r["K"], r["fast"] = math.nan, 0.0, 0.0, False
+    r["g"], r["G"] = zh * math.sqrt(al) / al, Gc / al
+
+
+@kernel
+def table_record(al, be, ka, wf, e, damped, zv, zh, delta, A):
+    """The phase table's record (:func:`phase_table`), compiled: one call, no dicts.
+
+    Parameters
+    ----------
+    al, be, ka, wf : float
+        α, β, κ, ϖ [-].
+    e : float
+        Coefficient of restitution [-].
+    damped : bool
+        Every phase in its general (damped) form.
+    zv, zh : float
+        Damping ratios ζ_v, ζ_h [-] (read when ``damped``).
+    delta, A : float
+        Phase δ [rad] and amplitude A [-] of the normal force
+        (:func:`~betvdesign.model.params.normal_force_phase`; read when ``damped``).
+
+    Returns
+    -------
+    numpy.ndarray
+        One record of :data:`TABLE_DTYPE`.
+    """
+    t = np.zeros(1, TABLE_DTYPE)
+    c = t[0]
+    a_st = al * (1.0 + 1.0 / be)
+    w_free = 1.0 / math.sqrt(al)
+    w_st = 1.0 / math.sqrt(a_st)
+    b = al * ka * (1.0 + be)
+    F_st = 1.0 / a_st
+    q0, q1 = 1.0 - b, 1.0 + b
+    c["varpi"], c["alpha"], c["beta"], c["kappa"], c["b"] = wf, al, be, ka, b
+    c["a_stick"], c["w_free"], c["e"] = a_st, w_free, e
+    st = c["stick"]
+    q, a2, a3, K = st["q"], st["a2"], st["a3"], st["K"]
+    q[0], q[1] = q0, q1
+    st["w3"] = math.pow(wf, 3.0)  # as Python's wf**3 (libm pow)
+    if not damped:
+        c["F_free"] = 1.0 / al
+        _slip_fields(c["slip"], 1.0, b, w_free, (1.0 - al * ka) / al, wf, be * ka)
+        _slip_fields(c["reverse"], -1.0, b, w_free, (1.0 + al * ka) / al, wf, -be * ka)
+        P = _forced_amplitude(w_st, F_st, wf)
+        fast = _split_ok(P, w_st, F_st)
+        if P == P:
+            a2[0], a2[1] = abs(P - q0) * wf * wf, abs(P - q1) * wf * wf
+        if fast:
+            a3[0], a3[1] = abs(P - q0) * math.pow(wf, 3.0), abs(P - q1) * math.pow(wf, 3.0)
+            K[0], K[1] = P - q0, -1.0 * (P - q1)
+        st["w0"], st["F"], st["P"], st["fast"] = w_st, F_st, P, fast
+        c["damped"], c["zeta_v"], c["A"], c["bA"] = False, 0.0, 1.0, b
+        return t
+    cd, sd = math.cos(delta), math.sin(delta)
+    D = 2.0 * zh * math.sqrt(al) * wf
+    # G = D cos δ − sin δ = 2ϖ cos δ (ζ_h√α − ζ_v) (tan δ = 2ζ_vϖ): in this form it is
+    # exactly 0 when the tangential and normal dampers balance (ζ_h√α = ζ_v), not ±1e-18
+    Fs, Gc = cd + D * sd, 2.0 * wf * cd * (zh * math.sqrt(al) - zv)
+    c["F_free"] = Fs / al
+    _damped_slip_fields(c["slip"], 1.0, b, al, be, ka, zh, A, Fs, Gc)
+    _damped_slip_fields(c["reverse"], -1.0, b, al, be, ka, zh, A, Fs, Gc)
+    st["w0"], st["F"], st["P"], st["fast"] = 1.0 / math.sqrt(a_st), Fs / a_st, math.nan, False
+    st["g"], st["G"] = zh * math.sqrt(al) / a_st, Gc / a_st
+    c["damped"], c["g_free"], c["G_free"] = True, zh * math.sqrt(al) / al, Gc / al
+    c["zeta_v"], c["A"], c["bA"] = zv, A, b * A
+    return t
 
 
 def phase_table(p: ModelParams, *, general: bool = False) -> np.ndarray:
     """The constants of every phase of one parameter set (MODEL.md phase table).
 
+    Undamped, the forced amplitudes P = F/(w0² − ϖ²) and the fast split's constants of
+    every phase; with damping (docs/damping.md, kernel time φ = ϖτ, N ∝ A sin φ) every
+    phase is y'' + 2g y' + w0² y = F sin φ + G cos φ with inertia a (α, or α(1 + 1/β) in
+    stick): w0 = 1/sqrt(a), g = ζ_h sqrt(α)/a, F = (cos δ + D sin δ − σακA)/a,
+    G = (D cos δ − sin δ)/a = 2ϖ cos δ (ζ_h√α − ζ_v)/a, D = 2ζ_h sqrt(α) ϖ; the slider
+    s'' = σβκA sin φ; the undamped fast-path constants (P, K, ...) are not used
+    (``damped``: every evaluator takes its general form). Computed by the compiled
+    :func:`table_record`.
+
     Parameters
     ----------
     p : ModelParams
-        The model, with its optional damping (then every phase takes its general form,
-        :func:`_damped_fields`).
+        The model, with its optional damping (then every phase takes its general form).
     general : bool
         Every phase in its general (damped) form even without damping: a second
         implementation of the same events, which must agree with the undamped one at
@@ -183,101 +256,12 @@ def phase_table(p: ModelParams, *, general: bool = False) -> np.ndarray:
     ----------
     Shin et al., J. Appl. Phys. 96, 7603 (2004), doi:10.1063/1.1809773.
     """
-    al, be, ka, wf = p.alpha, p.beta, p.kappa, p.varpi
-    a_st = al * (1.0 + 1.0 / be)
-    w_free = 1.0 / math.sqrt(al)
-    w_st = 1.0 / math.sqrt(a_st)
-    b = al * ka * (1.0 + be)
-    F_st = 1.0 / a_st
-    qs = (1.0 - b, 1.0 + b)
-    P = _forced_amplitude(w_st, F_st, wf)
-    fast = _split_ok(P, w_st, F_st)
-    a2 = (0.0, 0.0) if P != P else (abs(P - qs[0]) * wf * wf, abs(P - qs[1]) * wf * wf)
-    a3 = (abs(P - qs[0]) * wf**3, abs(P - qs[1]) * wf**3) if fast else (0.0, 0.0)
-    K = (P - qs[0], -1.0 * (P - qs[1])) if fast else (0.0, 0.0)
-    row: dict[str, Any] = dict(
-        varpi=wf,
-        alpha=al,
-        beta=be,
-        kappa=ka,
-        b=b,
-        a_stick=a_st,
-        w_free=w_free,
-        F_free=1.0 / al,
-        slip=_slip_phase(1.0, b, w_free, (1.0 - al * ka) / al, wf, be * ka),
-        reverse=_slip_phase(-1.0, b, w_free, (1.0 + al * ka) / al, wf, -be * ka),
-        stick=dict(
-            w0=w_st, F=F_st, q=qs, P=P, a2=a2, a3=a3, K=K, w3=wf**3, fast=fast, g=0.0, G=0.0
-        ),
-        damped=False,
-        g_free=0.0,
-        G_free=0.0,
-        zeta_v=0.0,
-        A=1.0,
-        bA=b,
-        e=p.restitution,
+    damped = general or p.zeta_v != 0.0 or p.zeta_h != 0.0
+    delta, A = normal_force_phase(p.zeta_v, p.varpi) if damped else (0.0, 1.0)
+    table = table_record(
+        p.alpha, p.beta, p.kappa, p.varpi, p.restitution, damped, p.zeta_v, p.zeta_h, delta, A
     )
-    if general or p.zeta_v != 0.0 or p.zeta_h != 0.0:
-        row.update(_damped_fields(p, b, a_st))
-    table = np.array([_record(TABLE_DTYPE, row)], dtype=TABLE_DTYPE)
     return table if jit_enabled() else table.view(np.recarray)
-
-
-def _damped_fields(p: ModelParams, b: float, a_st: float) -> dict[str, Any]:
-    """The fields of the table row that damping changes.
-
-    The fields of the table row that damping changes (docs/damping.md, kernel time
-    φ = ϖτ, N ∝ A sin φ).
-
-    Every phase is y'' + 2g y' + w0² y = F sin φ + G cos φ with inertia a (α, or
-    α(1 + 1/β) in stick): w0 = 1/sqrt(a), g = ζ_h sqrt(α)/a,
-    F = (cos δ + D sin δ − σακA)/a, G = (D cos δ − sin δ)/a = 2ϖ cos δ (ζ_h√α − ζ_v)/a,
-    D = 2ζ_h sqrt(α) ϖ;
-    the slider s'' = σβκA sin φ. The undamped fast-path constants (P, K, ...) are not
-    used (``damped``: every evaluator takes its general form).
-    """
-    al, be, ka, wf = p.alpha, p.beta, p.kappa, p.varpi
-    delta, A = normal_force_phase(p.zeta_v, wf)
-    cd, sd = math.cos(delta), math.sin(delta)
-    D = 2.0 * p.zeta_h * math.sqrt(al) * wf
-    # G = D cos δ − sin δ = 2ϖ cos δ (ζ_h√α − ζ_v) (tan δ = 2ζ_vϖ): in this form it is
-    # exactly 0 when the tangential and normal dampers balance (ζ_h√α = ζ_v), not ±1e-18
-    Fs, Gc = cd + D * sd, 2.0 * wf * cd * (p.zeta_h * math.sqrt(al) - p.zeta_v)
-
-    def phase(sig: float) -> dict[str, Any]:
-        w0, ds = 1.0 / math.sqrt(al), sig * be * ka * A
-        F = (Fs - sig * al * ka * A) / al
-        g = p.zeta_h * math.sqrt(al) / al
-        return dict(
-            sig=sig, q=1.0 - sig * b, w0=w0, F=F, ds=ds, P=math.nan, apq=0.0, K=0.0,
-            fast=False, g=g, G=Gc / al,
-        )  # fmt: skip
-
-    stick = dict(
-        w0=1.0 / math.sqrt(a_st),
-        F=Fs / a_st,
-        q=(1.0 - b, 1.0 + b),
-        P=math.nan,
-        a2=(0.0, 0.0),
-        a3=(0.0, 0.0),
-        K=(0.0, 0.0),
-        w3=wf**3,
-        fast=False,
-        g=p.zeta_h * math.sqrt(al) / a_st,
-        G=Gc / a_st,
-    )
-    return dict(
-        F_free=Fs / al,
-        slip=phase(1.0),
-        reverse=phase(-1.0),
-        stick=stick,
-        damped=True,
-        g_free=p.zeta_h * math.sqrt(al) / al,
-        G_free=Gc / al,
-        zeta_v=p.zeta_v,
-        A=A,
-        bA=b * A,
-    )
 
 
 @kernel

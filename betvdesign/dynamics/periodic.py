@@ -44,30 +44,20 @@ from typing import Any
 
 import numpy as np
 
-from betvdesign.dynamics import contact, shooting
+from betvdesign.dynamics import shooting
 from betvdesign.dynamics.flows import phase_table
 from betvdesign.dynamics.jit import compile_note
 from betvdesign.dynamics.result import PeriodicResult
-from betvdesign.dynamics.shooting import TRUST
 from betvdesign.dynamics.solver import CycleFailure, CycleRunner
 from betvdesign.dynamics.vertical import VerticalSchedule, VerticalSearchError
 from betvdesign.errors import ParameterError
 from betvdesign.model.domain import ROUND_OFF_SCALE, mode_of
 from betvdesign.model.params import ModelParams
 
-POLISH = 1e-14
 #: |α·ϖ² − 1| at or below which the free-flight tangential resonance counts as exact.
 RESONANCE_RTOL = 1e-9
 #: Cycles over which the secular growth at an exact resonance is measured.
 GROWTH_WINDOW = 256
-#: Anderson acceleration: differences kept, map evaluations allowed, evaluations without a
-#: new best residual before giving up, residual at which Newton takes over.
-ANDERSON_DEPTH = 5
-ANDERSON_BUDGET = 600
-ANDERSON_STALL = 24
-ANDERSON_HANDOFF = 1e-8
-#: Bisection steps on the slider velocity when Anderson stalls (:func:`_bracket_slider`).
-BRACKET_BISECT = 40
 
 
 def resonance_growth_bound(p: ModelParams) -> float | None:
@@ -94,176 +84,6 @@ def resonance_growth_bound(p: ModelParams) -> float | None:
     if not p.ideal or abs(p.alpha * p.varpi**2 - 1.0) > RESONANCE_RTOL or ak >= 2.0:
         return None
     return math.pi * (1.0 - 0.5 * ak)
-
-
-class _Map:
-    """The section map Φⁿ of the periodic search, with its counters.
-
-    Φⁿ: section state (ζ, ζ', s') at the first periodic cycle → n cycles later
-    (compiled: :mod:`shooting`); counts cycles, events and evaluations.
-    """
-
-    def __init__(self, c: np.ndarray, vs: VerticalSchedule, m0: int):
-        self.c, self.vs, self.m0 = c, vs, m0
-        self.count = np.zeros(3, dtype=np.int64)  # cycles, events, evaluations
-        self._shots: dict[int, tuple] = {}
-        self._rows = np.empty((0, 4))
-        self._log = np.empty(0, contact.LOG_DTYPE)
-        self._segs = np.empty(0, contact.SEG_DTYPE)
-
-    @property
-    def n_cycles(self) -> int:
-        return int(self.count[0])
-
-    @property
-    def n_events(self) -> int:
-        return int(self.count[1])
-
-    @property
-    def n_evals(self) -> int:
-        return int(self.count[2])
-
-    def shot(self, n: int) -> tuple:
-        """The map's arguments over n cycles (:data:`shooting.SHOT`)."""
-        sh = self._shots.get(n)
-        if sh is None:
-            idx = self.vs.row(np.arange(self.m0, self.m0 + n))
-            sh = (
-                self.c,
-                self.vs.table,
-                idx,
-                self.vs.impulsive,
-                self.m0,
-                self._rows,
-                self._log,
-                self._segs,
-                self.count,
-            )
-            if n <= 64:  # repeated calls of the periodic map; a long transient runs once
-                self._shots[n] = sh
-        return sh
-
-    def __call__(self, x: np.ndarray, n: int) -> tuple[np.ndarray, float]:
-        ok, y, s = shooting.section_map(*self.shot(n), np.asarray(x, dtype=float))
-        if not ok:  # run again where the failure is explained (rare path)
-            CycleRunner(self.c, self.vs).run(self.m0, n, x[0], x[1], 0.0, x[2], check_finite=False)
-            raise CycleFailure(f"a contact could not be advanced from cycle {self.m0}", self.m0)
-        return y, s
-
-    def residual(self, x: np.ndarray, n: int) -> tuple[float, np.ndarray, float]:
-        return shooting.residual(*self.shot(n), np.asarray(x, dtype=float))
-
-    def jacobian(self, x: np.ndarray, n: int, y: np.ndarray, central: bool = False) -> np.ndarray:
-        ok, J = shooting.jacobian(*self.shot(n), x, y, central)
-        if not ok:
-            raise CycleFailure("a contact could not be advanced (Jacobian)", self.m0)
-        return J
-
-
-def _newton(
-    phi: _Map, x: np.ndarray, n: int, tol: float, polish: float = 0.0
-) -> tuple[np.ndarray, float, float, int]:
-    """Newton on Φⁿ(x) − x = 0 (:func:`shooting.newton`): (x, residual, s, iterations)."""
-    x, r, s, it = shooting.newton(*phi.shot(n), np.asarray(x, dtype=float), tol, polish)
-    return x, r, s, int(it)
-
-
-def _anderson(phi: _Map, x: np.ndarray, n: int) -> np.ndarray | None:
-    """A start for Newton from iterate ``x``: Anderson-accelerated iteration of Φⁿ.
-
-    Plain iteration settles at the rate |μ|max per period (≥ 0.99 near ϖ → 2: thousands of
-    cycles), and Newton fails far from the orbit because the map is only piecewise smooth
-    (far out a whole contact slips one way: s' is then neutral and J − I singular).
-    Anderson mixing (type II, depth :data:`ANDERSON_DEPTH`) extrapolates from the last
-    iterates; every extrapolated point must stay in the trust region around the starting
-    iterate (Newton's) — else the history is dropped and the plain image taken.
-    This keeps it off the round-off "fixed points" at |s'| ~ 1e14, where a whole contact
-    slips one way and the slider's increment falls below the ulp of s'.
-    Returns the best point (‖Φⁿ(x) − x‖∞ ≤ :data:`ANDERSON_HANDOFF`), or None. Never
-    accepts anything itself: Newton's residual test decides.
-    """
-    X: list[np.ndarray] = []
-    F: list[np.ndarray] = []
-    best, best_r, since = None, math.inf, 0
-    x0, radius = x, TRUST * (1.0 + float(np.max(np.abs(x))))
-    for _ in range(ANDERSON_BUDGET // n):
-        r, y, _ = phi.residual(x, n)
-        if not math.isfinite(r):
-            return None
-        if r < best_r:
-            best, best_r, since = x, r, 0
-            if r <= ANDERSON_HANDOFF:
-                return best
-        else:
-            since += n
-            if since > ANDERSON_STALL:
-                break
-        f = y - x
-        X.append(x)
-        F.append(f)
-        if len(X) > ANDERSON_DEPTH + 1:
-            del X[0], F[0]
-        xn = y
-        if len(X) > 1:
-            dF = np.diff(np.array(F), axis=0).T
-            dX = np.diff(np.array(X), axis=0).T
-            try:
-                g = np.linalg.lstsq(dF, f, rcond=None)[0]
-                xn = y - (dX + dF) @ g
-            except np.linalg.LinAlgError:
-                xn = y
-            if not (float(np.max(np.abs(xn - x0))) <= radius):
-                X, F, xn = [], [], y
-        x = xn
-    if best is None:
-        return None
-    return _bracket_slider(phi, best, n, radius)
-
-
-def _bracket_slider(phi: _Map, x: np.ndarray, n: int, radius: float) -> np.ndarray | None:
-    """Move s' alone to where its increment over n cycles changes sign (bisection).
-
-    Where a whole contact slips one way the slider's velocity s' does not act on the head
-    (ζ, ζ'), so Anderson stalls with ζ, ζ' settled and a constant s' increment c ≠ 0.
-    A periodic orbit needs the friction to change sign within the contact, i.e. s' inside
-    the range of ζ' there: s' is walked (doubling steps, within ``radius``) in the
-    direction of c until the increment changes sign, then bisected on that sign.
-    """
-    r, y, _ = phi.residual(x, n)
-    if not math.isfinite(r):
-        return None
-    c = float(y[2] - x[2])
-    if c == 0.0:
-        return x
-    lo, hi = float(x[2]), None
-    step = 0.01 * (1.0 + abs(float(x[1])))
-    while step <= radius:
-        xt = x.copy()
-        xt[2] = lo + math.copysign(step, c)
-        rt, yt, _ = phi.residual(xt, n)
-        if not math.isfinite(rt):
-            return None
-        if (yt[2] - xt[2]) * c <= 0.0:
-            hi = float(xt[2])
-            break
-        step *= 2.0
-    if hi is None:
-        return None
-    lo = hi - math.copysign(step, c) if step > 0.01 * (1.0 + abs(float(x[1]))) else lo
-    for _ in range(BRACKET_BISECT):
-        mid = 0.5 * (lo + hi)
-        xt = x.copy()
-        xt[2] = mid
-        rt, yt, _ = phi.residual(xt, n)
-        if not math.isfinite(rt):
-            return None
-        if (yt[2] - xt[2]) * c > 0.0:
-            lo = mid
-        else:
-            hi = mid
-    x = x.copy()
-    x[2] = 0.5 * (lo + hi)
-    return x
 
 
 def periodic_orbit(
@@ -366,15 +186,16 @@ def not_driven_message(p: ModelParams, cycles: int, contact_fraction: float | No
     )
 
 
-def _spent(vs: VerticalSchedule, phi: _Map | None, t0: float) -> dict[str, Any]:
+def _spent(vs: VerticalSchedule, count: np.ndarray | None, t0: float) -> dict[str, Any]:
     """What every answer of :func:`_periodic_orbit` carries.
 
     Parameters
     ----------
     vs : VerticalSchedule
         The vertical motion.
-    phi : _Map or None
-        The section map (None before it exists).
+    count : numpy.ndarray or None
+        The periodic map's counters [cycles, events, root evaluations] (None before it
+        ran).
     t0 : float
         :func:`time.perf_counter` at the start [s].
 
@@ -384,282 +205,33 @@ def _spent(vs: VerticalSchedule, phi: _Map | None, t0: float) -> dict[str, Any]:
         The vertical motion's hits and contact fraction, the counters so far and the
         time taken [s].
     """
+    cycles, events, evals = (0, 0, 0) if count is None else count.tolist()
     return dict(
         impacts_per_cycle=vs.hits_per_cycle(),
         contact_fraction=vs.contact_fraction(),
-        n_cycles=phi.n_cycles if phi else 0,
-        n_events=phi.n_events if phi else 0,
-        n_root_evals=(phi.n_evals if phi else 0) + vs.n_root_evals,
+        n_cycles=cycles,
+        n_events=events,
+        n_root_evals=evals + vs.n_root_evals,
         elapsed_s=time.perf_counter() - t0,
     )
 
 
-def _from_rest(
-    p: ModelParams, vs: VerticalSchedule, phi: _Map, max_cycles: int, t0: float
-) -> PeriodicResult | tuple[np.ndarray, float]:
-    """Run from rest to the first periodic cycle of the vertical motion.
+def _map_failure(c: np.ndarray, vs: VerticalSchedule, m0: int, n: int, x: np.ndarray) -> str:
+    """Why the map over cycles m0..m0+n−1 from (ζ, ζ', s') = x failed (rare path).
 
-    A design whose motion provably grows without bound (:func:`resonance_growth_bound`)
-    is told here, from a measured window of growth.
-
-    Parameters
-    ----------
-    p : ModelParams
-        The model.
-    vs : VerticalSchedule
-        Its vertical motion (periodic).
-    phi : _Map
-        The section map from the first periodic cycle.
-    max_cycles : int
-        The cycle budget [-].
-    t0 : float
-        :func:`time.perf_counter` at the start [s].
+    The compiled search only says that a contact could not be advanced; the same cycles
+    are run again where the failure is explained (:class:`~solver.CycleRunner`).
 
     Returns
     -------
-    PeriodicResult or tuple
-        A failure ("failed", "unbounded"), or the section state (ζ, ζ', s') [-] at the
-        first periodic cycle and the travel s [-] so far.
+    str
+        The failure's message.
     """
-    m0, kv = phi.m0, vs.period
-    pre = _Map(phi.c, vs, 0)
     try:
-        x, s_total = pre(np.zeros(3), m0)
+        CycleRunner(c, vs).run(m0, n, x[0], x[1], 0.0, x[2], check_finite=False)
     except (CycleFailure, RuntimeError) as exc:
-        return PeriodicResult.failure(
-            p, "failed", f"transient from rest failed: {exc}", **_spent(vs, phi, t0)
-        )
-    bound = resonance_growth_bound(p)
-    if bound is not None:
-        window = min(GROWTH_WINDOW, max_cycles - m0)  # the budget holds here too
-        grown = _measure_growth(phi, x.copy(), bound, kv, window)
-        if grown is not None:
-            rate, n, amp, s_win = grown
-            return PeriodicResult.failure(
-                p,
-                "unbounded",
-                _unbounded_message(p, bound, rate, n, amp, m0 + n),
-                transient_cycles=m0 + n,
-                transient_s=s_total + s_win,
-                **_spent(vs, phi, t0),
-            )
-    return x, s_total
-
-
-def _newton_period(
-    phi: _Map, x: np.ndarray, n: int, tol: float, accelerated: set[int]
-) -> tuple[np.ndarray, float, float, int]:
-    """Newton for a fixed point of Φⁿ from ``x``, restarted once per n from Anderson.
-
-    Parameters
-    ----------
-    phi : _Map
-        The section map.
-    x : numpy.ndarray
-        The start (ζ, ζ', s') [-].
-    n : int
-        The period tried [cycles].
-    tol : float
-        The residual asked [-].
-    accelerated : set of int
-        The periods already restarted from Anderson (updated).
-
-    Returns
-    -------
-    tuple
-        The state [-], its residual [-], the travel over n cycles [-] and the Newton
-        iterations.
-    """
-    xs, r, s, n_newton = _newton(phi, x.copy(), n, tol, POLISH)
-    if r > tol and n not in accelerated:  # once per period: a better start
-        accelerated.add(n)
-        xa = _anderson(phi, x.copy(), n)
-        if xa is not None:
-            xs, r, s, it = _newton(phi, xa, n, tol, POLISH)
-            n_newton += it
-    return xs, r, s, n_newton
-
-
-def _shortest_period(
-    phi: _Map, found: tuple[np.ndarray, float, float], j: int, kv: int, tol: float
-) -> tuple[np.ndarray, float, float, int, int]:
-    """The shortest period of a fixed point of Φ^(j·kv): a divisor's, if it is one too.
-
-    Parameters
-    ----------
-    phi : _Map
-        The section map.
-    found : tuple
-        The fixed point (ζ, ζ', s') [-], its residual [-] and travel [-].
-    j : int
-        Its period in vertical periods.
-    kv : int
-        The vertical period [cycles].
-    tol : float
-        The residual asked [-].
-
-    Returns
-    -------
-    tuple
-        The state, residual, travel and period [cycles] kept, and the Newton iterations
-        spent.
-    """
-    xs, r, s = found
-    n, n_newton = j * kv, 0
-    for d in range(1, j):  # a period-n fixed point may have a shorter period
-        if j % d == 0:
-            xd, rd, sd, itd = _newton(phi, xs.copy(), d * kv, tol, POLISH)
-            n_newton += itd
-            if rd <= tol and float(np.max(np.abs(xd - xs))) <= 1e3 * tol:
-                xs, r, s, n = xd, rd, sd, d * kv
-                break
-    return xs, r, s, n, n_newton
-
-
-def _accept(
-    phi: _Map, vs: VerticalSchedule, xs: np.ndarray, n: int, tol: float
-) -> tuple[float, np.ndarray, list[float], float] | None:
-    """Accept a fixed point of Φⁿ if it is stable and periodic to ``tol`` in full.
-
-    Parameters
-    ----------
-    phi : _Map
-        The section map.
-    vs : VerticalSchedule
-        The vertical motion.
-    xs : numpy.ndarray
-        The fixed point (ζ, ζ', s') [-].
-    n : int
-        Its period [cycles].
-    tol : float
-        The residual asked [-].
-
-    Returns
-    -------
-    tuple or None
-        The residual of the whole state, tangential and vertical [-], the Floquet
-        multipliers by decreasing modulus, the vertical section state (ξ, ξ') [-] and
-        the travel over n cycles [-]; None for an unstable orbit (not where the device
-        settles) or one not periodic to ``tol``.
-    """
-    J = phi.jacobian(xs, n, xs, central=True)
-    mu = np.linalg.eigvals(J)
-    mu = mu[np.argsort(-np.abs(mu))]
-    if np.max(np.abs(mu)) >= 1.0:
-        return None  # an unstable orbit: not where the device settles
-    r_final, _, s = phi.residual(xs, n)
-    a, b = vs.table[vs.row(np.array([phi.m0, phi.m0 + n]))].tolist()
-    vert = abs(b[0] - a[0]) + abs(b[1] - a[1])
-    r_final = max(r_final, vert)
-    if r_final > tol:
-        return None
-    return r_final, mu, a, s
-
-
-def _orbit(
-    p: ModelParams,
-    vs: VerticalSchedule,
-    phi: _Map,
-    t0: float,
-    found: tuple[np.ndarray, int, float],
-    accepted: tuple[float, np.ndarray, list[float], float],
-    counts: tuple[int, int, float],
-) -> PeriodicResult:
-    """The answer for an accepted periodic orbit.
-
-    Parameters
-    ----------
-    p : ModelParams
-        The model.
-    vs : VerticalSchedule
-        The vertical motion.
-    phi : _Map
-        The section map.
-    t0 : float
-        :func:`time.perf_counter` at the start [s].
-    found : tuple
-        The fixed point (ζ, ζ', s') [-], its period [cycles] and the residual asked [-].
-    accepted : tuple
-        :func:`_accept`'s answer.
-    counts : tuple
-        Newton iterations, transient cycles and the travel s [-] over them.
-
-    Returns
-    -------
-    PeriodicResult
-        Status "success".
-    """
-    xs, n, tol = found
-    n_newton, brute, s_total = counts
-    r_final, mu, a, s = accepted
-    ds = s / n
-    return PeriodicResult(
-        params=p,
-        status="success",
-        message=f"periodic orbit of {n} cycle(s), residual {r_final:.2e} ≤ {tol:.0e}, "
-        f"|μ|max = {abs(mu[0]):.6f}",
-        delta_s=ds,
-        mode=mode_of(ds),
-        period_cycles=n,
-        residual=r_final,
-        floquet=mu,
-        stable=True,
-        state=np.array([a[0], a[1], xs[0], xs[1], 0.0, xs[2]]),
-        n_newton=n_newton,
-        transient_cycles=brute,
-        transient_s=s_total,
-        **_spent(vs, phi, t0),
-    )
-
-
-def _not_converged(
-    p: ModelParams,
-    vs: VerticalSchedule,
-    phi: _Map,
-    t0: float,
-    best: tuple[float, int],
-    max_period: int,
-    counts: tuple[int, int, float],
-) -> PeriodicResult:
-    """The answer when the cycle budget is spent with no stable orbit accepted.
-
-    Parameters
-    ----------
-    p : ModelParams
-        The model.
-    vs : VerticalSchedule
-        The vertical motion.
-    phi : _Map
-        The section map.
-    t0 : float
-        :func:`time.perf_counter` at the start [s].
-    best : tuple of (float, int)
-        The smallest residual found [-] and its period [cycles].
-    max_period : int
-        The longest period tried, in vertical periods.
-    counts : tuple
-        Newton iterations, transient cycles and the travel s [-] over them.
-
-    Returns
-    -------
-    PeriodicResult
-        Status "not_converged".
-    """
-    kv = vs.period
-    n_newton, brute, s_total = counts
-    return PeriodicResult.failure(
-        p,
-        "not_converged",
-        f"no stable periodic orbit of period ≤ {max_period * kv} cycles found within "
-        f"{brute} cycles (best residual {best[0]:.2e} for period {best[1]}); the "
-        "motion may be quasi-periodic or growing (near a·ϖ² = 1); try a larger "
-        "max_cycles or max_period",
-        n_newton=n_newton,
-        transient_cycles=brute,
-        transient_s=s_total,
-        residual=best[0],
-        **_spent(vs, phi, t0),
-    )
+        return str(exc)
+    return f"a contact could not be advanced from cycle {m0}"
 
 
 def _periodic_orbit(
@@ -667,10 +239,10 @@ def _periodic_orbit(
 ) -> PeriodicResult:
     """The search of :func:`periodic_orbit` (its arguments, checked).
 
-    The vertical motion first (:class:`VerticalSchedule`), the transient from rest
-    (:func:`_from_rest`), then chunks of brute-force iteration, each followed by Newton
-    for every period up to ``max_period`` vertical periods (:func:`_newton_period`,
-    :func:`_shortest_period`, :func:`_accept`).
+    The vertical motion first (:class:`VerticalSchedule`: not driven, or its period), then
+    the whole search in one compiled call (:func:`shooting.orbit`: the transient from
+    rest, the growth at the resonance, brute force, Newton with Anderson starts, the
+    shortest period, the Floquet multipliers), whose arrays make the answer here.
 
     Returns
     -------
@@ -695,78 +267,163 @@ def _periodic_orbit(
             p, "not_driven", not_driven_message(p, vs.n_prefix, frac), **_spent(vs, None, t0)
         )
     kv = vs.period
-    assert vs.first_end is not None
-    m0 = vs.first_end + 1
-    phi = _Map(k, vs, m0)
-    # From rest to the first periodic cycle, then `transient` more (multiples of k_v).
-    start = _from_rest(p, vs, phi, max_cycles, t0)
-    if isinstance(start, PeriodicResult):
-        return start
-    x, s_total = start
-    brute = m0
-    chunk = max(kv, (transient // kv) * kv)
-    n_newton = 0
-    accelerated: set[int] = set()
-    best: tuple[float, int] = (math.inf, kv)
-    while True:
-        try:
-            x, s_chunk = phi(x, chunk)
-            s_total += s_chunk
-        except (CycleFailure, RuntimeError) as exc:
-            why = f"brute-force iteration failed after {brute} cycles: {exc}"
-            return PeriodicResult.failure(p, "failed", why, **_spent(vs, phi, t0))
-        brute += chunk
-        if not np.all(np.isfinite(x)):
-            why = f"state became non-finite after {brute} cycles"
-            return PeriodicResult.failure(p, "failed", why, **_spent(vs, phi, t0))
-        for j in range(1, max_period + 1):
-            xs, r, s, it = _newton_period(phi, x, j * kv, tol, accelerated)
-            n_newton += it
-            if r < best[0]:
-                best = (r, j * kv)
-            if r > tol:
-                continue
-            xs, r, s, n, it = _shortest_period(phi, (xs, r, s), j, kv, tol)
-            n_newton += it
-            accepted = _accept(phi, vs, xs, n, tol)
-            if accepted is None:
-                continue
-            found = (xs, n, tol)
-            return _orbit(p, vs, phi, t0, found, accepted, (n_newton, brute, s_total))
-        if brute >= max_cycles:
-            counts = (n_newton, brute, s_total)
-            return _not_converged(p, vs, phi, t0, best, max_period, counts)
-        chunk = min(2 * chunk, max(kv, ((max_cycles - brute) // kv) * kv))
+    m0 = vs.n_prefix  # the first cycle after the first contact end
+    bound = resonance_growth_bound(p)
+    code, x, mu, fo, io, count = shooting.orbit(
+        k,
+        vs.table,
+        vs.impulsive,
+        m0,
+        kv,
+        float(tol),  # one compiled signature, whatever number types the caller passed
+        int(max_cycles),
+        int(max_period),
+        int(transient),
+        math.nan if bound is None else bound,
+        int(min(GROWTH_WINDOW, max_cycles - m0)),
+        int(shooting.ANDERSON_BUDGET),
+    )
+    if code == shooting.FOUND:
+        return _orbit(p, vs, t0, x, mu, fo.tolist(), io.tolist(), count, tol)
+    f, i = fo.tolist(), io.tolist()
+    if code == shooting.NOT_CONVERGED:
+        return _not_converged(p, vs, t0, f, i, max_period, count)
+    if code == shooting.UNBOUNDED:
+        assert bound is not None
+        return PeriodicResult.failure(
+            p,
+            "unbounded",
+            _unbounded_message(p, bound, f[5], i[4], f[6], m0 + i[4]),
+            transient_cycles=m0 + i[4],
+            transient_s=f[2] + f[7],
+            **_spent(vs, count, t0),
+        )
+    if code == shooting.FLOQUET_FAILED:
+        raise CycleFailure("a contact could not be advanced (Jacobian)", m0)
+    if code == shooting.REST_FAILED:
+        why = f"transient from rest failed: {_map_failure(k, vs, 0, i[4], x)}"
+    elif code == shooting.CHUNK_FAILED:
+        why = f"brute-force iteration failed after {i[2]} cycles: " + _map_failure(
+            k, vs, m0, i[4], x
+        )
+    else:
+        why = f"state became non-finite after {i[2]} cycles"
+    return PeriodicResult.failure(p, "failed", why, **_spent(vs, count, t0))
 
 
-def _measure_growth(
-    phi: _Map, x: np.ndarray, bound: float, kv: int, window: int
-) -> tuple[float, int, float, float] | None:
-    """Check a proven per-cycle fall of ζ by iterating the map.
+def _orbit(
+    p: ModelParams,
+    vs: VerticalSchedule,
+    t0: float,
+    xs: np.ndarray,
+    mu: np.ndarray,
+    f: list[float],
+    i: list[int],
+    count: np.ndarray,
+    tol: float,
+) -> PeriodicResult:
+    """The answer for an accepted periodic orbit (:data:`shooting.FOUND`).
 
-    Iterate about ``window`` cycles (at least ``kv``) from ``x`` in steps of the vertical
-    period ``kv``; return (mean fall of ζ per cycle [-], cycles, final amplitude
-    sqrt(ζ² + (ζ'/ϖ)²) [-], s gained [-]) when every step's fall is at least ``kv`` times
-    the proven per-cycle ``bound`` (up to round-off), else None (the bound is not borne
-    out, e.g. a solver defect: then the normal search decides).
+    Parameters
+    ----------
+    p : ModelParams
+        The model.
+    vs : VerticalSchedule
+        The vertical motion.
+    t0 : float
+        :func:`time.perf_counter` at the start [s].
+    xs : numpy.ndarray
+        The fixed point (ζ, ζ', s') [-].
+    mu : numpy.ndarray
+        The multipliers' real parts, imaginary parts and moduli, (3, 3) [-].
+    f, i : list
+        :func:`shooting.orbit`'s floats and ints.
+    count : numpy.ndarray
+        The map's counters.
+    tol : float
+        The residual asked [-].
+
+    Returns
+    -------
+    PeriodicResult
+        Status "success"; the multipliers complex (real when they all are, as
+        :func:`numpy.linalg.eigvals` gives them).
     """
-    varpi = float(phi.c["varpi"][0])
-    z0 = float(x[0])
-    steps = max(1, window // kv)
-    s_total = 0.0
-    try:
-        for _ in range(steps):
-            z_prev = float(x[0])
-            x, s = phi(x, kv)
-            s_total += s
-            if z_prev - float(x[0]) < kv * bound - 1e-9 * max(1.0, abs(z_prev)):
-                return None
-    except (CycleFailure, RuntimeError):
-        return None
-    if not np.all(np.isfinite(x)):
-        return None
-    n = steps * kv
-    return (z0 - float(x[0])) / n, n, math.hypot(float(x[0]), float(x[1]) / varpi), s_total
+    r_final, s, s_total, xi, xid = f[:5]
+    n, n_newton, brute = i[:3]
+    if any(mu[1].tolist()):  # as numpy's eigvals: real unless an imaginary part is not 0
+        floquet = np.empty(3, complex)
+        floquet.real, floquet.imag = mu[0], mu[1]
+    else:
+        floquet = mu[0].copy()
+    ds = s / n
+    return PeriodicResult(
+        params=p,
+        status="success",
+        message=f"periodic orbit of {n} cycle(s), residual {r_final:.2e} ≤ {tol:.0e}, "
+        f"|μ|max = {float(mu[2, 0]):.6f}",
+        delta_s=ds,
+        mode=mode_of(ds),
+        period_cycles=n,
+        residual=r_final,
+        floquet=floquet,
+        stable=True,
+        state=np.array([xi, xid, xs[0], xs[1], 0.0, xs[2]]),
+        n_newton=n_newton,
+        transient_cycles=brute,
+        transient_s=s_total,
+        **_spent(vs, count, t0),
+    )
+
+
+def _not_converged(
+    p: ModelParams,
+    vs: VerticalSchedule,
+    t0: float,
+    f: list[float],
+    i: list[int],
+    max_period: int,
+    count: np.ndarray,
+) -> PeriodicResult:
+    """The answer when the cycle budget is spent with no stable orbit accepted.
+
+    Parameters
+    ----------
+    p : ModelParams
+        The model.
+    vs : VerticalSchedule
+        The vertical motion.
+    t0 : float
+        :func:`time.perf_counter` at the start [s].
+    f, i : list
+        :func:`shooting.orbit`'s floats (best residual, transient travel) and ints
+        (Newton iterations, transient cycles, period of the best residual).
+    max_period : int
+        The longest period tried, in vertical periods.
+    count : numpy.ndarray
+        The map's counters.
+
+    Returns
+    -------
+    PeriodicResult
+        Status "not_converged".
+    """
+    kv = vs.period
+    best_r, s_total = f[0], f[2]
+    n_newton, brute, best_n = i[1], i[2], i[3]
+    return PeriodicResult.failure(
+        p,
+        "not_converged",
+        f"no stable periodic orbit of period ≤ {max_period * kv} cycles found within "
+        f"{brute} cycles (best residual {best_r:.2e} for period {best_n}); the "
+        "motion may be quasi-periodic or growing (near a·ϖ² = 1); try a larger "
+        "max_cycles or max_period",
+        n_newton=n_newton,
+        transient_cycles=brute,
+        transient_s=s_total,
+        residual=best_r,
+        **_spent(vs, count, t0),
+    )
 
 
 def _unbounded_message(

@@ -515,3 +515,60 @@ def gap_at(wf, zv, A, cyc_row_tc, pieces, start, count, t):
     p = pieces[best]
     y, yd, _, _ = vertical_flight(wf, zv, A, p["xi"], p["xid"], p["sp"], p["cp"], t - p["t"])
     return y, yd
+
+
+@kernel
+def cycle_rows(m, n_prefix, period):
+    """Rows of the vertical table (:data:`CYCLE_DTYPE`) of cycles m.
+
+    The table holds the prefix (cycles 0..n_prefix−1) and one period after it: a cycle
+    past the prefix maps into that period.
+
+    Parameters
+    ----------
+    m : numpy.ndarray
+        Cycles (int, 0-based, ≥ 0).
+    n_prefix : int
+        Rows of the prefix.
+    period : int
+        The period [cycles] (> 0 when any m ≥ n_prefix).
+
+    Returns
+    -------
+    numpy.ndarray
+        int64 rows, one per cycle.
+    """
+    idx = np.empty(m.size, np.int64)
+    for j in range(m.size):
+        k = m[j]
+        idx[j] = k if k < n_prefix else n_prefix + (k - n_prefix) % period
+    return idx
+
+
+@kernel
+def period_rates(tab, first, last, T, te):
+    """Hits per cycle and fraction of time in contact over the rows tab[first:last].
+
+    Parameters
+    ----------
+    tab : numpy.ndarray
+        The vertical table (:data:`CYCLE_DTYPE`).
+    first, last : int
+        The rows of one period (or of the whole horizon when there is none).
+    T, te : float
+        The cycle 2π/ϖ and the contact end π/ϖ [-].
+
+    Returns
+    -------
+    tuple of float
+        Contact-opening and impulsive hits per cycle [-]; fraction of the time in
+        contact [-] (the contacts' lengths te − t_c summed in row order).
+    """
+    hits, tc = 0, 0.0
+    for i in range(first, last):
+        t = tab[i]["tc"]
+        hits += tab[i]["imp_count"] + (1 if t == t else 0)
+        if t == t:
+            tc += te - t
+    n = max(last - first, 1)
+    return hits / n, tc / (T * n)

@@ -164,7 +164,7 @@ class VerticalSchedule:
         if m.size and m[-1] >= k:
             if self.period is None:
                 raise IndexError(f"cycle {int(m[-1])} beyond the computed vertical horizon")
-            m = np.where(m < k, m, k + (m - k) % self.period)
+            m = schedule.cycle_rows(m, k, self.period)
         return m
 
     def cycle(self, m: int) -> VerticalCycle:
@@ -240,12 +240,8 @@ class VerticalSchedule:
 
     @cached_property
     def _per_period(self) -> tuple[float, float]:
-        rows = self.period_rows()
-        tcs, imps = rows["tc"].tolist(), rows["imp_count"].tolist()
-        n = max(len(tcs), 1)
-        hits = sum(k + (t == t) for t, k in zip(tcs, imps, strict=True))
-        tc = sum(self.te - t for t in tcs if t == t)
-        return hits / n, tc / (self.T * n)
+        first, last = (self.n_prefix, len(self.table)) if self.period else (0, self.n_prefix)
+        return schedule.period_rates(self.table, first, last, self.T, self.te)
 
     def n_hits(self) -> int:
         """Hits located in the cycles of ``table``.
