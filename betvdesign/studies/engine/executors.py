@@ -535,3 +535,65 @@ def make_executor(
     if backend == "dask":
         raise UsageError("the dask executor needs --scheduler tcp://host:port")
     raise UsageError(f"unknown executor {backend!r} (serial, process or dask)")
+
+
+@contextlib.contextmanager
+def open_executor(
+    backend: str = "process",
+    *,
+    workers: int | None = None,
+    chunksize: int | None = None,
+    scheduler: str | None = None,
+) -> Iterator[Executor]:
+    """An executor by name, with a local dask cluster of its own when dask has no scheduler.
+
+    As :func:`make_executor`, except that ``dask`` without a ``scheduler`` starts a
+    ``distributed.LocalCluster`` of ``workers`` single-thread worker processes (default:
+    every core) for the duration of the block, and closes it after.
+
+    Parameters
+    ----------
+    backend : {"serial", "process", "dask"}
+        The executor (case-insensitive).
+    workers : int, optional
+        Worker processes of ``process`` and of a local dask cluster (None: every core).
+    chunksize : int, optional
+        Tasks per chunk (None: :func:`default_chunksize`).
+    scheduler : str, optional
+        A dask scheduler address ``tcp://host:port``; implies ``dask``.
+
+    Yields
+    ------
+    Executor
+        The executor.
+
+    Raises
+    ------
+    UsageError
+        As :func:`make_executor`; dask not installed.
+    """
+    if backend.strip().lower() != "dask" or scheduler is not None:
+        yield make_executor(backend, workers=workers, chunksize=chunksize, scheduler=scheduler)
+        return
+    if workers is not None and not 1 <= workers <= limits.MAX_WORKERS:
+        raise UsageError(f"workers must be >= 1 and <= {limits.MAX_WORKERS:,}, got {workers}")
+    try:
+        import logging
+
+        from distributed import Client, LocalCluster
+    except ImportError:  # pragma: no cover - the extra is installed in the test env
+        raise UsageError(
+            "the dask executor needs dask.distributed: pip install 'betvdesign[dask]'"
+        ) from None
+    cluster = LocalCluster(
+        n_workers=workers or os.cpu_count() or 1,
+        threads_per_worker=1,
+        processes=True,
+        dashboard_address=None,
+        silence_logs=logging.ERROR,
+    )
+    try:
+        with Client(cluster) as client:
+            yield DaskExecutor(client=client, chunksize=chunksize)
+    finally:
+        cluster.close()
