@@ -1,0 +1,276 @@
+"""The design-space atlas (``betv sweep atlas``): rows, backends, resume, refusals.
+
+Sources of truth: the push/pull map's and the field sweep's own studies (another path:
+one task list, the study runner and its CSV store) for the rows; the serial atlas for the
+process pool and dask (a ``distributed.LocalCluster`` of 2 worker processes), bit for bit
+per column; an uninterrupted atlas for an interrupted-and-resumed one; the scipy reference
+integrator (:mod:`betvdesign.dynamics.reference`) for the physics of a few points.
+"""
+
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+from conftest import require_module
+from typer.testing import CliRunner
+
+from betvdesign.cli import app
+from betvdesign.errors import UsageError
+from betvdesign.studies.atlas import device_atlas, pushpull_atlas, run_atlas
+from betvdesign.studies.engine.chunkstore import (
+    concat_columns,
+    decode_rows,
+    encode_columns,
+    read_table,
+)
+from betvdesign.studies.engine.executors import SerialExecutor
+from betvdesign.studies.engine.runner import run_study
+from betvdesign.studies.pushpull import pushpull_study
+
+ROOT = Path(__file__).resolve().parents[1]
+PUSH_DEMO = ROOT / "devices" / "push_demo.yaml"
+
+#: A 10³-point sub-grid of the benchmark's 10⁶-point atlas (benchmarks/bench_atlas.py):
+#: every 4th ϖ, α, β and κ of its 40 × 25 × 25 × 40 grid, but 10 of each.
+GRID_1000 = {
+    "varpi": np.linspace(0.3, 3.0, 40)[::4][:10],
+    "alpha": np.geomspace(0.1, 10.0, 25)[::2][:10],
+    "beta": np.geomspace(0.05, 2.0, 25)[::2][:10],
+    "kappa": np.linspace(0.05, 0.6, 40)[::4][:1],
+}
+
+
+@pytest.fixture(scope="module")
+def cluster():
+    distributed = require_module("distributed")
+    with distributed.LocalCluster(
+        n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
+    ) as cl:
+        yield cl
+
+
+def _bits(table: dict[str, np.ndarray]) -> dict[str, bytes]:
+    """Every encoded column as raw bytes (floats bit for bit, NaN included)."""
+    return {k: np.ascontiguousarray(v).tobytes() for k, v in table.items()}
+
+
+def test_columns_round_trip_every_type_and_none():
+    columns = {"key": int, "x": float, "ok": bool, "mode": str, "n": int}
+    rows = [
+        {"key": 0, "x": 0.1, "ok": True, "mode": "push", "n": 3},
+        {"key": 1, "x": None, "ok": None, "mode": None, "n": None},
+        {"key": 2, "x": float("nan"), "ok": False, "mode": "ϖ ≤ 1e-10, |μ|", "n": -7},
+        {"key": 3, "x": -0.0, "ok": False, "mode": "", "n": 2**40},
+    ]
+    enc = encode_columns(rows, columns)
+    back = decode_rows(enc, columns)
+    assert back[0] == rows[0] and back[1] == rows[1] and back[3] == rows[3]
+    assert np.isnan(back[2]["x"]) and back[2]["mode"] == rows[2]["mode"]
+    assert str(back[3]["x"]) == "-0.0"  # the sign bit survives
+    assert back[1]["mode"] is None and back[3]["mode"] == ""  # None is not ""
+    # chunks joined end to end encode as the rows encoded at once
+    parts = [encode_columns(rows[:1], columns), encode_columns(rows[1:], columns)]
+    assert _bits(concat_columns(parts, columns)) == _bits(enc)
+
+
+def test_pushpull_atlas_rows_are_the_maps_rows(tmp_path):
+    """The atlas of a small (ϖ, α, β, κ) grid holds the rows `betv sweep pushpull` makes
+    (its study: one task list, the runner), key for key, floats bit for bit."""
+    axes = {"varpi": [0.7, 1.2, 2.0], "alpha": [0.3, 2.0], "beta": [0.5], "kappa": [0.1, 0.4]}
+    study, _ = pushpull_study(**axes)
+    ref = run_study(study, SerialExecutor()).rows
+    run = run_atlas(pushpull_atlas(**axes), tmp_path / "a", backend="serial", chunk_points=5)
+    assert (run.total, run.chunks, run.computed, run.resumed) == (12, 3, 3, 0)
+    _, columns, table = read_table(tmp_path / "a")
+    assert list(columns) == list(study.columns)
+    rows = decode_rows(table, columns)
+    assert rows == ref
+    for a, b in zip(rows, ref, strict=True):
+        if a["delta_s"] is not None:
+            assert a["delta_s"].hex() == b["delta_s"].hex()
+    modes = run.summary["modes"]
+    assert sum(modes.values()) == 12
+    assert modes.get("push", 0) == sum(r["converged"] and r["mode"] == "push" for r in ref)
+    on_disk = json.loads((tmp_path / "a" / "summary.json").read_text())
+    assert on_disk == run.summary
+
+
+def test_atlas_on_dask_and_pool_identical_to_serial_on_1000_points(tmp_path, cluster):
+    """A 10³-point atlas: the process pool (2 workers) and a dask cluster (2 worker
+    processes) give the serial atlas's table, every column bit for bit, and the same
+    bytes on disk."""
+    atlas = pushpull_atlas(**GRID_1000)
+    assert atlas.total == 1000
+    serial = run_atlas(atlas, tmp_path / "s", backend="serial", chunk_points=64)
+    pool = run_atlas(atlas, tmp_path / "p", backend="process", workers=2, chunk_points=64)
+    dask = run_atlas(atlas, tmp_path / "d", scheduler=cluster.scheduler_address, chunk_points=64)
+    assert dask.executor["backend"] == "dask" and pool.executor["backend"] == "process"
+    assert serial.chunks == pool.chunks == dask.chunks == 16
+    tables = [read_table(tmp_path / d)[2] for d in ("s", "p", "d")]
+    assert _bits(tables[0]) == _bits(tables[1]) == _bits(tables[2])
+    raw = [(tmp_path / d / "table.npz").read_bytes() for d in ("s", "p", "d")]
+    assert raw[0] == raw[1] == raw[2]
+    assert serial.summary == pool.summary == dask.summary
+    assert serial.summary["converged"] > 500  # a map with orbits, not only refusals
+
+
+def test_interrupted_atlas_resumes_to_the_same_table(tmp_path):
+    """Ctrl-C after 3 chunks (raised where the run reports progress, as the signal
+    handler raises it): whole chunks only, the manifest says interrupted; the same call
+    again computes only the rest, and the table is the uninterrupted atlas's, byte for
+    byte."""
+    axes = {"varpi": [0.6, 0.9, 1.3, 1.8], "alpha": [0.5, 2.0], "beta": [0.5], "kappa": [0.2, 0.4]}
+    whole = run_atlas(pushpull_atlas(**axes), tmp_path / "whole", backend="serial", chunk_points=2)
+    assert whole.chunks == 8
+    seen = []
+
+    def stop_after_three(done: int, total: int) -> None:
+        seen.append(done)
+        if len(seen) == 4:  # the first call reports what was on disk
+            raise KeyboardInterrupt
+
+    out = tmp_path / "cut"
+    with pytest.raises(KeyboardInterrupt):
+        run_atlas(
+            pushpull_atlas(**axes),
+            out,
+            backend="process",
+            workers=2,
+            chunk_points=2,
+            progress=stop_after_three,
+        )
+    chunks = sorted((out / "chunks").iterdir())
+    assert len(chunks) >= 3 and all(p.name.endswith(".npz") for p in chunks)  # no temporaries
+    assert json.loads((out / "atlas.json").read_text())["status"] == "interrupted"
+    assert not (out / "table.npz").exists()
+    (out / "chunks" / ".00000007.npz.abc.tmp.npz").write_bytes(b"half")  # a killed write
+    again = run_atlas(pushpull_atlas(**axes), out, backend="serial")
+    assert again.resumed == len(chunks) and again.computed == 8 - len(chunks)
+    assert not (out / "chunks" / ".00000007.npz.abc.tmp.npz").exists()
+    assert (out / "table.npz").read_bytes() == (tmp_path / "whole" / "table.npz").read_bytes()
+    assert json.loads((out / "atlas.json").read_text())["status"] == "complete"
+    # a complete atlas run again computes nothing and writes the same table
+    third = run_atlas(pushpull_atlas(**axes), out, backend="serial")
+    assert (third.computed, third.resumed) == (0, 8)
+    assert (out / "table.npz").read_bytes() == (tmp_path / "whole" / "table.npz").read_bytes()
+
+
+@pytest.mark.slow
+def test_killed_cli_run_leaves_whole_chunks_and_resumes(tmp_path):
+    """SIGKILL of `betv sweep atlas` (its pool running): every chunk file on disk is
+    whole, and the same command again finishes the atlas with the uninterrupted table."""
+    args = [
+        "--varpi", "0.4:2.4:0.05", "--alpha", "0.3,1,3", "--beta", "0.5", "--kappa",
+        "0.1,0.3", "--chunksize", "4", "-j", "2", "-q",
+    ]  # fmt: skip
+    cmd = [sys.executable, "-c", "from betvdesign.cli import main; main()", "sweep", "atlas"]
+    env = {**os.environ, "PYTHONPATH": str(ROOT)}
+    out = tmp_path / "k"
+    proc = subprocess.Popen([*cmd, *args, "-o", str(out)], env=env)
+    deadline = time.monotonic() + 120
+    while time.monotonic() < deadline and proc.poll() is None:
+        if len(list((out / "chunks").glob("*.npz")) if (out / "chunks").exists() else []) >= 3:
+            break
+        time.sleep(0.05)
+    proc.send_signal(signal.SIGKILL)
+    proc.wait()
+    kept = sorted((out / "chunks").glob("[0-9]*.npz"))
+    assert kept, "no chunk was finished before the kill"
+    for p in kept:
+        with np.load(p, allow_pickle=False) as z:
+            assert len(z["c0"]) == 4 or p == kept[-1]
+    r = subprocess.run([*cmd, *args, "-o", str(out), "--json"], env=env, capture_output=True)
+    assert r.returncode == 0, r.stderr.decode()
+    data = json.loads(r.stdout)
+    assert data["resumed_chunks"] >= len(kept) and data["points"] == 41 * 3 * 2
+    whole = subprocess.run([*cmd, *args, "-o", str(tmp_path / "w")], env=env)
+    assert whole.returncode == 0
+    assert (out / "table.npz").read_bytes() == (tmp_path / "w" / "table.npz").read_bytes()
+
+
+def test_other_arguments_into_an_atlas_are_refused_with_exit_2(tmp_path):
+    out = tmp_path / "atlas"
+    base = ["sweep", "atlas", "--fidelity", "lambda", "--beta", "0.5", "--kappa", "0.4"]
+    base += ["-x", "serial", "-q", "-o", str(out)]
+    r = CliRunner().invoke(app, [*base, "--varpi", "0.5:2:0.5", "--alpha", "0.5,1"])
+    assert r.exit_code == 0, r.output
+    assert "atlas of 8 points" in r.output and "table.npz" in r.output
+    r = CliRunner().invoke(app, [*base, "--varpi", "0.5:2:0.5", "--alpha", "0.5,2"])
+    assert r.exit_code == 2
+    assert "definition.grid.alpha differs" in r.output and "--overwrite" in r.output
+    r = CliRunner().invoke(
+        app, [*base, "--varpi", "0.5:2:0.5", "--alpha", "0.5,1", "--chunksize", "3"]
+    )
+    assert r.exit_code == 2 and "points per chunk" in r.output
+    r = CliRunner().invoke(app, [*base, "--varpi", "0.5:2:0.5", "--alpha", "0.5,1", "--json"])
+    assert r.exit_code == 0 and json.loads(r.output)["resumed_chunks"] == 8
+    r = CliRunner().invoke(app, [*base, "--varpi", "0.5:2:0.5", "--alpha", "0.5,2", "--overwrite"])
+    assert r.exit_code == 0
+    other = tmp_path / "other"
+    other.mkdir()
+    (other / "notes.txt").write_text("mine")
+    r = CliRunner().invoke(app, [*base[:-1], str(other), "--varpi", "1", "--alpha", "1"])
+    assert r.exit_code == 2 and "not an atlas" in r.output
+    assert (other / "notes.txt").read_text() == "mine"
+    r = CliRunner().invoke(app, ["sweep", "atlas", "--varpi", "1", "-o", str(tmp_path / "x")])
+    assert r.exit_code == 2 and "--alpha" in r.output
+    r = CliRunner().invoke(
+        app, ["sweep", "atlas", str(PUSH_DEMO), "--varpi", "1", "-o", str(tmp_path / "x")]
+    )
+    assert r.exit_code == 2 and "not with a device FILE" in r.output
+
+
+def test_device_atlas_rows_are_the_field_sweeps_rows(tmp_path):
+    """Two fields of push_demo: the atlas holds `betv sweep FILE`'s rows (its study,
+    derived over the whole grid at once; the atlas derives chunk by chunk)."""
+    from betvdesign.spec.loader import load_device
+    from betvdesign.studies.fieldsweep import fieldsweep_study, parse_axis
+
+    spec = load_device(PUSH_DEMO)
+    axes = [
+        parse_axis(spec, "drive.frequency=3kHz:8kHz", 6),
+        parse_axis(spec, "contact.friction=0.2:0.6", 4),
+    ]
+    ref = run_study(fieldsweep_study(PUSH_DEMO, axes), SerialExecutor()).rows
+    run_atlas(device_atlas(PUSH_DEMO, axes), tmp_path / "d", backend="serial", chunk_points=7)
+    _, columns, table = read_table(tmp_path / "d")
+    assert decode_rows(table, columns) == ref
+    # three fields: more than a sweep takes
+    three = [*axes, parse_axis(spec, "slider.beam_width=8um:12um", 2)]
+    run = run_atlas(device_atlas(PUSH_DEMO, three), tmp_path / "t", backend="serial")
+    assert run.total == 48 and sum(run.summary["modes"].values()) == 48
+    with pytest.raises(UsageError, match="1 to 4"):
+        device_atlas(PUSH_DEMO, [*three, *axes])
+
+
+def test_atlas_modes_against_the_reference_integrator(tmp_path):
+    """Δs of the atlas's exact orbits against the scipy reference integrator (a second
+    method) run 120 cycles from rest, with damping ζ_v = ζ_h = 0.1 so that transients
+    decay: wherever the reference has settled (its last two cycles agree to 1e-9), both
+    give the same Δs, and the mode is the sign of both (push and pull both met)."""
+    from betvdesign.dynamics import reference
+    from betvdesign.studies.terms import Terms
+
+    axes = {"varpi": [0.8, 1.5], "alpha": [0.5, 2.0], "beta": [0.5], "kappa": [0.3]}
+    atlas = pushpull_atlas(**axes, zeta_v=0.1, zeta_h=0.1)
+    run_atlas(atlas, tmp_path / "a", backend="serial")
+    _, columns, table = read_table(tmp_path / "a")
+    rows = [r for r in decode_rows(table, columns) if r["converged"]]
+    checked = []
+    for r in rows:
+        p = Terms.of(r).params(r["varpi"], r["alpha"], r["beta"], r["kappa"])
+        ref = reference.simulate(p, 120, rtol=1e-11, atol=1e-12)
+        assert ref.status == "success"
+        last, before = float(ref.delta_s[-1]), float(ref.delta_s[-2])
+        if abs(last - before) > 1e-9 * abs(last):
+            continue  # still settling (near the tangential resonance): no verdict
+        assert last == pytest.approx(r["delta_s"], rel=1e-7)
+        assert (last > 0) == (r["mode"] == "push")
+        checked.append(r["mode"])
+    assert len(checked) >= 3 and set(checked) == {"push", "pull"}
