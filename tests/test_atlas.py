@@ -161,6 +161,32 @@ def test_interrupted_atlas_resumes_to_the_same_table(tmp_path):
     assert (out / "table.npz").read_bytes() == (tmp_path / "whole" / "table.npz").read_bytes()
 
 
+def test_killed_pool_worker_is_a_clear_error_and_the_atlas_resumes(tmp_path):
+    """A pool worker killed (SIGKILL, as the OOM killer does) mid-run: a clear error
+    naming the chunks kept, not a traceback; the same call again finishes the atlas."""
+    psutil = require_module("psutil")
+    axes = {"varpi": [0.6, 0.9, 1.3, 1.8], "alpha": [0.5, 2.0], "beta": [0.5], "kappa": [0.2, 0.4]}
+
+    killed = []
+
+    def kill_a_worker(done: int, total: int) -> None:
+        if done and not killed:  # after the first chunk (workers: the fork server's children)
+            workers = [p for c in psutil.Process().children() for p in c.children()]
+            workers[-1].send_signal(signal.SIGKILL)
+            killed.append(workers[-1].pid)
+
+    out = tmp_path / "a"
+    with pytest.raises(UsageError, match=r"worker process died.*run the same command again"):
+        run_atlas(
+            pushpull_atlas(**axes), out, backend="process", workers=2, chunk_points=1,
+            progress=kill_a_worker,
+        )  # fmt: skip
+    kept = len(list((out / "chunks").glob("*.npz")))
+    assert 1 <= kept < 16
+    again = run_atlas(pushpull_atlas(**axes), out, backend="serial")
+    assert again.resumed == kept and again.computed == 16 - kept
+
+
 @pytest.mark.slow
 def test_killed_cli_run_leaves_whole_chunks_and_resumes(tmp_path):
     """SIGKILL of `betv sweep atlas` (its pool running): every chunk file on disk is

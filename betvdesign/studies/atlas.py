@@ -31,6 +31,7 @@ import math
 import os
 import time
 from collections.abc import Callable, Mapping, Sequence
+from concurrent.futures import BrokenExecutor
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -449,8 +450,15 @@ def run_atlas(
                     chunks.close()  # an interrupted run stops its workers now
                 info = {**ex.info().__dict__}
                 info.pop("extra", None)
-    except BaseException:
-        store.write_manifest(status="interrupted", done=store.n_chunks - len(store.missing()))
+    except BaseException as exc:
+        kept = store.n_chunks - len(store.missing())
+        store.write_manifest(status="interrupted", done=kept)
+        if isinstance(exc, BrokenExecutor):  # a worker killed (OOM killer, kill -9)
+            raise UsageError(
+                f"a worker process died ({exc}); the {kept:,} finished chunks of "
+                f"{store.n_chunks:,} are kept in {store.dir}: run the same command again "
+                "to resume"
+            ) from None
         raise
     elapsed = time.perf_counter() - t0
     t1 = time.perf_counter()
