@@ -76,7 +76,9 @@ def test_columns_round_trip_every_type_and_none():
     assert back[1]["mode"] is None and back[3]["mode"] == ""  # None is not ""
     # chunks joined end to end encode as the rows encoded at once
     parts = [encode_columns(rows[:1], columns), encode_columns(rows[1:], columns)]
-    assert _bits(concat_columns(parts, columns)) == _bits(enc)
+    assert _bits(concat_columns(iter(parts), columns, 4)) == _bits(enc)
+    with pytest.raises(ValueError, match="not 5"):
+        concat_columns(parts, columns, 5)
 
 
 def test_pushpull_atlas_rows_are_the_maps_rows(tmp_path):
@@ -118,6 +120,34 @@ def test_atlas_on_dask_and_pool_identical_to_serial_on_1000_points(tmp_path, clu
     assert raw[0] == raw[1] == raw[2]
     assert serial.summary == pool.summary == dask.summary
     assert serial.summary["converged"] > 500  # a map with orbits, not only refusals
+
+
+def test_summary_counts_every_row_once_across_blocks(tmp_path, monkeypatch):
+    """The summary, read a block of rows at a time (blocks of 7 here), counts what the
+    rows themselves hold."""
+    from collections import Counter
+
+    import betvdesign.studies.atlas as atlas_module
+
+    axes = {
+        "varpi": [0.3, 0.7, 1.2, 2.0, 3.0],
+        "alpha": [0.3, 1.0, 2.5],
+        "beta": [0.5],
+        "kappa": [0.1, 0.4],
+    }
+    atlas = pushpull_atlas(**axes)
+    run_atlas(atlas, tmp_path / "a", backend="serial")
+    _, columns, table = read_table(tmp_path / "a")
+    rows = decode_rows(table, columns)
+    monkeypatch.setattr(atlas_module, "SUMMARY_BLOCK", 7)
+    got = atlas_module.summarise_table(atlas, table)
+    assert got["modes"] == dict(Counter(r["mode"] if r["converged"] else r["status"] for r in rows))
+    assert got["status"] == dict(Counter(r["status"] for r in rows))
+    assert got["converged"] == sum(r["converged"] for r in rows)
+    assert got["lambda_agrees"] == sum(
+        r["converged"] and r["mode"] == r["lambda_mode"] for r in rows
+    )
+    assert len(set(got["modes"])) >= 3
 
 
 def test_interrupted_atlas_resumes_to_the_same_table(tmp_path):

@@ -30,6 +30,7 @@ import json
 import math
 import os
 import time
+from collections import Counter
 from collections.abc import Callable, Mapping, Sequence
 from concurrent.futures import BrokenExecutor
 from dataclasses import dataclass, field
@@ -70,6 +71,8 @@ MAX_FIELDS = 4
 DEFAULT_CHUNK_POINTS = 1000
 #: Chunks a small atlas is cut into at least (they spread over the workers).
 MIN_CHUNKS = 64
+#: Rows whose values the summary holds as Python objects at once.
+SUMMARY_BLOCK = 65536
 
 Progress = Callable[[int, int], None]
 
@@ -501,24 +504,31 @@ def summarise_table(atlas: Atlas, table: Mapping[str, np.ndarray]) -> dict[str, 
         ``lambda_agrees`` (converged points where λ < 1 names the simulated mode).
     """
     names = list(atlas.columns)
-
-    def col(name: str) -> list[Any]:
-        i = names.index(name)
-        return column_values(table, i, atlas.columns[name])
-
-    status = col("status")
+    n = len(table["c0"])
+    modes: Counter[str] = Counter()
+    status: Counter[str] = Counter()
     out: dict[str, Any] = {"kind": atlas.kind}
+    converged = agrees = 0
+    for start in range(0, n, SUMMARY_BLOCK):  # a block of Python values at a time
+        rows = slice(start, min(n, start + SUMMARY_BLOCK))
+
+        def col(name: str, rows: slice = rows) -> list[Any]:
+            return column_values(table, names.index(name), atlas.columns[name], rows)
+
+        st = col("status")
+        status.update(count_values(st))
+        if atlas.kind == "pushpull":
+            conv, mode, lam = col("converged"), col("mode"), col("lambda_mode")
+            modes.update(
+                count_values(m if c else s for m, c, s in zip(mode, conv, st, strict=True))
+            )
+            converged += sum(bool(c) for c in conv)
+            agrees += sum(bool(c) and m == lm for c, m, lm in zip(conv, mode, lam, strict=True))
+        else:
+            modes.update(count_values(col(atlas.mode_column)))
     if atlas.kind == "pushpull":
-        conv = col("converged")
-        mode = col("mode")
-        lam = col("lambda_mode")
-        modes = [m if c else s for m, c, s in zip(mode, conv, status, strict=True)]
-        out["converged"] = int(sum(bool(c) for c in conv))
-        out["lambda_agrees"] = int(
-            sum(bool(c) and m == lm for c, m, lm in zip(conv, mode, lam, strict=True))
-        )
-    else:
-        modes = col(atlas.mode_column)
-    out["modes"] = dict(sorted(count_values(modes).items(), key=lambda kv: -kv[1]))
-    out["status"] = dict(sorted(count_values(status).items(), key=lambda kv: -kv[1]))
+        out["converged"] = converged
+        out["lambda_agrees"] = agrees
+    out["modes"] = dict(sorted(modes.items(), key=lambda kv: (-kv[1], kv[0])))
+    out["status"] = dict(sorted(status.items(), key=lambda kv: (-kv[1], kv[0])))
     return out

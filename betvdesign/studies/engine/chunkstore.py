@@ -99,7 +99,12 @@ def encode_columns(
     return out
 
 
-def column_values(arrays: Mapping[str, np.ndarray], i: int, kind: ColumnType) -> list[Any]:
+def column_values(
+    arrays: Mapping[str, np.ndarray],
+    i: int,
+    kind: ColumnType,
+    rows: slice | None = None,
+) -> list[Any]:
     """Column ``i`` of :func:`encode_columns`' arrays as Python values (None restored).
 
     Parameters
@@ -110,6 +115,8 @@ def column_values(arrays: Mapping[str, np.ndarray], i: int, kind: ColumnType) ->
         The column's position.
     kind : type
         Its type: float, int, bool or str.
+    rows : slice, optional
+        The rows wanted (a step-1 slice; None: every row).
 
     Returns
     -------
@@ -117,15 +124,21 @@ def column_values(arrays: Mapping[str, np.ndarray], i: int, kind: ColumnType) ->
         The values, in row order.
     """
     tag = f"c{i}"
+    sel = rows if rows is not None else slice(None)
     if kind is str:
-        blob = arrays[f"{tag}.utf8"].tobytes()
-        off = arrays[f"{tag}.offsets"].tolist()
-        values: list[Any] = [blob[a:b].decode("utf-8") for a, b in itertools.pairwise(off)]
+        off = arrays[f"{tag}.offsets"]
+        start, stop, _ = sel.indices(len(off) - 1)
+        bounds = off[start : stop + 1].tolist()
+        blob = arrays[f"{tag}.utf8"][bounds[0] : bounds[-1]].tobytes() if bounds else b""
+        base = bounds[0] if bounds else 0
+        values: list[Any] = [
+            blob[a - base : b - base].decode("utf-8") for a, b in itertools.pairwise(bounds)
+        ]
     else:
-        values = arrays[tag].tolist()
+        values = arrays[tag][sel].tolist()
     none = arrays.get(f"{tag}.none")
     if none is not None:
-        values = [None if n else v for v, n in zip(values, none.tolist(), strict=True)]
+        values = [None if n else v for v, n in zip(values, none[sel].tolist(), strict=True)]
     return values
 
 
@@ -152,40 +165,63 @@ def decode_rows(
 
 
 def concat_columns(
-    parts: Sequence[Mapping[str, np.ndarray]], columns: Mapping[str, ColumnType]
+    parts: Iterable[Mapping[str, np.ndarray]], columns: Mapping[str, ColumnType], total: int
 ) -> dict[str, np.ndarray]:
     """Encoded chunks joined end to end (as if the rows had been encoded at once).
 
+    The chunks are taken one at a time (a generator reading them from disk holds one
+    chunk and the joined columns, not every chunk besides).
+
     Parameters
     ----------
-    parts : sequence of mapping
+    parts : iterable of mapping
         Encoded chunks (:func:`encode_columns`), in row order.
     columns : mapping of str to type
-        Column name -> type.
+        Column name -> type (the first: ``key``, int).
+    total : int
+        Rows in all the chunks.
 
     Returns
     -------
     dict of str to numpy.ndarray
         The encoded columns of all rows.
+
+    Raises
+    ------
+    ValueError
+        The chunks hold other than ``total`` rows.
     """
-    out: dict[str, np.ndarray] = {}
-    for i, kind in enumerate(columns.values()):
-        tag = f"c{i}"
-        lengths = [len(p[f"{tag}.offsets"]) - 1 if kind is str else len(p[tag]) for p in parts]
-        if kind is str:
-            out[f"{tag}.utf8"] = np.concatenate([p[f"{tag}.utf8"] for p in parts])
-            shift = np.cumsum([0] + [int(p[f"{tag}.offsets"][-1]) for p in parts])
-            offs = [p[f"{tag}.offsets"][1:] + s for p, s in zip(parts, shift, strict=False)]
-            out[f"{tag}.offsets"] = np.concatenate([np.zeros(1, np.int64), *offs])
-        else:
-            out[tag] = np.concatenate([p[tag] for p in parts])
-        if any(f"{tag}.none" in p for p in parts):
-            out[f"{tag}.none"] = np.concatenate(
-                [
-                    p.get(f"{tag}.none", np.zeros(n, dtype=bool))
-                    for p, n in zip(parts, lengths, strict=True)
-                ]
-            )
+    kinds = list(columns.values())
+    dtypes = {float: np.float64, int: np.int64, bool: np.bool_}
+    out: dict[str, np.ndarray] = {
+        f"c{i}": np.empty(total, dtype=dtypes[k]) for i, k in enumerate(kinds) if k is not str
+    }
+    blobs: dict[int, list[np.ndarray]] = {i: [] for i, k in enumerate(kinds) if k is str}
+    offsets = {i: [np.zeros(1, np.int64)] for i in blobs}
+    pos = 0
+    for part in parts:
+        m = len(part["c0"])
+        if pos + m > total:
+            raise ValueError(f"the chunks hold more than {total} rows")
+        for i, kind in enumerate(kinds):
+            tag = f"c{i}"
+            if kind is str:
+                base = int(offsets[i][-1][-1])
+                blobs[i].append(part[f"{tag}.utf8"])
+                offsets[i].append(part[f"{tag}.offsets"][1:] + base)
+            else:
+                out[tag][pos : pos + m] = part[tag]
+            none = part.get(f"{tag}.none")
+            if none is not None:
+                if f"{tag}.none" not in out:
+                    out[f"{tag}.none"] = np.zeros(total, dtype=bool)
+                out[f"{tag}.none"][pos : pos + m] = none
+        pos += m
+    if pos != total:
+        raise ValueError(f"the chunks hold {pos} rows, not {total}")
+    for i in blobs:
+        out[f"c{i}.utf8"] = np.concatenate([np.zeros(0, np.uint8), *blobs[i]])
+        out[f"c{i}.offsets"] = np.concatenate(offsets[i])
     return out
 
 
@@ -501,8 +537,8 @@ class ChunkStore:
         dict of str to numpy.ndarray
             The table's encoded columns (``__columns__`` and ``__types__`` name them).
         """
-        parts = [self.read_chunk(i) for i in range(self.n_chunks)]
-        table = concat_columns(parts, self.columns)
+        parts = (self.read_chunk(i) for i in range(self.n_chunks))
+        table = concat_columns(parts, self.columns, self.total)
         table["__columns__"] = np.array(list(self.columns), dtype=str)
         table["__types__"] = np.array([t.__name__ for t in self.columns.values()], dtype=str)
         write_npz(self.dir / TABLE, table, compress=True)
