@@ -50,7 +50,7 @@ from betvdesign.studies.engine.chunkstore import (
     encode_columns,
     iter_missing,
 )
-from betvdesign.studies.engine.executors import open_executor
+from betvdesign.studies.engine.executors import check_backend, open_executor
 
 __all__ = [
     "DEFAULT_CHUNK_POINTS",
@@ -411,6 +411,9 @@ def run_atlas(
         A directory holding other rows or no atlas, options out of bounds, an estimated
         time over :mod:`betvdesign.spec.limits`' budget, a dask scheduler not reached.
     """
+    backend = check_backend(backend, scheduler)  # before the directory is made
+    if workers is not None and not 1 <= workers <= limits.MAX_WORKERS:
+        raise UsageError(f"workers must be >= 1 and <= {limits.MAX_WORKERS:,}, got {workers}")
     store = ChunkStore(
         out,
         kind=atlas.kind,
@@ -424,7 +427,7 @@ def run_atlas(
     todo = list(iter_missing(store))
     resumed = store.n_chunks - len(todo)
     points_left = sum(t["stop"] - t["start"] for t in todo)
-    n_workers = 1 if backend.strip().lower() == "serial" else (workers or os.cpu_count() or 1)
+    n_workers = 1 if backend == "serial" else (workers or os.cpu_count() or 1)
     if todo and scheduler is None:
         cost = limits.point_cost_s(atlas.kind, atlas.definition)
         limits.refuse_long_study(f"{atlas.kind} atlas", points_left, cost, n_workers)

@@ -517,7 +517,7 @@ def make_executor(
         An unknown backend, bounds of :mod:`betvdesign.spec.limits` exceeded, or dask
         without a scheduler.
     """
-    backend = backend.strip().lower()
+    backend = check_backend(backend, scheduler)
     if chunksize is not None and not 1 <= chunksize <= limits.MAX_CHUNKSIZE:
         raise UsageError(
             f"chunk size must be >= 1 and <= {limits.MAX_CHUNKSIZE:,}, got {chunksize}"
@@ -525,16 +525,41 @@ def make_executor(
     if workers is not None and not 1 <= workers <= limits.MAX_WORKERS:
         raise UsageError(f"workers must be >= 1 and <= {limits.MAX_WORKERS:,}, got {workers}")
     if scheduler is not None:
-        if backend not in ("dask", "process"):
-            raise UsageError(f"--scheduler needs the dask executor, not {backend!r}")
         return DaskExecutor(scheduler, chunksize=chunksize)
     if backend == "serial":
         return SerialExecutor(chunksize)
     if backend == "process":
         return ProcessExecutor(workers, chunksize)
-    if backend == "dask":
-        raise UsageError("the dask executor needs --scheduler tcp://host:port")
-    raise UsageError(f"unknown executor {backend!r} (serial, process or dask)")
+    raise UsageError("the dask executor needs --scheduler tcp://host:port")
+
+
+def check_backend(backend: str, scheduler: str | None = None) -> str:
+    """An executor's name, checked before any work (and any output) starts.
+
+    Parameters
+    ----------
+    backend : str
+        ``serial``, ``process`` or ``dask`` (case-insensitive).
+    scheduler : str, optional
+        A dask scheduler address (allowed with ``dask``, and with ``process``, the
+        default, which it then turns into ``dask``).
+
+    Returns
+    -------
+    str
+        The name, lower case.
+
+    Raises
+    ------
+    UsageError
+        An unknown executor, or a scheduler with the serial one.
+    """
+    name = backend.strip().lower()
+    if name not in ("serial", "process", "dask"):
+        raise UsageError(f"unknown executor {name!r} (serial, process or dask)")
+    if scheduler is not None and name == "serial":
+        raise UsageError(f"--scheduler needs the dask executor, not {name!r}")
+    return name
 
 
 @contextlib.contextmanager
@@ -572,7 +597,7 @@ def open_executor(
     UsageError
         As :func:`make_executor`; dask not installed.
     """
-    if backend.strip().lower() != "dask" or scheduler is not None:
+    if check_backend(backend, scheduler) != "dask" or scheduler is not None:
         yield make_executor(backend, workers=workers, chunksize=chunksize, scheduler=scheduler)
         return
     if workers is not None and not 1 <= workers <= limits.MAX_WORKERS:
