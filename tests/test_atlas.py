@@ -330,3 +330,20 @@ def test_atlas_modes_against_the_reference_integrator(tmp_path):
         assert (last > 0) == (r["mode"] == "push")
         checked.append(r["mode"])
     assert len(checked) >= 3 and set(checked) == {"push", "pull"}
+
+
+def test_cli_dask_without_scheduler_starts_its_own_cluster(tmp_path):
+    """`-x dask` without --scheduler: a local cluster of -j workers, started and closed by
+    the command; its table is the serial one's, byte for byte."""
+    require_module("distributed")
+    grid = ["--varpi", "0.6,1.2", "--alpha", "0.5,2", "--beta", "0.5", "--kappa", "0.2,0.4"]
+    base = ["sweep", "atlas", *grid, "-q", "--json"]
+    r = CliRunner().invoke(app, [*base, "-x", "dask", "-j", "1", "-o", str(tmp_path / "d")])
+    assert r.exit_code == 0, r.output
+    data = json.loads(r.output)
+    assert data["executor"]["backend"] == "dask" and data["executor"]["workers"] == 1
+    r = CliRunner().invoke(app, [*base, "-x", "serial", "-o", str(tmp_path / "s")])
+    assert r.exit_code == 0, r.output
+    assert (tmp_path / "d" / "table.npz").read_bytes() == (
+        tmp_path / "s" / "table.npz"
+    ).read_bytes()
