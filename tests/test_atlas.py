@@ -81,13 +81,20 @@ def test_columns_round_trip_every_type_and_none():
         concat_columns(parts, columns, 5)
 
 
-def test_pushpull_atlas_rows_are_the_maps_rows(tmp_path):
+def test_pushpull_atlas_rows_are_the_maps_rows(tmp_path, monkeypatch):
     """The atlas of a small (ϖ, α, β, κ) grid holds the rows `betv sweep pushpull` makes
-    (its study: one task list, the runner), key for key, floats bit for bit."""
+    (its study: one task list, the runner), key for key, floats bit for bit; its
+    table.csv (written 5 rows at a time here) is the map's CSV, byte for byte."""
+    import betvdesign.studies.engine.chunkstore as chunkstore
+
     axes = {"varpi": [0.7, 1.2, 2.0], "alpha": [0.3, 2.0], "beta": [0.5], "kappa": [0.1, 0.4]}
     study, _ = pushpull_study(**axes)
-    ref = run_study(study, SerialExecutor()).rows
-    run = run_atlas(pushpull_atlas(**axes), tmp_path / "a", backend="serial", chunk_points=5)
+    ref = run_study(study, SerialExecutor(), out=tmp_path / "map.csv").rows
+    monkeypatch.setattr(chunkstore, "CSV_BLOCK", 5)
+    run = run_atlas(
+        pushpull_atlas(**axes), tmp_path / "a", backend="serial", chunk_points=5, csv=True
+    )
+    assert (tmp_path / "a" / "table.csv").read_bytes() == (tmp_path / "map.csv").read_bytes()
     assert (run.total, run.chunks, run.computed, run.resumed) == (12, 3, 3, 0)
     _, columns, table = read_table(tmp_path / "a")
     assert list(columns) == list(study.columns)

@@ -58,6 +58,8 @@ SUMMARY = "summary.json"
 _CHUNK_RE = re.compile(r"^(\d{8})\.npz$")
 #: A fixed zip timestamp (the earliest a zip can hold): equal rows, equal bytes.
 _ZIP_DATE = (1980, 1, 1, 0, 0, 0)
+#: Rows written to ``table.csv`` at a time (their cells are Python objects meanwhile).
+CSV_BLOCK = 65536
 _KINDS: dict[str, ColumnType] = {"float": float, "int": int, "bool": bool, "str": str}
 
 
@@ -565,13 +567,19 @@ class ChunkStore:
 def _write_csv(
     fh: io.TextIOBase, table: Mapping[str, np.ndarray], columns: Mapping[str, ColumnType]
 ) -> None:
-    """The table as CSV: a header, then one line per row (cells by ``store.encode``)."""
+    """The table as CSV, :data:`CSV_BLOCK` rows at a time.
+
+    A header, then one line per row (cells by ``store.encode``: floats by ``repr``).
+    """
     import csv
 
     writer = csv.writer(fh, lineterminator="\n")
     writer.writerow(list(columns))
-    cols = [column_values(table, i, k) for i, k in enumerate(columns.values())]
-    writer.writerows([encode(v) for v in row] for row in zip(*cols, strict=True))
+    n = len(table["c0"])
+    for start in range(0, n, CSV_BLOCK):
+        rows = slice(start, min(n, start + CSV_BLOCK))
+        cols = [column_values(table, i, k, rows) for i, k in enumerate(columns.values())]
+        writer.writerows([encode(v) for v in row] for row in zip(*cols, strict=True))
 
 
 def read_table(
