@@ -275,6 +275,15 @@ def test_other_arguments_into_an_atlas_are_refused_with_exit_2(tmp_path):
     assert r.exit_code == 0 and json.loads(r.output)["resumed_chunks"] == 8
     r = CliRunner().invoke(app, [*base, "--varpi", "0.5:2:0.5", "--alpha", "0.5,2", "--overwrite"])
     assert r.exit_code == 0
+    from betvdesign.studies.engine.chunkstore import ChunkStore
+
+    holder = ChunkStore(
+        out, kind="pushpull", definition={}, columns={"key": int}, total=1, chunk_points=None,
+        default_chunk=1, overwrite=True,
+    )  # fmt: skip
+    r = CliRunner().invoke(app, [*base, "--varpi", "0.5:2:0.5", "--alpha", "0.5,2"])
+    assert r.exit_code == 2 and "in use by another run" in r.output
+    holder.close()
     other = tmp_path / "other"
     other.mkdir()
     (other / "notes.txt").write_text("mine")

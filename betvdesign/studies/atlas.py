@@ -424,6 +424,22 @@ def run_atlas(
         default_chunk=default_chunk_points(atlas.total),
         overwrite=overwrite,
     )
+    try:
+        return _run(atlas, store, backend, workers, scheduler, csv, progress)
+    finally:
+        store.close()
+
+
+def _run(
+    atlas: Atlas,
+    store: ChunkStore,
+    backend: str,
+    workers: int | None,
+    scheduler: str | None,
+    csv: bool,
+    progress: Progress | None,
+) -> AtlasRun:
+    """:func:`run_atlas` once its store is open."""
     todo = list(iter_missing(store))
     resumed = store.n_chunks - len(todo)
     points_left = sum(t["stop"] - t["start"] for t in todo)

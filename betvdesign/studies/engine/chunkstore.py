@@ -13,6 +13,8 @@ it is finished. The directory holds:
   beside it, synced, and renamed into place (:func:`betvdesign.output.files.atomic_path`):
   a chunk file is whole or absent, whatever stops the run (Ctrl-C, SIGTERM, SIGKILL, a
   dead worker, a full disk);
+* ``.atlas.lock``, locked by the run in progress (a second run into the directory at
+  the same time is refused);
 * after the last chunk, ``table.npz`` (every row, in key order), ``summary.json``
   (points per mode) and, when asked, ``table.csv`` (floats by ``repr``: exact round
   trip).
@@ -54,6 +56,8 @@ CHUNKS = "chunks"
 TABLE = "table.npz"
 TABLE_CSV = "table.csv"
 SUMMARY = "summary.json"
+#: The advisory lock a run holds on its directory.
+LOCK = ".atlas.lock"
 #: Chunk files: ``chunks/00000042.npz``.
 _CHUNK_RE = re.compile(r"^(\d{8})\.npz$")
 #: A fixed zip timestamp (the earliest a zip can hold): equal rows, equal bytes.
@@ -345,27 +349,64 @@ class ChunkStore:
             "columns": {n: t.__name__ for n, t in self.columns.items()},
             "total": self.total,
         }
-        old = self._existing(overwrite)
-        if old is not None:
-            self._check_same(old, identity, chunk_points)
-            chunk_points = int(old["chunk_points"])
-        self.chunk_points = int(chunk_points or default_chunk)
-        if self.chunk_points < 1:
-            raise UsageError(f"points per chunk must be >= 1, got {self.chunk_points}")
-        self.n_chunks = -(-self.total // self.chunk_points)
-        self.meta: dict[str, Any] = {
-            **identity,
-            "chunk_points": self.chunk_points,
-            "chunks": self.n_chunks,
-            "versions": versions(),
-            "status": "running",
-        }
-        self.chunk_dir.mkdir(exist_ok=True)
-        self._remove_temporaries()
-        self.write_manifest()
+        old = self._existing()  # read only: a directory that is no atlas is left as it is
+        self._lock = self._acquire()
+        try:
+            if old is not None and overwrite:
+                self._clear()
+                old = None
+            if old is not None:
+                self._check_same(old, identity, chunk_points)
+                chunk_points = int(old["chunk_points"])
+            self.chunk_points = int(chunk_points or default_chunk)
+            if self.chunk_points < 1:
+                raise UsageError(f"points per chunk must be >= 1, got {self.chunk_points}")
+            self.n_chunks = -(-self.total // self.chunk_points)
+            self.meta: dict[str, Any] = {
+                **identity,
+                "chunk_points": self.chunk_points,
+                "chunks": self.n_chunks,
+                "versions": versions(),
+                "status": "running",
+            }
+            self.chunk_dir.mkdir(exist_ok=True)
+            self._remove_temporaries()
+            self.write_manifest()
+        except BaseException:
+            self.close()
+            raise
 
     # -- opening -------------------------------------------------------------
-    def _existing(self, overwrite: bool) -> dict[str, Any] | None:
+    def _acquire(self) -> Any:
+        """Hold ``DIR/.atlas.lock`` (an advisory lock) while this store is open.
+
+        A second run into the same directory at the same time (another terminal, a job
+        scheduled twice) would compute the same chunks and race on the manifest: it is
+        refused instead. The lock goes with the process, however it ends.
+        """
+        import fcntl
+
+        try:
+            fh = open(self.dir / LOCK, "a")  # held until close()
+        except OSError as exc:
+            raise UsageError(f"{self.dir}: cannot write: {exc}") from None
+        try:
+            fcntl.flock(fh.fileno(), fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except OSError:
+            fh.close()
+            raise UsageError(
+                f"{self.dir}: in use by another run of this atlas (wait for it to end, or "
+                "stop it: the same command then resumes)"
+            ) from None
+        return fh
+
+    def close(self) -> None:
+        """Release the directory's lock (the process's end releases it too)."""
+        if self._lock is not None:
+            self._lock.close()
+            self._lock = None
+
+    def _existing(self) -> dict[str, Any] | None:
         if not self.manifest_path.exists():
             stray = [p.name for p in self.dir.iterdir() if not p.name.startswith(".")]
             if stray:
@@ -381,9 +422,6 @@ class ChunkStore:
             raise UsageError(f"{self.manifest_path}: unreadable manifest: {exc}") from None
         if not isinstance(old, dict) or old.get("format") != FORMAT:
             raise UsageError(f"{self.manifest_path}: not a betv atlas manifest ({FORMAT})")
-        if overwrite:
-            self._clear()
-            return None
         return old
 
     def _check_same(

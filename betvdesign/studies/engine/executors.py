@@ -614,7 +614,7 @@ def open_executor(
         n_workers=workers or os.cpu_count() or 1,
         threads_per_worker=1,
         processes=True,
-        dashboard_address=None,
+        dashboard_address=":0",  # its HTTP server on a free port: never "8787 in use"
         silence_logs=logging.ERROR,
     )
     try:
