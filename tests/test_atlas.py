@@ -363,3 +363,41 @@ def test_cli_dask_without_scheduler_starts_its_own_cluster(tmp_path):
     assert (tmp_path / "d" / "table.npz").read_bytes() == (
         tmp_path / "s" / "table.npz"
     ).read_bytes()
+
+
+@pytest.mark.slow
+def test_ctrl_c_on_a_local_dask_cluster_stops_cleanly(tmp_path):
+    """SIGINT to `betv sweep atlas -x dask` (its own local cluster): exit 130 with the
+    resume hint, whole chunks only, the manifest says interrupted, and no process of the
+    cluster is left."""
+    psutil = require_module("psutil")
+    require_module("distributed")
+    out = tmp_path / "a"
+    cmd = [sys.executable, "-c", "from betvdesign.cli import main; main()", "sweep", "atlas"]
+    cmd += ["--varpi", "0.4:2.4:0.02", "--alpha", "0.3,1,3", "--beta", "0.5", "--kappa"]
+    cmd += ["0.1,0.3", "--chunksize", "4", "-x", "dask", "-j", "2", "-q", "-o", str(out)]
+    env = {**os.environ, "PYTHONPATH": str(ROOT)}
+    proc = subprocess.Popen(cmd, env=env, stderr=subprocess.PIPE, text=True)
+    deadline = time.monotonic() + 120
+    while time.monotonic() < deadline and proc.poll() is None:
+        if (out / "chunks").is_dir() and len(list((out / "chunks").glob("*.npz"))) >= 3:
+            break
+        time.sleep(0.05)
+    children = psutil.Process(proc.pid).children(recursive=True)
+    proc.send_signal(signal.SIGINT)
+    _, err = proc.communicate(timeout=60)
+    assert proc.returncode == 130 and "run the same command again to resume" in err
+    meta = json.loads((out / "atlas.json").read_text())
+    assert meta["status"] == "interrupted"
+    kept = sorted((out / "chunks").iterdir())
+    assert all(p.name[0].isdigit() for p in kept) and len(kept) < meta["chunks"]
+    for p in kept:
+        with np.load(p, allow_pickle=False) as z:
+            assert len(z["c0"]) == 4
+    deadline = time.monotonic() + 10
+    while time.monotonic() < deadline:
+        left = [c for c in children if c.is_running() and c.status() != psutil.STATUS_ZOMBIE]
+        if not left:
+            break
+        time.sleep(0.2)
+    assert not left, f"{len(left)} processes of the cluster remain"
