@@ -1,4 +1,4 @@
-"""``betv sweep pushpull|regime|lambda``: design-space sweeps (thin layer over
+"""``betv sweep FILE|pushpull|regime|lambda|atlas``: design-space sweeps (thin layer over
 ``betvdesign.studies``).
 
 Every sweep takes the execution options (``--executor serial|process|dask``,
@@ -11,6 +11,11 @@ The optional physics (``--quality-normal``/``--zeta-v``, ``--quality-tangential`
 ``--zeta-h``, ``--restitution``; :mod:`betvdesign.cli.physics`) is fixed over a sweep;
 absent, the sweep is of the paper's model. ``regime`` takes the normal terms only (the
 vertical motion does not depend on ζ_h).
+
+``betv sweep atlas`` (:mod:`betvdesign.studies.atlas`) is the sweep for grids of
+millions of points: ``--out`` is a directory of chunk files instead of one CSV, ``-x
+dask`` without ``--scheduler`` starts a local cluster of ``-j`` workers, and the merged
+table is ``table.npz`` (``--csv``: also ``table.csv``).
 """
 
 from __future__ import annotations
