@@ -36,8 +36,8 @@ from betvdesign.studies.pushpull import pushpull_study
 ROOT = Path(__file__).resolve().parents[1]
 PUSH_DEMO = ROOT / "devices" / "push_demo.yaml"
 
-#: A 10³-point sub-grid of the benchmark's 10⁶-point atlas (benchmarks/bench_atlas.py):
-#: every 4th ϖ, α, β and κ of its 40 × 25 × 25 × 40 grid, but 10 of each.
+#: A 10³-point sub-grid of the benchmark's 10⁶-point atlas (benchmarks/bench_atlas.py,
+#: 40 ϖ × 25 α × 25 β × 40 κ): 10 ϖ (every 4th), 10 α and 10 β (every 2nd), κ = 0.05.
 GRID_1000 = {
     "varpi": np.linspace(0.3, 3.0, 40)[::4][:10],
     "alpha": np.geomspace(0.1, 10.0, 25)[::2][:10],
