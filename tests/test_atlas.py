@@ -298,7 +298,7 @@ def test_other_arguments_into_an_atlas_are_refused_with_exit_2(tmp_path):
     assert r.exit_code == 2 and "not with a device FILE" in r.output
 
 
-def test_device_atlas_rows_are_the_field_sweeps_rows(tmp_path):
+def test_device_atlas_rows_are_the_field_sweeps_rows(tmp_path, monkeypatch):
     """Two fields of push_demo: the atlas holds `betv sweep FILE`'s rows (its study,
     derived over the whole grid at once; the atlas derives chunk by chunk)."""
     from betvdesign.spec.loader import load_device
@@ -311,8 +311,13 @@ def test_device_atlas_rows_are_the_field_sweeps_rows(tmp_path):
     ]
     ref = run_study(fieldsweep_study(PUSH_DEMO, axes), SerialExecutor()).rows
     run_atlas(device_atlas(PUSH_DEMO, axes), tmp_path / "d", backend="serial", chunk_points=7)
-    _, columns, table = read_table(tmp_path / "d")
+    meta, columns, table = read_table(tmp_path / "d")
     assert decode_rows(table, columns) == ref
+    assert meta["about"]["device"] == str(PUSH_DEMO.resolve())
+    # the same file by another path (from another directory): the same atlas, resumed
+    monkeypatch.chdir(PUSH_DEMO.parent)
+    again = run_atlas(device_atlas("push_demo.yaml", axes), tmp_path / "d", backend="serial")
+    assert (again.computed, again.resumed) == (0, again.chunks)
     # three fields: more than a sweep takes
     three = [*axes, parse_axis(spec, "slider.beam_width=8um:12um", 2)]
     run = run_atlas(device_atlas(PUSH_DEMO, three), tmp_path / "t", backend="serial")

@@ -95,6 +95,8 @@ class Atlas:
         Solves one chunk.
     mode_column : str
         The column whose values the summary counts (``mode``, or ``exact_mode``).
+    about : dict
+        Recorded in the manifest but not compared on resume (the device file's path).
     """
 
     kind: str
@@ -103,6 +105,7 @@ class Atlas:
     total: int
     worker: ChunkWorker
     mode_column: str
+    about: dict[str, Any] = field(default_factory=dict)
 
 
 class ChunkWorker:
@@ -276,16 +279,16 @@ def device_atlas(
     spec = _device(str(device), sha)
     index, set_name = _set_index(spec, set_name)
     cols = columns(axes)
+    path = str(Path(device).resolve())  # workers may run in another directory
     definition = {
-        "device": str(device),
-        "device_sha256": sha[:16],
+        "device_sha256": sha[:16],  # the file's content, not its path, defines the rows
         "set": set_name,
         "tol": tol,
         "axes": {a.field: {"unit": a.unit, "log": a.log, "values": list(a.values)} for a in axes},
     }
-    payload = {"device": str(device), "sha256": sha, "set_index": index, "axes": list(axes)}
+    payload = {"device": path, "sha256": sha, "set_index": index, "axes": list(axes)}
     worker = ChunkWorker("device", cols, {**payload, "tol": tol})
-    return Atlas("device", definition, cols, total, worker, "exact_mode")
+    return Atlas("device", definition, cols, total, worker, "exact_mode", {"device": path})
 
 
 @dataclass
@@ -425,6 +428,8 @@ def run_atlas(
         overwrite=overwrite,
     )
     try:
+        if atlas.about:
+            store.write_manifest(about=atlas.about)
         return _run(atlas, store, backend, workers, scheduler, csv, progress)
     finally:
         store.close()
