@@ -114,15 +114,18 @@ LAYERS: tuple[Layer, ...] = (
     ),
     Layer(
         "studies",
-        "`engine/` (executors, runner, store, grid, `preload` and `daskplugin`: kernels "
-        "loaded once per worker), `points` (one design point of a "
+        "`engine/` (executors, runner, store, grid, `chunkstore` (an atlas's directory: "
+        "a manifest, one file per chunk, the merged table), `preload` and `daskplugin`: "
+        "kernels loaded once per worker), `points` (one design point of a "
         "study), maps (`pushpull`, `regime`, `lambda_scan`), device studies (`sampling`, "
         "`tolerance`, `calibration`, `measurements`, `fix` (the one search of advice: "
         "`betv fix` and the fix text of `betv check`), `fixfields`, `fixfile`, "
         "`drawnchange` (a change of the springs said in drawn dimensions, through the "
         "frame, within the process rules), "
         "`fieldsweep` (a device's own fields in physical units)), `fieldmap` (the "
-        "exact-mode map of two device fields), `terms` (the optional terms of a study)",
+        "exact-mode map of two device fields), `atlas` (a design-space atlas of up to "
+        "millions of points, in chunks, resumable: `betv sweep atlas`), `terms` (the "
+        "optional terms of a study)",
     ),
     Layer(
         "layout",

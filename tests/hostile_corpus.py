@@ -118,6 +118,10 @@ MAP = (
     "sweep", "pushpull", "--varpi", "1", "--alpha", "2", "--beta", "0.5", "--kappa", "0.15",
     "--fidelity", "lambda", "-q",
 )  # fmt: skip
+ATLAS = (
+    "sweep", "atlas", "--alpha", "2", "--beta", "0.5", "--kappa", "0.15", "--fidelity",
+    "lambda", "-q", "-o", "{d}/atlas",
+)  # fmt: skip
 OUT = ("-o", "{d}/map.csv")
 MAP_OUT = ("map.csv", "map.json")
 
@@ -361,6 +365,14 @@ def _cli_numbers() -> list[Case]:
              expect=">= 2"),
         Case("sweep-executor-unknown", c, (*MAP, "-x", "gpu"), expect="unknown executor"),
         Case("sweep-executor-uppercase", c, (*MAP, "-x", "SERIAL", "--json"), exits=(0,)),
+        Case("atlas-range-nan", c, (*ATLAS, "--varpi", "nan"), expect="not finite"),
+        Case("atlas-executor-unknown", c, (*ATLAS, "--varpi", "1", "-x", "gpu"),
+             expect="unknown executor"),
+        Case("atlas-no-out", c, ("sweep", "atlas", "--varpi", "1", "--alpha", "2", "--beta",
+             "0.5", "--kappa", "0.15"), expect="--out DIR"),
+        Case("atlas-device-and-grid", c, ("sweep", "atlas", str(REPO / "devices" /
+             "push_demo.yaml"), "--varpi", "1", "-o", "{d}/atlas"),
+             expect="not with a device FILE"),
     ]  # fmt: skip
 
 

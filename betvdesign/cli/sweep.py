@@ -1,4 +1,4 @@
-"""``betv sweep pushpull|regime|lambda``: design-space sweeps (thin layer over
+"""``betv sweep FILE|pushpull|regime|lambda|atlas``: design-space sweeps (thin layer over
 ``betvdesign.studies``).
 
 Every sweep takes the execution options (``--executor serial|process|dask``,
@@ -11,6 +11,11 @@ The optional physics (``--quality-normal``/``--zeta-v``, ``--quality-tangential`
 ``--zeta-h``, ``--restitution``; :mod:`betvdesign.cli.physics`) is fixed over a sweep;
 absent, the sweep is of the paper's model. ``regime`` takes the normal terms only (the
 vertical motion does not depend on ζ_h).
+
+``betv sweep atlas`` (:mod:`betvdesign.studies.atlas`) is the sweep for grids of
+millions of points: ``--out`` is a directory of chunk files instead of one CSV, ``-x
+dask`` without ``--scheduler`` starts a local cluster of ``-j`` workers, and the merged
+table is ``table.npz`` (``--csv``: also ``table.csv``).
 """
 
 from __future__ import annotations
@@ -429,3 +434,162 @@ def _print_fieldsweep(name: str, summary: dict[str, Any], run: Any) -> None:
             "the idealised speed there is not physical (give actuator.quality_factor_*)"
         )
     typer.echo(f"{run.computed} computed, {run.resumed} resumed in {run.elapsed_s:.2f} s")
+
+
+@sweep_app.command("atlas")
+def atlas_cmd(
+    file: Annotated[
+        Path | None,
+        typer.Argument(help="Device YAML file (with --vary); absent: the (ϖ, α, β, κ) grid."),
+    ] = None,
+    out: Annotated[
+        Path | None,
+        typer.Option(
+            "--out",
+            "-o",
+            help="Atlas directory: a manifest, one file per finished chunk, then table.npz "
+            "and the summary. The same command again resumes it.",
+        ),
+    ] = None,
+    varpi: Annotated[str | None, typer.Option(help="ϖ range, e.g. 0.5:2:0.05.")] = None,
+    alpha: Annotated[str | None, typer.Option(help="α range.")] = None,
+    beta: Annotated[str | None, typer.Option(help="β range.")] = None,
+    kappa: Annotated[str | None, typer.Option(help="κ range.")] = None,
+    vary: Annotated[
+        list[str] | None,
+        typer.Option(
+            "--vary",
+            metavar="FIELD=LO:HI",
+            help="A field of FILE and its range, as `betv sweep FILE` takes it; 1 to 4 times.",
+        ),
+    ] = None,
+    points: Annotated[
+        int,
+        typer.Option(
+            "--points",
+            "-n",
+            help="Points per field (2 to 1,000,000).",
+            callback=int_option(2, 1_000_000),
+        ),
+    ] = 40,
+    log: Annotated[bool, typer.Option("--log", help="Log-spaced field grids.")] = False,
+    set_name: Annotated[
+        str | None, typer.Option("--set", help="Actuator set (default: the first).")
+    ] = None,
+    fidelity: FidelityOpt = "periodic",
+    residual_tol: ResidualTolOpt = 1e-10,
+    max_cycles: MaxCyclesOpt = None,
+    quality_normal: QualityNormalOpt = None,
+    zeta_v: ZetaVOpt = None,
+    quality_tangential: QualityTangentialOpt = None,
+    zeta_h: ZetaHOpt = None,
+    restitution: RestitutionOpt = None,
+    csv: Annotated[bool, typer.Option("--csv", help="Also write table.csv.")] = False,
+    overwrite: OverwriteOpt = False,
+    executor: ExecutorOpt = "process",
+    workers: WorkersOpt = None,
+    chunksize: Annotated[
+        int | None,
+        typer.Option(
+            "--chunksize",
+            help="Points per chunk (one task, one file; default: up to 1000). Fixed when "
+            f"the atlas is made (1 to {limits.MAX_CHUNKSIZE:,}).",
+            callback=int_option(1, limits.MAX_CHUNKSIZE),
+        ),
+    ] = None,
+    scheduler: Annotated[
+        str | None,
+        typer.Option(
+            "--scheduler",
+            help="dask.distributed scheduler tcp://host:port (-x dask without it: a local "
+            "cluster of -j workers).",
+        ),
+    ] = None,
+    as_json: JsonOpt = False,
+    quiet: QuietOpt = False,
+) -> None:
+    """A design-space atlas: up to millions of points in chunks, on the process pool or a
+    dask cluster, each finished chunk kept; the same command again resumes it, another
+    command into the same directory is refused. Over (ϖ, α, β, κ) (the push/pull map's
+    rows) or over 1 to 4 fields of a device file (the field sweep's rows)."""
+    from betvdesign.cli.common import progress_bar
+    from betvdesign.cli.physics import given_options
+
+    with user_errors(), interruptible(out):
+        if out is None:
+            raise UsageError("--out DIR: give the atlas's directory (new, or the atlas to resume)")
+        dimensionless = {"varpi": varpi, "alpha": alpha, "beta": beta, "kappa": kappa}
+        if file is None:
+            from betvdesign.studies.atlas import pushpull_atlas
+
+            missing = [f"--{k}" for k, v in dimensionless.items() if v is None]
+            if missing or vary:
+                raise UsageError(
+                    "give a device FILE with --vary, or the grid --varpi --alpha --beta "
+                    f"--kappa{' (missing ' + ', '.join(missing) + ')' if missing else ''}"
+                )
+            terms = physics_terms(quality_normal, zeta_v, quality_tangential, zeta_h, restitution)
+            axes = {k: axis(v, k) for k, v in dimensionless.items() if v is not None}
+            atlas = pushpull_atlas(
+                **axes, fidelity=fidelity.lower(), tol=residual_tol, max_cycles=max_cycles, **terms
+            )
+        else:
+            from betvdesign.spec.loader import load_device
+            from betvdesign.studies.atlas import MAX_FIELDS, device_atlas
+            from betvdesign.studies.fieldsweep import parse_axis
+
+            given = [f"--{k}" for k, v in dimensionless.items() if v is not None]
+            given += given_options(
+                {
+                    "quality_normal": quality_normal,
+                    "zeta_v": zeta_v,
+                    "quality_tangential": quality_tangential,
+                    "zeta_h": zeta_h,
+                    "restitution": restitution,
+                }
+            )
+            if max_cycles is not None or fidelity.lower() != "periodic":
+                given.append("--max-cycles" if max_cycles is not None else "--fidelity")
+            if given:
+                raise UsageError(
+                    f"{', '.join(given)}: not with a device FILE (its own fields give every "
+                    "parameter); vary them with --vary FIELD=LO:HI"
+                )
+            if not vary or not 1 <= len(vary) <= MAX_FIELDS:
+                raise UsageError(f"--vary: give 1 to {MAX_FIELDS} fields of {file}")
+            spec = load_device(file)
+            fields = [parse_axis(spec, v, points, log=log, max_points=1_000_000) for v in vary]
+            atlas = device_atlas(file, fields, set_name=set_name, tol=residual_tol)
+        from betvdesign.studies.atlas import run_atlas
+
+        with progress_bar("atlas", quiet) as progress:
+            run = run_atlas(
+                atlas,
+                out,
+                backend=executor,
+                workers=workers,
+                scheduler=scheduler,
+                chunk_points=chunksize,
+                overwrite=overwrite,
+                csv=csv,
+                progress=progress,
+            )
+        data = {"study": "atlas", **run.as_dict()}
+
+        def human() -> None:
+            rate = run.computed_points / run.elapsed_s if run.computed_points else 0.0
+            typer.echo(
+                f"atlas of {run.total:,} points in {run.chunks:,} chunks of {run.chunk_points:,}: "
+                f"{run.computed:,} computed, {run.resumed:,} resumed in {run.elapsed_s:.2f} s"
+                + (f" (≈ {rate:,.0f} points/s)" if rate else "")
+                + f"; merged in {run.merge_s:.2f} s"
+            )
+            typer.echo("modes: " + ", ".join(f"{k} {v:,}" for k, v in run.summary["modes"].items()))
+            if "lambda_agrees" in run.summary:
+                typer.echo(
+                    f"λ rule agrees at {run.summary['lambda_agrees']:,}/"
+                    f"{run.summary['converged']:,} converged points"
+                )
+            typer.echo(f"table: {run.path / 'table.npz'}" + (" and table.csv" if csv else ""))
+
+        emit(data, as_json, human)

@@ -75,6 +75,7 @@ __all__ = [
     "field_map",
     "field_tasks",
     "fieldsweep_study",
+    "grid_points",
     "locate_flips",
     "parse_axis",
     "run_fieldsweep",
@@ -270,7 +271,12 @@ def _is_number(s: str) -> bool:
 
 
 def parse_axis(
-    spec: Any, text: str, points: int = DEFAULT_POINTS, *, log: bool = False
+    spec: Any,
+    text: str,
+    points: int = DEFAULT_POINTS,
+    *,
+    log: bool = False,
+    max_points: int = MAX_POINTS,
 ) -> FieldAxis:
     """Parse ``FIELD=LO:HI`` into a :class:`FieldAxis`.
 
@@ -288,6 +294,8 @@ def parse_axis(
         Grid points (2 to :data:`MAX_POINTS`).
     log : bool
         Log-spaced grid.
+    max_points : int
+        Most grid points (a sweep: :data:`MAX_POINTS`; an atlas allows more).
 
     Returns
     -------
@@ -301,8 +309,8 @@ def parse_axis(
     """
     name, sep, rng = text.partition("=")
     name = name.strip()
-    if not 2 <= points <= MAX_POINTS:
-        raise UsageError(f"--points: need 2 to {MAX_POINTS} (got {points})")
+    if not 2 <= points <= max_points:
+        raise UsageError(f"--points: need 2 to {max_points} (got {points})")
     cur = current_value(spec, name)
     if cur is None:
         from betvdesign.spec.fields import FIELDS
@@ -344,19 +352,42 @@ def exact_mode(row: Mapping[str, Any]) -> str:
     return "not converged"
 
 
-def _derive_grid(
-    spec: Any, axes: Sequence[FieldAxis], set_index: int
-) -> tuple[np.ndarray, list[dict[str, Any] | str]]:
-    """Every grid point derived at once.
+def grid_points(axes: Sequence[FieldAxis], keys: Sequence[int] | None = None) -> np.ndarray:
+    """The grid's points (row-major: the first axis slowest), or those of ``keys``.
 
-    Every grid point derived at once: the points (n, fields) [units] and per point
-    its parameters, length scale [m], f_act [Hz], or the reason it cannot be derived.
+    Parameters
+    ----------
+    axes : sequence of FieldAxis
+        The axes.
+    keys : sequence of int, optional
+        Flat keys of the points wanted (None: every point, in key order).
+
+    Returns
+    -------
+    numpy.ndarray
+        Shape (points, fields) [the fields' units].
+    """
+    values = [np.asarray(a.values, dtype=float) for a in axes]
+    if keys is None:
+        mesh = np.meshgrid(*values, indexing="ij")
+        return np.column_stack([m.ravel() for m in mesh])
+    idx = np.unravel_index(np.asarray(keys, dtype=np.int64), tuple(len(v) for v in values))
+    return np.column_stack([v[i] for v, i in zip(values, idx, strict=True)])
+
+
+def _derive_grid(
+    spec: Any, axes: Sequence[FieldAxis], set_index: int, keys: Sequence[int] | None = None
+) -> tuple[np.ndarray, list[dict[str, Any] | str]]:
+    """Every grid point (or those of ``keys``) derived at once.
+
+    Every grid point (or those of ``keys``) derived at once: the points (n, fields)
+    [units] and per point its parameters, length scale [m], f_act [Hz], or the reason it
+    cannot be derived.
     """
     from betvdesign.nondim.device import derive_set
     from betvdesign.studies.sampling import PARAM_FIELDS, check_sample, derive_all
 
-    mesh = np.meshgrid(*[np.asarray(a.values) for a in axes], indexing="ij")
-    x = np.column_stack([m.ravel() for m in mesh])
+    x = grid_points(axes, keys)
 
     class _F:  # derive_all reads .field of each sampled field
         def __init__(self, f: str):
@@ -514,7 +545,13 @@ def _set_index(spec: Any, set_name: str | None) -> tuple[int, str]:
 
 
 def field_tasks(
-    spec: Any, axes: Sequence[FieldAxis], set_index: int, tol: float = 1e-10
+    spec: Any,
+    axes: Sequence[FieldAxis],
+    set_index: int,
+    tol: float = 1e-10,
+    keys: Sequence[int] | None = None,
+    *,
+    max_fields: int = 2,
 ) -> list[dict[str, Any]]:
     """The grid's tasks for :func:`fieldsweep_point` (row-major, first axis slowest).
 
@@ -528,6 +565,11 @@ def field_tasks(
         Index of the actuator set.
     tol : float
         Fixed-point residual accepted [-].
+    keys : sequence of int, optional
+        Flat keys of the points wanted (None: every point; the atlas builds its tasks a
+        chunk at a time, :mod:`betvdesign.studies.atlas`).
+    max_fields : int
+        Most fields varied (a sweep: 2; an atlas: :data:`betvdesign.studies.atlas.MAX_FIELDS`).
 
     Returns
     -------
@@ -535,14 +577,21 @@ def field_tasks(
         One task per grid point: its values [the fields' units] and derived parameters,
         or ``invalid`` (why the point cannot be derived).
     """
-    if not 1 <= len(axes) <= 2 or len({a.field for a in axes}) != len(axes):
-        raise UsageError("--vary: give one or two different fields")
-    x, derived = _derive_grid(spec, axes, set_index)
+    if not 1 <= len(axes) <= max_fields or len({a.field for a in axes}) != len(axes):
+        what = "one or two" if max_fields == 2 else f"1 to {max_fields}"
+        raise UsageError(f"--vary: give {what} different fields")
+    x, derived = _derive_grid(spec, axes, set_index, keys)
     cols = columns(axes)
+    order = range(len(x)) if keys is None else keys
     tasks = []
-    for j, (pt, rec) in enumerate(zip(x, derived, strict=True)):
+    for j, pt, rec in zip(order, x, derived, strict=True):
         values = {a.label: float(v) for a, v in zip(axes, pt, strict=True)}
-        task: dict[str, Any] = {"key": j, "values": values, "tol": tol, "columns": list(cols)}
+        task: dict[str, Any] = {
+            "key": int(j),
+            "values": values,
+            "tol": tol,
+            "columns": list(cols),
+        }
         if isinstance(rec, str):
             task["invalid"] = rec
         else:

@@ -72,7 +72,70 @@ def lambda_point(task: Mapping[str, Any]) -> dict[str, Any]:
     return row
 
 
-def pushpull_study(
+@dataclass(frozen=True)
+class MapPoints:
+    """The points of a map: its grid, the terms and solver options, and each point's task.
+
+    Built (and checked) by :func:`map_points`; shared by :func:`pushpull_study` (one task
+    per grid point) and the atlas (:mod:`betvdesign.studies.atlas`, tasks built a chunk
+    at a time in the workers), so both solve every point alike.
+    """
+
+    grid: Grid
+    terms: Terms
+    fidelity: str
+    tol: float
+    max_cycles: int | None
+    #: ϖ -> why no contact recurs there (:func:`points.vertical_precheck`).
+    idle: dict[float, dict[str, Any]]
+
+    def task(self, key: int) -> dict[str, Any]:
+        """The task of the grid point ``key``.
+
+        Parameters
+        ----------
+        key : int
+            The point's flat key (C order: κ slowest, ϖ fastest).
+
+        Returns
+        -------
+        dict
+            ``key``, κ, β, α, ϖ [-], the terms [-], ``tol``, ``max_cycles`` and
+            ``not_driven`` (None, or why no contact recurs at this ϖ).
+        """
+        values = self.grid.point(key).values
+        return {
+            "key": key,
+            **values,
+            **self.terms.as_dict(),
+            "tol": self.tol,
+            "max_cycles": self.max_cycles,
+            "not_driven": self.idle.get(values["varpi"]),
+        }
+
+    @property
+    def worker(self) -> Any:
+        """The worker of the rung: :func:`points.periodic_point` or :func:`lambda_point`."""
+        return periodic_point if self.fidelity == "periodic" else lambda_point
+
+    @property
+    def columns(self) -> dict[str, type]:
+        """The rows' columns (:data:`points.COLUMNS`, with the terms when set)."""
+        return columns_with(COLUMNS, self.terms, "kappa")
+
+    @property
+    def parameters(self) -> dict[str, Any]:
+        """What defines the rows: the grid, the rung, the solver's options, the terms."""
+        params = {
+            "grid": self.grid.as_dict(),
+            "fidelity": self.fidelity,
+            "tol": self.tol,
+            "max_cycles": self.max_cycles,
+        }
+        return params | self.terms.as_dict()  # a store of other terms is never resumed
+
+
+def map_points(
     varpi: Sequence[float],
     alpha: Sequence[float],
     beta: Sequence[float],
@@ -84,8 +147,8 @@ def pushpull_study(
     zeta_v: float = 0.0,
     zeta_h: float = 0.0,
     restitution: float = 0.0,
-) -> tuple[Study, Grid]:
-    """Build the map study; grid order κ, β, α, ϖ (ϖ fastest).
+) -> MapPoints:
+    """The checked points of a map; grid order κ, β, α, ϖ (ϖ fastest).
 
     Parameters
     ----------
@@ -113,9 +176,8 @@ def pushpull_study(
 
     Returns
     -------
-    tuple of (Study, Grid)
-        The study (one task per grid point, worker :func:`points.periodic_point` or
-        :func:`lambda_point`) and its grid.
+    MapPoints
+        The grid, the options, and the ϖ at which no contact recurs (periodic rung).
 
     Raises
     ------
@@ -136,22 +198,32 @@ def pushpull_study(
     if max_cycles is not None and max_cycles < 1:
         raise UsageError(f"--max-cycles must be >= 1, got {max_cycles}")
     idle = vertical_precheck(axes["varpi"], terms) if fidelity == "periodic" else {}
-    tasks = [
-        {
-            "key": pt.key,
-            **pt.values,
-            **terms.as_dict(),
-            "tol": tol,
-            "max_cycles": max_cycles,
-            "not_driven": idle.get(pt.values["varpi"]),
-        }
-        for pt in grid
-    ]
-    worker = periodic_point if fidelity == "periodic" else lambda_point
-    params = {"grid": grid.as_dict(), "fidelity": fidelity, "tol": tol, "max_cycles": max_cycles}
-    params |= terms.as_dict()  # a store of other terms is never resumed (store.py)
-    columns = columns_with(COLUMNS, terms, "kappa")
-    return Study("pushpull", columns, params, tasks, worker), grid
+    return MapPoints(grid, terms, fidelity, tol, max_cycles, idle)
+
+
+def pushpull_study(*args: Any, **kwargs: Any) -> tuple[Study, Grid]:
+    """Build the map study; grid order κ, β, α, ϖ (ϖ fastest).
+
+    Parameters
+    ----------
+    *args, **kwargs
+        The arguments of :func:`map_points` (ϖ, α, β, κ [-], the rung, the solver's
+        options and the terms).
+
+    Returns
+    -------
+    tuple of (Study, Grid)
+        The study (one task per grid point, worker :func:`points.periodic_point` or
+        :func:`lambda_point`) and its grid.
+
+    Raises
+    ------
+    UsageError
+        As :func:`map_points`.
+    """
+    mp = map_points(*args, **kwargs)
+    tasks = [mp.task(k) for k in range(mp.grid.size)]
+    return Study("pushpull", mp.columns, mp.parameters, tasks, mp.worker), mp.grid
 
 
 @dataclass

@@ -517,7 +517,7 @@ def make_executor(
         An unknown backend, bounds of :mod:`betvdesign.spec.limits` exceeded, or dask
         without a scheduler.
     """
-    backend = backend.strip().lower()
+    backend = check_backend(backend, scheduler)
     if chunksize is not None and not 1 <= chunksize <= limits.MAX_CHUNKSIZE:
         raise UsageError(
             f"chunk size must be >= 1 and <= {limits.MAX_CHUNKSIZE:,}, got {chunksize}"
@@ -525,13 +525,100 @@ def make_executor(
     if workers is not None and not 1 <= workers <= limits.MAX_WORKERS:
         raise UsageError(f"workers must be >= 1 and <= {limits.MAX_WORKERS:,}, got {workers}")
     if scheduler is not None:
-        if backend not in ("dask", "process"):
-            raise UsageError(f"--scheduler needs the dask executor, not {backend!r}")
         return DaskExecutor(scheduler, chunksize=chunksize)
     if backend == "serial":
         return SerialExecutor(chunksize)
     if backend == "process":
         return ProcessExecutor(workers, chunksize)
-    if backend == "dask":
-        raise UsageError("the dask executor needs --scheduler tcp://host:port")
-    raise UsageError(f"unknown executor {backend!r} (serial, process or dask)")
+    raise UsageError("the dask executor needs --scheduler tcp://host:port")
+
+
+def check_backend(backend: str, scheduler: str | None = None) -> str:
+    """An executor's name, checked before any work (and any output) starts.
+
+    Parameters
+    ----------
+    backend : str
+        ``serial``, ``process`` or ``dask`` (case-insensitive).
+    scheduler : str, optional
+        A dask scheduler address (allowed with ``dask``, and with ``process``, the
+        default, which it then turns into ``dask``).
+
+    Returns
+    -------
+    str
+        The name, lower case.
+
+    Raises
+    ------
+    UsageError
+        An unknown executor, or a scheduler with the serial one.
+    """
+    name = backend.strip().lower()
+    if name not in ("serial", "process", "dask"):
+        raise UsageError(f"unknown executor {name!r} (serial, process or dask)")
+    if scheduler is not None and name == "serial":
+        raise UsageError(f"--scheduler needs the dask executor, not {name!r}")
+    return name
+
+
+@contextlib.contextmanager
+def open_executor(
+    backend: str = "process",
+    *,
+    workers: int | None = None,
+    chunksize: int | None = None,
+    scheduler: str | None = None,
+) -> Iterator[Executor]:
+    """An executor by name, with a local dask cluster of its own when dask has no scheduler.
+
+    As :func:`make_executor`, except that ``dask`` without a ``scheduler`` starts a
+    ``distributed.LocalCluster`` of ``workers`` single-thread worker processes (default:
+    every core) for the duration of the block, and closes it after.
+
+    Parameters
+    ----------
+    backend : {"serial", "process", "dask"}
+        The executor (case-insensitive).
+    workers : int, optional
+        Worker processes of ``process`` and of a local dask cluster (None: every core).
+    chunksize : int, optional
+        Tasks per chunk (None: :func:`default_chunksize`).
+    scheduler : str, optional
+        A dask scheduler address ``tcp://host:port``; implies ``dask``.
+
+    Yields
+    ------
+    Executor
+        The executor.
+
+    Raises
+    ------
+    UsageError
+        As :func:`make_executor`; dask not installed.
+    """
+    if check_backend(backend, scheduler) != "dask" or scheduler is not None:
+        yield make_executor(backend, workers=workers, chunksize=chunksize, scheduler=scheduler)
+        return
+    if workers is not None and not 1 <= workers <= limits.MAX_WORKERS:
+        raise UsageError(f"workers must be >= 1 and <= {limits.MAX_WORKERS:,}, got {workers}")
+    try:
+        import logging
+
+        from distributed import Client, LocalCluster
+    except ImportError:  # pragma: no cover - the extra is installed in the test env
+        raise UsageError(
+            "the dask executor needs dask.distributed: pip install 'betvdesign[dask]'"
+        ) from None
+    cluster = LocalCluster(
+        n_workers=workers or os.cpu_count() or 1,
+        threads_per_worker=1,
+        processes=True,
+        dashboard_address=":0",  # its HTTP server on a free port: never "8787 in use"
+        silence_logs=logging.ERROR,
+    )
+    try:
+        with Client(cluster) as client:
+            yield DaskExecutor(client=client, chunksize=chunksize)
+    finally:
+        cluster.close()
