@@ -40,6 +40,13 @@ def report_cmd(
         help="Print the generation time and run times (reports then differ between runs).",
     ),
     quiet: QuietOpt = False,
+    full: bool = typer.Option(
+        False,
+        "--full",
+        help="Also draw the model's diagnostics: the push/pull map of the λ fit, the "
+        "vertical regime strip, the head's phase portrait, the slider's settling and "
+        "periodic orbit (the other figures are the same either way).",
+    ),
     methods: bool = typer.Option(
         False,
         "--methods",
@@ -75,7 +82,7 @@ def report_cmd(
         interruptible(resumable=False),
         progress_bar("writing reports", quiet) as progress,
     ):
-        options = ReportOptions()
+        options = ReportOptions(full=full)
         written = write_reports(
             files, outdir, pdf=pdf, timestamp=timestamp, options=options, progress=progress
         )

@@ -49,6 +49,17 @@ R = TypeVar("R", "PeriodicResult", "Trajectory")
 #: Names of the contact phases used by the figures (plots.PHASE_COLORS keys).
 PHASES = ("free", "slip", "reverse", "stick")
 
+#: Titles of the figures drawn only with ``ReportOptions(full=True)`` (``betv report
+#: --full``): the model's diagnostics, on which no verdict, mode, speed or margin rests.
+FULL_ONLY = (
+    "Push/pull map",
+    "Vertical regime strip",
+    "Vertical phase portrait of the head",
+    "Slider velocity settling and periodic orbit",
+)
+#: Why a piece only the full report draws is not computed.
+NOT_IN_SHORT = "drawn in the full report only (betv report --full)"
+
 
 @dataclass(frozen=True)
 class ReportOptions:
@@ -70,6 +81,12 @@ class ReportOptions:
     periodic_tol: fixed-point residual accepted for a periodic orbit [-];
     periodic_max_cycles: cycle budget of the device's periodic orbit (settling can take
     ~10⁵ cycles, MODEL.md "Slider"); sweep_max_cycles: the same for each λ-sweep orbit;
+    full: every figure, the model's diagnostics included (:data:`FULL_ONLY`: the push/pull
+    map of the λ fit, the vertical regime strip, the head's vertical phase portrait, the
+    slider's settling and its periodic orbit); False (the default of ``betv report``): the
+    figures the design decision rests on (exact-mode map, displacement over the travel
+    range, speed against voltage, robustness, model adequacy, speed against frequency),
+    each the same drawing as in the full report.
     """
 
     regime_points: int = 111
@@ -85,6 +102,7 @@ class ReportOptions:
     periodic_tol: float = 1e-10
     periodic_max_cycles: int = 100_000
     sweep_max_cycles: int = 20_000
+    full: bool = False
 
 
 @dataclass
@@ -444,7 +462,9 @@ def analyse_set(
     per = attempt(lambda: periodic(p, opts))
     n = transient_cycles(per, travel_m, length_m, opts)
     orb: Piece[OrbitData] = (
-        attempt(lambda: orbit(p, per.value, opts))
+        Piece(reason=NOT_IN_SHORT)
+        if not opts.full
+        else attempt(lambda: orbit(p, per.value, opts))
         if per.ok
         else Piece(reason=f"no periodic orbit: {per.reason}")
     )
@@ -452,7 +472,7 @@ def analyse_set(
         params=p,
         periodic=per,
         vertical=attempt(lambda: vertical(p)),
-        regime=attempt(lambda: regime_strip(p, opts)),
+        regime=attempt(lambda: regime_strip(p, opts)) if opts.full else Piece(reason=NOT_IN_SHORT),
         transient=attempt(lambda: transient(p, n, opts)),
         orbit=orb,
         robustness=attempt(lambda: robustness(variants or [], opts)),

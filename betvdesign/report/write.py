@@ -71,12 +71,13 @@ def write_reports(
 
     if progress is not None:
         progress(0, steps)
+    full = options is not None and options.full
     for dev in prepared:
         report = build_report(
             dev,
             options=options,
             generated=generated,
-            reproduce=f"betv report {dev.path} -o DIR",
+            reproduce=f"betv report {dev.path} -o DIR" + (" --full" if full else ""),
         )
         step()
         html = render_html(report)
