@@ -116,3 +116,47 @@ def test_a_damaged_entry_is_a_miss(cache: dict[str, int], tmp_path: Path) -> Non
     (entry,) = (tmp_path / "answers").glob("*.json")
     entry.write_text(entry.read_text("utf-8").replace(entry.stem, "0" * 64), "utf-8")
     assert _run(*argv) == base and cache["n"] == 3
+
+
+def test_a_stored_report_is_the_fresh_one_byte_for_byte(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """``write_reports(cache=True)``: the first report is built and stored, the second
+    written from the store, both byte-identical to a report built without the cache (HTML
+    and PDF); other options, a changed process file or --timestamp build afresh."""
+    from betvdesign.report import ReportOptions, write_reports
+    from betvdesign.report import write as report_write
+
+    monkeypatch.setenv(answers.CACHE_ENV, str(tmp_path / "answers"))
+    builds = {"n": 0}
+    real = report_write.build_report
+
+    def counted(*args: object, **kwargs: object) -> object:
+        builds["n"] += 1
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(report_write, "build_report", counted)
+    proc = tmp_path / "myproc.yaml"
+    shutil.copy(Path(answers.__file__).parents[1] / "data" / "processes" / "demo25.yaml", proc)
+    text = (DEVICES / "push_demo.yaml").read_text("utf-8")
+    dev = tmp_path / "dev.yaml"
+    dev.write_text(text.replace("process: demo25", "process: myproc.yaml", 1), "utf-8")
+    opts = ReportOptions(regime_points=5, robustness_points=3, map_points=3, frequency_points=5)
+
+    def report(name: str, **kw: object) -> tuple[object, ...]:
+        (w,) = write_reports([dev], tmp_path / name, **{"options": opts, **kw})
+        pdf = w.pdf.read_bytes() if w.pdf is not None else None
+        return w.html.read_bytes(), pdf, w.verdict, w.figures
+
+    fresh = report("fresh")
+    assert builds["n"] == 1
+    assert report("first", cache=True) == fresh and builds["n"] == 2
+    assert report("again", cache=True) == fresh and builds["n"] == 2  # from the store
+    small = report("no-pdf", cache=True, pdf=False)
+    assert small[0] == fresh[0] and small[1] is None and builds["n"] == 3
+    proc.write_text(proc.read_text("utf-8") + "\n# a comment\n", "utf-8")
+    assert report("changed", cache=True) == fresh and builds["n"] == 4
+    stamped = report("stamped", cache=True, timestamp=True, pdf=False)
+    assert stamped[0] != fresh[0] and builds["n"] == 5
+    assert report("stamped-again", cache=True, timestamp=True, pdf=False)[0] != fresh[0]
+    assert builds["n"] == 6

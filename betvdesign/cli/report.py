@@ -47,6 +47,14 @@ def report_cmd(
         "vertical regime strip, the head's phase portrait, the slider's settling and "
         "periodic orbit (the other figures are the same either way).",
     ),
+    cache: bool = typer.Option(
+        True,
+        "--cache/--no-cache",
+        help="Write the stored HTML and PDF of an identical earlier report (the same bytes "
+        "of every file read, the same options, betvdesign code and installed packages; "
+        "under ~/.cache/betvdesign/answers, or $BETV_ANSWER_CACHE, 'off' to turn it off). "
+        "--no-cache builds afresh and stores nothing. Never with --timestamp.",
+    ),
     methods: bool = typer.Option(
         False,
         "--methods",
@@ -84,7 +92,13 @@ def report_cmd(
     ):
         options = ReportOptions(full=full)
         written = write_reports(
-            files, outdir, pdf=pdf, timestamp=timestamp, options=options, progress=progress
+            files,
+            outdir,
+            pdf=pdf,
+            timestamp=timestamp,
+            options=options,
+            progress=progress,
+            cache=cache,
         )
     for w in written:
         outputs = ", ".join(str(p) for p in (w.html, w.pdf) if p is not None)

@@ -1,6 +1,8 @@
-"""A command's printed answer, kept for the same inputs: ``betv check`` answers again at once.
+"""A command's answer, kept for the same inputs: ``betv check`` and ``betv report`` answer
+again at once.
 
-An answer (what the command printed on stdout and stderr, and its exit status) is stored
+An answer (what the command printed on stdout and stderr, its exit status and the files
+it wrote) is stored
 under a key made of everything it can depend on:
 
 - the command's name and its options, as parsed;
@@ -23,13 +25,14 @@ names another directory, or ``off`` (also ``0``, ``no``, ``false``) turns the ca
 
 from __future__ import annotations
 
+import base64
 import contextlib
 import hashlib
 import json
 import os
 import sys
 from collections.abc import Iterator, Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
@@ -39,8 +42,10 @@ __all__ = ["Answer", "answer_key", "cache_root", "lookup", "note_read", "recordi
 CACHE_ENV = "BETV_ANSWER_CACHE"
 #: Values of :data:`CACHE_ENV` that turn the cache off.
 OFF = frozenset({"off", "0", "no", "false"})
-#: Entries kept; the oldest beyond this are removed when one is stored.
+#: Entries kept, and their total size [bytes]; the oldest beyond either are removed when
+#: one is stored (a report's entry holds its HTML and PDF: about 1-2 MB).
 MAX_ENTRIES = 1000
+MAX_BYTES = 256 * 2**20
 #: Environment variables that change how the same answer is printed (rich, click).
 _FORM_ENV = ("COLUMNS", "LINES", "TERM", "NO_COLOR", "FORCE_COLOR", "TTY_COMPATIBLE", "CLICOLOR")
 #: Format of an entry (another format is a miss).
@@ -57,11 +62,14 @@ class Answer:
         The text written to each stream.
     exit_code : int
         The process's exit status.
+    files : dict of str to bytes
+        Files the command wrote, by name (``betv report``: the HTML and the PDF).
     """
 
     stdout: str
     stderr: str
     exit_code: int
+    files: Mapping[str, bytes] = field(default_factory=dict)
 
 
 def cache_root() -> Path | None:
@@ -234,8 +242,14 @@ def lookup(key: str) -> Answer | None:
         for path, digest in entry["reads"]:
             if _file_digest(path) != digest:
                 return None
-        answer = Answer(str(entry["stdout"]), str(entry["stderr"]), int(entry["exit_code"]))
-    except (OSError, ValueError, KeyError, TypeError):
+        files = {}
+        for name, (text, digest) in entry["files"].items():
+            data = base64.b64decode(text, validate=True)
+            if hashlib.sha256(data).hexdigest() != digest:
+                return None
+            files[str(name)] = data
+        answer = Answer(str(entry["stdout"]), str(entry["stderr"]), int(entry["exit_code"]), files)
+    except (OSError, ValueError, KeyError, TypeError, AttributeError):
         return None
     return answer
 
@@ -269,6 +283,10 @@ def store(key: str, answer: Answer, reads: Sequence[str]) -> None:
         "stdout": answer.stdout,
         "stderr": answer.stderr,
         "exit_code": answer.exit_code,
+        "files": {
+            name: [base64.b64encode(data).decode("ascii"), hashlib.sha256(data).hexdigest()]
+            for name, data in answer.files.items()
+        },
     }
     from betvdesign.output.files import write_atomic
 
@@ -281,11 +299,16 @@ def store(key: str, answer: Answer, reads: Sequence[str]) -> None:
 
 
 def _prune(root: Path) -> None:
-    """Remove the oldest entries beyond :data:`MAX_ENTRIES`."""
-    entries = list(root.glob("*.json"))
-    if len(entries) <= MAX_ENTRIES:
-        return
-    entries.sort(key=lambda p: p.stat().st_mtime_ns)
-    for old in entries[: len(entries) - MAX_ENTRIES]:
+    """Remove the oldest entries beyond :data:`MAX_ENTRIES` or :data:`MAX_BYTES`."""
+    stats = []
+    for p in root.glob("*.json"):
         with contextlib.suppress(OSError):
-            old.unlink()
+            st = p.stat()
+            stats.append((st.st_mtime_ns, st.st_size, p))
+    stats.sort(reverse=True)  # newest first
+    total = 0
+    for i, (_, size, p) in enumerate(stats):
+        total += size
+        if i >= MAX_ENTRIES or (i and total > MAX_BYTES):
+            with contextlib.suppress(OSError):
+                p.unlink()
