@@ -160,3 +160,24 @@ def test_a_stored_report_is_the_fresh_one_byte_for_byte(
     assert stamped[0] != fresh[0] and builds["n"] == 5
     assert report("stamped-again", cache=True, timestamp=True, pdf=False)[0] != fresh[0]
     assert builds["n"] == 6
+
+
+def test_notes_printed_while_checking_are_not_kept(
+    cache: dict[str, int], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A note on stderr while the check runs (numba compiling the kernels) is printed as it
+    comes and is not part of the stored answer."""
+    import sys
+
+    real = check_cli._answer
+
+    def noisy(*args: object, **kwargs: object) -> int:
+        print("betv: compiling the solver kernels (test)", file=sys.stderr)
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(check_cli, "_answer", noisy)
+    argv = ["-q", str(DEVICES / "push_demo.yaml")]
+    first = _run(*argv)
+    assert "compiling" in first[2]
+    again = _run(*argv)
+    assert cache["n"] == 1 and again == (first[0], first[1], "")

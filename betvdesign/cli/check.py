@@ -14,7 +14,7 @@ import contextlib
 import io
 import sys
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, TextIO
 
 import typer
 from rich.console import Console
@@ -152,22 +152,20 @@ def check_cmd(
         sys.stdout.write(hit.stdout)
         sys.stderr.write(hit.stderr)
         raise typer.Exit(hit.exit_code)
+    # stdout and the command's own warnings are kept; notes on stderr while it runs (a
+    # kernel compile, a usage error's message) are printed as they come and not kept
     out, err = io.StringIO(), io.StringIO()
     try:
-        with (
-            answers.recording() as reads,
-            contextlib.redirect_stdout(out),
-            contextlib.redirect_stderr(err),
-        ):
-            code = _answer(files, settings)
-    finally:  # printed whatever happens (a usage error's message, an interruption)
+        with answers.recording() as reads, contextlib.redirect_stdout(out):
+            code = _answer(files, settings, warnings_to=err)
+    finally:  # printed whatever happens (an interruption)
         sys.stdout.write(out.getvalue())
         sys.stderr.write(err.getvalue())
     answers.store(key, answers.Answer(out.getvalue(), err.getvalue(), code), reads)
     raise typer.Exit(code)
 
 
-def _answer(files: list[Path], settings: dict) -> int:
+def _answer(files: list[Path], settings: dict, warnings_to: TextIO | None = None) -> int:
     """Check ``files`` with the parsed ``settings`` of :func:`check_cmd`, print the answer
     and return the exit status (0 pass, 1 a rule fails; bad input exits 2 through
     :func:`~betvdesign.cli.common.user_errors`).
@@ -180,6 +178,8 @@ def _answer(files: list[Path], settings: dict) -> int:
         ``json``, ``verbose``, ``quiet``, ``select``, ``ignore``, ``target_speed`` (text
         or None), ``horizon``, ``adequacy``, ``advice``: the options with the
         ``[tool.betv]`` defaults applied.
+    warnings_to : TextIO or None
+        Where the warnings about ``--select``/``--ignore`` go (None: stderr).
 
     Returns
     -------
@@ -206,7 +206,7 @@ def _answer(files: list[Path], settings: dict) -> int:
         results = [run_check(src, options) for src in sources]
     flt = results[0].rule_filter
     for warning in flt.unmatched(results):
-        print(f"warning: {warning}", file=sys.stderr)
+        print(f"warning: {warning}", file=warnings_to or sys.stderr)
     views = [r.view for r in results]
     if settings["json"]:
         typer.echo(output_json(views, verbose=verbose))
