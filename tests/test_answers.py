@@ -125,17 +125,17 @@ def test_a_stored_report_is_the_fresh_one_byte_for_byte(
     written from the store, both byte-identical to a report built without the cache (HTML
     and PDF); other options, a changed process file or --timestamp build afresh."""
     from betvdesign.report import ReportOptions, write_reports
-    from betvdesign.report import write as report_write
+    from betvdesign.report import build as report_build
 
     monkeypatch.setenv(answers.CACHE_ENV, str(tmp_path / "answers"))
     builds = {"n": 0}
-    real = report_write.build_report
+    real = report_build.build_report
 
     def counted(*args: object, **kwargs: object) -> object:
         builds["n"] += 1
         return real(*args, **kwargs)
 
-    monkeypatch.setattr(report_write, "build_report", counted)
+    monkeypatch.setattr(report_build, "build_report", counted)
     proc = tmp_path / "myproc.yaml"
     shutil.copy(Path(answers.__file__).parents[1] / "data" / "processes" / "demo25.yaml", proc)
     text = (DEVICES / "push_demo.yaml").read_text("utf-8")

@@ -34,7 +34,6 @@ from typing import TYPE_CHECKING, Any, Generic, TypeVar
 
 import numpy as np
 
-from betvdesign import dynamics
 from betvdesign.errors import BetvError
 from betvdesign.model.domain import VARPI_WINDOW, mode_of
 from betvdesign.model.params import ModelParams
@@ -190,6 +189,8 @@ class OrbitData:
 
 def periodic(p: ModelParams, opts: ReportOptions) -> PeriodicResult:
     """The periodic orbit of the exact model at ``p`` (succeeded), else :class:`Missing`."""
+    from betvdesign import dynamics  # the solver loads with the first solve
+
     res = dynamics.periodic_orbit(p, tol=opts.periodic_tol, max_cycles=opts.periodic_max_cycles)
     return require_success(res, "periodic_orbit")
 
@@ -232,6 +233,8 @@ def _vertical(
 
 def vertical(p: ModelParams) -> VerticalResult:
     """The exact vertical motion at the device's ϖ, ζ_v, e (full default horizon)."""
+    from betvdesign import dynamics  # the solver loads with the first solve
+
     return dynamics.vertical_motion(p.varpi, zeta_v=p.zeta_v, restitution=p.restitution)
 
 
@@ -260,6 +263,8 @@ def samples_per_cycle(p: ModelParams, opts: ReportOptions) -> int:
 
 def transient(p: ModelParams, n_cycles: int, opts: ReportOptions) -> TransientData:
     """Exact run from rest: dense over the first cycles, sections over ``n_cycles``."""
+    from betvdesign import dynamics  # the solver loads with the first solve
+
     simulate = dynamics.simulate
     dense_n = min(opts.dense_cycles, n_cycles)
     head = require_success(simulate(p, dense_n, dense=True), "simulate (dense)")
@@ -293,6 +298,8 @@ def _phase_name(raw: str) -> str:
 
 def orbit(p: ModelParams, per: PeriodicResult, opts: ReportOptions) -> OrbitData:
     """Sample one period of the periodic orbit with its contact phases."""
+    from betvdesign import dynamics  # the solver loads with the first solve
+
     simulate = dynamics.simulate
     n = per.period_cycles if per.period_cycles is not None else 1
     state0 = np.asarray(per.state, dtype=float)
@@ -385,6 +392,8 @@ def robustness(variants: list[FieldVariant], opts: ReportOptions) -> FieldSweep:
     """Periodic speed of every variant (one periodic orbit per distinct parameter set)."""
     if not variants:
         raise Missing("the device has none of the designer fields the sweep varies")
+    from betvdesign import dynamics  # the solver loads with the first solve
+
     periodic_orbit = dynamics.periodic_orbit
     solved: dict[ModelParams, PeriodicResult] = {}
     points: list[FieldPoint] = []

@@ -11,9 +11,7 @@ everything into a :class:`~betvdesign.report.model.Report`. Bad input raises the
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from importlib import metadata
-from pathlib import Path
 from typing import Any
 
 import pint
@@ -25,7 +23,6 @@ from betvdesign.checks.rule import RuleResult, verdict
 from betvdesign.checks.view import rule_unit
 from betvdesign.dynamics import periodic_orbit
 from betvdesign.dynamics.result import PeriodicResult
-from betvdesign.nondim.device import derive_file
 from betvdesign.nondim.record import DeviceDerivation, SetDerivation
 from betvdesign.output.siformat import format_q, format_si
 from betvdesign.report import adequacy, figures, frequency, modemap, thermal
@@ -37,11 +34,10 @@ from betvdesign.report.analysis import (
     analyse_set,
     attempt,
 )
-from betvdesign.report.inputs import device_inputs
+from betvdesign.report.inputs import PreparedDevice
 from betvdesign.report.model import (
     DerivationRow,
     FigureBlock,
-    InputRow,
     KeyValue,
     Report,
     RuleRow,
@@ -59,22 +55,6 @@ SHORT_NOTE = (
     "do not rest on them)."
 )
 _SEVERITY_ORDER = {"error": 0, "warning": 1, "info": 2}
-
-
-@dataclass(frozen=True)
-class PreparedDevice:
-    """A device file that loaded and derived cleanly (input is valid)."""
-
-    path: Path
-    derivation: DeviceDerivation
-    inputs: list[InputRow]
-
-
-def prepare(path: str | Path) -> PreparedDevice:
-    """Load, validate and derive ``path`` (raises SpecError/ParameterError on bad input)."""
-    path = Path(path)
-    derivation = derive_file(path)  # derived values outside the model: SpecError naming the file
-    return PreparedDevice(path, derivation, device_inputs(path))
 
 
 # --------------------------------------------------------------------------- formatting

@@ -18,7 +18,7 @@ from betvdesign.errors import UsageError, each_or_issues
 from betvdesign.output import answers
 from betvdesign.output.files import check_output_dir, write_group
 from betvdesign.report.analysis import ReportOptions
-from betvdesign.report.build import PreparedDevice, build_report, prepare
+from betvdesign.report.inputs import PreparedDevice, prepare
 from betvdesign.report.render import render_html, report_pdf
 
 
@@ -105,6 +105,8 @@ def write_reports(
             meta = json.loads(hit.stdout)
             written.append(Written(dev.path, html_path, pdf_path, meta["verdict"], meta["figures"]))
             continue
+        from betvdesign.report.build import build_report  # figures, solver: only to build
+
         with answers.recording() as log:
             report = build_report(
                 dev,
