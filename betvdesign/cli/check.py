@@ -3,7 +3,9 @@ tables, ``--quiet`` for CI, or versioned ``--json``; presentation in
 :mod:`betvdesign.checks.view`).
 
 Thin: every file is checked by the one pipeline, :func:`betvdesign.api.run_check` (the
-device file or layout read, the rules, the advice), and only rendered here.
+device file or layout read, the rules, the advice), and only rendered here. A repeated
+check of unchanged inputs prints the stored answer (:mod:`betvdesign.output.answers`;
+``--no-cache`` checks afresh).
 
 Exit codes: 0 every error-severity rule passes, 1 a rule fails, 2 bad input or usage.
 """

@@ -1,6 +1,9 @@
 """``betv report FILE... -o DIR``: a self-contained HTML and a PDF design report per device.
 
-Thin: everything is :func:`betvdesign.report.write_reports`.
+Thin: everything is :func:`betvdesign.report.write_reports`. The default report draws the
+figures a design decision rests on; ``--full`` adds the model's diagnostics. A repeated
+report of unchanged inputs is written from the store (:mod:`betvdesign.output.answers`;
+``--no-cache`` builds afresh).
 
 Exit codes: 0 the reports were written (also for a device whose verdict is
 "fail": that is when a report is most needed); with ``--strict``, 1 when a
