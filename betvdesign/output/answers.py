@@ -11,8 +11,8 @@ under a key made of everything it can depend on:
   processes and data), so any change of the code or its data is another key;
 - the Python version and the names of the installed distributions (``*.dist-info``,
   which carry the versions of numpy, numba, scipy, pint, pydantic, ...);
-- what the output's form depends on: whether stdout is a terminal and the environment
-  variables that steer colour and width, and every ``BETV_*`` variable.
+- what the output's form depends on: whether stdout is a terminal, the terminal's size,
+  the environment variables that steer colour and width, and every ``BETV_*`` variable.
 
 The files the command reads besides its arguments (a device's process file) are noted
 while it runs (:func:`note_read`, called by the YAML reader) and stored with the answer
@@ -180,9 +180,22 @@ def answer_key(
         "installed": _installed(),
         "env": sorted(env.items()),
         "tty": [_isatty(sys.stdout), _isatty(sys.stderr)],
+        "terminal": _terminal_sizes(),
     }
     text = json.dumps(parts, sort_keys=True, default=str)
     return hashlib.sha256(text.encode("utf-8", "surrogateescape")).hexdigest()
+
+
+def _terminal_sizes() -> list[list[int] | None]:
+    """The terminal size on stdin, stdout and stderr (None: not a terminal); rich sizes
+    its output by the first of them."""
+    sizes: list[list[int] | None] = []
+    for fd in (0, 1, 2):
+        try:
+            sizes.append(list(os.get_terminal_size(fd)))
+        except (OSError, ValueError):
+            sizes.append(None)
+    return sizes
 
 
 def _isatty(stream: Any) -> bool:
