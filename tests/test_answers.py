@@ -181,3 +181,30 @@ def test_notes_printed_while_checking_are_not_kept(
     assert "compiling" in first[2]
     again = _run(*argv)
     assert cache["n"] == 1 and again == (first[0], first[1], "")
+
+
+@pytest.mark.slow
+def test_cli_report_uses_the_store_unless_told_not_to(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """``betv report`` writes a repeated report from the store (the same HTML); with
+    --no-cache it builds again."""
+    from betvdesign.report import build as report_build
+
+    monkeypatch.setenv(answers.CACHE_ENV, str(tmp_path / "answers"))
+    builds = {"n": 0}
+    real = report_build.build_report
+
+    def counted(*args: object, **kwargs: object) -> object:
+        builds["n"] += 1
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(report_build, "build_report", counted)
+    pages = []
+    for i, extra in enumerate(([], [], ["--no-cache"])):
+        out = tmp_path / f"out{i}"
+        argv = ["report", str(DEVICES / "push_demo.yaml"), "-o", str(out), "--no-pdf", "-q"]
+        r = CliRunner().invoke(app, [*argv, *extra])
+        assert r.exit_code == 0, r.output
+        pages.append((out / "push_demo.html").read_bytes())
+    assert builds["n"] == 2 and pages[0] == pages[1] == pages[2]
