@@ -23,11 +23,14 @@ sysdeps-runtime:
 sysdeps:
 	@bash scripts/sysdeps.sh test
 
+# The byte-compile and the layout (no solver kernels) run beside the kernels' compile.
 demo: sysdeps-runtime $(VENV)/.stamp-run
-	$(BIN)/python -m compileall -q betvdesign
-	$(BIN)/python -m betvdesign.dynamics.warm
+	mkdir -p reports
+	$(BIN)/python -m compileall -q betvdesign & c=$$!; \
+	$(BIN)/betv layout devices/shin2004.yaml -o reports/shin2004.gds --svg reports/shin2004.svg & l=$$!; \
+	$(BIN)/python -m betvdesign.dynamics.warm; w=$$?; \
+	wait $$c && wait $$l && test $$w -eq 0
 	$(BIN)/betv report devices/shin2004.yaml devices/push_demo.yaml -o reports/
-	$(BIN)/betv layout devices/shin2004.yaml -o reports/shin2004.gds --svg reports/shin2004.svg
 
 test: sysdeps $(VENV)/.stamp-test
 	$(BIN)/ruff check betvdesign tests benchmarks

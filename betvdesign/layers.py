@@ -69,7 +69,8 @@ LAYERS: tuple[Layer, ...] = (
         "how results leave the program: `files` (checked paths, atomic writes, write "
         "groups), `siformat` (SI prefixes by magnitude), `numbers` (the one JSON number "
         "rule: non-finite → null), `presentation` (the mode colours and rule-status words "
-        "of every figure, page and text)",
+        "of every figure, page and text), `answers` (a command's printed answer stored "
+        "under its inputs' content: `betv check` answers again at once)",
     ),
     Layer(
         "spec",

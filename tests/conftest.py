@@ -33,6 +33,11 @@ if os.environ.get("CI"):
 REPO = Path(__file__).resolve().parents[1]
 DEVICES = REPO / "devices"
 
+# Every check runs afresh in the tests (several monkeypatch the solver and call the CLI):
+# no stored answer of `betv check` is given again, here or in the commands the tests
+# start; tests/test_answers.py turns the cache on in a directory of its own.
+os.environ["BETV_ANSWER_CACHE"] = "off"
+
 
 def _window_sets(n: int = 20, seed: int = 20041) -> list[ModelParams]:
     """n designs spread over the window 0.5 ≤ ϖ < 2 (log-uniform α, β, κ); the same

@@ -65,7 +65,7 @@ def test_report_in_chromium(browser, reports_dir: Path, tmp_path: Path, name: st
     assert page.title().startswith("BETV design report")
     figures = page.locator("figure.fig")
     n = figures.count()
-    assert n >= 7
+    assert n >= 6
     for i in range(n):
         fig = figures.nth(i)
         svg = fig.locator("svg")

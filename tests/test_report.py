@@ -28,15 +28,18 @@ from betvdesign.nondim.device import derive
 from betvdesign.output.files import write_atomic
 from betvdesign.report import ReportOptions, build_report, prepare, render_html, write_reports
 from betvdesign.report import analysis as report_analysis
+from betvdesign.report.analysis import FULL_ONLY
 from betvdesign.report.build import fmt_num
 from betvdesign.report.variants import shown_fields
 from betvdesign.spec.loader import load_device
 
-#: Section 4's figures per distinct set (the exact-mode map first), plus the
-#: model-adequacy and the speed-against-frequency figures (section 5).
+#: Section 4's figures per distinct set of the full report (the exact-mode map first),
+#: plus the model-adequacy and the speed-against-frequency figures (section 5).
 FIGURES_PER_SET = 1 + 7 + 2
-#: Small sweeps for tests about rendering, not about the numbers.
-SMALL = ReportOptions(regime_points=5, robustness_points=8)
+#: The same in the default report: the four diagnostics are drawn with --full only.
+SHORT_FIGURES_PER_SET = FIGURES_PER_SET - len(FULL_ONLY)
+#: Small sweeps for tests about rendering (every figure), not about the numbers.
+SMALL = ReportOptions(regime_points=5, robustness_points=8, full=True)
 
 
 class _Scan(HTMLParser):
@@ -78,20 +81,23 @@ def distinct_sets(path: Path) -> int:
     return len(keys)
 
 
-def expected_figures(path: Path) -> int:
-    """FIGURES_PER_SET per distinct set (every device has a speed-frequency figure, with
-    or without a thermal cut-off), and u(V), u(f) per distinct set whose stroke is
-    predicted from the drawing (:mod:`betvdesign.report.thermal`)."""
+def expected_figures(path: Path, *, full: bool = True) -> int:
+    """FIGURES_PER_SET (SHORT_FIGURES_PER_SET: the default report) per distinct set (every
+    device has a speed-frequency figure, with or without a thermal cut-off), and u(V),
+    u(f) per distinct set whose stroke is predicted from the drawing
+    (:mod:`betvdesign.report.thermal`)."""
     der = derive(load_device(path))
     drawn = {(tuple(s.params.as_dict().values()), s.scales) for s in der.sets if s.stroke}
-    return FIGURES_PER_SET * distinct_sets(path) + 2 * len(drawn)
+    per_set = FIGURES_PER_SET if full else SHORT_FIGURES_PER_SET
+    return per_set * distinct_sets(path) + 2 * len(drawn)
 
 
 @pytest.mark.slow
 @pytest.mark.parametrize("device", device_files(), ids=lambda p: p.stem)
 def test_report_content(reports_dir: Path, device: Path) -> None:
-    """Verdict box, derived parameters (from nondim.derive), rules, every figure
-    with a caption naming its model, provenance and the reproduce command."""
+    """Verdict box, derived parameters (from nondim.derive), rules, every figure of the
+    default report with a caption naming its model, the note naming the figures drawn
+    with --full only, provenance and the reproduce command."""
     html = (reports_dir / f"{device.stem}.html").read_text("utf-8")
     assert (reports_dir / f"{device.stem}.pdf").stat().st_size > 10_000
     text = text_of(html)
@@ -114,7 +120,7 @@ def test_report_content(reports_dir: Path, device: Path) -> None:
         f"betv report {device}",
     ):
         assert needle in text
-    n_fig = expected_figures(device)
+    n_fig = expected_figures(device, full=False)
     figs = [a for t, a in scan(html).tags if t == "figure"]
     assert len(figs) == n_fig
     captions = re.findall(r"Figure (\d+)\. ([^.]+)\.", text)
@@ -123,16 +129,15 @@ def test_report_content(reports_dir: Path, device: Path) -> None:
     for title in (
         "Where the mode holds: exact-mode map",
         "Mean speed against actuation frequency",
-        "Push/pull map",
-        "Vertical regime strip",
-        "Vertical phase portrait",
-        "Slider velocity settling",
         "Slider displacement",
         "Mean speed against drive",
         "Robustness",
         "Model adequacy: mode and speed against damping and restitution",
     ):
         assert title in text
+    for title in FULL_ONLY:
+        assert f". {title}." not in text, title
+    assert text.count("Drawn with betv report --full only: Push/pull map") == distinct_sets(device)
     # Every number shown for an input is the file's own text.
     assert "slider.travel_range" in text
 
@@ -258,7 +263,7 @@ def test_missing_solver_is_stated_not_invented(monkeypatch: pytest.MonkeyPatch) 
 
     monkeypatch.setattr(settling_module, "simulate", unavailable)
     report_analysis._vertical.cache_clear()  # the regime strip caches per ϖ
-    report = build_report(prepare(DEVICES / "push_demo.yaml"))
+    report = build_report(prepare(DEVICES / "push_demo.yaml"), options=ReportOptions(full=True))
     box = report.sets[0].verdict
     assert box.speed.startswith("not available") and "(test)" in box.speed
     assert "not available" in box.predicted_by and box.predicted_mode == "unknown"
@@ -496,3 +501,50 @@ def test_weasyprint_import_runs_no_program(tmp_path: Path) -> None:
         [sys.executable, "-c", script], capture_output=True, text=True, check=True, cwd=tmp_path
     )
     assert out.stdout.strip() == "0", out.stdout + out.stderr
+
+
+def test_default_report_is_the_full_one_without_the_diagnostics() -> None:
+    """The default report draws the full report's figures less the four diagnostics
+    (FULL_ONLY), each the same SVG and PNG bytes under the same title and caption (no
+    information of a kept figure is lost), with the same verdict and rules; the full
+    report has exactly those four more."""
+    dev = prepare(DEVICES / "pull_demo.yaml")
+    small = {"regime_points": 5, "robustness_points": 3, "map_points": 3, "frequency_points": 5}
+    short = build_report(dev, options=ReportOptions(**small))
+    full = build_report(dev, options=ReportOptions(**small, full=True))
+    kept = [f for f in full.figures() if f.title not in FULL_ONLY]
+    assert sorted({f.title for f in full.figures()} - {f.title for f in kept}) == sorted(FULL_ONLY)
+    assert [f.key for f in short.figures()] == [f.key for f in kept]
+    for mine, theirs in zip(short.figures(), kept, strict=True):
+        assert mine.svg and mine.png
+        assert (mine.svg, mine.png, mine.title, mine.caption, mine.model) == (
+            theirs.svg,
+            theirs.png,
+            theirs.title,
+            theirs.caption,
+            theirs.model,
+        )
+    for a, b in zip(short.sets, full.sets, strict=True):
+        assert (a.verdict, a.rules, a.derivation, a.adequacy is None) == (
+            b.verdict,
+            b.rules,
+            b.derivation,
+            b.adequacy is None,
+        )
+        assert "--full" in a.notes[0] and not b.notes
+    assert short.verdict == full.verdict
+
+
+@pytest.mark.slow
+def test_cli_full_draws_the_diagnostics(tmp_path: Path) -> None:
+    """``betv report --full`` writes every figure and says so in its reproduce line;
+    without it the four diagnostics are left out."""
+    runner = CliRunner()
+    for flag, n in (("--full", FIGURES_PER_SET), (None, SHORT_FIGURES_PER_SET)):
+        out = tmp_path / (flag or "short")
+        args = ["report", str(DEVICES / "push_demo.yaml"), "-o", str(out), "--no-pdf", "-q"]
+        r = runner.invoke(app, [*args, *([flag] if flag else [])])
+        assert r.exit_code == 0, r.output
+        html = (out / "push_demo.html").read_text("utf-8")
+        assert len(re.findall(r"<figure", html)) == n
+        assert ("-o DIR --full" in html) == (flag is not None)

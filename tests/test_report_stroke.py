@@ -33,7 +33,9 @@ from betvdesign.report.analysis import Missing, Piece
 from betvdesign.spec.loader import load_device
 
 #: Few orbits: the tests are about the stroke's figures, not the slider's sweeps.
-TINY = ReportOptions(regime_points=5, robustness_points=3, map_points=3, frequency_points=5)
+TINY = ReportOptions(
+    regime_points=5, robustness_points=3, map_points=3, frequency_points=5, full=True
+)
 runner = CliRunner()
 
 

@@ -3,16 +3,20 @@ tables, ``--quiet`` for CI, or versioned ``--json``; presentation in
 :mod:`betvdesign.checks.view`).
 
 Thin: every file is checked by the one pipeline, :func:`betvdesign.api.run_check` (the
-device file or layout read, the rules, the advice), and only rendered here.
+device file or layout read, the rules, the advice), and only rendered here. A repeated
+check of unchanged inputs prints the stored answer (:mod:`betvdesign.output.answers`;
+``--no-cache`` checks afresh).
 
 Exit codes: 0 every error-severity rule passes, 1 a rule fails, 2 bad input or usage.
 """
 
 from __future__ import annotations
 
+import contextlib
+import io
 import sys
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, TextIO
 
 import typer
 from rich.console import Console
@@ -90,6 +94,15 @@ def check_cmd(
         "nearest passing value of the fields that move what fails (the search of `betv "
         "fix`, a few seconds) and quote it as the rules' fix. --no-advice skips it.",
     ),
+    cache: bool = typer.Option(
+        True,
+        "--cache/--no-cache",
+        help="Print the stored answer of an identical earlier check (the same bytes of "
+        "every file read, process files included, the same options, betvdesign code and "
+        "installed packages; under ~/.cache/betvdesign/answers, or $BETV_ANSWER_CACHE, "
+        "'off' to turn it off). --no-cache checks afresh and stores nothing. The compact "
+        "text on a terminal and --verbose (run times) are never cached.",
+    ),
     show_derivation: bool = typer.Option(False, "--derivation", hidden=True),
 ) -> None:
     """Check device files: design window, push/pull mode, speed, margin, resonance, settling.
@@ -109,32 +122,95 @@ def check_cmd(
     (one Annotated block each); its body reads the sources and renders the one pipeline's
     results (:func:`betvdesign.api.run_check`).
     """
-    from betvdesign.api import CheckOptions, read_source, run_check
-    from betvdesign.checks.view import compact_lines, output_json, quiet_line
-    from betvdesign.spec.units import parse_speed
+    from betvdesign.output import answers
 
     verbose = verbose or show_derivation
     with user_errors():
         if quiet and verbose:
             raise UsageError("--quiet and --verbose exclude each other")
         cfg = load_config()
-        speed_text = target_speed if target_speed is not None else cfg.target_speed
+    settings = {
+        "json": as_json,
+        "verbose": verbose,
+        "quiet": quiet,
+        "select": list(select if select else cfg.select),
+        "ignore": list(ignore if ignore else cfg.ignore),
+        "target_speed": target_speed if target_speed is not None else cfg.target_speed,
+        "horizon": horizon,
+        "adequacy": adequacy,
+        "advice": advice,
+    }
+    # uncached: the compact text on a terminal (colour, its width) and --verbose (it
+    # prints the solver's run times)
+    key = (
+        answers.answer_key("check", settings, files)
+        if cache and not verbose and (as_json or quiet or not sys.stdout.isatty())
+        else None
+    )
+    if key is None:
+        raise typer.Exit(_answer(files, settings))
+    hit = answers.lookup(key)
+    if hit is not None:
+        sys.stdout.write(hit.stdout)
+        sys.stderr.write(hit.stderr)
+        raise typer.Exit(hit.exit_code)
+    # stdout and the command's own warnings are kept; notes on stderr while it runs (a
+    # kernel compile, a usage error's message) are printed as they come and not kept
+    out, err = io.StringIO(), io.StringIO()
+    try:
+        with answers.recording() as reads, contextlib.redirect_stdout(out):
+            code = _answer(files, settings, warnings_to=err)
+    finally:  # printed whatever happens (an interruption)
+        sys.stdout.write(out.getvalue())
+        sys.stderr.write(err.getvalue())
+    answers.store(key, answers.Answer(out.getvalue(), err.getvalue(), code), reads)
+    raise typer.Exit(code)
+
+
+def _answer(files: list[Path], settings: dict, warnings_to: TextIO | None = None) -> int:
+    """Check ``files`` with the parsed ``settings`` of :func:`check_cmd`, print the answer
+    and return the exit status (0 pass, 1 a rule fails; bad input exits 2 through
+    :func:`~betvdesign.cli.common.user_errors`).
+
+    Parameters
+    ----------
+    files : list of Path
+        The device files or layouts.
+    settings : dict
+        ``json``, ``verbose``, ``quiet``, ``select``, ``ignore``, ``target_speed`` (text
+        or None), ``horizon``, ``adequacy``, ``advice``: the options with the
+        ``[tool.betv]`` defaults applied.
+    warnings_to : TextIO or None
+        Where the warnings about ``--select``/``--ignore`` go (None: stderr).
+
+    Returns
+    -------
+    int
+        The exit status.
+    """
+    from betvdesign.api import CheckOptions, read_source, run_check
+    from betvdesign.checks.view import compact_lines, output_json, quiet_line
+    from betvdesign.spec.units import parse_speed
+
+    verbose, quiet = settings["verbose"], settings["quiet"]
+    with user_errors():
+        speed_text = settings["target_speed"]
         target = None if speed_text is None else parse_speed(speed_text, "--target-speed")
         options = CheckOptions(
-            select=tuple(select if select else cfg.select),
-            ignore=tuple(ignore if ignore else cfg.ignore),
+            select=tuple(settings["select"]),
+            ignore=tuple(settings["ignore"]),
             target_speed=target,
-            horizon=horizon,
-            adequacy=adequacy,
-            advice=advice,
+            horizon=settings["horizon"],
+            adequacy=settings["adequacy"],
+            advice=settings["advice"],
         )
         sources = each_or_issues(read_source, files)  # every file's issues at once
         results = [run_check(src, options) for src in sources]
     flt = results[0].rule_filter
     for warning in flt.unmatched(results):
-        print(f"warning: {warning}", file=sys.stderr)
+        print(f"warning: {warning}", file=warnings_to or sys.stderr)
     views = [r.view for r in results]
-    if as_json:
+    if settings["json"]:
         typer.echo(output_json(views, verbose=verbose))
     elif quiet:
         for v in views:
@@ -161,7 +237,7 @@ def check_cmd(
                 + (f" ({esc(', '.join(failed_names))})" if failed_names else "")
             )
     failed = any(v.verdict == "fail" for v in views)
-    raise typer.Exit(EXIT_RULE_FAILED if failed else EXIT_OK)
+    return EXIT_RULE_FAILED if failed else EXIT_OK
 
 
 def render(result: CheckResult, console: Console, *, derivation: bool = False) -> None:

@@ -1,6 +1,9 @@
 """``betv report FILE... -o DIR``: a self-contained HTML and a PDF design report per device.
 
-Thin: everything is :func:`betvdesign.report.write_reports`.
+Thin: everything is :func:`betvdesign.report.write_reports`. The default report draws the
+figures a design decision rests on; ``--full`` adds the model's diagnostics. A repeated
+report of unchanged inputs is written from the store (:mod:`betvdesign.output.answers`;
+``--no-cache`` builds afresh).
 
 Exit codes: 0 the reports were written (also for a device whose verdict is
 "fail": that is when a report is most needed); with ``--strict``, 1 when a
@@ -40,6 +43,21 @@ def report_cmd(
         help="Print the generation time and run times (reports then differ between runs).",
     ),
     quiet: QuietOpt = False,
+    full: bool = typer.Option(
+        False,
+        "--full",
+        help="Also draw the model's diagnostics: the push/pull map of the λ fit, the "
+        "vertical regime strip, the head's phase portrait, the slider's settling and "
+        "periodic orbit (the other figures are the same either way).",
+    ),
+    cache: bool = typer.Option(
+        True,
+        "--cache/--no-cache",
+        help="Write the stored HTML and PDF of an identical earlier report (the same bytes "
+        "of every file read, the same options, betvdesign code and installed packages; "
+        "under ~/.cache/betvdesign/answers, or $BETV_ANSWER_CACHE, 'off' to turn it off). "
+        "--no-cache builds afresh and stores nothing. Never with --timestamp.",
+    ),
     methods: bool = typer.Option(
         False,
         "--methods",
@@ -75,9 +93,15 @@ def report_cmd(
         interruptible(resumable=False),
         progress_bar("writing reports", quiet) as progress,
     ):
-        options = ReportOptions()
+        options = ReportOptions(full=full)
         written = write_reports(
-            files, outdir, pdf=pdf, timestamp=timestamp, options=options, progress=progress
+            files,
+            outdir,
+            pdf=pdf,
+            timestamp=timestamp,
+            options=options,
+            progress=progress,
+            cache=cache,
         )
     for w in written:
         outputs = ", ".join(str(p) for p in (w.html, w.pdf) if p is not None)

@@ -34,7 +34,6 @@ from typing import TYPE_CHECKING, Any, Generic, TypeVar
 
 import numpy as np
 
-from betvdesign import dynamics
 from betvdesign.errors import BetvError
 from betvdesign.model.domain import VARPI_WINDOW, mode_of
 from betvdesign.model.params import ModelParams
@@ -48,6 +47,17 @@ R = TypeVar("R", "PeriodicResult", "Trajectory")
 
 #: Names of the contact phases used by the figures (plots.PHASE_COLORS keys).
 PHASES = ("free", "slip", "reverse", "stick")
+
+#: Titles of the figures drawn only with ``ReportOptions(full=True)`` (``betv report
+#: --full``): the model's diagnostics, on which no verdict, mode, speed or margin rests.
+FULL_ONLY = (
+    "Push/pull map",
+    "Vertical regime strip",
+    "Vertical phase portrait of the head",
+    "Slider velocity settling and periodic orbit",
+)
+#: Why a piece only the full report draws is not computed.
+NOT_IN_SHORT = "drawn in the full report only (betv report --full)"
 
 
 @dataclass(frozen=True)
@@ -70,6 +80,12 @@ class ReportOptions:
     periodic_tol: fixed-point residual accepted for a periodic orbit [-];
     periodic_max_cycles: cycle budget of the device's periodic orbit (settling can take
     ~10⁵ cycles, MODEL.md "Slider"); sweep_max_cycles: the same for each λ-sweep orbit;
+    full: every figure, the model's diagnostics included (:data:`FULL_ONLY`: the push/pull
+    map of the λ fit, the vertical regime strip, the head's vertical phase portrait, the
+    slider's settling and its periodic orbit); False (the default of ``betv report``): the
+    figures the design decision rests on (exact-mode map, displacement over the travel
+    range, speed against voltage, robustness, model adequacy, speed against frequency),
+    each the same drawing as in the full report.
     """
 
     regime_points: int = 111
@@ -85,6 +101,7 @@ class ReportOptions:
     periodic_tol: float = 1e-10
     periodic_max_cycles: int = 100_000
     sweep_max_cycles: int = 20_000
+    full: bool = False
 
 
 @dataclass
@@ -172,6 +189,8 @@ class OrbitData:
 
 def periodic(p: ModelParams, opts: ReportOptions) -> PeriodicResult:
     """The periodic orbit of the exact model at ``p`` (succeeded), else :class:`Missing`."""
+    from betvdesign import dynamics  # the solver loads with the first solve
+
     res = dynamics.periodic_orbit(p, tol=opts.periodic_tol, max_cycles=opts.periodic_max_cycles)
     return require_success(res, "periodic_orbit")
 
@@ -214,6 +233,8 @@ def _vertical(
 
 def vertical(p: ModelParams) -> VerticalResult:
     """The exact vertical motion at the device's ϖ, ζ_v, e (full default horizon)."""
+    from betvdesign import dynamics  # the solver loads with the first solve
+
     return dynamics.vertical_motion(p.varpi, zeta_v=p.zeta_v, restitution=p.restitution)
 
 
@@ -242,6 +263,8 @@ def samples_per_cycle(p: ModelParams, opts: ReportOptions) -> int:
 
 def transient(p: ModelParams, n_cycles: int, opts: ReportOptions) -> TransientData:
     """Exact run from rest: dense over the first cycles, sections over ``n_cycles``."""
+    from betvdesign import dynamics  # the solver loads with the first solve
+
     simulate = dynamics.simulate
     dense_n = min(opts.dense_cycles, n_cycles)
     head = require_success(simulate(p, dense_n, dense=True), "simulate (dense)")
@@ -275,6 +298,8 @@ def _phase_name(raw: str) -> str:
 
 def orbit(p: ModelParams, per: PeriodicResult, opts: ReportOptions) -> OrbitData:
     """Sample one period of the periodic orbit with its contact phases."""
+    from betvdesign import dynamics  # the solver loads with the first solve
+
     simulate = dynamics.simulate
     n = per.period_cycles if per.period_cycles is not None else 1
     state0 = np.asarray(per.state, dtype=float)
@@ -367,6 +392,8 @@ def robustness(variants: list[FieldVariant], opts: ReportOptions) -> FieldSweep:
     """Periodic speed of every variant (one periodic orbit per distinct parameter set)."""
     if not variants:
         raise Missing("the device has none of the designer fields the sweep varies")
+    from betvdesign import dynamics  # the solver loads with the first solve
+
     periodic_orbit = dynamics.periodic_orbit
     solved: dict[ModelParams, PeriodicResult] = {}
     points: list[FieldPoint] = []
@@ -444,7 +471,9 @@ def analyse_set(
     per = attempt(lambda: periodic(p, opts))
     n = transient_cycles(per, travel_m, length_m, opts)
     orb: Piece[OrbitData] = (
-        attempt(lambda: orbit(p, per.value, opts))
+        Piece(reason=NOT_IN_SHORT)
+        if not opts.full
+        else attempt(lambda: orbit(p, per.value, opts))
         if per.ok
         else Piece(reason=f"no periodic orbit: {per.reason}")
     )
@@ -452,7 +481,7 @@ def analyse_set(
         params=p,
         periodic=per,
         vertical=attempt(lambda: vertical(p)),
-        regime=attempt(lambda: regime_strip(p, opts)),
+        regime=attempt(lambda: regime_strip(p, opts)) if opts.full else Piece(reason=NOT_IN_SHORT),
         transient=attempt(lambda: transient(p, n, opts)),
         orbit=orb,
         robustness=attempt(lambda: robustness(variants or [], opts)),

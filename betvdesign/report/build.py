@@ -11,9 +11,7 @@ everything into a :class:`~betvdesign.report.model.Report`. Bad input raises the
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from importlib import metadata
-from pathlib import Path
 from typing import Any
 
 import pint
@@ -25,16 +23,21 @@ from betvdesign.checks.rule import RuleResult, verdict
 from betvdesign.checks.view import rule_unit
 from betvdesign.dynamics import periodic_orbit
 from betvdesign.dynamics.result import PeriodicResult
-from betvdesign.nondim.device import derive_file
 from betvdesign.nondim.record import DeviceDerivation, SetDerivation
 from betvdesign.output.siformat import format_q, format_si
 from betvdesign.report import adequacy, figures, frequency, modemap, thermal
-from betvdesign.report.analysis import Piece, ReportOptions, SetAnalysis, analyse_set, attempt
-from betvdesign.report.inputs import device_inputs
+from betvdesign.report.analysis import (
+    FULL_ONLY,
+    Piece,
+    ReportOptions,
+    SetAnalysis,
+    analyse_set,
+    attempt,
+)
+from betvdesign.report.inputs import PreparedDevice
 from betvdesign.report.model import (
     DerivationRow,
     FigureBlock,
-    InputRow,
     KeyValue,
     Report,
     RuleRow,
@@ -44,23 +47,14 @@ from betvdesign.report.model import (
 from betvdesign.report.variants import field_variants, locate_flips, relative_changes
 
 MAX_WARNINGS = 5
+#: The note under a set's figures in the default (short) report.
+SHORT_NOTE = (
+    "Drawn with betv report --full only: "
+    + ", ".join(t.lower() if i else t for i, t in enumerate(FULL_ONLY))
+    + " (the model's diagnostics; the verdict, the mode, the speed and the margins above "
+    "do not rest on them)."
+)
 _SEVERITY_ORDER = {"error": 0, "warning": 1, "info": 2}
-
-
-@dataclass(frozen=True)
-class PreparedDevice:
-    """A device file that loaded and derived cleanly (input is valid)."""
-
-    path: Path
-    derivation: DeviceDerivation
-    inputs: list[InputRow]
-
-
-def prepare(path: str | Path) -> PreparedDevice:
-    """Load, validate and derive ``path`` (raises SpecError/ParameterError on bad input)."""
-    path = Path(path)
-    derivation = derive_file(path)  # derived values outside the model: SpecError naming the file
-    return PreparedDevice(path, derivation, device_inputs(path))
 
 
 # --------------------------------------------------------------------------- formatting
@@ -424,7 +418,9 @@ def _build_report(
             if same_as
             else [
                 modemap.figure(f"s{i}-modemap", sd, an.mode_map),
-                *figures.set_figures(f"s{i}", sd, an, opts.voltage_points, opts.periodic_tol),
+                *figures.set_figures(
+                    f"s{i}", sd, an, opts.voltage_points, opts.periodic_tol, full=opts.full
+                ),
                 *thermal.figures(f"s{i}-stroke", der.spec, sd, an.stroke),
             ]
         )
@@ -459,6 +455,7 @@ def _build_report(
                 provenance=provenance(an, opts, timings=generated is not None),
                 same_as=same_as,
                 adequacy=adequate,
+                notes=() if same_as or opts.full else (SHORT_NOTE,),
             )
         )
     device_rules = [r for r in results if not r.set_name]

@@ -626,15 +626,49 @@ def robustness(key: str, sd: SetDerivation, an: SetAnalysis) -> FigureBlock:
 
 
 def set_figures(
-    prefix: str, sd: SetDerivation, an: SetAnalysis, voltage_points: int, tol: float = 1e-10
+    prefix: str,
+    sd: SetDerivation,
+    an: SetAnalysis,
+    voltage_points: int,
+    tol: float = 1e-10,
+    *,
+    full: bool = True,
 ) -> list[FigureBlock]:
-    """The seven figures of one actuator set, in reading order (``tol``: the periodic
-    orbit's residual, the accuracy the speed figure's Δs is asked for)."""
+    """The figures of one actuator set, in reading order.
+
+    Parameters
+    ----------
+    prefix : str
+        Prefix of the figures' keys ("s1").
+    sd : SetDerivation
+        The set.
+    an : SetAnalysis
+        Its computations.
+    voltage_points : int
+        Voltages of the speed-voltage figure.
+    tol : float
+        The periodic orbit's residual [-], the accuracy the speed figure's Δs is asked for.
+    full : bool
+        All seven figures; False: without the model's diagnostics
+        (:data:`betvdesign.report.analysis.FULL_ONLY`), the other figures unchanged.
+
+    Returns
+    -------
+    list of FigureBlock
+        Seven figures, or three without the diagnostics.
+    """
+    diagnostics = (
+        [
+            pushpull(f"{prefix}-pushpull", sd),
+            regime(f"{prefix}-regime", sd, an),
+            vertical_portrait(f"{prefix}-vphase", sd, an),
+            settling(f"{prefix}-settling", sd, an),
+        ]
+        if full
+        else []
+    )
     return [
-        pushpull(f"{prefix}-pushpull", sd),
-        regime(f"{prefix}-regime", sd, an),
-        vertical_portrait(f"{prefix}-vphase", sd, an),
-        settling(f"{prefix}-settling", sd, an),
+        *diagnostics,
         displacement(f"{prefix}-displacement", sd, an),
         speed_voltage(f"{prefix}-speed", sd, an, voltage_points, tol),
         robustness(f"{prefix}-robustness", sd, an),

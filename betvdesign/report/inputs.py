@@ -6,13 +6,32 @@ display only; validation is the loader's job (the file has already passed it).
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 from ruamel.yaml import YAML
 from ruamel.yaml.comments import CommentedMap, CommentedSeq
 
+from betvdesign.nondim.device import derive_file
+from betvdesign.nondim.record import DeviceDerivation
 from betvdesign.report.model import InputRow
+
+
+@dataclass(frozen=True)
+class PreparedDevice:
+    """A device file that loaded and derived cleanly (input is valid)."""
+
+    path: Path
+    derivation: DeviceDerivation
+    inputs: list[InputRow]
+
+
+def prepare(path: str | Path) -> PreparedDevice:
+    """Load, validate and derive ``path`` (raises SpecError/ParameterError on bad input)."""
+    path = Path(path)
+    derivation = derive_file(path)  # derived values outside the model: SpecError naming the file
+    return PreparedDevice(path, derivation, device_inputs(path))
 
 
 def _walk(node: Any, path: str, line: int | None, out: list[InputRow]) -> None:

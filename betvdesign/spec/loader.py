@@ -21,6 +21,7 @@ from ruamel.yaml.nodes import MappingNode, Node, SequenceNode
 from ruamel.yaml.reader import ReaderError
 
 from betvdesign.errors import Location, SpecError, SpecIssue
+from betvdesign.output import answers
 from betvdesign.spec import limits, safeyaml
 from betvdesign.spec.messages import known_fields, located, message
 from betvdesign.spec.models import DeviceSpec
@@ -111,6 +112,7 @@ def load_process(path: str | Path) -> Process:
     except OSError:
         key = None
     if key is not None and key in _PROCESSES:
+        answers.note_read(path)  # read earlier in this process: still an input
         return _PROCESSES[key]
     proc = load_model_text(
         safeyaml.read_text(path), str(path), Process, "expected a mapping with 'name', 'layers'"

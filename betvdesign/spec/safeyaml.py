@@ -35,6 +35,7 @@ from ruamel.yaml.parser import RoundTripParser
 from ruamel.yaml.resolver import VersionedResolver
 
 from betvdesign.errors import Location, SpecError, SpecIssue
+from betvdesign.output import answers
 from betvdesign.spec import limits
 
 #: Resolvers of plain scalars under YAML 1.2 (the default) and 1.1 (a ``%YAML 1.1``
@@ -107,6 +108,7 @@ def read_text(path: str | os.PathLike[str]) -> str:
         raise _one(fname, "is a directory, expected a YAML file") from None
     except OSError as exc:
         raise _one(fname, f"cannot read file: {exc.strerror or exc}") from None
+    answers.note_read(p)  # a cached answer depends on this file (betv check)
     if len(raw) > cap:
         size = _size(p)
         got = f"{size:,} bytes" if size and size > cap else f"more than {cap:,} bytes"
