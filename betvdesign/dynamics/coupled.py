@@ -94,7 +94,7 @@ MAX_RESTARTS = 3
 
 @kernel
 def _matmul(x: np.ndarray, y: np.ndarray, out: np.ndarray) -> None:
-    """out = x·y for square matrices (out distinct from x and y)."""
+    """The product x·y of square matrices into out (distinct from x and y)."""
     n = x.shape[0]
     for i in range(n):
         for j in range(n):
@@ -106,7 +106,7 @@ def _matmul(x: np.ndarray, y: np.ndarray, out: np.ndarray) -> None:
 
 @kernel
 def _matvec(m: np.ndarray, v: np.ndarray, out: np.ndarray) -> None:
-    """out = m·v (out distinct from v)."""
+    """The product m·v into out (distinct from v)."""
     n = m.shape[0]
     for i in range(n):
         acc = 0.0
