@@ -6,14 +6,16 @@ solves the periodic orbit of
 
 1. the decoupled model (the paper's, ρ = 0): the exact solver
    (:func:`betvdesign.dynamics.periodic_orbit`);
-2. the coupled model with the drawn ρ and χ = √α·tanθ: the independent reference
-   (:func:`betvdesign.dynamics.coupled_reference.coupled_periodic_orbit`, Newton
-   shooting started from the decoupled orbit, else from the state :data:`MEAN_CYCLES`·2
-   cycles from rest). Where it finds no periodic orbit, the mean Δs of the last
-   :data:`MEAN_CYCLES` of those cycles, with its half-spread as the error (the sign then
-   decides the mode only when it exceeds the spread).
+2. the coupled model with the drawn ρ and χ = √α·tanθ: the exact compiled solver
+   (:func:`betvdesign.dynamics.coupled.coupled_periodic_orbit`, Newton shooting on the
+   exact section map started from the decoupled orbit, else from the state
+   :data:`MEAN_CYCLES`·2 cycles from rest with the period its last sections repeat with,
+   then the periods 1 to :data:`MAX_PERIOD`; stable orbits only, as the decoupled one).
+   Where it finds no periodic orbit, the mean Δs of the last :data:`MEAN_CYCLES` of those
+   cycles, with its half-spread as the error (the sign then decides the mode only when it
+   exceeds the spread).
 
-Both for the paper's idealised terms (no damping, plastic impacts: the coupled reference
+Both for the paper's idealised terms (no damping, plastic impacts: the coupled model
 has no others) and the set's ϖ, α, β, κ as used (the file's measured resonances where
 given, the drawn ones otherwise).
 
@@ -27,8 +29,8 @@ measured resonances (the set's k_v and α come from the drawing: the drawn head 
 only model of it), "decoupled" when the file's measured resonances win (the coupled
 answer is then a finding). The rule ``coupled-head`` (:func:`coupled_rule`) says it in a
 check when asked (``CheckOptions(coupled=True)``, ``check_derivation(coupled=True)``; off
-by default: it costs 10–30 s per set, benchmarks/README.md "Coupled head"). The verdict's
-other rules still quote the decoupled exact answer.
+by default here; benchmarks/README.md "Coupled head" gives its cost per set). The
+verdict's other rules still quote the decoupled exact answer.
 """
 
 from __future__ import annotations
@@ -50,9 +52,12 @@ from betvdesign.output.siformat import format_si
 CoupledStatus = Literal["coupled-agrees", "coupled-differs", "coupled-undetermined", "failed"]
 #: cycles from rest before, and over which, the coupled Δs is averaged without an orbit
 MEAN_CYCLES = 100
-#: the coupled reference's tolerances in this rung (solve_ivp rtol, atol; Newton's
-#: accepted residual): Δs to about 1e-8 relative, far below the 10 % that is decided
-RTOL, ATOL, NEWTON_TOL = 1e-10, 1e-12, 1e-8
+#: Newton's accepted residual on the exact coupled map: Δs to about 1e-8 relative, far
+#: below the 10 % that is decided
+NEWTON_TOL = 1e-8
+#: periods [cycles] tried from the transient's end when the decoupled orbit's start gives
+#: no stable coupled orbit
+MAX_PERIOD = 4
 #: a transient whose Δs spread is below this fraction of its mean has settled
 SETTLED = 1e-6
 
@@ -193,7 +198,7 @@ def coupled_rung(sd: SetDerivation) -> CoupledRung | None:
         When ``sd`` is not a SetDerivation.
     """
     from betvdesign.dynamics import periodic_orbit
-    from betvdesign.dynamics.coupled_reference import coupled_periodic_orbit, simulate_coupled
+    from betvdesign.dynamics.coupled import coupled_periodic_orbit, simulate_coupled
 
     if not isinstance(sd, SetDerivation):
         raise ParameterError(f"expected a SetDerivation, got {type(sd).__name__}")
@@ -209,25 +214,26 @@ def coupled_rung(sd: SetDerivation) -> CoupledRung | None:
     )  # fmt: skip
     guess = ex.state if ok else None
     period = ex.period_cycles if ok else 1
-    orb = coupled_periodic_orbit(
-        p, cpl, guess=guess, period=period, rtol=RTOL, atol=ATOL, tol=NEWTON_TOL
-    )
+    orb = coupled_periodic_orbit(p, cpl, guess=guess, period=period, tol=NEWTON_TOL)
     if orb.status == "success":
         cou = Answer(
             "success", orb.delta_s, 0.0, orb.mode, _speed(sd, orb.delta_s), orb.state, period
         )
     else:
-        run = simulate_coupled(p, cpl, 2 * MEAN_CYCLES, rtol=RTOL, atol=ATOL)
+        run = simulate_coupled(p, cpl, 2 * MEAN_CYCLES, log_events=False)
         tail = run.delta_s[MEAN_CYCLES:]
         again = None
         if run.status == "success":  # Newton again from where the transient went
-            again = coupled_periodic_orbit(
-                p, cpl, guess=run.section[-1], period=period, rtol=RTOL, atol=ATOL, tol=NEWTON_TOL
-            )
+            for k in dict.fromkeys((_repeats(run.section), *range(1, MAX_PERIOD + 1))):
+                again = coupled_periodic_orbit(
+                    p, cpl, guess=run.section[-1], period=k, tol=NEWTON_TOL
+                )
+                if again.status == "success":
+                    break
         if again is not None and again.status == "success":
             cou = Answer(
                 "success", again.delta_s, 0.0, again.mode, _speed(sd, again.delta_s),
-                again.state, period,
+                again.state, int(again.period_cycles or 1),
             )  # fmt: skip
         elif run.status != "success" or tail.size == 0:
             cou = Answer(f"failed: {run.message}", None, math.inf, None, None)
@@ -248,6 +254,16 @@ def coupled_rung(sd: SetDerivation) -> CoupledRung | None:
         message="",
     )
     return replace(rung, message=_message(rung))
+
+
+def _repeats(section: np.ndarray) -> int:
+    """The smallest k ≤ MAX_PERIOD with which the last section states repeat (else 1)."""
+    last = section[-1][[0, 1, 2, 3, 5]]
+    for k in range(1, min(MAX_PERIOD, len(section) - 1) + 1):
+        back = section[-1 - k][[0, 1, 2, 3, 5]]
+        if np.max(np.abs(last - back)) <= 1e-6 * max(1.0, float(np.max(np.abs(last)))):
+            return k
+    return 1
 
 
 def _status(dec: Answer, cou: Answer) -> CoupledStatus:
@@ -288,7 +304,7 @@ def _message(r: CoupledRung) -> str:
 
 
 #: Where the rule ``coupled-head`` comes from.
-SRC_COUPLED = "MODEL.md, Coupled head (K_nt ≠ 0) (betvdesign.dynamics.coupled_reference)"
+SRC_COUPLED = "MODEL.md, Coupled head (K_nt ≠ 0) (betvdesign.dynamics.coupled)"
 
 
 def coupled_rule(r: CoupledRung) -> RuleResult:

@@ -49,6 +49,8 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable
+from dataclasses import replace
 
 import numpy as np
 
@@ -892,9 +894,11 @@ def coupled_periodic_orbit(
     forward differences (steps 1e-7·max(1, |x_i|), ξ stepped upward), the step by least
     squares (the plastic impact makes the map flat in ξ'), halved while the residual
     grows; when no step helps, ``transient`` iterations of the map and Newton again (at
-    most :data:`MAX_RESTARTS` times). Accepted when ‖map(x) − x‖∞ ≤ tol. The Floquet
-    multipliers are the eigenvalues of the last Jacobian of the map (over the five
-    unknowns). At ρ = 0 exactly: :func:`betvdesign.dynamics.periodic_orbit` (the exact
+    most :data:`MAX_RESTARTS` times). Converged when ‖map(x) − x‖∞ ≤ tol; accepted
+    ("success") only when stable: the Floquet multipliers, eigenvalues of the map's
+    Jacobian at the fixed point (over the five unknowns), all of modulus below 1, as the
+    exact decoupled orbit (an unstable orbit: "not_converged" saying so, with its
+    multipliers). At ρ = 0 exactly: :func:`betvdesign.dynamics.periodic_orbit` (the exact
     decoupled orbit), unchanged.
 
     Parameters
@@ -987,20 +991,12 @@ def _orbit(
     r = fx - x
     res = float(np.max(np.abs(r)))
     best, restarts = res, 0
-    jac = None
     for it in range(1, max_newton + 1):
         if res <= tol:
-            return _success(mdl, x, ds, res, period, it - 1, jac, cyc[0], counters, t_start)
-        J = np.empty((5, 5))
-        for i in range(5):
-            h = 1e-7 * max(1.0, abs(x[i]))
-            xi = x.copy()
-            xi[i] += h
-            fi, _, err = fmap(xi)
-            if err:
-                return fail("failed", err, best, it)
-            J[:, i] = ((fi - xi) - r) / h
-        jac = J + np.eye(5)
+            return _accept(mdl, x, ds, res, period, it - 1, fmap, fail, cyc, counters, t_start)
+        J, err = _jacobian(fmap, x, r)
+        if J is None:
+            return fail("failed", err, best, it)
         dx = np.linalg.lstsq(J, -r, rcond=1e-12)[0]
         lam = 1.0
         for _ in range(12):
@@ -1030,33 +1026,66 @@ def _orbit(
             if err:
                 return fail("failed", err, best, it)
             rn, resn = fx - xn, float(np.max(np.abs(fx - xn)))
-            jac = None
         x, r, res, ds = xn, rn, resn, dsn
         best = min(best, res)
     if res <= tol:
-        return _success(mdl, x, ds, res, period, max_newton, jac, cyc[0], counters, t_start)
+        return _accept(mdl, x, ds, res, period, max_newton, fmap, fail, cyc, counters, t_start)
     return fail(
         "not_converged", f"residual {res:.2e} after {max_newton} Newton steps", best, max_newton
     )
 
 
-def _success(
+def _jacobian(fmap: Callable, x: np.ndarray, r: np.ndarray) -> tuple[np.ndarray | None, str]:
+    """Forward-difference Jacobian of map(x) − x (steps 1e-7·max(1, |x_i|)); or the error."""
+    J = np.empty((5, 5))
+    for i in range(5):
+        h = 1e-7 * max(1.0, abs(x[i]))
+        xi = x.copy()
+        xi[i] += h
+        fi, _, err = fmap(xi)
+        if err:
+            return None, err
+        J[:, i] = ((fi - xi) - r) / h
+    return J, ""
+
+
+def _accept(
     mdl: CoupledModel,
     x: np.ndarray,
     ds: float,
     res: float,
     period: int,
     it: int,
-    jac: np.ndarray | None,
-    cycles: int,
+    fmap: Callable,
+    fail: Callable,
+    cyc: list,
     counters: np.ndarray,
     t_start: float,
 ) -> PeriodicResult:
-    floquet = stable = None
-    if jac is not None:
-        mu = np.linalg.eigvals(jac)
-        floquet = mu[np.argsort(-np.abs(mu), kind="stable")]
-        stable = bool(np.all(np.abs(mu) < 1.0))
+    """The converged fixed point x: its Floquet multipliers; "success" only when stable.
+
+    The multipliers are the eigenvalues of the map's Jacobian at x (forward differences
+    over the five unknowns); an unstable orbit (some |μ| ≥ 1) is no answer the device
+    settles to: "not_converged", saying so.
+    """
+    fx, _, err = fmap(x)
+    if err:
+        return fail("failed", err, res, it)
+    jac, err = _jacobian(fmap, x, fx - x)
+    if jac is None:
+        return fail("failed", err, res, it)
+    mu = np.linalg.eigvals(jac + np.eye(5))
+    floquet = mu[np.argsort(-np.abs(mu), kind="stable")]
+    if not np.all(np.abs(mu) < 1.0):
+        out = fail(
+            "not_converged",
+            f"the period-{period} orbit found (residual {res:.2e}, Δs {ds:.6g}) is unstable: "
+            f"|μ|max = {abs(floquet[0]):.4g}; the motion settles elsewhere (another period, "
+            "or none)",
+            res,
+            it,
+        )
+        return replace(out, floquet=floquet, stable=False)
     state = np.array([x[0], x[1], x[2], x[3], 0.0, x[4]])
     return PeriodicResult(
         status="success",
@@ -1067,10 +1096,10 @@ def _success(
         period_cycles=period,
         residual=res,
         floquet=floquet,
-        stable=stable,
+        stable=True,
         state=state,
         n_newton=it,
-        n_cycles=cycles,
+        n_cycles=cyc[0],
         n_events=int(counters[0]),
         n_root_evals=int(counters[1]),
         elapsed_s=time.perf_counter() - t_start,
