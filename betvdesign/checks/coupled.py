@@ -6,11 +6,10 @@ solves the periodic orbit of
 
 1. the decoupled model (the paper's, ρ = 0): the exact solver
    (:func:`betvdesign.dynamics.periodic_orbit`);
-2. the coupled model with the drawn ρ and χ = √α·tanθ: the exact compiled solver
-   (:func:`betvdesign.dynamics.coupled.coupled_periodic_orbit`, Newton shooting on the
-   exact section map started from the decoupled orbit, else from the state
-   :data:`MEAN_CYCLES`·2 cycles from rest with the period its last sections repeat with,
-   then the periods 1 to :data:`MAX_PERIOD`; stable orbits only, as the decoupled one).
+2. the coupled model with the drawn ρ and χ = √α·tanθ: the exact compiled solver's
+   stable orbit (:func:`betvdesign.dynamics.coupled.coupled_orbit`: Newton shooting on the
+   exact section map started from the decoupled orbit, else from the state 200 cycles
+   from rest with the period its last sections repeat with, then the periods 1 to 4).
    Where it finds no periodic orbit, the mean Δs of the last :data:`MEAN_CYCLES` of those
    cycles, with its half-spread as the error (the sign then decides the mode only when it
    exceeds the spread).
@@ -43,6 +42,7 @@ import numpy as np
 
 from betvdesign.checks.adequacy import SPEED_RTOL
 from betvdesign.checks.rule import RuleResult
+from betvdesign.dynamics.result import PeriodicResult
 from betvdesign.errors import ParameterError
 from betvdesign.model.domain import mode_of
 from betvdesign.model.params import HeadCoupling, ModelParams
@@ -55,9 +55,6 @@ MEAN_CYCLES = 100
 #: Newton's accepted residual on the exact coupled map: Δs to about 1e-8 relative, far
 #: below the 10 % that is decided
 NEWTON_TOL = 1e-8
-#: periods [cycles] tried from the transient's end when the decoupled orbit's start gives
-#: no stable coupled orbit
-MAX_PERIOD = 4
 #: a transient whose Δs spread is below this fraction of its mean has settled
 SETTLED = 1e-6
 
@@ -179,13 +176,34 @@ def _speed(sd: SetDerivation, ds: float | None) -> float | None:
     return None if ds is None else ds * sd.scales.length_m * sd.scales.f_act_hz
 
 
-def coupled_rung(sd: SetDerivation) -> CoupledRung | None:
+def uses_coupled(sd: SetDerivation) -> bool:
+    """Whether a verdict takes the coupled head's answer for this set.
+
+    Parameters
+    ----------
+    sd : SetDerivation
+        The derived set.
+
+    Returns
+    -------
+    bool
+        True for a drawn head whose k_v comes from the drawing (the file gives no measured
+        resonances) in the idealised model (the coupled model has no damping or
+        restitution): the drawn head is then the only model of the device.
+    """
+    return sd.springs is not None and sd.springs.used.get("k_v") == "geometry" and sd.params.ideal
+
+
+def coupled_rung(sd: SetDerivation, *, orbit: PeriodicResult | None = None) -> CoupledRung | None:
     """The coupled rung of one set (module docstring); None when the set has no drawing.
 
     Parameters
     ----------
     sd : SetDerivation
         The derived set.
+    orbit : PeriodicResult, optional
+        The coupled orbit when already solved (the check's verdict:
+        :func:`betvdesign.dynamics.coupled.coupled_orbit` of the idealised set).
 
     Returns
     -------
@@ -198,7 +216,7 @@ def coupled_rung(sd: SetDerivation) -> CoupledRung | None:
         When ``sd`` is not a SetDerivation.
     """
     from betvdesign.dynamics import periodic_orbit
-    from betvdesign.dynamics.coupled import coupled_periodic_orbit, simulate_coupled
+    from betvdesign.dynamics.coupled import coupled_orbit, simulate_coupled
 
     if not isinstance(sd, SetDerivation):
         raise ParameterError(f"expected a SetDerivation, got {type(sd).__name__}")
@@ -212,36 +230,21 @@ def coupled_rung(sd: SetDerivation) -> CoupledRung | None:
         ex.status, ex.delta_s, 0.0, ex.mode if ok else None, _speed(sd, ex.delta_s), ex.state,
         ex.period_cycles or 1,
     )  # fmt: skip
-    guess = ex.state if ok else None
-    period = ex.period_cycles if ok else 1
-    orb = coupled_periodic_orbit(p, cpl, guess=guess, period=period, tol=NEWTON_TOL)
+    orb = orbit if orbit is not None else coupled_orbit(p, cpl, decoupled=ex, tol=NEWTON_TOL)
     if orb.status == "success":
         cou = Answer(
-            "success", orb.delta_s, 0.0, orb.mode, _speed(sd, orb.delta_s), orb.state, period
-        )
-    else:
+            "success", orb.delta_s, 0.0, orb.mode, _speed(sd, orb.delta_s), orb.state,
+            int(orb.period_cycles or 1),
+        )  # fmt: skip
+    else:  # no stable orbit: the mean of the transient's last cycles
         run = simulate_coupled(p, cpl, 2 * MEAN_CYCLES, log_events=False)
         tail = run.delta_s[MEAN_CYCLES:]
-        again = None
-        if run.status == "success":  # Newton again from where the transient went
-            for k in dict.fromkeys((_repeats(run.section), *range(1, MAX_PERIOD + 1))):
-                again = coupled_periodic_orbit(
-                    p, cpl, guess=run.section[-1], period=k, tol=NEWTON_TOL
-                )
-                if again.status == "success":
-                    break
-        if again is not None and again.status == "success":
-            cou = Answer(
-                "success", again.delta_s, 0.0, again.mode, _speed(sd, again.delta_s),
-                again.state, int(again.period_cycles or 1),
-            )  # fmt: skip
-        elif run.status != "success" or tail.size == 0:
+        if run.status != "success" or tail.size == 0:
             cou = Answer(f"failed: {run.message}", None, math.inf, None, None)
         else:
             mean = float(np.mean(tail))
             err = 0.5 * float(np.max(tail) - np.min(tail))
             cou = Answer("mean", mean, err, mode_of(mean, error=err), _speed(sd, mean))
-    uses = "coupled" if sd.springs.used.get("k_v") == "geometry" else "decoupled"
     rung = CoupledRung(
         name=sd.name,
         status=_status(dec, cou),
@@ -250,20 +253,10 @@ def coupled_rung(sd: SetDerivation) -> CoupledRung | None:
         stiffness=cpl.a,
         decoupled=dec,
         coupled=cou,
-        uses=uses,
+        uses="coupled" if uses_coupled(sd) else "decoupled",
         message="",
     )
     return replace(rung, message=_message(rung))
-
-
-def _repeats(section: np.ndarray) -> int:
-    """The smallest k ≤ MAX_PERIOD with which the last section states repeat (else 1)."""
-    last = section[-1][[0, 1, 2, 3, 5]]
-    for k in range(1, min(MAX_PERIOD, len(section) - 1) + 1):
-        back = section[-1 - k][[0, 1, 2, 3, 5]]
-        if np.max(np.abs(last - back)) <= 1e-6 * max(1.0, float(np.max(np.abs(last)))):
-            return k
-    return 1
 
 
 def _status(dec: Answer, cou: Answer) -> CoupledStatus:

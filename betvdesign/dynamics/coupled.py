@@ -1104,3 +1104,114 @@ def _accept(
         n_root_evals=int(counters[1]),
         elapsed_s=time.perf_counter() - t_start,
     )
+
+
+#: cycles from rest before the periods are tried again (:func:`coupled_orbit`)
+SETTLE_CYCLES = 200
+#: periods [cycles] :func:`coupled_orbit` tries from the transient's end
+MAX_PERIOD = 4
+
+
+def repeats(section: np.ndarray, max_period: int = MAX_PERIOD) -> int:
+    """The smallest k ≤ max_period with which the last section states repeat (else 1).
+
+    Parameters
+    ----------
+    section : numpy.ndarray
+        Section states (ξ, ξ', ζ, ζ', s, s') [-], shape (m + 1, 6).
+    max_period : int
+        Periods tried [cycles].
+
+    Returns
+    -------
+    int
+        The period [cycles] the last states repeat with to 1e-6 (relative to max(1, |x|)),
+        1 when none does.
+    """
+    last = section[-1][[0, 1, 2, 3, 5]]
+    for k in range(1, min(max_period, len(section) - 1) + 1):
+        back = section[-1 - k][[0, 1, 2, 3, 5]]
+        if np.max(np.abs(last - back)) <= 1e-6 * max(1.0, float(np.max(np.abs(last)))):
+            return k
+    return 1
+
+
+def coupled_orbit(
+    p: ModelParams,
+    coupling: HeadCoupling,
+    *,
+    decoupled: PeriodicResult | None = None,
+    tol: float = 1e-8,
+    transient: int = SETTLE_CYCLES,
+    max_period: int = MAX_PERIOD,
+) -> PeriodicResult:
+    """The stable periodic orbit the coupled head settles to (what a verdict quotes).
+
+    Newton (:func:`coupled_periodic_orbit`) from the decoupled model's orbit (its state and
+    period); where that gives no stable orbit, from the state ``transient`` cycles from
+    rest, with the period the last sections repeat with (:func:`repeats`) first, then the
+    periods 1 to ``max_period``. At ρ = 0 exactly: the decoupled orbit itself.
+
+    Parameters
+    ----------
+    p : ModelParams
+        ϖ, α, β, κ (ideal).
+    coupling : HeadCoupling
+        ρ and χ.
+    decoupled : PeriodicResult, optional
+        The decoupled orbit of ``p`` (:func:`betvdesign.dynamics.periodic_orbit`), solved
+        here when not given.
+    tol : float
+        Newton's accepted residual [-].
+    transient : int
+        Cycles from rest before the periods are tried again [-].
+    max_period : int
+        Periods tried [cycles].
+
+    Returns
+    -------
+    PeriodicResult
+        "success" (stable) or the last attempt's failure, ``transient_cycles`` and
+        ``transient_s`` the transient's when it ran.
+
+    Raises
+    ------
+    ParameterError
+        For invalid parameters.
+    """
+    from betvdesign.dynamics.periodic import periodic_orbit
+
+    if not isinstance(coupling, HeadCoupling):
+        raise ParameterError(f"coupling must be a HeadCoupling, got {type(coupling).__name__}")
+    ex = decoupled if decoupled is not None else periodic_orbit(p)
+    if coupling.rho == 0.0:
+        return ex
+    t0 = time.perf_counter()
+    orb = None
+    if ex.status == "success":
+        orb = coupled_periodic_orbit(
+            p, coupling, guess=ex.state, period=int(ex.period_cycles or 1), tol=tol
+        )
+        if orb.status == "success":
+            return orb
+    run = simulate_coupled(p, coupling, transient, log_events=False)
+    if run.status != "success":
+        return PeriodicResult.failure(
+            p, "failed", f"the transient from rest failed: {run.message}",
+            elapsed_s=time.perf_counter() - t0, n_cycles=run.n_cycles,
+        )  # fmt: skip
+    for k in dict.fromkeys((repeats(run.section, max_period), *range(1, max_period + 1))):
+        orb = coupled_periodic_orbit(p, coupling, guess=run.section[-1], period=k, tol=tol)
+        if orb.status == "success":
+            break
+    assert orb is not None
+    return replace(
+        orb,
+        transient_cycles=transient,
+        transient_s=float(run.section[-1, 4]),
+        elapsed_s=time.perf_counter() - t0,
+        message=orb.message
+        if orb.status == "success"
+        else f"no stable coupled orbit of period 1 to {max_period} from the decoupled "
+        f"orbit nor {transient} cycles from rest (last: {orb.message})",
+    )
