@@ -26,10 +26,12 @@ a mean whose sign its spread does not decide), "failed" (no decoupled answer).
 ``uses`` says which answer a verdict should take: "coupled" when the file gives no
 measured resonances (the set's k_v and α come from the drawing: the drawn head is the
 only model of it), "decoupled" when the file's measured resonances win (the coupled
-answer is then a finding). The rule ``coupled-head`` (:func:`coupled_rule`) says it in a
-check when asked (``CheckOptions(coupled=True)``, ``check_derivation(coupled=True)``; off
-by default here; benchmarks/README.md "Coupled head" gives its cost per set). The
-verdict's other rules still quote the decoupled exact answer.
+answer is then a finding). In a check (:func:`betvdesign.checks.checker.check_derivation`)
+the rule ``coupled-head`` (:func:`coupled_rule`) is on by default for the sets whose
+verdict is the coupled answer (:func:`uses_coupled`: their rules ``mode`` and ``speed``
+then quote the coupled orbit and say so), and for every drawn set with
+``CheckOptions(coupled=True)`` (a finding where the file's resonances win); cost per set:
+benchmarks/README.md "Coupled head".
 """
 
 from __future__ import annotations
@@ -339,19 +341,24 @@ def coupled_rule(r: CoupledRung) -> RuleResult:
     )
 
 
-def coupled_rules(sets: list[SetDerivation]) -> list[RuleResult]:
+def coupled_rules(
+    sets: list[SetDerivation], *, orbits: dict[str, PeriodicResult] | None = None
+) -> list[RuleResult]:
     """The rule ``coupled-head`` of every drawn set (sets with one model solved once).
 
     Parameters
     ----------
     sets : list of SetDerivation
         The device's sets; those without a drawing give no rule.
+    orbits : dict, optional
+        Set name -> its coupled orbit when already solved (the check's verdict).
 
     Returns
     -------
     list of RuleResult
         One per drawn set, in the device's order.
     """
+    orbits = orbits or {}
     done: dict[tuple, CoupledRung] = {}
     out = []
     for sd in sets:
@@ -359,6 +366,6 @@ def coupled_rules(sets: list[SetDerivation]) -> list[RuleResult]:
             continue
         key = (sd.params, sd.springs.rho, sd.scales, sd.springs.used.get("k_v"))
         if key not in done:
-            done[key] = coupled_rung(sd)
+            done[key] = coupled_rung(sd, orbit=orbits.get(sd.name))
         out.append(coupled_rule(replace(done[key], name=sd.name)))
     return out
