@@ -17,8 +17,9 @@ A_phase constant per phase type (:func:`phase_matrices`). The state therefore ev
 - events are linear functionals g·z falling through 0 (the hit ξ = 0 in free flight, the
   separation n = 0, the band edges R = ±b·n in stick, ζ' = s' in slip; :func:`event_table`):
   detected by a sign change between steps, or by a minimum of g inside a step (a sign
-  change of g' = (g·A)·z, then g at its root: a double crossing within one step is not
-  skipped), and refined by Brent's method on the exact flow g·exp(A·δ)·z_step to
+  change of g' = (g·A)·z, then g at its root, unless the cubic Hermite interpolant's
+  minimum exceeds its error bound: a double crossing within one step is not skipped), and
+  refined by Brent's method on the exact flow g·exp(A·δ)·z_step to
   round-off of τ;
 - the automaton's rules are MODEL.md's (as the independent reference
   :mod:`coupled_reference` writes them from MODEL.md): a hit sets ξ' = 0 and opens
@@ -368,6 +369,41 @@ def _brent(
 
 
 @kernel
+def _may_dip(
+    g0: float,
+    g1: float,
+    d0: float,
+    d1: float,
+    h: float,
+    g4: np.ndarray,
+    z0: np.ndarray,
+    z1: np.ndarray,
+) -> bool:
+    """Whether g, positive at both ends of a step with g' < 0 < g' there, may reach 0.
+
+    The cubic Hermite interpolant of (g, g') at the ends is within h⁴/384·max|g⁗| of g on
+    the step; g⁗ = (g·A⁴)·z is taken at the ends, times 2 (it changes little over a step,
+    a small fraction of the fastest period). False only when the interpolant's minimum
+    exceeds that error: no crossing is possible and the exact search is skipped.
+    """
+    a1 = h * d0
+    a2 = 3.0 * (g1 - g0) - h * (2.0 * d0 + d1)
+    a3 = 2.0 * (g0 - g1) + h * (d0 + d1)
+    lo, hi = 0.0, 1.0
+    for _ in range(60):  # the root of H' (negative at 0, positive at 1)
+        mid = 0.5 * (lo + hi)
+        if a1 + mid * (2.0 * a2 + 3.0 * a3 * mid) < 0.0:
+            lo = mid
+        else:
+            hi = mid
+    s = 0.5 * (lo + hi)
+    hmin = g0 + s * (a1 + s * (a2 + s * a3))
+    d4 = max(abs(_dot(g4, z0)), abs(_dot(g4, z1)))
+    err = 2.0 * h**4 / 384.0 * d4 + 1e-13 * (abs(g0) + abs(g1))
+    return hmin - err <= 0.0
+
+
+@kernel
 def _decide(
     z: np.ndarray, matched: bool, be: float, look: np.ndarray, gst: np.ndarray, tmp: np.ndarray
 ) -> int:
@@ -426,6 +462,7 @@ def run_coupled(
     look: np.ndarray,
     g: np.ndarray,
     gd: np.ndarray,
+    g4: np.ndarray,
     count: np.ndarray,
     kind: np.ndarray,
     h: float,
@@ -453,8 +490,9 @@ def run_coupled(
         Phase matrices A (:func:`phase_matrices`) and exp(A·h), shape (4, 8, 8).
     look : numpy.ndarray
         exp(A_stick·LOOKAHEAD·T), shape (8, 8).
-    g, gd : numpy.ndarray
-        Event functionals (:func:`event_table`) and their derivatives g·A, (4, 3, 8).
+    g, gd, g4 : numpy.ndarray
+        Event functionals (:func:`event_table`), their derivatives g·A and fourth
+        derivatives g·A⁴ along the flow, (4, 3, 8).
     count, kind : numpy.ndarray
         Events per phase, and their kinds.
     h : float
@@ -566,8 +604,14 @@ def run_coupled(
                         if not ok:
                             mode_io[0] = mode
                             return m, ROOT_FAILED, tb
-                    elif gv[i] > 0.0 and gn > 0.0 and gdv[i] < 0.0 and gdn > 0.0:
-                        # a minimum inside the step: g at the root of g'
+                    elif (
+                        gv[i] > 0.0
+                        and gn > 0.0
+                        and gdv[i] < 0.0
+                        and gdn > 0.0
+                        and _may_dip(gv[i], gn, gdv[i], gdn, step, g4[mode, i], zb, zn)
+                    ):
+                        # a minimum inside the step that may reach 0: g at the root of g'
                         dm, k_ev, ok = _brent(
                             am, zb, -gd[mode, i], 0.0, step, -gdv[i], -gdn, xtol, tmp
                         )
@@ -690,6 +734,8 @@ class CoupledModel:
         self.amats = phase_matrices(w, al, be, ka, self.a, self.cn, self.ct)
         self.g, self.count, self.kind = event_table(self.a, self.cn, self.ct, b)
         self.gd = np.einsum("kej,kjl->kel", self.g, self.amats)
+        a4 = np.stack([np.linalg.matrix_power(m, 4) for m in self.amats])
+        self.g4 = np.einsum("kej,kjl->kel", self.g, a4)
         lam = max(float(np.max(np.abs(np.linalg.eigvals(m)))) for m in self.amats)
         self.fastest = max(lam, w)
         self.step = min(self.T / STEPS_DRIVE, 2.0 * math.pi / self.fastest / STEPS_FAST)
@@ -709,7 +755,7 @@ class CoupledModel:
     ) -> tuple[int, int, float]:
         """:func:`run_coupled` with this model's tables."""
         return run_coupled(
-            self.amats, self.emats, self.look, self.g, self.gd, self.count, self.kind,
+            self.amats, self.emats, self.look, self.g, self.gd, self.g4, self.count, self.kind,
             self.step, self.p.varpi, self.a, self.cn, self.p.beta, z, mode, m0, m1, start,
             sec, *log, counters,
         )  # fmt: skip
