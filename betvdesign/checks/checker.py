@@ -568,7 +568,7 @@ def _solve_sets(
     settle: Settle,
     determine: bool,
     horizon: int,
-    coupled: dict[str, Callable[[ModelParams], Any]] | None = None,
+    coupled: dict[str, _CoupledOrbits] | None = None,
 ) -> _Solved:
     """The exact answers of every set: orbit, vertical motion, travel, margin corners.
 
@@ -607,7 +607,7 @@ def _solve_sets(
     for s in derivation.sets:
         p = s.params
         if s.name in coupled:
-            _solve_coupled(out, s, coupled[s.name], margin=margin)
+            _solve_coupled(out, s, coupled[s.name], margin=margin, horizon=horizon)
             continue
         if p in seen:
             out.notes.append(f"set {s.name}: same parameters as an already solved set, reused")
@@ -636,26 +636,47 @@ def _solve_sets(
 
 
 def _solve_coupled(
-    out: _Solved, s: SetDerivation, orbit: Callable[[ModelParams], Any], *, margin: bool
+    out: _Solved,
+    s: SetDerivation,
+    orbit: _CoupledOrbits,
+    *,
+    margin: bool,
+    horizon: int,
 ) -> None:
     """A set whose verdict is the coupled head's: its orbit, answer and corners into ``out``.
 
-    The coupled orbit is the answer quoted (no determination, no transient from rest:
-    those solvers are the decoupled model's); the vertical motion is not the decoupled
-    one either (hits depend on ζ) and is not recorded.
+    The coupled orbit is the answer quoted; where the coupled model has no stable orbit,
+    its transient from rest across the travel
+    (:func:`betvdesign.dynamics.coupled.coupled_crossing`). No Δs determination (a
+    decoupled solver's); the margin corners only for a periodic answer. The vertical
+    motion is not the decoupled one (hits depend on ζ) and is not recorded.
     """
+    from betvdesign.dynamics.coupled import CROSSING_HORIZON, coupled_crossing
+    from betvdesign.model.params import HeadCoupling
+
     p = s.params
     out.orbits[s.name] = po = orbit(p)
     out.coupled.add(s.name)
+    travel_s = s.travel_range_m / s.scales.length_m
+    st = None
+    if travel_decides(po):
+        cpl = HeadCoupling.from_angle(orbit.rho, p.alpha, orbit.theta)
+        try:
+            st = coupled_crossing(p, cpl, travel_s, max_cycles=min(horizon, CROSSING_HORIZON))
+        except Exception as exc:  # reported, never a crash
+            st = Settling(
+                status="failed", message=f"coupled crossing: {type(exc).__name__}: {exc}",
+                cycles_to_settle=None, cycles_to_cross=None, crossing_delta_s=None,
+            )  # fmt: skip
+        out.settlings[s.name] = st
+    out.answers[s.name] = ans = travel_answer(po, None, st)
     out.notes.append(
-        f"set {s.name}: mode and speed from the coupled head's exact orbit (drawn head, no "
-        'measured resonances; docs/MODEL.md "Coupled head"); Δs determination and the '
-        "transient from rest are not run for it"
+        f"set {s.name}: mode and speed from the coupled head (drawn head, no measured "
+        'resonances; docs/MODEL.md "Coupled head"): '
+        + ("its exact stable orbit" if st is None else "its transient from rest (no stable orbit)")
+        + "; Δs determination not run for it"
     )
-    _, _, out.answers[s.name] = answer_over_travel(
-        p, po, s.travel_range_m / s.scales.length_m, solver=orbit, determine=False, settle=False
-    )
-    if margin and out.answers[s.name].moves:
+    if margin and ans.moves and ans.basis == "periodic":
         out.margins[s.name] = {k: orbit_mode(orbit(q)) for k, q in corner_params(p).items()}
 
 

@@ -58,6 +58,7 @@ import numpy as np
 from betvdesign.dynamics.inputs import check_cycles, check_state0
 from betvdesign.dynamics.jit import compile_note, kernel
 from betvdesign.dynamics.result import Event, PeriodicResult, Trajectory
+from betvdesign.dynamics.settling import Settling
 from betvdesign.errors import ParameterError
 from betvdesign.model.domain import mode_of
 from betvdesign.model.params import HeadCoupling, ModelParams
@@ -1154,12 +1155,17 @@ def _accept(
 
 #: cycles from rest before the periods are tried again (:func:`coupled_orbit`)
 SETTLE_CYCLES = 200
-#: periods [cycles] :func:`coupled_orbit` tries from the transient's end
+#: periods [cycles] :func:`coupled_orbit` looks for in the transient's last sections
 MAX_PERIOD = 4
+#: Newton iterations of each :func:`coupled_orbit` attempt at most (the shipped and
+#: drawn-only sets converge within 12)
+ORBIT_NEWTON = 15
+#: cycles :func:`coupled_crossing` simulates at most
+CROSSING_HORIZON = 5000
 
 
 def repeats(section: np.ndarray, max_period: int = MAX_PERIOD) -> int:
-    """The smallest k ≤ max_period with which the last section states repeat (else 1).
+    """The smallest k ≤ max_period with which the last section states repeat (else 0).
 
     Parameters
     ----------
@@ -1172,14 +1178,14 @@ def repeats(section: np.ndarray, max_period: int = MAX_PERIOD) -> int:
     -------
     int
         The period [cycles] the last states repeat with to 1e-6 (relative to max(1, |x|)),
-        1 when none does.
+        0 when none does.
     """
     last = section[-1][[0, 1, 2, 3, 5]]
     for k in range(1, min(max_period, len(section) - 1) + 1):
         back = section[-1 - k][[0, 1, 2, 3, 5]]
         if np.max(np.abs(last - back)) <= 1e-6 * max(1.0, float(np.max(np.abs(last)))):
             return k
-    return 1
+    return 0
 
 
 def coupled_orbit(
@@ -1193,10 +1199,12 @@ def coupled_orbit(
 ) -> PeriodicResult:
     """The stable periodic orbit the coupled head settles to (what a verdict quotes).
 
-    Newton (:func:`coupled_periodic_orbit`) from the decoupled model's orbit (its state and
-    period); where that gives no stable orbit, from the state ``transient`` cycles from
-    rest, with the period the last sections repeat with (:func:`repeats`) first, then the
-    periods 1 to ``max_period``. At ρ = 0 exactly: the decoupled orbit itself.
+    Newton (:func:`coupled_periodic_orbit`, at most :data:`ORBIT_NEWTON` iterations) from
+    the decoupled model's orbit (its state and period); where that gives no stable orbit,
+    from the state ``transient`` cycles from rest with the period its last sections repeat
+    with (:func:`repeats`), else with period 1 (a transient that repeats with no period up
+    to ``max_period`` has not settled onto one). At ρ = 0 exactly: the decoupled orbit
+    itself.
 
     Parameters
     ----------
@@ -1236,8 +1244,9 @@ def coupled_orbit(
     orb = None
     if ex.status == "success":
         orb = coupled_periodic_orbit(
-            p, coupling, guess=ex.state, period=int(ex.period_cycles or 1), tol=tol
-        )
+            p, coupling, guess=ex.state, period=int(ex.period_cycles or 1), tol=tol,
+            max_newton=ORBIT_NEWTON,
+        )  # fmt: skip
         if orb.status == "success":
             return orb
     run = simulate_coupled(p, coupling, transient, log_events=False)
@@ -1246,11 +1255,10 @@ def coupled_orbit(
             p, "failed", f"the transient from rest failed: {run.message}",
             elapsed_s=time.perf_counter() - t0, n_cycles=run.n_cycles,
         )  # fmt: skip
-    for k in dict.fromkeys((repeats(run.section, max_period), *range(1, max_period + 1))):
-        orb = coupled_periodic_orbit(p, coupling, guess=run.section[-1], period=k, tol=tol)
-        if orb.status == "success":
-            break
-    assert orb is not None
+    k = repeats(run.section, max_period) or 1
+    orb = coupled_periodic_orbit(
+        p, coupling, guess=run.section[-1], period=k, tol=tol, max_newton=ORBIT_NEWTON
+    )
     return replace(
         orb,
         transient_cycles=transient,
@@ -1258,6 +1266,73 @@ def coupled_orbit(
         elapsed_s=time.perf_counter() - t0,
         message=orb.message
         if orb.status == "success"
-        else f"no stable coupled orbit of period 1 to {max_period} from the decoupled "
-        f"orbit nor {transient} cycles from rest (last: {orb.message})",
+        else f"no stable coupled orbit from the decoupled orbit nor from {transient} cycles "
+        f"from rest (period {k}: {orb.message})",
     )
+
+
+def coupled_crossing(
+    p: ModelParams,
+    coupling: HeadCoupling,
+    travel_s: float,
+    *,
+    max_cycles: int = CROSSING_HORIZON,
+    chunk: int = 256,
+) -> Settling:
+    """The coupled head's transient from rest across the travel range.
+
+    The answer a verdict quotes where the coupled model has no stable orbit: the first
+    cycle at which |s| reaches ``travel_s`` and the mean increment s/m up to it (MODEL.md
+    "Slider": the decoupled check's crossing, with the coupled model), simulated in chunks
+    of ``chunk`` cycles.
+
+    Parameters
+    ----------
+    p, coupling
+        The model (as :func:`simulate_coupled`).
+    travel_s : float
+        Travel range [-, units of u·cosθ].
+    max_cycles : int
+        Cycles simulated at most [-].
+    chunk : int
+        Cycles per kernel call [-].
+
+    Returns
+    -------
+    Settling
+        "not_settled" (no settling is judged) with ``cycles_to_cross`` and
+        ``crossing_delta_s`` when it crosses within ``max_cycles``, None there otherwise;
+        "failed" when a cycle could not be advanced.
+    """
+    t0 = time.perf_counter()
+    y = None
+    s_prev, done, nev, nroot = 0.0, 0, 0, 0
+    while done < max_cycles:
+        n = min(chunk, max_cycles - done)
+        run = simulate_coupled(p, coupling, n, state0=y, log_events=False)
+        nev, nroot = nev + run.n_events, nroot + run.n_root_evals
+        s = run.section[:, 4]
+        hit = np.nonzero(np.abs(s[1:]) >= travel_s)[0]
+        if hit.size:
+            m = done + int(hit[0]) + 1
+            return Settling(
+                status="not_settled",
+                message=f"the coupled transient from rest crosses the travel in {m} cycles",
+                cycles_to_settle=None, cycles_to_cross=m, crossing_delta_s=float(s[hit[0] + 1]) / m,
+                n_cycles=m, n_events=nev, n_root_evals=nroot,
+                elapsed_s=time.perf_counter() - t0,
+            )  # fmt: skip
+        if run.status != "success":
+            return Settling(
+                status="failed", message=f"the coupled transient failed: {run.message}",
+                cycles_to_settle=None, cycles_to_cross=None, crossing_delta_s=None,
+                n_cycles=done + run.n_cycles, elapsed_s=time.perf_counter() - t0,
+            )  # fmt: skip
+        y, done, s_prev = run.section[-1], done + n, float(s[-1])
+    return Settling(
+        status="not_settled",
+        message=f"the coupled transient from rest does not cross the travel within {done} "
+        f"cycles (s = {s_prev:.4g} of {travel_s:.4g})",
+        cycles_to_settle=None, cycles_to_cross=None, crossing_delta_s=None, n_cycles=done,
+        n_events=nev, n_root_evals=nroot, elapsed_s=time.perf_counter() - t0,
+    )  # fmt: skip
