@@ -20,9 +20,11 @@ For a set with a drawn head and no measured resonances (k_v from the drawing, id
 model: :func:`betvdesign.checks.coupled.uses_coupled`) the orbit of step 2 and the margin
 corners of step 3 are the coupled head's (:func:`betvdesign.dynamics.coupled.coupled_orbit`,
 docs/MODEL.md "Coupled head"): the drawn head is the only model of such a device, and the
-paper's decoupled springs misdescribe it (ρ ≈ 0.96–0.99); the rules ``mode`` and
-``speed`` say so, the rule ``coupled-head`` gives the decoupled answer beside it, and the
-determination and the transient from rest (decoupled solvers) are not run for it.
+paper's decoupled springs misdescribe it (ρ ≈ 0.96–0.99); without a stable coupled orbit
+the coupled transient from rest across the travel
+(:func:`betvdesign.dynamics.coupled.coupled_crossing`) is quoted instead. The rules
+``mode`` and ``speed`` say so, the rule ``coupled-head`` gives the decoupled answer beside
+it, and the Δs determination (a decoupled solver's) is not run for it.
 
 The paper's λ fit is shown beside the exact mode ("agrees"/"disagrees") and never
 decides. Identical parameter sets (mirrored actuator sets) are solved once.
