@@ -445,7 +445,8 @@ def check_derivation(
     if on:
         drawn = [s for s in derivation.sets if coupled is True or s.name in by_coupled]
         solved = {k: c.orbit_of_set() for k, c in by_coupled.items()}
-        rules += coupled_rules(drawn, orbits=solved)
+        crossed = {k: v for k, v in got.settlings.items() if k in by_coupled}
+        rules += coupled_rules(drawn, orbits=solved, crossings=crossed)
     return CheckResult(derivation, got.set_checks(derivation, rules, adq), rules, got.notes)
 
 

@@ -8,11 +8,11 @@ solves the periodic orbit of
    (:func:`betvdesign.dynamics.periodic_orbit`);
 2. the coupled model with the drawn ρ and χ = √α·tanθ: the exact compiled solver's
    stable orbit (:func:`betvdesign.dynamics.coupled.coupled_orbit`: Newton shooting on the
-   exact section map started from the decoupled orbit, else from the state 200 cycles
-   from rest with the period its last sections repeat with, then the periods 1 to 4).
-   Where it finds no periodic orbit, the mean Δs of the last :data:`MEAN_CYCLES` of those
-   cycles, with its half-spread as the error (the sign then decides the mode only when it
-   exceeds the spread).
+   exact section map started from the decoupled orbit, else from the transient from rest
+   once its last sections repeat, with that period). Where it finds no stable orbit, the
+   check's coupled crossing of the travel when given, else the mean Δs of cycles
+   :data:`MEAN_CYCLES` to 2·:data:`MEAN_CYCLES` from rest with its half-spread as the
+   error (the sign then decides the mode only when it exceeds the spread).
 
 Both for the paper's idealised terms (no damping, plastic impacts: the coupled model
 has no others) and the set's ϖ, α, β, κ as used (the file's measured resonances where
@@ -45,6 +45,7 @@ import numpy as np
 from betvdesign.checks.adequacy import SPEED_RTOL
 from betvdesign.checks.rule import RuleResult
 from betvdesign.dynamics.result import PeriodicResult
+from betvdesign.dynamics.settling import Settling
 from betvdesign.errors import ParameterError
 from betvdesign.model.domain import mode_of
 from betvdesign.model.params import HeadCoupling, ModelParams
@@ -100,6 +101,8 @@ class Answer:
                 how = " (a transient settled to it; Newton did not converge)"
             elif self.status == "mean":
                 how = f" (mean of cycles ± {self.error:.2g} in Δs: no periodic orbit found)"
+            elif self.status == "crossing":
+                how = " (mean over the travel from rest: no stable orbit)"
             return f"{self.mode} at {format_si(abs(self.speed_m_s or 0.0), 'm/s')}{how}"
         if self.mode is not None:
             return str(self.mode)
@@ -196,7 +199,9 @@ def uses_coupled(sd: SetDerivation) -> bool:
     return sd.springs is not None and sd.springs.used.get("k_v") == "geometry" and sd.params.ideal
 
 
-def coupled_rung(sd: SetDerivation, *, orbit: PeriodicResult | None = None) -> CoupledRung | None:
+def coupled_rung(
+    sd: SetDerivation, *, orbit: PeriodicResult | None = None, crossing: Settling | None = None
+) -> CoupledRung | None:
     """The coupled rung of one set (module docstring); None when the set has no drawing.
 
     Parameters
@@ -206,6 +211,10 @@ def coupled_rung(sd: SetDerivation, *, orbit: PeriodicResult | None = None) -> C
     orbit : PeriodicResult, optional
         The coupled orbit when already solved (the check's verdict:
         :func:`betvdesign.dynamics.coupled.coupled_orbit` of the idealised set).
+    crossing : Settling, optional
+        Without a stable orbit, the coupled transient across the travel when already run
+        (the check's, :func:`betvdesign.dynamics.coupled.coupled_crossing`): its mean Δs
+        is the coupled answer instead of the mean of cycles 100–200.
 
     Returns
     -------
@@ -238,6 +247,9 @@ def coupled_rung(sd: SetDerivation, *, orbit: PeriodicResult | None = None) -> C
             "success", orb.delta_s, 0.0, orb.mode, _speed(sd, orb.delta_s), orb.state,
             int(orb.period_cycles or 1),
         )  # fmt: skip
+    elif crossing is not None and crossing.crossing_delta_s is not None:  # the check's
+        c = float(crossing.crossing_delta_s)
+        cou = Answer("crossing", c, 0.0, mode_of(c), _speed(sd, c))
     else:  # no stable orbit: the mean of the transient's last cycles
         run = simulate_coupled(p, cpl, 2 * MEAN_CYCLES, log_events=False)
         tail = run.delta_s[MEAN_CYCLES:]
@@ -342,7 +354,10 @@ def coupled_rule(r: CoupledRung) -> RuleResult:
 
 
 def coupled_rules(
-    sets: list[SetDerivation], *, orbits: dict[str, PeriodicResult] | None = None
+    sets: list[SetDerivation],
+    *,
+    orbits: dict[str, PeriodicResult] | None = None,
+    crossings: dict[str, Settling] | None = None,
 ) -> list[RuleResult]:
     """The rule ``coupled-head`` of every drawn set (sets with one model solved once).
 
@@ -350,15 +365,16 @@ def coupled_rules(
     ----------
     sets : list of SetDerivation
         The device's sets; those without a drawing give no rule.
-    orbits : dict, optional
-        Set name -> its coupled orbit when already solved (the check's verdict).
+    orbits, crossings : dict, optional
+        Set name -> its coupled orbit, and its coupled crossing of the travel, when already
+        solved (the check's verdict).
 
     Returns
     -------
     list of RuleResult
         One per drawn set, in the device's order.
     """
-    orbits = orbits or {}
+    orbits, crossings = orbits or {}, crossings or {}
     done: dict[tuple, CoupledRung] = {}
     out = []
     for sd in sets:
@@ -366,6 +382,6 @@ def coupled_rules(
             continue
         key = (sd.params, sd.springs.rho, sd.scales, sd.springs.used.get("k_v"))
         if key not in done:
-            done[key] = coupled_rung(sd, orbit=orbits.get(sd.name))
+            done[key] = coupled_rung(sd, orbit=orbits.get(sd.name), crossing=crossings.get(sd.name))
         out.append(coupled_rule(replace(done[key], name=sd.name)))
     return out

@@ -933,6 +933,7 @@ def coupled_periodic_orbit(
     transient: int = 40,
     tol: float = 1e-10,
     max_newton: int = 30,
+    restarts: int = MAX_RESTARTS,
 ) -> PeriodicResult:
     """Periodic orbit of the coupled model: Newton shooting on the exact section map.
 
@@ -941,7 +942,7 @@ def coupled_periodic_orbit(
     forward differences (steps 1e-7·max(1, |x_i|), ξ stepped upward), the step by least
     squares (the plastic impact makes the map flat in ξ'), halved while the residual
     grows; when no step helps, ``transient`` iterations of the map and Newton again (at
-    most :data:`MAX_RESTARTS` times). Converged when ‖map(x) − x‖∞ ≤ tol; accepted
+    most ``restarts`` times). Converged when ‖map(x) − x‖∞ ≤ tol; accepted
     ("success") only when stable: the Floquet multipliers, eigenvalues of the map's
     Jacobian at the fixed point (over the five unknowns), all of modulus below 1, as the
     exact decoupled orbit (an unstable orbit: "not_converged" saying so, with its
@@ -964,6 +965,8 @@ def coupled_periodic_orbit(
         Accepted residual [-].
     max_newton : int
         Newton iterations at most [-].
+    restarts : int
+        Restarts after ``transient`` map iterations at most [-].
 
     Returns
     -------
@@ -993,7 +996,7 @@ def coupled_periodic_orbit(
         guess = g
     return compile_note(  # type: ignore[return-value]
         "coupled_periodic_orbit",
-        lambda: _orbit(mdl, guess, int(period), int(transient), tol, max_newton),
+        lambda: _orbit(mdl, guess, int(period), int(transient), tol, max_newton, restarts),
     )
 
 
@@ -1004,6 +1007,7 @@ def _orbit(
     transient: int,
     tol: float,
     max_newton: int,
+    max_restarts: int,
 ) -> PeriodicResult:
     t_start = time.perf_counter()
     counters = np.zeros(3)
@@ -1058,7 +1062,7 @@ def _orbit(
                     break
             lam *= 0.5
         else:  # no step lowers the residual: iterate the map (a stable orbit attracts)
-            if restarts == MAX_RESTARTS:
+            if restarts >= max_restarts:
                 return fail(
                     "not_converged", f"no Newton step lowers the residual {res:.2e}", best, it
                 )
@@ -1154,7 +1158,9 @@ def _accept(
 
 
 #: cycles from rest before the periods are tried again (:func:`coupled_orbit`)
-SETTLE_CYCLES = 200
+SETTLE_CYCLES = 150
+#: its chunks: the transient stops at the first chunk whose last sections repeat
+SETTLE_CHUNK = 50
 #: periods [cycles] :func:`coupled_orbit` looks for in the transient's last sections
 MAX_PERIOD = 4
 #: Newton iterations of each :func:`coupled_orbit` attempt at most (the shipped and
@@ -1201,10 +1207,12 @@ def coupled_orbit(
 
     Newton (:func:`coupled_periodic_orbit`, at most :data:`ORBIT_NEWTON` iterations) from
     the decoupled model's orbit (its state and period); where that gives no stable orbit,
-    from the state ``transient`` cycles from rest with the period its last sections repeat
-    with (:func:`repeats`), else with period 1 (a transient that repeats with no period up
-    to ``max_period`` has not settled onto one). At ρ = 0 exactly: the decoupled orbit
-    itself.
+    from the state at most ``transient`` cycles from rest (in chunks of
+    :data:`SETTLE_CHUNK`, until the last sections of one repeat) with the period they
+    repeat with (:func:`repeats`); a transient that repeats with no period up to ``max_period``
+    has not settled onto one, and no orbit is given (Newton from it only when the decoupled
+    model has no orbit to start from). One restart of each Newton. At ρ = 0 exactly: the
+    decoupled orbit itself.
 
     Parameters
     ----------
@@ -1245,27 +1253,36 @@ def coupled_orbit(
     if ex.status == "success":
         orb = coupled_periodic_orbit(
             p, coupling, guess=ex.state, period=int(ex.period_cycles or 1), tol=tol,
-            max_newton=ORBIT_NEWTON,
+            max_newton=ORBIT_NEWTON, restarts=1,
         )  # fmt: skip
         if orb.status == "success":
             return orb
-    run = simulate_coupled(p, coupling, transient, log_events=False)
-    if run.status != "success":
-        return PeriodicResult.failure(
-            p, "failed", f"the transient from rest failed: {run.message}",
-            elapsed_s=time.perf_counter() - t0, n_cycles=run.n_cycles,
+    y, done, k = None, 0, 0
+    while done < transient and not k:  # chunks, until the last sections repeat
+        n = min(SETTLE_CHUNK, transient - done)
+        run = simulate_coupled(p, coupling, n, state0=y, log_events=False)
+        if run.status != "success":
+            return PeriodicResult.failure(
+                p, "failed", f"the transient from rest failed: {run.message}",
+                elapsed_s=time.perf_counter() - t0, n_cycles=done + run.n_cycles,
+            )  # fmt: skip
+        y, done = run.section[-1], done + n
+        k = repeats(run.section, max_period)
+    transient = done
+    if k or orb is None:
+        orb = coupled_periodic_orbit(
+            p, coupling, guess=y, period=k or 1, tol=tol, max_newton=ORBIT_NEWTON, restarts=1,
         )  # fmt: skip
-    k = repeats(run.section, max_period) or 1
-    orb = coupled_periodic_orbit(
-        p, coupling, guess=run.section[-1], period=k, tol=tol, max_newton=ORBIT_NEWTON
-    )
     return replace(
         orb,
         transient_cycles=transient,
-        transient_s=float(run.section[-1, 4]),
+        transient_s=float(y[4]),
         elapsed_s=time.perf_counter() - t0,
         message=orb.message
         if orb.status == "success"
+        else f"no stable coupled orbit from the decoupled orbit, and {transient} cycles from "
+        f"rest repeat with no period up to {max_period} ({orb.message})"
+        if not k
         else f"no stable coupled orbit from the decoupled orbit nor from {transient} cycles "
         f"from rest (period {k}: {orb.message})",
     )
