@@ -62,6 +62,7 @@ from betvdesign.dynamics.determination import determine as determine_delta_s
 from betvdesign.dynamics.result import PeriodicResult
 from betvdesign.dynamics.settling import Settling, settling
 from betvdesign.dynamics.vertical import VerticalResult
+from betvdesign.errors import ParameterError
 from betvdesign.model.domain import TRAVEL_HORIZON
 from betvdesign.model.params import ModelParams
 from betvdesign.nondim.record import DeviceDerivation, SetDerivation
@@ -415,7 +416,7 @@ def check_derivation(
     if determine is None:
         determine = not custom
     on = (not custom) if coupled is None else coupled
-    by_coupled = {s.name: _CoupledOrbits(s) for s in derivation.sets if on and uses_coupled(s)}
+    by_coupled = _coupled_sets(derivation, on)
     got = _solve_sets(
         derivation,
         orbit,
@@ -448,6 +449,22 @@ def check_derivation(
         crossed = {k: v for k, v in got.settlings.items() if k in by_coupled}
         rules += coupled_rules(drawn, orbits=solved, crossings=crossed)
     return CheckResult(derivation, got.set_checks(derivation, rules, adq), rules, got.notes)
+
+
+def _coupled_sets(derivation: DeviceDerivation, on: bool) -> dict[str, _CoupledOrbits]:
+    """The sets whose verdict is the coupled head's (:func:`uses_coupled`), by name.
+
+    A drawing whose coupling cannot be formed (no valid ρ or angle) keeps the decoupled
+    verdict; the rule ``actuator.coupling`` already names the drawing's problem.
+    """
+    out: dict[str, _CoupledOrbits] = {}
+    for s in derivation.sets if on else []:
+        if uses_coupled(s):
+            try:
+                out[s.name] = _CoupledOrbits(s)
+            except (ParameterError, AssertionError):
+                continue
+    return out
 
 
 class _CoupledOrbits:
