@@ -71,10 +71,12 @@ class CheckOptions:
         Run the transient from rest / judge how well Δs is determined in float64 (with
         both off, the verdict quotes the periodic orbit alone: the explorer's first
         stage).
-    coupled : bool
-        Add the rule ``coupled-head`` for every drawn set: the paper's decoupled springs
-        against the drawn head's coupled model (:mod:`betvdesign.checks.coupled`; off by
-        default, 10–30 s per set).
+    coupled : bool, optional
+        The drawn head's coupled model (:mod:`betvdesign.checks.coupled`, rule
+        ``coupled-head``): None (default) gives the verdict of the sets with a drawn head
+        and no measured resonances from it; True also reports it as a finding for the drawn
+        sets whose file resonances win; False keeps every verdict decoupled
+        (:func:`betvdesign.checks.checker.check_derivation`).
 
     Raises
     ------
@@ -92,7 +94,7 @@ class CheckOptions:
     margin: bool = True
     settle: bool = True
     determine: bool = True
-    coupled: bool = False
+    coupled: bool | None = None
 
     def __post_init__(self) -> None:
         """Freeze the selectors as tuples and refuse bad values before any solve."""

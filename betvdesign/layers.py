@@ -99,7 +99,8 @@ LAYERS: tuple[Layer, ...] = (
         "(`simulate`), `periodic` (`periodic_orbit`), `vertical` (`vertical_motion`), "
         "`settling` (transient from rest), `determination` (is Δs determined in float64), "
         "`reference` + `reference_terms` (solve_ivp, independent), `rigid` (α → 0), "
-        "`coupled_reference` (the coupled head, solve_ivp)",
+        "`coupled` (the coupled head's exact compiled solver: phase flows exp(A·δ), its "
+        "stable orbit), `coupled_reference` (the coupled head, solve_ivp, independent)",
     ),
     Layer(
         "checks",
@@ -107,7 +108,8 @@ LAYERS: tuple[Layer, ...] = (
         "`window` (the design window's rules: its edges, its margin), "
         "`travel` (which answer a verdict quotes: orbit or crossing of the travel), "
         "`adequacy` (is the idealised model enough: study, rule, JSON), `coupled` (its "
-        "coupled rung: decoupled springs vs the drawn head), `fidelity` (the "
+        "coupled rung: decoupled springs vs the drawn head, the verdict's model of a "
+        "drawn set without measured resonances), `fidelity` (the "
         "ladder of models), `thermal_rules` (a predicted stroke: peak temperature, "
         "bandwidth, power, sources), `actuator_rules` (drawn actuator against the file's "
         "resonances), `process_rules` (the process's design rules on a device file), "

@@ -16,6 +16,16 @@ verdict never rests on a fit: every actuator set gets
    (:func:`betvdesign.dynamics.settling.settling`): cycles to settle and to cross the
    travel range, and the speed a designer sees when it does not settle in time.
 
+For a set with a drawn head and no measured resonances (k_v from the drawing, idealised
+model: :func:`betvdesign.checks.coupled.uses_coupled`) the orbit of step 2 and the margin
+corners of step 3 are the coupled head's (:func:`betvdesign.dynamics.coupled.coupled_orbit`,
+docs/MODEL.md "Coupled head"): the drawn head is the only model of such a device, and the
+paper's decoupled springs misdescribe it (ρ ≈ 0.96–0.99); without a stable coupled orbit
+the coupled transient from rest across the travel
+(:func:`betvdesign.dynamics.coupled.coupled_crossing`) is quoted instead. The rules
+``mode`` and ``speed`` say so, the rule ``coupled-head`` gives the decoupled answer beside
+it, and the Δs determination (a decoupled solver's) is not run for it.
+
 The paper's λ fit is shown beside the exact mode ("agrees"/"disagrees") and never
 decides. Identical parameter sets (mirrored actuator sets) are solved once.
 :class:`CheckResult` is what ``betv check`` prints (through
@@ -27,13 +37,14 @@ never by mutation.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 from typing import Any, Literal
 
 from betvdesign.checks.actuator_rules import actuator_rules
 from betvdesign.checks.adequacy import DeviceAdequacy, SetAdequacy, assess
-from betvdesign.checks.coupled import coupled_rules
+from betvdesign.checks.coupled import SRC_COUPLED, coupled_rules, coupling_of, uses_coupled
 from betvdesign.checks.process_rules import process_rules
 from betvdesign.checks.rule import RuleResult, orbit_mode, verdict
 from betvdesign.checks.rules import (
@@ -51,6 +62,7 @@ from betvdesign.dynamics.determination import determine as determine_delta_s
 from betvdesign.dynamics.result import PeriodicResult
 from betvdesign.dynamics.settling import Settling, settling
 from betvdesign.dynamics.vertical import VerticalResult
+from betvdesign.errors import ParameterError
 from betvdesign.model.domain import TRAVEL_HORIZON
 from betvdesign.model.params import ModelParams
 from betvdesign.nondim.record import DeviceDerivation, SetDerivation
@@ -86,6 +98,9 @@ class SetCheck:
     travel : TravelAnswer, optional
         The answer the verdict quotes: the orbit, or the crossing of the travel from
         rest (:func:`betvdesign.checks.travel.travel_answer`).
+    model : {"decoupled", "coupled"}
+        Whose orbit ``periodic`` is: the paper's decoupled springs, or the drawn head's
+        coupled model (:func:`betvdesign.checks.coupled.uses_coupled`).
     """
 
     derivation: SetDerivation
@@ -97,6 +112,7 @@ class SetCheck:
     adequacy: SetAdequacy | None = None
     determination: Determination | None = None
     travel: TravelAnswer | None = None
+    model: Literal["decoupled", "coupled"] = "decoupled"
 
     @property
     def mode(self) -> str | None:
@@ -331,7 +347,7 @@ def check_derivation(
     determine: bool | None = None,
     horizon: int = TRAVEL_HORIZON,
     layout_rules: list[RuleResult] | None = None,
-    coupled: bool = False,
+    coupled: bool | None = None,
 ) -> CheckResult:
     """Check every actuator set with its exact orbit (see the module docstring).
 
@@ -372,9 +388,13 @@ def check_derivation(
         The process rules measured on a drawn layout (:mod:`betvdesign.layout.drc`),
         used instead of those of the device file
         (:func:`betvdesign.checks.process_rules.process_rules`).
-    coupled : bool
-        Add the rule ``coupled-head`` for every drawn set: the decoupled springs against
-        the drawn head's coupled model (:mod:`betvdesign.checks.coupled`; seconds per set).
+    coupled : bool, optional
+        The drawn head's coupled model (:mod:`betvdesign.checks.coupled`, rule
+        ``coupled-head``): None (default) for the sets whose verdict it gives (drawn head,
+        no measured resonances: :func:`~betvdesign.checks.coupled.uses_coupled`), unless
+        ``solver`` is given; True also as a finding for the drawn sets whose file
+        resonances win (their verdict stays the decoupled one); False never (every verdict
+        decoupled).
 
     Returns
     -------
@@ -395,6 +415,8 @@ def check_derivation(
     vertical = vertical or vertical_motion
     if determine is None:
         determine = not custom
+    on = (not custom) if coupled is None else coupled
+    by_coupled = _coupled_sets(derivation, on)
     got = _solve_sets(
         derivation,
         orbit,
@@ -403,6 +425,7 @@ def check_derivation(
         settle=settle,
         determine=determine,
         horizon=horizon,
+        coupled=by_coupled,
     )
     adq = _adequacy(derivation, adequacy, (lambda p, **_: orbit(p)) if custom else None)
     rules = evaluate_device(
@@ -419,9 +442,74 @@ def check_derivation(
     proc = derivation.spec.process
     rules += [r for s in derivation.sets for r in thermal_rules(s, proc)]
     rules += process_rules(derivation.spec) if layout_rules is None else layout_rules
-    if coupled:
-        rules += coupled_rules(derivation.sets)
+    rules = [_coupled_basis(r, by_coupled.get(r.set_name)) for r in rules]
+    if on:
+        drawn = [s for s in derivation.sets if coupled is True or s.name in by_coupled]
+        solved = {k: c.orbit_of_set() for k, c in by_coupled.items()}
+        crossed = {k: v for k, v in got.settlings.items() if k in by_coupled}
+        rules += coupled_rules(drawn, orbits=solved, crossings=crossed)
     return CheckResult(derivation, got.set_checks(derivation, rules, adq), rules, got.notes)
+
+
+def _coupled_sets(derivation: DeviceDerivation, on: bool) -> dict[str, _CoupledOrbits]:
+    """The sets whose verdict is the coupled head's (:func:`uses_coupled`), by name.
+
+    A drawing whose coupling cannot be formed (no valid ρ or angle) keeps the decoupled
+    verdict; the rule ``actuator.coupling`` already names the drawing's problem.
+    """
+    out: dict[str, _CoupledOrbits] = {}
+    for s in derivation.sets if on else []:
+        if uses_coupled(s):
+            try:
+                out[s.name] = _CoupledOrbits(s)
+            except (ParameterError, AssertionError):
+                continue
+    return out
+
+
+class _CoupledOrbits:
+    """The coupled head's stable orbit of a set's designs (its own and its margin corners).
+
+    χ = √α·tanθ follows the design's α (a corner's too); each design is solved once,
+    guarded as :func:`_guarded_orbit`; the idealised model (:func:`uses_coupled`).
+    """
+
+    def __init__(self, sd: SetDerivation) -> None:
+        """Keep the set's drawn ρ and impact angle."""
+        cpl = coupling_of(sd)
+        assert cpl is not None and sd.springs is not None
+        self.sd = sd
+        self.rho, self.theta = cpl.rho, sd.scales.theta_rad
+        self.solved: dict[ModelParams, Any] = {}
+
+    def __call__(self, p: ModelParams) -> Any:
+        """The coupled orbit of ``p`` (solved on first use)."""
+        from betvdesign.dynamics.coupled import coupled_orbit
+        from betvdesign.model.params import HeadCoupling
+
+        if p not in self.solved:
+
+            def solve(q: ModelParams) -> Any:
+                return coupled_orbit(q, HeadCoupling.from_angle(self.rho, q.alpha, self.theta))
+
+            self.solved[p] = _guarded_orbit(solve, p)
+        return self.solved[p]
+
+    def orbit_of_set(self) -> Any:
+        """The set's own coupled orbit."""
+        return self(self.sd.params)
+
+
+def _coupled_basis(r: RuleResult, co: _CoupledOrbits | None) -> RuleResult:
+    """The rules ``mode`` and ``speed`` of a set whose verdict is the coupled head's, saying so."""
+    if co is None or r.id not in ("mode", "speed"):
+        return r
+    chi = math.sqrt(co.sd.params.alpha) * math.tan(co.theta)
+    head = (
+        f"coupled head (drawn, no measured resonances: ρ = {co.rho:.4g}, χ = {chi:.4g}; "
+        "rule coupled-head gives the paper's decoupled springs' answer): "
+    )
+    return replace(r, message=head + r.message, source=f"{r.source}; {SRC_COUPLED}")
 
 
 class _Orbits:
@@ -453,6 +541,7 @@ class _Solved:
     determinations: dict[str, Determination] = field(default_factory=dict)
     answers: dict[str, TravelAnswer] = field(default_factory=dict)
     notes: list[str] = field(default_factory=list)
+    coupled: set[str] = field(default_factory=set)
 
     def set_checks(
         self, derivation: DeviceDerivation, rules: list[RuleResult], adq: dict[str, SetAdequacy]
@@ -484,6 +573,7 @@ class _Solved:
                 adq.get(s.name),
                 self.determinations.get(s.name),
                 self.answers.get(s.name),
+                "coupled" if s.name in self.coupled else "decoupled",
             )
             for s in derivation.sets
         ]
@@ -498,6 +588,7 @@ def _solve_sets(
     settle: Settle,
     determine: bool,
     horizon: int,
+    coupled: dict[str, _CoupledOrbits] | None = None,
 ) -> _Solved:
     """The exact answers of every set: orbit, vertical motion, travel, margin corners.
 
@@ -519,6 +610,9 @@ def _solve_sets(
         Run the transient from rest (:func:`check_derivation`).
     horizon : int
         Cycles the transient may take to cross the travel [-].
+    coupled : dict, optional
+        Set name -> the coupled head's orbit of a design, for the sets whose verdict is
+        the coupled head's: their orbit and corners, no determination nor transient.
 
     Returns
     -------
@@ -529,8 +623,12 @@ def _solve_sets(
     seen: set[ModelParams] = set()
     answered: dict[tuple[ModelParams, float], tuple[Any, Any, TravelAnswer]] = {}
     vert_of: dict[tuple[float, float, float], Any] = {}
+    coupled = coupled or {}
     for s in derivation.sets:
         p = s.params
+        if s.name in coupled:
+            _solve_coupled(out, s, coupled[s.name], margin=margin, horizon=horizon)
+            continue
         if p in seen:
             out.notes.append(f"set {s.name}: same parameters as an already solved set, reused")
         seen.add(p)
@@ -555,6 +653,51 @@ def _solve_sets(
                 p, out.answers[s.name], key[1], solver=orbit, settle=settle, horizon=horizon
             )
     return out
+
+
+def _solve_coupled(
+    out: _Solved,
+    s: SetDerivation,
+    orbit: _CoupledOrbits,
+    *,
+    margin: bool,
+    horizon: int,
+) -> None:
+    """A set whose verdict is the coupled head's: its orbit, answer and corners into ``out``.
+
+    The coupled orbit is the answer quoted; where the coupled model has no stable orbit,
+    its transient from rest across the travel
+    (:func:`betvdesign.dynamics.coupled.coupled_crossing`). No Δs determination (a
+    decoupled solver's); the margin corners only for a periodic answer. The vertical
+    motion is not the decoupled one (hits depend on ζ) and is not recorded.
+    """
+    from betvdesign.dynamics.coupled import CROSSING_HORIZON, coupled_crossing
+    from betvdesign.model.params import HeadCoupling
+
+    p = s.params
+    out.orbits[s.name] = po = orbit(p)
+    out.coupled.add(s.name)
+    travel_s = s.travel_range_m / s.scales.length_m
+    st = None
+    if travel_decides(po):
+        cpl = HeadCoupling.from_angle(orbit.rho, p.alpha, orbit.theta)
+        try:
+            st = coupled_crossing(p, cpl, travel_s, max_cycles=min(horizon, CROSSING_HORIZON))
+        except Exception as exc:  # reported, never a crash
+            st = Settling(
+                status="failed", message=f"coupled crossing: {type(exc).__name__}: {exc}",
+                cycles_to_settle=None, cycles_to_cross=None, crossing_delta_s=None,
+            )  # fmt: skip
+        out.settlings[s.name] = st
+    out.answers[s.name] = ans = travel_answer(po, None, st)
+    out.notes.append(
+        f"set {s.name}: mode and speed from the coupled head (drawn head, no measured "
+        'resonances; docs/MODEL.md "Coupled head"): '
+        + ("its exact stable orbit" if st is None else "its transient from rest (no stable orbit)")
+        + "; Δs determination not run for it"
+    )
+    if margin and ans.moves and ans.basis == "periodic":
+        out.margins[s.name] = {k: orbit_mode(orbit(q)) for k, q in corner_params(p).items()}
 
 
 def _adequacy(

@@ -6,14 +6,15 @@ solves the periodic orbit of
 
 1. the decoupled model (the paper's, ρ = 0): the exact solver
    (:func:`betvdesign.dynamics.periodic_orbit`);
-2. the coupled model with the drawn ρ and χ = √α·tanθ: the independent reference
-   (:func:`betvdesign.dynamics.coupled_reference.coupled_periodic_orbit`, Newton
-   shooting started from the decoupled orbit, else from the state :data:`MEAN_CYCLES`·2
-   cycles from rest). Where it finds no periodic orbit, the mean Δs of the last
-   :data:`MEAN_CYCLES` of those cycles, with its half-spread as the error (the sign then
-   decides the mode only when it exceeds the spread).
+2. the coupled model with the drawn ρ and χ = √α·tanθ: the exact compiled solver's
+   stable orbit (:func:`betvdesign.dynamics.coupled.coupled_orbit`: Newton shooting on the
+   exact section map started from the decoupled orbit, else from the transient from rest
+   once its last sections repeat, with that period). Where it finds no stable orbit, the
+   check's coupled crossing of the travel when given, else the mean Δs of cycles
+   :data:`MEAN_CYCLES` to 2·:data:`MEAN_CYCLES` from rest with its half-spread as the
+   error (the sign then decides the mode only when it exceeds the spread).
 
-Both for the paper's idealised terms (no damping, plastic impacts: the coupled reference
+Both for the paper's idealised terms (no damping, plastic impacts: the coupled model
 has no others) and the set's ϖ, α, β, κ as used (the file's measured resonances where
 given, the drawn ones otherwise).
 
@@ -25,10 +26,12 @@ a mean whose sign its spread does not decide), "failed" (no decoupled answer).
 ``uses`` says which answer a verdict should take: "coupled" when the file gives no
 measured resonances (the set's k_v and α come from the drawing: the drawn head is the
 only model of it), "decoupled" when the file's measured resonances win (the coupled
-answer is then a finding). The rule ``coupled-head`` (:func:`coupled_rule`) says it in a
-check when asked (``CheckOptions(coupled=True)``, ``check_derivation(coupled=True)``; off
-by default: it costs 10–30 s per set, benchmarks/README.md "Coupled head"). The verdict's
-other rules still quote the decoupled exact answer.
+answer is then a finding). In a check (:func:`betvdesign.checks.checker.check_derivation`)
+the rule ``coupled-head`` (:func:`coupled_rule`) is on by default for the sets whose
+verdict is the coupled answer (:func:`uses_coupled`: their rules ``mode`` and ``speed``
+then quote the coupled orbit and say so), and for every drawn set with
+``CheckOptions(coupled=True)`` (a finding where the file's resonances win); cost per set:
+benchmarks/README.md "Coupled head".
 """
 
 from __future__ import annotations
@@ -41,6 +44,8 @@ import numpy as np
 
 from betvdesign.checks.adequacy import SPEED_RTOL
 from betvdesign.checks.rule import RuleResult
+from betvdesign.dynamics.result import PeriodicResult
+from betvdesign.dynamics.settling import Settling
 from betvdesign.errors import ParameterError
 from betvdesign.model.domain import mode_of
 from betvdesign.model.params import HeadCoupling, ModelParams
@@ -50,9 +55,9 @@ from betvdesign.output.siformat import format_si
 CoupledStatus = Literal["coupled-agrees", "coupled-differs", "coupled-undetermined", "failed"]
 #: cycles from rest before, and over which, the coupled Δs is averaged without an orbit
 MEAN_CYCLES = 100
-#: the coupled reference's tolerances in this rung (solve_ivp rtol, atol; Newton's
-#: accepted residual): Δs to about 1e-8 relative, far below the 10 % that is decided
-RTOL, ATOL, NEWTON_TOL = 1e-10, 1e-12, 1e-8
+#: Newton's accepted residual on the exact coupled map: Δs to about 1e-8 relative, far
+#: below the 10 % that is decided
+NEWTON_TOL = 1e-8
 #: a transient whose Δs spread is below this fraction of its mean has settled
 SETTLED = 1e-6
 
@@ -96,6 +101,8 @@ class Answer:
                 how = " (a transient settled to it; Newton did not converge)"
             elif self.status == "mean":
                 how = f" (mean of cycles ± {self.error:.2g} in Δs: no periodic orbit found)"
+            elif self.status == "crossing":
+                how = " (mean over the travel from rest: no stable orbit)"
             return f"{self.mode} at {format_si(abs(self.speed_m_s or 0.0), 'm/s')}{how}"
         if self.mode is not None:
             return str(self.mode)
@@ -174,13 +181,40 @@ def _speed(sd: SetDerivation, ds: float | None) -> float | None:
     return None if ds is None else ds * sd.scales.length_m * sd.scales.f_act_hz
 
 
-def coupled_rung(sd: SetDerivation) -> CoupledRung | None:
+def uses_coupled(sd: SetDerivation) -> bool:
+    """Whether a verdict takes the coupled head's answer for this set.
+
+    Parameters
+    ----------
+    sd : SetDerivation
+        The derived set.
+
+    Returns
+    -------
+    bool
+        True for a drawn head whose k_v comes from the drawing (the file gives no measured
+        resonances) in the idealised model (the coupled model has no damping or
+        restitution): the drawn head is then the only model of the device.
+    """
+    return sd.springs is not None and sd.springs.used.get("k_v") == "geometry" and sd.params.ideal
+
+
+def coupled_rung(
+    sd: SetDerivation, *, orbit: PeriodicResult | None = None, crossing: Settling | None = None
+) -> CoupledRung | None:
     """The coupled rung of one set (module docstring); None when the set has no drawing.
 
     Parameters
     ----------
     sd : SetDerivation
         The derived set.
+    orbit : PeriodicResult, optional
+        The coupled orbit when already solved (the check's verdict:
+        :func:`betvdesign.dynamics.coupled.coupled_orbit` of the idealised set).
+    crossing : Settling, optional
+        Without a stable orbit, the coupled transient across the travel when already run
+        (the check's, :func:`betvdesign.dynamics.coupled.coupled_crossing`): its mean Δs
+        is the coupled answer instead of the mean of cycles 100–200.
 
     Returns
     -------
@@ -193,7 +227,7 @@ def coupled_rung(sd: SetDerivation) -> CoupledRung | None:
         When ``sd`` is not a SetDerivation.
     """
     from betvdesign.dynamics import periodic_orbit
-    from betvdesign.dynamics.coupled_reference import coupled_periodic_orbit, simulate_coupled
+    from betvdesign.dynamics.coupled import coupled_orbit, simulate_coupled
 
     if not isinstance(sd, SetDerivation):
         raise ParameterError(f"expected a SetDerivation, got {type(sd).__name__}")
@@ -207,35 +241,24 @@ def coupled_rung(sd: SetDerivation) -> CoupledRung | None:
         ex.status, ex.delta_s, 0.0, ex.mode if ok else None, _speed(sd, ex.delta_s), ex.state,
         ex.period_cycles or 1,
     )  # fmt: skip
-    guess = ex.state if ok else None
-    period = ex.period_cycles if ok else 1
-    orb = coupled_periodic_orbit(
-        p, cpl, guess=guess, period=period, rtol=RTOL, atol=ATOL, tol=NEWTON_TOL
-    )
+    orb = orbit if orbit is not None else coupled_orbit(p, cpl, decoupled=ex, tol=NEWTON_TOL)
     if orb.status == "success":
         cou = Answer(
-            "success", orb.delta_s, 0.0, orb.mode, _speed(sd, orb.delta_s), orb.state, period
-        )
-    else:
-        run = simulate_coupled(p, cpl, 2 * MEAN_CYCLES, rtol=RTOL, atol=ATOL)
+            "success", orb.delta_s, 0.0, orb.mode, _speed(sd, orb.delta_s), orb.state,
+            int(orb.period_cycles or 1),
+        )  # fmt: skip
+    elif crossing is not None and crossing.crossing_delta_s is not None:  # the check's
+        c = float(crossing.crossing_delta_s)
+        cou = Answer("crossing", c, 0.0, mode_of(c), _speed(sd, c))
+    else:  # no stable orbit: the mean of the transient's last cycles
+        run = simulate_coupled(p, cpl, 2 * MEAN_CYCLES, log_events=False)
         tail = run.delta_s[MEAN_CYCLES:]
-        again = None
-        if run.status == "success":  # Newton again from where the transient went
-            again = coupled_periodic_orbit(
-                p, cpl, guess=run.section[-1], period=period, rtol=RTOL, atol=ATOL, tol=NEWTON_TOL
-            )
-        if again is not None and again.status == "success":
-            cou = Answer(
-                "success", again.delta_s, 0.0, again.mode, _speed(sd, again.delta_s),
-                again.state, period,
-            )  # fmt: skip
-        elif run.status != "success" or tail.size == 0:
+        if run.status != "success" or tail.size == 0:
             cou = Answer(f"failed: {run.message}", None, math.inf, None, None)
         else:
             mean = float(np.mean(tail))
             err = 0.5 * float(np.max(tail) - np.min(tail))
             cou = Answer("mean", mean, err, mode_of(mean, error=err), _speed(sd, mean))
-    uses = "coupled" if sd.springs.used.get("k_v") == "geometry" else "decoupled"
     rung = CoupledRung(
         name=sd.name,
         status=_status(dec, cou),
@@ -244,7 +267,7 @@ def coupled_rung(sd: SetDerivation) -> CoupledRung | None:
         stiffness=cpl.a,
         decoupled=dec,
         coupled=cou,
-        uses=uses,
+        uses="coupled" if uses_coupled(sd) else "decoupled",
         message="",
     )
     return replace(rung, message=_message(rung))
@@ -288,7 +311,7 @@ def _message(r: CoupledRung) -> str:
 
 
 #: Where the rule ``coupled-head`` comes from.
-SRC_COUPLED = "MODEL.md, Coupled head (K_nt ≠ 0) (betvdesign.dynamics.coupled_reference)"
+SRC_COUPLED = "MODEL.md, Coupled head (K_nt ≠ 0) (betvdesign.dynamics.coupled)"
 
 
 def coupled_rule(r: CoupledRung) -> RuleResult:
@@ -330,19 +353,28 @@ def coupled_rule(r: CoupledRung) -> RuleResult:
     )
 
 
-def coupled_rules(sets: list[SetDerivation]) -> list[RuleResult]:
+def coupled_rules(
+    sets: list[SetDerivation],
+    *,
+    orbits: dict[str, PeriodicResult] | None = None,
+    crossings: dict[str, Settling] | None = None,
+) -> list[RuleResult]:
     """The rule ``coupled-head`` of every drawn set (sets with one model solved once).
 
     Parameters
     ----------
     sets : list of SetDerivation
         The device's sets; those without a drawing give no rule.
+    orbits, crossings : dict, optional
+        Set name -> its coupled orbit, and its coupled crossing of the travel, when already
+        solved (the check's verdict).
 
     Returns
     -------
     list of RuleResult
         One per drawn set, in the device's order.
     """
+    orbits, crossings = orbits or {}, crossings or {}
     done: dict[tuple, CoupledRung] = {}
     out = []
     for sd in sets:
@@ -350,6 +382,6 @@ def coupled_rules(sets: list[SetDerivation]) -> list[RuleResult]:
             continue
         key = (sd.params, sd.springs.rho, sd.scales, sd.springs.used.get("k_v"))
         if key not in done:
-            done[key] = coupled_rung(sd)
+            done[key] = coupled_rung(sd, orbit=orbits.get(sd.name), crossing=crossings.get(sd.name))
         out.append(coupled_rule(replace(done[key], name=sd.name)))
     return out

@@ -222,6 +222,12 @@ class SetOut(_Out):
         "not cross the travel within the horizon: fails), undetermined (Δs not determined "
         "in float64: fails) or no-orbit",
     )
+    model: Literal["decoupled", "coupled"] = Field(
+        "decoupled",
+        description="whose orbit mode and speed quote: the paper's decoupled springs, or the "
+        "drawn head's coupled model (a drawn head and no measured resonances; docs/MODEL.md "
+        "'Coupled head')",
+    )
     speed_m_s: float | None = Field(
         description="mean slider speed magnitude [m/s] (the speed rule's: periodic, or "
         "from rest over the travel range when it has not settled by then)"
@@ -584,6 +590,7 @@ def _set_out(sc: Any, flt: RuleFilter, verbose: bool = False) -> SetOut:
         delta_s=ds,
         delta_s_error=_error(sc),
         basis=None if sc.travel is None else sc.travel.basis,
+        model=sc.model,
         speed_m_s=v,
         travel_direction=direction,  # type: ignore[arg-type]
         time_to_cross_s=sc.time_to_cross_s if v else None,

@@ -254,10 +254,11 @@ def render(result: CheckResult, console: Console, *, derivation: bool = False) -
     for sc in result.sets:
         s = sc.derivation
         p = s.params
+        orbit = "exact coupled-head orbit" if sc.model == "coupled" else "exact orbit"
         console.print(
             f"[bold]set {esc(s.name)}[/]: intended {s.intended_mode}, impacts "
             f"{s.actuator_set.impact_direction}; ϖ = {p.varpi:.4g}, α = {p.alpha:.4g}, "
-            f"β = {p.beta:.4g}, κ = {p.kappa:.4g} -> exact orbit: [bold]{sc.verdict_mode}[/] "
+            f"β = {p.beta:.4g}, κ = {p.kappa:.4g} -> {orbit}: [bold]{sc.verdict_mode}[/] "
             f"(λ = {s.lam:.4g} predicts {sc.lambda_mode})"
         )
         derived = [st for st in s.record if st.key in DERIVED_KEYS]
@@ -275,7 +276,7 @@ def render(result: CheckResult, console: Console, *, derivation: bool = False) -
                 for k, v in sim.items()
                 if k not in ("success", "message")
             )
-            console.print(esc(f"  exact orbit: {extra}"), highlight=False)
+            console.print(esc(f"  {orbit}: {extra}"), highlight=False)
         if derivation:
             console.print(_record_table(sc))
         _print_rules(sc.rules, console)

@@ -5,9 +5,12 @@
 - :func:`vertical_motion`: vertical-only fast path (:mod:`vertical`).
 - :mod:`reference`: the same model with scipy ``solve_ivp`` and its own switching rules
   (cross-checks, studies); it shares no code with the exact solver.
-- :mod:`coupled_reference`: the coupled head (symmetric 2×2 stiffness, MODEL.md "Coupled
-  head") with scipy ``solve_ivp``; the only solver of that model (the exact loop is
-  decoupled, ρ = 0, where the two are compared).
+- :mod:`coupled`: the coupled head (symmetric 2×2 stiffness, MODEL.md "Coupled head"),
+  exact and compiled: each phase's flow exp(A·δ) on the state augmented with the forcing,
+  events refined on the exact flow; its stable periodic orbit (``coupled_orbit``); at
+  ρ = 0 the exact decoupled solver's answers unchanged.
+- :mod:`coupled_reference`: the same coupled model with scipy ``solve_ivp``, written from
+  MODEL.md alone (the tests' truth, the benchmark's baseline).
 - :mod:`result`: what every answer carries (:class:`SolverResult`: ``status`` from a
   documented vocabulary per kind of answer, ``success``, ``message``, counters,
   ``elapsed_s``); a cycle that cannot be advanced raises :class:`solver.CycleFailure`

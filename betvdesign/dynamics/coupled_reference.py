@@ -4,9 +4,9 @@ The head with a symmetric 2×2 stiffness in the slider's frame (coupling ρ, χ 
 :class:`~betvdesign.model.params.HeadCoupling`), the paper's ideal model otherwise
 (undamped, plastic impacts, Coulomb stick/slip). Written from MODEL.md only: nothing of
 the exact solver nor of :mod:`reference` is imported (no shared phase rule, closed form
-or event search). It is the only solver of the coupled model in the package: the exact
-closed-form loop (:mod:`contact`) solves the decoupled model (ρ = 0) only, which is
-where the two are compared (tests/test_coupled_reference.py).
+or event search), nor of the exact coupled solver :mod:`coupled`, which it checks
+(tests/test_coupled_kernel.py); at ρ = 0 it is compared with the exact decoupled solver
+(tests/test_coupled_reference.py).
 
 Dimensionless spring forces (y_n = ξ + sin ϖτ, y_t = ζ − sin ϖτ, a = 1/(1 − ρ²)):
 F_n = a(y_n + (ρ/χ) y_t) along the gap, R = a(ρχ y_n + y_t) along the slider.
@@ -24,7 +24,7 @@ F_n = a(y_n + (ρ/χ) y_t) along the gap, R = a(ρχ y_n + y_t) along the slider
 
 Cost: an explicit method resolves the stiff mode √λ₊ ≈ √(a(1 + α)/α); per cycle the
 steps grow like √λ₊/ϖ (the rigid-direction limit is stated in MODEL.md, not
-implemented).
+implemented); the exact solver :mod:`coupled` is some hundred times faster.
 
 References
 ----------

@@ -45,6 +45,7 @@ KERNEL_MODULES = (
     "contact",
     "schedule",
     "shooting",
+    "coupled",
 )
 
 

@@ -2,7 +2,8 @@
 
 ``make demo`` runs it, so that no user command compiles silently later. It runs each
 public entry point of the dynamics once on a small design (transient with event log and
-dense output, transient without, periodic orbit, vertical motion), which compiles every
+dense output, transient without, periodic orbit, vertical motion, the coupled head's
+transient and orbit), which compiles every
 kernel they use and stores the machine code in the cache (:func:`jit.cache_dir`).
 """
 
@@ -15,7 +16,8 @@ import time
 def warm() -> float:
     """Compile or load every kernel; returns the seconds it took."""
     from betvdesign.dynamics import periodic_orbit, simulate, vertical_motion
-    from betvdesign.model.params import ModelParams
+    from betvdesign.dynamics.coupled import coupled_periodic_orbit, simulate_coupled
+    from betvdesign.model.params import HeadCoupling, ModelParams
 
     t0 = time.perf_counter()
     p = ModelParams(1.2, 0.5, 1.0, 0.4)
@@ -23,6 +25,9 @@ def warm() -> float:
     simulate(p, 3, log_events=False)
     periodic_orbit(p)
     vertical_motion(p.varpi)
+    simulate_coupled(p, HeadCoupling(0.5, 1.0), 2)
+    simulate_coupled(p, HeadCoupling(0.5, 1.0), 2, log_events=False)
+    coupled_periodic_orbit(p, HeadCoupling(0.5, 1.0), transient=2, max_newton=1)
     return time.perf_counter() - t0
 
 
