@@ -391,7 +391,7 @@ def test_ctrl_c_on_a_local_dask_cluster_stops_cleanly(tmp_path):
     children = psutil.Process(proc.pid).children(recursive=True)
     proc.send_signal(signal.SIGINT)
     _, err = proc.communicate(timeout=60)
-    assert proc.returncode == 130 and "run the same command again to resume" in err
+    assert proc.returncode == 130 and "run the same command again to resume" in err, err[-3000:]
     meta = json.loads((out / "atlas.json").read_text())
     assert meta["status"] == "interrupted"
     kept = sorted((out / "chunks").iterdir())

@@ -244,3 +244,29 @@ def test_sigterm_during_solves_is_raised_after_them_never_a_crash() -> None:
     )
     assert r.returncode == 0, (r.returncode, r.stderr[-2000:])
     assert r.stdout.split() == ["caught", "20"]
+
+
+@pytest.mark.parametrize(
+    "signum, word", [(signal.SIGINT, "interrupted"), (signal.SIGTERM, "terminated")]
+)
+def test_an_error_a_library_raises_after_the_signal_still_ends_as_interrupted(
+    signum: int, word: str, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """A library that turns the interruption into its own error (a dask client's call
+    cancelled, a pool torn down) ends the command as interrupted (exit 130 and the resume
+    hint), not with that error's traceback; an error without a signal is still raised."""
+    import typer
+
+    from betvdesign.cli.common import EXIT_INTERRUPTED, interruptible
+
+    with pytest.raises(typer.Exit) as info, interruptible("out.csv"):
+        try:
+            os.kill(os.getpid(), signum)
+            time.sleep(5)  # the handler raises here
+        except KeyboardInterrupt:
+            raise RuntimeError("the client's call was cancelled") from None
+    assert info.value.exit_code == EXIT_INTERRUPTED
+    err = capsys.readouterr().err
+    assert err.startswith(f"{word}: finished points are kept in out.csv")
+    with pytest.raises(RuntimeError, match="no signal"), interruptible("out.csv"):
+        raise RuntimeError("no signal")

@@ -92,11 +92,18 @@ class Terminated(KeyboardInterrupt):
     """SIGTERM, raised where Ctrl-C would be, so both take the same clean-up path."""
 
 
+#: The signals received inside :func:`interruptible` (its handlers note them): an error
+#: raised after one of them (a dask client cancelled mid-call, a pool torn down) is the
+#: interruption's consequence, and the command ends as interrupted, not with a traceback.
+_RECEIVED: list[int] = []
+
+
 def raise_terminated(signum: int, frame: Any) -> None:
     """SIGTERM handler: raise :class:`Terminated` where the program is (after a running
     solve returns: :func:`betvdesign.dynamics.jit.interrupt`)."""
     from betvdesign.dynamics.jit import interrupt
 
+    _RECEIVED.append(signum)
     interrupt(Terminated())
 
 
@@ -105,6 +112,7 @@ def raise_interrupted(signum: int, frame: Any) -> None:
     solve returns: :func:`betvdesign.dynamics.jit.interrupt`)."""
     from betvdesign.dynamics.jit import interrupt
 
+    _RECEIVED.append(signum)
     interrupt(KeyboardInterrupt())
 
 
@@ -118,14 +126,18 @@ def interruptible(kept: str | Path | None = None, *, resumable: bool = True) -> 
     the same command again continues where it stopped (studies) or starts afresh.
     """
     previous = previous_int = None
+    _RECEIVED.clear()
     if threading.current_thread() is threading.main_thread():
         previous = signal.signal(signal.SIGTERM, raise_terminated)
         if signal.getsignal(signal.SIGINT) is signal.default_int_handler:
             previous_int = signal.signal(signal.SIGINT, raise_interrupted)
     try:
         yield
-    except KeyboardInterrupt as exc:
-        what = "terminated" if isinstance(exc, Terminated) else "interrupted"
+    except BaseException as exc:
+        if isinstance(exc, typer.Exit) or not (isinstance(exc, KeyboardInterrupt) or _RECEIVED):
+            raise
+        term = isinstance(exc, Terminated) or signal.SIGTERM in _RECEIVED
+        what = "terminated" if term else "interrupted"
         if resumable:
             where = f"finished points are kept in {kept}; " if kept else ""
             tail = f"{where}run the same command again to resume"
