@@ -196,7 +196,24 @@ def uses_coupled(sd: SetDerivation) -> bool:
         resonances) in the idealised model (the coupled model has no damping or
         restitution): the drawn head is then the only model of the device.
     """
-    return sd.springs is not None and sd.springs.used.get("k_v") == "geometry" and sd.params.ideal
+    return drawn_only(sd) and sd.params.ideal
+
+
+def drawn_only(sd: SetDerivation) -> bool:
+    """Whether a set's head is drawn and its k_v comes from the drawing.
+
+    Parameters
+    ----------
+    sd : SetDerivation
+        The derived set.
+
+    Returns
+    -------
+    bool
+        True for a drawn head whose file gives no measured resonances (a property of the
+        file: varying its fields does not change it).
+    """
+    return sd.springs is not None and sd.springs.used.get("k_v") == "geometry"
 
 
 def coupled_rung(
