@@ -64,3 +64,25 @@ def test_sweep_rows_are_the_checks_coupled_answer(tmp_path):
         ds = float(row["delta_s"])
         differs += dec.mode != row["exact_mode"] or abs(dec.delta_s - ds) > 0.1 * abs(ds)
     assert differs >= 1  # at 3 kHz they give a speed off by more than 10 %
+
+
+def test_faces_still_on_the_decoupled_springs_say_so(tmp_path):
+    """`betv tolerance` and the explorer's orbit plots solve with the decoupled springs:
+    for a set whose check verdict is the coupled head's they warn, for a file with
+    measured resonances they do not."""
+    from betvdesign.checks.coupled import DECOUPLED_WARNING
+    from betvdesign.explore.compute import evaluate
+    from betvdesign.spec.loader import load_device
+
+    drawn, measured = _drawn_only(tmp_path), ROOT / "devices" / "push_demo.yaml"
+    for src, warned in ((drawn, True), (measured, False)):
+        r = run("tolerance", src, "--spread", "drive.frequency=2%", "-n", "2", "-x", "serial",
+                "--json")  # fmt: skip
+        assert r.exit_code == 0, r.output
+        s = json.loads(r.stdout)["sets"]["forward"]
+        assert (s.get("warning") == DECOUPLED_WARNING) is warned
+        text = run("tolerance", src, "--spread", "drive.frequency=2%", "-n", "2", "-x", "serial")
+        assert ("WARNING: decoupled model" in text.output) is warned
+        ev = evaluate(load_device(src), "orbit", with_traces=True)
+        assert (ev.out["sets"][0]["model"] == "coupled") is warned
+        assert ev.traces["forward"].note.startswith(DECOUPLED_WARNING) is warned

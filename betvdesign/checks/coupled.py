@@ -327,6 +327,12 @@ def _message(r: CoupledRung) -> str:
     return f"{head}; {verdict}; {use}"
 
 
+#: What a face says where it computes a set's answers with the paper's decoupled springs
+#: although ``betv check``'s verdict of that set is the coupled head's
+#: (:func:`betvdesign.checks.checker.coupled_head`): the explorer's orbit plots, ``betv
+#: tolerance``'s samples.
+DECOUPLED_WARNING = "decoupled model: betv check uses the coupled head for this set"
+
 #: Where the rule ``coupled-head`` comes from.
 SRC_COUPLED = "MODEL.md, Coupled head (K_nt ≠ 0) (betvdesign.dynamics.coupled)"
 
