@@ -24,6 +24,11 @@ API (fields in physical units in, rows out; shared with other front ends):
   orbit is found, "no crossing" when it does not cross within the horizon), without the
   check's determination re-solves (which matter only at round-off edges: the map names
   its basis, so a cell and ``betv check`` of the same design say the same);
+  ``model``: "coupled" where the check's verdict of the point is the drawn head's coupled
+  model (a drawn head without measured resonances:
+  :func:`betvdesign.checks.checker.coupled_head`; the point derived as the check derives
+  it and answered by :func:`betvdesign.checks.checker.coupled_over_travel`, the check's
+  own), "decoupled" otherwise (docs/MODEL.md "Coupled head");
 * :func:`locate_flips` (1-D): every change of the exact mode between neighbouring
   points, bisected in the field to :data:`FLIP_RTOL`;
 * :func:`sweep_marks` (1-D): where along the field the design window 0.5 ≤ ϖ < 2 lies,
