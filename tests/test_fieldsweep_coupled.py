@@ -15,6 +15,7 @@ from pathlib import Path
 import pytest
 from typer.testing import CliRunner
 
+from betvdesign.api import CheckOptions, run_check
 from betvdesign.cli import app
 from betvdesign.dynamics import periodic_orbit
 from betvdesign.studies.points import task_params
@@ -86,3 +87,28 @@ def test_faces_still_on_the_decoupled_springs_say_so(tmp_path):
         ev = evaluate(load_device(src), "orbit", with_traces=True)
         assert (ev.out["sets"][0]["model"] == "coupled") is warned
         assert ev.traces["forward"].note.startswith(DECOUPLED_WARNING) is warned
+
+
+def test_coupled_flips_are_bracketed_by_the_checks_modes(tmp_path):
+    """The flip along the impact angle (the coupled head pulls at shallow angles, pushes
+    at steeper ones: ~45.8° here) is bisected on the check's modes: at its bracket's ends
+    the check of the file with that angle written in (:func:`betvdesign.api.run_check`,
+    no margin corners nor adequacy scan) gives the modes on either side."""
+    src = _drawn_only(tmp_path)
+    r = run("sweep", src, "--vary", "contact.impact_angle=44deg:45.9deg", "-n", "3", "-x",
+            "serial", "-q", "--json")  # fmt: skip
+    assert r.exit_code == 0, r.output
+    doc = json.loads(r.stdout)
+    assert doc["models"] == {"coupled": 3}
+    flips = doc["flips"]
+    assert [(f["below"], f["above"]) for f in flips] == [("pull", "push")]
+    text = src.read_text()
+    for flip in flips:
+        lo, hi = flip["bracket"]
+        assert 44 < lo < flip["at"] < hi < 45.9 and hi - lo <= 1e-3 * 1.9
+        for angle, mode in ((lo, flip["below"]), (hi, flip["above"])):
+            f = tmp_path / f"angle_{angle!r}.yaml"
+            f.write_text(text.replace("impact_angle: 20.56 deg", f"impact_angle: {angle!r} deg"))
+            sc = run_check(f, CheckOptions(advice=False, adequacy=False, margin=False)).sets[0]
+            said = "no crossing" if sc.travel.basis == "no-crossing" else sc.verdict_mode
+            assert sc.model == "coupled" and said == mode, (angle, said)
