@@ -452,19 +452,43 @@ def check_derivation(
 
 
 def _coupled_sets(derivation: DeviceDerivation, on: bool) -> dict[str, _CoupledOrbits]:
-    """The sets whose verdict is the coupled head's (:func:`uses_coupled`), by name.
-
-    A drawing whose coupling cannot be formed (no valid ρ or angle) keeps the decoupled
-    verdict; the rule ``actuator.coupling`` already names the drawing's problem.
-    """
+    """The sets whose verdict is the coupled head's (:func:`coupled_head`), by name."""
     out: dict[str, _CoupledOrbits] = {}
     for s in derivation.sets if on else []:
-        if uses_coupled(s):
-            try:
-                out[s.name] = _CoupledOrbits(s)
-            except (ParameterError, AssertionError):
-                continue
+        head = coupled_head(s)
+        if head is not None:
+            out[s.name] = _CoupledOrbits(*head, s.params)
     return out
+
+
+def coupled_head(sd: SetDerivation) -> tuple[float, float] | None:
+    """Which model answers a set's verdict: the coupled head's drawn (ρ, θ), else None.
+
+    The one decision every face takes it from (``betv check``, ``betv sweep``): the
+    coupled head (:func:`betvdesign.dynamics.coupled.coupled_orbit`) answers a set with a
+    drawn head and no measured resonances in the idealised model
+    (:func:`~betvdesign.checks.coupled.uses_coupled`); a drawing whose coupling cannot be
+    formed (no valid ρ or angle) keeps the decoupled verdict (the rule
+    ``actuator.coupling`` already names the drawing's problem).
+
+    Parameters
+    ----------
+    sd : SetDerivation
+        The derived set.
+
+    Returns
+    -------
+    tuple of float or None
+        (ρ [-], the impact angle θ [rad]) when the verdict is the coupled head's; None
+        when it is the paper's decoupled springs'.
+    """
+    if not uses_coupled(sd):
+        return None
+    try:
+        cpl = coupling_of(sd)
+    except (ParameterError, AssertionError):
+        return None
+    return None if cpl is None else (float(cpl.rho), float(sd.scales.theta_rad))
 
 
 class _CoupledOrbits:
@@ -474,12 +498,9 @@ class _CoupledOrbits:
     guarded as :func:`_guarded_orbit`; the idealised model (:func:`uses_coupled`).
     """
 
-    def __init__(self, sd: SetDerivation) -> None:
-        """Keep the set's drawn ρ and impact angle."""
-        cpl = coupling_of(sd)
-        assert cpl is not None and sd.springs is not None
-        self.sd = sd
-        self.rho, self.theta = cpl.rho, sd.scales.theta_rad
+    def __init__(self, rho: float, theta: float, params: ModelParams) -> None:
+        """Keep the drawn ρ [-], the impact angle θ [rad] and the set's own design."""
+        self.rho, self.theta, self.params = rho, theta, params
         self.solved: dict[ModelParams, Any] = {}
 
     def __call__(self, p: ModelParams) -> Any:
@@ -497,14 +518,14 @@ class _CoupledOrbits:
 
     def orbit_of_set(self) -> Any:
         """The set's own coupled orbit."""
-        return self(self.sd.params)
+        return self(self.params)
 
 
 def _coupled_basis(r: RuleResult, co: _CoupledOrbits | None) -> RuleResult:
     """The rules ``mode`` and ``speed`` of a set whose verdict is the coupled head's, saying so."""
     if co is None or r.id not in ("mode", "speed"):
         return r
-    chi = math.sqrt(co.sd.params.alpha) * math.tan(co.theta)
+    chi = math.sqrt(co.params.alpha) * math.tan(co.theta)
     head = (
         f"coupled head (drawn, no measured resonances: ρ = {co.rho:.4g}, χ = {chi:.4g}; "
         "rule coupled-head gives the paper's decoupled springs' answer): "
@@ -665,19 +686,74 @@ def _solve_coupled(
 ) -> None:
     """A set whose verdict is the coupled head's: its orbit, answer and corners into ``out``.
 
-    The coupled orbit is the answer quoted; where the coupled model has no stable orbit,
-    its transient from rest across the travel
-    (:func:`betvdesign.dynamics.coupled.coupled_crossing`). No Δs determination (a
-    decoupled solver's); the margin corners only for a periodic answer. The vertical
-    motion is not the decoupled one (hits depend on ζ) and is not recorded.
+    The answer is :func:`coupled_over_travel`'s; the margin corners only for a periodic
+    answer. The vertical motion is not the decoupled one (hits depend on ζ) and is not
+    recorded.
     """
+    p = s.params
+    po, st, ans = _coupled_travel(p, orbit, s.travel_range_m / s.scales.length_m, horizon)
+    out.orbits[s.name] = po
+    out.coupled.add(s.name)
+    if st is not None:
+        out.settlings[s.name] = st
+    out.answers[s.name] = ans
+    out.notes.append(
+        f"set {s.name}: mode and speed from the coupled head (drawn head, no measured "
+        'resonances; docs/MODEL.md "Coupled head"): '
+        + ("its exact stable orbit" if st is None else "its transient from rest (no stable orbit)")
+        + "; Δs determination not run for it"
+    )
+    if margin and ans.moves and ans.basis == "periodic":
+        out.margins[s.name] = {k: orbit_mode(orbit(q)) for k, q in corner_params(p).items()}
+
+
+def coupled_over_travel(
+    p: ModelParams,
+    head: tuple[float, float],
+    travel_s: float,
+    *,
+    horizon: int = TRAVEL_HORIZON,
+) -> tuple[PeriodicResult, Settling | None, TravelAnswer]:
+    """What the check says one design does over its travel with the coupled head (unit-free).
+
+    The coupled counterpart of :func:`answer_over_travel`, for a set whose verdict is the
+    coupled head's (:func:`coupled_head`): its exact stable orbit
+    (:func:`betvdesign.dynamics.coupled.coupled_orbit`), and where it has none that the
+    travel can answer for (:func:`~betvdesign.checks.travel.travel_decides`), its
+    transient from rest across the travel
+    (:func:`betvdesign.dynamics.coupled.coupled_crossing`). No Δs determination (a
+    decoupled solver's). The check's and the field sweep's answer of such a design.
+
+    Parameters
+    ----------
+    p : ModelParams
+        The design [-] (idealised).
+    head : tuple of float
+        The drawn ρ [-] and impact angle θ [rad] (:func:`coupled_head`).
+    travel_s : float
+        Travel range in units of u·cosθ [-].
+    horizon : int
+        Cycles the transient may take to cross the travel [-] (at most
+        :data:`~betvdesign.dynamics.coupled.CROSSING_HORIZON`).
+
+    Returns
+    -------
+    tuple
+        (the coupled :class:`~betvdesign.dynamics.result.PeriodicResult`, guarded: a
+        failed one when the solver raised; :class:`~betvdesign.dynamics.settling.Settling`
+        or None; :class:`~betvdesign.checks.travel.TravelAnswer`).
+    """
+    return _coupled_travel(p, _CoupledOrbits(*head, p), travel_s, horizon)
+
+
+def _coupled_travel(
+    p: ModelParams, orbit: _CoupledOrbits, travel_s: float, horizon: int
+) -> tuple[PeriodicResult, Settling | None, TravelAnswer]:
+    """:func:`coupled_over_travel` with the check's cache of the set's coupled orbits."""
     from betvdesign.dynamics.coupled import CROSSING_HORIZON, coupled_crossing
     from betvdesign.model.params import HeadCoupling
 
-    p = s.params
-    out.orbits[s.name] = po = orbit(p)
-    out.coupled.add(s.name)
-    travel_s = s.travel_range_m / s.scales.length_m
+    po = orbit(p)
     st = None
     if travel_decides(po):
         cpl = HeadCoupling.from_angle(orbit.rho, p.alpha, orbit.theta)
@@ -688,16 +764,7 @@ def _solve_coupled(
                 status="failed", message=f"coupled crossing: {type(exc).__name__}: {exc}",
                 cycles_to_settle=None, cycles_to_cross=None, crossing_delta_s=None,
             )  # fmt: skip
-        out.settlings[s.name] = st
-    out.answers[s.name] = ans = travel_answer(po, None, st)
-    out.notes.append(
-        f"set {s.name}: mode and speed from the coupled head (drawn head, no measured "
-        'resonances; docs/MODEL.md "Coupled head"): '
-        + ("its exact stable orbit" if st is None else "its transient from rest (no stable orbit)")
-        + "; Δs determination not run for it"
-    )
-    if margin and ans.moves and ans.basis == "periodic":
-        out.margins[s.name] = {k: orbit_mode(orbit(q)) for k, q in corner_params(p).items()}
+    return po, st, travel_answer(po, None, st)
 
 
 def _adequacy(

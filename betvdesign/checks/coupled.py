@@ -196,7 +196,24 @@ def uses_coupled(sd: SetDerivation) -> bool:
         resonances) in the idealised model (the coupled model has no damping or
         restitution): the drawn head is then the only model of the device.
     """
-    return sd.springs is not None and sd.springs.used.get("k_v") == "geometry" and sd.params.ideal
+    return drawn_only(sd) and sd.params.ideal
+
+
+def drawn_only(sd: SetDerivation) -> bool:
+    """Whether a set's head is drawn and its k_v comes from the drawing.
+
+    Parameters
+    ----------
+    sd : SetDerivation
+        The derived set.
+
+    Returns
+    -------
+    bool
+        True for a drawn head whose file gives no measured resonances (a property of the
+        file: varying its fields does not change it).
+    """
+    return sd.springs is not None and sd.springs.used.get("k_v") == "geometry"
 
 
 def coupled_rung(
@@ -309,6 +326,12 @@ def _message(r: CoupledRung) -> str:
     )
     return f"{head}; {verdict}; {use}"
 
+
+#: What a face says where it computes a set's answers with the paper's decoupled springs
+#: although ``betv check``'s verdict of that set is the coupled head's
+#: (:func:`betvdesign.checks.checker.coupled_head`): the explorer's orbit plots, ``betv
+#: tolerance``'s samples.
+DECOUPLED_WARNING = "decoupled model: betv check uses the coupled head for this set"
 
 #: Where the rule ``coupled-head`` comes from.
 SRC_COUPLED = "MODEL.md, Coupled head (K_nt ≠ 0) (betvdesign.dynamics.coupled)"

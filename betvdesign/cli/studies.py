@@ -48,6 +48,8 @@ def _print_tolerance(
             f"P(outside window) {s['p_outside_window']:.3f}  "
             f"P(wrong mode) {s['p_wrong_mode']:.3f}"
         )
+        if s.get("warning"):
+            typer.echo(f"    WARNING: {s['warning']} (these samples are not its verdict's)")
         if s["p_not_converged"]:
             typer.echo(f"    P(not converged) {s['p_not_converged']:.3f}")
         if s.get("p_not_driven"):

@@ -410,6 +410,13 @@ def _print_fieldsweep(name: str, summary: dict[str, Any], run: Any) -> None:
     )
     typer.echo(f"{name} [{summary['set']}]: {fields}, {summary['points']} points")
     typer.echo("exact modes: " + ", ".join(f"{k} {v}" for k, v in summary["modes"].items()))
+    n_coupled = summary.get("models", {}).get("coupled", 0)
+    if n_coupled:
+        typer.echo(
+            f"coupled head (drawn, no measured resonances) at {n_coupled} of "
+            f"{summary['points']} points: their mode and speed are betv check's, the coupled "
+            'model\'s (docs/MODEL.md "Coupled head"; column model)'
+        )
     f0 = summary["fields"][0]
     marks = summary.get("marks") or {}
     where = {m["n"]: m["at"] for m in marks.get("subresonances", [])}

@@ -53,6 +53,9 @@ class SetTraces:
     gap_um, gap_rate_mm_s: the head's normal gap [µm] and its rate [mm/s] over one
     period of the orbit; t_ms, x_um: the slider position along the device's x [µm]
     against time [ms] over :data:`PLOT_CYCLES` periods, from the orbit's section.
+    note: a warning shown over the plots (:data:`~betvdesign.checks.coupled.
+    DECOUPLED_WARNING` where the check's verdict is the coupled head's: the plots are the
+    decoupled springs' motion).
     """
 
     gap_um: list[float] = field(default_factory=list)
@@ -60,6 +63,7 @@ class SetTraces:
     t_ms: list[float] = field(default_factory=list)
     x_um: list[float] = field(default_factory=list)
     reason: str = ""
+    note: str = ""
 
 
 @dataclass
@@ -119,14 +123,21 @@ def evaluate(
                 else None
             )
         if with_traces is True or with_traces == name:
-            tr[name] = traces(sc.derivation, sc.periodic)
+            tr[name] = traces(sc.derivation, sc.periodic, model=sc.model)
     return Evaluation(stage, out, settling, tr, time.perf_counter() - t0)
 
 
-def traces(sd: Any, periodic: Any) -> SetTraces:
+def traces(sd: Any, periodic: Any, *, model: str = "decoupled") -> SetTraces:
     """The periodic orbit of one set (a SetDerivation and its
     :class:`~betvdesign.dynamics.result.PeriodicResult`, None when none was computed)
-    sampled for the page (see :class:`SetTraces`)."""
+    sampled for the page (see :class:`SetTraces`).
+
+    The samples are the paper's decoupled model's motion
+    (:func:`betvdesign.dynamics.simulate`) from the orbit's state; where the check's
+    verdict is the coupled head's (``model`` "coupled", :class:`~betvdesign.checks.
+    checker.SetCheck`), they are not its orbit, and ``note`` says so
+    (:data:`~betvdesign.checks.coupled.DECOUPLED_WARNING`)."""
+    from betvdesign.checks.coupled import DECOUPLED_WARNING
     from betvdesign.dynamics import simulate
 
     if periodic is None or not periodic.success or periodic.state is None:
@@ -151,9 +162,13 @@ def traces(sd: Any, periodic: Any) -> SetTraces:
     gap_m = sc.u_m * math.sin(sc.theta_rad)  # ξ = gap/(u sinθ), MODEL.md
     rate = gap_m / sc.time_s  # [m/s] per unit ξ'
     x = sd.impact_sign * (states[:, 4] - states[0, 4]) * sc.length_m
+    note = ""
+    if model == "coupled":
+        note = f"{DECOUPLED_WARNING}: these plots are the decoupled springs' motion"
     return SetTraces(
         gap_um=(states[one, 0] * gap_m * 1e6).tolist(),
         gap_rate_mm_s=(states[one, 1] * rate * 1e3).tolist(),
         t_ms=(tau * sc.time_s * 1e3).tolist(),
         x_um=(x * 1e6).tolist(),
+        note=note,
     )

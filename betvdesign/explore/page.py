@@ -51,6 +51,7 @@ from betvdesign.explore.views import (
     basis_html,
     fixes_html,
     mode_decided,
+    model_note_html,
     no_orbit_html,
     status_html,
     verdict_html,
@@ -586,6 +587,8 @@ class ExplorePage:
             return  # no plots: the note says why
         basis = s.get("basis") if mode_decided(ev.stage) else None
         self.orbit_note.text = basis_html(basis, s.get("mode"))
+        if tr.note:
+            self.orbit_note.text += model_note_html(tr.note)
         self.disp_fig.title.text = (
             "Periodic orbit (verdict: crossing from rest)"
             if basis == "crossing"

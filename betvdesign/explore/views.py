@@ -236,6 +236,14 @@ def basis_html(basis: str | None, mode: str | None = None) -> str:
     )
 
 
+def model_note_html(text: str) -> str:
+    """A warning over the orbit plots (e.g. that they are not the verdict's model's)."""
+    return (
+        '<div class="betv-model-note" style="color:#cf222e;font-size:12px">'
+        f"<b>warning</b>: {_e(text)}</div>"
+    )
+
+
 def no_orbit_html(reason: str, *, computing: bool = False) -> str:
     """What stands in place of the orbit plots when there are none: "no periodic orbit:
     REASON" (or that the orbit is being computed)."""

@@ -24,6 +24,11 @@ API (fields in physical units in, rows out; shared with other front ends):
   orbit is found, "no crossing" when it does not cross within the horizon), without the
   check's determination re-solves (which matter only at round-off edges: the map names
   its basis, so a cell and ``betv check`` of the same design say the same);
+  ``model``: "coupled" where the check's verdict of the point is the drawn head's coupled
+  model (a drawn head without measured resonances:
+  :func:`betvdesign.checks.checker.coupled_head`; the point derived as the check derives
+  it and answered by :func:`betvdesign.checks.checker.coupled_over_travel`, the check's
+  own), "decoupled" otherwise (docs/MODEL.md "Coupled head");
 * :func:`locate_flips` (1-D): every change of the exact mode between neighbouring
   points, bisected in the field to :data:`FLIP_RTOL`;
 * :func:`sweep_marks` (1-D): where along the field the design window 0.5 ≤ ϖ < 2 lies,
@@ -43,6 +48,7 @@ from __future__ import annotations
 import hashlib
 import itertools
 import math
+from collections import Counter
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -64,7 +70,7 @@ from betvdesign.model.domain import (
 from betvdesign.spec.paths import with_values
 from betvdesign.studies.engine.runner import Study, StudyRun, run_study, split_run_args
 from betvdesign.studies.fixfields import current_value
-from betvdesign.studies.points import COLUMNS, periodic_solve, task_params
+from betvdesign.studies.points import COLUMNS, orbit_row, periodic_solve, point_row, task_params
 
 __all__ = [
     "FLIP_RTOL",
@@ -418,12 +424,7 @@ def _derive_grid(
             except (BetvError, ValueError) as exc:
                 out.append(str(exc))
                 continue
-            rec = {
-                **{k: float(getattr(d.params, k)) for k in PARAM_FIELDS},
-                "length_m": d.scales.length_m,
-                "f_act_hz": d.scales.f_act_hz,
-                "travel_s": _travel_s(d),
-            }
+            rec = _record(d)
         if (
             not all(math.isfinite(v) for v in rec.values())
             or min(rec[k] for k in ("varpi", "alpha", "beta")) <= 0
@@ -432,6 +433,70 @@ def _derive_grid(
             continue
         out.append(rec)
     return x, out
+
+
+def _record(d: Any) -> dict[str, float]:
+    """A derived point's task record: its parameters [-], ℓ [m], f_act [Hz], travel [-]."""
+    from betvdesign.studies.sampling import PARAM_FIELDS
+
+    return {
+        **{k: float(getattr(d.params, k)) for k in PARAM_FIELDS},
+        "length_m": d.scales.length_m,
+        "f_act_hz": d.scales.f_act_hz,
+        "travel_s": _travel_s(d),
+    }
+
+
+def _head_record(d: Any) -> dict[str, float] | None:
+    """A derived point's record when its verdict is the coupled head's, else None.
+
+    :func:`_record` with the drawn ``rho`` ρ [-] and ``theta_rad`` θ [rad], when
+    :func:`betvdesign.checks.checker.coupled_head` (the check's decision) gives the point
+    the coupled head's verdict.
+    """
+    from betvdesign.checks.checker import coupled_head
+
+    head = coupled_head(d)
+    return None if head is None else {**_record(d), "rho": head[0], "theta_rad": head[1]}
+
+
+def _with_heads(
+    spec: Any,
+    axes: Sequence[FieldAxis],
+    set_index: int,
+    x: np.ndarray,
+    derived: list[dict[str, Any] | str],
+) -> list[dict[str, Any] | str]:
+    """The grid's records, those whose verdict is the coupled head's as the check has them.
+
+    For a set whose drawn head gives k_v (no measured resonances:
+    :func:`betvdesign.checks.coupled.drawn_only`), every valid point is derived as
+    ``betv check`` derives it (:func:`betvdesign.nondim.device.derive_set` of the device
+    with the values written in) and, where the check's decision gives it the coupled
+    head's verdict, its record is :func:`_head_record`'s. Other sets' records are kept as
+    they are (every verdict the decoupled springs').
+    """
+    from betvdesign.checks.coupled import drawn_only
+    from betvdesign.nondim.device import derive_set
+
+    try:
+        own = derive_set(spec, spec.actuator_sets[set_index])
+    except (BetvError, ValueError):
+        return derived
+    if not drawn_only(own):
+        return derived
+    out: list[dict[str, Any] | str] = []
+    for pt, rec in zip(x, derived, strict=True):
+        head = None
+        if not isinstance(rec, str):
+            values = {a.field: a.quantity(float(v)) for a, v in zip(axes, pt, strict=True)}
+            try:
+                s = with_values(spec, values)
+                head = _head_record(derive_set(s, s.actuator_sets[set_index]))
+            except (BetvError, ValueError):
+                head = None
+        out.append(rec if head is None else head)
+    return out
 
 
 def fieldsweep_point(task: Mapping[str, Any]) -> dict[str, Any]:
@@ -449,7 +514,8 @@ def fieldsweep_point(task: Mapping[str, Any]) -> dict[str, Any]:
     dict
         One row of :func:`columns`: the values, the point's row of
         :data:`betvdesign.studies.points.COLUMNS`, ``exact_mode`` (:data:`MODES`),
-        ``speed_m_s`` [m/s, a magnitude] and ``basis``.
+        ``speed_m_s`` [m/s, a magnitude], ``basis`` and ``model`` (whose orbit:
+        :func:`travel_point`).
     """
     values = dict(task["values"])
     if task.get("invalid"):
@@ -462,6 +528,7 @@ def fieldsweep_point(task: Mapping[str, Any]) -> dict[str, Any]:
             message=task["invalid"],
             exact_mode="invalid",
             basis=None,
+            model=None,
         )
         return row
     row = travel_point(task)
@@ -481,18 +548,27 @@ def travel_point(task: Mapping[str, Any]) -> dict[str, Any]:
     task : mapping
         A point task (:func:`field_tasks`): its parameters [-], ``tol`` and
         ``travel_s``, the travel range in units of u·cosθ [-] (absent: the periodic
-        orbit alone is the answer).
+        orbit alone is the answer); with ``rho`` ρ [-] and ``theta_rad`` θ [rad] (and
+        then ``travel_s``) for a point whose verdict is the coupled head's
+        (:func:`betvdesign.checks.checker.coupled_head`).
 
     Returns
     -------
     dict
         The periodic point's row (:func:`betvdesign.studies.points.periodic_point`) with
         ``basis`` (:mod:`betvdesign.checks.travel`), ``travel_mode`` and
-        ``quoted_delta_s`` [-] (the Δs the answer quotes) and ``cycles_to_cross``.
+        ``quoted_delta_s`` [-] (the Δs the answer quotes), ``cycles_to_cross`` and
+        ``model``: "decoupled" (the paper's springs: the exact orbit and
+        :func:`betvdesign.checks.checker.answer_over_travel`) or "coupled" (the drawn
+        head: :func:`betvdesign.checks.checker.coupled_over_travel`, ``betv check``'s
+        answer of such a set; the coupled orbit's row, ``tol`` not used).
     """
     from betvdesign.checks.checker import answer_over_travel
 
+    if task.get("rho") is not None:
+        return _coupled_point(task)
     row, res = periodic_solve(task)
+    row["model"] = "decoupled"
     travel_s = task.get("travel_s")
     if res is None:
         row.update(basis=None, travel_mode=None, quoted_delta_s=None, cycles_to_cross=None)
@@ -516,8 +592,25 @@ def travel_point(task: Mapping[str, Any]) -> dict[str, Any]:
     return row
 
 
+def _coupled_point(task: Mapping[str, Any]) -> dict[str, Any]:
+    """:func:`travel_point` of a point whose verdict is the coupled head's."""
+    from betvdesign.checks.checker import coupled_over_travel
+
+    head = (float(task["rho"]), float(task["theta_rad"]))
+    po, _, ans = coupled_over_travel(task_params(task), head, float(task["travel_s"]))
+    row = orbit_row(point_row(task), po)
+    row.update(
+        model="coupled",
+        basis=ans.basis,
+        travel_mode=ans.mode,
+        quoted_delta_s=ans.delta_s,
+        cycles_to_cross=ans.cycles_to_cross,
+    )
+    return row
+
+
 def columns(axes: Sequence[FieldAxis]) -> dict[str, type]:
-    """The result columns: the fields, the point's columns, exact mode, speed, basis.
+    """The result columns: the fields, the point's columns, exact mode, speed, basis, model.
 
     A field's column is named with its unit, ``drive.frequency [kHz]``
     (:attr:`FieldAxis.label`): the CSV and JSON say what its numbers are in.
@@ -527,6 +620,7 @@ def columns(axes: Sequence[FieldAxis]) -> dict[str, type]:
     out |= {k: t for k, t in COLUMNS.items() if k != "key"}
     out |= {"zeta_v": float, "zeta_h": float, "restitution": float}
     out |= {"exact_mode": str, "speed_m_s": float, "basis": str, "cycles_to_cross": int}
+    out |= {"model": str}
     return out
 
 
@@ -581,6 +675,7 @@ def field_tasks(
         what = "one or two" if max_fields == 2 else f"1 to {max_fields}"
         raise UsageError(f"--vary: give {what} different fields")
     x, derived = _derive_grid(spec, axes, set_index, keys)
+    derived = _with_heads(spec, axes, set_index, x, derived)
     cols = columns(axes)
     order = range(len(x)) if keys is None else keys
     tasks = []
@@ -717,6 +812,9 @@ def _mode_at(spec: Any, axis: FieldAxis, x: float, index: int, tol: float) -> st
     except (BetvError, ValueError):
         return "invalid"
     task = {"key": 0, **d.params.as_dict(), "tol": tol, "travel_s": _travel_s(d)}
+    head = _head_record(d)
+    if head is not None:  # the check's verdict of this point is the coupled head's
+        task = {"key": 0, **head, "tol": tol}
     return exact_mode(travel_point(task))
 
 
@@ -779,7 +877,9 @@ def summarise(
     """A sweep's summary.
 
     A sweep's summary: the set, each axis (field, unit, device value, range, points),
-    the points and their count per exact mode, and what the speed is.
+    the points and their count per exact mode and per model (``coupled``: the drawn
+    head's, as ``betv check`` of such a set; ``decoupled``: the paper's springs), and
+    what the speed is.
 
     Parameters
     ----------
@@ -814,6 +914,7 @@ def summarise(
         ],
         "points": len(rows),
         "modes": {k: v for k, v in counts.items() if v},
+        "models": dict(sorted(Counter(r["model"] for r in rows if r.get("model")).items())),
         "speed": "the travel answer's |Δs|·u·cosθ·f_act [m/s]: a magnitude, the mode (push: "
         "along the impacts, pull: against them) says which way",
     }

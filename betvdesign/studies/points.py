@@ -224,6 +224,26 @@ def periodic_solve(task: Mapping[str, Any]) -> tuple[dict[str, Any], Any]:
     except Exception as exc:  # a solver crash is recorded and listed, never fatal to a sweep
         row.update(status="error", converged=False, message=solver_error(exc))
         return row, None
+    return orbit_row(row, res), res
+
+
+def orbit_row(row: dict[str, Any], res: Any) -> dict[str, Any]:
+    """A point's row with its orbit's columns filled in (:data:`COLUMNS`).
+
+    Parameters
+    ----------
+    row : dict
+        The point's row (:func:`point_row`); updated in place.
+    res : PeriodicResult
+        Its orbit (any model's: the decoupled exact solver's, the coupled head's).
+
+    Returns
+    -------
+    dict
+        ``row``, with status, converged, mode, Δs [-] per cycle, period [cycles],
+        residual [-], largest Floquet multiplier modulus [-], impacts per cycle, contact
+        fraction [-], cycles from rest and the solver's message.
+    """
     radius = None
     if res.floquet is not None and len(res.floquet):
         radius = float(np.max(np.abs(np.asarray(res.floquet))))
@@ -240,7 +260,7 @@ def periodic_solve(task: Mapping[str, Any]) -> tuple[dict[str, Any], Any]:
         cycles=int(res.transient_cycles),
         message=str(res.message),
     )
-    return row, res
+    return row
 
 
 def solver_error(exc: BaseException) -> str:

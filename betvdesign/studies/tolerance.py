@@ -45,6 +45,7 @@ from typing import Any, Literal
 
 import numpy as np
 
+from betvdesign.checks.coupled import DECOUPLED_WARNING
 from betvdesign.errors import BetvError, UsageError
 from betvdesign.model.damping import term_range
 from betvdesign.model.domain import in_window
@@ -738,7 +739,11 @@ def _sensitivities(
 
 
 def summarise(
-    rows: Sequence[Mapping[str, Any]], tolerances: Sequence[Tolerance], fidelity: str
+    rows: Sequence[Mapping[str, Any]],
+    tolerances: Sequence[Tolerance],
+    fidelity: str,
+    *,
+    coupled: Sequence[str] = (),
 ) -> dict[str, Any]:
     """Per actuator set: probabilities, speed percentiles, sensitivities.
 
@@ -750,16 +755,22 @@ def summarise(
         The sampled fields.
     fidelity : {"periodic", "lambda"}
         The rung the rows were made on.
+    coupled : sequence of str
+        The sets whose ``betv check`` verdict is the coupled head's
+        (:func:`coupled_sets`): their samples are solved with the paper's decoupled
+        springs all the same, and their summary says so (``warning``:
+        :data:`betvdesign.checks.coupled.DECOUPLED_WARNING`).
 
     Returns
     -------
     dict
-        Rung, model statement and why, and per set: P(push), P(pull), P(not converged),
-        P(not driven), P(outside the window), P(wrong mode) [-], speed percentiles
-        [um/s] signed along the impact direction and along the intended travel, Spearman
-        rank correlations [-] of each input with λ and speed, and the first 50 failures;
-        on the periodic rung ``p_pass``, the share of samples in which every set studied
-        passes as ``betv fix --spread`` counts it (:func:`_p_pass`).
+        Rung, model statement and why, and per set (``warning`` where ``coupled``):
+        P(push), P(pull), P(not converged), P(not driven), P(outside the window),
+        P(wrong mode) [-], speed percentiles [um/s] signed along the impact direction and
+        along the intended travel, Spearman rank correlations [-] of each input with λ and
+        speed, and the first 50 failures; on the periodic rung ``p_pass``, the share of
+        samples in which every set studied passes as ``betv fix --spread`` counts it
+        (:func:`_p_pass`).
     """
     out: dict[str, Any] = {
         "fidelity": fidelity,
@@ -778,6 +789,8 @@ def summarise(
             for r in rs
             if r["status"] == "invalid-sample" or (fidelity == "periodic" and not r["converged"])
         ][:50]
+        if name in coupled:
+            s["warning"] = DECOUPLED_WARNING
         out["sets"][name] = s
     if fidelity == "periodic":
         out |= _p_pass(rows)
@@ -824,4 +837,34 @@ def run_tolerance(
     study_kw, run = split_run_args(kwargs)
     study = tolerance_study(device, tolerances, **study_kw)
     result = run_study(study, **run)
-    return result, summarise(result.rows, tolerances, study.parameters["fidelity"])
+    from betvdesign.spec.loader import load_device
+
+    coupled = coupled_sets(load_device(device))
+    return result, summarise(result.rows, tolerances, study.parameters["fidelity"], coupled=coupled)
+
+
+def coupled_sets(spec: Any) -> list[str]:
+    """The sets whose ``betv check`` verdict is the coupled head's, by name.
+
+    The check's decision (:func:`betvdesign.checks.checker.coupled_head`) on the nominal
+    device: a drawn head without measured resonances. A tolerance analysis solves their
+    samples with the paper's decoupled springs all the same (not the check's model) and
+    says so.
+
+    Parameters
+    ----------
+    spec : DeviceSpec
+        The device.
+
+    Returns
+    -------
+    list of str
+        The sets' names (none when the device does not derive: its samples say why).
+    """
+    from betvdesign.checks.checker import coupled_head
+    from betvdesign.nondim.device import derive
+
+    try:
+        return [s.name for s in derive(spec).sets if coupled_head(s) is not None]
+    except BetvError:
+        return []
