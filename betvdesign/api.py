@@ -19,7 +19,7 @@ import os
 import warnings
 from collections.abc import Callable
 from dataclasses import dataclass, fields, replace
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Literal
 
 from betvdesign.errors import UsageError
 from betvdesign.model.domain import TRAVEL_HORIZON
@@ -75,7 +75,8 @@ class CheckOptions:
         The drawn head's coupled model (:mod:`betvdesign.checks.coupled`, rule
         ``coupled-head``): None (default) gives the verdict of the sets with a drawn head
         and no measured resonances from it; True also reports it as a finding for the drawn
-        sets whose file resonances win; False keeps every verdict decoupled
+        sets whose file resonances win; False keeps every verdict decoupled; "verdict" gives
+        the verdict of those sets even when a ``solver`` is passed to :func:`run_check`
         (:func:`betvdesign.checks.checker.check_derivation`).
 
     Raises
@@ -94,7 +95,7 @@ class CheckOptions:
     margin: bool = True
     settle: bool = True
     determine: bool = True
-    coupled: bool | None = None
+    coupled: bool | Literal["verdict"] | None = None
 
     def __post_init__(self) -> None:
         """Freeze the selectors as tuples and refuse bad values before any solve."""

@@ -184,6 +184,7 @@ def test_push_demo_predicts_push(reports_dir: Path) -> None:
     assert tr.success and tr.delta_s[-1] > 0
     text = text_of((reports_dir / "push_demo.html").read_text("utf-8"))
     assert re.search(r"Predicted mode push", text)
+    assert "uses the coupled head" not in text  # its file gives the resonances
 
 
 @pytest.mark.slow

@@ -78,6 +78,20 @@ def test_the_report_shows_u_of_v_and_u_of_f(html: str) -> None:
     assert "Speeds with the stroke predicted from the drawing at f_act" in text
 
 
+def test_a_coupled_verdict_says_which_figures_are_decoupled(device: Path, html: str) -> None:
+    """The drawn-only device's check (the CLI's JSON: its own path) takes the coupled
+    head's answer; the report's verdict is the same, and the report says so under the
+    set's figures and names the figures that still solve the paper's decoupled springs."""
+    r = runner.invoke(app, ["check", str(device), "--json", "--no-advice"])
+    assert r.exit_code in (0, 1), r.output
+    ((s,),) = [d["sets"] for d in json.loads(r.output)["devices"]]
+    assert s["model"] == "coupled"
+    text = text_of(html)
+    assert "decoupled model: betv check uses the coupled head for this set" in text
+    assert "robustness" in text.split("uses the coupled head for this set", 1)[1][:400]
+    assert f"Predicted mode {s['mode']}" in text  # the report's verdict is the check's
+
+
 def test_the_stroke_at_the_device_voltage_is_the_checks(
     device: Path, sweep: report_thermal.StrokeSweep, html: str
 ) -> None:

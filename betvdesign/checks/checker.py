@@ -347,7 +347,7 @@ def check_derivation(
     determine: bool | None = None,
     horizon: int = TRAVEL_HORIZON,
     layout_rules: list[RuleResult] | None = None,
-    coupled: bool | None = None,
+    coupled: bool | Literal["verdict"] | None = None,
 ) -> CheckResult:
     """Check every actuator set with its exact orbit (see the module docstring).
 
@@ -392,9 +392,10 @@ def check_derivation(
         The drawn head's coupled model (:mod:`betvdesign.checks.coupled`, rule
         ``coupled-head``): None (default) for the sets whose verdict it gives (drawn head,
         no measured resonances: :func:`~betvdesign.checks.coupled.uses_coupled`), unless
-        ``solver`` is given; True also as a finding for the drawn sets whose file
-        resonances win (their verdict stays the decoupled one); False never (every verdict
-        decoupled).
+        ``solver`` is given; "verdict" for those sets even with a ``solver`` (one that
+        answers the same decoupled orbits, as the report's store of them does); True also
+        as a finding for the drawn sets whose file resonances win (their verdict stays the
+        decoupled one); False never (every verdict decoupled).
 
     Returns
     -------
@@ -415,7 +416,7 @@ def check_derivation(
     vertical = vertical or vertical_motion
     if determine is None:
         determine = not custom
-    on = (not custom) if coupled is None else coupled
+    on = (not custom) if coupled is None else bool(coupled)
     by_coupled = _coupled_sets(derivation, on)
     got = _solve_sets(
         derivation,

@@ -19,6 +19,7 @@ import pint
 from betvdesign import __version__
 from betvdesign.api import CheckOptions, run_check
 from betvdesign.checks.checker import CheckResult, SetCheck
+from betvdesign.checks.coupled import DECOUPLED_WARNING
 from betvdesign.checks.rule import RuleResult, verdict
 from betvdesign.checks.view import rule_unit
 from betvdesign.dynamics import periodic_orbit
@@ -53,6 +54,15 @@ SHORT_NOTE = (
     + ", ".join(t.lower() if i else t for i, t in enumerate(FULL_ONLY))
     + " (the model's diagnostics; the verdict, the mode, the speed and the margins above "
     "do not rest on them)."
+)
+#: The note under the figures of a set whose verdict is the coupled head's (the check's
+#: ``model``): the report's orbit, robustness, voltage and frequency figures still solve
+#: the paper's decoupled springs; its mode map is the sweep's (the check's answer).
+COUPLED_NOTE = (
+    f"{DECOUPLED_WARNING}: the verdict, the mode, the speed, the margins and the exact-mode "
+    'map above are the coupled head\'s (docs/MODEL.md, "Coupled head"); the displacement, '
+    "speed-against-voltage, robustness, speed-against-frequency and orbit figures solve the "
+    "paper's decoupled springs and can disagree with them."
 )
 _SEVERITY_ORDER = {"error": 0, "warning": 1, "info": 2}
 
@@ -315,7 +325,10 @@ def design_check(
 
     # The advice of ``betv check`` (studies.fix.advise): the report's fix texts are the
     # check's, a concrete change ("raise drive.frequency 2 kHz -> 2.149 kHz").
-    options = CheckOptions(advice=True, adequacy=adequacy_result is not False)
+    # ``coupled="verdict"``: the sets whose check verdict is the coupled head's get it here
+    # too (the solver above only stores the decoupled orbits; the coupled ones are the
+    # check's own), so the report's verdict is ``betv check``'s.
+    options = CheckOptions(advice=True, adequacy=adequacy_result is not False, coupled="verdict")
     return run_check(
         der,
         options,
@@ -455,7 +468,10 @@ def _build_report(
                 provenance=provenance(an, opts, timings=generated is not None),
                 same_as=same_as,
                 adequacy=adequate,
-                notes=() if same_as or opts.full else (SHORT_NOTE,),
+                notes=()
+                if same_as
+                else ((COUPLED_NOTE,) if sc.model == "coupled" else ())
+                + (() if opts.full else (SHORT_NOTE,)),
             )
         )
     device_rules = [r for r in results if not r.set_name]
